@@ -1,0 +1,236 @@
+//! Evaluation of the real SH basis at unit directions, one at a time or in batches.
+//!
+//! The real orthonormal SH used throughout shlight (Condon-Shortley phase
+//! included; see the crate's conventions) are, with `x = cos t` and
+//! `Pbar_l^m` from [`crate::legendre`]:
+//!
+//! ```text
+//! Y_l^m    = sqrt(2) Pbar_l^m(cos t) cos(m phi)    m > 0
+//! Y_l^0    =         Pbar_l^0(cos t)
+//! Y_l^{-m} = sqrt(2) Pbar_l^m(cos t) sin(m phi)    m > 0
+//! ```
+//!
+//! on the world direction `d = (sin t cos phi, sin t sin phi, cos t)`.
+//! No trigonometric function is called: `cos(m phi)` and `sin(m phi)` come
+//! from the complex recurrence `(c_m + i s_m) = (c_{m-1} + i s_{m-1})(x + i y)/s`
+//! on the unit azimuth vector (Sloan 2008, appendix A1, kept unit-length so
+//! nothing underflows at high `m`), and the polar part from the normalised
+//! Legendre recurrences. For `lmax <= 4` the hard-coded polynomials of
+//! [`crate::hardcoded`] are used.
+
+use crate::hardcoded::eval_hardcoded;
+use crate::legendre::Legendre;
+use crate::{Real, sh_count};
+
+/// Lanes the batch evaluator processes together (a multiple of every SIMD width).
+const LANES: usize = 16;
+
+/// Evaluates every real SH `Y_l^m`, `l <= lmax`, at unit directions.
+///
+/// Holds the recurrence tables, so build it once per `lmax` and reuse it.
+///
+/// ```
+/// use shlight_core::ShBasis;
+/// let basis = ShBasis::<f64>::new(2);
+/// let mut y = [0.0; 9];
+/// basis.eval([0.0, 0.0, 1.0], &mut y);
+/// assert!((y[2] - 0.4886025119029199).abs() < 1e-15); // Y_1^0 at +Z
+/// ```
+#[derive(Clone, Debug)]
+pub struct ShBasis<T> {
+    lmax: usize,
+    legendre: Legendre<T>,
+}
+
+impl<T: Real> ShBasis<T> {
+    /// Prepares evaluation up to degree `lmax`.
+    #[must_use]
+    pub fn new(lmax: usize) -> Self {
+        Self {
+            lmax,
+            legendre: Legendre::new(if lmax <= 4 { 0 } else { lmax }),
+        }
+    }
+
+    /// The highest degree evaluated.
+    #[must_use]
+    pub fn lmax(&self) -> usize {
+        self.lmax
+    }
+
+    /// Number of values per direction, `(lmax+1)^2`.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        sh_count(self.lmax)
+    }
+
+    /// Writes `Y_l^m(d)` to `out[l*(l+1)+m]` for every `l <= lmax`.
+    ///
+    /// Precondition: `d = [x, y, z]` has unit length. Panics if `out` is
+    /// shorter than [`ShBasis::count`].
+    pub fn eval(&self, d: [T; 3], out: &mut [T]) {
+        if self.lmax <= 4 {
+            eval_hardcoded(self.lmax, d[0], d[1], d[2], out);
+        } else {
+            let out = &mut out[..self.count()];
+            self.general::<1>(&[d[0]], &[d[1]], &[d[2]], |i, v| out[i] = v[0]);
+        }
+    }
+
+    /// Evaluates the basis at `n` directions given as structure of arrays.
+    ///
+    /// `out` is coefficient-major: `out[i * n + k] = Y_i(x[k], y[k], z[k])`, so
+    /// each basis function's values over the batch are contiguous (what a
+    /// projection or a shader upload wants). The loops run over lanes of 16
+    /// directions and auto-vectorise.
+    ///
+    /// Panics if `y`, `z` differ in length from `x`, or `out.len() != count * n`.
+    pub fn eval_batch(&self, x: &[T], y: &[T], z: &[T], out: &mut [T]) {
+        let n = x.len();
+        assert!(y.len() == n && z.len() == n, "x, y, z lengths differ");
+        let count = self.count();
+        assert_eq!(out.len(), count * n, "output must hold count * n values");
+        let mut start = 0;
+        while start < n {
+            let len = LANES.min(n - start);
+            let mut xs = [T::ZERO; LANES];
+            let mut ys = [T::ZERO; LANES];
+            let mut zs = [T::ONE; LANES];
+            xs[..len].copy_from_slice(&x[start..start + len]);
+            ys[..len].copy_from_slice(&y[start..start + len]);
+            zs[..len].copy_from_slice(&z[start..start + len]);
+            let mut store = |i: usize, v: &[T; LANES]| {
+                out[i * n + start..i * n + start + len].copy_from_slice(&v[..len]);
+            };
+            if self.lmax <= 4 {
+                let mut tmp = [[T::ZERO; 25]; LANES];
+                for j in 0..LANES {
+                    eval_hardcoded(self.lmax, xs[j], ys[j], zs[j], &mut tmp[j]);
+                }
+                for i in 0..count {
+                    let mut row = [T::ZERO; LANES];
+                    for j in 0..LANES {
+                        row[j] = tmp[j][i];
+                    }
+                    store(i, &row);
+                }
+            } else {
+                self.general::<LANES>(&xs, &ys, &zs, |i, v| store(i, v));
+            }
+            start += len;
+        }
+    }
+
+    /// The general path: Legendre columns times the azimuth recurrence.
+    #[inline(always)]
+    fn general<const N: usize>(
+        &self,
+        x: &[T; N],
+        y: &[T; N],
+        z: &[T; N],
+        mut emit: impl FnMut(usize, &[T; N]),
+    ) {
+        let sqrt2 = T::from_f64(core::f64::consts::SQRT_2);
+        // Polar sine and the unit azimuth vector (1, 0) at the poles.
+        let mut s = [T::ZERO; N];
+        let mut ca = [T::ONE; N];
+        let mut sa = [T::ZERO; N];
+        for j in 0..N {
+            let r2 = x[j] * x[j] + y[j] * y[j];
+            s[j] = r2.sqrt();
+            if s[j] > T::ZERO {
+                let inv = T::ONE / s[j];
+                ca[j] = x[j] * inv;
+                sa[j] = y[j] * inv;
+            }
+        }
+        // sqrt(2) cos(m phi), sqrt(2) sin(m phi) for the current column.
+        let mut cm = [T::ONE; N];
+        let mut sm = [T::ZERO; N];
+        let mut cur_m = 0;
+        let mut row_c = [T::ZERO; N];
+        let mut row_s = [T::ZERO; N];
+        self.legendre.columns::<N>(z, &s, |l, m, p| {
+            if m != cur_m {
+                // Advance the azimuth recurrence to m (columns arrive in order).
+                for j in 0..N {
+                    let c = cm[j] * ca[j] - sm[j] * sa[j];
+                    let sn = sm[j] * ca[j] + cm[j] * sa[j];
+                    cm[j] = c;
+                    sm[j] = sn;
+                }
+                cur_m = m;
+            }
+            let base = l * (l + 1);
+            if m == 0 {
+                emit(base, p);
+            } else {
+                for j in 0..N {
+                    row_c[j] = sqrt2 * p[j] * cm[j];
+                    row_s[j] = sqrt2 * p[j] * sm[j];
+                }
+                emit(base + m, &row_c);
+                emit(base - m, &row_s);
+            }
+        });
+    }
+}
+
+/// `Y_l^m(d)` for every `l <= lmax` at one unit direction, in `f64`.
+///
+/// Convenience for one-off use; build an [`ShBasis`] to evaluate many
+/// directions.
+///
+/// ```
+/// let y = shlight_core::sh_eval(1, [1.0, 0.0, 0.0]);
+/// assert!((y[3] + 0.4886025119029199).abs() < 1e-15); // Y_1^1 = -sqrt(3/4pi) x
+/// ```
+#[must_use]
+pub fn sh_eval(lmax: usize, d: [f64; 3]) -> Vec<f64> {
+    let mut out = vec![0.0; sh_count(lmax)];
+    ShBasis::new(lmax).eval(d, &mut out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dirs() -> Vec<[f64; 3]> {
+        let mut v = vec![
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+        ];
+        for i in 0..40 {
+            let t = 0.3 + i as f64 * 0.071;
+            let p = i as f64 * 0.9 - 2.0;
+            v.push([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]);
+        }
+        v
+    }
+
+    #[test]
+    fn batch_equals_scalar() {
+        let d = dirs();
+        for lmax in [0, 2, 4, 5, 9] {
+            let basis = ShBasis::<f64>::new(lmax);
+            let n = d.len();
+            let (x, y, z): (Vec<_>, Vec<_>, Vec<_>) = (
+                d.iter().map(|v| v[0]).collect(),
+                d.iter().map(|v| v[1]).collect(),
+                d.iter().map(|v| v[2]).collect(),
+            );
+            let mut out = vec![0.0; basis.count() * n];
+            basis.eval_batch(&x, &y, &z, &mut out);
+            let mut one = vec![0.0; basis.count()];
+            for k in 0..n {
+                basis.eval(d[k], &mut one);
+                for i in 0..basis.count() {
+                    assert_eq!(out[i * n + k], one[i], "lmax {lmax} i {i} k {k}");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,442 @@
+//! [`ShCoeffs`]: an SH expansion up to some `lmax`, of scalars or RGB.
+
+use core::ops::{Add, AddAssign, Index, IndexMut, Mul, Neg, Sub};
+use glam::{DVec3, Vec3};
+
+use crate::quadrature::SphereQuadrature;
+use crate::{Real, ShBasis, ShValue, lmax_from_count, sh_count, sh_index};
+
+/// The coefficients `f_l^m`, `l <= lmax`, of a function
+/// `f(d) = sum_{l,m} f_l^m Y_l^m(d)` in shlight's real orthonormal basis
+/// (Condon-Shortley phase included, flat index `l*(l+1)+m`).
+///
+/// `C` is the value type: `f32`/`f64` for one channel, `glam::Vec3`/`DVec3`
+/// for linear RGB. Because the basis is orthonormal, the coefficients of a
+/// sum are sums of coefficients, `dot` is the integral of a product over
+/// the sphere, and `band_power` is the energy per degree.
+///
+/// ```
+/// use shlight_core::ShCoeffs;
+/// use glam::DVec3;
+/// let mut sh = ShCoeffs::<DVec3>::zeros(2);
+/// sh[(0, 0)] = DVec3::splat(2.0 * std::f64::consts::PI.sqrt()); // constant radiance 1
+/// let v = sh.eval([0.0, 1.0, 0.0]);
+/// assert!((v - DVec3::ONE).abs().max_element() < 1e-14);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShCoeffs<C> {
+    lmax: usize,
+    coeffs: Vec<C>,
+}
+
+/// Scalar type of the coefficients' channels.
+type S<C> = <C as ShValue>::Scalar;
+
+impl<C: ShValue> ShCoeffs<C> {
+    /// All `(lmax+1)^2` coefficients zero.
+    #[must_use]
+    pub fn zeros(lmax: usize) -> Self {
+        Self {
+            lmax,
+            coeffs: vec![C::ZERO; sh_count(lmax)],
+        }
+    }
+
+    /// Wraps a vector of coefficients in flat-index order. Returns `None`
+    /// unless its length is a perfect square `(lmax+1)^2`.
+    #[must_use]
+    pub fn from_vec(coeffs: Vec<C>) -> Option<Self> {
+        let lmax = lmax_from_count(coeffs.len())?;
+        Some(Self { lmax, coeffs })
+    }
+
+    /// Builds coefficients from `f(l, m)` for every `l <= lmax`.
+    #[must_use]
+    pub fn from_fn(lmax: usize, mut f: impl FnMut(usize, isize) -> C) -> Self {
+        let mut out = Self::zeros(lmax);
+        for l in 0..=lmax {
+            for m in -(l as isize)..=l as isize {
+                out.coeffs[sh_index(l, m)] = f(l, m);
+            }
+        }
+        out
+    }
+
+    /// The highest degree held.
+    #[must_use]
+    pub fn lmax(&self) -> usize {
+        self.lmax
+    }
+
+    /// Number of coefficients, `(lmax+1)^2`.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.coeffs.len()
+    }
+
+    /// Never true: an expansion holds at least the constant term.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The coefficients in flat-index order.
+    #[must_use]
+    pub fn as_slice(&self) -> &[C] {
+        &self.coeffs
+    }
+
+    /// The coefficients in flat-index order, mutable.
+    pub fn as_mut_slice(&mut self) -> &mut [C] {
+        &mut self.coeffs
+    }
+
+    /// Consumes the expansion, returning the flat vector.
+    #[must_use]
+    pub fn into_vec(self) -> Vec<C> {
+        self.coeffs
+    }
+
+    /// The `2l+1` coefficients of degree `l`, `m = -l..=l`. Panics if `l > lmax`.
+    #[must_use]
+    pub fn band(&self, l: usize) -> &[C] {
+        &self.coeffs[l * l..(l + 1) * (l + 1)]
+    }
+
+    /// The `2l+1` coefficients of degree `l`, mutable. Panics if `l > lmax`.
+    pub fn band_mut(&mut self, l: usize) -> &mut [C] {
+        &mut self.coeffs[l * l..(l + 1) * (l + 1)]
+    }
+
+    /// A copy truncated or zero-extended to `lmax`.
+    #[must_use]
+    pub fn resized(&self, lmax: usize) -> Self {
+        let mut coeffs = self.coeffs.clone();
+        coeffs.resize(sh_count(lmax), C::ZERO);
+        Self { lmax, coeffs }
+    }
+
+    /// Every coefficient multiplied by `s`.
+    #[must_use]
+    pub fn scaled(&self, s: S<C>) -> Self {
+        self.map(|c| c.scale(s))
+    }
+
+    /// Applies `f` to every coefficient.
+    #[must_use]
+    pub fn map<D: ShValue>(&self, f: impl FnMut(C) -> D) -> ShCoeffs<D> {
+        ShCoeffs {
+            lmax: self.lmax,
+            coeffs: self.coeffs.iter().copied().map(f).collect(),
+        }
+    }
+
+    /// Multiplies every coefficient of degree `l` by `factor(l)`: the form of
+    /// every zonal convolution and window.
+    #[must_use]
+    pub fn scaled_per_band(&self, mut factor: impl FnMut(usize) -> S<C>) -> Self {
+        let mut out = self.clone();
+        for l in 0..=self.lmax {
+            let f = factor(l);
+            for c in out.band_mut(l) {
+                *c = c.scale(f);
+            }
+        }
+        out
+    }
+
+    /// `sum_i self_i * other_i` per channel: the integral over the sphere of
+    /// the product of the two functions (Parseval). Expansions of different
+    /// `lmax` are compared on the common degrees.
+    #[must_use]
+    pub fn dot(&self, other: &Self) -> C {
+        let mut acc = C::ZERO;
+        for (a, b) in self.coeffs.iter().zip(&other.coeffs) {
+            acc += a.mul_elem(*b);
+        }
+        acc
+    }
+
+    /// `sum_i self_i * t_i` with a one-channel `t`: shading with a
+    /// transfer vector (e.g. PRT) applied to every channel.
+    #[must_use]
+    pub fn dot_scalar(&self, t: &[S<C>]) -> C {
+        let mut acc = C::ZERO;
+        for (a, &b) in self.coeffs.iter().zip(t) {
+            acc += a.scale(b);
+        }
+        acc
+    }
+
+    /// Power per degree: `sum_m (f_l^m)^2` per channel, for `l = 0..=lmax`.
+    /// Invariant under rotation.
+    #[must_use]
+    pub fn band_power(&self) -> Vec<C> {
+        (0..=self.lmax)
+            .map(|l| {
+                self.band(l)
+                    .iter()
+                    .fold(C::ZERO, |acc, c| acc + c.mul_elem(*c))
+            })
+            .collect()
+    }
+
+    /// The function at unit direction `d`: `sum Y_l^m(d) f_l^m`.
+    ///
+    /// Builds the basis tables each call; use [`ShCoeffs::eval_with`] in loops.
+    #[must_use]
+    pub fn eval(&self, d: [S<C>; 3]) -> C {
+        self.eval_with(
+            &ShBasis::new(self.lmax),
+            d,
+            &mut vec![S::<C>::ZERO; self.len()],
+        )
+    }
+
+    /// The function at unit direction `d`, with a prepared basis (of at
+    /// least this `lmax`) and a scratch buffer of `basis.count()` values.
+    #[must_use]
+    pub fn eval_with(&self, basis: &ShBasis<S<C>>, d: [S<C>; 3], scratch: &mut [S<C>]) -> C {
+        basis.eval(d, scratch);
+        self.dot_scalar(scratch)
+    }
+
+    /// Converts between shlight's basis (Condon-Shortley phase included) and
+    /// the basis without it (Ramamoorthi-Hanrahan tables, three.js,
+    /// MaterialX): every coefficient with odd `|m|` changes sign. The map is
+    /// its own inverse, so the same call converts either way.
+    #[must_use]
+    pub fn toggled_cs_phase(&self) -> Self {
+        let mut out = self.clone();
+        for l in 0..=self.lmax {
+            for m in -(l as isize)..=l as isize {
+                if m % 2 != 0 {
+                    let c = &mut out.coeffs[sh_index(l, m)];
+                    *c = -*c;
+                }
+            }
+        }
+        out
+    }
+
+    /// Projects `f` onto the basis up to `lmax` by the product quadrature
+    /// [`SphereQuadrature::exact_to_degree`]`(degree)`. When `f` is a spherical
+    /// polynomial of degree `<= degree - lmax` the result is exact; otherwise
+    /// larger `degree` gives better accuracy.
+    #[must_use]
+    pub fn project_fn(lmax: usize, degree: usize, f: impl Fn([f64; 3]) -> C) -> Self
+    where
+        C: ShValue<Scalar = f64>,
+    {
+        let q = SphereQuadrature::exact_to_degree(degree.max(lmax));
+        let basis = ShBasis::<f64>::new(lmax);
+        let mut y = vec![0.0; basis.count()];
+        let mut out = Self::zeros(lmax);
+        for (d, &w) in q.directions.iter().zip(&q.weights) {
+            let v = f(*d).scale(w);
+            basis.eval(*d, &mut y);
+            for (o, &yi) in out.coeffs.iter_mut().zip(&y) {
+                *o += v.scale(yi);
+            }
+        }
+        out
+    }
+}
+
+impl<C: ShValue> Index<usize> for ShCoeffs<C> {
+    type Output = C;
+    fn index(&self, i: usize) -> &C {
+        &self.coeffs[i]
+    }
+}
+
+impl<C: ShValue> IndexMut<usize> for ShCoeffs<C> {
+    fn index_mut(&mut self, i: usize) -> &mut C {
+        &mut self.coeffs[i]
+    }
+}
+
+/// `sh[(l, m)]`: the coefficient of degree `l`, order `m`.
+impl<C: ShValue> Index<(usize, isize)> for ShCoeffs<C> {
+    type Output = C;
+    fn index(&self, (l, m): (usize, isize)) -> &C {
+        assert!(
+            l <= self.lmax && m.unsigned_abs() <= l,
+            "(l, m) = ({l}, {m}) out of range"
+        );
+        &self.coeffs[sh_index(l, m)]
+    }
+}
+
+impl<C: ShValue> IndexMut<(usize, isize)> for ShCoeffs<C> {
+    fn index_mut(&mut self, (l, m): (usize, isize)) -> &mut C {
+        assert!(
+            l <= self.lmax && m.unsigned_abs() <= l,
+            "(l, m) = ({l}, {m}) out of range"
+        );
+        &mut self.coeffs[sh_index(l, m)]
+    }
+}
+
+/// Sum of two expansions; the result has the larger `lmax`.
+impl<C: ShValue> Add for &ShCoeffs<C> {
+    type Output = ShCoeffs<C>;
+    fn add(self, rhs: Self) -> ShCoeffs<C> {
+        let mut out = self.resized(self.lmax.max(rhs.lmax));
+        out += rhs;
+        out
+    }
+}
+
+impl<C: ShValue> AddAssign<&ShCoeffs<C>> for ShCoeffs<C> {
+    /// Adds `rhs`, growing `self` if `rhs` has a higher `lmax`.
+    fn add_assign(&mut self, rhs: &ShCoeffs<C>) {
+        if rhs.lmax > self.lmax {
+            *self = self.resized(rhs.lmax);
+        }
+        for (a, b) in self.coeffs.iter_mut().zip(&rhs.coeffs) {
+            *a += *b;
+        }
+    }
+}
+
+/// Difference of two expansions; the result has the larger `lmax`.
+impl<C: ShValue> Sub for &ShCoeffs<C> {
+    type Output = ShCoeffs<C>;
+    fn sub(self, rhs: Self) -> ShCoeffs<C> {
+        let neg = -rhs;
+        self + &neg
+    }
+}
+
+impl<C: ShValue> Neg for &ShCoeffs<C> {
+    type Output = ShCoeffs<C>;
+    fn neg(self) -> ShCoeffs<C> {
+        self.map(|c| -c)
+    }
+}
+
+impl<C: ShValue> Mul<S<C>> for &ShCoeffs<C> {
+    type Output = ShCoeffs<C>;
+    fn mul(self, s: S<C>) -> ShCoeffs<C> {
+        self.scaled(s)
+    }
+}
+
+impl<T: Real + ShValue<Scalar = T>> ShCoeffs<T> {
+    /// Scalar expansion as the same value in all three channels.
+    #[must_use]
+    pub fn splat_rgb<V: ShValue<Scalar = T>>(&self) -> ShCoeffs<V> {
+        self.map(V::splat)
+    }
+}
+
+impl ShCoeffs<DVec3> {
+    /// One channel (0 red, 1 green, 2 blue) as a scalar expansion.
+    #[must_use]
+    pub fn channel(&self, c: usize) -> ShCoeffs<f64> {
+        self.map(|v| v[c])
+    }
+
+    /// Assembles RGB from three scalar expansions of equal `lmax`.
+    ///
+    /// Panics if their `lmax` differ.
+    #[must_use]
+    pub fn from_channels(r: &ShCoeffs<f64>, g: &ShCoeffs<f64>, b: &ShCoeffs<f64>) -> Self {
+        assert!(r.lmax == g.lmax && g.lmax == b.lmax, "channel lmax differ");
+        Self::from_fn(r.lmax, |l, m| {
+            let i = sh_index(l, m);
+            DVec3::new(r[i], g[i], b[i])
+        })
+    }
+
+    /// Rounded to single precision.
+    #[must_use]
+    pub fn as_f32(&self) -> ShCoeffs<Vec3> {
+        self.map(|v| v.as_vec3())
+    }
+}
+
+impl ShCoeffs<Vec3> {
+    /// Widened to double precision.
+    #[must_use]
+    pub fn as_f64(&self) -> ShCoeffs<DVec3> {
+        self.map(|v| v.as_dvec3())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> ShCoeffs<f64> {
+        ShCoeffs::from_fn(3, |l, m| (l as f64) * 0.5 - m as f64 * 0.25 + 0.1)
+    }
+
+    #[test]
+    fn indexing_by_pair_and_flat_agree() {
+        let s = sample();
+        assert_eq!(s[(2, -1)], s[sh_index(2, -1)]);
+        assert_eq!(s.band(2)[0], s[(2, -2)]);
+    }
+
+    #[test]
+    fn resize_truncates_and_zero_extends() {
+        let s = sample();
+        let t = s.resized(1);
+        assert_eq!(t.len(), 4);
+        assert_eq!(t.as_slice(), &s.as_slice()[..4]);
+        let e = s.resized(5);
+        assert_eq!(&e.as_slice()[..16], s.as_slice());
+        assert!(e.as_slice()[16..].iter().all(|&c| c == 0.0));
+    }
+
+    #[test]
+    fn arithmetic_and_parseval() {
+        let a = sample();
+        let b = a.scaled(2.0);
+        let c = &b - &a;
+        assert_eq!(c, a);
+        // Parseval: the sphere integral of a*a equals the coefficient dot product.
+        let integral = {
+            let q = SphereQuadrature::exact_to_degree(7);
+            q.directions
+                .iter()
+                .zip(&q.weights)
+                .map(|(d, w)| w * a.eval(*d).powi(2))
+                .sum::<f64>()
+        };
+        assert!((integral - a.dot(&a)).abs() < 1e-12 * integral);
+        let power: f64 = a.band_power().iter().sum();
+        assert!((power - a.dot(&a)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn cs_phase_toggle_flips_odd_m_and_is_an_involution() {
+        let a = sample();
+        let t = a.toggled_cs_phase();
+        assert_eq!(t[(1, 1)], -a[(1, 1)]);
+        assert_eq!(t[(3, -3)], -a[(3, -3)]);
+        assert_eq!(t[(2, 2)], a[(2, 2)]);
+        assert_eq!(t[(2, 0)], a[(2, 0)]);
+        assert_eq!(t.toggled_cs_phase(), a);
+    }
+
+    #[test]
+    fn projection_recovers_a_band_limited_function() {
+        let a = sample();
+        let p = ShCoeffs::project_fn(3, 6, |d| a.eval(d));
+        for (x, y) in p.as_slice().iter().zip(a.as_slice()) {
+            assert!((x - y).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn rgb_channels_round_trip() {
+        let a = sample();
+        let rgb = ShCoeffs::<DVec3>::from_channels(&a, &a.scaled(2.0), &a.scaled(3.0));
+        assert_eq!(rgb.channel(1), a.scaled(2.0));
+        let v = rgb.eval([0.0, 0.6, 0.8]);
+        assert!((v.y - 2.0 * a.eval([0.0, 0.6, 0.8])).abs() < 1e-14);
+    }
+}

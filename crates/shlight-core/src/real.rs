@@ -1,0 +1,108 @@
+//! The floating-point scalars the basis is evaluated in (`f32`, `f64`).
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A real scalar type in which SH can be evaluated: implemented for `f32` and `f64`.
+///
+/// Besides arithmetic it carries the two constants of the extended-exponent
+/// Legendre recurrence ([`Real::BIG`], [`Real::SMALL`]): values that would
+/// underflow are kept as `mantissa * SMALL^k` with an integer `k`, which is
+/// what keeps `f64` evaluation accurate far past lmax 1000
+/// (see [`crate::legendre`]).
+pub trait Real:
+    Copy
+    + PartialOrd
+    + Default
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// The rescaling factor of the extended-exponent recurrence:
+    /// `2^600` for `f64`, `2^60` for `f32`.
+    const BIG: Self;
+    /// `1 / BIG`.
+    const SMALL: Self;
+    /// Converts from `f64` (rounding for `f32`).
+    fn from_f64(x: f64) -> Self;
+    /// Converts to `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// Square root.
+    #[must_use]
+    fn sqrt(self) -> Self;
+    /// Absolute value.
+    #[must_use]
+    fn abs(self) -> Self;
+    /// `self * a + b`, fused where the target has it cheaply.
+    #[must_use]
+    fn mul_add_fast(self, a: Self, b: Self) -> Self;
+}
+
+macro_rules! impl_real {
+    ($t:ty, $big:expr, $small:expr) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const BIG: Self = $big;
+            const SMALL: Self = $small;
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn mul_add_fast(self, a: Self, b: Self) -> Self {
+                self * a + b
+            }
+        }
+    };
+}
+
+// 2^600 and 2^-600; 2^60 and 2^-60.
+impl_real!(
+    f64,
+    f64::from_bits(((1023 + 600) as u64) << 52),
+    f64::from_bits(((1023 - 600) as u64) << 52)
+);
+impl_real!(
+    f32,
+    f32::from_bits(((127 + 60) as u32) << 23),
+    f32::from_bits(((127 - 60) as u32) << 23)
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scale_constants_are_exact_powers_of_two() {
+        assert_eq!(<f64 as Real>::BIG, 2f64.powi(600));
+        assert_eq!(<f64 as Real>::SMALL, 2f64.powi(-600));
+        assert_eq!(<f32 as Real>::BIG, 2f32.powi(60));
+        assert_eq!(<f32 as Real>::SMALL, 2f32.powi(-60));
+    }
+}
