@@ -18,7 +18,7 @@
 //! Legendre recurrences. For `lmax <= 4` the hard-coded polynomials of
 //! [`crate::hardcoded`] are used.
 
-use crate::hardcoded::eval_hardcoded;
+use crate::hardcoded::{Lanes, QuadraticForm, eval_hardcoded, eval_hardcoded_with};
 use crate::legendre::Legendre;
 use crate::{Real, sh_count};
 
@@ -93,30 +93,85 @@ impl<T: Real> ShBasis<T> {
         let mut start = 0;
         while start < n {
             let len = LANES.min(n - start);
-            let mut xs = [T::ZERO; LANES];
-            let mut ys = [T::ZERO; LANES];
-            let mut zs = [T::ONE; LANES];
-            xs[..len].copy_from_slice(&x[start..start + len]);
-            ys[..len].copy_from_slice(&y[start..start + len]);
-            zs[..len].copy_from_slice(&z[start..start + len]);
-            let mut store = |i: usize, v: &[T; LANES]| {
-                out[i * n + start..i * n + start + len].copy_from_slice(&v[..len]);
-            };
+            let (xs, ys, zs) = load_lanes(x, y, z, start);
             if self.lmax <= 4 {
-                let mut tmp = [[T::ZERO; 25]; LANES];
-                for j in 0..LANES {
-                    eval_hardcoded(self.lmax, xs[j], ys[j], zs[j], &mut tmp[j]);
-                }
-                for i in 0..count {
-                    let mut row = [T::ZERO; LANES];
-                    for j in 0..LANES {
-                        row[j] = tmp[j][i];
-                    }
-                    store(i, &row);
-                }
+                eval_hardcoded_with(
+                    self.lmax,
+                    Lanes(xs),
+                    Lanes(ys),
+                    Lanes(zs),
+                    #[inline(always)]
+                    |i, v| store_lanes(&mut out[i * n + start..i * n + start + len], &v.0),
+                );
             } else {
-                self.general::<LANES>(&xs, &ys, &zs, |i, v| store(i, v));
+                self.general::<LANES>(
+                    &xs,
+                    &ys,
+                    &zs,
+                    #[inline(always)]
+                    |i, v| store_lanes(&mut out[i * n + start..i * n + start + len], v),
+                );
             }
+            start += len;
+        }
+    }
+
+    /// Reconstructs `f(d_k) = sum_i coeffs[i] Y_i(d_k)` at `n` directions
+    /// given as structure of arrays, writing `out[k]`.
+    ///
+    /// `coeffs` holds `count()` values in flat-index order. Same lane
+    /// structure as [`ShBasis::eval_batch`], without storing the basis.
+    ///
+    /// Panics if the lengths disagree.
+    pub fn eval_sum_batch(&self, coeffs: &[T], x: &[T], y: &[T], z: &[T], out: &mut [T]) {
+        let n = x.len();
+        assert!(
+            y.len() == n && z.len() == n && out.len() == n,
+            "x, y, z, out lengths differ"
+        );
+        let count = self.count();
+        assert_eq!(coeffs.len(), count, "coeffs must hold (lmax+1)^2 values");
+        let form = (self.lmax <= 2).then(|| QuadraticForm::from_coeffs(coeffs));
+        let mut start = 0;
+        while start < n {
+            let len = LANES.min(n - start);
+            let (xs, ys, zs) = load_lanes(x, y, z, start);
+            if let Some(form) = &form {
+                let v: Lanes<T, LANES> = form.eval(Lanes(xs), Lanes(ys), Lanes(zs));
+                store_lanes(&mut out[start..start + len], &v.0);
+                start += len;
+                continue;
+            }
+            let mut acc = [T::ZERO; LANES];
+            if self.lmax <= 4 {
+                eval_hardcoded_with(
+                    self.lmax,
+                    Lanes(xs),
+                    Lanes(ys),
+                    Lanes(zs),
+                    #[inline(always)]
+                    |i, v: Lanes<T, LANES>| {
+                        let c = coeffs[i];
+                        for j in 0..LANES {
+                            acc[j] += c * v.0[j];
+                        }
+                    },
+                );
+            } else {
+                self.general::<LANES>(
+                    &xs,
+                    &ys,
+                    &zs,
+                    #[inline(always)]
+                    |i, v| {
+                        let c = coeffs[i];
+                        for j in 0..LANES {
+                            acc[j] += c * v[j];
+                        }
+                    },
+                );
+            }
+            out[start..start + len].copy_from_slice(&acc[..len]);
             start += len;
         }
     }
@@ -150,30 +205,72 @@ impl<T: Real> ShBasis<T> {
         let mut cur_m = 0;
         let mut row_c = [T::ZERO; N];
         let mut row_s = [T::ZERO; N];
-        self.legendre.columns::<N>(z, &s, |l, m, p| {
-            if m != cur_m {
-                // Advance the azimuth recurrence to m (columns arrive in order).
-                for j in 0..N {
-                    let c = cm[j] * ca[j] - sm[j] * sa[j];
-                    let sn = sm[j] * ca[j] + cm[j] * sa[j];
-                    cm[j] = c;
-                    sm[j] = sn;
+        self.legendre.columns::<N>(
+            z,
+            &s,
+            #[inline(always)]
+            |l, m, p| {
+                if m != cur_m {
+                    // Advance the azimuth recurrence to m (columns arrive in order).
+                    for j in 0..N {
+                        let c = cm[j] * ca[j] - sm[j] * sa[j];
+                        let sn = sm[j] * ca[j] + cm[j] * sa[j];
+                        cm[j] = c;
+                        sm[j] = sn;
+                    }
+                    cur_m = m;
                 }
-                cur_m = m;
-            }
-            let base = l * (l + 1);
-            if m == 0 {
-                emit(base, p);
-            } else {
-                for j in 0..N {
-                    row_c[j] = sqrt2 * p[j] * cm[j];
-                    row_s[j] = sqrt2 * p[j] * sm[j];
+                let base = l * (l + 1);
+                if m == 0 {
+                    emit(base, p);
+                } else {
+                    for j in 0..N {
+                        row_c[j] = sqrt2 * p[j] * cm[j];
+                        row_s[j] = sqrt2 * p[j] * sm[j];
+                    }
+                    emit(base + m, &row_c);
+                    emit(base - m, &row_s);
                 }
-                emit(base + m, &row_c);
-                emit(base - m, &row_s);
-            }
-        });
+            },
+        );
     }
+}
+
+/// Copies the first `dst.len()` lanes of `v` to `dst`, as one fixed-size
+/// copy when the chunk is full.
+#[inline(always)]
+fn store_lanes<T: Real>(dst: &mut [T], v: &[T; LANES]) {
+    if let Ok(full) = <&mut [T; LANES]>::try_from(&mut *dst) {
+        *full = *v;
+    } else {
+        let len = dst.len();
+        dst.copy_from_slice(&v[..len]);
+    }
+}
+
+/// Lanes `start..start+LANES` of the three coordinate arrays; past the end,
+/// lanes hold the direction +Z.
+#[inline(always)]
+fn load_lanes<T: Real>(
+    x: &[T],
+    y: &[T],
+    z: &[T],
+    start: usize,
+) -> ([T; LANES], [T; LANES], [T; LANES]) {
+    let end = start + LANES;
+    if end <= x.len() {
+        // Fixed-size copies: no memcpy call.
+        let f = |v: &[T]| -> [T; LANES] { v[start..end].try_into().expect("length checked") };
+        return (f(x), f(y), f(z));
+    }
+    let len = x.len() - start;
+    let mut xs = [T::ZERO; LANES];
+    let mut ys = [T::ZERO; LANES];
+    let mut zs = [T::ONE; LANES];
+    xs[..len].copy_from_slice(&x[start..]);
+    ys[..len].copy_from_slice(&y[start..]);
+    zs[..len].copy_from_slice(&z[start..]);
+    (xs, ys, zs)
 }
 
 /// `Y_l^m(d)` for every `l <= lmax` at one unit direction, in `f64`.
@@ -209,6 +306,28 @@ mod tests {
             v.push([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]);
         }
         v
+    }
+
+    #[test]
+    fn sum_batch_equals_dot_of_scalar_evaluations() {
+        let d = dirs();
+        for lmax in [0, 2, 4, 6] {
+            let basis = ShBasis::<f64>::new(lmax);
+            let coeffs: Vec<f64> = (0..basis.count())
+                .map(|i| (i as f64 * 0.37).sin())
+                .collect();
+            let x: Vec<f64> = d.iter().map(|v| v[0]).collect();
+            let y: Vec<f64> = d.iter().map(|v| v[1]).collect();
+            let z: Vec<f64> = d.iter().map(|v| v[2]).collect();
+            let mut out = vec![0.0; d.len()];
+            basis.eval_sum_batch(&coeffs, &x, &y, &z, &mut out);
+            let mut one = vec![0.0; basis.count()];
+            for (k, v) in d.iter().enumerate() {
+                basis.eval(*v, &mut one);
+                let want: f64 = one.iter().zip(&coeffs).map(|(a, b)| a * b).sum();
+                assert!((out[k] - want).abs() < 1e-14, "lmax {lmax} k {k}");
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,123 @@
+//! Pixel statistics of an [`Image`], and the clean-up of values that
+//! radiance cannot have (non-finite and negative).
+//!
+//! Counts are of channel values, not pixels: a pixel whose three channels
+//! are all NaN counts three times.
+
+use crate::Image;
+
+/// What [`Image::stats`] found in an image's channel values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelStats {
+    /// Channel values that are NaN or infinite.
+    pub non_finite: usize,
+    /// Column and row of the first pixel (in row-major order) with a
+    /// non-finite channel; `None` when all values are finite.
+    pub first_non_finite: Option<(usize, usize)>,
+    /// Finite channel values below 0 (`-0.0` does not count).
+    pub negative: usize,
+    /// The smallest finite channel value; 0 when there is none.
+    pub min_value: f32,
+    /// The largest finite channel value; 0 when there is none.
+    pub max_value: f32,
+}
+
+impl PixelStats {
+    /// Whether every channel value is finite and not negative.
+    #[must_use]
+    pub fn is_clean(&self) -> bool {
+        self.non_finite == 0 && self.negative == 0
+    }
+}
+
+/// What [`Image::sanitize`] replaced.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SanitizeReport {
+    /// NaN values, set to 0.
+    pub nan: usize,
+    /// `+inf` values, set to [`SanitizeReport::infinity_replacement`].
+    pub positive_infinite: usize,
+    /// `-inf` values, set to 0.
+    pub negative_infinite: usize,
+    /// Finite negative values, set to 0.
+    pub negative: usize,
+    /// The value that replaced `+inf`: the largest finite channel value of
+    /// the image, or 0 when that is negative or there is none.
+    pub infinity_replacement: f32,
+}
+
+impl SanitizeReport {
+    /// How many channel values were replaced in all.
+    #[must_use]
+    pub fn total(&self) -> usize {
+        self.nan + self.positive_infinite + self.negative_infinite + self.negative
+    }
+}
+
+impl Image {
+    /// Counts of non-finite and negative channel values, and the range of the
+    /// finite ones. See [`PixelStats`].
+    #[must_use]
+    pub fn stats(&self) -> PixelStats {
+        let mut stats = PixelStats {
+            non_finite: 0,
+            first_non_finite: None,
+            negative: 0,
+            min_value: f32::INFINITY,
+            max_value: f32::NEG_INFINITY,
+        };
+        for (i, pixel) in self.pixels().iter().enumerate() {
+            for &v in pixel {
+                if !v.is_finite() {
+                    stats.non_finite += 1;
+                    if stats.first_non_finite.is_none() {
+                        stats.first_non_finite = Some((i % self.width(), i / self.width()));
+                    }
+                    continue;
+                }
+                if v < 0.0 {
+                    stats.negative += 1;
+                }
+                stats.min_value = stats.min_value.min(v);
+                stats.max_value = stats.max_value.max(v);
+            }
+        }
+        if stats.min_value > stats.max_value {
+            // No finite value at all.
+            stats.min_value = 0.0;
+            stats.max_value = 0.0;
+        }
+        stats
+    }
+
+    /// Makes every channel value finite and not negative, in place: NaN
+    /// becomes 0, `+inf` the largest finite value of the image (computed
+    /// before any replacement; 0 if negative or absent), `-inf` and finite
+    /// negatives 0. Returns what was replaced.
+    pub fn sanitize(&mut self) -> SanitizeReport {
+        let largest = self.stats().max_value.max(0.0);
+        let mut report = SanitizeReport {
+            nan: 0,
+            positive_infinite: 0,
+            negative_infinite: 0,
+            negative: 0,
+            infinity_replacement: largest,
+        };
+        for v in self.pixels_mut().iter_mut().flatten() {
+            if v.is_nan() {
+                report.nan += 1;
+                *v = 0.0;
+            } else if *v == f32::INFINITY {
+                report.positive_infinite += 1;
+                *v = largest;
+            } else if *v == f32::NEG_INFINITY {
+                report.negative_infinite += 1;
+                *v = 0.0;
+            } else if *v < 0.0 {
+                report.negative += 1;
+                *v = 0.0;
+            }
+        }
+        report
+    }
+}

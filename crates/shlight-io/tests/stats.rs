@@ -1,0 +1,95 @@
+//! `Image::stats` and `Image::sanitize`.
+
+use shlight_io::{Image, PixelStats, SanitizeReport};
+
+/// 3x2: NaN at (1, 0), +inf and a negative at (2, 0), -inf at (0, 1).
+fn dirty() -> Image {
+    Image::new(
+        3,
+        2,
+        vec![
+            [1.0, 2.0, 0.5],
+            [f32::NAN, 0.25, 3.0],
+            [f32::INFINITY, -2.0, 8.0],
+            [f32::NEG_INFINITY, 0.0, -0.0],
+            [4.0, -0.5, 1.0],
+            [0.0, 0.0, 0.0],
+        ],
+    )
+    .unwrap()
+}
+
+#[test]
+fn stats_count_non_finite_and_negative_values() {
+    let stats = dirty().stats();
+    assert_eq!(
+        stats,
+        PixelStats {
+            non_finite: 3,
+            first_non_finite: Some((1, 0)),
+            negative: 2,
+            min_value: -2.0,
+            max_value: 8.0,
+        }
+    );
+    assert!(!stats.is_clean());
+}
+
+#[test]
+fn stats_of_clean_and_empty_images() {
+    let clean = Image::from_fn(4, 3, |x, y| [x as f32, y as f32, 0.5]);
+    let stats = clean.stats();
+    assert!(stats.is_clean());
+    assert_eq!(stats.first_non_finite, None);
+    assert_eq!((stats.min_value, stats.max_value), (0.0, 3.0));
+
+    let empty = Image::new(0, 0, vec![]).unwrap();
+    assert_eq!(empty.stats().max_value, 0.0);
+    let all_nan = Image::new(1, 1, vec![[f32::NAN; 3]]).unwrap();
+    let stats = all_nan.stats();
+    assert_eq!(
+        (stats.non_finite, stats.min_value, stats.max_value),
+        (3, 0.0, 0.0)
+    );
+    assert_eq!(stats.first_non_finite, Some((0, 0)));
+}
+
+#[test]
+fn first_non_finite_is_in_row_major_order() {
+    let mut image = Image::from_fn(4, 3, |_, _| [1.0; 3]);
+    image.set(1, 2, [0.0, 0.0, f32::INFINITY]);
+    image.set(3, 1, [f32::NAN, 0.0, 0.0]);
+    assert_eq!(image.stats().first_non_finite, Some((3, 1)));
+}
+
+#[test]
+fn sanitize_replaces_and_counts() {
+    let mut image = dirty();
+    let report = image.sanitize();
+    assert_eq!(
+        report,
+        SanitizeReport {
+            nan: 1,
+            positive_infinite: 1,
+            negative_infinite: 1,
+            negative: 2,
+            infinity_replacement: 8.0,
+        }
+    );
+    assert_eq!(report.total(), 5);
+    assert_eq!(image.get(1, 0), [0.0, 0.25, 3.0]);
+    assert_eq!(image.get(2, 0), [8.0, 0.0, 8.0]);
+    assert_eq!(image.get(0, 1), [0.0, 0.0, -0.0]);
+    assert_eq!(image.get(1, 1), [4.0, 0.0, 1.0]);
+    assert!(image.stats().is_clean());
+    // A second pass has nothing to do.
+    assert_eq!(image.sanitize().total(), 0);
+}
+
+#[test]
+fn sanitize_without_a_positive_value_uses_zero_for_infinity() {
+    let mut image = Image::new(2, 1, vec![[f32::INFINITY, -1.0, -3.0], [-0.5; 3]]).unwrap();
+    let report = image.sanitize();
+    assert_eq!(report.infinity_replacement, 0.0);
+    assert_eq!(image.pixels(), &[[0.0; 3]; 2]);
+}

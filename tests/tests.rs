@@ -1,0 +1,4 @@
+//! End-to-end tests of the `shlight` binary: one test binary, a module per topic.
+
+mod project;
+mod util;
