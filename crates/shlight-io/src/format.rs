@@ -54,13 +54,6 @@ impl Format {
         }
     }
 
-    /// The format of a file with contents `bytes` at `path`: by signature
-    /// first, by extension when the signature is unknown.
-    #[must_use]
-    pub fn detect(bytes: &[u8], path: &Path) -> Option<Self> {
-        Self::from_magic(bytes).or_else(|| Self::from_extension(path))
-    }
-
     /// Whether [`crate::write_image`] can write this format.
     #[must_use]
     pub fn can_write(self) -> bool {

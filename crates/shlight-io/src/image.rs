@@ -1,5 +1,7 @@
 //! The in-memory image: linear RGB, `f32` per channel.
 
+use std::fmt;
+
 /// A rectangular image of linear, scene-referred Rec.709 RGB pixels.
 ///
 /// Pixels are stored row-major with row 0 at the top and column 0 at the
@@ -10,11 +12,28 @@
 ///
 /// An image may have a width or height of 0 (no pixels); such an image cannot
 /// be written to a file.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Image {
     width: usize,
     height: usize,
     pixels: Vec<[f32; 3]>,
+}
+
+/// Lists the pixels of small images only (at most 64), so that a failed
+/// `assert_eq!` on a large image stays readable.
+impl fmt::Debug for Image {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut debug = f.debug_struct("Image");
+        debug
+            .field("width", &self.width)
+            .field("height", &self.height);
+        if self.pixels.len() <= 64 {
+            debug.field("pixels", &self.pixels);
+        } else {
+            debug.field("stats", &self.stats());
+        }
+        debug.finish()
+    }
 }
 
 /// The error of [`Image::new`]: the pixel count does not match the size.

@@ -28,9 +28,12 @@
 //! file from a corrupt one all look at the same bytes. 8- and 16-bit values
 //! are decoded with the exact sRGB EOTF ([`srgb_to_linear`]) so that every
 //! image is linear by the time anyone sees it. OpenEXR goes through the `exr`
-//! crate (all its compressions, DWAA/DWAB included), the other formats
+//! crate's block API (all its compressions, DWAA/DWAB included): only the
+//! chosen layer is decompressed, on scoped threads whose panics are caught,
+//! after each DWA block's stated sizes are checked (a damaged one could
+//! otherwise make `exr` request terabytes and abort). The other formats go
 //! through the `image` crate with only the Radiance, PNG and JPEG codecs
-//! built.
+//! built. A malformed file gives an error, never a panic.
 //!
 //! OpenEXR layers: a layer is a group of channels with a common name prefix
 //! (`diffuse.R`, `diffuse.G`, `diffuse.B` form layer `diffuse`), within one

@@ -138,6 +138,11 @@ fn exposure_scales_exr_by_powers_of_two() {
     }
 }
 
+/// B44 and DWA at default settings on smooth content: their mean error is
+/// well under 1%; 2% leaves room without hiding a wrong decode (which is off
+/// by far more).
+const LOSSY_MEAN_RELATIVE: f32 = 0.02;
+
 #[test]
 fn every_compression_is_read() {
     let dir = TempDir::new("exr-compressions");
@@ -175,7 +180,6 @@ fn every_compression_is_read() {
         if lossless.contains(&compression) {
             assert_eq!(back, half, "{compression:?}");
         } else {
-            // Lossy: mean relative error under 2%.
             let err: f32 = half
                 .pixels()
                 .iter()
@@ -184,7 +188,10 @@ fn every_compression_is_read() {
                 .map(|(a, b)| (a - b).abs() / a.abs())
                 .sum::<f32>()
                 / (64 * 40 * 3) as f32;
-            assert!(err < 0.02, "{compression:?}: mean relative error {err}");
+            assert!(
+                err < LOSSY_MEAN_RELATIVE,
+                "{compression:?}: mean relative error {err}"
+            );
         }
     }
 }
