@@ -8,7 +8,7 @@
 use core::f64::consts::PI;
 
 use crate::zonal::{cap_zonal, clamped_cosine_zonal, zonal_to_sh};
-use crate::{ShBasis, ShCoeffs, ShValue};
+use crate::{ShCoeffs, ShValue};
 
 /// Constant radiance `value` in every direction: only `f_0^0 = 2 sqrt(pi) value`.
 #[must_use]
@@ -25,11 +25,9 @@ pub fn constant<C: ShValue<Scalar = f64>>(lmax: usize, value: C) -> ShCoeffs<C> 
 /// `value (1/4 + cos/2 + (5/32)(3 cos^2 - 1))` (17/16 at 0 degrees).
 #[must_use]
 pub fn directional<C: ShValue<Scalar = f64>>(lmax: usize, d: [f64; 3], value: C) -> ShCoeffs<C> {
-    let basis = ShBasis::<f64>::new(lmax);
-    let mut y = vec![0.0; basis.count()];
-    basis.eval(d, &mut y);
-    ShCoeffs::from_vec(y.iter().map(|&y| value.scale(y)).collect())
+    ShCoeffs::from_vec(crate::sh_eval(lmax, d))
         .expect("basis count is a square")
+        .map(|y| value.scale(y))
 }
 
 /// Radiance `value * max(axis . d, 0)`: a clamped-cosine lobe about `axis`.

@@ -94,24 +94,13 @@ impl<T: Real> ShBasis<T> {
         while start < n {
             let len = LANES.min(n - start);
             let (xs, ys, zs) = load_lanes(x, y, z, start);
-            if self.lmax <= 4 {
-                eval_hardcoded_with(
-                    self.lmax,
-                    Lanes(xs),
-                    Lanes(ys),
-                    Lanes(zs),
-                    #[inline(always)]
-                    |i, v| store_lanes(&mut out[i * n + start..i * n + start + len], &v.0),
-                );
-            } else {
-                self.general::<LANES>(
-                    &xs,
-                    &ys,
-                    &zs,
-                    #[inline(always)]
-                    |i, v| store_lanes(&mut out[i * n + start..i * n + start + len], v),
-                );
-            }
+            self.lanes(
+                &xs,
+                &ys,
+                &zs,
+                #[inline(always)]
+                |i, v| store_lanes(&mut out[i * n + start..i * n + start + len], v),
+            );
             start += len;
         }
     }
@@ -143,36 +132,44 @@ impl<T: Real> ShBasis<T> {
                 continue;
             }
             let mut acc = [T::ZERO; LANES];
-            if self.lmax <= 4 {
-                eval_hardcoded_with(
-                    self.lmax,
-                    Lanes(xs),
-                    Lanes(ys),
-                    Lanes(zs),
-                    #[inline(always)]
-                    |i, v: Lanes<T, LANES>| {
-                        let c = coeffs[i];
-                        for j in 0..LANES {
-                            acc[j] += c * v.0[j];
-                        }
-                    },
-                );
-            } else {
-                self.general::<LANES>(
-                    &xs,
-                    &ys,
-                    &zs,
-                    #[inline(always)]
-                    |i, v| {
-                        let c = coeffs[i];
-                        for j in 0..LANES {
-                            acc[j] += c * v[j];
-                        }
-                    },
-                );
-            }
+            self.lanes(
+                &xs,
+                &ys,
+                &zs,
+                #[inline(always)]
+                |i, v| {
+                    let c = coeffs[i];
+                    for j in 0..LANES {
+                        acc[j] += c * v[j];
+                    }
+                },
+            );
             out[start..start + len].copy_from_slice(&acc[..len]);
             start += len;
+        }
+    }
+
+    /// Hands `(i, Y_i)` over one block of lanes to `emit`: the hard-coded
+    /// polynomials for `lmax <= 4`, the recurrences above.
+    #[inline(always)]
+    fn lanes(
+        &self,
+        x: &[T; LANES],
+        y: &[T; LANES],
+        z: &[T; LANES],
+        mut emit: impl FnMut(usize, &[T; LANES]),
+    ) {
+        if self.lmax <= 4 {
+            eval_hardcoded_with(
+                self.lmax,
+                Lanes(*x),
+                Lanes(*y),
+                Lanes(*z),
+                #[inline(always)]
+                |i, v: Lanes<T, LANES>| emit(i, &v.0),
+            );
+        } else {
+            self.general::<LANES>(x, y, z, emit);
         }
     }
 

@@ -191,13 +191,6 @@ fn run_rows(h: usize, lmax: usize, row: impl Fn(usize, &mut Accumulator)) -> ShC
     acc.sh
 }
 
-/// The default frame is y-up (three.js `equirectUv`, glTF).
-impl Default for Frame {
-    fn default() -> Self {
-        Frame::YUp
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -46,9 +46,6 @@ pub trait Real:
     /// Absolute value.
     #[must_use]
     fn abs(self) -> Self;
-    /// `self * a + b`, fused where the target has it cheaply.
-    #[must_use]
-    fn mul_add_fast(self, a: Self, b: Self) -> Self;
 }
 
 macro_rules! impl_real {
@@ -73,10 +70,6 @@ macro_rules! impl_real {
             #[inline(always)]
             fn abs(self) -> Self {
                 <$t>::abs(self)
-            }
-            #[inline(always)]
-            fn mul_add_fast(self, a: Self, b: Self) -> Self {
-                self * a + b
             }
         }
     };

@@ -427,10 +427,11 @@ pub fn rotate_z<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, angle: f64) -> ShCoef
 /// The two frames differ by a quarter turn about X:
 /// `d_zup = Rx(+90 deg) d_yup`, `(x, y, z) -> (x, -z, y)`; neither is
 /// mirrored. Parsed from and displayed as `"y-up"` / `"z-up"`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Frame {
     /// three.js / glTF equirect convention, `+Y` up:
-    /// `d = (sin t cos p, cos t, sin t sin p)`.
+    /// `d = (sin t cos p, cos t, sin t sin p)`. The default.
+    #[default]
     YUp,
     /// Blender convention, `+Z` up:
     /// `d = (sin t cos p, -sin t sin p, cos t)`.

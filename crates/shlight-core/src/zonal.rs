@@ -294,7 +294,7 @@ mod tests {
     fn directional_light_nine_term_irradiance_matches_the_published_figures() {
         // L_lm = Y_lm(d) (unit irradiance E_perp = 1 from +Z); E2(n) at 0, 90, 180 degrees.
         let d = [0.0, 0.0, 1.0];
-        let l = ShCoeffs::from_fn(2, |l, m| crate::sh_eval(2, d)[crate::sh_index(l, m)]);
+        let l: ShCoeffs<f64> = crate::analytic::directional(2, d, 1.0);
         let e = irradiance(&l);
         let at = |deg: f64| {
             let t = deg.to_radians();
