@@ -5,6 +5,8 @@
 //! file formats in `shlight-io`.
 
 mod coeff_file;
+mod convert;
+mod export;
 mod project;
 
 use std::process::ExitCode;
@@ -23,6 +25,8 @@ struct Cli {
 enum Command {
     /// Project an environment map to SH coefficients.
     Project(project::ProjectArgs),
+    /// Convert a coefficient file to an engine's format, or back.
+    Convert(convert::ConvertArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -35,6 +39,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Project(args) => project::run(&args),
         Command::Show { file } => coeff_file::show(&file),
+        Command::Convert(args) => convert::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,1 @@
+//! Exporters: each test proves what the exported numbers mean.
