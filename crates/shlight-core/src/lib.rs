@@ -77,6 +77,7 @@ pub mod montecarlo;
 pub mod projection;
 pub mod quadrature;
 mod real;
+mod ring_transform;
 pub mod rotation;
 mod value;
 pub mod window;

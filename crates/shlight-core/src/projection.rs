@@ -78,11 +78,48 @@ pub fn equirect_row_solid_angle(j: usize, w: usize, h: usize) -> f64 {
 /// Radiance coefficients up to `lmax` of an equirect map by exact
 /// texel-solid-angle quadrature (see the module docs), accumulated in `f64`.
 ///
-/// Rows are processed in parallel with the `rayon` feature.
+/// Runs the ring transform: azimuthal sums per row (a real FFT per row from
+/// lmax 24 on), then Legendre sums per column `m` over symmetric row pairs,
+/// vectorised and parallel with the `rayon` feature. Any lmax works (the
+/// Legendre values carry an extended exponent); cost is
+/// `O(W H min(lmax, log W) + H lmax^2)`. A y-up map's coefficients are then
+/// rotated from the map's z-up pole, `O(lmax^3)` (noticeable past lmax ~100).
 ///
 /// Panics if `pixels.len() != width * height`.
 #[must_use]
 pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -> ShCoeffs<DVec3> {
+    assert_eq!(
+        map.pixels.len(),
+        map.width * map.height,
+        "pixel count must be width * height"
+    );
+    // Azimuth about the z-up pole: d_zup = (sin t cos p, -sin t sin p, cos t)
+    // so ψ = -φ (or +φ when mirrored).
+    let sign = if o.mirror { 1.0 } else { -1.0 };
+    let zup = crate::ring_transform::project_rings(map, lmax, sign);
+    to_frame(zup, o.frame)
+}
+
+/// Coefficients computed about the map's pole (z-up) turned into `frame`.
+fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {
+    match frame {
+        Frame::ZUp => zup,
+        frame => ShRotation::from_mat3(zup.lmax(), Frame::ZUp.rotation_to(frame)).apply(&zup),
+    }
+}
+
+/// The same quadrature as [`project_equirect`] by the plain route: per row,
+/// direct azimuthal sums against a trig table, then one Legendre evaluation
+/// per row. `O(W H lmax + H lmax^2)`, no pairing, no FFT, no vector code: the
+/// reference the fast path is tested and benchmarked against.
+///
+/// Panics if `pixels.len() != width * height`.
+#[must_use]
+pub fn project_equirect_simple(
+    map: EquirectView<'_>,
+    lmax: usize,
+    o: MapOrientation,
+) -> ShCoeffs<DVec3> {
     let (w, h) = (map.width, map.height);
     assert_eq!(
         map.pixels.len(),
@@ -130,11 +167,7 @@ pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -
         }
     };
 
-    let zup = run_rows(h, lmax, row);
-    match o.frame {
-        Frame::ZUp => zup,
-        frame => ShRotation::from_mat3(lmax, Frame::ZUp.rotation_to(frame)).apply(&zup),
-    }
+    to_frame(run_rows(h, lmax, row), o.frame)
 }
 
 /// Per-thread scratch and partial sums.
@@ -258,6 +291,112 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Largest difference between two expansions relative to the largest coefficient.
+    fn rel_diff(a: &ShCoeffs<DVec3>, b: &ShCoeffs<DVec3>) -> f64 {
+        let scale = b
+            .as_slice()
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(0.0, f64::max);
+        let diff = (0..a.len())
+            .map(|k| (a[k] - b[k]).abs().max_element())
+            .fold(0.0, f64::max);
+        diff / scale
+    }
+
+    fn noise_map(w: usize, h: usize) -> Vec<[f32; 3]> {
+        (0..w * h)
+            .map(|i| {
+                let a = ((i * 7919) % 1009) as f32 / 500.0;
+                [a, 1.0 + (i % 17) as f32 * 0.1, ((i * 31) % 97) as f32]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn fast_path_matches_the_simple_route_direct_and_fft() {
+        // (w, h, lmax): even/odd sizes, the direct sums (lmax < 24), the FFT
+        // path, and lmax beyond w/2 where the FFT bins wrap around.
+        for (w, h, lmax) in [
+            (48, 24, 6),
+            (47, 23, 5),
+            (64, 32, 30),
+            (50, 25, 40),
+            (256, 128, 100),
+        ] {
+            let px = noise_map(w, h);
+            let map = EquirectView {
+                width: w,
+                height: h,
+                pixels: &px,
+            };
+            for frame in [Frame::YUp, Frame::ZUp] {
+                for mirror in [false, true] {
+                    let o = MapOrientation { frame, mirror };
+                    let d = rel_diff(
+                        &project_equirect(map, lmax, o),
+                        &project_equirect_simple(map, lmax, o),
+                    );
+                    assert!(
+                        d < 1e-12,
+                        "{w}x{h} lmax {lmax} {frame} mirror {mirror}: {d:e}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn portable_kernels_match_the_simple_route() {
+        // The AVX + FMA kernels run wherever the CPU has them; this checks
+        // the portable ones too (both the direct sums and the FFT path).
+        use std::sync::atomic::Ordering;
+        crate::ring_transform::FORCE_PORTABLE.store(true, Ordering::Relaxed);
+        for (w, h, lmax) in [(48, 24, 6), (50, 25, 40)] {
+            let px = noise_map(w, h);
+            let map = EquirectView {
+                width: w,
+                height: h,
+                pixels: &px,
+            };
+            let o = MapOrientation {
+                frame: Frame::ZUp,
+                mirror: true,
+            };
+            let d = rel_diff(
+                &project_equirect(map, lmax, o),
+                &project_equirect_simple(map, lmax, o),
+            );
+            assert!(d < 1e-12, "{w}x{h} lmax {lmax}: {d:e}");
+        }
+        crate::ring_transform::FORCE_PORTABLE.store(false, Ordering::Relaxed);
+    }
+
+    #[test]
+    fn fast_path_keeps_the_extended_exponent_at_high_lmax() {
+        // Sectoral values s^m underflow f64 once m log10(1/s) > 308, yet the
+        // column grows back to significance near l = m/s: at s = 0.5 that is
+        // m > 1023, l > 2046. The coefficients of so small a map are aliased,
+        // but both routes compute the same sums; the simple route uses
+        // Legendre::eval, whose extended exponent is tested on its own.
+        let (w, h, lmax) = (64, 32, 2100);
+        let px = noise_map(w, h);
+        let map = EquirectView {
+            width: w,
+            height: h,
+            pixels: &px,
+        };
+        let o = MapOrientation {
+            frame: Frame::ZUp,
+            mirror: false,
+        };
+        let d = rel_diff(
+            &project_equirect(map, lmax, o),
+            &project_equirect_simple(map, lmax, o),
+        );
+        assert!(d < 1e-11, "{d:e}");
     }
 
     #[test]
