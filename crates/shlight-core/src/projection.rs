@@ -24,7 +24,7 @@ use glam::DVec3;
 
 use crate::legendre::{Legendre, legendre_count, legendre_index};
 use crate::rotation::Frame;
-use crate::{ShCoeffs, ShRotation, sh_index};
+use crate::{ShCoeffs, sh_index};
 
 /// A borrowed equirectangular map: `width x height` texels, row-major from
 /// the top-left corner, linear RGB.
@@ -104,7 +104,7 @@ pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -
 fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {
     match frame {
         Frame::ZUp => zup,
-        frame => ShRotation::from_mat3(zup.lmax(), Frame::ZUp.rotation_to(frame)).apply(&zup),
+        frame => crate::rotation::rotate_once(&zup, Frame::ZUp.rotation_to(frame)),
     }
 }
 

@@ -10,7 +10,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use glam::{DMat3, DQuat, DVec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::rotation::{Frame, rotate_z};
+use shlight_core::rotation::{Frame, rotate_once, rotate_z};
 use shlight_core::{ShBasis, ShCoeffs, ShRotation, sh_count, sh_eval};
 
 /// Rotation vs re-projection, relative to the largest coefficient: both
@@ -518,6 +518,24 @@ fn try_from_mat3_rejects_non_rotations() {
         assert!(
             ShRotation::try_from_mat3(4, bad).is_none(),
             "{bad:?} accepted"
+        );
+    }
+}
+
+#[test]
+fn rotating_without_stored_blocks_equals_the_stored_rotation() {
+    // lmax 70 crosses the degree from which block rows are built in parallel.
+    let mut rng = rng(71);
+    for lmax in [0, 1, 2, 9, 70] {
+        let r = random_rotation(&mut rng);
+        let f = random_coeffs(&mut rng, lmax);
+        let want = ShRotation::from_mat3(lmax, r).apply(&f);
+        let got = rotate_once(&f, r);
+        assert_close(
+            got.as_slice(),
+            want.as_slice(),
+            1e-13,
+            &format!("lmax {lmax}"),
         );
     }
 }
