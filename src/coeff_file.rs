@@ -30,7 +30,11 @@ impl Quantity {
 }
 
 /// Where the coefficients came from.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Fields added after the first release of format 1 (`windows`, `samples`,
+/// `seed`, `sampler`, `rotate`) are optional in files: a reader fills them
+/// from the older fields or leaves them `None`.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Provenance {
     /// Input file as given.
     pub input: String,
@@ -42,8 +46,64 @@ pub struct Provenance {
     pub layout: String,
     /// Projection method (`quadrature`, `montecarlo`).
     pub method: String,
-    /// Window applied, in `--window` spelling.
+    /// Window asked for, in `--window` spelling (`auto` when chosen per channel).
     pub window: String,
+    /// Window applied to each channel (red, green, blue), in `--window`
+    /// spelling; all three equal `window` unless it was `auto`.
+    pub windows: [String; 3],
+    /// Monte Carlo samples (directions) used; `None` for quadrature.
+    pub samples: Option<u64>,
+    /// Seed of the Monte Carlo sampler; `None` for quadrature.
+    pub seed: Option<u64>,
+    /// Monte Carlo sampler (e.g. `uniform`, `stratified`); `None` for quadrature.
+    pub sampler: Option<String>,
+    /// Rotation applied to the coefficients (`--rotate`), if any.
+    pub rotate: Option<RotationRecord>,
+}
+
+/// A rotation applied to the coefficients: as asked for, and as the matrix
+/// `R` (row-major, acting on column vectors) that carries a light from `a`
+/// to `R a` in the file's frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RotationRecord {
+    /// The `--rotate` argument as given (`yaw:30`, `quat:x,y,z,w`, `euler:x,y,z`).
+    pub spec: String,
+    /// `R`, rows first.
+    pub matrix: [[f64; 3]; 3],
+}
+
+/// What `--sanitize` replaced in the input, counted in channel values.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SanitizeCounts {
+    /// NaN values, set to 0.
+    pub nan: usize,
+    /// `+inf` values, set to `infinity_replacement`.
+    pub positive_infinite: usize,
+    /// `-inf` values, set to 0.
+    pub negative_infinite: usize,
+    /// Finite negative values, set to 0.
+    pub negative: usize,
+    /// The value that replaced `+inf`: the largest finite value of the input.
+    pub infinity_replacement: f64,
+}
+
+impl SanitizeCounts {
+    /// How many channel values were replaced in all.
+    pub fn total(&self) -> usize {
+        self.nan + self.positive_infinite + self.negative_infinite + self.negative
+    }
+}
+
+impl From<shlight_io::SanitizeReport> for SanitizeCounts {
+    fn from(r: shlight_io::SanitizeReport) -> Self {
+        Self {
+            nan: r.nan,
+            positive_infinite: r.positive_infinite,
+            negative_infinite: r.negative_infinite,
+            negative: r.negative,
+            infinity_replacement: f64::from(r.infinity_replacement),
+        }
+    }
 }
 
 /// A coefficient file's content.
@@ -59,13 +119,45 @@ pub struct CoeffFile {
     pub quantity: Quantity,
     /// Where they came from.
     pub provenance: Provenance,
-    /// Negative texels in the input (kept as data).
+    /// Negative channel values in the input as read (before `--sanitize`).
     pub input_negative_texels: usize,
-    /// Smallest texel value of the input.
+    /// Smallest finite channel value of the input as read.
     pub input_min_value: f64,
+    /// What `--sanitize` replaced; `None` when it was not asked for.
+    pub sanitized: Option<SanitizeCounts>,
+    /// Standard error of each coefficient, per channel, in the same units,
+    /// index and quantity as `coeffs` (Monte Carlo projection); `None` for
+    /// quadrature.
+    pub std_error: Option<ShCoeffs<DVec3>>,
+}
+
+impl Provenance {
+    /// The window of each channel: `windows`, where a channel's entry is
+    /// empty (a provenance built by hand) `window`.
+    pub fn channel_windows(&self) -> [String; 3] {
+        self.windows
+            .clone()
+            .map(|w| if w.is_empty() { self.window.clone() } else { w })
+    }
 }
 
 impl CoeffFile {
+    /// Coefficients with empty provenance and statistics, for files made
+    /// from something other than a map (conversions, tests).
+    pub fn new(coeffs: ShCoeffs<DVec3>, frame: Frame, quantity: Quantity) -> Self {
+        Self {
+            coeffs,
+            frame,
+            mirror: false,
+            quantity,
+            provenance: Provenance::default(),
+            input_negative_texels: 0,
+            input_min_value: 0.0,
+            sanitized: None,
+            std_error: None,
+        }
+    }
+
     /// The JSON document (docs/coefficient-file.md).
     pub fn to_json(&self) -> Value {
         let rgb = |v: DVec3| json!([v.x, v.y, v.z]);
@@ -75,7 +167,22 @@ impl CoeffFile {
                 json!({ "value": v, "direction": d })
             })
             .collect();
-        json!({
+        let p = &self.provenance;
+        let windows = p.channel_windows();
+        let rotate = p.rotate.as_ref().map_or(
+            Value::Null,
+            |r| json!({ "spec": r.spec, "matrix": r.matrix }),
+        );
+        let sanitized = self.sanitized.map_or(Value::Null, |c| {
+            json!({
+                "nan": c.nan,
+                "positive_infinite": c.positive_infinite,
+                "negative_infinite": c.negative_infinite,
+                "negative": c.negative,
+                "infinity_replacement": c.infinity_replacement,
+            })
+        });
+        let mut doc = json!({
             "format": "shlight-sh",
             "format_version": FORMAT_VERSION,
             "lmax": self.coeffs.lmax(),
@@ -91,20 +198,30 @@ impl CoeffFile {
             "coefficients": self.coeffs.as_slice().iter().map(|v| rgb(*v)).collect::<Vec<_>>(),
             "provenance": {
                 "tool": concat!("shlight ", env!("CARGO_PKG_VERSION")),
-                "input": self.provenance.input,
-                "width": self.provenance.width,
-                "height": self.provenance.height,
-                "layout": self.provenance.layout,
-                "method": self.provenance.method,
-                "window": self.provenance.window,
+                "input": p.input,
+                "width": p.width,
+                "height": p.height,
+                "layout": p.layout,
+                "method": p.method,
+                "window": p.window,
+                "windows": { "red": windows[0], "green": windows[1], "blue": windows[2] },
+                "samples": p.samples,
+                "seed": p.seed,
+                "sampler": p.sampler,
+                "rotate": rotate,
             },
             "statistics": {
                 "band_power": self.coeffs.band_power().into_iter().map(rgb).collect::<Vec<_>>(),
                 "minimum": { "red": minimum[0], "green": minimum[1], "blue": minimum[2] },
                 "input_negative_texels": self.input_negative_texels,
                 "input_min_value": self.input_min_value,
+                "sanitized": sanitized,
             },
-        })
+        });
+        if let Some(se) = &self.std_error {
+            doc["statistics"]["std_error"] = se.as_slice().iter().map(|v| rgb(*v)).collect();
+        }
+        doc
     }
 
     /// Pretty-printed JSON.
@@ -145,12 +262,9 @@ impl CoeffFile {
         }
         let mut coeffs = Vec::with_capacity(rows.len());
         for (i, row) in rows.iter().enumerate() {
-            let c: Option<Vec<f64>> = row
-                .as_array()
-                .map(|a| a.iter().filter_map(Value::as_f64).collect());
-            match c.as_deref() {
-                Some([r, g, b]) => coeffs.push(DVec3::new(*r, *g, *b)),
-                _ => {
+            match read_rgb(row) {
+                Some(c) => coeffs.push(c),
+                None => {
                     let (l, m) = lm_from_index(i);
                     bail!("{name}: coefficient {i} (l={l}, m={m}) is not three numbers");
                 }
@@ -169,7 +283,82 @@ impl CoeffFile {
         let p = field("provenance")?;
         let s = |k: &str| p.get(k).and_then(Value::as_str).unwrap_or("").to_string();
         let n = |k: &str| p.get(k).and_then(Value::as_u64).unwrap_or(0) as usize;
+        let opt_u64 = |k: &str| -> Result<Option<u64>> {
+            match p.get(k) {
+                None | Some(Value::Null) => Ok(None),
+                Some(v) => v.as_u64().map(Some).with_context(|| {
+                    format!("{name}: provenance \"{k}\" is not a non-negative integer")
+                }),
+            }
+        };
+        let window = s("window");
+        let windows = match p.get("windows") {
+            None | Some(Value::Null) => [window.clone(), window.clone(), window.clone()],
+            Some(w) => {
+                let channel = |c: &str| {
+                    w.get(c)
+                        .and_then(Value::as_str)
+                        .map(str::to_string)
+                        .with_context(|| {
+                            format!("{name}: provenance \"windows\" has no string \"{c}\"")
+                        })
+                };
+                [channel("red")?, channel("green")?, channel("blue")?]
+            }
+        };
+        let rotate = match p.get("rotate") {
+            None | Some(Value::Null) => None,
+            Some(r) => Some(read_rotation(r).with_context(|| {
+                format!("{name}: provenance \"rotate\" is not {{\"spec\": text, \"matrix\": 3x3 numbers}}")
+            })?),
+        };
         let stats = v.get("statistics");
+        let stat = |k: &str| stats.and_then(|s| s.get(k)).filter(|v| !v.is_null());
+        let sanitized = match stat("sanitized") {
+            None => None,
+            Some(c) => {
+                let count = |k: &str| {
+                    c.get(k)
+                        .and_then(Value::as_u64)
+                        .map(|n| n as usize)
+                        .with_context(|| {
+                            format!("{name}: statistics \"sanitized\" has no count \"{k}\"")
+                        })
+                };
+                Some(SanitizeCounts {
+                    nan: count("nan")?,
+                    positive_infinite: count("positive_infinite")?,
+                    negative_infinite: count("negative_infinite")?,
+                    negative: count("negative")?,
+                    infinity_replacement: c
+                        .get("infinity_replacement")
+                        .and_then(Value::as_f64)
+                        .unwrap_or(0.0),
+                })
+            }
+        };
+        let std_error = match stat("std_error") {
+            None => None,
+            Some(rows) => {
+                let rows = rows
+                    .as_array()
+                    .filter(|r| r.len() == coeffs.len())
+                    .with_context(|| {
+                        format!(
+                            "{name}: statistics \"std_error\" is not {} rows of three numbers",
+                            coeffs.len()
+                        )
+                    })?;
+                let mut se = Vec::with_capacity(rows.len());
+                for (i, row) in rows.iter().enumerate() {
+                    se.push(read_rgb(row).with_context(|| {
+                        let (l, m) = lm_from_index(i);
+                        format!("{name}: std_error {i} (l={l}, m={m}) is not three numbers")
+                    })?);
+                }
+                Some(ShCoeffs::from_vec(se).expect("length checked"))
+            }
+        };
         Ok(Self {
             coeffs: ShCoeffs::from_vec(coeffs).expect("length checked"),
             frame,
@@ -181,47 +370,96 @@ impl CoeffFile {
                 height: n("height"),
                 layout: s("layout"),
                 method: s("method"),
-                window: s("window"),
+                window,
+                windows,
+                samples: opt_u64("samples")?,
+                seed: opt_u64("seed")?,
+                sampler: p.get("sampler").and_then(Value::as_str).map(str::to_string),
+                rotate,
             },
-            input_negative_texels: stats
-                .and_then(|s| s.get("input_negative_texels"))
+            input_negative_texels: stat("input_negative_texels")
                 .and_then(Value::as_u64)
                 .unwrap_or(0) as usize,
-            input_min_value: stats
-                .and_then(|s| s.get("input_min_value"))
+            input_min_value: stat("input_min_value")
                 .and_then(Value::as_f64)
                 .unwrap_or(0.0),
+            sanitized,
+            std_error,
         })
     }
 
     /// A readable table: a header naming what the numbers are, then one
     /// coefficient per line.
     pub fn to_table(&self) -> String {
+        let p = &self.provenance;
+        let w = p.channel_windows();
+        let window = if w.iter().all(|x| *x == w[0]) {
+            format!("window {}", w[0])
+        } else {
+            format!("windows r {}, g {}, b {}", w[0], w[1], w[2])
+        };
+        let method = match p.samples {
+            Some(n) => format!("{}, {n} samples", p.method),
+            None => p.method.clone(),
+        };
+        let rotate = match &p.rotate {
+            Some(r) => format!(", rotated {}", r.spec),
+            None => String::new(),
+        };
         let mut s = format!(
             "# shlight SH {}: lmax {} ({} coefficients), real orthonormal basis with Condon-Shortley phase,\n\
-             # index l*(l+1)+m, frame {}{}, linear Rec.709 RGB; from {} ({}x{} {}, {}, window {})\n",
+             # index l*(l+1)+m, frame {}{}, linear Rec.709 RGB; from {} ({}x{} {}, {method}, {window}{rotate})\n",
             self.quantity.name(),
             self.coeffs.lmax(),
             self.coeffs.len(),
             self.frame,
             if self.mirror { " (mirrored)" } else { "" },
-            self.provenance.input,
-            self.provenance.width,
-            self.provenance.height,
-            self.provenance.layout,
-            self.provenance.method,
-            self.provenance.window,
+            p.input,
+            p.width,
+            p.height,
+            p.layout,
         );
-        s.push_str("#  l   m           red         green          blue\n");
+        s.push_str("#  l   m           red         green          blue");
+        if self.std_error.is_some() {
+            s.push_str("     std error (red, green, blue)");
+        }
+        s.push('\n');
         for (i, v) in self.coeffs.as_slice().iter().enumerate() {
             let (l, m) = lm_from_index(i);
             s.push_str(&format!(
-                "{l:4} {m:3} {:13.6e} {:13.6e} {:13.6e}\n",
+                "{l:4} {m:3} {:13.6e} {:13.6e} {:13.6e}",
                 v.x, v.y, v.z
             ));
+            if let Some(se) = &self.std_error {
+                let e = se[i];
+                s.push_str(&format!(" {:11.3e} {:11.3e} {:11.3e}", e.x, e.y, e.z));
+            }
+            s.push('\n');
         }
         s
     }
+}
+
+/// `[r, g, b]`: exactly three numbers.
+fn read_rgb(row: &Value) -> Option<DVec3> {
+    match row.as_array()?.as_slice() {
+        [r, g, b] => Some(DVec3::new(r.as_f64()?, g.as_f64()?, b.as_f64()?)),
+        _ => None,
+    }
+}
+
+/// `{"spec": "...", "matrix": [[..3], [..3], [..3]]}`.
+fn read_rotation(r: &Value) -> Option<RotationRecord> {
+    let spec = r.get("spec")?.as_str()?.to_string();
+    let rows = r.get("matrix")?.as_array()?;
+    if rows.len() != 3 {
+        return None;
+    }
+    let mut matrix = [[0.0; 3]; 3];
+    for (out, row) in matrix.iter_mut().zip(rows) {
+        *out = read_rgb(row)?.to_array();
+    }
+    Some(RotationRecord { spec, matrix })
 }
 
 /// `shlight show FILE`: reads a coefficient file and prints its table.
@@ -236,12 +474,12 @@ pub fn show(path: &std::path::Path) -> Result<()> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn json_round_trips() {
+    fn sample_file() -> CoeffFile {
         let coeffs = ShCoeffs::from_fn(3, |l, m| {
             DVec3::new(l as f64, m as f64 * 0.5, 0.125 + l as f64)
         });
-        let file = CoeffFile {
+        CoeffFile {
+            std_error: Some(coeffs.map(|c| c * 0.01)),
             coeffs,
             frame: Frame::ZUp,
             mirror: true,
@@ -251,12 +489,32 @@ mod tests {
                 width: 64,
                 height: 32,
                 layout: "equirect".into(),
-                method: "quadrature".into(),
-                window: "hanning:4".into(),
+                method: "montecarlo".into(),
+                window: "auto".into(),
+                windows: ["hanning:4".into(), "hanning:5.5".into(), "none".into()],
+                samples: Some(1 << 20),
+                seed: Some(7),
+                sampler: Some("stratified".into()),
+                rotate: Some(RotationRecord {
+                    spec: "yaw:90".into(),
+                    matrix: [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+                }),
             },
             input_negative_texels: 3,
             input_min_value: -0.004,
-        };
+            sanitized: Some(SanitizeCounts {
+                nan: 2,
+                positive_infinite: 1,
+                negative_infinite: 0,
+                negative: 3,
+                infinity_replacement: 1500.0,
+            }),
+        }
+    }
+
+    #[test]
+    fn json_round_trips() {
+        let file = sample_file();
         let back = CoeffFile::from_json_str(&file.to_json_string(), "t.json").unwrap();
         assert_eq!(back.coeffs, file.coeffs);
         assert_eq!(back.frame, Frame::ZUp);
@@ -264,6 +522,59 @@ mod tests {
         assert_eq!(back.quantity, Quantity::Irradiance);
         assert_eq!(back.provenance, file.provenance);
         assert_eq!(back.input_negative_texels, 3);
+        assert_eq!(back.input_min_value, -0.004);
+        assert_eq!(back.sanitized, file.sanitized);
+        assert_eq!(back.std_error, file.std_error);
+        // Without the optional parts, they stay absent.
+        let plain = CoeffFile::new(file.coeffs.clone(), Frame::YUp, Quantity::Radiance);
+        let json = plain.to_json();
+        assert!(json["statistics"].get("std_error").is_none());
+        assert!(json["statistics"]["sanitized"].is_null());
+        let back = CoeffFile::from_json_str(&plain.to_json_string(), "p.json").unwrap();
+        assert_eq!(back.provenance, plain.provenance);
+        assert_eq!(back.sanitized, None);
+        assert_eq!(back.std_error, None);
+    }
+
+    #[test]
+    fn files_without_the_newer_fields_are_read() {
+        // A format 1 file as the first release wrote it.
+        let text = r#"{"format":"shlight-sh","format_version":1,"lmax":0,
+            "frame":"y-up","mirror":false,"quantity":"radiance",
+            "coefficients":[[1,2,3]],
+            "provenance":{"input":"a.exr","width":8,"height":4,"layout":"equirect",
+                          "method":"quadrature","window":"hanning:3"},
+            "statistics":{"input_negative_texels":1,"input_min_value":-0.5}}"#;
+        let f = CoeffFile::from_json_str(text, "old.json").unwrap();
+        assert_eq!(f.coeffs[0], DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(
+            f.provenance.windows,
+            ["hanning:3", "hanning:3", "hanning:3"].map(String::from)
+        );
+        assert_eq!(
+            (
+                f.provenance.samples,
+                f.provenance.seed,
+                &f.provenance.sampler
+            ),
+            (None, None, &None)
+        );
+        assert_eq!(f.provenance.rotate, None);
+        assert_eq!((f.sanitized, f.std_error), (None, None));
+        assert_eq!(f.input_negative_texels, 1);
+    }
+
+    #[test]
+    fn the_table_shows_per_channel_windows_rotation_and_std_errors() {
+        let table = sample_file().to_table();
+        assert!(
+            table.contains("windows r hanning:4, g hanning:5.5, b none")
+                && table.contains("rotated yaw:90")
+                && table.contains("montecarlo, 1048576 samples")
+                && table.contains("std error"),
+            "{table}"
+        );
+        assert_eq!(table.lines().count(), 3 + 16);
     }
 
     #[test]

@@ -7,7 +7,12 @@
 mod coeff_file;
 mod convert;
 mod export;
+mod preview;
+mod progress;
 mod project;
+mod render;
+mod synth;
+mod texels;
 
 use std::process::ExitCode;
 
@@ -17,14 +22,21 @@ use clap::{Parser, Subcommand};
 #[derive(Parser, Debug)]
 #[command(name = "shlight", version, about, long_about = None)]
 struct Cli {
+    /// No progress bars, warnings or notes on stderr (errors are still printed).
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Project an environment map to SH coefficients.
+    /// Project environment maps to SH coefficients.
     Project(project::ProjectArgs),
+    /// Render a coefficient file to an image (radiance or irradiance).
+    Render(render::RenderArgs),
+    /// Write an analytic environment map (constant, hemisphere, cap, gradient, sun).
+    Synth(synth::SynthArgs),
     /// Convert a coefficient file to an engine's format, or back.
     Convert(convert::ConvertArgs),
     /// Print a coefficient file (JSON) as a readable table.
@@ -36,8 +48,11 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let ui = progress::Ui::new(cli.quiet);
     let result = match cli.command {
-        Command::Project(args) => project::run(&args),
+        Command::Project(args) => project::run(&args, &ui),
+        Command::Render(args) => render::run(&args, &ui),
+        Command::Synth(args) => synth::run(&args, &ui),
         Command::Show { file } => coeff_file::show(&file),
         Command::Convert(args) => convert::run(&args),
     };

@@ -1,23 +1,38 @@
-//! `shlight project`: environment map in, SH coefficients out.
+//! `shlight project`: environment maps in, SH coefficients out.
+//!
+//! One input goes to `-o FILE` (or stdout); several go to `-o DIR`, one
+//! file per input, processed in parallel. Each input runs the same steps:
+//! [`load`] (read, check, `--sanitize`), [`project_map`] (layout and method),
+//! the window (per channel), `--preview`, `--rotate`, the quantity, and
+//! [`write_output`] (the one place that knows output formats).
 
-use std::path::PathBuf;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, ValueEnum};
-use glam::DVec3;
+use glam::{DMat3, DQuat, DVec3};
+use indicatif::ProgressBar;
+use rayon::prelude::*;
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
-use shlight_core::rotation::Frame;
+use shlight_core::rotation::{Frame, rotate_once};
 use shlight_core::window::{WindowFamily, WindowTarget, auto_window};
-use shlight_core::{ShCoeffs, Window, irradiance};
-use shlight_io::{ReadOptions, read_image};
+use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_core::{ShCoeffs, ShRotation, Window, irradiance};
+use shlight_io::{Image, PixelStats, ReadOptions, ToneMap, read_image};
 
-use crate::coeff_file::{CoeffFile, Provenance, Quantity};
+use crate::coeff_file::{CoeffFile, Provenance, Quantity, RotationRecord, SanitizeCounts};
+use crate::preview::{PreviewOptions, write_preview};
+use crate::progress::Ui;
+use crate::texels::{LayoutArg, parse_size};
 
 /// Arguments of `shlight project`.
 #[derive(Args, Debug)]
 pub struct ProjectArgs {
-    /// The environment map (OpenEXR, Radiance .hdr, PNG, JPEG), equirect 2:1.
-    pub input: PathBuf,
+    /// Environment maps (OpenEXR, Radiance .hdr, PNG, JPEG), equirect 2:1.
+    /// Several need `-o DIR`.
+    #[arg(required = true, value_name = "INPUT")]
+    pub inputs: Vec<PathBuf>,
     /// Highest SH degree kept (lmax 2 = 9 coefficients).
     #[arg(long, default_value_t = 2)]
     pub lmax: usize,
@@ -27,26 +42,76 @@ pub struct ProjectArgs {
     /// Read a map made for the mirrored pbrt / google mapping.
     #[arg(long)]
     pub mirror: bool,
+    /// Layout of the input maps (equirect only for now).
+    #[arg(long, value_enum, default_value_t)]
+    pub layout: LayoutArg,
+    /// How the coefficients are computed.
+    #[arg(long, value_enum, default_value_t)]
+    pub method: Method,
     /// What the coefficients hold.
     #[arg(long, value_enum, default_value_t = Quantity::Radiance)]
     pub quantity: Quantity,
     /// Ringing window: none, hanning:W, lanczos:W, laplacian:LAMBDA, or auto
-    /// (the weakest Hanning window that makes the result non-negative).
+    /// (per colour channel, the weakest Hanning window that makes that
+    /// channel's result non-negative).
     #[arg(long, default_value = "none")]
     pub window: String,
+    /// Rotate the coefficients: yaw:DEG (about the frame's up axis,
+    /// right-handed), quat:X,Y,Z,W, or euler:X,Y,Z (degrees; about world X,
+    /// then Y, then Z). A light from a comes from R a afterwards.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rotate: Option<String>,
+    /// Replace NaN and -inf with 0, +inf with the largest finite value, and
+    /// negatives with 0, instead of refusing NaN/inf and keeping negatives.
+    #[arg(long)]
+    pub sanitize: bool,
     /// EXR layer to read (default: the first with R, G, B).
     #[arg(long)]
     pub layer: Option<String>,
-    /// Output file; without it a readable table goes to stdout.
+    /// Refuse inputs with more pixels than this (judged from the header).
+    #[arg(long, default_value_t = ReadOptions::DEFAULT_MAX_PIXELS)]
+    pub max_pixels: usize,
+    /// Output file, or with several inputs (or an existing directory) a
+    /// directory for one NAME.json (NAME.txt) per input; without it a
+    /// readable table goes to a terminal and JSON to a pipe.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = OutFormat::Json)]
     pub format: OutFormat,
+    /// Write a preview image: input | SH radiance | SH irradiance/π, side
+    /// by side. With several inputs, a directory for one NAME.png each.
+    #[arg(long, value_name = "FILE.png")]
+    pub preview: Option<PathBuf>,
+    /// Size of each preview panel, WIDTHxHEIGHT (2:1).
+    #[arg(long, default_value = "512x256", value_parser = parse_size)]
+    pub preview_size: (usize, usize),
+    /// Preview exposure in stops (default: the mean radiance at 0.18).
+    #[arg(long, allow_negative_numbers = true)]
+    pub preview_exposure: Option<f32>,
+    /// Preview tone map: clamp, reinhard or aces.
+    #[arg(long, default_value = "aces")]
+    pub preview_tone_map: ToneMap,
+}
+
+/// How `shlight project` computes coefficients.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Exact texel-solid-angle quadrature over every texel.
+    #[default]
+    Quadrature,
+}
+
+impl Method {
+    fn name(self) -> &'static str {
+        match self {
+            Method::Quadrature => "quadrature",
+        }
+    }
 }
 
 /// Output formats of `shlight project`.
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum OutFormat {
     /// shlight's self-describing JSON coefficient file.
     Json,
@@ -55,91 +120,500 @@ pub enum OutFormat {
 }
 
 /// Runs `shlight project`.
-pub fn run(args: &ProjectArgs) -> Result<()> {
-    let image = read_image(
-        &args.input,
-        &ReadOptions {
-            layer: args.layer.clone(),
-            ..ReadOptions::default()
-        },
-    )?;
-    let (w, h) = (image.width(), image.height());
-    if w != 2 * h {
-        bail!(
-            "{}: a {w}x{h} image is not an equirect map (its width must be twice its height)",
-            args.input.display()
-        );
+pub fn run(args: &ProjectArgs, ui: &Ui) -> Result<()> {
+    let settings = Settings::new(args)?;
+    let jobs = plan(args)?;
+    if let [job] = jobs.as_slice() {
+        let bar = ui.spinner("starting");
+        let result = process(job, &settings, ui, &bar);
+        bar.finish_and_clear();
+        return result;
     }
-    let stats = image.stats();
-    if stats.non_finite > 0 {
-        let (x, y) = stats.first_non_finite.unwrap_or((0, 0));
-        bail!(
-            "{}: {} texels are NaN or infinite (the first at x={x}, y={y})",
-            args.input.display(),
-            stats.non_finite
-        );
+    let bar = ui.bar(jobs.len() as u64, "projecting");
+    let failed: usize = jobs
+        .par_iter()
+        .map(|job| {
+            let result = process(job, &settings, ui, &ProgressBar::hidden());
+            bar.inc(1);
+            match result {
+                Ok(()) => 0,
+                Err(e) => {
+                    let msg = format!("{e:#}");
+                    let input = job.input.display().to_string();
+                    if msg.contains(&input) {
+                        ui.error(msg);
+                    } else {
+                        ui.error(format!("{input}: {msg}"));
+                    }
+                    1
+                }
+            }
+        })
+        .sum();
+    bar.finish_and_clear();
+    if failed > 0 {
+        bail!("{failed} of {} inputs failed", jobs.len());
     }
-    if stats.negative > 0 {
-        eprintln!(
-            "warning: {}: {} negative texels (minimum {}), kept as data",
-            args.input.display(),
-            stats.negative,
-            stats.min_value
-        );
-    }
-    let orientation = MapOrientation {
-        frame: if args.up == "z" {
+    Ok(())
+}
+
+/// Everything decided from the arguments before any input is read.
+struct Settings<'a> {
+    args: &'a ProjectArgs,
+    orientation: MapOrientation,
+    window: Option<Window>,
+    /// The record for the file and the matrix.
+    rotation: Option<(RotationRecord, DMat3)>,
+    read: ReadOptions,
+    preview: PreviewOptions,
+}
+
+impl<'a> Settings<'a> {
+    fn new(args: &'a ProjectArgs) -> Result<Self> {
+        let frame = if args.up == "z" {
             Frame::ZUp
         } else {
             Frame::YUp
+        };
+        let window = match args.window.trim() {
+            "auto" => None,
+            spec => Some(
+                spec.parse::<Window>()
+                    .map_err(|e| anyhow!("--window {spec}: {e}"))?,
+            ),
+        };
+        let rotation = match &args.rotate {
+            None => None,
+            Some(spec) => {
+                let matrix = parse_rotation(spec, frame)?;
+                let record = RotationRecord {
+                    spec: spec.trim().to_string(),
+                    matrix: matrix.transpose().to_cols_array_2d(),
+                };
+                Some((record, matrix))
+            }
+        };
+        if args.preview.is_some() {
+            LayoutArg::Equirect
+                .check_size(args.preview_size.0, args.preview_size.1)
+                .map_err(|e| anyhow!("--preview-size: {e}"))?;
+        }
+        Ok(Self {
+            args,
+            orientation: MapOrientation {
+                frame,
+                mirror: args.mirror,
+            },
+            window,
+            rotation,
+            read: ReadOptions {
+                layer: args.layer.clone(),
+                max_pixels: args.max_pixels,
+            },
+            preview: PreviewOptions {
+                panel: args.preview_size,
+                exposure: args.preview_exposure,
+                tone_map: args.preview_tone_map,
+            },
+        })
+    }
+}
+
+/// Parses `--rotate` into the rotation matrix `R` (a light from `a` comes
+/// from `R a` afterwards) in the frame `frame`.
+fn parse_rotation(spec: &str, frame: Frame) -> Result<DMat3> {
+    let err = |why: &str| {
+        anyhow!("--rotate {spec}: {why} (expected yaw:DEG, quat:X,Y,Z,W or euler:X,Y,Z in degrees)")
+    };
+    let (kind, rest) = spec.trim().split_once(':').ok_or_else(|| err("no kind"))?;
+    let numbers: Vec<f64> = rest
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| err(&e.to_string()))?;
+    if !numbers.iter().all(|v| v.is_finite()) {
+        return Err(err("not finite"));
+    }
+    let deg = f64::to_radians;
+    match (
+        kind.trim().to_ascii_lowercase().as_str(),
+        numbers.as_slice(),
+    ) {
+        ("yaw", [a]) => Ok(DMat3::from_axis_angle(
+            frame.direction(0.0, 0.0).normalize(),
+            deg(*a),
+        )),
+        ("quat", [x, y, z, w]) => {
+            let q = DQuat::from_xyzw(*x, *y, *z, *w);
+            if q.length_squared() == 0.0 {
+                return Err(err("the zero quaternion is no rotation"));
+            }
+            Ok(DMat3::from_quat(q.normalize()))
+        }
+        ("euler", [x, y, z]) => Ok(DMat3::from_rotation_z(deg(*z))
+            * DMat3::from_rotation_y(deg(*y))
+            * DMat3::from_rotation_x(deg(*x))),
+        ("yaw" | "quat" | "euler", _) => Err(err("wrong count of numbers")),
+        _ => Err(err("unknown kind")),
+    }
+}
+
+/// Where a coefficient file goes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Dest {
+    /// A table to a terminal, JSON to a pipe (`--format txt`: a table).
+    Stdout,
+    /// This file, written atomically.
+    File(PathBuf),
+}
+
+/// One input and where its results go.
+#[derive(Debug)]
+struct Job {
+    input: PathBuf,
+    output: Dest,
+    preview: Option<PathBuf>,
+}
+
+/// Whether `-o PATH` names a directory: it is one, or ends with a separator.
+fn names_dir(p: &Path) -> bool {
+    p.is_dir()
+        || p.as_os_str()
+            .to_string_lossy()
+            .ends_with(std::path::is_separator)
+}
+
+/// The jobs of a run: output paths per input, checked for clashes and for
+/// overwriting an input before anything is read; output directories made.
+fn plan(args: &ProjectArgs) -> Result<Vec<Job>> {
+    let n = args.inputs.len();
+    let ext = output_extension(args.format);
+    let out_dir = match &args.output {
+        None if n > 1 => {
+            bail!("{n} inputs need -o DIR: one .{ext} file per input is written there")
+        }
+        Some(p) if n > 1 || names_dir(p) => Some(p.as_path()),
+        _ => None,
+    };
+    let preview_dir = match &args.preview {
+        Some(p) if n > 1 || names_dir(p) => Some(p.as_path()),
+        _ => None,
+    };
+    let mut jobs = Vec::with_capacity(n);
+    for input in &args.inputs {
+        let stem = || {
+            input
+                .file_stem()
+                .filter(|s| !s.is_empty())
+                .ok_or_else(|| anyhow!("{}: does not name a file", input.display()))
+        };
+        let output = match (out_dir, &args.output) {
+            (Some(dir), _) => Dest::File(dir.join(stem()?).with_extension(ext)),
+            (None, Some(p)) => Dest::File(p.clone()),
+            (None, None) => Dest::Stdout,
+        };
+        let preview = match (preview_dir, &args.preview) {
+            (Some(dir), _) => Some(dir.join(stem()?).with_extension("png")),
+            (None, p) => p.clone(),
+        };
+        jobs.push(Job {
+            input: input.clone(),
+            output,
+            preview,
+        });
+    }
+    let mut seen: HashMap<PathBuf, &Path> = HashMap::new();
+    for job in &jobs {
+        let outputs = [
+            match &job.output {
+                Dest::File(p) => Some(p),
+                Dest::Stdout => None,
+            },
+            job.preview.as_ref(),
+        ];
+        for out in outputs.into_iter().flatten() {
+            refuse_overwriting(out, &args.inputs)?;
+            let key = std::path::absolute(out).unwrap_or_else(|_| out.clone());
+            if let Some(other) = seen.insert(key, &job.input) {
+                bail!(
+                    "{} and {} would both be written to {}",
+                    other.display(),
+                    job.input.display(),
+                    out.display()
+                );
+            }
+        }
+    }
+    for dir in [out_dir, preview_dir].into_iter().flatten() {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+    }
+    Ok(jobs)
+}
+
+/// Refuses `output` when it is one of `inputs` (the same file by path, link
+/// or inode).
+pub fn refuse_overwriting(output: &Path, inputs: &[PathBuf]) -> Result<()> {
+    for input in inputs {
+        if same_file(output, input) {
+            bail!(
+                "{}: refusing to write over the input {}",
+                output.display(),
+                input.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        use std::os::unix::fs::MetadataExt;
+        return x.dev() == y.dev() && x.ino() == y.ino();
+    }
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => match (std::path::absolute(a), std::path::absolute(b)) {
+            (Ok(x), Ok(y)) => x == y,
+            _ => false,
         },
-        mirror: args.mirror,
-    };
-    let view = EquirectView {
-        width: w,
-        height: h,
-        pixels: image.pixels(),
-    };
-    let radiance = project_equirect(view, args.lmax, orientation);
+    }
+}
+
+/// Projects one input and writes its results.
+fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()> {
+    let args = s.args;
+    let name = job.input.display().to_string();
+    bar.set_message(format!("reading {name}"));
+    let (image, stats, sanitized) = load(&job.input, s, ui)?;
+
+    bar.set_message(format!(
+        "projecting {name} ({}x{}, lmax {})",
+        image.width(),
+        image.height(),
+        args.lmax
+    ));
+    let projection = project_map(&image, s);
 
     let target = match args.quantity {
         Quantity::Radiance => WindowTarget::Function,
         Quantity::Irradiance => WindowTarget::Irradiance,
     };
-    let window = choose_window(&args.window, &radiance, target)?;
-    let radiance = window.apply(&radiance);
+    if s.window.is_none() {
+        bar.set_message(format!("choosing windows for {name}"));
+    }
+    let windows = choose_windows(s.window, &projection.coeffs, target)
+        .with_context(|| format!("{name}: --window auto"))?;
+    let mut radiance = apply_windows(&windows, &projection.coeffs);
+
+    if let Some(path) = &job.preview {
+        bar.set_message(format!("preview of {name}"));
+        write_preview(path, &image, &radiance, s.orientation, &s.preview)
+            .with_context(|| format!("{name}: preview"))?;
+    }
+
+    // Window factors lie in [0, 1], so errors scale by them as they are.
+    let mut std_error = projection.std_error.map(|se| apply_windows(&windows, &se));
+    if let Some((_, matrix)) = &s.rotation {
+        radiance = rotate_once(&radiance, *matrix);
+        std_error =
+            std_error.map(|se| rotate_std_error(&ShRotation::from_mat3(se.lmax(), *matrix), &se));
+    }
     let coeffs = match args.quantity {
         Quantity::Radiance => radiance,
-        Quantity::Irradiance => irradiance(&radiance),
+        Quantity::Irradiance => {
+            std_error =
+                std_error.map(|se| se.scaled_per_band(|l| clamped_cosine_eigenvalue(l).abs()));
+            irradiance(&radiance)
+        }
     };
 
-    let file = CoeffFile {
-        coeffs,
-        frame: orientation.frame,
-        mirror: orientation.mirror,
-        quantity: args.quantity,
-        provenance: Provenance {
-            input: args.input.display().to_string(),
-            width: w,
-            height: h,
-            layout: "equirect".into(),
-            method: "quadrature".into(),
-            window: window.to_string(),
+    let mut file = CoeffFile::new(coeffs, s.orientation.frame, args.quantity);
+    file.mirror = s.orientation.mirror;
+    file.provenance = Provenance {
+        input: name.clone(),
+        width: image.width(),
+        height: image.height(),
+        layout: args.layout.name().into(),
+        method: args.method.name().into(),
+        window: match s.window {
+            Some(w) => w.to_string(),
+            None => "auto".into(),
         },
-        input_negative_texels: stats.negative,
-        input_min_value: stats.min_value as f64,
+        windows: windows.map(|w| w.to_string()),
+        samples: projection.samples,
+        seed: projection.seed,
+        sampler: projection.sampler,
+        rotate: s.rotation.as_ref().map(|(r, _)| r.clone()),
     };
-    match (&args.output, args.format) {
-        (None, OutFormat::Txt) => print!("{}", file.to_table()),
-        (None, OutFormat::Json) if std::io::IsTerminal::is_terminal(&std::io::stdout()) => {
-            print!("{}", file.to_table())
+    file.input_negative_texels = stats.negative;
+    file.input_min_value = f64::from(stats.min_value);
+    file.sanitized = sanitized;
+    file.std_error = std_error;
+    if job.output == Dest::Stdout {
+        // Nothing may draw on the terminal while the result is printed.
+        bar.finish_and_clear();
+    } else {
+        bar.set_message(format!("writing {name}"));
+    }
+    write_output(&file, args.format, &job.output)
+}
+
+/// Reads an input and checks its values: NaN/inf are refused (or with
+/// `--sanitize` replaced, see [`Image::sanitize`]), negatives are kept with
+/// a warning (or replaced). Returns the image, the statistics of the values
+/// as read, and what was replaced.
+fn load(
+    path: &Path,
+    s: &Settings<'_>,
+    ui: &Ui,
+) -> Result<(Image, PixelStats, Option<SanitizeCounts>)> {
+    let name = path.display();
+    let mut image = read_image(path, &s.read)?;
+    if let Err(e) = s.args.layout.check_size(image.width(), image.height()) {
+        bail!("{name}: {e}");
+    }
+    let stats = image.stats();
+    if s.args.sanitize {
+        let counts = SanitizeCounts::from(image.sanitize());
+        if counts.total() > 0 {
+            ui.warn(format!(
+                "{name}: --sanitize replaced {} values: {} NaN and {} -inf by 0, {} +inf by {}, {} negative by 0",
+                counts.total(),
+                counts.nan,
+                counts.negative_infinite,
+                counts.positive_infinite,
+                counts.infinity_replacement,
+                counts.negative
+            ));
         }
-        (None, OutFormat::Json) => println!("{}", file.to_json_string()),
-        (Some(path), format) => {
-            let text = match format {
-                OutFormat::Json => file.to_json_string() + "\n",
-                OutFormat::Txt => file.to_table(),
+        return Ok((image, stats, Some(counts)));
+    }
+    if stats.non_finite > 0 {
+        let (x, y) = stats.first_non_finite.unwrap_or((0, 0));
+        bail!(
+            "{name}: {} texels are NaN or infinite (the first at x={x}, y={y}); --sanitize replaces them",
+            stats.non_finite
+        );
+    }
+    if stats.negative > 0 {
+        ui.warn(format!(
+            "{name}: {} negative texels (minimum {}), kept as data",
+            stats.negative, stats.min_value
+        ));
+    }
+    Ok((image, stats, None))
+}
+
+/// Radiance coefficients of a map, and what the method reports about them.
+struct Projection {
+    coeffs: ShCoeffs<DVec3>,
+    /// Standard error per coefficient (Monte Carlo).
+    std_error: Option<ShCoeffs<DVec3>>,
+    samples: Option<u64>,
+    seed: Option<u64>,
+    sampler: Option<String>,
+}
+
+/// The projection step: the place where layouts and methods meet.
+fn project_map(image: &Image, s: &Settings<'_>) -> Projection {
+    match (s.args.layout, s.args.method) {
+        (LayoutArg::Equirect, Method::Quadrature) => Projection {
+            coeffs: project_equirect(
+                EquirectView {
+                    width: image.width(),
+                    height: image.height(),
+                    pixels: image.pixels(),
+                },
+                s.args.lmax,
+                s.orientation,
+            ),
+            std_error: None,
+            samples: None,
+            seed: None,
+            sampler: None,
+        },
+    }
+}
+
+/// The window of each colour channel: `fixed` for all three, or (`None`,
+/// `--window auto`) each channel's weakest Hanning window that makes its
+/// `target` non-negative.
+fn choose_windows(
+    fixed: Option<Window>,
+    radiance: &ShCoeffs<DVec3>,
+    target: WindowTarget,
+) -> Result<[Window; 3]> {
+    if let Some(w) = fixed {
+        return Ok([w; 3]);
+    }
+    let mut out = [Window::None; 3];
+    for (c, w) in out.iter_mut().enumerate() {
+        *w = auto_window(&radiance.channel(c), WindowFamily::Hanning, target)
+            .map_err(|e| anyhow!("{e}"))?
+            .window;
+    }
+    Ok(out)
+}
+
+/// Each channel of `f` multiplied by its own window.
+fn apply_windows(windows: &[Window; 3], f: &ShCoeffs<DVec3>) -> ShCoeffs<DVec3> {
+    if windows.iter().all(|w| *w == windows[0]) {
+        return windows[0].apply(f);
+    }
+    let [r, g, b] = std::array::from_fn(|c| windows[c].apply(&f.channel(c)));
+    ShCoeffs::from_channels(&r, &g, &b)
+}
+
+/// Standard errors carried through a rotation, taking the errors of the
+/// coefficients as independent: `σ'_m = sqrt(Σ_n M_mn² σ_n²)` per channel.
+fn rotate_std_error(rotation: &ShRotation, se: &ShCoeffs<DVec3>) -> ShCoeffs<DVec3> {
+    let mut out = ShCoeffs::<DVec3>::zeros(se.lmax());
+    for l in 0..=se.lmax().min(rotation.lmax()) {
+        let n = 2 * l + 1;
+        let block = rotation.block(l);
+        let band = se.band(l);
+        for (m, o) in out.band_mut(l).iter_mut().enumerate() {
+            let var: DVec3 = (0..n)
+                .map(|k| band[k] * band[k] * block[m * n + k] * block[m * n + k])
+                .sum();
+            *o = DVec3::new(var.x.sqrt(), var.y.sqrt(), var.z.sqrt());
+        }
+    }
+    out
+}
+
+/// The file extension of an output format.
+pub fn output_extension(format: OutFormat) -> &'static str {
+    match format {
+        OutFormat::Json => "json",
+        OutFormat::Txt => "txt",
+    }
+}
+
+/// The text of `file` in `format`: the output step's only format switch.
+pub fn format_output(file: &CoeffFile, format: OutFormat) -> Result<String> {
+    Ok(match format {
+        OutFormat::Json => file.to_json_string() + "\n",
+        OutFormat::Txt => file.to_table(),
+    })
+}
+
+/// Writes `file` in `format` to `dest` (atomically for files). To a
+/// terminal, JSON is shown as the readable table instead.
+pub fn write_output(file: &CoeffFile, format: OutFormat, dest: &Dest) -> Result<()> {
+    match dest {
+        Dest::Stdout => {
+            let format = if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
+                OutFormat::Txt
+            } else {
+                format
             };
+            print!("{}", format_output(file, format)?);
+        }
+        Dest::File(path) => {
+            let text = format_output(file, format)?;
             shlight_io::write_atomically(path, |out| out.write_all(text.as_bytes()))
                 .with_context(|| format!("writing {}", path.display()))?;
         }
@@ -147,22 +621,45 @@ pub fn run(args: &ProjectArgs) -> Result<()> {
     Ok(())
 }
 
-/// Parses `--window`; `auto` picks, per colour channel, the weakest Hanning
-/// window that makes the target non-negative, and keeps the strongest of the three.
-fn choose_window(spec: &str, radiance: &ShCoeffs<DVec3>, target: WindowTarget) -> Result<Window> {
-    if spec != "auto" {
-        return spec
-            .parse::<Window>()
-            .map_err(|e| anyhow::anyhow!("--window {spec}: {e}"));
-    }
-    let mut best = Window::None;
-    let strength = |w: &Window| -> f64 { (0..=radiance.lmax()).map(|l| 1.0 - w.factor(l)).sum() };
-    for c in 0..3 {
-        let chosen = auto_window(&radiance.channel(c), WindowFamily::Hanning, target)
-            .map_err(|e| anyhow::anyhow!("--window auto: {e}"))?;
-        if strength(&chosen.window) > strength(&best) {
-            best = chosen.window;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rotations_parse_to_the_documented_matrices() {
+        let close = |a: DMat3, b: DMat3| (a - b).to_cols_array().iter().all(|v| v.abs() < 1e-12);
+        // yaw about +Y (y-up) takes +X to -Z; about +Z (z-up) +X to +Y.
+        let r = parse_rotation("yaw:90", Frame::YUp).unwrap();
+        assert!((r * DVec3::X - DVec3::NEG_Z).length() < 1e-12);
+        let r = parse_rotation("yaw:90", Frame::ZUp).unwrap();
+        assert!((r * DVec3::X - DVec3::Y).length() < 1e-12);
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let q = parse_rotation("quat:0,0,2,2", Frame::YUp).unwrap();
+        assert!(close(q, DMat3::from_quat(DQuat::from_xyzw(0.0, 0.0, s, s))));
+        let e = parse_rotation("euler:90,0,90", Frame::YUp).unwrap();
+        // X first: +Y -> +Z; then Z: +Z stays.
+        assert!((e * DVec3::Y - DVec3::Z).length() < 1e-12);
+        assert!((e * DVec3::X - DVec3::Y).length() < 1e-12);
+        for bad in ["yaw", "yaw:1,2", "quat:0,0,0,0", "spin:3", "yaw:nan"] {
+            assert!(parse_rotation(bad, Frame::YUp).is_err(), "{bad}");
         }
     }
-    Ok(best)
+
+    #[test]
+    fn std_errors_follow_a_quarter_turn() {
+        // Rz(90°) swaps x and y up to sign: band 1 (-y, z, -x) errors swap.
+        let rot = ShRotation::from_mat3(1, DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2));
+        let se = ShCoeffs::from_vec(vec![
+            DVec3::splat(1.0),
+            DVec3::splat(2.0),
+            DVec3::splat(3.0),
+            DVec3::splat(4.0),
+        ])
+        .unwrap();
+        let out = rotate_std_error(&rot, &se);
+        let got: Vec<f64> = out.as_slice().iter().map(|v| v.x).collect();
+        for (g, w) in got.iter().zip([1.0, 4.0, 3.0, 2.0]) {
+            assert!((g - w).abs() < 1e-12, "{got:?}");
+        }
+    }
 }

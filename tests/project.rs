@@ -212,3 +212,322 @@ fn bad_input_fails_with_the_file_named_and_keeps_existing_output() {
     check(&["project", "Cargo.toml"], "Cargo.toml");
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
 }
+
+#[test]
+fn sanitize_replaces_bad_values_and_records_the_counts() {
+    use crate::util::{assert_rows_near, project_rows, read_json, s, shlight_err, shlight_ok};
+    let dir = temp_dir("sanitize");
+    let dirty = |x: usize, y: usize| -> [f32; 3] {
+        match (x, y) {
+            (3, 5) => [f32::NAN; 3],
+            (7, 2) => [f32::INFINITY, 1.0, 1.0],
+            (1, 1) => [1.0, f32::NEG_INFINITY, 1.0],
+            (10, 10) => [-0.5; 3],
+            _ => [1.0, 0.5 + x as f32 / 64.0, 0.25],
+        }
+    };
+    let map = dir.join("dirty.exr");
+    write_map(&map, 32, 16, dirty);
+    // What --sanitize documents: NaN, -inf, negatives to 0; +inf to the largest finite value.
+    let clean = dir.join("clean.exr");
+    write_map(&clean, 32, 16, |x, y| {
+        let largest = 1.0f32; // the largest finite value of the dirty map
+        dirty(x, y).map(|v| {
+            if v == f32::INFINITY {
+                largest
+            } else if v.is_nan() || v < 0.0 {
+                0.0
+            } else {
+                v
+            }
+        })
+    });
+
+    let err = shlight_err(&["project", s(&map)]);
+    assert!(
+        err.contains("x=1, y=1") && err.contains("--sanitize"),
+        "{err}"
+    );
+
+    let out = dir.join("dirty.json");
+    let o = shlight_ok(&[
+        "project",
+        s(&map),
+        "--sanitize",
+        "-o",
+        s(&out),
+        "--lmax",
+        "3",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--sanitize replaced 8 values"), "{err}");
+    let v = read_json(&out);
+    let counts = &v["statistics"]["sanitized"];
+    assert_eq!(counts["nan"], 3);
+    assert_eq!(counts["positive_infinite"], 1);
+    assert_eq!(counts["negative_infinite"], 1);
+    assert_eq!(counts["negative"], 3);
+    assert_eq!(counts["infinity_replacement"], 1.0);
+    // The statistics of the input describe it as read.
+    assert_eq!(v["statistics"]["input_negative_texels"], 3);
+    let want = project_rows(&clean, &["--lmax", "3"]);
+    assert_rows_near(&crate::util::coefficients(&v), &want, 1e-12, "sanitized");
+    // --quiet silences the warning; without --sanitize the record is null.
+    let o = shlight_ok(&["project", s(&map), "--sanitize", "--quiet"]);
+    assert!(o.stderr.is_empty());
+    let plain = json(&shlight(&["project", s(&clean)]));
+    assert!(plain["statistics"]["sanitized"].is_null());
+}
+
+#[test]
+fn negatives_warn_unless_quiet_and_a_clean_run_prints_nothing_on_stderr() {
+    use crate::util::{s, shlight_ok};
+    let dir = temp_dir("quiet");
+    let map = dir.join("neg.exr");
+    write_map(
+        &map,
+        32,
+        16,
+        |x, _| if x == 4 { [-0.25; 3] } else { [1.0; 3] },
+    );
+    let o = shlight_ok(&["project", s(&map)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning") && err.contains("48 negative texels"),
+        "{err}"
+    );
+    let o = shlight_ok(&["project", s(&map), "-q"]);
+    assert!(o.stderr.is_empty());
+    // No progress bar when stderr is not a terminal.
+    let ok = dir.join("ok.exr");
+    write_map(&ok, 32, 16, |_, _| [1.0; 3]);
+    let o = shlight_ok(&["project", s(&ok), "--lmax", "8"]);
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // --quiet does not silence errors.
+    let err = crate::util::shlight_err(&["project", s(&dir.join("nope.exr")), "-q"]);
+    assert!(err.contains("nope.exr"), "{err}");
+}
+
+#[test]
+fn rotate_carries_a_bright_spot_to_the_rotated_direction() {
+    use crate::util::{read_json, s};
+    let dir = temp_dir("rotate");
+    let (w, h) = (64, 32);
+    // The centre column at the equator faces +X in both frames.
+    let centre = dir.join("centre.exr");
+    write_map(&centre, w, h, |x, y| {
+        if x == 32 && y == 16 {
+            [1000.0, 0.0, 0.0]
+        } else {
+            [0.0; 3]
+        }
+    });
+    let tol = 0.1; // the texel centre sits half a texel off +X
+    let s45 = std::f64::consts::FRAC_1_SQRT_2.to_string();
+    let quat_z = format!("quat:0,0,{s45},{s45}");
+    for (up, spec, want) in [
+        ("y", "yaw:90", [0.0, 0.0, -1.0]),
+        ("z", "yaw:90", [0.0, 1.0, 0.0]),
+        ("y", "yaw:-90", [0.0, 0.0, 1.0]),
+        ("y", quat_z.as_str(), [0.0, 1.0, 0.0]),
+        ("y", "euler:0,0,90", [0.0, 1.0, 0.0]),
+        ("z", "euler:0,-90,0", [0.0, 0.0, 1.0]),
+    ] {
+        let v = json(&shlight(&[
+            "project",
+            s(&centre),
+            "--lmax",
+            "3",
+            "--up",
+            up,
+            "--rotate",
+            spec,
+        ]));
+        assert_near(
+            band1_direction(&coefficients(&v)),
+            want,
+            tol,
+            &format!("{up} {spec}"),
+        );
+        assert_eq!(v["provenance"]["rotate"]["spec"], spec);
+    }
+    // The matrix is recorded rows first: yaw:90 in y-up takes +X to -Z (column 0).
+    let out = dir.join("r.json");
+    let o = shlight(&["project", s(&centre), "--rotate", "yaw:90", "-o", s(&out)]);
+    assert!(o.status.success());
+    let m = &read_json(&out)["provenance"]["rotate"]["matrix"];
+    let col0 = [0, 1, 2].map(|r| m[r][0].as_f64().unwrap());
+    assert_near(col0, [0.0, 0.0, -1.0], 1e-12, "matrix column 0");
+    // Unrotated files record null.
+    let v = json(&shlight(&["project", s(&centre)]));
+    assert!(v["provenance"]["rotate"].is_null());
+    for bad in ["yaw", "spin:30", "quat:0,0,0,0", "euler:1,2"] {
+        let o = shlight(&["project", s(&centre), "--rotate", bad]);
+        assert!(!o.status.success(), "{bad}");
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains("--rotate"),
+            "{bad}"
+        );
+    }
+}
+
+#[test]
+fn auto_window_is_chosen_per_channel() {
+    use crate::util::{assert_rows_near, project_rows, s};
+    let dir = temp_dir("window_per_channel");
+    // Red: a bright spot on a dim sky (rings negative); green: constant
+    // (needs nothing); blue: a weaker spot (needs a weaker window).
+    let map = dir.join("m.exr");
+    write_map(&map, 64, 32, |x, y| {
+        let spot = x == 20 && y == 10;
+        [
+            if spot { 500.0 } else { 0.05 },
+            1.0,
+            if spot { 100.0 } else { 0.1 },
+        ]
+    });
+    let v = json(&shlight(&[
+        "project",
+        s(&map),
+        "--lmax",
+        "6",
+        "--window",
+        "auto",
+    ]));
+    let windows = &v["provenance"]["windows"];
+    assert_eq!(v["provenance"]["window"], "auto");
+    let red = windows["red"].as_str().unwrap();
+    let blue = windows["blue"].as_str().unwrap();
+    assert!(
+        red.starts_with("hanning:") && blue.starts_with("hanning:"),
+        "{windows}"
+    );
+    assert_eq!(windows["green"], "none");
+    assert_ne!(red, blue, "each channel gets its own window");
+    let got = coefficients(&v);
+    // Each channel is its own window applied to the unwindowed projection.
+    for (c, spec) in [(0, red), (1, "none"), (2, blue)] {
+        let want = project_rows(&map, &["--lmax", "6", "--window", spec]);
+        let pick =
+            |rows: &[[f64; 3]]| -> Vec<[f64; 3]> { rows.iter().map(|r| [r[c]; 3]).collect() };
+        assert_rows_near(&pick(&got), &pick(&want), 1e-12, spec);
+    }
+    // The table names the three.
+    let table = String::from_utf8_lossy(
+        &shlight(&[
+            "project",
+            s(&map),
+            "--lmax",
+            "6",
+            "--window",
+            "auto",
+            "--format",
+            "txt",
+        ])
+        .stdout,
+    )
+    .into_owned();
+    assert!(
+        table.contains(&format!("windows r {red}, g none, b {blue}")),
+        "{table}"
+    );
+}
+
+#[test]
+fn preview_shows_input_radiance_and_irradiance_side_by_side() {
+    use crate::util::{s, shlight_ok};
+    let dir = temp_dir("preview");
+    // A constant map: all three panels show the same value; the automatic
+    // exposure puts the mean radiance at 0.18 and ACES maps that to ~0.135.
+    let map = dir.join("c.exr");
+    write_map(&map, 128, 64, |_, _| [2.0, 2.0, 2.0]);
+    let png = dir.join("p.png");
+    shlight_ok(&[
+        "project",
+        s(&map),
+        "--preview",
+        s(&png),
+        "--preview-size",
+        "64x32",
+    ]);
+    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    assert_eq!((img.width(), img.height()), (192, 32));
+    let aces = shlight_io::ToneMap::Aces.apply(0.18);
+    for x in [5, 64 + 5, 128 + 5, 191] {
+        for y in [3, 16, 31] {
+            let v = img.get(x, y);
+            assert!(
+                (v[0] - aces).abs() < 4e-3,
+                "panel at x={x}, y={y}: {v:?} vs {aces}"
+            );
+        }
+    }
+    // A spot: panel 1 has it, panel 2 blurs it, panel 3 is smooth and wide.
+    let spot = dir.join("s.exr");
+    write_map(&spot, 64, 32, |x, y| {
+        if (x, y) == (32, 16) {
+            [100.0; 3]
+        } else {
+            [0.1; 3]
+        }
+    });
+    shlight_ok(&[
+        "project",
+        s(&spot),
+        "--preview",
+        s(&png),
+        "--preview-size",
+        "64x32",
+        "--preview-exposure",
+        "0",
+        "--preview-tone-map",
+        "clamp",
+        "--lmax",
+        "4",
+    ]);
+    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    assert_eq!(img.get(32, 16)[0], 1.0, "input panel: the spot clips");
+    assert!(
+        img.get(64 + 32, 16)[0] > img.get(64 + 32, 2)[0],
+        "radiance panel peaks at the spot"
+    );
+    assert!(
+        img.get(128 + 32, 16)[0] > img.get(128 + 2, 16)[0],
+        "irradiance panel faces the spot"
+    );
+    let err = crate::util::shlight_err(&[
+        "project",
+        s(&spot),
+        "--preview",
+        s(&png),
+        "--preview-size",
+        "64x64",
+    ]);
+    assert!(err.contains("--preview-size"), "{err}");
+}
+
+#[test]
+fn too_large_and_empty_inputs_are_refused_with_the_file_named() {
+    use crate::util::{s, shlight_err};
+    let dir = temp_dir("limits");
+    let out = dir.join("keep.json");
+    std::fs::write(&out, "precious").unwrap();
+    let map = dir.join("big.exr");
+    write_map(&map, 64, 32, |_, _| [1.0; 3]);
+    let err = shlight_err(&["project", s(&map), "--max-pixels", "1000", "-o", s(&out)]);
+    assert!(
+        err.contains("big.exr") && err.contains("too large"),
+        "{err}"
+    );
+    let empty = dir.join("empty.exr");
+    std::fs::write(&empty, b"").unwrap();
+    let err = shlight_err(&["project", s(&empty), "-o", s(&out)]);
+    assert!(err.contains("empty.exr") && err.contains("empty"), "{err}");
+    let err = shlight_err(&["project", s(&map), "--window", "bogus:3", "-o", s(&out)]);
+    assert!(err.contains("--window"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
+}

@@ -1,5 +1,8 @@
 //! End-to-end tests of the `shlight` binary: one test binary, a module per topic.
 
+mod batch;
 mod export;
 mod project;
+mod render;
+mod synth;
 mod util;

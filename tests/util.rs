@@ -53,3 +53,61 @@ pub fn coefficients(v: &serde_json::Value) -> Vec<[f64; 3]> {
         })
         .collect()
 }
+
+/// Runs `shlight ARGS`, asserting success (stderr shown on failure).
+pub fn shlight_ok(args: &[&str]) -> Output {
+    let out = shlight(args);
+    assert!(
+        out.status.success(),
+        "shlight {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// Runs `shlight ARGS`, asserting failure, and returns its stderr.
+pub fn shlight_err(args: &[&str]) -> String {
+    let out = shlight(args);
+    assert!(!out.status.success(), "shlight {args:?} succeeded");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A path as `&str` (test paths are UTF-8).
+pub fn s(path: &Path) -> &str {
+    path.to_str().expect("UTF-8 test path")
+}
+
+/// Reads a JSON file.
+pub fn read_json(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// `shlight project MAP ARGS` to stdout, as coefficient rows.
+pub fn project_rows(map: &Path, args: &[&str]) -> Vec<[f64; 3]> {
+    let mut all = vec!["project", s(map)];
+    all.extend_from_slice(args);
+    coefficients(&json(&shlight(&all)))
+}
+
+/// Asserts `got` and `want` agree to `tol` times the largest `|want|`,
+/// coefficient by coefficient and channel by channel.
+pub fn assert_rows_near(got: &[[f64; 3]], want: &[[f64; 3]], tol: f64, what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: coefficient count");
+    let scale = want
+        .iter()
+        .flatten()
+        .fold(0.0f64, |a, v| a.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        for c in 0..3 {
+            assert!(
+                (g[c] - w[c]).abs() <= tol * scale,
+                "{what}: coefficient {i} channel {c}: {} vs {} (tolerance {})",
+                g[c],
+                w[c],
+                tol * scale
+            );
+        }
+    }
+}

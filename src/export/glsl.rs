@@ -1,0 +1,43 @@
+//! `glsl`: a GLSL snippet (GLSL 3.30+ / GLSL ES 3.00+): the coefficients as
+//! a `const vec3` array and functions that evaluate them at a normal.
+//!
+//! # What the numbers are
+//!
+//! `SHLIGHT_COEFFS[i]`, `i = l(l+1)+m`, are the file's own coefficients,
+//! unchanged: shlight's basis (real orthonormal SH **with** the
+//! Condon-Shortley phase, docs/conventions.md), the file's quantity
+//! (radiance `L_lm` or irradiance `E_lm = A_l L_lm`) and frame (y-up or
+//! z-up, named in the header), linear Rec.709 RGB, any lmax.
+//!
+//! - `shlight_irradiance(n)` returns irradiance `E(n)` (`A_l` applied from
+//!   `SHLIGHT_A` when the file holds radiance).
+//! - `shlight_radiance(w)` (radiance files only) returns `L(w)`.
+//!
+//! Both evaluate `Y_l^m` by the same recurrences as shlight-core
+//! (`Pbar_m^m = -sqrt((2m+1)/2m) s Pbar_(m-1)^(m-1)`, ... divided by
+//! `sin^m`, times the trig-free azimuth terms `C_m, S_m` of Sloan 2008),
+//! in 32-bit floats. The header comment says all this in the file.
+
+use anyhow::Result;
+
+use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
+
+/// The GLSL dialect of the shared evaluator.
+const GLSL: CLikeShader = CLikeShader {
+    vec3: "vec3",
+    konst: "const",
+    array_open: |ty, n| format!("{ty}[{n}]("),
+    array_close: ");",
+};
+
+/// Renders the snippet.
+pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
+    check_f32_range(input.coeffs, "GLSL")?;
+    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", "shlight_");
+    text.push_str("// GLSL 3.30 / GLSL ES 3.00 or later.\n\n");
+    text.push_str(&GLSL.body(input));
+    Ok(Exported {
+        text,
+        notes: Vec::new(),
+    })
+}

@@ -1,0 +1,44 @@
+//! `hlsl`: an HLSL snippet: the coefficients as a `static const float3`
+//! array and functions that evaluate them at a normal.
+//!
+//! # What the numbers are
+//!
+//! `SHLIGHT_COEFFS[i]`, `i = l(l+1)+m`, are the file's own coefficients,
+//! unchanged: shlight's basis (real orthonormal SH **with** the
+//! Condon-Shortley phase, docs/conventions.md), the file's quantity
+//! (radiance `L_lm` or irradiance `E_lm = A_l L_lm`) and frame (y-up or
+//! z-up, named in the header; no handedness change: an engine with a
+//! left-handed world, such as Unity, must mirror its normals into these
+//! axes, e.g. `n.z = -n.z` for Unity and a y-up file), linear Rec.709 RGB,
+//! any lmax.
+//!
+//! - `shlight_irradiance(n)` returns irradiance `E(n)` (`A_l` applied from
+//!   `SHLIGHT_A` when the file holds radiance).
+//! - `shlight_radiance(w)` (radiance files only) returns `L(w)`.
+//!
+//! The evaluator is the one of the GLSL snippet with HLSL spellings
+//! (`float3`, `static const`, `{ ... }` initialisers); 32-bit floats.
+
+use anyhow::Result;
+
+use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
+
+/// The HLSL dialect of the shared evaluator.
+const HLSL: CLikeShader = CLikeShader {
+    vec3: "float3",
+    konst: "static const",
+    array_open: |_, _| "{".to_string(),
+    array_close: "};",
+};
+
+/// Renders the snippet.
+pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
+    check_f32_range(input.coeffs, "HLSL")?;
+    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", "shlight_");
+    text.push('\n');
+    text.push_str(&HLSL.body(input));
+    Ok(Exported {
+        text,
+        notes: Vec::new(),
+    })
+}

@@ -1,0 +1,196 @@
+//! `shlight render`: a coefficient file back to an image.
+//!
+//! Each texel gets `sum c_l^m Y_l^m(d)` at its centre direction `d`, in the
+//! coefficient file's frame (and mirroring), so that rendering a file made by
+//! `shlight project` from an equirect map gives that map's band-limited
+//! version texel for texel. Rows are evaluated in parallel, each in batches
+//! through `ShBasis::eval_batch`.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use glam::DVec3;
+use indicatif::ProgressBar;
+use rayon::prelude::*;
+use shlight_core::projection::MapOrientation;
+use shlight_core::{ShBasis, ShCoeffs, irradiance};
+use shlight_io::{Image, ToneMap, WriteOptions, write_image};
+
+use crate::coeff_file::{CoeffFile, Quantity};
+use crate::progress::Ui;
+use crate::texels::{LayoutArg, TexelGrid, parse_size};
+
+/// Arguments of `shlight render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// A coefficient file (`shlight project -o FILE.json`).
+    pub input: PathBuf,
+    /// The image to write: .exr, .hdr or .png (tone mapped).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Render irradiance `E = A_l L_l^m` (what a white Lambertian surface
+    /// facing each direction receives; its radiance is E/π) instead of
+    /// radiance. A file that holds irradiance is rendered as it is.
+    #[arg(long)]
+    pub irradiance: bool,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "512x256", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// Layout of the image (equirect only for now).
+    #[arg(long, value_enum, default_value_t)]
+    pub layout: LayoutArg,
+    /// Exposure in stops: values are multiplied by 2^EV before writing.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map for PNG output: clamp, reinhard or aces.
+    #[arg(long, default_value = "clamp")]
+    pub tone_map: ToneMap,
+}
+
+/// Runs `shlight render`.
+pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
+    let name = args.input.display().to_string();
+    crate::project::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
+    let text =
+        std::fs::read_to_string(&args.input).with_context(|| format!("{name}: cannot read"))?;
+    let file = CoeffFile::from_json_str(&text, &name)?;
+    let coeffs = match (file.quantity, args.irradiance) {
+        (Quantity::Radiance, true) => irradiance(&file.coeffs),
+        (Quantity::Irradiance, false) => {
+            ui.note(format!(
+                "{name} holds irradiance; rendering irradiance (radiance cannot be recovered from it)"
+            ));
+            file.coeffs.clone()
+        }
+        _ => file.coeffs.clone(),
+    };
+    let grid = TexelGrid::new(
+        args.layout,
+        args.size,
+        MapOrientation {
+            frame: file.frame,
+            mirror: file.mirror,
+        },
+    )
+    .context("--size")?;
+    let bar = ui.bar(grid.height as u64, "rendering");
+    let image = render(&coeffs, &grid, &bar);
+    bar.finish_and_clear();
+    write_image(
+        &args.output,
+        &image,
+        &WriteOptions {
+            exposure_ev: args.exposure,
+            tone_map: args.tone_map,
+            ..WriteOptions::default()
+        },
+    )?;
+    Ok(())
+}
+
+/// The image of `coeffs` on `grid`: each texel the expansion at its centre
+/// direction, 0 for texels the layout does not use. Advances `bar` by one
+/// per row.
+pub fn render(coeffs: &ShCoeffs<DVec3>, grid: &TexelGrid, bar: &ProgressBar) -> Image {
+    let (w, h) = (grid.width, grid.height);
+    let basis = ShBasis::<f64>::new(coeffs.lmax());
+    let count = basis.count();
+    let channels: [Vec<f64>; 3] = std::array::from_fn(|c| coeffs.channel(c).as_slice().to_vec());
+    // Directions per batch: a multiple of 16 (the basis's lanes), keeping
+    // the basis values near 512 KiB, at most 1024.
+    let batch = ((65_536 / count) / 16).clamp(1, 64) * 16;
+    let mut pixels = vec![[0.0f32; 3]; w * h];
+    pixels.par_chunks_mut(w).enumerate().for_each_init(
+        || Scratch::new(count, batch),
+        |s, (y, row)| {
+            s.texels.clear();
+            for x in 0..w {
+                if let Some(d) = grid.direction(x, y) {
+                    s.texels.push((x, d));
+                }
+            }
+            for chunk in s.texels.chunks(batch) {
+                let n = chunk.len();
+                for (k, (_, d)) in chunk.iter().enumerate() {
+                    (s.x[k], s.y[k], s.z[k]) = (d.x, d.y, d.z);
+                }
+                for acc in &mut s.acc {
+                    acc[..n].fill(0.0);
+                }
+                let values = &mut s.values[..count * n];
+                basis.eval_batch(&s.x[..n], &s.y[..n], &s.z[..n], values);
+                // Coefficient-major: each basis function's values over the
+                // batch are contiguous, so the sums vectorise.
+                for (i, column) in values.chunks_exact(n).enumerate() {
+                    for (acc, ch) in s.acc.iter_mut().zip(&channels) {
+                        let c = ch[i];
+                        for (a, y) in acc[..n].iter_mut().zip(column) {
+                            *a += c * y;
+                        }
+                    }
+                }
+                for (k, (x, _)) in chunk.iter().enumerate() {
+                    row[*x] = [s.acc[0][k] as f32, s.acc[1][k] as f32, s.acc[2][k] as f32];
+                }
+            }
+            bar.inc(1);
+        },
+    );
+    Image::new(w, h, pixels).expect("w * h pixels")
+}
+
+/// Per-thread buffers of [`render`].
+struct Scratch {
+    texels: Vec<(usize, DVec3)>,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    values: Vec<f64>,
+    acc: [Vec<f64>; 3],
+}
+
+impl Scratch {
+    fn new(count: usize, batch: usize) -> Self {
+        Self {
+            texels: Vec::new(),
+            x: vec![0.0; batch],
+            y: vec![0.0; batch],
+            z: vec![0.0; batch],
+            values: vec![0.0; count * batch],
+            acc: std::array::from_fn(|_| vec![0.0; batch]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shlight_core::rotation::Frame;
+
+    #[test]
+    fn render_matches_scalar_evaluation() {
+        let coeffs = ShCoeffs::<DVec3>::from_fn(7, |l, m| {
+            DVec3::new(1.0 / (1 + l) as f64, m as f64 * 0.1, 0.5 - 0.01 * l as f64)
+        });
+        for frame in [Frame::YUp, Frame::ZUp] {
+            let grid = TexelGrid::new(
+                LayoutArg::Equirect,
+                (36, 18),
+                MapOrientation {
+                    frame,
+                    mirror: true,
+                },
+            )
+            .unwrap();
+            let image = render(&coeffs, &grid, &ProgressBar::hidden());
+            for y in 0..18 {
+                for x in 0..36 {
+                    let want = coeffs.eval(grid.direction(x, y).unwrap().to_array());
+                    let got = DVec3::from(image.get(x, y).map(f64::from));
+                    assert!((got - want).abs().max_element() < 1e-5, "{x} {y}");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! `shlight render`: rendering a coefficient file and projecting the image
+//! gives the file's coefficients back.
+
+use serde_json::json;
+use shlight_core::{ShCoeffs, irradiance};
+
+use crate::util::{assert_rows_near, project_rows, s, shlight, shlight_err, shlight_ok, temp_dir};
+
+/// A band-limited function rendered on 256 rows and projected by texel
+/// centres comes back to `O(dθ²)` (dθ = π/256) of the largest coefficient:
+/// measured 2e-5 at lmax 4 (f32 texels add ~1e-7). Allowed 1e-4.
+const ROUND_TRIP_TOL: f64 = 1e-4;
+
+/// Rows of a smooth, positive lmax 4 radiance in shlight's basis.
+fn sample_rows() -> Vec<[f64; 3]> {
+    let f = ShCoeffs::<f64>::from_fn(4, |l, m| {
+        if l == 0 {
+            6.0
+        } else {
+            0.4 * (1.0 + m as f64 * 0.3) / (l * l) as f64
+        }
+    });
+    (0..f.len())
+        .map(|i| [f[i], 0.5 * f[i], if i == 0 { f[i] } else { -0.25 * f[i] }])
+        .collect()
+}
+
+fn write_file(
+    path: &std::path::Path,
+    rows: &[[f64; 3]],
+    frame: &str,
+    mirror: bool,
+    quantity: &str,
+) {
+    let lmax = (rows.len() as f64).sqrt() as usize - 1;
+    let doc = json!({
+        "format": "shlight-sh",
+        "format_version": 1,
+        "lmax": lmax,
+        "frame": frame,
+        "mirror": mirror,
+        "quantity": quantity,
+        "coefficients": rows,
+        "provenance": {},
+    });
+    std::fs::write(path, doc.to_string()).unwrap();
+}
+
+#[test]
+fn render_then_project_returns_the_coefficients_in_the_files_frame() {
+    let dir = temp_dir("render_round_trip");
+    let rows = sample_rows();
+    for (frame, up, mirror) in [("y-up", "y", false), ("z-up", "z", true)] {
+        let file = dir.join(format!("{frame}.json"));
+        write_file(&file, &rows, frame, mirror, "radiance");
+        let img = dir.join(format!("{frame}.exr"));
+        shlight_ok(&["render", s(&file), "-o", s(&img), "--size", "512x256"]);
+        let mut args = vec!["--lmax", "4", "--up", up];
+        if mirror {
+            args.push("--mirror");
+        }
+        let got = project_rows(&img, &args);
+        assert_rows_near(&got, &rows, ROUND_TRIP_TOL, frame);
+    }
+}
+
+#[test]
+fn irradiance_is_rendered_on_request_and_an_irradiance_file_as_it_is() {
+    let dir = temp_dir("render_irradiance");
+    let rows = sample_rows();
+    let file = dir.join("l.json");
+    write_file(&file, &rows, "y-up", false, "radiance");
+    let img = dir.join("e.exr");
+    let out = shlight_ok(&["render", s(&file), "-o", s(&img), "--irradiance"]);
+    assert!(out.stderr.is_empty());
+    let channels: Vec<ShCoeffs<f64>> = (0..3)
+        .map(|c| irradiance(&ShCoeffs::from_vec(rows.iter().map(|r| r[c]).collect()).unwrap()))
+        .collect();
+    let want: Vec<[f64; 3]> = (0..rows.len())
+        .map(|i| [channels[0][i], channels[1][i], channels[2][i]])
+        .collect();
+    assert_rows_near(
+        &project_rows(&img, &["--lmax", "4"]),
+        &want,
+        ROUND_TRIP_TOL,
+        "E",
+    );
+
+    // A file of irradiance renders what it holds, and says so unless --quiet.
+    let efile = dir.join("e.json");
+    write_file(&efile, &want, "y-up", false, "irradiance");
+    let img2 = dir.join("e2.exr");
+    let out = shlight_ok(&["render", s(&efile), "-o", s(&img2)]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("holds irradiance"), "{err}");
+    assert_rows_near(
+        &project_rows(&img2, &["--lmax", "4"]),
+        &want,
+        ROUND_TRIP_TOL,
+        "E file",
+    );
+    let out = shlight_ok(&["render", s(&efile), "-o", s(&img2), "--quiet"]);
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn png_output_is_exposed_and_tone_mapped_and_bad_input_is_refused() {
+    let dir = temp_dir("render_png");
+    let file = dir.join("c.json");
+    // Constant radiance 1: L_00 = 2 sqrt(pi).
+    let c0 = 2.0 * std::f64::consts::PI.sqrt();
+    write_file(&file, &[[c0, c0, c0]], "y-up", false, "radiance");
+    let png = dir.join("c.png");
+    for (ev, tone, want) in [
+        ("-1", "clamp", 0.5f32),
+        ("0", "reinhard", 0.5),
+        ("1", "clamp", 1.0),
+    ] {
+        shlight_ok(&[
+            "render",
+            s(&file),
+            "-o",
+            s(&png),
+            "--size",
+            "32x16",
+            "--exposure",
+            ev,
+            "--tone-map",
+            tone,
+        ]);
+        let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+        assert_eq!((img.width(), img.height()), (32, 16));
+        // 8-bit sRGB: half a code value is about 2e-3 linear near 0.5.
+        assert!(
+            (img.get(5, 5)[0] - want).abs() < 3e-3,
+            "{ev} {tone}: {:?}",
+            img.get(5, 5)
+        );
+    }
+
+    let before = std::fs::read(&png).unwrap();
+    let missing = dir.join("missing.json");
+    let err = shlight_err(&["render", s(&missing), "-o", s(&png)]);
+    assert!(err.contains("missing.json"), "{err}");
+    let err = shlight_err(&["render", s(&file), "-o", s(&png), "--size", "30x30"]);
+    assert!(err.contains("--size") && err.contains("twice"), "{err}");
+    let err = shlight_err(&["render", s(&file), "-o", s(&file)]);
+    assert!(err.contains("refusing"), "{err}");
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, "{\"format\": \"other\"}").unwrap();
+    let err = shlight_err(&["render", s(&bad), "-o", s(&png)]);
+    assert!(err.contains("bad.json"), "{err}");
+    assert_eq!(
+        std::fs::read(&png).unwrap(),
+        before,
+        "the old image was touched"
+    );
+    // And nothing was written on error.
+    assert!(
+        !shlight(&["render", s(&missing), "-o", s(&dir.join("new.exr"))])
+            .status
+            .success()
+    );
+    assert!(!dir.join("new.exr").exists());
+}
