@@ -16,6 +16,12 @@
 //!   once and applied many times; [`rotation::Frame`] switches y-up / z-up.
 //! - [`Window`] and [`window::auto_window`]: ringing suppression, and the
 //!   weakest window that makes a function or its irradiance non-negative.
+//! - [`projection`] and [`layout`]: environment maps of every layout
+//!   (equirect, cube cross, strip, angular map, mirror ball) to SH by exact
+//!   texel-solid-angle quadrature; equirect maps by a fast ring transform
+//!   (FFT rows, vectorised Legendre sums) to any lmax.
+//! - [`montecarlo`]: the Monte Carlo estimator (uniform, stratified, Sobol,
+//!   luminance importance sampling) with standard errors.
 //! - [`analytic`]: closed-form projections of lights (directional, cosine
 //!   lobe, cap, constant, linear gradient), the test oracles.
 //!
