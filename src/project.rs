@@ -4,16 +4,23 @@
 //! file per input, processed in parallel. Each input runs the same steps:
 //! [`load`] (read, check, `--sanitize`), [`project_map`] (layout and method),
 //! the window (per channel), `--preview`, `--rotate`, the quantity, and
-//! [`write_output`] (the one place that knows output formats).
+//! [`write_output`] (the one place that knows output formats: shlight's
+//! JSON, or any exporter of [`crate::export`]).
 
 use std::collections::HashMap;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use glam::{DMat3, DQuat, DVec3};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
+use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::montecarlo::{
+    DEFAULT_SEED, ImportanceGrid, McOptions, Sampler, project_montecarlo,
+};
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::rotation::{Frame, rotate_once};
 use shlight_core::window::{WindowFamily, WindowTarget, auto_window};
@@ -22,6 +29,7 @@ use shlight_core::{ShCoeffs, ShRotation, Window, irradiance};
 use shlight_io::{Image, PixelStats, ReadOptions, ToneMap, read_image};
 
 use crate::coeff_file::{CoeffFile, Provenance, Quantity, RotationRecord, SanitizeCounts};
+use crate::export::{self, ExportFormat, ExportInput, Exported};
 use crate::preview::{PreviewOptions, write_preview};
 use crate::progress::Ui;
 use crate::texels::{LayoutArg, parse_size};
@@ -45,9 +53,23 @@ pub struct ProjectArgs {
     /// Layout of the input maps (equirect only for now).
     #[arg(long, value_enum, default_value_t)]
     pub layout: LayoutArg,
-    /// How the coefficients are computed.
+    /// How the coefficients are computed: exact texel-solid-angle
+    /// quadrature, or Monte Carlo integration of the bilinearly interpolated
+    /// map (with a standard error per coefficient in the file).
     #[arg(long, value_enum, default_value_t)]
     pub method: Method,
+    /// Monte Carlo: directions to draw [default: 65536]. Stratified and
+    /// sobol round to whole grids; the count used is recorded.
+    #[arg(long, value_name = "N", value_parser = parse_samples, allow_negative_numbers = true)]
+    pub samples: Option<usize>,
+    /// Monte Carlo: how directions are drawn [default: sobol]. importance
+    /// follows the map's luminance.
+    #[arg(long, value_parser = sampler_parser())]
+    pub sampler: Option<Sampler>,
+    /// Monte Carlo: seed of the random streams (equal seeds give identical
+    /// files) [default: 6001130381083431937].
+    #[arg(long, allow_negative_numbers = true)]
+    pub seed: Option<u64>,
     /// What the coefficients hold.
     #[arg(long, value_enum, default_value_t = Quantity::Radiance)]
     pub quantity: Quantity,
@@ -72,13 +94,15 @@ pub struct ProjectArgs {
     #[arg(long, default_value_t = ReadOptions::DEFAULT_MAX_PIXELS)]
     pub max_pixels: usize,
     /// Output file, or with several inputs (or an existing directory) a
-    /// directory for one NAME.json (NAME.txt) per input; without it a
-    /// readable table goes to a terminal and JSON to a pipe.
+    /// directory for one file per input, NAME.json (the extension follows
+    /// --format); without it, and without --format, a readable table goes to
+    /// a terminal and JSON to a pipe.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = OutFormat::Json)]
-    pub format: OutFormat,
+    /// Output format [default: json]: shlight's coefficient file, or an
+    /// engine or shader format (docs/exporters.md).
+    #[arg(long, value_enum)]
+    pub format: Option<ExportFormat>,
     /// Write a preview image: input | SH radiance | SH irradiance/π, side
     /// by side. With several inputs, a directory for one NAME.png each.
     #[arg(long, value_name = "FILE.png")]
@@ -100,23 +124,39 @@ pub enum Method {
     /// Exact texel-solid-angle quadrature over every texel.
     #[default]
     Quadrature,
+    /// Monte Carlo integration (--samples, --sampler, --seed), with
+    /// standard errors.
+    #[value(name = "montecarlo")]
+    MonteCarlo,
 }
 
 impl Method {
     fn name(self) -> &'static str {
         match self {
             Method::Quadrature => "quadrature",
+            Method::MonteCarlo => "montecarlo",
         }
     }
 }
 
-/// Output formats of `shlight project`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum OutFormat {
-    /// shlight's self-describing JSON coefficient file.
-    Json,
-    /// A readable table, one coefficient per line.
-    Txt,
+/// Monte Carlo directions drawn when `--samples` is not given.
+pub const DEFAULT_SAMPLES: usize = 1 << 16;
+
+/// `--samples N`: a whole number of at least 1.
+fn parse_samples(s: &str) -> std::result::Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("the sample count must be at least 1".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err(format!("{s:?} is not a whole number of samples")),
+    }
+}
+
+/// `--sampler NAME`: one of the Monte Carlo samplers' names.
+fn sampler_parser() -> impl TypedValueParser<Value = Sampler> {
+    PossibleValuesParser::new(Sampler::ALL.map(Sampler::name)).map(|name| {
+        name.parse::<Sampler>()
+            .expect("possible values are sampler names")
+    })
 }
 
 /// Runs `shlight project`.
@@ -166,6 +206,8 @@ struct Settings<'a> {
     rotation: Option<(RotationRecord, DMat3)>,
     read: ReadOptions,
     preview: PreviewOptions,
+    /// Monte Carlo options (`--method montecarlo`).
+    montecarlo: Option<McOptions>,
 }
 
 impl<'a> Settings<'a> {
@@ -193,6 +235,31 @@ impl<'a> Settings<'a> {
                 Some((record, matrix))
             }
         };
+        let montecarlo = match args.method {
+            Method::MonteCarlo => Some(McOptions {
+                lmax: args.lmax,
+                samples: args.samples.unwrap_or(DEFAULT_SAMPLES),
+                sampler: args.sampler.unwrap_or_default(),
+                seed: args.seed.unwrap_or(DEFAULT_SEED),
+            }),
+            Method::Quadrature => {
+                let given: Vec<&str> = [
+                    ("--samples", args.samples.is_some()),
+                    ("--sampler", args.sampler.is_some()),
+                    ("--seed", args.seed.is_some()),
+                ]
+                .into_iter()
+                .filter_map(|(flag, given)| given.then_some(flag))
+                .collect();
+                if !given.is_empty() {
+                    bail!(
+                        "{} only apply to --method montecarlo (the method is quadrature)",
+                        given.join(", ")
+                    );
+                }
+                None
+            }
+        };
         if args.preview.is_some() {
             LayoutArg::Equirect
                 .check_size(args.preview_size.0, args.preview_size.1)
@@ -215,6 +282,7 @@ impl<'a> Settings<'a> {
                 exposure: args.preview_exposure,
                 tone_map: args.preview_tone_map,
             },
+            montecarlo,
         })
     }
 }
@@ -261,7 +329,8 @@ fn parse_rotation(spec: &str, frame: Frame) -> Result<DMat3> {
 /// Where a coefficient file goes.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Dest {
-    /// A table to a terminal, JSON to a pipe (`--format txt`: a table).
+    /// Standard output: without `--format`, the readable table to a
+    /// terminal and JSON to a pipe; with it, that format.
     Stdout,
     /// This file, written atomically.
     File(PathBuf),
@@ -287,7 +356,7 @@ fn names_dir(p: &Path) -> bool {
 /// overwriting an input before anything is read; output directories made.
 fn plan(args: &ProjectArgs) -> Result<Vec<Job>> {
     let n = args.inputs.len();
-    let ext = output_extension(args.format);
+    let ext = output_extension(args.format.unwrap_or(ExportFormat::Json));
     let out_dir = match &args.output {
         None if n > 1 => {
             bail!("{n} inputs need -o DIR: one .{ext} file per input is written there")
@@ -394,7 +463,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
         image.height(),
         args.lmax
     ));
-    let projection = project_map(&image, s);
+    let projection = project_map(&image, s).with_context(|| format!("{name}: projecting"))?;
 
     let target = match args.quantity {
         Quantity::Radiance => WindowTarget::Function,
@@ -457,7 +526,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     } else {
         bar.set_message(format!("writing {name}"));
     }
-    write_output(&file, args.format, &job.output)
+    write_output(&file, args.format, &job.output, ui)
 }
 
 /// Reads an input and checks its values: NaN/inf are refused (or with
@@ -517,14 +586,19 @@ struct Projection {
 }
 
 /// The projection step: the place where layouts and methods meet.
-fn project_map(image: &Image, s: &Settings<'_>) -> Projection {
-    match (s.args.layout, s.args.method) {
-        (LayoutArg::Equirect, Method::Quadrature) => Projection {
+///
+/// Monte Carlo looks the map up bilinearly ([`EnvMap::radiance_bilinear`]:
+/// columns wrap, rows continue over the poles) and, for importance
+/// sampling, draws from [`ImportanceGrid::from_equirect`] over its texels.
+fn project_map(image: &Image, s: &Settings<'_>) -> Result<Projection> {
+    let (width, height, pixels) = (image.width(), image.height(), image.pixels());
+    Ok(match (s.args.layout, &s.montecarlo) {
+        (LayoutArg::Equirect, None) => Projection {
             coeffs: project_equirect(
                 EquirectView {
-                    width: image.width(),
-                    height: image.height(),
-                    pixels: image.pixels(),
+                    width,
+                    height,
+                    pixels,
                 },
                 s.args.lmax,
                 s.orientation,
@@ -534,7 +608,22 @@ fn project_map(image: &Image, s: &Settings<'_>) -> Projection {
             seed: None,
             sampler: None,
         },
-    }
+        (LayoutArg::Equirect, Some(options)) => {
+            let map = EnvMap::new(Layout::Equirect, s.orientation, width, height, pixels)
+                .map_err(|e| anyhow!("{e}"))?;
+            let grid = (options.sampler == Sampler::Importance)
+                .then(|| ImportanceGrid::from_equirect(width, height, pixels, s.orientation));
+            let estimate =
+                project_montecarlo(&map, options, grid.as_ref()).map_err(|e| anyhow!("{e}"))?;
+            Projection {
+                coeffs: estimate.coeffs,
+                std_error: Some(estimate.std_error),
+                samples: Some(estimate.samples as u64),
+                seed: Some(options.seed),
+                sampler: Some(options.sampler.name().to_string()),
+            }
+        }
+    })
 }
 
 /// The window of each colour channel: `fixed` for all three, or (`None`,
@@ -584,37 +673,73 @@ fn rotate_std_error(rotation: &ShRotation, se: &ShCoeffs<DVec3>) -> ShCoeffs<DVe
     out
 }
 
-/// The file extension of an output format.
-pub fn output_extension(format: OutFormat) -> &'static str {
+/// The file extension of an output format, for `-o DIR` batches.
+pub fn output_extension(format: ExportFormat) -> &'static str {
     match format {
-        OutFormat::Json => "json",
-        OutFormat::Txt => "txt",
+        ExportFormat::Json | ExportFormat::Threejs | ExportFormat::Unity => "json",
+        ExportFormat::Txt | ExportFormat::Filament => "txt",
+        ExportFormat::Gltf => "gltf",
+        ExportFormat::Wgsl => "wgsl",
+        ExportFormat::Glsl => "glsl",
+        ExportFormat::Hlsl => "hlsl",
+        // Static arrays and static inline functions: a header.
+        ExportFormat::C => "h",
     }
 }
 
-/// The text of `file` in `format`: the output step's only format switch.
-pub fn format_output(file: &CoeffFile, format: OutFormat) -> Result<String> {
-    Ok(match format {
-        OutFormat::Json => file.to_json_string() + "\n",
-        OutFormat::Txt => file.to_table(),
-    })
+/// The text of `file` in `format`, and the exporter's notes (truncation,
+/// padding, missing parts): the output step's only format switch. `json`
+/// is shlight's coefficient file; every other format goes through
+/// [`export::render`], the same as `shlight convert`.
+pub fn format_output(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
+    match format {
+        ExportFormat::Json => Ok(Exported {
+            text: file.to_json_string() + "\n",
+            notes: Vec::new(),
+        }),
+        f => export::render(
+            &ExportInput {
+                coeffs: &file.coeffs,
+                quantity: file.quantity,
+                frame: file.frame,
+            },
+            f,
+        )
+        .with_context(|| format!("{}: exporting as {}", file.provenance.input, f.name())),
+    }
 }
 
-/// Writes `file` in `format` to `dest` (atomically for files). To a
-/// terminal, JSON is shown as the readable table instead.
-pub fn write_output(file: &CoeffFile, format: OutFormat, dest: &Dest) -> Result<()> {
+/// Writes `file` in `format` to `dest` (atomically for files), with the
+/// exporter's notes through `ui` (silenced by `--quiet`), naming the input.
+/// Without `--format`, a terminal gets the readable table of `shlight show`
+/// and everything else JSON.
+pub fn write_output(
+    file: &CoeffFile,
+    format: Option<ExportFormat>,
+    dest: &Dest,
+    ui: &Ui,
+) -> Result<()> {
+    let to_terminal = || std::io::IsTerminal::is_terminal(&std::io::stdout());
+    let out = match (format, dest) {
+        (None, Dest::Stdout) if to_terminal() => Exported {
+            text: file.to_table(),
+            notes: Vec::new(),
+        },
+        (f, _) => format_output(file, f.unwrap_or(ExportFormat::Json))?,
+    };
+    for note in &out.notes {
+        ui.note(format!("{}: {note}", file.provenance.input));
+    }
     match dest {
         Dest::Stdout => {
-            let format = if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
-                OutFormat::Txt
-            } else {
-                format
-            };
-            print!("{}", format_output(file, format)?);
+            let mut stdout = std::io::stdout().lock();
+            stdout
+                .write_all(out.text.as_bytes())
+                .and_then(|()| stdout.flush())
+                .context("writing to stdout")?;
         }
         Dest::File(path) => {
-            let text = format_output(file, format)?;
-            shlight_io::write_atomically(path, |out| out.write_all(text.as_bytes()))
+            shlight_io::write_atomically(path, |w| w.write_all(out.text.as_bytes()))
                 .with_context(|| format!("writing {}", path.display()))?;
         }
     }
@@ -642,6 +767,36 @@ mod tests {
         assert!((e * DVec3::X - DVec3::Y).length() < 1e-12);
         for bad in ["yaw", "yaw:1,2", "quat:0,0,0,0", "spin:3", "yaw:nan"] {
             assert!(parse_rotation(bad, Frame::YUp).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_help_states_the_library_defaults() {
+        use clap::Args as _;
+        let cmd = ProjectArgs::augment_args(clap::Command::new("project"));
+        let help = |id: &str| {
+            cmd.get_arguments()
+                .find(|a| a.get_id() == id)
+                .and_then(|a| a.get_help())
+                .map(|h| h.to_string())
+                .unwrap_or_default()
+        };
+        let d = McOptions::default();
+        assert!(help("seed").contains(&format!("[default: {DEFAULT_SEED}]")));
+        assert!(help("samples").contains(&format!("[default: {DEFAULT_SAMPLES}]")));
+        assert!(help("sampler").contains(&format!("[default: {}]", d.sampler)));
+        assert_eq!((d.samples, d.seed), (DEFAULT_SAMPLES, DEFAULT_SEED));
+    }
+
+    #[test]
+    fn batch_extensions_name_their_format_where_an_extension_can() {
+        for &f in ExportFormat::value_variants() {
+            let ext = output_extension(f);
+            match ExportFormat::from_path(Path::new(&format!("x.{ext}"))) {
+                Ok(g) => assert_eq!(g, f, "{ext}"),
+                // .json and .txt are shared; convert asks for --format.
+                Err(_) => assert!(ext == "json" || ext == "txt", "{ext}"),
+            }
         }
     }
 

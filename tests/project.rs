@@ -416,21 +416,20 @@ fn auto_window_is_chosen_per_channel() {
             |rows: &[[f64; 3]]| -> Vec<[f64; 3]> { rows.iter().map(|r| [r[c]; 3]).collect() };
         assert_rows_near(&pick(&got), &pick(&want), 1e-12, spec);
     }
-    // The table names the three.
-    let table = String::from_utf8_lossy(
-        &shlight(&[
-            "project",
-            s(&map),
-            "--lmax",
-            "6",
-            "--window",
-            "auto",
-            "--format",
-            "txt",
-        ])
-        .stdout,
-    )
-    .into_owned();
+    // The table (`shlight show`, and a terminal) names the three.
+    let file = dir.join("m.json");
+    crate::util::shlight_ok(&[
+        "project",
+        s(&map),
+        "--lmax",
+        "6",
+        "--window",
+        "auto",
+        "-o",
+        s(&file),
+    ]);
+    let table =
+        String::from_utf8_lossy(&crate::util::shlight_ok(&["show", s(&file)]).stdout).into_owned();
     assert!(
         table.contains(&format!("windows r {red}, g none, b {blue}")),
         "{table}"
@@ -530,4 +529,166 @@ fn too_large_and_empty_inputs_are_refused_with_the_file_named() {
     let err = shlight_err(&["project", s(&map), "--window", "bogus:3", "-o", s(&out)]);
     assert!(err.contains("--window"), "{err}");
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
+}
+
+/// Every `--format` but json, with the extension `-o DIR` gives it.
+const EXPORT_FORMATS: [(&str, &str); 9] = [
+    ("txt", "txt"),
+    ("threejs", "json"),
+    ("gltf", "gltf"),
+    ("filament", "txt"),
+    ("unity", "json"),
+    ("wgsl", "wgsl"),
+    ("glsl", "glsl"),
+    ("hlsl", "hlsl"),
+    ("c", "h"),
+];
+
+/// `a` and `b` are the same text with the same numbers, up to the last
+/// bits of a number (the coefficient file's JSON is read back to within an
+/// ulp or so), and three.js's uuid (a hash of those bits) aside.
+fn assert_same_text_and_numbers(a: &str, b: &str, what: &str) {
+    let tokens = |t: &str| -> Vec<String> {
+        t.split(|c: char| !(c.is_ascii_alphanumeric() || "._+-".contains(c)))
+            .filter(|w| !w.is_empty())
+            .map(str::to_string)
+            .collect()
+    };
+    let (ta, tb) = (tokens(a), tokens(b));
+    assert_eq!(ta.len(), tb.len(), "{what}: token counts\n{a}\n{b}");
+    for (k, (x, y)) in ta.iter().zip(&tb).enumerate() {
+        if k > 0 && ta[k - 1] == "uuid" {
+            continue;
+        }
+        // C# and HLSL float literals end in f.
+        let number = |w: &str| w.strip_suffix('f').unwrap_or(w).parse::<f64>();
+        match (number(x), number(y)) {
+            (Ok(u), Ok(v)) => assert!(
+                (u - v).abs() <= 1e-15 * u.abs().max(v.abs()),
+                "{what}: {x} vs {y}"
+            ),
+            _ => assert_eq!(x, y, "{what}: token {k}"),
+        }
+    }
+}
+
+#[test]
+fn project_format_writes_what_convert_writes_from_the_coefficient_file() {
+    use crate::util::{read_json, s, shlight_ok};
+    let dir = temp_dir("project_formats");
+    let map = dir.join("m.exr");
+    write_map(&map, 64, 32, |x, y| {
+        [1.0 + x as f32 / 64.0, 0.5 + y as f32 / 32.0, 0.25]
+    });
+    let file = dir.join("m.json");
+    shlight_ok(&["project", s(&map), "-o", s(&file)]);
+    for (format, _) in EXPORT_FORMATS {
+        let direct = dir.join(format!("direct-{format}"));
+        let via = dir.join(format!("via-{format}"));
+        shlight_ok(&["project", s(&map), "--format", format, "-o", s(&direct)]);
+        shlight_ok(&["convert", s(&file), "--format", format, "-o", s(&via)]);
+        let text = std::fs::read_to_string(&direct).unwrap();
+        assert_same_text_and_numbers(&text, &std::fs::read_to_string(&via).unwrap(), format);
+        assert!(!text.trim().is_empty(), "{format}");
+        // Filament's sh.txt is nine bare lines, as cmgen prints them.
+        let header: String = text.lines().take(4).collect::<Vec<_>>().join("\n");
+        if format == "filament" {
+            assert_eq!(text.lines().count(), 9, "{text}");
+            assert!(
+                header.contains("L00, irradiance, pre-scaled base"),
+                "{header}"
+            );
+        } else if text.starts_with('{') {
+            assert!(text.contains("shlight"), "{format}: {text}");
+        } else {
+            assert!(header.contains("shlight"), "{format}: {header}");
+        }
+    }
+    // The same numbers as the file: three.js holds the radiance without
+    // the CS phase (odd |m| negated), y-up.
+    let probe = read_json(&dir.join("direct-threejs"));
+    let sh: Vec<f64> = probe["object"]["sh"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let rows = coefficients(&read_json(&file));
+    for (i, row) in rows.iter().enumerate() {
+        let sign = if [1, 3, 5, 7].contains(&i) { -1.0 } else { 1.0 };
+        for c in 0..3 {
+            let want = sign * row[c];
+            assert!(
+                (sh[3 * i + c] - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "coefficient {i} channel {c}: {} vs {want}",
+                sh[3 * i + c]
+            );
+        }
+    }
+    // txt is the Ramamoorthi-Hanrahan table, not the `show` table.
+    let txt = std::fs::read_to_string(dir.join("direct-txt")).unwrap();
+    assert!(
+        txt.contains("Ramamoorthi-Hanrahan") && txt.contains("L2-2"),
+        "{txt}"
+    );
+    // An explicit --format json is the default.
+    let default = shlight_ok(&["project", s(&map)]).stdout;
+    let explicit = shlight_ok(&["project", s(&map), "--format", "json"]).stdout;
+    assert_eq!(default, explicit);
+}
+
+#[test]
+fn formats_go_to_stdout_name_their_notes_and_batches_get_their_extension() {
+    use crate::util::{s, shlight_ok};
+    let dir = temp_dir("project_format_io");
+    let (a, b) = (dir.join("a.exr"), dir.join("b.exr"));
+    write_map(&a, 32, 16, |x, _| [x as f32, 1.0, 2.0]);
+    write_map(&b, 32, 16, |_, y| [1.0, y as f32, 0.5]);
+    // C to stdout: the snippet, nothing on stderr.
+    let o = shlight_ok(&["project", s(&a), "--format", "c"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.starts_with("// shlight")
+            && text.contains("static const double shlight_coeffs")
+            && text.contains("shlight_irradiance"),
+        "{text}"
+    );
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // An engine format's notes name the input; --quiet silences them.
+    let o = shlight_ok(&["project", s(&a), "--lmax", "4", "--format", "threejs"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("note:") && err.contains("a.exr") && err.contains("dropped"),
+        "{err}"
+    );
+    let o = shlight_ok(&["-q", "project", s(&a), "--lmax", "4", "--format", "threejs"]);
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // -o DIR: one file per input with the format's extension.
+    for (format, ext) in EXPORT_FORMATS {
+        let out = dir.join(format!("out-{format}"));
+        shlight_ok(&[
+            "-q",
+            "project",
+            s(&a),
+            s(&b),
+            "--format",
+            format,
+            "-o",
+            s(&out),
+        ]);
+        let mut names: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, [format!("a.{ext}"), format!("b.{ext}")], "{format}");
+    }
 }

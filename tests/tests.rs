@@ -2,6 +2,7 @@
 
 mod batch;
 mod export;
+mod montecarlo_cli;
 mod project;
 mod render;
 mod synth;
