@@ -331,12 +331,68 @@ const DIRECT_BLOCK: usize = 512;
 
 /// Linear RGB texels into three `f64` channel buffers (from index 0).
 fn deinterleave(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3]) {
+    #[cfg(target_arch = "x86_64")]
+    if avx_fma() {
+        // SAFETY: the CPU has the features the function is compiled for.
+        unsafe { deinterleave_avx(texels, channels) };
+        return;
+    }
+    deinterleave_scalar(texels, channels, 0);
+}
+
+/// [`deinterleave`] of `texels[start..]`, one texel at a time.
+#[inline(always)]
+fn deinterleave_scalar(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3], start: usize) {
     let [r, g, b] = channels;
-    for (i, t) in texels.iter().enumerate() {
+    for (i, t) in texels.iter().enumerate().skip(start) {
         r[i] = f64::from(t[0]);
         g[i] = f64::from(t[1]);
         b[i] = f64::from(t[2]);
     }
+}
+
+/// [`deinterleave`] four texels at a time: three loads of `[f32; 4]`
+/// (`r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3`), shuffles to planar, and
+/// conversion to `f64`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,fma")]
+unsafe fn deinterleave_avx(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3]) {
+    use core::arch::x86_64::*;
+    let n = texels.len();
+    let body = n / 4 * 4;
+    let [r, g, b] = channels;
+    assert!(r.len() >= n && g.len() >= n && b.len() >= n);
+    let flat = texels.as_ptr().cast::<f32>();
+    // SAFETY: texel i occupies floats 3i..3i+3; chunk i (i + 3 < body <= n)
+    // reads floats 3i..3i+12, inside the slice; stores write 4 lanes at
+    // i + 3 < n <= channel lengths (asserted).
+    unsafe {
+        let mut i = 0;
+        while i < body {
+            let x0 = _mm_loadu_ps(flat.add(3 * i));
+            let x1 = _mm_loadu_ps(flat.add(3 * i + 4));
+            let x2 = _mm_loadu_ps(flat.add(3 * i + 8));
+            // r = [x0.0, x0.3, x1.2, x2.1]
+            let rv = _mm_blend_ps::<0b1000>(
+                _mm_shuffle_ps::<0b00_10_11_00>(x0, x1),
+                _mm_shuffle_ps::<0b01_00_00_00>(x2, x2),
+            );
+            // g = [x0.1, x1.0, x1.3, x2.2]
+            let u = _mm_shuffle_ps::<0b11_00_01_01>(x0, x1);
+            let gv = _mm_blend_ps::<0b1000>(
+                _mm_shuffle_ps::<0b11_11_10_00>(u, u),
+                _mm_shuffle_ps::<0b10_00_00_00>(x2, x2),
+            );
+            // b = [x0.2, x1.1, x2.0, x2.3]
+            let v = _mm_shuffle_ps::<0b01_01_10_10>(x0, x1);
+            let bv = _mm_shuffle_ps::<0b11_00_10_00>(v, x2);
+            _mm256_storeu_pd(r.as_mut_ptr().add(i), _mm256_cvtps_pd(rv));
+            _mm256_storeu_pd(g.as_mut_ptr().add(i), _mm256_cvtps_pd(gv));
+            _mm256_storeu_pd(b.as_mut_ptr().add(i), _mm256_cvtps_pd(bv));
+            i += 4;
+        }
+    }
+    deinterleave_scalar(texels, channels, body);
 }
 
 /// `[sum r cos, sum g cos, sum b cos, sum r sin, sum g sin, sum b sin]` over
