@@ -17,11 +17,11 @@ use clap::{Args, ValueEnum};
 use glam::{DMat3, DQuat, DVec3};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
-use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::layout::{self, EnvMap, Layout};
 use shlight_core::montecarlo::{
     DEFAULT_SEED, ImportanceGrid, McOptions, Sampler, project_montecarlo,
 };
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::projection::MapOrientation;
 use shlight_core::rotation::{Frame, rotate_once};
 use shlight_core::window::{WindowFamily, WindowTarget, auto_window};
 use shlight_core::zonal::clamped_cosine_eigenvalue;
@@ -32,12 +32,13 @@ use crate::coeff_file::{CoeffFile, Provenance, Quantity, RotationRecord, Sanitiz
 use crate::export::{self, ExportFormat, ExportInput, Exported};
 use crate::preview::{PreviewOptions, write_preview};
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, parse_size};
+use crate::texels::{LayoutArg, TexelGrid, parse_size};
 
 /// Arguments of `shlight project`.
 #[derive(Args, Debug)]
 pub struct ProjectArgs {
-    /// Environment maps (OpenEXR, Radiance .hdr, PNG, JPEG), equirect 2:1.
+    /// Environment maps (OpenEXR, Radiance .hdr, PNG, JPEG) in any layout
+    /// (--layout); `NAME_{face}.exr` reads six cube-face files.
     /// Several need `-o DIR`.
     #[arg(required = true, value_name = "INPUT")]
     pub inputs: Vec<PathBuf>,
@@ -50,9 +51,12 @@ pub struct ProjectArgs {
     /// Read a map made for the mirrored pbrt / google mapping.
     #[arg(long)]
     pub mirror: bool,
-    /// Layout of the input maps (equirect only for now).
-    #[arg(long, value_enum, default_value_t)]
-    pub layout: LayoutArg,
+    /// Layout of the input maps: auto (by aspect ratio: 2:1 equirect, 4:3
+    /// cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular), equirect, cross-h,
+    /// cross-v, strip, angular, mirror-ball, or faces (six square files: an
+    /// INPUT holding `{face}`, which becomes px nx py ny pz nz).
+    #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
+    pub layout: InputLayout,
     /// How the coefficients are computed: exact texel-solid-angle
     /// quadrature, or Monte Carlo integration of the bilinearly interpolated
     /// map (with a standard error per coefficient in the file).
@@ -117,6 +121,35 @@ pub struct ProjectArgs {
     #[arg(long, default_value = "aces")]
     pub preview_tone_map: ToneMap,
 }
+
+/// `--layout` of `shlight project`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputLayout {
+    /// [`Layout::detect`] by aspect ratio (or six faces for `{face}` inputs).
+    Auto,
+    /// Six face files, `{face}` in the input name.
+    Faces,
+    /// One image in this layout.
+    Image(Layout),
+}
+
+/// `--layout NAME`.
+fn parse_input_layout(s: &str) -> std::result::Result<InputLayout, String> {
+    match s.trim() {
+        "auto" => Ok(InputLayout::Auto),
+        "faces" => Ok(InputLayout::Faces),
+        name => name
+            .parse::<Layout>()
+            .map(InputLayout::Image)
+            .map_err(|e| format!("{e} (or auto, faces)")),
+    }
+}
+
+/// The placeholder of six-face inputs, and the faces' names in strip order
+/// (+X -X +Y -Y +Z -Z).
+pub const FACE_PLACEHOLDER: &str = "{face}";
+/// Face names replacing [`FACE_PLACEHOLDER`], in strip order.
+pub const FACE_NAMES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// How `shlight project` computes coefficients.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -455,7 +488,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     let args = s.args;
     let name = job.input.display().to_string();
     bar.set_message(format!("reading {name}"));
-    let (image, stats, sanitized) = load(&job.input, s, ui)?;
+    let (image, layout, stats, sanitized) = load(&job.input, s, ui)?;
 
     bar.set_message(format!(
         "projecting {name} ({}x{}, lmax {})",
@@ -463,7 +496,8 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
         image.height(),
         args.lmax
     ));
-    let projection = project_map(&image, s).with_context(|| format!("{name}: projecting"))?;
+    let projection =
+        project_map(&image, layout, s).with_context(|| format!("{name}: projecting"))?;
 
     let target = match args.quantity {
         Quantity::Radiance => WindowTarget::Function,
@@ -478,7 +512,12 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
 
     if let Some(path) = &job.preview {
         bar.set_message(format!("preview of {name}"));
-        write_preview(path, &image, &radiance, s.orientation, &s.preview)
+        let equirect = match layout {
+            Layout::Equirect => None,
+            other => Some(to_equirect(&image, other, s)?),
+        };
+        let shown = equirect.as_ref().unwrap_or(&image);
+        write_preview(path, shown, &radiance, s.orientation, &s.preview)
             .with_context(|| format!("{name}: preview"))?;
     }
 
@@ -504,7 +543,11 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
         input: name.clone(),
         width: image.width(),
         height: image.height(),
-        layout: args.layout.name().into(),
+        layout: if is_faces(&job.input) {
+            "faces".into()
+        } else {
+            layout.name().into()
+        },
         method: args.method.name().into(),
         window: match s.window {
             Some(w) => w.to_string(),
@@ -529,20 +572,109 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     write_output(&file, args.format, &job.output, ui)
 }
 
-/// Reads an input and checks its values: NaN/inf are refused (or with
+/// Whether an input names six face files (holds [`FACE_PLACEHOLDER`]).
+fn is_faces(path: &Path) -> bool {
+    path.to_string_lossy().contains(FACE_PLACEHOLDER)
+}
+
+/// The six face files of a `{face}` input, in strip order.
+fn face_paths(path: &Path) -> Vec<PathBuf> {
+    let pattern = path.to_string_lossy();
+    FACE_NAMES
+        .iter()
+        .map(|f| PathBuf::from(pattern.replace(FACE_PLACEHOLDER, f)))
+        .collect()
+}
+
+/// Reads the six face files of `path` (all must exist, be square and of
+/// one size) and lays them side by side as a strip, +X -X +Y -Y +Z -Z.
+fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
+    let mut faces: Vec<(PathBuf, Image)> = Vec::with_capacity(6);
+    for p in face_paths(path) {
+        if !p.exists() {
+            bail!(
+                "{}: face file {} does not exist (a {FACE_PLACEHOLDER} input needs all six: {})",
+                path.display(),
+                p.display(),
+                FACE_NAMES.join(" ")
+            );
+        }
+        let image = read_image(&p, read).with_context(|| format!("reading {}", p.display()))?;
+        if image.width() != image.height() {
+            bail!(
+                "{}: a cube face must be square, not {}x{}",
+                p.display(),
+                image.width(),
+                image.height()
+            );
+        }
+        if let Some((first, f)) = faces.first()
+            && f.width() != image.width()
+        {
+            bail!(
+                "{}: {}x{} faces, but {} is {}x{}; all six must be the same size",
+                p.display(),
+                image.width(),
+                image.height(),
+                first.display(),
+                f.width(),
+                f.height()
+            );
+        }
+        faces.push((p, image));
+    }
+    let n = faces[0].1.width();
+    let (w, h) = Layout::Strip.dimensions(n);
+    let max = read.max_pixels;
+    if w.checked_mul(h).is_none_or(|p| p > max) {
+        bail!(
+            "{}: six faces of {n}x{n} make more than --max-pixels {max}",
+            path.display()
+        );
+    }
+    Ok(Image::from_fn(w, h, |x, y| faces[x / n].1.get(x % n, y)))
+}
+
+/// Reads an input (or, for `{face}`, six faces as a strip), settles its
+/// layout, and checks its values: NaN/inf are refused (or with
 /// `--sanitize` replaced, see [`Image::sanitize`]), negatives are kept with
-/// a warning (or replaced). Returns the image, the statistics of the values
-/// as read, and what was replaced.
+/// a warning (or replaced). Returns the image, its layout, the statistics
+/// of the values as read, and what was replaced.
 fn load(
     path: &Path,
     s: &Settings<'_>,
     ui: &Ui,
-) -> Result<(Image, PixelStats, Option<SanitizeCounts>)> {
+) -> Result<(Image, Layout, PixelStats, Option<SanitizeCounts>)> {
     let name = path.display();
-    let mut image = read_image(path, &s.read)?;
-    if let Err(e) = s.args.layout.check_size(image.width(), image.height()) {
-        bail!("{name}: {e}");
-    }
+    let faces = is_faces(path);
+    let (mut image, layout) = match (faces, s.args.layout) {
+        (true, InputLayout::Auto | InputLayout::Faces) => {
+            (read_faces(path, &s.read)?, Layout::Strip)
+        }
+        (true, InputLayout::Image(l)) => bail!(
+            "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
+        ),
+        (false, InputLayout::Faces) => bail!(
+            "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
+        ),
+        (false, InputLayout::Auto) => {
+            let image = read_image(path, &s.read)?;
+            let (w, h) = (image.width(), image.height());
+            let Some(layout) = Layout::detect(w, h) else {
+                bail!(
+                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with --layout"
+                );
+            };
+            (image, layout)
+        }
+        (false, InputLayout::Image(layout)) => {
+            let image = read_image(path, &s.read)?;
+            if let Err(e) = layout.check_size(image.width(), image.height()) {
+                bail!("{name}: {e}");
+            }
+            (image, layout)
+        }
+    };
     let stats = image.stats();
     if s.args.sanitize {
         let counts = SanitizeCounts::from(image.sanitize());
@@ -557,7 +689,7 @@ fn load(
                 counts.negative
             ));
         }
-        return Ok((image, stats, Some(counts)));
+        return Ok((image, layout, stats, Some(counts)));
     }
     if stats.non_finite > 0 {
         let (x, y) = stats.first_non_finite.unwrap_or((0, 0));
@@ -572,7 +704,25 @@ fn load(
             stats.negative, stats.min_value
         ));
     }
-    Ok((image, stats, None))
+    Ok((image, layout, stats, None))
+}
+
+/// An equirect panel (the preview's size) of a map in another layout,
+/// looked up bilinearly at each texel centre, for `--preview`.
+fn to_equirect(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Image> {
+    let map = EnvMap::new(
+        layout,
+        s.orientation,
+        image.width(),
+        image.height(),
+        image.pixels(),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    let grid = TexelGrid::new(LayoutArg::Equirect, s.preview.panel, s.orientation)?;
+    Ok(Image::from_fn(grid.width, grid.height, |x, y| {
+        let d = grid.direction(x, y).unwrap_or(DVec3::Y);
+        map.radiance_bilinear(d).as_vec3().to_array()
+    }))
 }
 
 /// Radiance coefficients of a map, and what the method reports about them.
@@ -587,32 +737,34 @@ struct Projection {
 
 /// The projection step: the place where layouts and methods meet.
 ///
-/// Monte Carlo looks the map up bilinearly ([`EnvMap::radiance_bilinear`]:
-/// columns wrap, rows continue over the poles) and, for importance
-/// sampling, draws from [`ImportanceGrid::from_equirect`] over its texels.
-fn project_map(image: &Image, s: &Settings<'_>) -> Result<Projection> {
+/// Quadrature sums texel × basis × exact texel solid angle
+/// ([`layout::project_map`]). Monte Carlo looks the map up bilinearly
+/// ([`EnvMap::radiance_bilinear`]) and, for importance sampling, draws from
+/// [`ImportanceGrid::from_equirect`] over an equirect map's texels, or from
+/// [`ImportanceGrid::from_map`] on a grid of the map's size otherwise.
+fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Projection> {
     let (width, height, pixels) = (image.width(), image.height(), image.pixels());
-    Ok(match (s.args.layout, &s.montecarlo) {
-        (LayoutArg::Equirect, None) => Projection {
-            coeffs: project_equirect(
-                EquirectView {
-                    width,
-                    height,
-                    pixels,
-                },
-                s.args.lmax,
-                s.orientation,
-            ),
+    let map =
+        EnvMap::new(layout, s.orientation, width, height, pixels).map_err(|e| anyhow!("{e}"))?;
+    Ok(match &s.montecarlo {
+        None => Projection {
+            coeffs: layout::project_map(&map, s.args.lmax),
             std_error: None,
             samples: None,
             seed: None,
             sampler: None,
         },
-        (LayoutArg::Equirect, Some(options)) => {
-            let map = EnvMap::new(Layout::Equirect, s.orientation, width, height, pixels)
-                .map_err(|e| anyhow!("{e}"))?;
-            let grid = (options.sampler == Sampler::Importance)
-                .then(|| ImportanceGrid::from_equirect(width, height, pixels, s.orientation));
+        Some(options) => {
+            let grid = (options.sampler == Sampler::Importance).then(|| match layout {
+                Layout::Equirect => {
+                    ImportanceGrid::from_equirect(width, height, pixels, s.orientation)
+                }
+                _ => {
+                    // About as many cells as texels, 2:1 like the grid's φ x θ.
+                    let rows = ((width * height) as f64 / 2.0).sqrt().ceil().max(1.0) as usize;
+                    ImportanceGrid::from_map(&map, 2 * rows, rows, s.orientation)
+                }
+            });
             let estimate =
                 project_montecarlo(&map, options, grid.as_ref()).map_err(|e| anyhow!("{e}"))?;
             Projection {

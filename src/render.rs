@@ -19,7 +19,7 @@ use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
 use crate::coeff_file::{CoeffFile, Quantity};
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, TexelGrid, parse_size};
+use crate::texels::{LayoutArg, TexelGrid, default_size, parse_size};
 
 /// Arguments of `shlight render`.
 #[derive(Args, Debug)]
@@ -34,10 +34,11 @@ pub struct RenderArgs {
     /// radiance. A file that holds irradiance is rendered as it is.
     #[arg(long)]
     pub irradiance: bool,
-    /// Image size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "512x256", value_parser = parse_size)]
-    pub size: (usize, usize),
-    /// Layout of the image (equirect only for now).
+    /// Full image size, WIDTHxHEIGHT, fitting --layout [default: 512x256
+    /// for equirect; otherwise faces of 128 (cubes) or a 256x256 disc].
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(usize, usize)>,
+    /// Layout of the image (equirect, cross-h, cross-v, strip, angular, mirror-ball; docs/conventions.md).
     #[arg(long, value_enum, default_value_t)]
     pub layout: LayoutArg,
     /// Exposure in stops: values are multiplied by 2^EV before writing.
@@ -67,7 +68,7 @@ pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
     };
     let grid = TexelGrid::new(
         args.layout,
-        args.size,
+        args.size.unwrap_or_else(|| default_size(args.layout, 256)),
         MapOrientation {
             frame: file.frame,
             mirror: file.mirror,

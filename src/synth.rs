@@ -34,7 +34,7 @@ use shlight_core::rotation::Frame;
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, TexelGrid, parse_size};
+use crate::texels::{LayoutArg, TexelGrid, default_size, parse_size};
 
 /// The lights `shlight synth` can draw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -65,16 +65,17 @@ pub struct SynthArgs {
     /// (8-bit, tone mapped; not for projecting).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Map size, WIDTHxHEIGHT (2:1 for equirect).
-    #[arg(long, default_value = "1024x512", value_parser = parse_size)]
-    pub size: (usize, usize),
+    /// Full image size, WIDTHxHEIGHT, fitting --layout [default: 1024x512
+    /// for equirect; otherwise faces of 256 (cubes) or a 512x512 disc].
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(usize, usize)>,
     /// Which world axis the top row of the map faces.
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
     /// Write the mirrored pbrt / google mapping.
     #[arg(long)]
     pub mirror: bool,
-    /// Layout of the map (equirect only for now).
+    /// Layout of the map (equirect, cross-h, cross-v, strip, angular, mirror-ball; docs/conventions.md).
     #[arg(long, value_enum, default_value_t)]
     pub layout: LayoutArg,
     /// Linear Rec.709 colour R,G,B multiplying the light.
@@ -166,7 +167,12 @@ pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
         },
         mirror: args.mirror,
     };
-    let grid = TexelGrid::new(args.layout, args.size, orientation).context("--size")?;
+    let grid = TexelGrid::new(
+        args.layout,
+        args.size.unwrap_or_else(|| default_size(args.layout, 512)),
+        orientation,
+    )
+    .context("--size")?;
     let axis = match args.direction {
         None => grid.up(),
         Some(d) if d.length() > 0.0 => d.normalize(),
@@ -242,6 +248,13 @@ pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
 
 /// Each texel the mean of `light` over `n x n` equal-area points of it.
 fn fill(grid: &TexelGrid, n: usize, light: &Light, bar: &indicatif::ProgressBar) -> Image {
+    // Only equirect texels are sub-sampled (TexelGrid::sample); the other
+    // layouts take each texel's centre direction.
+    let n = if grid.layout == LayoutArg::Equirect {
+        n
+    } else {
+        1
+    };
     let w = grid.width;
     let mut pixels = vec![[0.0f32; 3]; w * grid.height];
     pixels.par_chunks_mut(w).enumerate().for_each(|(y, row)| {

@@ -4,42 +4,73 @@
 //! Every command that fills an image from directions does it through a
 //! [`TexelGrid`]: texel `(x, y)` → unit world direction (or nothing, for
 //! texels a layout leaves unused), a direction → its texel, a texel's solid
-//! angle, and equal-area points inside a texel for box filtering. Only the
-//! equirect layout exists until `shlight_core::layout` lands; a new layout is
-//! a new [`LayoutArg`] variant and one more arm in each method here.
+//! angle, and points inside a texel for box filtering. The geometry is
+//! `shlight_core::layout`'s (one implementation of each formula); this
+//! module only adapts it to the CLI.
+
+use std::sync::OnceLock;
 
 use anyhow::{Result, bail};
 use clap::ValueEnum;
-use glam::{DMat3, DVec3};
-use shlight_core::projection::{MapOrientation, equirect_direction, equirect_row_solid_angle};
+use glam::DVec3;
+use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::projection::MapOrientation;
 
 use std::f64::consts::PI;
 
-/// Image layouts, as `--layout` spells them.
+/// Image layouts, as `--layout` spells them (docs/conventions.md, "Layouts").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum LayoutArg {
-    /// Equirectangular (latitude-longitude), 2:1, docs/conventions.md.
+    /// Equirectangular (latitude-longitude), 2:1.
     #[default]
     Equirect,
+    /// Horizontal cube cross, 4f x 3f.
+    #[value(name = "cross-h")]
+    CrossH,
+    /// Vertical cube cross, 3f x 4f.
+    #[value(name = "cross-v")]
+    CrossV,
+    /// Six cube faces in a row, +X -X +Y -Y +Z -Z, 6f x f.
+    Strip,
+    /// Angular map (Debevec light probe), N x N.
+    Angular,
+    /// Mirror ball, N x N.
+    #[value(name = "mirror-ball")]
+    MirrorBall,
 }
 
 impl LayoutArg {
-    /// The name written to coefficient files' provenance.
-    pub fn name(self) -> &'static str {
+    /// The core layout.
+    pub fn layout(self) -> Layout {
         match self {
-            LayoutArg::Equirect => "equirect",
+            LayoutArg::Equirect => Layout::Equirect,
+            LayoutArg::CrossH => Layout::CrossHorizontal,
+            LayoutArg::CrossV => Layout::CrossVertical,
+            LayoutArg::Strip => Layout::Strip,
+            LayoutArg::Angular => Layout::Angular,
+            LayoutArg::MirrorBall => Layout::MirrorBall,
         }
     }
 
-    /// Checks that a `width x height` image can hold this layout.
+    /// Checks that a `width x height` image can hold this layout. The
+    /// equirect layout written by shlight is always 2:1.
     pub fn check_size(self, width: usize, height: usize) -> std::result::Result<(), String> {
-        match self {
-            LayoutArg::Equirect if width == 0 || width != 2 * height => Err(format!(
+        if self == LayoutArg::Equirect && (width == 0 || width != 2 * height) {
+            return Err(format!(
                 "a {width}x{height} image is not an equirect map (its width must be twice its height)"
-            )),
-            LayoutArg::Equirect => Ok(()),
+            ));
         }
+        self.layout()
+            .check_size(width, height)
+            .map_err(|e| e.to_string())
     }
+}
+
+/// The size `render` and `synth` use without `--size`: equirect
+/// `2n x n`, cube faces of `n / 2`, a disc of `n`.
+pub fn default_size(layout: LayoutArg, n: usize) -> (usize, usize) {
+    let l = layout.layout();
+    l.dimensions(if l.is_cube() { (n / 2).max(1) } else { n })
 }
 
 /// `--size WxH`, e.g. `1024x512`.
@@ -68,7 +99,7 @@ pub fn parse_size(s: &str) -> std::result::Result<(usize, usize), String> {
 
 /// A `width x height` image in some layout and orientation, seen as texels
 /// that look in world directions.
-#[derive(Clone, Copy, Debug)]
+#[derive(Debug)]
 pub struct TexelGrid {
     /// The layout.
     pub layout: LayoutArg,
@@ -78,6 +109,11 @@ pub struct TexelGrid {
     pub height: usize,
     /// Frame and mirroring (docs/conventions.md).
     pub orientation: MapOrientation,
+    /// Black texels, only so that an [`EnvMap`] (whose geometry ignores
+    /// them) can be formed.
+    black: Vec<[f32; 3]>,
+    /// Every texel's solid angle, computed on first use.
+    solid_angles: OnceLock<Vec<f64>>,
 }
 
 impl TexelGrid {
@@ -95,7 +131,21 @@ impl TexelGrid {
             width,
             height,
             orientation,
+            black: vec![[0.0; 3]; width * height],
+            solid_angles: OnceLock::new(),
         })
+    }
+
+    /// The core's view of the grid (its pixels are black).
+    pub fn env_map(&self) -> EnvMap<'_> {
+        EnvMap::new(
+            self.layout.layout(),
+            self.orientation,
+            self.width,
+            self.height,
+            &self.black,
+        )
+        .expect("the size was checked")
     }
 
     /// The world direction of the frame's up axis (+Y for y-up, +Z for z-up).
@@ -106,21 +156,15 @@ impl TexelGrid {
     /// The unit direction of the centre of texel `(x, y)`; `None` for a
     /// texel the layout does not use.
     pub fn direction(&self, x: usize, y: usize) -> Option<DVec3> {
-        match self.layout {
-            LayoutArg::Equirect => Some(equirect_direction(
-                x,
-                y,
-                self.width,
-                self.height,
-                self.orientation,
-            )),
-        }
+        self.env_map().texel_direction(x, y)
     }
 
     /// A direction inside texel `(x, y)` at `(s, t)` in `[0, 1]^2`, such
-    /// that equal areas of `(s, t)` cover equal solid angles: averaging a
-    /// function over a regular grid of `(s, t)` gives its mean over the
-    /// texel. Equirect: `cos θ` and `φ` vary linearly across the texel.
+    /// that averaging a function over a regular grid of `(s, t)` gives its
+    /// mean over the texel. Equirect: `cos θ` and `φ` vary linearly across
+    /// the texel (equal areas of `(s, t)` cover equal solid angles). Other
+    /// layouts have no such closed form here: every `(s, t)` gives the
+    /// texel-centre direction, so `synth` point-samples their texels.
     pub fn sample(&self, x: usize, y: usize, s: f64, t: f64) -> Option<DVec3> {
         match self.layout {
             LayoutArg::Equirect => {
@@ -132,39 +176,21 @@ impl TexelGrid {
                 let phi = if self.orientation.mirror { -phi } else { phi };
                 Some(self.orientation.frame.direction(theta, phi))
             }
+            _ => self.direction(x, y),
         }
     }
 
     /// The exact solid angle texel `(x, y)` covers (0 for unused texels).
-    pub fn solid_angle(&self, _x: usize, y: usize) -> f64 {
-        match self.layout {
-            LayoutArg::Equirect => equirect_row_solid_angle(y, self.width, self.height),
-        }
+    pub fn solid_angle(&self, x: usize, y: usize) -> f64 {
+        self.solid_angles
+            .get_or_init(|| self.env_map().texel_solid_angles())[y * self.width + x]
     }
 
     /// The texel that unit direction `d` falls in.
     pub fn texel_of(&self, d: DVec3) -> (usize, usize) {
-        match self.layout {
-            LayoutArg::Equirect => {
-                // Frame::direction(θ, φ) is linear in (sin θ cos φ, sin θ sin φ, cos θ);
-                // its columns are the images of those three axes.
-                let f = self.orientation.frame;
-                let m = DMat3::from_cols(
-                    f.direction(PI / 2.0, 0.0),
-                    f.direction(PI / 2.0, PI / 2.0),
-                    f.direction(0.0, 0.0),
-                );
-                let c = m.transpose() * d.normalize();
-                let theta = c.z.clamp(-1.0, 1.0).acos();
-                let phi = c.y.atan2(c.x);
-                let phi = if self.orientation.mirror { -phi } else { phi };
-                let u = phi / (2.0 * PI) + 0.5;
-                let v = theta / PI;
-                let x = ((u * self.width as f64).floor() as usize).min(self.width - 1);
-                let y = ((v * self.height as f64).floor() as usize).min(self.height - 1);
-                (x, y)
-            }
-        }
+        let (x, y) = self.env_map().direction_to_image(d);
+        let clamp = |v: f64, n: usize| (v.floor().max(0.0) as usize).min(n - 1);
+        (clamp(x, self.width), clamp(y, self.height))
     }
 }
 
@@ -189,6 +215,20 @@ mod tests {
                         assert_eq!(g.texel_of(d), (x, y), "{frame} {mirror}");
                         let inside = g.sample(x, y, 0.3, 0.8).unwrap();
                         assert_eq!(g.texel_of(inside), (x, y), "{frame} {mirror}");
+                    }
+                }
+            }
+        }
+        for layout in LayoutArg::value_variants() {
+            let size = layout.layout().dimensions(8);
+            let g = TexelGrid::new(*layout, size, MapOrientation::default()).unwrap();
+            for y in 0..size.1 {
+                for x in 0..size.0 {
+                    if let Some(d) = g.direction(x, y)
+                        && g.solid_angle(x, y) > 0.0
+                        && !layout.layout().is_disc()
+                    {
+                        assert_eq!(g.texel_of(d), (x, y), "{layout:?}");
                     }
                 }
             }

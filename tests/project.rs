@@ -168,16 +168,17 @@ fn bad_input_fails_with_the_file_named_and_keeps_existing_output() {
         ],
         "missing.exr",
     );
-    let square = dir.join("square.exr");
-    write_map(&square, 16, 16, |_, _| [1.0; 3]);
+    // 5:3 fits no layout (a square image is an angular map).
+    let odd = dir.join("odd.exr");
+    write_map(&odd, 20, 12, |_, _| [1.0; 3]);
     check(
         &[
             "project",
-            square.to_str().unwrap(),
+            odd.to_str().unwrap(),
             "-o",
             out.to_str().unwrap(),
         ],
-        "square.exr",
+        "odd.exr",
     );
     let truncated = dir.join("truncated.exr");
     write_map(&truncated, 64, 32, |x, _| [x as f32; 3]);

@@ -2,6 +2,7 @@
 
 mod batch;
 mod export;
+mod layouts_cli;
 mod montecarlo_cli;
 mod project;
 mod render;
