@@ -706,7 +706,7 @@ pub fn project_map(map: &EnvMap<'_>, lmax: usize) -> ShCoeffs<DVec3> {
         }
         acc.flush(&basis);
     };
-    run_rows(h, lmax, row)
+    crate::projection::run_rows::<Batch>(h, lmax, row)
 }
 
 /// Draws `f` into a new `width x height` image of `layout` read in
@@ -805,35 +805,13 @@ impl Batch {
     }
 }
 
-#[cfg(feature = "rayon")]
-fn run_rows(h: usize, lmax: usize, row: impl Fn(usize, &mut Batch) + Sync) -> ShCoeffs<DVec3> {
-    use rayon::prelude::*;
-    (0..h)
-        .into_par_iter()
-        .fold(
-            || Batch::new(lmax),
-            |mut acc, y| {
-                row(y, &mut acc);
-                acc
-            },
-        )
-        .map(|a| a.sh)
-        .reduce(
-            || ShCoeffs::zeros(lmax),
-            |mut a, b| {
-                a += &b;
-                a
-            },
-        )
-}
-
-#[cfg(not(feature = "rayon"))]
-fn run_rows(h: usize, lmax: usize, row: impl Fn(usize, &mut Batch)) -> ShCoeffs<DVec3> {
-    let mut acc = Batch::new(lmax);
-    for y in 0..h {
-        row(y, &mut acc);
+impl crate::projection::RowState for Batch {
+    fn new(lmax: usize) -> Self {
+        Batch::new(lmax)
     }
-    acc.sh
+    fn into_coeffs(self) -> ShCoeffs<DVec3> {
+        self.sh
+    }
 }
 
 /// The geometry of one map: layout, orientation, size, and the cell size

@@ -167,7 +167,7 @@ pub fn project_equirect_simple(
         }
     };
 
-    to_frame(run_rows(h, lmax, row), o.frame)
+    to_frame(run_rows::<Accumulator>(h, lmax, row), o.frame)
 }
 
 /// Per-thread scratch and partial sums.
@@ -189,23 +189,42 @@ impl Accumulator {
     }
 }
 
+/// Per-thread state of a parallel loop over rows that ends in coefficients.
+pub(crate) trait RowState: Send {
+    /// Fresh state for degree `lmax`.
+    fn new(lmax: usize) -> Self;
+    /// The partial sums this state holds.
+    fn into_coeffs(self) -> ShCoeffs<DVec3>;
+}
+
+impl RowState for Accumulator {
+    fn new(lmax: usize) -> Self {
+        Accumulator::new(lmax)
+    }
+    fn into_coeffs(self) -> ShCoeffs<DVec3> {
+        self.sh
+    }
+}
+
+/// Runs `row(j, state)` for every row `j < h` (in parallel with rayon, one
+/// state per worker) and sums the states' coefficients.
 #[cfg(feature = "rayon")]
-fn run_rows(
+pub(crate) fn run_rows<S: RowState>(
     h: usize,
     lmax: usize,
-    row: impl Fn(usize, &mut Accumulator) + Sync,
+    row: impl Fn(usize, &mut S) + Sync,
 ) -> ShCoeffs<DVec3> {
     use rayon::prelude::*;
     (0..h)
         .into_par_iter()
         .fold(
-            || Accumulator::new(lmax),
+            || S::new(lmax),
             |mut acc, j| {
                 row(j, &mut acc);
                 acc
             },
         )
-        .map(|a| a.sh)
+        .map(S::into_coeffs)
         .reduce(
             || ShCoeffs::zeros(lmax),
             |mut a, b| {
@@ -215,13 +234,18 @@ fn run_rows(
         )
 }
 
+/// Runs `row(j, state)` for every row `j < h` and returns the coefficients.
 #[cfg(not(feature = "rayon"))]
-fn run_rows(h: usize, lmax: usize, row: impl Fn(usize, &mut Accumulator)) -> ShCoeffs<DVec3> {
-    let mut acc = Accumulator::new(lmax);
+pub(crate) fn run_rows<S: RowState>(
+    h: usize,
+    lmax: usize,
+    row: impl Fn(usize, &mut S),
+) -> ShCoeffs<DVec3> {
+    let mut acc = S::new(lmax);
     for j in 0..h {
         row(j, &mut acc);
     }
-    acc.sh
+    acc.into_coeffs()
 }
 
 #[cfg(test)]
