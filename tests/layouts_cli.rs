@@ -9,6 +9,7 @@ use crate::util::{
     assert_rows_near, coefficients, json, project_rows, s, shlight, shlight_err, shlight_ok,
     temp_dir, write_map,
 };
+use crate::util::{band1_direction, write_spot};
 
 /// An lmax-2 radiance expansion: a constant 3 and smaller terms.
 fn rows() -> Vec<[f64; 3]> {
@@ -36,13 +37,6 @@ fn write_coeffs(path: &Path, rows: &[[f64; 3]]) {
         "provenance": {},
     });
     std::fs::write(path, doc.to_string()).unwrap();
-}
-
-/// The unit band-1 direction of channel 0: `(-L11, -L1-1, L10)` normalised.
-fn band1_direction(rows: &[[f64; 3]]) -> [f64; 3] {
-    let v = [-rows[3][0], -rows[1][0], rows[2][0]];
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    [v[0] / n, v[1] / n, v[2] / n]
 }
 
 fn assert_points(rows: &[[f64; 3]], want: [f64; 3], what: &str) {
@@ -98,15 +92,8 @@ fn rendered_layouts_project_back_to_their_coefficients() {
 
 /// A `w x h` map, black but for a 2x2 block of 100 whose top-left is `(x, y)`
 /// (or one texel when `single`).
-fn spot(path: &Path, w: usize, h: usize, (x0, y0): (usize, usize), single: bool) {
-    let k = if single { 1 } else { 2 };
-    write_map(path, w, h, |x, y| {
-        if (x0..x0 + k).contains(&x) && (y0..y0 + k).contains(&y) {
-            [100.0; 3]
-        } else {
-            [0.0; 3]
-        }
-    });
+fn spot(path: &Path, w: usize, h: usize, at: (usize, usize), single: bool) {
+    write_spot(path, w, h, at, if single { 1 } else { 2 }, [100.0; 3]);
 }
 
 #[test]

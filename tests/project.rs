@@ -1,14 +1,6 @@
 //! `shlight project`: orientation, output, and bad input.
 
-use crate::util::{coefficients, json, shlight, temp_dir, write_map};
-
-/// Direction (unit) of the band-1 part of red-channel coefficients: for a
-/// light from `d`, `(L_1^-1, L_1^0, L_1^1) ∝ (-d.y, d.z, -d.x)`.
-fn band1_direction(c: &[[f64; 3]]) -> [f64; 3] {
-    let v = [-c[3][0], -c[1][0], c[2][0]];
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    [v[0] / n, v[1] / n, v[2] / n]
-}
+use crate::util::{band1_direction, coefficients, json, shlight, temp_dir, write_map, write_spot};
 
 fn assert_near(a: [f64; 3], b: [f64; 3], tol: f64, what: &str) {
     let d = (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max);
@@ -21,13 +13,7 @@ fn a_bright_texel_lands_on_the_documented_direction_in_both_frames() {
     let (w, h) = (64, 32);
     // Equator, u = (16 + .5)/64 ≈ 0.25: faces -Z in y-up, +Y in z-up.
     let spot = dir.join("spot.exr");
-    write_map(&spot, w, h, |x, y| {
-        if x == 16 && y == 16 {
-            [1000.0, 0.0, 0.0]
-        } else {
-            [0.0; 3]
-        }
-    });
+    write_spot(&spot, w, h, (16, 16), 1, [1000.0, 0.0, 0.0]);
     // Row 0, all columns: up (+Y in y-up, +Z in z-up).
     let top = dir.join("top.exr");
     write_map(&top, w, h, |_, y| {
@@ -35,13 +21,7 @@ fn a_bright_texel_lands_on_the_documented_direction_in_both_frames() {
     });
     // Centre column faces +X in both frames.
     let centre = dir.join("centre.exr");
-    write_map(&centre, w, h, |x, y| {
-        if x == 32 && y == 16 {
-            [1000.0, 0.0, 0.0]
-        } else {
-            [0.0; 3]
-        }
-    });
+    write_spot(&centre, w, h, (32, 16), 1, [1000.0, 0.0, 0.0]);
 
     // The texel centres sit half a texel off the axes: allow that angle.
     let tol = 0.1;
@@ -320,13 +300,7 @@ fn rotate_carries_a_bright_spot_to_the_rotated_direction() {
     let (w, h) = (64, 32);
     // The centre column at the equator faces +X in both frames.
     let centre = dir.join("centre.exr");
-    write_map(&centre, w, h, |x, y| {
-        if x == 32 && y == 16 {
-            [1000.0, 0.0, 0.0]
-        } else {
-            [0.0; 3]
-        }
-    });
+    write_spot(&centre, w, h, (32, 16), 1, [1000.0, 0.0, 0.0]);
     let tol = 0.1; // the texel centre sits half a texel off +X
     let s45 = std::f64::consts::FRAC_1_SQRT_2.to_string();
     let quat_z = format!("quat:0,0,{s45},{s45}");

@@ -111,3 +111,31 @@ pub fn assert_rows_near(got: &[[f64; 3]], want: &[[f64; 3]], tol: f64, what: &st
         }
     }
 }
+
+/// Direction (unit) of the band-1 part of red-channel coefficients: for a
+/// light from `d`, `(L_1^-1, L_1^0, L_1^1) ∝ (-d.y, d.z, -d.x)`, so this is
+/// `(-L_1^1, -L_1^-1, L_1^0)` normalised.
+pub fn band1_direction(c: &[[f64; 3]]) -> [f64; 3] {
+    let v = [-c[3][0], -c[1][0], c[2][0]];
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / n, v[1] / n, v[2] / n]
+}
+
+/// Writes a `w x h` map, black but for a `k x k` block of `value` whose
+/// top-left texel is `(x0, y0)`.
+pub fn write_spot(
+    path: &Path,
+    w: usize,
+    h: usize,
+    (x0, y0): (usize, usize),
+    k: usize,
+    value: [f32; 3],
+) {
+    write_map(path, w, h, |x, y| {
+        if (x0..x0 + k).contains(&x) && (y0..y0 + k).contains(&y) {
+            value
+        } else {
+            [0.0; 3]
+        }
+    });
+}

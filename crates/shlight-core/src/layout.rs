@@ -604,7 +604,7 @@ impl<'a> EnvMap<'a> {
                 }
             }
             _ => {
-                let (face, sc, tc) = CubeFace::from_direction(geo.map_direction(d));
+                let (face, sc, tc) = CubeFace::from_direction(geo.orientation.map_from_world(d));
                 self.cube_bilinear(&geo, face, sc, tc, true)
             }
         }
@@ -819,9 +819,7 @@ impl crate::projection::RowState for Batch {
 #[derive(Clone, Copy, Debug)]
 struct Geometry {
     layout: Layout,
-    /// `Frame::YUp.rotation_to(frame)`: world from (unmirrored) map frame.
-    world_from_map: glam::DMat3,
-    mirror: bool,
+    orientation: MapOrientation,
     w: usize,
     h: usize,
     cell: usize,
@@ -835,8 +833,7 @@ impl Geometry {
         };
         Self {
             layout,
-            world_from_map: Frame::YUp.rotation_to(o.frame),
-            mirror: o.mirror,
+            orientation: o,
             w,
             h,
             cell,
@@ -845,26 +842,6 @@ impl Geometry {
 
     fn disc_rule(&self) -> Option<DiscRule> {
         self.layout.disc().map(|d| DiscRule::new(d, self.cell))
-    }
-
-    /// Map frame to world: mirror (`z -> -z`), then the frame rotation.
-    fn world_direction(&self, d: DVec3) -> DVec3 {
-        let d = if self.mirror {
-            d * DVec3::new(1.0, 1.0, -1.0)
-        } else {
-            d
-        };
-        self.world_from_map * d
-    }
-
-    /// World to map frame: the inverse of [`Geometry::world_direction`].
-    fn map_direction(&self, d: DVec3) -> DVec3 {
-        let d = self.world_from_map.transpose() * d;
-        if self.mirror {
-            d * DVec3::new(1.0, 1.0, -1.0)
-        } else {
-            d
-        }
     }
 
     /// Face and face-local texel `(i, j)` (face orientation) of image
@@ -953,7 +930,7 @@ impl Geometry {
                 face.point(c(i), c(j)).normalize()
             }
         };
-        Some(self.world_direction(d))
+        Some(self.orientation.world_from_map(d))
     }
 
     fn solid_angle(&self, x: usize, y: usize, rule: Option<&DiscRule>) -> f64 {
@@ -973,7 +950,7 @@ impl Geometry {
     }
 
     fn image_point(&self, d: DVec3) -> (f64, f64) {
-        let d = self.map_direction(d);
+        let d = self.orientation.map_from_world(d);
         match self.layout {
             Layout::Equirect => {
                 use core::f64::consts::{PI, TAU};
@@ -1042,7 +1019,13 @@ mod tests {
             for mirror in [false, true] {
                 let geo = Geometry::new(Layout::Strip, MapOrientation { frame, mirror }, 6, 1);
                 let d = DVec3::new(0.2, -0.5, 0.84);
-                assert!((geo.map_direction(geo.world_direction(d)) - d).length() < 1e-15);
+                assert!(
+                    (geo.orientation
+                        .map_from_world(geo.orientation.world_from_map(d))
+                        - d)
+                        .length()
+                        < 1e-15
+                );
             }
         }
     }

@@ -48,6 +48,34 @@ pub struct MapOrientation {
     pub mirror: bool,
 }
 
+impl MapOrientation {
+    /// World direction of a direction `d` given in the map's own y-up frame:
+    /// `mirror` negates its `z` (for equirect maps that is `φ -> -φ`), then
+    /// `Frame::YUp.rotation_to(frame)` turns it into the frame.
+    #[inline]
+    #[must_use]
+    pub fn world_from_map(self, d: DVec3) -> DVec3 {
+        let d = if self.mirror {
+            d * DVec3::new(1.0, 1.0, -1.0)
+        } else {
+            d
+        };
+        Frame::YUp.rotation_to(self.frame) * d
+    }
+
+    /// The inverse of [`MapOrientation::world_from_map`].
+    #[inline]
+    #[must_use]
+    pub fn map_from_world(self, d: DVec3) -> DVec3 {
+        let d = self.frame.rotation_to(Frame::YUp) * d;
+        if self.mirror {
+            d * DVec3::new(1.0, 1.0, -1.0)
+        } else {
+            d
+        }
+    }
+}
+
 /// Texel centre angles `(θ, φ)` of equirect texel `(x, y)` in a `w x h` map:
 /// `u = (x+.5)/w`, `v = (y+.5)/h`, `θ = π v`, `φ = 2π (u - .5)`.
 #[inline]
@@ -339,6 +367,20 @@ mod tests {
             .collect()
     }
 
+    /// [`rel_diff`] of the fast path against the simple route on the noise map.
+    fn fast_vs_simple(w: usize, h: usize, lmax: usize, o: MapOrientation) -> f64 {
+        let px = noise_map(w, h);
+        let map = EquirectView {
+            width: w,
+            height: h,
+            pixels: &px,
+        };
+        rel_diff(
+            &project_equirect(map, lmax, o),
+            &project_equirect_simple(map, lmax, o),
+        )
+    }
+
     #[test]
     fn fast_path_matches_the_simple_route_direct_and_fft() {
         // (w, h, lmax): even/odd sizes, the direct sums (lmax < 24), the FFT
@@ -350,19 +392,9 @@ mod tests {
             (50, 25, 40),
             (256, 128, 100),
         ] {
-            let px = noise_map(w, h);
-            let map = EquirectView {
-                width: w,
-                height: h,
-                pixels: &px,
-            };
             for frame in [Frame::YUp, Frame::ZUp] {
                 for mirror in [false, true] {
-                    let o = MapOrientation { frame, mirror };
-                    let d = rel_diff(
-                        &project_equirect(map, lmax, o),
-                        &project_equirect_simple(map, lmax, o),
-                    );
+                    let d = fast_vs_simple(w, h, lmax, MapOrientation { frame, mirror });
                     assert!(
                         d < 1e-12,
                         "{w}x{h} lmax {lmax} {frame} mirror {mirror}: {d:e}"
@@ -379,20 +411,11 @@ mod tests {
         use std::sync::atomic::Ordering;
         crate::ring_transform::FORCE_PORTABLE.store(true, Ordering::Relaxed);
         for (w, h, lmax) in [(48, 24, 6), (50, 25, 40)] {
-            let px = noise_map(w, h);
-            let map = EquirectView {
-                width: w,
-                height: h,
-                pixels: &px,
-            };
             let o = MapOrientation {
                 frame: Frame::ZUp,
                 mirror: true,
             };
-            let d = rel_diff(
-                &project_equirect(map, lmax, o),
-                &project_equirect_simple(map, lmax, o),
-            );
+            let d = fast_vs_simple(w, h, lmax, o);
             assert!(d < 1e-12, "{w}x{h} lmax {lmax}: {d:e}");
         }
         crate::ring_transform::FORCE_PORTABLE.store(false, Ordering::Relaxed);
@@ -405,21 +428,11 @@ mod tests {
         // m > 1023, l > 2046. The coefficients of so small a map are aliased,
         // but both routes compute the same sums; the simple route uses
         // Legendre::eval, whose extended exponent is tested on its own.
-        let (w, h, lmax) = (64, 32, 2100);
-        let px = noise_map(w, h);
-        let map = EquirectView {
-            width: w,
-            height: h,
-            pixels: &px,
-        };
         let o = MapOrientation {
             frame: Frame::ZUp,
             mirror: false,
         };
-        let d = rel_diff(
-            &project_equirect(map, lmax, o),
-            &project_equirect_simple(map, lmax, o),
-        );
+        let d = fast_vs_simple(64, 32, 2100, o);
         assert!(d < 1e-11, "{d:e}");
     }
 

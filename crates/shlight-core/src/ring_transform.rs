@@ -57,8 +57,10 @@ fn avx_fma() -> bool {
 /// Lanes (row pairs) per recurrence pass in phase 2.
 const LANES: usize = 16;
 
-/// From this lmax on, rows are transformed by FFT instead of direct sums
-/// (measured crossover on a 2048-wide map; see `benches/projection.rs`).
+/// From this lmax on, rows are transformed by FFT instead of direct sums.
+/// Chosen by operation count on 2048-wide rows: direct sums cost
+/// `6 W (lmax + 1)` multiply-adds per row, three real FFTs about
+/// `3 · 2.5 W log2 W`, equal near lmax 20 (the crossover was not measured).
 pub(crate) const FFT_FROM_LMAX: usize = 24;
 
 /// Per row pair and column `m`: `Ω f_m (A ± B)` for the even / odd parity of
@@ -237,7 +239,6 @@ impl Azimuth {
         if lmax >= FFT_FROM_LMAX && w > 1 {
             let fft = RealFftPlanner::<f64>::new().plan_fft_forward(w);
             let c = PI / w as f64 - PI;
-            // m c reduced exactly enough: m < 2^40 keeps the product precise.
             let phase = (0..=lmax)
                 .map(|m| {
                     let (s, co) = (-(m as f64) * c).sin_cos();
@@ -405,7 +406,7 @@ fn dots(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
         // SAFETY: the CPU has the features the function is compiled for.
         return unsafe { dots_avx(ch, cos, sin) };
     }
-    dots_body(ch, cos, sin)
+    dots_from(ch, cos, sin, 0, [0.0; 6])
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -442,16 +443,7 @@ unsafe fn dots_avx(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
             out[c] = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
         }
     }
-    for i in body..n {
-        let (c, s) = (cos[i], sin[i]);
-        out[0] += r[i] * c;
-        out[1] += g[i] * c;
-        out[2] += b[i] * c;
-        out[3] += r[i] * s;
-        out[4] += g[i] * s;
-        out[5] += b[i] * s;
-    }
-    out
+    dots_from(ch, cos, sin, body, out)
 }
 
 /// `a * b + c`, fused when the code is compiled for FMA.
@@ -460,33 +452,19 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
     if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
+/// [`dots`] of texels `start..` added to `out`, one texel at a time (the
+/// portable code, and the tail of the vector code).
 #[inline(always)]
-fn dots_body(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
-    const K: usize = 4;
+fn dots_from(
+    ch: &[Vec<f64>; 3],
+    cos: &[f64],
+    sin: &[f64],
+    start: usize,
+    mut out: [f64; 6],
+) -> [f64; 6] {
     let n = cos.len();
     let (r, g, b) = (&ch[0][..n], &ch[1][..n], &ch[2][..n]);
-    let sin = &sin[..n];
-    let body = n / K * K;
-    let mut acc = [[0.0; K]; 6];
-    let mut i = 0;
-    while i < body {
-        for q in 0..K {
-            let (c, s) = (cos[i + q], sin[i + q]);
-            let (x, y, z) = (r[i + q], g[i + q], b[i + q]);
-            acc[0][q] = madd::<false>(x, c, acc[0][q]);
-            acc[1][q] = madd::<false>(y, c, acc[1][q]);
-            acc[2][q] = madd::<false>(z, c, acc[2][q]);
-            acc[3][q] = madd::<false>(x, s, acc[3][q]);
-            acc[4][q] = madd::<false>(y, s, acc[4][q]);
-            acc[5][q] = madd::<false>(z, s, acc[5][q]);
-        }
-        i += K;
-    }
-    let mut out = [0.0; 6];
-    for c in 0..6 {
-        out[c] = (acc[c][0] + acc[c][1]) + (acc[c][2] + acc[c][3]);
-    }
-    for i in body..n {
+    for i in start..n {
         let (c, s) = (cos[i], sin[i]);
         out[0] += r[i] * c;
         out[1] += g[i] * c;

@@ -4,11 +4,10 @@
 
 use core::f64::consts::PI;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 use super::{RadianceMap, luminance};
 use crate::projection::{MapOrientation, equirect_direction, equirect_row_solid_angle};
-use crate::rotation::Frame;
 
 /// Share of the probability spread uniformly over the sphere (the
 /// "defensive" mixture): `P(cell) = (1 - α) w/Σw + α Ω/(4π)`, `α = 0.1`.
@@ -58,8 +57,6 @@ pub struct ImportanceGrid {
     row_omega: Vec<f64>,
     /// `1 - cos(jπ/H)`, `j = 0..=H`, without cancellation.
     row_omz: Vec<f64>,
-    /// Rotation from the y-up frame's directions to the grid's frame.
-    to_frame: DMat3,
 }
 
 impl ImportanceGrid {
@@ -258,7 +255,6 @@ impl ImportanceGrid {
             cell_p,
             row_omega,
             row_omz,
-            to_frame: Frame::YUp.rotation_to(orientation.frame),
         }
     }
 
@@ -309,13 +305,13 @@ impl ImportanceGrid {
     }
 
     /// World direction of `(cos θ, sin θ, φ)` in the grid's frame: the y-up
-    /// direction `(sin θ cos φ', cos θ, sin θ sin φ')` (`φ' = -φ` when
-    /// mirrored) carried to the frame by `Frame::YUp.rotation_to(frame)`,
-    /// exactly as [`Frame::direction`] and [`equirect_direction`] do.
+    /// direction `(sin θ cos φ, cos θ, sin θ sin φ)` taken to the world by
+    /// [`MapOrientation::world_from_map`], exactly as [`equirect_direction`]
+    /// places texels.
     fn direction(&self, z: f64, s: f64, phi: f64) -> DVec3 {
-        let p = if self.orientation.mirror { -phi } else { phi };
-        let (sp, cp) = p.sin_cos();
-        self.to_frame * DVec3::new(s * cp, z, s * sp)
+        let (sp, cp) = phi.sin_cos();
+        self.orientation
+            .world_from_map(DVec3::new(s * cp, z, s * sp))
     }
 
     /// The density `p(ω) = P_ij / Ω_j` of the cell holding the unit
@@ -329,12 +325,9 @@ impl ImportanceGrid {
     /// The cell `(column, row)` holding the unit direction `d`.
     fn cell_of(&self, d: DVec3) -> (usize, usize) {
         let (w, h) = (self.width, self.height);
-        let y = self.to_frame.transpose() * d;
+        let y = self.orientation.map_from_world(d);
         let theta = (y.x.hypot(y.z)).atan2(y.y);
-        let mut phi = y.z.atan2(y.x);
-        if self.orientation.mirror {
-            phi = -phi;
-        }
+        let phi = y.z.atan2(y.x);
         let u = phi / (2.0 * PI) + 0.5;
         let i = ((u * w as f64) as usize).min(w - 1);
         let j = ((theta / PI * h as f64) as usize).min(h - 1);
@@ -345,6 +338,7 @@ impl ImportanceGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rotation::Frame;
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
 
