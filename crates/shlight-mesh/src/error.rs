@@ -1,0 +1,40 @@
+//! Errors from loading or building a mesh, each naming the file when there is one.
+
+use std::path::PathBuf;
+
+/// Why a mesh could not be loaded or built.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshError {
+    /// The file could not be read.
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// The extension names no format shlight reads.
+    #[error("{path}: unknown mesh format (expected {expected})")]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// The formats that are read.
+        expected: &'static str,
+    },
+    /// The file is not valid in its format.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, with a line or element number where known.
+        message: String,
+    },
+    /// The data parsed but does not make a usable mesh.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file (or a generator's name).
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+}

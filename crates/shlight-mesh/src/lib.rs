@@ -1,0 +1,17 @@
+//! Triangle meshes for shlight's PRT baking and GPU rendering.
+//!
+//! A [`Mesh`] is an indexed triangle list with one position and one unit
+//! normal per vertex (and optional per-vertex linear colours). Meshes come
+//! from files ([`load`]) or from generators ([`generate`]); either way they
+//! pass the same validation ([`Mesh::new`]), so code downstream may assume
+//! finite positions, in-range indices, no degenerate triangles and unit
+//! normals.
+
+mod error;
+pub mod generate;
+mod load;
+mod mesh;
+
+pub use error::MeshError;
+pub use load::{MeshFormat, load, load_bytes};
+pub use mesh::{Mesh, MeshReport};

@@ -1,0 +1,142 @@
+//! Loading meshes from files, by extension.
+
+use std::path::Path;
+
+use glam::Vec3;
+
+use crate::{Mesh, MeshError};
+
+/// The mesh file formats shlight reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (`.obj`): every object and group, polygons triangulated.
+    Obj,
+}
+
+const EXPECTED: &str = ".obj";
+
+impl MeshFormat {
+    /// The format a file name's extension names (case-insensitive).
+    #[must_use]
+    pub fn from_path(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "obj" => Some(Self::Obj),
+            _ => None,
+        }
+    }
+}
+
+/// Loads and validates a mesh file, choosing the format by extension.
+///
+/// # Errors
+/// An unreadable file, an unknown extension, a parse error, or a mesh
+/// [`Mesh::new`] rejects; every message starts with the path.
+pub fn load(path: &Path) -> Result<Mesh, MeshError> {
+    let format = MeshFormat::from_path(path).ok_or_else(|| MeshError::UnknownFormat {
+        path: path.to_path_buf(),
+        expected: EXPECTED,
+    })?;
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    load_bytes(path, format, &bytes)
+}
+
+/// Parses and validates a mesh held in memory; `path` only names it in errors.
+///
+/// # Errors
+/// As [`load`], less the file reading.
+pub fn load_bytes(path: &Path, format: MeshFormat, bytes: &[u8]) -> Result<Mesh, MeshError> {
+    match format {
+        MeshFormat::Obj => obj(path, bytes),
+    }
+}
+
+/// OBJ through `tobj`: positions and normals are unified to one index per
+/// vertex (`single_index`), so vertices appear in the order tobj first meets
+/// each distinct (position, normal) pair; objects are concatenated in file
+/// order. Normals are used only when every object has them.
+fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| {
+            Ok(Default::default())
+        })
+        .map_err(|e| MeshError::Parse {
+            path: path.to_path_buf(),
+            message: format!("not a valid OBJ file: {e}"),
+        })?;
+    let all_normals = models
+        .iter()
+        .all(|m| m.mesh.normals.len() == m.mesh.positions.len());
+    let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    for model in &models {
+        let base = positions.len() as u32;
+        let m = &model.mesh;
+        positions.extend(
+            m.positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
+        if all_normals {
+            normals.extend(
+                m.normals
+                    .chunks_exact(3)
+                    .map(|n| Vec3::new(n[0], n[1], n[2])),
+            );
+        }
+        triangles.extend(
+            m.indices
+                .chunks_exact(3)
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
+    }
+    Mesh::new(
+        path,
+        positions,
+        triangles,
+        all_normals.then_some(normals),
+        None,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn obj_quad_with_and_without_normals() {
+        let src = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+        let m = load_bytes(Path::new("q.obj"), MeshFormat::Obj, src).unwrap();
+        assert_eq!((m.vertex_count(), m.triangle_count()), (4, 2));
+        assert!((m.surface_area() - 1.0).abs() < 1e-12);
+        assert!(m.normals.iter().all(|n| *n == Vec3::Z));
+        let src = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\n";
+        let m = load_bytes(Path::new("t.obj"), MeshFormat::Obj, src).unwrap();
+        assert!(m.normals.iter().all(|n| *n == Vec3::X));
+    }
+
+    #[test]
+    fn bad_files_name_the_path() {
+        let e =
+            load_bytes(Path::new("bad.obj"), MeshFormat::Obj, b"v 0 0 0\nf 1 2 3\n").unwrap_err();
+        assert!(e.to_string().starts_with("bad.obj: "), "{e}");
+        let e = load(Path::new("mesh.xyz")).unwrap_err();
+        assert!(
+            e.to_string().contains("mesh.xyz: unknown mesh format"),
+            "{e}"
+        );
+        let e = load(Path::new("/nonexistent/mesh.obj")).unwrap_err();
+        assert!(
+            e.to_string().contains("/nonexistent/mesh.obj: cannot read"),
+            "{e}"
+        );
+    }
+}
