@@ -106,8 +106,8 @@ pub fn equirect_row_solid_angle(j: usize, w: usize, h: usize) -> f64 {
 /// Radiance coefficients up to `lmax` of an equirect map by exact
 /// texel-solid-angle quadrature (see the module docs), accumulated in `f64`.
 ///
-/// Runs the ring transform: azimuthal sums per row (a real FFT per row from
-/// lmax 24 on), then Legendre sums per column `m` over symmetric row pairs,
+/// Runs the ring transform: azimuthal sums per row (direct sums over each
+/// row folded onto its first quarter, or a real FFT per row from lmax 48 on), then Legendre sums per column `m` over symmetric row pairs,
 /// vectorised and parallel with the `rayon` feature. Any lmax works (the
 /// Legendre values carry an extended exponent); cost is
 /// `O(W H min(lmax, log W) + H lmax^2)`. A y-up map's coefficients are then
@@ -383,14 +383,21 @@ mod tests {
 
     #[test]
     fn fast_path_matches_the_simple_route_direct_and_fft() {
-        // (w, h, lmax): even/odd sizes, the direct sums (lmax < 24), the FFT
-        // path, and lmax beyond w/2 where the FFT bins wrap around.
+        // (w, h, lmax): even/odd sizes, the direct sums (lmax < 48) folded
+        // (w a multiple of 4, with and without a vector tail) and not, the
+        // FFT path, lmax beyond w/2 where the FFT bins wrap around, and
+        // several blocks of row pairs near the poles (extended exponent).
         for (w, h, lmax) in [
             (48, 24, 6),
             (47, 23, 5),
             (64, 32, 30),
-            (50, 25, 40),
+            (64, 32, 60),
+            (50, 25, 60),
             (256, 128, 100),
+            (50, 26, 7),
+            (40, 20, 5),
+            (40, 80, 300),
+            (1040, 8, 10),
         ] {
             for frame in [Frame::YUp, Frame::ZUp] {
                 for mirror in [false, true] {
@@ -410,7 +417,7 @@ mod tests {
         // the portable ones too (both the direct sums and the FFT path).
         use std::sync::atomic::Ordering;
         crate::ring_transform::FORCE_PORTABLE.store(true, Ordering::Relaxed);
-        for (w, h, lmax) in [(48, 24, 6), (50, 25, 40)] {
+        for (w, h, lmax) in [(48, 24, 6), (40, 20, 5), (50, 26, 7), (50, 25, 60)] {
             let o = MapOrientation {
                 frame: Frame::ZUp,
                 mirror: true,

@@ -12,9 +12,11 @@
 //!
 //! (no `sqrt2` at `m = 0`). Two phases:
 //!
-//! 1. **Azimuthal sums**, row by row: direct sums against a table of
-//!    `cos(m ψ_i)`, `sin(m ψ_i)` for small lmax, a real FFT of each row for
-//!    large lmax (`O(W log W)` instead of `O(W lmax)`). With
+//! 1. **Azimuthal sums**, row by row: for small lmax, direct sums against a
+//!    table of `cos(m ψ_i)`, `sin(m ψ_i)` over the row folded onto its first
+//!    quarter by the symmetries `ψ -> -ψ` and `ψ -> ψ + π` (`fold_row`;
+//!    `W/4` multiply-adds per `m` instead of `W`); for large lmax, a real FFT
+//!    of each row (`O(W log W)` instead of `O(W lmax)`). With
 //!    `ψ_i = ∓φ_i`, `φ_i = 2π i/W + c`, `c = π/W - π`:
 //!    `sum_i f_i e^{-i m φ_i} = e^{-i m c} X_m`, `X` the DFT of the row
 //!    (`X_m` for `m >= W` wraps around, as the sum does).
@@ -22,7 +24,9 @@
 //!    `±cos θ` with the same `Ω`, and `Pbar_l^m(-x) = (-1)^(l+m) Pbar_l^m(x)`,
 //!    so each pair enters through `Ω (C(j) ± C(H-1-j))` and the recurrence
 //!    runs once per pair, on 16 pairs at a time (vector lanes), with the
-//!    extended exponent of [`crate::legendre`] near the poles.
+//!    extended exponent of [`crate::legendre`] near the poles; lanes worth
+//!    less than `2^-200` are left out, and a block whose lanes are all such
+//!    skips its sums.
 //!
 //! Columns are independent, so phase 2 runs in parallel over `m`; phase 1
 //! in parallel over row pairs. All sums are in `f64`. On x86-64 CPUs with
@@ -58,30 +62,50 @@ fn avx_fma() -> bool {
 const LANES: usize = 16;
 
 /// From this lmax on, rows are transformed by FFT instead of direct sums.
-/// Chosen by operation count on 2048-wide rows: direct sums cost
-/// `6 W (lmax + 1)` multiply-adds per row, three real FFTs about
-/// `3 · 2.5 W log2 W`, equal near lmax 20 (the crossover was not measured).
-pub(crate) const FFT_FROM_LMAX: usize = 24;
+/// Chosen by instruction counts (callgrind) of a 2048x1024 projection: the
+/// folded direct sums ([`fold_row`]) cost 73 M instructions at lmax 24,
+/// 110 M at 40 and 169 M at 63; the FFT path 137 M, 142 M and 150 M.
+pub(crate) const FFT_FROM_LMAX: usize = 48;
 
-/// Per row pair and column `m`: `Ω f_m (A ± B)` for the even / odd parity of
-/// `l + m`, as `[C_r, C_g, C_b, S_r, S_g, S_b, 0, 0]` (8 wide for vector lanes).
-type Weights = [f64; 8];
+/// One block of [`LANES`] row pairs for one column `m`: both parities'
+/// weights `Ω f_m (A ± B)` (even / odd `l + m`), channel-major as
+/// `[parity][C_r, C_g, C_b, S_r, S_g, S_b][lane]`, ready for vector lanes.
+type BlockWeights = [[[f64; LANES]; 6]; 2];
+
+/// One block's per-pair data for one column `m`: the sectoral start value
+/// `Pbar_m^m(sin θ)` as mantissa and exponent count per lane.
+#[derive(Clone, Copy)]
+struct BlockStart {
+    value: [f64; LANES],
+    exponent: [f64; LANES],
+}
 
 /// Radiance coefficients of an equirect map about its own pole (z-up), the
 /// azimuth of texel column `i` being `sign * φ_i`.
 pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> ShCoeffs<DVec3> {
     let (w, h) = (map.width, map.height);
     let pairs = h.div_ceil(2);
+    let blocks = pairs.div_ceil(LANES);
     let cols = lmax + 1;
     let leg = Legendre::<f64>::new(lmax);
     let azimuth = Azimuth::new(w, lmax, sign);
 
-    // Phase 1: weights [pair][m][parity] and sectoral start values [pair][m].
-    let mut weights = vec![[0.0; 8]; pairs * cols * 2];
-    let mut sectoral = vec![[0.0; 2]; pairs * cols];
-    let mut xs = vec![0.0; pairs];
-    let phase1 =
-        |p: usize, wts: &mut [Weights], sect: &mut [[f64; 2]], x: &mut f64, s: &mut Scratch| {
+    // Phase 1, per block of row pairs: weights and sectoral start values
+    // `[block][m]`, and `cos θ` per lane. Lanes past the last pair stay zero.
+    let zero_start = BlockStart {
+        value: [0.0; LANES],
+        exponent: [0.0; LANES],
+    };
+    let mut weights = vec![[[[0.0; LANES]; 6]; 2]; blocks * cols];
+    let mut starts = vec![zero_start; blocks * cols];
+    let mut xs = vec![[0.0; LANES]; blocks];
+    let phase1 = |b: usize,
+                  wts: &mut [BlockWeights],
+                  st: &mut [BlockStart],
+                  x: &mut [f64; LANES],
+                  s: &mut Scratch| {
+        for lane in 0..LANES.min(pairs - b * LANES) {
+            let p = b * LANES + lane;
             let j2 = h - 1 - p;
             azimuth.row(&map.pixels[p * w..(p + 1) * w], &mut s.ring_a, &mut s.bufs);
             if j2 != p {
@@ -94,41 +118,43 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
                 s.ring_b.iter_mut().for_each(|r| *r = [0.0; 6]);
             }
             let omega = equirect_row_solid_angle(p, w, h);
+            let theta = PI * (p as f64 + 0.5) / h as f64;
+            x[lane] = theta.cos();
+            sectoral_values(&leg, theta.sin(), &mut s.sectoral);
             for m in 0..cols {
                 let f = omega * if m == 0 { 1.0 } else { 2f64.sqrt() };
                 let (a, b) = (s.ring_a[m], s.ring_b[m]);
                 for c in 0..6 {
-                    wts[2 * m][c] = f * (a[c] + b[c]);
-                    wts[2 * m + 1][c] = f * (a[c] - b[c]);
+                    wts[m][0][c][lane] = f * (a[c] + b[c]);
+                    wts[m][1][c][lane] = f * (a[c] - b[c]);
                 }
+                [st[m].value[lane], st[m].exponent[lane]] = s.sectoral[m];
             }
-            let theta = PI * (p as f64 + 0.5) / h as f64;
-            *x = theta.cos();
-            sectoral_values(&leg, theta.sin(), sect);
-        };
+        }
+    };
     let new_scratch = || Scratch::new(w, lmax, &azimuth);
     #[cfg(feature = "rayon")]
     {
         use rayon::prelude::*;
         weights
-            .par_chunks_mut(cols * 2)
-            .zip(sectoral.par_chunks_mut(cols))
+            .par_chunks_mut(cols)
+            .zip(starts.par_chunks_mut(cols))
             .zip(xs.par_iter_mut())
             .enumerate()
-            .for_each_init(new_scratch, |s, (p, ((wts, sect), x))| {
-                phase1(p, wts, sect, x, s)
+            .for_each_init(new_scratch, |s, (b, ((wts, st), x))| {
+                phase1(b, wts, st, x, s)
             });
     }
     #[cfg(not(feature = "rayon"))]
     {
         let mut s = new_scratch();
-        for (p, ((wts, sect), x)) in weights
-            .chunks_mut(cols * 2)
-            .zip(sectoral.chunks_mut(cols))
+        for (b, ((wts, st), x)) in weights
+            .chunks_mut(cols)
+            .zip(starts.chunks_mut(cols))
             .zip(xs.iter_mut())
             .enumerate()
         {
-            phase1(p, wts, sect, x, &mut s);
+            phase1(b, wts, st, x, &mut s);
         }
     }
 
@@ -136,15 +162,14 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
     let input = ColumnInput {
         leg: &leg,
         lmax,
-        pairs,
         xs: &xs,
         weights: &weights,
-        sectoral: &sectoral,
+        starts: &starts,
     };
     // Long columns (small m) and short ones interleaved for load balance.
     let order = |i: usize| if i % 2 == 0 { i / 2 } else { lmax - i / 2 };
     #[cfg(feature = "rayon")]
-    let sums: Vec<(usize, Vec<Weights>)> = {
+    let sums: Vec<(usize, Vec<[f64; 6]>)> = {
         use rayon::prelude::*;
         (0..cols)
             .into_par_iter()
@@ -153,7 +178,7 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
             .collect()
     };
     #[cfg(not(feature = "rayon"))]
-    let sums: Vec<(usize, Vec<Weights>)> = (0..cols)
+    let sums: Vec<(usize, Vec<[f64; 6]>)> = (0..cols)
         .map(|i| (order(i), column(&input, order(i))))
         .collect();
 
@@ -193,9 +218,13 @@ struct Azimuth {
     w: usize,
     lmax: usize,
     sign: f64,
-    /// `[m][i]` cosines and sines for the direct sums (empty with FFT).
+    /// `[m][i]` cosines and sines for the direct sums (empty with FFT), of
+    /// the first quarter of the row when it is folded.
     cos: Vec<f64>,
     sin: Vec<f64>,
+    /// Whether rows are folded into quarters before the direct sums
+    /// ([`fold_row`]; needs `W` a multiple of 4).
+    folded: bool,
     fft: Option<std::sync::Arc<dyn RealToComplex<f64>>>,
     /// `e^{-i m c}`, `c = π/W - π`, per `m` (FFT path).
     phase: Vec<Complex<f64>>,
@@ -205,12 +234,15 @@ struct Azimuth {
 struct Scratch {
     ring_a: Vec<[f64; 6]>,
     ring_b: Vec<[f64; 6]>,
+    sectoral: Vec<[f64; 2]>,
     bufs: RowBuffers,
 }
 
 /// Buffers for [`Azimuth::row`].
 struct RowBuffers {
     channels: [Vec<f64>; 3],
+    /// Folded rows `[P_even, P_odd, Q_even, Q_odd][channel]` ([`fold_row`]).
+    quarters: [[Vec<f64>; 3]; 4],
     spectrum: Vec<Complex<f64>>,
     fft_scratch: Vec<Complex<f64>>,
 }
@@ -224,8 +256,12 @@ impl Scratch {
         Self {
             ring_a: vec![[0.0; 6]; lmax + 1],
             ring_b: vec![[0.0; 6]; lmax + 1],
+            sectoral: vec![[0.0; 2]; lmax + 1],
             bufs: RowBuffers {
                 channels: [vec![0.0; w], vec![0.0; w], vec![0.0; w]],
+                quarters: core::array::from_fn(|_| {
+                    core::array::from_fn(|_| vec![0.0; FOLD_CHUNK.min(w / 4)])
+                }),
                 spectrum,
                 fft_scratch,
             },
@@ -251,17 +287,20 @@ impl Azimuth {
                 sign,
                 cos: Vec::new(),
                 sin: Vec::new(),
+                folded: false,
                 fft: Some(fft),
                 phase,
             };
         }
-        let mut cos = vec![0.0; (lmax + 1) * w];
-        let mut sin = vec![0.0; (lmax + 1) * w];
+        let folded = w % 4 == 0;
+        let n = if folded { w / 4 } else { w };
+        let mut cos = vec![0.0; (lmax + 1) * n];
+        let mut sin = vec![0.0; (lmax + 1) * n];
         for m in 0..=lmax {
-            for i in 0..w {
+            for i in 0..n {
                 let (s, c) = (m as f64 * sign * angle(i)).sin_cos();
-                cos[m * w + i] = c;
-                sin[m * w + i] = s;
+                cos[m * n + i] = c;
+                sin[m * n + i] = s;
             }
         }
         Self {
@@ -270,6 +309,7 @@ impl Azimuth {
             sign,
             cos,
             sin,
+            folded,
             fft: None,
             phase: Vec::new(),
         }
@@ -278,6 +318,29 @@ impl Azimuth {
     /// `ring[m] = [C_r, C_g, C_b, S_r, S_g, S_b]` of one row of texels.
     fn row(&self, texels: &[[f32; 3]], ring: &mut [[f64; 6]], s: &mut RowBuffers) {
         match &self.fft {
+            None if self.folded => {
+                // Chunks of the quarter small enough that the folded values
+                // and the trig rows they meet stay in the L1 cache.
+                ring.iter_mut().for_each(|r| *r = [0.0; 6]);
+                let q = self.w / 4;
+                for start in (0..q).step_by(FOLD_CHUNK) {
+                    let n = FOLD_CHUNK.min(q - start);
+                    fold_row(texels, start, &mut s.quarters);
+                    let [p_even, p_odd, q_even, q_odd] = &s.quarters;
+                    for (m, out) in ring.iter_mut().enumerate() {
+                        let (p, q_) = if m % 2 == 0 {
+                            (p_even, q_even)
+                        } else {
+                            (p_odd, q_odd)
+                        };
+                        let trig = m * q + start..m * q + start + n;
+                        let d = dots(p, q_, &self.cos[trig.clone()], &self.sin[trig]);
+                        for c in 0..6 {
+                            out[c] += d[c];
+                        }
+                    }
+                }
+            }
             None => {
                 // Blocks of texels small enough that the channels and the
                 // trig rows they meet stay in the L1 cache.
@@ -288,7 +351,7 @@ impl Azimuth {
                     for (m, out) in ring.iter_mut().enumerate() {
                         let cos = &self.cos[m * self.w + start..m * self.w + end];
                         let sin = &self.sin[m * self.w + start..m * self.w + end];
-                        let d = dots(&s.channels, cos, sin);
+                        let d = dots(&s.channels, &s.channels, cos, sin);
                         for c in 0..6 {
                             out[c] += d[c];
                         }
@@ -352,9 +415,7 @@ fn deinterleave_scalar(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3], start:
     }
 }
 
-/// [`deinterleave`] four texels at a time: three loads of `[f32; 4]`
-/// (`r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3`), shuffles to planar, and
-/// conversion to `f64`.
+/// [`deinterleave`] four texels at a time ([`rgb4`]).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
 unsafe fn deinterleave_avx(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3]) {
@@ -370,51 +431,37 @@ unsafe fn deinterleave_avx(texels: &[[f32; 3]], channels: &mut [Vec<f64>; 3]) {
     unsafe {
         let mut i = 0;
         while i < body {
-            let x0 = _mm_loadu_ps(flat.add(3 * i));
-            let x1 = _mm_loadu_ps(flat.add(3 * i + 4));
-            let x2 = _mm_loadu_ps(flat.add(3 * i + 8));
-            // r = [x0.0, x0.3, x1.2, x2.1]
-            let rv = _mm_blend_ps::<0b1000>(
-                _mm_shuffle_ps::<0b00_10_11_00>(x0, x1),
-                _mm_shuffle_ps::<0b01_00_00_00>(x2, x2),
-            );
-            // g = [x0.1, x1.0, x1.3, x2.2]
-            let u = _mm_shuffle_ps::<0b11_00_01_01>(x0, x1);
-            let gv = _mm_blend_ps::<0b1000>(
-                _mm_shuffle_ps::<0b11_11_10_00>(u, u),
-                _mm_shuffle_ps::<0b10_00_00_00>(x2, x2),
-            );
-            // b = [x0.2, x1.1, x2.0, x2.3]
-            let v = _mm_shuffle_ps::<0b01_01_10_10>(x0, x1);
-            let bv = _mm_shuffle_ps::<0b11_00_10_00>(v, x2);
-            _mm256_storeu_pd(r.as_mut_ptr().add(i), _mm256_cvtps_pd(rv));
-            _mm256_storeu_pd(g.as_mut_ptr().add(i), _mm256_cvtps_pd(gv));
-            _mm256_storeu_pd(b.as_mut_ptr().add(i), _mm256_cvtps_pd(bv));
+            let [rv, gv, bv] = rgb4(flat.add(3 * i));
+            _mm256_storeu_pd(r.as_mut_ptr().add(i), rv);
+            _mm256_storeu_pd(g.as_mut_ptr().add(i), gv);
+            _mm256_storeu_pd(b.as_mut_ptr().add(i), bv);
             i += 4;
         }
     }
     deinterleave_scalar(texels, channels, body);
 }
 
-/// `[sum r cos, sum g cos, sum b cos, sum r sin, sum g sin, sum b sin]` over
-/// one row, all three channels in one pass, four texels per vector lane
-/// group.
+/// `[sum p_r cos, sum p_g cos, sum p_b cos, sum q_r sin, sum q_g sin,
+/// sum q_b sin]` over `cos.len()` entries, all three channels in one pass,
+/// four entries per vector lane group (`p = q` = the texels of a row, or
+/// the folded quarters of [`fold_row`]).
 #[inline]
-fn dots(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
+fn dots(p: &[Vec<f64>; 3], q: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
     #[cfg(target_arch = "x86_64")]
     if avx_fma() {
         // SAFETY: the CPU has the features the function is compiled for.
-        return unsafe { dots_avx(ch, cos, sin) };
+        return unsafe { dots_avx(p, q, cos, sin) };
     }
-    dots_from(ch, cos, sin, 0, [0.0; 6])
+    dots_from(p, q, cos, sin, 0, [0.0; 6])
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
-unsafe fn dots_avx(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
+unsafe fn dots_avx(p: &[Vec<f64>; 3], q: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
     use core::arch::x86_64::*;
     let n = cos.len();
-    let (r, g, b) = (&ch[0][..n], &ch[1][..n], &ch[2][..n]);
+    let (r, g, b) = (&p[0][..n], &p[1][..n], &p[2][..n]);
+    let (u, v, t) = (&q[0][..n], &q[1][..n], &q[2][..n]);
     let sin = &sin[..n];
     let body = n / 4 * 4;
     let mut out = [0.0; 6];
@@ -426,15 +473,13 @@ unsafe fn dots_avx(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
         while i < body {
             let c = _mm256_loadu_pd(cos.as_ptr().add(i));
             let s = _mm256_loadu_pd(sin.as_ptr().add(i));
-            let x = _mm256_loadu_pd(r.as_ptr().add(i));
-            let y = _mm256_loadu_pd(g.as_ptr().add(i));
-            let z = _mm256_loadu_pd(b.as_ptr().add(i));
-            acc[0] = _mm256_fmadd_pd(x, c, acc[0]);
-            acc[1] = _mm256_fmadd_pd(y, c, acc[1]);
-            acc[2] = _mm256_fmadd_pd(z, c, acc[2]);
-            acc[3] = _mm256_fmadd_pd(x, s, acc[3]);
-            acc[4] = _mm256_fmadd_pd(y, s, acc[4]);
-            acc[5] = _mm256_fmadd_pd(z, s, acc[5]);
+            let lanes = |x: &[f64]| _mm256_loadu_pd(x.as_ptr().add(i));
+            acc[0] = _mm256_fmadd_pd(lanes(r), c, acc[0]);
+            acc[1] = _mm256_fmadd_pd(lanes(g), c, acc[1]);
+            acc[2] = _mm256_fmadd_pd(lanes(b), c, acc[2]);
+            acc[3] = _mm256_fmadd_pd(lanes(u), s, acc[3]);
+            acc[4] = _mm256_fmadd_pd(lanes(v), s, acc[4]);
+            acc[5] = _mm256_fmadd_pd(lanes(t), s, acc[5]);
             i += 4;
         }
         for c in 0..6 {
@@ -443,7 +488,7 @@ unsafe fn dots_avx(ch: &[Vec<f64>; 3], cos: &[f64], sin: &[f64]) -> [f64; 6] {
             out[c] = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
         }
     }
-    dots_from(ch, cos, sin, body, out)
+    dots_from(p, q, cos, sin, body, out)
 }
 
 /// `a * b + c`, fused when the code is compiled for FMA.
@@ -456,38 +501,160 @@ fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
 /// portable code, and the tail of the vector code).
 #[inline(always)]
 fn dots_from(
-    ch: &[Vec<f64>; 3],
+    p: &[Vec<f64>; 3],
+    q: &[Vec<f64>; 3],
     cos: &[f64],
     sin: &[f64],
     start: usize,
     mut out: [f64; 6],
 ) -> [f64; 6] {
-    let n = cos.len();
-    let (r, g, b) = (&ch[0][..n], &ch[1][..n], &ch[2][..n]);
-    for i in start..n {
+    for i in start..cos.len() {
         let (c, s) = (cos[i], sin[i]);
-        out[0] += r[i] * c;
-        out[1] += g[i] * c;
-        out[2] += b[i] * c;
-        out[3] += r[i] * s;
-        out[4] += g[i] * s;
-        out[5] += b[i] * s;
+        for k in 0..3 {
+            out[k] += p[k][i] * c;
+            out[k + 3] += q[k][i] * s;
+        }
     }
     out
 }
 
-/// Everything phase 2 reads.
+/// Quarter entries per chunk of a folded row ([`fold_row`]).
+const FOLD_CHUNK: usize = 128;
+
+/// Folds entries `start..start + n` of the first quarter of a row of
+/// `W = 4Q` RGB texels, `n = min(FOLD_CHUNK, Q - start)`, so the direct sums
+/// over `m` run on `Q` entries instead of `W`.
+///
+/// Texel azimuths are `ψ_i = ±(2π (i + 1/2)/W - π)`, so the texels
+/// `a = i`, `b = W-1-i`, `c = W/2+i`, `d = W/2-1-i` (`i < Q`) sit at
+/// `ψ`, `-ψ`, `ψ + π` and `-ψ - π`, and
+///
+/// ```text
+/// sum_i f_i cos(m ψ_i) = sum_{i<Q} cos(m ψ_i) [(a + b) ± (c + d)]   (P)
+/// sum_i f_i sin(m ψ_i) = sum_{i<Q} sin(m ψ_i) [(a - b) ± (c - d)]   (Q)
+/// ```
+///
+/// with `+` for even `m` and `-` for odd. `out` receives
+/// `[P_even, P_odd, Q_even, Q_odd][channel][i - start]` in `f64`.
+fn fold_row(texels: &[[f32; 3]], start: usize, out: &mut [[Vec<f64>; 3]; 4]) {
+    #[cfg(target_arch = "x86_64")]
+    if avx_fma() {
+        // SAFETY: the CPU has the features the function is compiled for.
+        unsafe { fold_row_avx(texels, start, out) };
+        return;
+    }
+    fold_row_from(texels, start, 0, out);
+}
+
+/// [`fold_row`] with AVX: four entries at a time from four runs of four
+/// texels (two of them read backwards).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,fma")]
+unsafe fn fold_row_avx(texels: &[[f32; 3]], start: usize, out: &mut [[Vec<f64>; 3]; 4]) {
+    use core::arch::x86_64::*;
+    let q = texels.len() / 4;
+    let n = FOLD_CHUNK.min(q - start);
+    let body = n / 4 * 4;
+    let (half, w) = (2 * q, 4 * q);
+    let flat = texels.as_ptr().cast::<f32>();
+    assert!(out.iter().flatten().all(|v| v.len() >= n));
+    let [p_even, p_odd, q_even, q_odd] = &mut *out;
+    // SAFETY: for k + 3 < body <= n, i = start + k < q: the runs read are
+    // texels i..i+4, half+i..half+i+4, w-4-i..w-i and half-4-i..half-i, all
+    // inside the row of w texels; stores write lanes k..k+4 < n of buffers
+    // of length >= n (asserted).
+    unsafe {
+        let reversed = |v: __m256d| _mm256_permute_pd::<0b0101>(_mm256_permute2f128_pd::<1>(v, v));
+        let mut k = 0;
+        while k < body {
+            let i = start + k;
+            let a = rgb4(flat.add(3 * i));
+            let c = rgb4(flat.add(3 * (half + i)));
+            let b = rgb4(flat.add(3 * (w - 4 - i))).map(reversed);
+            let d = rgb4(flat.add(3 * (half - 4 - i))).map(reversed);
+            for ch in 0..3 {
+                let (s1, s2) = (_mm256_add_pd(a[ch], b[ch]), _mm256_add_pd(c[ch], d[ch]));
+                let (d1, d2) = (_mm256_sub_pd(a[ch], b[ch]), _mm256_sub_pd(c[ch], d[ch]));
+                _mm256_storeu_pd(p_even[ch].as_mut_ptr().add(k), _mm256_add_pd(s1, s2));
+                _mm256_storeu_pd(p_odd[ch].as_mut_ptr().add(k), _mm256_sub_pd(s1, s2));
+                _mm256_storeu_pd(q_even[ch].as_mut_ptr().add(k), _mm256_add_pd(d1, d2));
+                _mm256_storeu_pd(q_odd[ch].as_mut_ptr().add(k), _mm256_sub_pd(d1, d2));
+            }
+            k += 4;
+        }
+    }
+    fold_row_from(texels, start, body, out);
+}
+
+/// Four RGB texels at `flat` (12 floats) as three `f64` vectors `r, g, b`:
+/// three loads of `[f32; 4]` (`r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3`),
+/// shuffles to planar, conversion to `f64`.
+///
+/// # Safety
+/// `flat..flat + 12` must be readable; the CPU must have AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,fma")]
+#[inline]
+unsafe fn rgb4(flat: *const f32) -> [core::arch::x86_64::__m256d; 3] {
+    use core::arch::x86_64::*;
+    // SAFETY: the caller guarantees 12 readable floats.
+    let (x0, x1, x2) = unsafe {
+        (
+            _mm_loadu_ps(flat),
+            _mm_loadu_ps(flat.add(4)),
+            _mm_loadu_ps(flat.add(8)),
+        )
+    };
+    // r = [x0.0, x0.3, x1.2, x2.1]
+    let r = _mm_blend_ps::<0b1000>(
+        _mm_shuffle_ps::<0b00_10_11_00>(x0, x1),
+        _mm_shuffle_ps::<0b01_00_00_00>(x2, x2),
+    );
+    // g = [x0.1, x1.0, x1.3, x2.2]
+    let u = _mm_shuffle_ps::<0b11_00_01_01>(x0, x1);
+    let g = _mm_blend_ps::<0b1000>(
+        _mm_shuffle_ps::<0b11_11_10_00>(u, u),
+        _mm_shuffle_ps::<0b10_00_00_00>(x2, x2),
+    );
+    // b = [x0.2, x1.1, x2.0, x2.3]
+    let v = _mm_shuffle_ps::<0b01_01_10_10>(x0, x1);
+    let b = _mm_shuffle_ps::<0b11_00_10_00>(v, x2);
+    [_mm256_cvtps_pd(r), _mm256_cvtps_pd(g), _mm256_cvtps_pd(b)]
+}
+
+/// [`fold_row`] of chunk entries `from..`, one at a time (the portable
+/// code, and the tail of the vector code).
+#[inline(always)]
+fn fold_row_from(texels: &[[f32; 3]], start: usize, from: usize, out: &mut [[Vec<f64>; 3]; 4]) {
+    let q = texels.len() / 4;
+    let n = FOLD_CHUNK.min(q - start);
+    let (half, w) = (2 * q, 4 * q);
+    let [p_even, p_odd, q_even, q_odd] = out;
+    for k in from..n {
+        let i = start + k;
+        let [a, b, c, d] = [i, w - 1 - i, half + i, half - 1 - i].map(|t| texels[t]);
+        for ch in 0..3 {
+            let [a, b, c, d] = [a[ch], b[ch], c[ch], d[ch]].map(f64::from);
+            let (s1, s2, d1, d2) = (a + b, c + d, a - b, c - d);
+            p_even[ch][k] = s1 + s2;
+            p_odd[ch][k] = s1 - s2;
+            q_even[ch][k] = d1 + d2;
+            q_odd[ch][k] = d1 - d2;
+        }
+    }
+}
+
+/// Everything phase 2 reads, `[block][m]` (and `xs` per block).
 struct ColumnInput<'a> {
     leg: &'a Legendre<f64>,
     lmax: usize,
-    pairs: usize,
-    xs: &'a [f64],
-    weights: &'a [Weights],
-    sectoral: &'a [[f64; 2]],
+    xs: &'a [[f64; LANES]],
+    weights: &'a [BlockWeights],
+    starts: &'a [BlockStart],
 }
 
 /// The sums of column `m`: entry `l - m` for `l = m..=lmax`.
-fn column(input: &ColumnInput<'_>, m: usize) -> Vec<Weights> {
+fn column(input: &ColumnInput<'_>, m: usize) -> Vec<[f64; 6]> {
     #[cfg(target_arch = "x86_64")]
     if avx_fma() {
         // SAFETY: the CPU has the features the function is compiled for.
@@ -498,38 +665,37 @@ fn column(input: &ColumnInput<'_>, m: usize) -> Vec<Weights> {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
-unsafe fn column_avx(input: &ColumnInput<'_>, m: usize) -> Vec<Weights> {
+unsafe fn column_avx(input: &ColumnInput<'_>, m: usize) -> Vec<[f64; 6]> {
     column_body::<true>(input, m)
 }
 
+/// Per-degree partial sums while a column runs: `[channel][lane mod 4]`,
+/// added across lanes only at the end.
+type Partial = [[f64; 4]; 6];
+
+/// A lane at `k = -1` whose mantissa is under this is worth less than
+/// `2^-200` and is left out of the sums (lanes at `k <= -2` always are).
+const NEGLIGIBLE_MANTISSA: f64 = 2.582_249_878_086_908_6e120; // 2^400
+
 #[inline(always)]
-fn column_body<const FMA: bool>(input: &ColumnInput<'_>, m: usize) -> Vec<Weights> {
+fn column_body<const FMA: bool>(input: &ColumnInput<'_>, m: usize) -> Vec<[f64; 6]> {
     let lmax = input.lmax;
     let cols = lmax + 1;
-    let mut out = vec![[0.0; 8]; lmax - m + 1];
+    let mut acc: Vec<Partial> = vec![[[0.0; 4]; 6]; lmax - m + 1];
     let (big, small) = (f64::BIG, f64::SMALL);
     let diag = input.leg.diagonal_factor(m);
     let factors = input.leg.column_factors(m);
-    let mut start = 0;
-    while start < input.pairs {
-        let n = LANES.min(input.pairs - start);
-        let mut x = [0.0; LANES];
-        let mut p1 = [0.0; LANES];
-        let mut k = [0.0; LANES];
-        let mut we = [[0.0; 8]; LANES];
-        let mut wo = [[0.0; 8]; LANES];
-        for j in 0..n {
-            let p = start + j;
-            x[j] = input.xs[p];
-            let [v, e] = input.sectoral[p * cols + m];
-            p1[j] = v;
-            k[j] = e;
-            we[j] = input.weights[(p * cols + m) * 2];
-            wo[j] = input.weights[(p * cols + m) * 2 + 1];
-        }
-        start += n;
-        let scaled = k.iter().any(|&e| e != 0.0);
-        accumulate::<FMA>(&mut out[0], &unscale(&p1, &k, scaled), &we);
+    for (b, x) in input.xs.iter().enumerate() {
+        let w = &input.weights[b * cols + m];
+        let BlockStart {
+            value: mut p1,
+            exponent: mut k,
+        } = input.starts[b * cols + m];
+        // Blocks near the poles start far below f64's range (extended
+        // exponent); once every lane is back at `k = 0` the plain
+        // recurrence takes over.
+        let mut scaled = k.iter().any(|&e| e != 0.0);
+        add_scaled::<FMA>(&mut acc[0], &p1, &k, scaled, &w[0]);
         if m == lmax {
             continue;
         }
@@ -537,7 +703,7 @@ fn column_body<const FMA: bool>(input: &ColumnInput<'_>, m: usize) -> Vec<Weight
         for j in 0..LANES {
             p2[j] = diag * x[j] * p1[j];
         }
-        accumulate::<FMA>(&mut out[1], &unscale(&p2, &k, scaled), &wo);
+        add_scaled::<FMA>(&mut acc[1], &p2, &k, scaled, &w[1]);
         for (i, &[a, ab]) in factors.iter().enumerate() {
             let mut p3 = [0.0; LANES];
             if scaled {
@@ -548,6 +714,7 @@ fn column_body<const FMA: bool>(input: &ColumnInput<'_>, m: usize) -> Vec<Weight
                     p2[j] = if grow { p2[j] * small } else { p2[j] };
                     k[j] = if grow { k[j] + 1.0 } else { k[j] };
                 }
+                scaled = k.iter().any(|&e| e != 0.0);
             } else {
                 for j in 0..LANES {
                     p3[j] = madd::<FMA>(a * x[j], p2[j], -ab * p1[j]);
@@ -555,78 +722,83 @@ fn column_body<const FMA: bool>(input: &ColumnInput<'_>, m: usize) -> Vec<Weight
             }
             p1 = p2;
             p2 = p3;
-            let w = if i % 2 == 0 { &we } else { &wo };
-            accumulate::<FMA>(&mut out[i + 2], &unscale(&p2, &k, scaled), w);
+            add_scaled::<FMA>(&mut acc[i + 2], &p2, &k, scaled, &w[i % 2]);
         }
     }
-    out
+    acc.iter()
+        .map(|a| a.map(|v| (v[0] + v[1]) + (v[2] + v[3])))
+        .collect()
 }
 
-/// `acc += sum_j p[j] w[j]`, in four independent partial sums.
+/// [`add`] of the true values of extended-exponent lanes (see
+/// [`crate::legendre`]); nothing when every lane is negligible.
+#[inline(always)]
+fn add_scaled<const FMA: bool>(
+    acc: &mut Partial,
+    p: &[f64; LANES],
+    k: &[f64; LANES],
+    scaled: bool,
+    w: &[[f64; LANES]; 6],
+) {
+    if !scaled {
+        add::<FMA>(acc, p, w);
+        return;
+    }
+    let mut out = [0.0; LANES];
+    let mut any = false;
+    for j in 0..LANES {
+        out[j] = if k[j] == 0.0 {
+            p[j]
+        } else if k[j] == -1.0 && p[j].abs() >= NEGLIGIBLE_MANTISSA {
+            p[j] * f64::SMALL
+        } else {
+            0.0
+        };
+        any |= out[j] != 0.0;
+    }
+    if any {
+        add::<FMA>(acc, &out, w);
+    }
+}
+
+/// `acc[c][q] += sum_g p[4g + q] w[c][4g + q]`: four lanes per vector,
+/// one vector of partial sums per channel.
 ///
 /// `FMA` is true only in code compiled for AVX and FMA (`column_avx`).
 #[inline(always)]
-fn accumulate<const FMA: bool>(acc: &mut Weights, p: &[f64; LANES], w: &[Weights; LANES]) {
+fn add<const FMA: bool>(acc: &mut Partial, p: &[f64; LANES], w: &[[f64; LANES]; 6]) {
     #[cfg(target_arch = "x86_64")]
     if FMA {
         // SAFETY: FMA is only set in functions compiled for AVX and FMA,
         // which run after the runtime feature check.
-        unsafe { accumulate_avx(acc, p, w) };
+        unsafe { add_avx(acc, p, w) };
         return;
     }
-    let mut t = [[0.0; 8]; 4];
-    for j in (0..LANES).step_by(4) {
-        for q in 0..4 {
-            for c in 0..8 {
-                t[q][c] += p[j + q] * w[j + q][c];
+    for c in 0..6 {
+        for g in (0..LANES).step_by(4) {
+            for q in 0..4 {
+                acc[c][q] += p[g + q] * w[c][g + q];
             }
         }
-    }
-    for c in 0..8 {
-        acc[c] += (t[0][c] + t[1][c]) + (t[2][c] + t[3][c]);
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
 #[inline]
-unsafe fn accumulate_avx(acc: &mut Weights, p: &[f64; LANES], w: &[Weights; LANES]) {
+unsafe fn add_avx(acc: &mut Partial, p: &[f64; LANES], w: &[[f64; LANES]; 6]) {
     use core::arch::x86_64::*;
     // SAFETY: all loads and stores are within the fixed-size arrays.
     unsafe {
-        let mut lo = [_mm256_setzero_pd(); 4];
-        let mut hi = [_mm256_setzero_pd(); 4];
-        for j in (0..LANES).step_by(4) {
-            for q in 0..4 {
-                let pj = _mm256_set1_pd(p[j + q]);
-                let wp = w[j + q].as_ptr();
-                lo[q] = _mm256_fmadd_pd(pj, _mm256_loadu_pd(wp), lo[q]);
-                hi[q] = _mm256_fmadd_pd(pj, _mm256_loadu_pd(wp.add(4)), hi[q]);
+        let pv = [0, 4, 8, 12].map(|g| _mm256_loadu_pd(p.as_ptr().add(g)));
+        for c in 0..6 {
+            let a = acc[c].as_mut_ptr();
+            let wc = w[c].as_ptr();
+            let mut v = _mm256_loadu_pd(a);
+            for (g, pg) in pv.iter().enumerate() {
+                v = _mm256_fmadd_pd(*pg, _mm256_loadu_pd(wc.add(4 * g)), v);
             }
+            _mm256_storeu_pd(a, v);
         }
-        let l = _mm256_add_pd(_mm256_add_pd(lo[0], lo[1]), _mm256_add_pd(lo[2], lo[3]));
-        let h = _mm256_add_pd(_mm256_add_pd(hi[0], hi[1]), _mm256_add_pd(hi[2], hi[3]));
-        let a = acc.as_mut_ptr();
-        _mm256_storeu_pd(a, _mm256_add_pd(_mm256_loadu_pd(a), l));
-        _mm256_storeu_pd(a.add(4), _mm256_add_pd(_mm256_loadu_pd(a.add(4)), h));
     }
-}
-
-/// True values of extended-exponent lanes (see [`crate::legendre`]).
-#[inline(always)]
-fn unscale(p: &[f64; LANES], k: &[f64; LANES], scaled: bool) -> [f64; LANES] {
-    if !scaled {
-        return *p;
-    }
-    let mut out = [0.0; LANES];
-    for j in 0..LANES {
-        out[j] = if k[j] == 0.0 {
-            p[j]
-        } else if k[j] == -1.0 {
-            p[j] * f64::SMALL
-        } else {
-            0.0
-        };
-    }
-    out
 }
