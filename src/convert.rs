@@ -14,7 +14,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 
 use crate::coeff_file::CoeffFile;
-use crate::export::{self, ExportFormat, ExportInput};
+use crate::export::{self, ExportFormat};
 
 /// Arguments of `shlight convert`.
 #[derive(Args, Debug)]
@@ -61,18 +61,12 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         (None, None) => bail!("writing to stdout needs --format (or give -o FILE)"),
     };
     let file = read_any(&args.input)?;
-    let text = match format {
-        ExportFormat::Json => file.to_json_string() + "\n",
-        f => export::export(
-            &ExportInput {
-                coeffs: &file.coeffs,
-                quantity: file.quantity,
-                frame: file.frame,
-            },
-            f,
-        )
-        .with_context(|| format!("{}: exporting as {}", args.input.display(), f.name()))?,
-    };
+    let out = crate::project::format_output(&file, format)
+        .with_context(|| format!("{}: converting", args.input.display()))?;
+    for note in &out.notes {
+        eprintln!("note: {note}");
+    }
+    let text = out.text;
     match &args.output {
         Some(path) => shlight_io::write_atomically(path, |out| out.write_all(text.as_bytes()))
             .with_context(|| format!("writing {}", path.display()))?,

@@ -403,19 +403,28 @@ fn plan(args: &ProjectArgs) -> Result<Vec<Job>> {
     };
     let mut jobs = Vec::with_capacity(n);
     for input in &args.inputs {
+        // `sky_{face}.exr` writes `sky.json`: the placeholder and the
+        // separator before it leave the name.
         let stem = || {
             input
                 .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .map(|s| match s.split_once(FACE_PLACEHOLDER) {
+                    Some((head, tail)) => {
+                        format!("{}{tail}", head.trim_end_matches(['_', '-', '.', ' ']))
+                    }
+                    None => s,
+                })
                 .filter(|s| !s.is_empty())
                 .ok_or_else(|| anyhow!("{}: does not name a file", input.display()))
         };
         let output = match (out_dir, &args.output) {
-            (Some(dir), _) => Dest::File(dir.join(stem()?).with_extension(ext)),
+            (Some(dir), _) => Dest::File(dir.join(format!("{}.{ext}", stem()?))),
             (None, Some(p)) => Dest::File(p.clone()),
             (None, None) => Dest::Stdout,
         };
         let preview = match (preview_dir, &args.preview) {
-            (Some(dir), _) => Some(dir.join(stem()?).with_extension("png")),
+            (Some(dir), _) => Some(dir.join(format!("{}.png", stem()?))),
             (None, p) => p.clone(),
         };
         jobs.push(Job {
@@ -849,15 +858,25 @@ pub fn format_output(file: &CoeffFile, format: ExportFormat) -> Result<Exported>
             text: file.to_json_string() + "\n",
             notes: Vec::new(),
         }),
-        f => export::render(
-            &ExportInput {
-                coeffs: &file.coeffs,
-                quantity: file.quantity,
-                frame: file.frame,
-            },
-            f,
-        )
-        .with_context(|| format!("{}: exporting as {}", file.provenance.input, f.name())),
+        f => {
+            let mut out = export::render(
+                &ExportInput {
+                    coeffs: &file.coeffs,
+                    quantity: file.quantity,
+                    frame: file.frame,
+                },
+                f,
+            )
+            .with_context(|| format!("{}: exporting as {}", file.provenance.input, f.name()))?;
+            if file.std_error.is_some() {
+                out.notes.push(format!(
+                    "{} has no place for the Monte Carlo standard errors; they are kept only in \
+                     shlight's JSON (--format json)",
+                    f.name()
+                ));
+            }
+            Ok(out)
+        }
     }
 }
 

@@ -9,7 +9,7 @@ use crate::util::{
     assert_rows_near, coefficients, json, project_rows, s, shlight, shlight_err, shlight_ok,
     temp_dir, write_map,
 };
-use crate::util::{band1_direction, write_spot};
+use crate::util::{band1_direction, read_json, write_spot};
 
 /// An lmax-2 radiance expansion: a constant 3 and smaller terms.
 fn rows() -> Vec<[f64; 3]> {
@@ -127,6 +127,12 @@ fn orientation_is_pinned_for_crosses_faces_and_angular_maps() {
     assert_rows_near(&faces, &y_up, 1e-9, "six faces = cross");
     let out = json(&shlight(&["project", s(&pattern), "--layout", "faces"]));
     assert_rows_near(&coefficients(&out), &y_up, 1e-9, "--layout faces");
+    // In a batch, the six faces write one file named without the placeholder.
+    let batch = dir.join("batch");
+    shlight(&["project", s(&pattern), s(&cross), "-o", s(&batch), "-q"]);
+    let from_faces = coefficients(&read_json(&batch.join("sky.json")));
+    assert_rows_near(&from_faces, &y_up, 1e-9, "batch of faces");
+    assert!(batch.join("cross.json").is_file());
 
     // The centre texel of an angular map looks along -Z.
     let angular = dir.join("angular.exr");

@@ -149,6 +149,14 @@ fn the_default_sampler_is_sobol_and_the_file_shows_the_errors() {
         table.contains("montecarlo, 65536 samples") && table.contains("std error"),
         "{table}"
     );
+    // Engine formats cannot hold the errors: converting says so.
+    let probe = dir.join("probe.json");
+    let conv = shlight_ok(&["convert", s(&out), "-o", s(&probe), "--format", "threejs"]);
+    let note = String::from_utf8_lossy(&conv.stderr);
+    assert!(
+        note.contains("threejs has no place for the Monte Carlo standard errors"),
+        "{note}"
+    );
     // Quadrature files carry no errors and no Monte Carlo provenance.
     let q = json(&shlight(&["project", s(&map)]));
     assert!(q["statistics"].get("std_error").is_none(), "{q}");

@@ -144,16 +144,6 @@ pub struct Exported {
     pub notes: Vec<String>,
 }
 
-/// Renders `input` in `format` (not `Json`, which the coefficient file
-/// writes), printing the exporter's notes to stderr as `note: ...`.
-pub fn export(input: &ExportInput<'_>, format: ExportFormat) -> Result<String> {
-    let out = render(input, format)?;
-    for note in &out.notes {
-        eprintln!("note: {note}");
-    }
-    Ok(out.text)
-}
-
 /// Renders `input` in `format` and returns the text and the notes.
 pub fn render(input: &ExportInput<'_>, format: ExportFormat) -> Result<Exported> {
     check_finite(input.coeffs)?;
