@@ -82,6 +82,7 @@ pub mod legendre;
 pub mod montecarlo;
 pub mod projection;
 pub mod quadrature;
+pub mod quarter_turn;
 mod real;
 mod ring_transform;
 pub mod rotation;

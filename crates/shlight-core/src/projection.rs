@@ -111,7 +111,8 @@ pub fn equirect_row_solid_angle(j: usize, w: usize, h: usize) -> f64 {
 /// vectorised and parallel with the `rayon` feature. Any lmax works (the
 /// Legendre values carry an extended exponent); cost is
 /// `O(W H min(lmax, log W) + H lmax^2)`. A y-up map's coefficients are then
-/// rotated from the map's z-up pole, `O(lmax^3)` (noticeable past lmax ~100).
+/// rotated from the map's z-up pole by a quarter turn about X
+/// ([`crate::quarter_turn`], `O(lmax^3)` with a small constant).
 ///
 /// Panics if `pixels.len() != width * height`.
 #[must_use]
@@ -132,7 +133,8 @@ pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -
 fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {
     match frame {
         Frame::ZUp => zup,
-        frame => crate::rotation::rotate_once(&zup, Frame::ZUp.rotation_to(frame)),
+        // z-up -> y-up is Rx(-90°) (`Frame::rotation_to`).
+        Frame::YUp => crate::quarter_turn::quarter_turn_x(&zup, -1),
     }
 }
 
