@@ -19,7 +19,7 @@
 //! (`O(h)`, tiny next to the kink's own small weight there).
 //!
 //! Normals are processed in parallel with the `rayon` feature, each summed
-//! over the texels in four `f64` lanes (which the compiler vectorises).
+//! over the texels in eight `f64` lanes (which the compiler vectorises).
 
 use glam::DVec3;
 
@@ -87,22 +87,27 @@ impl TexelSet {
     /// `E(n) = Σ_k (L_k Ω_k) max(n · d_k, 0)` for one normal `n` (unit).
     #[must_use]
     pub fn irradiance(&self, n: DVec3) -> DVec3 {
-        const LANES: usize = 4;
-        let mut acc = [[0.0f64; LANES]; 3];
-        let len = self.len();
-        let whole = len - len % LANES;
+        const LANES: usize = 8;
         let [r, g, b] = &self.weighted;
-        for k in (0..whole).step_by(LANES) {
+        let mut acc = [[0.0f64; LANES]; 3];
+        let chunks = self
+            .x
+            .chunks_exact(LANES)
+            .zip(self.y.chunks_exact(LANES))
+            .zip(self.z.chunks_exact(LANES))
+            .zip(r.chunks_exact(LANES))
+            .zip(g.chunks_exact(LANES))
+            .zip(b.chunks_exact(LANES));
+        for (((((x, y), z), r), g), b) in chunks {
             for i in 0..LANES {
-                let j = k + i;
-                let c = (n.x * self.x[j] + n.y * self.y[j] + n.z * self.z[j]).max(0.0);
-                acc[0][i] += c * r[j];
-                acc[1][i] += c * g[j];
-                acc[2][i] += c * b[j];
+                let c = (n.x * x[i] + n.y * y[i] + n.z * z[i]).max(0.0);
+                acc[0][i] += c * r[i];
+                acc[1][i] += c * g[i];
+                acc[2][i] += c * b[i];
             }
         }
         let mut e = acc.map(|lanes| lanes.iter().sum::<f64>());
-        for j in whole..len {
+        for j in self.len() - self.len() % LANES..self.len() {
             let c = (n.x * self.x[j] + n.y * self.y[j] + n.z * self.z[j]).max(0.0);
             e[0] += c * r[j];
             e[1] += c * g[j];
@@ -116,7 +121,11 @@ impl TexelSet {
     /// finished since its last call (from any thread), so a progress bar
     /// can advance by it.
     #[must_use]
-    pub fn irradiance_at(&self, normals: &[DVec3], progress: &(dyn Fn(usize) + Sync)) -> Vec<DVec3> {
+    pub fn irradiance_at(
+        &self,
+        normals: &[DVec3],
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Vec<DVec3> {
         let mut out = vec![DVec3::ZERO; normals.len()];
         let task = |(dst, src): (&mut [DVec3], &[DVec3])| {
             for (e, n) in dst.iter_mut().zip(src) {
@@ -180,10 +189,7 @@ mod tests {
     #[test]
     fn hemisphere_matches_the_closed_form_and_converges_as_h_squared() {
         let o = MapOrientation::default();
-        let normals: Vec<DVec3> = fibonacci_sphere(500)
-            .into_iter()
-            .map(DVec3::from)
-            .collect();
+        let normals: Vec<DVec3> = fibonacci_sphere(500).into_iter().map(DVec3::from).collect();
         let mut errors = Vec::new();
         for (w, h) in [(64, 32), (128, 64), (256, 128)] {
             let px = render_map(Layout::Equirect, o, w, h, |d| {
@@ -195,7 +201,11 @@ mod tests {
             let e = irradiance_brute_force(&map, &normals, &|k| {
                 done.fetch_add(k, std::sync::atomic::Ordering::Relaxed);
             });
-            assert_eq!(done.into_inner(), normals.len(), "progress counts every normal");
+            assert_eq!(
+                done.into_inner(),
+                normals.len(),
+                "progress counts every normal"
+            );
             let worst = normals
                 .iter()
                 .zip(&e)
