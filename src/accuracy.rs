@@ -73,8 +73,8 @@ pub fn table(report: &Report) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<13} {:<20} {:>10} {:>4} {:>9} {:>9} {:>9} {:>6}  {}",
-        "case", "method", "res/N", "lmax", "mean", "max", "bound", "slope", "pass"
+        "{:<13} {:<20} {:>10} {:>4} {:>9} {:>9} {:>9} {:>6}  pass",
+        "case", "method", "res/N", "lmax", "mean", "max", "bound", "slope"
     );
     for r in &report.rows {
         let _ = writeln!(
