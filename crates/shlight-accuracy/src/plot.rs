@@ -248,6 +248,9 @@ pub fn write_svg(path: &Path, svg: &str) -> Result<(), IoError> {
     write_atomically(path, |w| w.write_all(svg.as_bytes()))
 }
 
+/// Size of the error maps [`write_pictures`] writes (2:1 equirect).
+pub const ERROR_MAP_SIZE: (usize, usize) = (360, 180);
+
 /// Oracles whose 9-term (lmax 2) truncation error [`write_pictures`] maps.
 pub const MAPPED_ORACLES: [&str; 3] = ["directional", "cap30-el10", "quad-horizon"];
 
@@ -261,7 +264,7 @@ pub const MAPPED_ORACLES: [&str; 3] = ["directional", "cap30-el10", "quad-horizo
 /// - `accuracy-lmax-CASE.svg`: truncation and projection error against
 ///   lmax ([`lmax_plot`]);
 /// - `error-CASE-lmax2.png`: the 9-term irradiance's truncation error
-///   `|E_2(n) - E(n)| / E_peak` over the sphere (512x256 y-up equirect, with
+///   `|E_2(n) - E(n)| / E_peak` over the sphere (360x180 y-up equirect, with
 ///   its colour scale), for [`MAPPED_ORACLES`].
 ///
 /// # Errors
@@ -303,7 +306,7 @@ pub fn write_pictures(report: &Report, dir: &Path) -> Result<Vec<std::path::Path
             .iter()
             .map(|n| oracle.irradiance(*n).abs())
             .fold(0.0, f64::max);
-        let (image, _) = error_map(512, 256, None, |d| {
+        let (image, _) = error_map(ERROR_MAP_SIZE.0, ERROR_MAP_SIZE.1, None, |d| {
             (t.eval(d) - oracle.irradiance(d)).abs() / peak
         });
         let path = dir.join(format!("error-{}-lmax2.png", oracle.name));
