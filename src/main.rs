@@ -4,9 +4,11 @@
 //! messages and exit codes; all mathematics lives in `shlight-core` and all
 //! file formats in `shlight-io`.
 
+mod accuracy;
 mod coeff_file;
 mod convert;
 mod export;
+mod irradiance;
 mod preview;
 mod progress;
 mod project;
@@ -39,6 +41,11 @@ enum Command {
     Synth(synth::SynthArgs),
     /// Convert a coefficient file to an engine's format, or back.
     Convert(convert::ConvertArgs),
+    /// Irradiance of an environment map by brute force (every texel), and
+    /// its SH version with --sh.
+    Irradiance(irradiance::IrradianceArgs),
+    /// Accuracy of SH irradiance against analytic lights: table, JSON, pictures.
+    Accuracy(accuracy::AccuracyArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -55,6 +62,8 @@ fn main() -> ExitCode {
         Command::Synth(args) => synth::run(&args, &ui),
         Command::Show { file } => coeff_file::show(&file),
         Command::Convert(args) => convert::run(&args),
+        Command::Irradiance(args) => irradiance::run(&args, &ui),
+        Command::Accuracy(args) => accuracy::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

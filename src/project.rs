@@ -134,7 +134,7 @@ pub enum InputLayout {
 }
 
 /// `--layout NAME`.
-fn parse_input_layout(s: &str) -> std::result::Result<InputLayout, String> {
+pub fn parse_input_layout(s: &str) -> std::result::Result<InputLayout, String> {
     match s.trim() {
         "auto" => Ok(InputLayout::Auto),
         "faces" => Ok(InputLayout::Faces),
@@ -497,7 +497,8 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     let args = s.args;
     let name = job.input.display().to_string();
     bar.set_message(format!("reading {name}"));
-    let (image, layout, stats, sanitized) = load(&job.input, s, ui)?;
+    let (image, layout, stats, sanitized) =
+        load(&job.input, s.args.layout, &s.read, s.args.sanitize, ui)?;
 
     bar.set_message(format!(
         "projecting {name} ({}x{}, lmax {})",
@@ -649,17 +650,17 @@ fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
 /// `--sanitize` replaced, see [`Image::sanitize`]), negatives are kept with
 /// a warning (or replaced). Returns the image, its layout, the statistics
 /// of the values as read, and what was replaced.
-fn load(
+pub fn load(
     path: &Path,
-    s: &Settings<'_>,
+    input_layout: InputLayout,
+    read: &ReadOptions,
+    sanitize: bool,
     ui: &Ui,
 ) -> Result<(Image, Layout, PixelStats, Option<SanitizeCounts>)> {
     let name = path.display();
     let faces = is_faces(path);
-    let (mut image, layout) = match (faces, s.args.layout) {
-        (true, InputLayout::Auto | InputLayout::Faces) => {
-            (read_faces(path, &s.read)?, Layout::Strip)
-        }
+    let (mut image, layout) = match (faces, input_layout) {
+        (true, InputLayout::Auto | InputLayout::Faces) => (read_faces(path, read)?, Layout::Strip),
         (true, InputLayout::Image(l)) => bail!(
             "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
         ),
@@ -667,7 +668,7 @@ fn load(
             "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
         ),
         (false, InputLayout::Auto) => {
-            let image = read_image(path, &s.read)?;
+            let image = read_image(path, read)?;
             let (w, h) = (image.width(), image.height());
             let Some(layout) = Layout::detect(w, h) else {
                 bail!(
@@ -677,7 +678,7 @@ fn load(
             (image, layout)
         }
         (false, InputLayout::Image(layout)) => {
-            let image = read_image(path, &s.read)?;
+            let image = read_image(path, read)?;
             if let Err(e) = layout.check_size(image.width(), image.height()) {
                 bail!("{name}: {e}");
             }
@@ -685,7 +686,7 @@ fn load(
         }
     };
     let stats = image.stats();
-    if s.args.sanitize {
+    if sanitize {
         let counts = SanitizeCounts::from(image.sanitize());
         if counts.total() > 0 {
             ui.warn(format!(

@@ -1,5 +1,6 @@
 //! End-to-end tests of the `shlight` binary: one test binary, a module per topic.
 
+mod accuracy;
 mod batch;
 mod export;
 mod layouts_cli;

@@ -22,6 +22,8 @@
 //!   (FFT rows, vectorised Legendre sums) to any lmax.
 //! - [`montecarlo`]: the Monte Carlo estimator (uniform, stratified, Sobol,
 //!   luminance importance sampling) with standard errors.
+//! - [`irradiance_map`]: brute-force irradiance of a map (every texel,
+//!   cosine-weighted), the ground truth for SH irradiance.
 //! - [`analytic`]: closed-form projections of lights (directional, cosine
 //!   lobe, cap, constant, linear gradient), the test oracles.
 //!
@@ -77,6 +79,7 @@ pub mod basis;
 pub mod coeffs;
 pub mod hardcoded;
 pub mod index;
+pub mod irradiance_map;
 pub mod layout;
 pub mod legendre;
 pub mod montecarlo;

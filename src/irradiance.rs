@@ -1,0 +1,189 @@
+//! `shlight irradiance`: the exact irradiance map of an environment, the
+//! ground truth to compare SH against.
+//!
+//! Every texel of the output (an equirect map of `--size`, in the input's
+//! frame) gets `E(n) = Σ L_k max(n · d_k, 0) Ω_k` over **every** texel `k`
+//! of the input, for `n` the output texel's centre direction
+//! (`shlight_core::irradiance_map`): `O(input × output)` work, in parallel,
+//! with a progress bar. `--sh LMAX` also writes the SH irradiance of the
+//! same map (quadrature projection to LMAX, `E_l^m = A_l L_l^m`) as
+//! `OUT-sh.EXT` and the difference SH minus exact as `OUT-diff.EXT`, and
+//! prints the relative error of the SH irradiance's luminance over the
+//! sphere (area-weighted mean, and maximum): pointwise `|ΔE| / E(n)` and,
+//! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
+use glam::DVec3;
+use shlight_accuracy::error::ErrorStats;
+use shlight_core::irradiance;
+use shlight_core::irradiance_map::TexelSet;
+use shlight_core::layout::{self, EnvMap};
+use shlight_core::montecarlo::luminance;
+use shlight_core::projection::MapOrientation;
+use shlight_core::rotation::Frame;
+use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
+
+use crate::progress::Ui;
+use crate::project::{InputLayout, load, parse_input_layout, refuse_overwriting};
+use crate::texels::{LayoutArg, TexelGrid, parse_size};
+
+/// Arguments of `shlight irradiance`.
+#[derive(Args, Debug)]
+pub struct IrradianceArgs {
+    /// The environment map (OpenEXR, Radiance .hdr, PNG, JPEG), any layout.
+    pub input: PathBuf,
+    /// The irradiance map to write (equirect, the input's frame): .exr,
+    /// .hdr or .png.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Output size WIDTHxHEIGHT (2:1). Work grows with input × output texels.
+    #[arg(long, default_value = "256x128", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// Also write the SH irradiance to this lmax (OUT-sh.EXT) and SH minus
+    /// exact (OUT-diff.EXT), and print the relative error.
+    #[arg(long, value_name = "LMAX")]
+    pub sh: Option<usize>,
+    /// Layout of the input (as for `shlight project`): auto, equirect,
+    /// cross-h, cross-v, strip, angular, mirror-ball, faces.
+    #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
+    pub layout: InputLayout,
+    /// Which world axis the top row of the map faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Read a map made for the mirrored pbrt / google mapping.
+    #[arg(long)]
+    pub mirror: bool,
+    /// Replace NaN/inf and negative texels (as `shlight project --sanitize`).
+    #[arg(long)]
+    pub sanitize: bool,
+    /// Refuse inputs with more pixels than this (judged from the header).
+    #[arg(long, default_value_t = ReadOptions::DEFAULT_MAX_PIXELS)]
+    pub max_pixels: usize,
+}
+
+/// `OUT` with `suffix` added to its stem: `dir/name-sh.exr`.
+fn beside(out: &Path, suffix: &str) -> PathBuf {
+    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
+    let name = match out.extension() {
+        Some(ext) => format!("{stem}{suffix}.{}", ext.to_string_lossy()),
+        None => format!("{stem}{suffix}"),
+    };
+    out.with_file_name(name)
+}
+
+/// Runs `shlight irradiance`.
+pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
+    let name = args.input.display().to_string();
+    let (w, h) = args.size;
+    LayoutArg::Equirect
+        .check_size(w, h)
+        .map_err(|e| anyhow!("--size: {e}"))?;
+    let outputs: Vec<PathBuf> = match args.sh {
+        None => vec![args.output.clone()],
+        Some(_) => vec![
+            args.output.clone(),
+            beside(&args.output, "-sh"),
+            beside(&args.output, "-diff"),
+        ],
+    };
+    for out in &outputs {
+        refuse_overwriting(out, std::slice::from_ref(&args.input))?;
+    }
+    let orientation = MapOrientation {
+        frame: if args.up == "z" {
+            Frame::ZUp
+        } else {
+            Frame::YUp
+        },
+        mirror: args.mirror,
+    };
+    let read = ReadOptions {
+        layer: None,
+        max_pixels: args.max_pixels,
+    };
+    let (image, layout, _, _) = load(&args.input, args.layout, &read, args.sanitize, ui)?;
+    let map = EnvMap::new(
+        layout,
+        orientation,
+        image.width(),
+        image.height(),
+        image.pixels(),
+    )
+    .map_err(|e| anyhow!("{name}: {e}"))?;
+    let grid = TexelGrid::new(LayoutArg::Equirect, (w, h), orientation)?;
+    let normals: Vec<DVec3> = (0..w * h)
+        .map(|k| {
+            grid.direction(k % w, k / w)
+                .expect("equirect texels all look somewhere")
+        })
+        .collect();
+
+    let bar = ui.bar(normals.len() as u64, "irradiance");
+    let texels = TexelSet::from_map(&map);
+    let exact = texels.irradiance_at(&normals, &|n| bar.inc(n as u64));
+    bar.finish_and_clear();
+    let to_image = |values: &[DVec3]| {
+        Image::new(
+            w,
+            h,
+            values.iter().map(|v| v.as_vec3().to_array()).collect(),
+        )
+        .expect("w * h values")
+    };
+    let write = |path: &Path, values: &[DVec3]| {
+        write_image(path, &to_image(values), &WriteOptions::default())
+            .with_context(|| format!("{name}: writing"))
+    };
+    write(&args.output, &exact)?;
+
+    let Some(lmax) = args.sh else {
+        return Ok(());
+    };
+    let e_sh = irradiance(&layout::project_map(&map, lmax));
+    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(n.to_array())).collect();
+    let diff: Vec<DVec3> = sh.iter().zip(&exact).map(|(s, e)| *s - *e).collect();
+    write(&outputs[1], &sh)?;
+    write(&outputs[2], &diff)?;
+
+    let reference: Vec<f64> = exact.iter().map(|e| luminance(*e)).collect();
+    let estimate: Vec<f64> = sh.iter().map(|e| luminance(*e)).collect();
+    let weights: Vec<f64> = (0..w * h).map(|k| grid.solid_angle(k % w, k / w)).collect();
+    let peak = reference.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    if peak <= 0.0 {
+        bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
+    }
+    let abs: Vec<f64> = estimate
+        .iter()
+        .zip(&reference)
+        .map(|(s, e)| (s - e).abs())
+        .collect();
+    let of_peak: Vec<f64> = abs.iter().map(|d| d / peak).collect();
+    // Pointwise, with E below 1e-3 of its peak counted as 1e-3 of the peak.
+    let pointwise: Vec<f64> = abs
+        .iter()
+        .zip(&reference)
+        .map(|(d, e)| d / e.abs().max(1e-3 * peak))
+        .collect();
+    let p = ErrorStats::weighted(&pointwise, &weights);
+    let q = ErrorStats::weighted(&of_peak, &weights);
+    println!(
+        "{name}: SH irradiance (lmax {lmax}) against brute force over {} normals ({}x{} texels of input):",
+        normals.len(),
+        image.width(),
+        image.height()
+    );
+    println!(
+        "  relative to E(n):   mean {:.3}%  max {:.3}%",
+        100.0 * p.mean,
+        100.0 * p.max
+    );
+    println!(
+        "  relative to max E:  mean {:.3}%  max {:.3}%",
+        100.0 * q.mean,
+        100.0 * q.max
+    );
+    Ok(())
+}
