@@ -6,13 +6,16 @@
 
 mod coeff_file;
 mod convert;
+mod environment;
 mod export;
 mod preview;
 mod progress;
 mod project;
 mod render;
+mod render_mesh;
 mod synth;
 mod texels;
+mod view;
 
 use std::process::ExitCode;
 
@@ -39,6 +42,10 @@ enum Command {
     Synth(synth::SynthArgs),
     /// Convert a coefficient file to an engine's format, or back.
     Convert(convert::ConvertArgs),
+    /// Render a mesh lit by SH coefficients on the GPU, without a window.
+    RenderMesh(render_mesh::RenderMeshArgs),
+    /// Show a mesh lit by SH coefficients in a window (GPU).
+    View(view::ViewArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -55,6 +62,8 @@ fn main() -> ExitCode {
         Command::Synth(args) => synth::run(&args, &ui),
         Command::Show { file } => coeff_file::show(&file),
         Command::Convert(args) => convert::run(&args),
+        Command::RenderMesh(args) => render_mesh::run(&args, &ui),
+        Command::View(args) => view::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

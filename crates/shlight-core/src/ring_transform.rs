@@ -142,7 +142,13 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
         sectoral: &sectoral,
     };
     // Long columns (small m) and short ones interleaved for load balance.
-    let order = |i: usize| if i % 2 == 0 { i / 2 } else { lmax - i / 2 };
+    let order = |i: usize| {
+        if i.is_multiple_of(2) {
+            i / 2
+        } else {
+            lmax - i / 2
+        }
+    };
     #[cfg(feature = "rayon")]
     let sums: Vec<(usize, Vec<Weights>)> = {
         use rayon::prelude::*;
