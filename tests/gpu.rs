@@ -22,7 +22,7 @@ fn have_gpu(test: &str) -> bool {
         Ok(_) => true,
         Err(e) if required() => panic!("{test}: SHLIGHT_REQUIRE_GPU=1 but {e}"),
         Err(e) => {
-            eprintln!("SKIPPED {test}: {e}");
+            skipped(test, &e.to_string());
             false
         }
     }
@@ -361,7 +361,7 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
             !required(),
             "{test}: SHLIGHT_REQUIRE_GPU=1 but Xvfb cannot be started"
         );
-        eprintln!("SKIPPED {test}: no Xvfb (apt install xvfb)");
+        skipped(test, "no Xvfb (apt install xvfb)");
         return;
     };
     let dir = temp_dir("gpu_view");
@@ -429,4 +429,11 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     // The overlay panel, at the top left, changes what is there.
     let d = (mean(&with_panel, 20, 20, 40) - mean(&bare, 20, 20, 40)).abs();
     assert!(d > 0.01, "the panel shows ({d})");
+}
+
+/// Prints a SKIPPED line straight to stderr (past the test harness's output
+/// capture, so it shows in a normal `cargo test` run).
+fn skipped(test: &str, why: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
 }

@@ -47,7 +47,7 @@ pub enum Background {
     /// Nothing: the clear colour 0.
     #[default]
     None,
-    /// The environment map itself (nearest texel).
+    /// The environment map itself (bilinear; columns wrap, rows clamp).
     Map,
     /// The windowed SH reconstruction of the light to the frame's lmax.
     Sh,

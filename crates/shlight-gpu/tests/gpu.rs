@@ -23,7 +23,7 @@ fn context(test: &str) -> Option<GpuContext> {
             panic!("{test}: SHLIGHT_REQUIRE_GPU=1 but {e}")
         }
         Err(e) => {
-            eprintln!("SKIPPED {test}: {e}");
+            skipped(test, &e.to_string());
             None
         }
     }
@@ -407,4 +407,97 @@ fn transfer_shape_and_mode_errors_are_reported() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("PRT mode needs transfer"), "{err}");
+}
+
+/// The background at the centre pixel of an odd-sized frame, whose ray is
+/// exactly the view direction.
+fn centre_background(
+    ctx: &GpuContext,
+    renderer: &Renderer,
+    towards: Vec3,
+    shading: &Shading,
+) -> [f32; 4] {
+    let camera = Camera::looking_at(Vec3::ZERO, towards, 1.0, 0.5);
+    let frame = render_frame(ctx, renderer, &camera, shading, 33, 33).unwrap();
+    frame.pixels[16 * 33 + 16]
+}
+
+#[test]
+fn the_background_shows_the_map_and_its_sh_reconstruction_turned_with_the_light() {
+    let Some(ctx) =
+        context("the_background_shows_the_map_and_its_sh_reconstruction_turned_with_the_light")
+    else {
+        return;
+    };
+    // Each texel holds its own (x, y) index, so a lookup says where it read.
+    let (w, h) = (64, 32);
+    let pixels: Vec<[f32; 3]> = (0..w * h)
+        .map(|k| [(k % w) as f32, (k / w) as f32, 1.0])
+        .collect();
+    let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
+    let light = test_light();
+    renderer.set_light(&ctx, &light);
+    let map = Shading {
+        background: shlight_gpu::Background::Map,
+        ..Default::default()
+    };
+    // +X is the map's centre (u = v = 1/2): halfway between columns 31 and
+    // 32 and rows 15 and 16. -Z is u = 1/4: column 15.5.
+    for (frame, towards, want) in [
+        (Frame::YUp, Vec3::X, [31.5, 15.5]),
+        (Frame::YUp, Vec3::NEG_Z, [15.5, 15.5]),
+        // z-up: d = (sin t cos p, -sin t sin p, cos t), so +Y faces u = 1/4.
+        (Frame::ZUp, Vec3::Y, [15.5, 15.5]),
+    ] {
+        renderer.set_environment(
+            &ctx,
+            w,
+            h,
+            &pixels,
+            MapOrientation {
+                frame,
+                mirror: false,
+            },
+        );
+        let got = centre_background(&ctx, &renderer, towards, &map);
+        assert!(
+            (got[0] - want[0]).abs() < 1e-3 && (got[1] - want[1]).abs() < 1e-3,
+            "{frame:?} {towards}: {got:?}"
+        );
+    }
+    // Turning the light by a quarter turn about +Y carries what was at +X
+    // to R(+X) = -Z: looking at -Z shows the map's centre.
+    renderer.set_environment(&ctx, w, h, &pixels, MapOrientation::default());
+    let r = glam::DMat3::from_rotation_y(std::f64::consts::FRAC_PI_2);
+    assert!((r * DVec3::X - DVec3::NEG_Z).length() < 1e-12);
+    renderer.set_environment_rotation(r);
+    let got = centre_background(&ctx, &renderer, Vec3::NEG_Z, &map);
+    assert!(
+        (got[0] - 31.5).abs() < 1e-3 && (got[1] - 15.5).abs() < 1e-3,
+        "rotated: {got:?}"
+    );
+    // The SH background is the windowed radiance expansion at the ray.
+    let window = Window::Lanczos { w: 5.0 };
+    let shading = Shading {
+        background: shlight_gpu::Background::Sh,
+        lmax: 4,
+        window,
+        ..Default::default()
+    };
+    let d = DVec3::new(0.3, -0.5, 0.8).normalize();
+    let got = centre_background(&ctx, &renderer, d.as_vec3(), &shading);
+    let want = window.apply(&light.resized(4)).eval(d.to_array());
+    for k in 0..3 {
+        assert!(
+            (f64::from(got[k]) - want[k]).abs() <= 1e-4 * want[k].abs(),
+            "{got:?} vs {want}"
+        );
+    }
+}
+
+/// Prints a SKIPPED line straight to stderr (past the test harness's output
+/// capture, so it shows in a normal `cargo test` run).
+fn skipped(test: &str, why: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
 }
