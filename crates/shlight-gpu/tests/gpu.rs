@@ -501,3 +501,51 @@ fn skipped(test: &str, why: &str) {
     use std::io::Write as _;
     let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
 }
+
+/// The shader's exposure and tone maps are shlight-io's curves: a frame
+/// tone mapped on the GPU equals the linear frame mapped on the CPU.
+#[test]
+fn exposure_and_tone_maps_follow_shlight_io() {
+    let Some(ctx) = context("exposure_and_tone_maps_follow_shlight_io") else {
+        return;
+    };
+    let mesh = uv_sphere(1.0, 32, 16);
+    let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
+    renderer.set_mesh(&ctx, &mesh);
+    renderer.set_light(&ctx, &test_light());
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, 1.0);
+    let linear = render_frame(
+        &ctx,
+        &renderer,
+        &camera,
+        &Shading {
+            lmax: 4,
+            ..Default::default()
+        },
+        32,
+        32,
+    )
+    .unwrap();
+    for tone_map in shlight_io::ToneMap::ALL {
+        let shading = Shading {
+            lmax: 4,
+            exposure_ev: -1.5,
+            tone_map: Some(tone_map),
+            ..Default::default()
+        };
+        let mapped = render_frame(&ctx, &renderer, &camera, &shading, 32, 32).unwrap();
+        for (l, m) in linear.pixels.iter().zip(&mapped.pixels) {
+            if l[3] == 0.0 {
+                continue;
+            }
+            for k in 0..3 {
+                let want = tone_map.apply(l[k] * 2f32.powf(-1.5));
+                assert!(
+                    (m[k] - want).abs() <= 1e-5,
+                    "{tone_map}: {} vs {want}",
+                    m[k]
+                );
+            }
+        }
+    }
+}
