@@ -7,14 +7,17 @@
 mod accuracy;
 mod coeff_file;
 mod convert;
+mod environment;
 mod export;
 mod irradiance;
 mod preview;
 mod progress;
 mod project;
 mod render;
+mod render_mesh;
 mod synth;
 mod texels;
+mod view;
 
 use std::process::ExitCode;
 
@@ -46,6 +49,10 @@ enum Command {
     Irradiance(irradiance::IrradianceArgs),
     /// Accuracy of SH irradiance against analytic lights: table, JSON, pictures.
     Accuracy(accuracy::AccuracyArgs),
+    /// Render a mesh lit by SH coefficients on the GPU, without a window.
+    RenderMesh(render_mesh::RenderMeshArgs),
+    /// Show a mesh lit by SH coefficients in a window (GPU).
+    View(view::ViewArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -64,6 +71,8 @@ fn main() -> ExitCode {
         Command::Convert(args) => convert::run(&args),
         Command::Irradiance(args) => irradiance::run(&args, &ui),
         Command::Accuracy(args) => accuracy::run(&args, &ui),
+        Command::RenderMesh(args) => render_mesh::run(&args, &ui),
+        Command::View(args) => view::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -87,6 +87,10 @@ pub struct ProjectArgs {
     /// then Y, then Z). A light from a comes from R a afterwards.
     #[arg(long, allow_hyphen_values = true)]
     pub rotate: Option<String>,
+    /// Project on the GPU (equirect maps, quadrature, lmax up to 8): the
+    /// same sums in f32 by a compute shader, within 1e-4 of the CPU.
+    #[arg(long)]
+    pub gpu: bool,
     /// Replace NaN and -inf with 0, +inf with the largest finite value, and
     /// negatives with 0, instead of refusing NaN/inf and keeping negatives.
     #[arg(long)]
@@ -241,6 +245,8 @@ struct Settings<'a> {
     preview: PreviewOptions,
     /// Monte Carlo options (`--method montecarlo`).
     montecarlo: Option<McOptions>,
+    /// The device and pipelines of `--gpu`.
+    gpu: Option<(shlight_gpu::GpuContext, shlight_gpu::GpuProjector)>,
 }
 
 impl<'a> Settings<'a> {
@@ -293,6 +299,23 @@ impl<'a> Settings<'a> {
                 None
             }
         };
+        let gpu = if args.gpu {
+            if montecarlo.is_some() {
+                bail!("--gpu computes the quadrature; it does not apply to --method montecarlo");
+            }
+            if args.lmax > shlight_gpu::MAX_LMAX {
+                bail!(
+                    "--gpu projects to lmax {} at most (asked: {})",
+                    shlight_gpu::MAX_LMAX,
+                    args.lmax
+                );
+            }
+            let ctx = shlight_gpu::GpuContext::headless().context("--gpu")?;
+            let projector = shlight_gpu::GpuProjector::new(&ctx);
+            Some((ctx, projector))
+        } else {
+            None
+        };
         if args.preview.is_some() {
             LayoutArg::Equirect
                 .check_size(args.preview_size.0, args.preview_size.1)
@@ -316,6 +339,7 @@ impl<'a> Settings<'a> {
                 tone_map: args.preview_tone_map,
             },
             montecarlo,
+            gpu,
         })
     }
 }
@@ -756,15 +780,35 @@ fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Projec
     let (width, height, pixels) = (image.width(), image.height(), image.pixels());
     let map =
         EnvMap::new(layout, s.orientation, width, height, pixels).map_err(|e| anyhow!("{e}"))?;
-    Ok(match &s.montecarlo {
-        None => Projection {
+    Ok(match (&s.montecarlo, &s.gpu) {
+        (None, Some((ctx, projector))) => {
+            if layout != Layout::Equirect {
+                bail!(
+                    "--gpu projects equirect maps; this one is {}",
+                    layout.name()
+                );
+            }
+            let view = shlight_core::projection::EquirectView {
+                width,
+                height,
+                pixels,
+            };
+            Projection {
+                coeffs: projector.project(ctx, view, s.args.lmax, s.orientation)?,
+                std_error: None,
+                samples: None,
+                seed: None,
+                sampler: None,
+            }
+        }
+        (None, None) => Projection {
             coeffs: layout::project_map(&map, s.args.lmax),
             std_error: None,
             samples: None,
             seed: None,
             sampler: None,
         },
-        Some(options) => {
+        (Some(options), _) => {
             let grid = (options.sampler == Sampler::Importance).then(|| match layout {
                 Layout::Equirect => {
                     ImportanceGrid::from_equirect(width, height, pixels, s.orientation)

@@ -3,9 +3,11 @@
 mod accuracy;
 mod batch;
 mod export;
+mod gpu;
 mod layouts_cli;
 mod montecarlo_cli;
 mod project;
 mod render;
+mod shaders;
 mod synth;
 mod util;

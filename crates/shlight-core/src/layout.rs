@@ -275,7 +275,7 @@ impl Layout {
             Layout::Angular | Layout::MirrorBall => width == height,
             cube => {
                 let (c, r) = cube.cube_grid().unwrap_or((1, 1));
-                width % c == 0 && height % r == 0 && width / c == height / r
+                width.is_multiple_of(c) && height.is_multiple_of(r) && width / c == height / r
             }
         };
         if fits {

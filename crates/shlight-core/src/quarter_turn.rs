@@ -56,7 +56,7 @@ impl HalfPiRows {
             .product::<f64>()
             .sqrt();
         let mut edge = vec![0.0; 2 * l + 1];
-        edge[l] = if l % 2 == 0 { centre } else { -centre };
+        edge[l] = if l.is_multiple_of(2) { centre } else { -centre };
         for mp in 0..l {
             // C(2l, l+m'+1) / C(2l, l+m') = (l-m') / (l+m'+1).
             let ratio = ((l - mp) as f64 / (l + mp + 1) as f64).sqrt();
@@ -101,7 +101,7 @@ impl HalfPiRows {
 /// `(-1)^n`.
 #[inline(always)]
 fn parity_sign(n: usize) -> f64 {
-    if n % 2 == 0 { 1.0 } else { -1.0 }
+    if n.is_multiple_of(2) { 1.0 } else { -1.0 }
 }
 
 /// Applies the band-`l` block of the quarter turn about Y, `Ry(π/2)`, to

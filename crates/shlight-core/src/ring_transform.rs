@@ -167,7 +167,13 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
         starts: &starts,
     };
     // Long columns (small m) and short ones interleaved for load balance.
-    let order = |i: usize| if i % 2 == 0 { i / 2 } else { lmax - i / 2 };
+    let order = |i: usize| {
+        if i.is_multiple_of(2) {
+            i / 2
+        } else {
+            lmax - i / 2
+        }
+    };
     #[cfg(feature = "rayon")]
     let sums: Vec<(usize, Vec<[f64; 6]>)> = {
         use rayon::prelude::*;
@@ -292,7 +298,7 @@ impl Azimuth {
                 phase,
             };
         }
-        let folded = w % 4 == 0;
+        let folded = w.is_multiple_of(4);
         let n = if folded { w / 4 } else { w };
         let mut cos = vec![0.0; (lmax + 1) * n];
         let mut sin = vec![0.0; (lmax + 1) * n];

@@ -386,11 +386,11 @@ fn disc_rim_texels_carry_the_rim_direction() {
             for y in 0..n {
                 for x in 0..n {
                     let (u, v) = disc_centre(x, y, n);
-                    if u * u + v * v > 1.0 {
-                        if let Some(d) = m.texel_direction(x, y) {
-                            assert!((map_frame(o, d) - pole).length() < 1e-15);
-                            rim += 1;
-                        }
+                    if u * u + v * v > 1.0
+                        && let Some(d) = m.texel_direction(x, y)
+                    {
+                        assert!((map_frame(o, d) - pole).length() < 1e-15);
+                        rim += 1;
                     }
                 }
             }

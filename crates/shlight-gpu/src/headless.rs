@@ -1,0 +1,193 @@
+//! Rendering without a window: a frame into an offscreen `Rgba32Float`
+//! texture, read back to the CPU.
+
+use crate::renderer::DEPTH_FORMAT;
+use crate::{Camera, GpuContext, GpuError, Renderer, Shading};
+
+/// Colour format of headless frames: linear 32-bit float RGBA.
+pub const HEADLESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// A frame read back: `width x height` RGBA, row 0 at the top. Alpha is 1
+/// where the mesh or the background was drawn and 0 elsewhere.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Pixels per row.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// `width * height` RGBA values, rows from the top.
+    pub pixels: Vec<[f32; 4]>,
+}
+
+impl Frame {
+    /// The RGB of each pixel.
+    #[must_use]
+    pub fn rgb(&self) -> Vec<[f32; 3]> {
+        self.pixels.iter().map(|p| [p[0], p[1], p[2]]).collect()
+    }
+}
+
+/// An offscreen colour and depth target with its read-back buffer.
+#[derive(Debug)]
+pub struct Offscreen {
+    width: u32,
+    height: u32,
+    color: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    readback: wgpu::Buffer,
+    padded_row: u32,
+}
+
+impl Offscreen {
+    /// Targets of `width x height` pixels.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] for a zero size or one beyond the device's
+    /// texture limit.
+    pub fn new(ctx: &GpuContext, width: usize, height: usize) -> Result<Self, GpuError> {
+        let max = ctx.device.limits().max_texture_dimension_2d as usize;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(GpuError::Invalid(format!(
+                "image size {width}x{height} is outside 1..={max} on this GPU"
+            )));
+        }
+        let size = wgpu::Extent3d {
+            width: width as u32,
+            height: height as u32,
+            depth_or_array_layers: 1,
+        };
+        let texture = |format, usage| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("offscreen"),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let color = texture(
+            HEADLESS_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let depth = texture(DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let padded_row = (width as u32 * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let readback = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(padded_row) * height as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(Self {
+            width: width as u32,
+            height: height as u32,
+            color_view: color.create_view(&Default::default()),
+            depth_view: depth.create_view(&Default::default()),
+            color,
+            readback,
+            padded_row,
+        })
+    }
+
+    /// Width / height.
+    #[must_use]
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height as f32
+    }
+
+    /// Draws one frame and waits for it, without reading it back (for timing).
+    ///
+    /// # Errors
+    /// As [`Renderer::draw`], and GPU errors raised while drawing.
+    pub fn draw(
+        &self,
+        ctx: &GpuContext,
+        renderer: &Renderer,
+        camera: &Camera,
+        shading: &Shading,
+    ) -> Result<(), GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        renderer.draw(
+            ctx,
+            &mut encoder,
+            &self.color_view,
+            &self.depth_view,
+            camera,
+            self.aspect(),
+            shading,
+        )?;
+        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
+        ctx.wait()
+    }
+
+    /// Draws one frame and reads it back.
+    ///
+    /// # Errors
+    /// As [`Offscreen::draw`], and a failed read-back.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        renderer: &Renderer,
+        camera: &Camera,
+        shading: &Shading,
+    ) -> Result<Frame, GpuError> {
+        if renderer.color_format() != HEADLESS_FORMAT {
+            return Err(GpuError::Invalid(format!(
+                "headless frames need a renderer for {HEADLESS_FORMAT:?}"
+            )));
+        }
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        renderer.draw(
+            ctx,
+            &mut encoder,
+            &self.color_view,
+            &self.depth_view,
+            camera,
+            self.aspect(),
+            shading,
+        )?;
+        encoder.copy_texture_to_buffer(
+            self.color.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: None,
+                },
+            },
+            self.color.size(),
+        );
+        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
+        let bytes = crate::readback::read_buffer(ctx, &self.readback)?;
+        let (w, h) = (self.width as usize, self.height as usize);
+        let mut pixels = Vec::with_capacity(w * h);
+        for row in bytes.chunks_exact(self.padded_row as usize).take(h) {
+            let values: &[f32] = bytemuck::cast_slice(&row[..w * 16]);
+            pixels.extend(values.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]));
+        }
+        Ok(Frame {
+            width: w,
+            height: h,
+            pixels,
+        })
+    }
+}
+
+/// Renders one frame of `renderer`'s mesh and light at `width x height`.
+///
+/// # Errors
+/// As [`Offscreen::new`] and [`Offscreen::render`].
+pub fn render_frame(
+    ctx: &GpuContext,
+    renderer: &Renderer,
+    camera: &Camera,
+    shading: &Shading,
+    width: usize,
+    height: usize,
+) -> Result<Frame, GpuError> {
+    Offscreen::new(ctx, width, height)?.render(ctx, renderer, camera, shading)
+}

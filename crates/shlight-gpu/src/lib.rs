@@ -1,0 +1,38 @@
+//! GPU band-limited shading for shlight (wgpu, WGSL in `shaders/`).
+//!
+//! - [`GpuContext`]: an adapter and device, headless or for a window;
+//! - [`Renderer`]: a mesh lit by SH radiance coefficients `L_lm`, shaded
+//!   per fragment as a Lambertian surface, `ρ/π Σ_l A_l w_l Σ_m L_lm Y_lm(n)`
+//!   (Ramamoorthi & Hanrahan 2001; `A_l` the clamped-cosine eigenvalues,
+//!   `w_l` a run-time window, any lmax up to 8), or by PRT transfer vectors
+//!   `Σ_i T_vi L_i` per vertex ([`Transfer`]), or as world normals; with the
+//!   environment map or its SH reconstruction behind;
+//! - [`Offscreen`] / [`render_frame`]: frames read back as linear `f32` RGBA;
+//! - [`GpuProjector`]: equirect maps to SH by exact texel-solid-angle
+//!   quadrature, the GPU twin of shlight-core's `project_equirect`.
+//!
+//! Conventions are shlight's (docs/conventions.md): real orthonormal SH with
+//! the Condon-Shortley phase, index `l(l+1)+m`, world `(x, y, z)`.
+//! Only the Vulkan backend is built (a GPU's driver, or Mesa's lavapipe).
+
+mod camera;
+mod context;
+mod error;
+mod headless;
+mod projection;
+mod readback;
+mod renderer;
+pub mod shaders;
+mod shading;
+mod transfer;
+
+pub use camera::{Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM};
+pub use context::{GpuContext, new_instance};
+pub use error::GpuError;
+pub use headless::{Frame, HEADLESS_FORMAT, Offscreen, render_frame};
+pub use projection::{GpuProjector, project_equirect};
+pub use renderer::{DEPTH_FORMAT, Renderer};
+pub use shading::{Background, MAX_LMAX, Mode, Shading};
+pub use transfer::Transfer;
+/// wgpu, as this crate uses it (for windows and surfaces).
+pub use wgpu;

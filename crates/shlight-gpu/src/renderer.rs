@@ -1,0 +1,588 @@
+//! The mesh renderer: GPU buffers for a mesh, a light, an environment map
+//! and PRT transfer, and the two passes (background, then mesh) that draw a
+//! frame into any colour target.
+
+use glam::{DMat3, DVec3, Vec3};
+use shlight_core::ShCoeffs;
+use shlight_core::projection::MapOrientation;
+use shlight_mesh::Mesh;
+use wgpu::util::DeviceExt;
+
+use crate::shaders::{self, BACKGROUND_MODULE, MESH_MODULE};
+use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading};
+use crate::{Camera, GpuContext, GpuError, Transfer};
+
+/// Depth buffer format of every frame.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Coefficients the light buffer holds: `(MAX_LMAX + 1)^2`.
+const LIGHT_SLOTS: usize = (MAX_LMAX + 1) * (MAX_LMAX + 1);
+
+/// A mesh on the GPU.
+struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    vertex_count: usize,
+    bounds: (Vec3, Vec3),
+}
+
+/// Draws meshes lit by SH coefficients into targets of one colour format.
+pub struct Renderer {
+    color_format: wgpu::TextureFormat,
+    mesh_pipeline: wgpu::RenderPipeline,
+    background_pipeline: wgpu::RenderPipeline,
+    mesh_layout: wgpu::BindGroupLayout,
+    background_layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    light: wgpu::Buffer,
+    transfer: wgpu::Buffer,
+    environment: wgpu::TextureView,
+    mesh_bind: wgpu::BindGroup,
+    background_bind: wgpu::BindGroup,
+    mesh: Option<GpuMesh>,
+    light_lmax: usize,
+    prt: Option<(usize, usize, usize)>,
+    map_orientation: MapOrientation,
+    environment_rotation: DMat3,
+}
+
+impl std::fmt::Debug for Renderer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Renderer")
+            .field("color_format", &self.color_format)
+            .field("light_lmax", &self.light_lmax)
+            .field("prt", &self.prt)
+            .finish_non_exhaustive()
+    }
+}
+
+fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+impl Renderer {
+    /// Pipelines and empty buffers for colour targets of `color_format`.
+    ///
+    /// A float format (e.g. `Rgba32Float`) receives linear radiance when the
+    /// shading has no tone map; an `*Srgb` format is encoded by the
+    /// hardware, any other 8-bit format by the shader.
+    #[must_use]
+    pub fn new(ctx: &GpuContext, color_format: wgpu::TextureFormat) -> Self {
+        let device = &ctx.device;
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("mesh"),
+            entries: &[
+                uniform_entry(0, vf),
+                storage_entry(1, vf),
+                storage_entry(2, wgpu::ShaderStages::VERTEX),
+            ],
+        });
+        let background_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("background"),
+            entries: &[
+                uniform_entry(0, vf),
+                storage_entry(1, vf),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let mesh_module = shaders::create(device, MESH_MODULE);
+        let background_module = shaders::create(device, BACKGROUND_MODULE);
+        let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: None,
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            })
+        };
+        let targets = [Some(wgpu::ColorTargetState {
+            format: color_format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let mesh_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("mesh"),
+            layout: Some(&pipeline_layout(&mesh_layout)),
+            vertex: wgpu::VertexState {
+                module: &mesh_module,
+                entry_point: Some("vs_mesh"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 24,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                // Both faces: meshes with inconsistent winding still show.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &mesh_module,
+                entry_point: Some("fs_mesh"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let background_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("background"),
+            layout: Some(&pipeline_layout(&background_layout)),
+            vertex: wgpu::VertexState {
+                module: &background_module,
+                entry_point: Some("vs_background"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &background_module,
+                entry_point: Some("fs_background"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let light = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("light"),
+            size: (LIGHT_SLOTS * 16) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let transfer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("transfer (none)"),
+            size: 16,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let environment = environment_texture(ctx, 1, 1, &[[0.0; 3]]);
+        let mesh_bind = bind_mesh(device, &mesh_layout, &uniform, &light, &transfer);
+        let background_bind =
+            bind_background(device, &background_layout, &uniform, &light, &environment);
+        Self {
+            color_format,
+            mesh_pipeline,
+            background_pipeline,
+            mesh_layout,
+            background_layout,
+            uniform,
+            light,
+            transfer,
+            environment,
+            mesh_bind,
+            background_bind,
+            mesh: None,
+            light_lmax: 0,
+            prt: None,
+            map_orientation: MapOrientation::default(),
+            environment_rotation: DMat3::IDENTITY,
+        }
+    }
+
+    /// The colour format this renderer draws into.
+    #[must_use]
+    pub fn color_format(&self) -> wgpu::TextureFormat {
+        self.color_format
+    }
+
+    /// Uploads a mesh (positions and unit normals, in world space); drops
+    /// any PRT transfer of the previous mesh.
+    pub fn set_mesh(&mut self, ctx: &GpuContext, mesh: &Mesh) {
+        let interleaved: Vec<[f32; 6]> = mesh
+            .positions
+            .iter()
+            .zip(&mesh.normals)
+            .map(|(p, n)| [p.x, p.y, p.z, n.x, n.y, n.z])
+            .collect();
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let device = &ctx.device;
+        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vertices"),
+            contents: bytemuck::cast_slice(&interleaved),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("indices"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        self.mesh = Some(GpuMesh {
+            vertices,
+            indices: index_buffer,
+            index_count: indices.len() as u32,
+            vertex_count: mesh.vertex_count(),
+            bounds: mesh.bounds(),
+        });
+        if self.prt.is_some() {
+            self.clear_transfer(ctx);
+        }
+    }
+
+    /// The bounding box of the mesh, if one is set.
+    #[must_use]
+    pub fn mesh_bounds(&self) -> Option<(Vec3, Vec3)> {
+        self.mesh.as_ref().map(|m| m.bounds)
+    }
+
+    /// Uploads radiance coefficients (linear RGB, world frame, shlight's
+    /// basis), kept to lmax [`MAX_LMAX`].
+    pub fn set_light(&mut self, ctx: &GpuContext, radiance: &ShCoeffs<DVec3>) {
+        let lmax = radiance.lmax().min(MAX_LMAX);
+        let mut slots = [[0.0f32; 4]; LIGHT_SLOTS];
+        for (slot, c) in slots.iter_mut().zip(radiance.as_slice()) {
+            *slot = [c.x as f32, c.y as f32, c.z as f32, 0.0];
+        }
+        ctx.queue
+            .write_buffer(&self.light, 0, bytemuck::cast_slice(&slots));
+        self.light_lmax = lmax;
+    }
+
+    /// The light's lmax as uploaded (at most [`MAX_LMAX`]).
+    #[must_use]
+    pub fn light_lmax(&self) -> usize {
+        self.light_lmax
+    }
+
+    /// Uploads an equirect environment map (`width x height` linear RGB
+    /// texels, row 0 at the top) for the background, read in `orientation`.
+    /// Maps larger than the device's texture limit are halved (2x2 box
+    /// averages) until they fit.
+    pub fn set_environment(
+        &mut self,
+        ctx: &GpuContext,
+        width: usize,
+        height: usize,
+        pixels: &[[f32; 3]],
+        orientation: MapOrientation,
+    ) {
+        let max = ctx.device.limits().max_texture_dimension_2d as usize;
+        let (mut w, mut h, mut data) = (width, height, pixels.to_vec());
+        while w > max || h > max {
+            (w, h, data) = halve(w, h, &data);
+        }
+        self.environment = environment_texture(ctx, w, h, &data);
+        self.map_orientation = orientation;
+        self.background_bind = bind_background(
+            &ctx.device,
+            &self.background_layout,
+            &self.uniform,
+            &self.light,
+            &self.environment,
+        );
+    }
+
+    /// The rotation `R` the light was turned by (a light from `a` now comes
+    /// from `R a`), so that the map background turns with it. The caller
+    /// rotates the coefficients themselves ([`shlight_core::ShRotation`]).
+    pub fn set_environment_rotation(&mut self, r: DMat3) {
+        self.environment_rotation = r;
+    }
+
+    /// Uploads PRT transfer vectors for the current mesh.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] without a mesh, or when the vertex counts differ.
+    pub fn set_transfer(&mut self, ctx: &GpuContext, t: &Transfer<'_>) -> Result<(), GpuError> {
+        let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
+        if vertices != Some(t.vertex_count) {
+            return Err(GpuError::Invalid(match vertices {
+                None => "PRT transfer given before a mesh".into(),
+                Some(n) => format!(
+                    "PRT transfer is for {} vertices but the mesh has {n}",
+                    t.vertex_count
+                ),
+            }));
+        }
+        self.transfer = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("transfer"),
+                contents: bytemuck::cast_slice(t.data),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+        self.prt = Some((t.lmax, t.channels, t.vertex_count));
+        self.mesh_bind = bind_mesh(
+            &ctx.device,
+            &self.mesh_layout,
+            &self.uniform,
+            &self.light,
+            &self.transfer,
+        );
+        Ok(())
+    }
+
+    fn clear_transfer(&mut self, ctx: &GpuContext) {
+        self.prt = None;
+        self.transfer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("transfer (none)"),
+            size: 16,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        self.mesh_bind = bind_mesh(
+            &ctx.device,
+            &self.mesh_layout,
+            &self.uniform,
+            &self.light,
+            &self.transfer,
+        );
+    }
+
+    /// `(lmax, channels)` of the PRT transfer, if one is set.
+    #[must_use]
+    pub fn transfer_shape(&self) -> Option<(usize, usize)> {
+        self.prt.map(|(l, c, _)| (l, c))
+    }
+
+    /// Records a frame into `encoder`: clears `color` to 0 and `depth` to 1,
+    /// draws the background (unless none, or normals mode), then the mesh.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] for PRT mode without transfer vectors.
+    pub fn draw(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        camera: &Camera,
+        aspect: f32,
+        shading: &Shading,
+    ) -> Result<(), GpuError> {
+        if shading.mode == Mode::Prt && self.prt.is_none() {
+            return Err(GpuError::Invalid(
+                "PRT mode needs transfer vectors (none are loaded)".into(),
+            ));
+        }
+        let env_from_world =
+            orientation_matrix(self.map_orientation) * self.environment_rotation.transpose();
+        // 8-bit targets without hardware sRGB encoding get it in the shader.
+        let encode_srgb = matches!(
+            self.color_format,
+            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+        );
+        let uniform = FrameUniform::new(&FrameInputs {
+            shading,
+            view_proj: camera.view_proj(aspect),
+            env_from_world,
+            lmax: shading.lmax.min(self.light_lmax),
+            prt: self.prt.map(|(l, c, _)| (l, c)),
+            encode_srgb,
+        });
+        ctx.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("frame"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if shading.mode != Mode::Normals && shading.background != crate::Background::None {
+            pass.set_pipeline(&self.background_pipeline);
+            pass.set_bind_group(0, &self.background_bind, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        if let Some(mesh) = &self.mesh {
+            pass.set_pipeline(&self.mesh_pipeline);
+            pass.set_bind_group(0, &self.mesh_bind, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+        Ok(())
+    }
+}
+
+/// The map's own y-up frame from world, as a matrix
+/// ([`MapOrientation::map_from_world`] applied to the axes).
+fn orientation_matrix(o: MapOrientation) -> DMat3 {
+    DMat3::from_cols(
+        o.map_from_world(DVec3::X),
+        o.map_from_world(DVec3::Y),
+        o.map_from_world(DVec3::Z),
+    )
+}
+
+fn bind_mesh(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    uniform: &wgpu::Buffer,
+    light: &wgpu::Buffer,
+    transfer: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("mesh"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: light.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: transfer.as_entire_binding(),
+            },
+        ],
+    })
+}
+
+fn bind_background(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    uniform: &wgpu::Buffer,
+    light: &wgpu::Buffer,
+    environment: &wgpu::TextureView,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("background"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: light.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(environment),
+            },
+        ],
+    })
+}
+
+/// An `Rgba32Float` texture of linear RGB texels (read with `textureLoad`).
+fn environment_texture(
+    ctx: &GpuContext,
+    width: usize,
+    height: usize,
+    pixels: &[[f32; 3]],
+) -> wgpu::TextureView {
+    let rgba: Vec<[f32; 4]> = pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
+    let texture = ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("environment"),
+            size: wgpu::Extent3d {
+                width: width as u32,
+                height: height as u32,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&rgba),
+    );
+    texture.create_view(&Default::default())
+}
+
+/// A map at half the size (rounded up), each texel the mean of up to 2x2.
+fn halve(w: usize, h: usize, pixels: &[[f32; 3]]) -> (usize, usize, Vec<[f32; 3]>) {
+    let (hw, hh) = (w.div_ceil(2), h.div_ceil(2));
+    let mut out = Vec::with_capacity(hw * hh);
+    for y in 0..hh {
+        for x in 0..hw {
+            let mut sum = [0.0f32; 3];
+            let mut n = 0.0f32;
+            for (sx, sy) in [
+                (2 * x, 2 * y),
+                (2 * x + 1, 2 * y),
+                (2 * x, 2 * y + 1),
+                (2 * x + 1, 2 * y + 1),
+            ] {
+                if sx < w && sy < h {
+                    let p = pixels[sy * w + sx];
+                    sum = [sum[0] + p[0], sum[1] + p[1], sum[2] + p[2]];
+                    n += 1.0;
+                }
+            }
+            out.push(sum.map(|s| s / n));
+        }
+    }
+    (hw, hh, out)
+}

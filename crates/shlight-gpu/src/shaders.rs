@@ -1,0 +1,86 @@
+//! The WGSL sources in `shaders/`, composed into the modules the pipelines
+//! compile.
+//!
+//! WGSL has no `#include`, so a module is its prelude files followed by its
+//! own file: `sh.wgsl` (the SH basis) for all, `scene.wgsl` (frame uniform,
+//! light coefficients, tone maps) for the two render passes. [`MODULES`]
+//! lists every module; [`FILES`] every file, so a test can check that each
+//! file in the directory belongs to a module and that each module validates.
+
+/// A shader file: its name in `shaders/` and its text.
+pub type ShaderFile = (&'static str, &'static str);
+
+/// Every WGSL file in `shaders/`, by name.
+pub const FILES: [ShaderFile; 5] = [
+    ("sh.wgsl", SH),
+    ("scene.wgsl", SCENE),
+    ("mesh.wgsl", MESH),
+    ("background.wgsl", BACKGROUND),
+    ("project.wgsl", PROJECT),
+];
+
+const SH: &str = include_str!("../../../shaders/sh.wgsl");
+const SCENE: &str = include_str!("../../../shaders/scene.wgsl");
+const MESH: &str = include_str!("../../../shaders/mesh.wgsl");
+const BACKGROUND: &str = include_str!("../../../shaders/background.wgsl");
+const PROJECT: &str = include_str!("../../../shaders/project.wgsl");
+
+/// A compiled unit: a name and its files in order.
+#[derive(Clone, Copy, Debug)]
+pub struct ShaderModuleSource {
+    /// The module's name (its own file's stem).
+    pub name: &'static str,
+    /// Files concatenated in this order.
+    pub files: &'static [&'static str],
+}
+
+impl ShaderModuleSource {
+    /// The concatenated WGSL text.
+    #[must_use]
+    pub fn source(&self) -> String {
+        self.files
+            .iter()
+            .map(|name| {
+                FILES
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map(|(_, text)| *text)
+                    .expect("module files are in FILES")
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+}
+
+/// Mesh shading: vertex and fragment stages of SH, PRT and normals modes.
+pub const MESH_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "mesh",
+    files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl"],
+};
+/// The environment background (map or SH reconstruction).
+pub const BACKGROUND_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "background",
+    files: &["sh.wgsl", "scene.wgsl", "background.wgsl"],
+};
+/// The compute projection of equirect maps.
+pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "project",
+    files: &["sh.wgsl", "project.wgsl"],
+};
+/// The SH basis alone (a module of functions, validated on its own).
+pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "sh",
+    files: &["sh.wgsl"],
+};
+
+/// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
+pub const MODULES: [ShaderModuleSource; 4] =
+    [SH_MODULE, MESH_MODULE, BACKGROUND_MODULE, PROJECT_MODULE];
+
+/// Compiles a module on `device`.
+pub(crate) fn create(device: &wgpu::Device, module: ShaderModuleSource) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(module.name),
+        source: wgpu::ShaderSource::Wgsl(module.source().into()),
+    })
+}

@@ -1,0 +1,192 @@
+//! What a frame shows and how: [`Shading`], and the uniform block the
+//! shaders read (`Frame` in `shaders/scene.wgsl`).
+
+use glam::{DMat3, Mat4};
+use shlight_core::Window;
+use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_io::ToneMap;
+
+/// Highest SH degree the shaders evaluate.
+pub const MAX_LMAX: usize = 8;
+
+/// What the mesh shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Per-fragment SH irradiance at the normal, times albedo / π.
+    #[default]
+    Sh,
+    /// Per-vertex transfer dotted with the light coefficients.
+    Prt,
+    /// World-space unit normals as colours (exposure and tone map not applied).
+    Normals,
+}
+
+impl Mode {
+    /// The mode's name: `sh`, `prt`, `normals`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sh => "sh",
+            Self::Prt => "prt",
+            Self::Normals => "normals",
+        }
+    }
+
+    fn code(self) -> u32 {
+        match self {
+            Self::Sh => 0,
+            Self::Prt => 1,
+            Self::Normals => 2,
+        }
+    }
+}
+
+/// What is drawn behind the mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Background {
+    /// Nothing: the clear colour 0.
+    #[default]
+    None,
+    /// The environment map itself (bilinear; columns wrap, rows clamp).
+    Map,
+    /// The windowed SH reconstruction of the light to the frame's lmax.
+    Sh,
+}
+
+impl Background {
+    /// The background's name: `none`, `map`, `sh`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Map => "map",
+            Self::Sh => "sh",
+        }
+    }
+
+    fn code(self) -> u32 {
+        match self {
+            Self::None => 0,
+            Self::Map => 1,
+            Self::Sh => 2,
+        }
+    }
+}
+
+/// How a frame is shaded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shading {
+    /// What the mesh shows.
+    pub mode: Mode,
+    /// Highest degree of the light used (at most [`MAX_LMAX`] and the light's own).
+    pub lmax: usize,
+    /// Ringing window applied per band at run time.
+    pub window: Window,
+    /// Exposure in stops (radiance is multiplied by `2^exposure_ev`).
+    pub exposure_ev: f32,
+    /// Tone map to `[0, 1]`, or `None` for linear output (HDR targets).
+    pub tone_map: Option<ToneMap>,
+    /// Lambertian albedo (linear RGB) of SH mode.
+    pub albedo: [f32; 3],
+    /// What is drawn behind the mesh (never in [`Mode::Normals`]).
+    pub background: Background,
+}
+
+impl Default for Shading {
+    fn default() -> Self {
+        Self {
+            mode: Mode::Sh,
+            lmax: 2,
+            window: Window::None,
+            exposure_ev: 0.0,
+            tone_map: None,
+            albedo: [0.8; 3],
+            background: Background::None,
+        }
+    }
+}
+
+/// `Frame` of `shaders/scene.wgsl`, byte for byte.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct FrameUniform {
+    view_proj: [[f32; 4]; 4],
+    inv_view_proj: [[f32; 4]; 4],
+    env_from_world: [[f32; 4]; 4],
+    irradiance_band: [[f32; 4]; 3],
+    radiance_band: [[f32; 4]; 3],
+    albedo: [f32; 4],
+    exposure: f32,
+    lmax: u32,
+    mode: u32,
+    tone_map: u32,
+    prt_lmax: u32,
+    prt_channels: u32,
+    background: u32,
+    encode_srgb: u32,
+}
+
+/// Everything a frame's uniform block is made from.
+pub(crate) struct FrameInputs<'a> {
+    pub shading: &'a Shading,
+    pub view_proj: Mat4,
+    pub env_from_world: DMat3,
+    /// The light's lmax after clamping.
+    pub lmax: usize,
+    pub prt: Option<(usize, usize)>,
+    pub encode_srgb: bool,
+}
+
+impl FrameUniform {
+    pub(crate) fn new(f: &FrameInputs<'_>) -> Self {
+        let mut irradiance_band = [[0.0f32; 4]; 3];
+        let mut radiance_band = [[0.0f32; 4]; 3];
+        for l in 0..=MAX_LMAX {
+            let w = f.shading.window.factor(l);
+            irradiance_band[l / 4][l % 4] = (clamped_cosine_eigenvalue(l) * w) as f32;
+            radiance_band[l / 4][l % 4] = w as f32;
+        }
+        let e = f.env_from_world.as_mat3();
+        let env = Mat4::from_mat3(e);
+        let [r, g, b] = f.shading.albedo;
+        let (prt_lmax, prt_channels) = f.prt.unwrap_or((0, 1));
+        let background = if f.shading.mode == Mode::Normals {
+            Background::None
+        } else {
+            f.shading.background
+        };
+        Self {
+            view_proj: f.view_proj.to_cols_array_2d(),
+            inv_view_proj: f.view_proj.inverse().to_cols_array_2d(),
+            env_from_world: env.to_cols_array_2d(),
+            irradiance_band,
+            radiance_band,
+            albedo: [r, g, b, 1.0],
+            exposure: 2f32.powf(f.shading.exposure_ev),
+            lmax: f.lmax as u32,
+            mode: f.shading.mode.code(),
+            tone_map: match f.shading.tone_map {
+                None => 0,
+                Some(ToneMap::Clamp) => 1,
+                Some(ToneMap::Reinhard) => 2,
+                Some(ToneMap::Aces) => 3,
+            },
+            prt_lmax: prt_lmax as u32,
+            prt_channels: prt_channels as u32,
+            background: background.code(),
+            encode_srgb: u32::from(f.encode_srgb),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniform_block_has_the_wgsl_size() {
+        // Frame in scene.wgsl: three mat4x4 (192), two array<vec4, 3> (96),
+        // one vec4 (16), eight 4-byte scalars (32).
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 336);
+    }
+}

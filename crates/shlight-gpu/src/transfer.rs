@@ -1,0 +1,75 @@
+//! PRT transfer vectors as the renderer takes them.
+//!
+//! A transfer vector `T_v` per vertex turns distant radiance into the
+//! radiance the vertex leaves: `L_out(v) = sum_i T_vi L_i` (Sloan, Kautz &
+//! Snyder 2002), one dot product of `(lmax+1)^2` coefficients per channel.
+//! The array is vertex-major: vertex `v`, channel `c`, coefficient `i` at
+//! `(v * channels + c) * (lmax+1)^2 + i`. One channel is applied to all three
+//! colours of the light; three apply channel by channel. The light's
+//! coefficients are used up to the smaller of the two degrees.
+
+use crate::GpuError;
+
+/// Borrowed per-vertex transfer vectors.
+#[derive(Clone, Copy, Debug)]
+pub struct Transfer<'a> {
+    /// Highest degree of each vector.
+    pub lmax: usize,
+    /// 1 (the same for R, G, B) or 3 (one vector per colour channel).
+    pub channels: usize,
+    /// Vertices: must equal the mesh's vertex count.
+    pub vertex_count: usize,
+    /// `vertex_count * channels * (lmax+1)^2` values, vertex-major.
+    pub data: &'a [f32],
+}
+
+impl<'a> Transfer<'a> {
+    /// Checks the shape of a transfer array.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] for a channel count other than 1 or 3, or a
+    /// length that is not `vertex_count * channels * (lmax+1)^2`.
+    pub fn new(
+        lmax: usize,
+        channels: usize,
+        vertex_count: usize,
+        data: &'a [f32],
+    ) -> Result<Self, GpuError> {
+        if channels != 1 && channels != 3 {
+            return Err(GpuError::Invalid(format!(
+                "PRT transfer has {channels} channels (expected 1 or 3)"
+            )));
+        }
+        let expected = vertex_count
+            .checked_mul(channels * (lmax + 1) * (lmax + 1))
+            .ok_or_else(|| GpuError::Invalid("PRT transfer is too large".into()))?;
+        if data.len() != expected {
+            return Err(GpuError::Invalid(format!(
+                "PRT transfer holds {} values; {vertex_count} vertices x {channels} channels x \
+                 {} coefficients (lmax {lmax}) need {expected}",
+                data.len(),
+                (lmax + 1) * (lmax + 1)
+            )));
+        }
+        Ok(Self {
+            lmax,
+            channels,
+            vertex_count,
+            data,
+        })
+    }
+
+    /// Coefficients per vector, `(lmax+1)^2`.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        (self.lmax + 1) * (self.lmax + 1)
+    }
+
+    /// The vector of vertex `v`, channel `c`.
+    #[must_use]
+    pub fn vector(&self, v: usize, c: usize) -> &'a [f32] {
+        let n = self.count();
+        let start = (v * self.channels + c) * n;
+        &self.data[start..start + n]
+    }
+}

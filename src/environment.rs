@@ -1,0 +1,103 @@
+//! The light of the GPU commands (`render-mesh`, `view`): `--env` names an
+//! equirect map (projected here to radiance SH, and kept for the
+//! background) or a coefficient file (radiance).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use glam::DVec3;
+use shlight_core::ShCoeffs;
+use shlight_core::layout::Layout;
+use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::rotation::Frame;
+use shlight_gpu::MAX_LMAX;
+use shlight_io::{Image, ReadOptions, read_image};
+
+use crate::coeff_file::{CoeffFile, Quantity};
+
+/// The bundled map used when no `--env` is given.
+pub const DEFAULT_ENV: &str = "envmaps/default.exr";
+
+/// A light for the GPU commands.
+pub struct Environment {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// Radiance coefficients in the world frame, to lmax [`MAX_LMAX`] at most.
+    pub radiance: ShCoeffs<DVec3>,
+    /// The equirect map, when the light came from one.
+    pub map: Option<Image>,
+    /// How the map's texels meet world directions.
+    pub orientation: MapOrientation,
+}
+
+impl Environment {
+    /// Reads `path`: a `.json` coefficient file (radiance), or an equirect
+    /// map in any format shlight reads, projected by quadrature to lmax 8
+    /// with its top row facing `up` (`y` or `z`).
+    ///
+    /// # Errors
+    /// An unreadable file, a map that is not 2:1, or a coefficient file that
+    /// holds irradiance (radiance cannot be recovered from it).
+    pub fn load(path: &Path, up: Frame) -> Result<Self> {
+        let name = path.display().to_string();
+        let is_json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        if is_json {
+            let text =
+                std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
+            let file = CoeffFile::from_json_str(&text, &name)?;
+            if file.quantity != Quantity::Radiance {
+                bail!(
+                    "{name}: holds irradiance; --env needs radiance coefficients \
+                     (shlight project --quantity radiance)"
+                );
+            }
+            let lmax = file.coeffs.lmax().min(MAX_LMAX);
+            return Ok(Self {
+                path: path.to_path_buf(),
+                radiance: file.coeffs.resized(lmax),
+                map: None,
+                orientation: MapOrientation {
+                    frame: file.frame,
+                    mirror: file.mirror,
+                },
+            });
+        }
+        let image = read_image(path, &ReadOptions::default())?;
+        let (w, h) = (image.width(), image.height());
+        if Layout::detect(w, h) != Some(Layout::Equirect) {
+            bail!(
+                "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
+                 (shlight project {name} --lmax 8 -o light.json) and pass the JSON file"
+            );
+        }
+        if let Some((x, y)) = (0..w * h)
+            .find(|&k| image.pixels()[k].iter().any(|v| !v.is_finite()))
+            .map(|k| (k % w, k / w))
+        {
+            bail!("{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it");
+        }
+        let orientation = MapOrientation {
+            frame: up,
+            mirror: false,
+        };
+        let view = EquirectView {
+            width: w,
+            height: h,
+            pixels: image.pixels(),
+        };
+        let radiance = project_equirect(view, MAX_LMAX, orientation);
+        Ok(Self {
+            path: path.to_path_buf(),
+            radiance,
+            map: Some(image),
+            orientation,
+        })
+    }
+}
+
+/// `--up y|z` as a frame.
+pub fn frame_of(up: &str) -> Frame {
+    if up == "z" { Frame::ZUp } else { Frame::YUp }
+}

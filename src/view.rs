@@ -1,0 +1,783 @@
+//! `shlight view`: a mesh lit by SH coefficients in a window (winit, wgpu,
+//! an egui overlay).
+//!
+//! Left drag orbits the camera, right drag (or shift + left drag, or the
+//! arrow keys) turns the environment: its radiance coefficients are rotated
+//! on the CPU every frame (`ShRotation`, lmax 8) and the map background
+//! turns with them. Keys: `0`-`8` lmax, `m` mode, `b` background, `w`
+//! window, `t` tone map, `+`/`-` exposure, `p` screenshot, `h` panel,
+//! `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
+//! the last (overlay included) and exits.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
+use glam::{DMat3, Vec3};
+use shlight_core::{ShRotation, Window};
+use shlight_gpu::wgpu;
+use shlight_gpu::{
+    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, DEPTH_FORMAT, GpuContext,
+    MAX_LMAX, Mode, Renderer, Shading,
+};
+use shlight_io::{Image, ToneMap, WriteOptions, srgb_to_linear, write_image};
+use shlight_mesh::Mesh;
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::WindowId;
+
+use crate::environment::{DEFAULT_ENV, Environment, frame_of};
+use crate::progress::Ui;
+use crate::texels::parse_size;
+
+/// Arguments of `shlight view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// The mesh (OBJ) [default: a generated sphere].
+    pub mesh: Option<PathBuf>,
+    /// The light: an equirect map or a radiance coefficient file (.json).
+    #[arg(long, default_value = DEFAULT_ENV)]
+    pub env: PathBuf,
+    /// Which world axis a map's top row faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Highest SH degree shown at start (0..=8).
+    #[arg(long, default_value_t = 2)]
+    pub lmax: usize,
+    /// Exposure in stops at start.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map at start: clamp, reinhard or aces.
+    #[arg(long, default_value = "aces")]
+    pub tone_map: ToneMap,
+    /// Window size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x800", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// Render --frames frames, save the last to this PNG and exit.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<PathBuf>,
+    /// Frames rendered before --screenshot saves.
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
+    /// Start with the overlay panel hidden (`h` toggles it).
+    #[arg(long)]
+    pub hide_panel: bool,
+}
+
+/// Runs `shlight view`.
+pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
+    if args.lmax > MAX_LMAX {
+        bail!("--lmax {}: the GPU shades to lmax {MAX_LMAX}", args.lmax);
+    }
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    if let Some(path) = &args.screenshot
+        && !path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        bail!("{}: --screenshot writes PNG files", path.display());
+    }
+    let mesh = match &args.mesh {
+        Some(path) => shlight_mesh::load(path)?,
+        None => {
+            ui.note("no MESH given: showing a generated sphere");
+            shlight_mesh::generate::uv_sphere(1.0, 128, 64)
+        }
+    };
+    let env = Environment::load(&args.env, frame_of(&args.up))?;
+    let event_loop = EventLoop::new()
+        .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut app = App::new(args, mesh, env);
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow!("window event loop: {e}"))?;
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// The camera orbiting the mesh: yaw about +Y, pitch above the horizon.
+#[derive(Clone, Copy, Debug)]
+struct Orbit {
+    target: Vec3,
+    yaw: f32,
+    pitch: f32,
+    distance: f32,
+    radius: f32,
+}
+
+impl Orbit {
+    fn new(bounds: (Vec3, Vec3), aspect: f32) -> Self {
+        let framed = Camera::framing(
+            bounds,
+            DEFAULT_VIEW_FROM,
+            DEFAULT_FOV_Y_DEGREES.to_radians(),
+            aspect,
+        );
+        let d = (framed.eye - framed.target).normalize();
+        Self {
+            target: framed.target,
+            yaw: d.x.atan2(d.z),
+            pitch: d.y.asin(),
+            distance: (framed.eye - framed.target).length(),
+            radius: (bounds.1 - bounds.0).length() * 0.5,
+        }
+    }
+
+    fn camera(&self) -> Camera {
+        let dir = Vec3::new(
+            self.pitch.cos() * self.yaw.sin(),
+            self.pitch.sin(),
+            self.pitch.cos() * self.yaw.cos(),
+        );
+        Camera::looking_at(
+            self.target + dir * self.distance,
+            self.target,
+            self.radius,
+            DEFAULT_FOV_Y_DEGREES.to_radians(),
+        )
+    }
+}
+
+/// What the panel and keys change.
+struct Controls {
+    shading: Shading,
+    /// Environment rotation: yaw about +Y, then pitch about +X (radians).
+    env_yaw: f64,
+    env_pitch: f64,
+    window_choice: usize,
+    show_panel: bool,
+}
+
+/// The windows offered by the `w` key and the panel.
+const WINDOWS: [(&str, Window); 3] = [
+    ("none", Window::None),
+    ("hanning", Window::Hanning { w: 0.0 }),
+    ("lanczos", Window::Lanczos { w: 0.0 }),
+];
+
+impl Controls {
+    /// The chosen window, of width lmax + 1 (it reaches zero past lmax).
+    fn window(&self) -> Window {
+        let width = (self.shading.lmax + 1) as f64;
+        match WINDOWS[self.window_choice].1 {
+            Window::Hanning { .. } => Window::Hanning { w: width },
+            Window::Lanczos { .. } => Window::Lanczos { w: width },
+            w => w,
+        }
+    }
+
+    fn rotation(&self) -> DMat3 {
+        DMat3::from_rotation_x(self.env_pitch) * DMat3::from_rotation_y(self.env_yaw)
+    }
+}
+
+/// Everything that exists once the window does.
+struct Running {
+    window: Arc<winit::window::Window>,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    ctx: GpuContext,
+    renderer: Renderer,
+    depth: wgpu::TextureView,
+    egui_state: egui_winit::State,
+    egui_renderer: egui_wgpu::Renderer,
+}
+
+struct App<'a> {
+    args: &'a ViewArgs,
+    mesh: Mesh,
+    env: Environment,
+    running: Option<Running>,
+    controls: Controls,
+    orbit: Option<Orbit>,
+    dragging: Option<(MouseButton, bool)>,
+    shift: bool,
+    cursor: Option<(f64, f64)>,
+    frames: u32,
+    last_frame: Option<Instant>,
+    frame_ms: f64,
+    screenshot_requested: bool,
+    screenshots_taken: u32,
+    message: String,
+    error: Option<anyhow::Error>,
+}
+
+impl<'a> App<'a> {
+    fn new(args: &'a ViewArgs, mesh: Mesh, env: Environment) -> Self {
+        let background = if env.map.is_some() {
+            Background::Map
+        } else {
+            Background::Sh
+        };
+        Self {
+            args,
+            mesh,
+            env,
+            running: None,
+            controls: Controls {
+                shading: Shading {
+                    mode: Mode::Sh,
+                    lmax: args.lmax,
+                    window: Window::None,
+                    exposure_ev: args.exposure,
+                    tone_map: Some(args.tone_map),
+                    albedo: [0.8; 3],
+                    background,
+                },
+                env_yaw: 0.0,
+                env_pitch: 0.0,
+                window_choice: 0,
+                show_panel: !args.hide_panel,
+            },
+            orbit: None,
+            dragging: None,
+            shift: false,
+            cursor: None,
+            frames: 0,
+            last_frame: None,
+            frame_ms: 0.0,
+            screenshot_requested: false,
+            screenshots_taken: 0,
+            message: String::new(),
+            error: None,
+        }
+    }
+
+    fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let (w, h) = self.args.size;
+        let window = Arc::new(
+            event_loop
+                .create_window(
+                    winit::window::Window::default_attributes()
+                        .with_title("shlight view")
+                        .with_inner_size(winit::dpi::PhysicalSize::new(w as u32, h as u32)),
+                )
+                .context("cannot create a window")?,
+        );
+        let instance = shlight_gpu::new_instance(None);
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| anyhow!("cannot draw into the window: {e}"))?;
+        let ctx = GpuContext::with_instance(instance, Some(&surface))?;
+        let size = window.inner_size();
+        let caps = surface.get_capabilities(&ctx.adapter);
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| f.is_srgb())
+            .or_else(|| caps.formats.first().copied())
+            .ok_or_else(|| anyhow!("the window's surface offers no format"))?;
+        let mut config = surface
+            .get_default_config(&ctx.adapter, size.width.max(1), size.height.max(1))
+            .ok_or_else(|| {
+                anyhow!(
+                    "the window's surface does not work with {}",
+                    ctx.adapter_name()
+                )
+            })?;
+        config.format = format;
+        config.present_mode = wgpu::PresentMode::AutoNoVsync;
+        config.view_formats = vec![];
+        surface.configure(&ctx.device, &config);
+        let mut renderer = Renderer::new(&ctx, format);
+        renderer.set_mesh(&ctx, &self.mesh);
+        renderer.set_light(&ctx, &self.env.radiance);
+        if let Some(map) = &self.env.map {
+            renderer.set_environment(
+                &ctx,
+                map.width(),
+                map.height(),
+                map.pixels(),
+                self.env.orientation,
+            );
+        }
+        let depth = depth_view(&ctx, config.width, config.height);
+        let egui_ctx = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui_ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(ctx.device.limits().max_texture_dimension_2d as usize),
+        );
+        let egui_renderer = egui_wgpu::Renderer::new(&ctx.device, format, Default::default());
+        self.orbit = Some(Orbit::new(
+            self.mesh.bounds(),
+            config.width as f32 / config.height as f32,
+        ));
+        self.message = ctx.adapter_name();
+        self.running = Some(Running {
+            window,
+            surface,
+            config,
+            ctx,
+            renderer,
+            depth,
+            egui_state,
+            egui_renderer,
+        });
+        Ok(())
+    }
+
+    fn resize(&mut self, width: u32, height: u32) {
+        if let Some(r) = &mut self.running
+            && width > 0
+            && height > 0
+        {
+            r.config.width = width;
+            r.config.height = height;
+            r.surface.configure(&r.ctx.device, &r.config);
+            r.depth = depth_view(&r.ctx, width, height);
+        }
+    }
+
+    /// One frame: the overlay, the light turned by the environment
+    /// rotation, the scene and the overlay drawn; a screenshot when asked.
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let now = Instant::now();
+        if let Some(last) = self.last_frame {
+            let ms = (now - last).as_secs_f64() * 1e3;
+            self.frame_ms = if self.frame_ms == 0.0 {
+                ms
+            } else {
+                0.9 * self.frame_ms + 0.1 * ms
+            };
+        }
+        self.last_frame = Some(now);
+        self.controls.shading.window = self.controls.window();
+        let rotation = self.controls.rotation();
+        let rotated =
+            ShRotation::from_mat3(self.env.radiance.lmax(), rotation).apply(&self.env.radiance);
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
+        r.renderer.set_light(&r.ctx, &rotated);
+        r.renderer.set_environment_rotation(rotation);
+
+        let raw_input = r.egui_state.take_egui_input(&r.window);
+        let egui_ctx = r.egui_state.egui_ctx().clone();
+        let panel = PanelInfo {
+            fps: if self.frame_ms > 0.0 {
+                1e3 / self.frame_ms
+            } else {
+                0.0
+            },
+            frame_ms: self.frame_ms,
+            adapter: &self.message,
+            coefficients: &rotated,
+            has_map: self.env.map.is_some(),
+        };
+        let controls = &mut self.controls;
+        let mut screenshot = false;
+        let full = egui_ctx.run_ui(raw_input, |ui| {
+            if controls.show_panel {
+                screenshot |= draw_panel(ui.ctx(), controls, &panel);
+            }
+        });
+        self.screenshot_requested |= screenshot;
+        r.egui_state
+            .handle_platform_output(&r.window, full.platform_output);
+        let jobs = egui_ctx.tessellate(full.shapes, full.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [r.config.width, r.config.height],
+            pixels_per_point: full.pixels_per_point,
+        };
+        for (id, deltas) in &full.textures_delta.set {
+            for delta in deltas {
+                r.egui_renderer
+                    .update_texture(&r.ctx.device, &r.ctx.queue, *id, delta);
+            }
+        }
+
+        let last_scripted = self
+            .args
+            .screenshot
+            .as_ref()
+            .filter(|_| self.frames + 1 >= self.args.frames);
+        let capture = last_scripted.is_some() || self.screenshot_requested;
+        let frame = match r.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            other => {
+                // Lost, outdated or timed out: reconfigure and try next frame.
+                r.surface.configure(&r.ctx.device, &r.config);
+                if matches!(other, wgpu::CurrentSurfaceTexture::Timeout) {
+                    return Ok(());
+                }
+                return Ok(());
+            }
+        };
+        let target_view = frame.texture.create_view(&Default::default());
+        // A screenshot renders the same frame into a copyable texture too.
+        let capture_target = capture.then(|| {
+            r.ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("screenshot"),
+                size: frame.texture.size(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: r.config.format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        });
+        let camera = self.orbit.expect("set with the window").camera();
+        let aspect = r.config.width as f32 / r.config.height as f32;
+        let mut encoder = r.ctx.device.create_command_encoder(&Default::default());
+        let mut views = vec![target_view];
+        if let Some(t) = &capture_target {
+            views.push(t.create_view(&Default::default()));
+        }
+        let mut extra = Vec::new();
+        for view in &views {
+            r.renderer.draw(
+                &r.ctx,
+                &mut encoder,
+                view,
+                &r.depth,
+                &camera,
+                aspect,
+                &self.controls.shading,
+            )?;
+            extra.extend(r.egui_renderer.update_buffers(
+                &r.ctx.device,
+                &r.ctx.queue,
+                &mut encoder,
+                &jobs,
+                &screen,
+            ));
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("overlay"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            r.egui_renderer
+                .render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        r.ctx
+            .queue
+            .submit(extra.into_iter().chain([encoder.finish()]));
+        for id in &full.textures_delta.free {
+            r.egui_renderer.free_texture(id);
+        }
+        if let Some(texture) = capture_target {
+            let path = match last_scripted {
+                Some(p) => p.clone(),
+                None => {
+                    self.screenshots_taken += 1;
+                    PathBuf::from(format!("shlight-view-{}.png", self.screenshots_taken))
+                }
+            };
+            save_screenshot(&r.ctx, &texture, r.config.format, &path)?;
+            self.screenshot_requested = false;
+            if last_scripted.is_none() {
+                eprintln!("saved {}", path.display());
+            }
+        }
+        r.window.pre_present_notify();
+        r.ctx.queue.present(frame);
+        self.frames += 1;
+        if last_scripted.is_some() {
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    fn key(&mut self, event: &KeyEvent, event_loop: &ActiveEventLoop) {
+        if event.state != ElementState::Pressed {
+            return;
+        }
+        let c = &mut self.controls;
+        match &event.logical_key {
+            Key::Named(NamedKey::Escape) => event_loop.exit(),
+            Key::Named(NamedKey::ArrowLeft) => c.env_yaw -= 0.1,
+            Key::Named(NamedKey::ArrowRight) => c.env_yaw += 0.1,
+            Key::Named(NamedKey::ArrowUp) => c.env_pitch -= 0.1,
+            Key::Named(NamedKey::ArrowDown) => c.env_pitch += 0.1,
+            Key::Character(s) => match s.as_str() {
+                "q" => event_loop.exit(),
+                "m" => {
+                    c.shading.mode = match c.shading.mode {
+                        Mode::Sh => Mode::Normals,
+                        _ => Mode::Sh,
+                    }
+                }
+                "b" => {
+                    c.shading.background = match c.shading.background {
+                        Background::None if self.env.map.is_some() => Background::Map,
+                        Background::None | Background::Map => Background::Sh,
+                        Background::Sh => Background::None,
+                    }
+                }
+                "w" => c.window_choice = (c.window_choice + 1) % WINDOWS.len(),
+                "t" => {
+                    let next = match c.shading.tone_map {
+                        Some(ToneMap::Clamp) => ToneMap::Reinhard,
+                        Some(ToneMap::Reinhard) => ToneMap::Aces,
+                        _ => ToneMap::Clamp,
+                    };
+                    c.shading.tone_map = Some(next);
+                }
+                "+" | "=" => c.shading.exposure_ev += 0.5,
+                "-" => c.shading.exposure_ev -= 0.5,
+                "p" => self.screenshot_requested = true,
+                "h" => c.show_panel = !c.show_panel,
+                digit => {
+                    if let Ok(l) = digit.parse::<usize>()
+                        && l <= MAX_LMAX
+                    {
+                        c.shading.lmax = l;
+                    }
+                }
+            },
+            _ => {}
+        }
+    }
+
+    fn drag(&mut self, x: f64, y: f64) {
+        let Some((px, py)) = self.cursor.replace((x, y)) else {
+            return;
+        };
+        let (dx, dy) = ((x - px) as f32, (y - py) as f32);
+        match self.dragging {
+            Some((MouseButton::Left, false)) => {
+                if let Some(o) = &mut self.orbit {
+                    o.yaw -= dx * 0.01;
+                    o.pitch = (o.pitch + dy * 0.01).clamp(-1.5, 1.5);
+                }
+            }
+            Some(_) => {
+                self.controls.env_yaw += f64::from(dx) * 0.01;
+                self.controls.env_pitch += f64::from(dy) * 0.01;
+            }
+            None => {}
+        }
+    }
+}
+
+impl ApplicationHandler for App<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_none()
+            && let Err(e) = self.start(event_loop)
+        {
+            self.error = Some(e);
+            event_loop.exit();
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let consumed = match &mut self.running {
+            Some(r) => r.egui_state.on_window_event(&r.window, &event).consumed,
+            None => false,
+        };
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => self.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.redraw(event_loop) {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            }
+            WindowEvent::ModifiersChanged(m) => self.shift = m.state().shift_key(),
+            WindowEvent::KeyboardInput { event, .. } if !consumed => self.key(&event, event_loop),
+            WindowEvent::MouseInput { state, button, .. } => match state {
+                ElementState::Pressed if !consumed => {
+                    self.dragging = Some((button, self.shift));
+                }
+                _ => self.dragging = None,
+            },
+            WindowEvent::CursorMoved { position, .. } => self.drag(position.x, position.y),
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+                let lines = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                if let Some(o) = &mut self.orbit {
+                    o.distance = (o.distance * 0.9f32.powf(lines)).max(o.radius * 0.2);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        if let Some(r) = &self.running {
+            r.window.request_redraw();
+        }
+    }
+}
+
+/// What the panel shows besides the controls.
+struct PanelInfo<'a> {
+    fps: f64,
+    frame_ms: f64,
+    adapter: &'a str,
+    coefficients: &'a shlight_core::ShCoeffs<glam::DVec3>,
+    has_map: bool,
+}
+
+/// The overlay panel; returns whether its screenshot button was pressed.
+fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -> bool {
+    let mut screenshot = false;
+    egui::Window::new("shlight")
+        .default_pos([10.0, 10.0])
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.label(format!("{:.0} fps ({:.2} ms)", info.fps, info.frame_ms));
+            ui.label(info.adapter);
+            ui.add(egui::Slider::new(&mut c.shading.lmax, 0..=MAX_LMAX).text("lmax"));
+            ui.horizontal(|ui| {
+                ui.label("mode");
+                ui.radio_value(&mut c.shading.mode, Mode::Sh, "SH irradiance");
+                ui.radio_value(&mut c.shading.mode, Mode::Normals, "normals");
+            });
+            ui.horizontal(|ui| {
+                ui.label("background");
+                ui.radio_value(&mut c.shading.background, Background::None, "none");
+                if info.has_map {
+                    ui.radio_value(&mut c.shading.background, Background::Map, "map");
+                }
+                ui.radio_value(&mut c.shading.background, Background::Sh, "SH");
+            });
+            ui.horizontal(|ui| {
+                ui.label("window");
+                for (k, (name, _)) in WINDOWS.iter().enumerate() {
+                    ui.radio_value(&mut c.window_choice, k, *name);
+                }
+            });
+            ui.add(egui::Slider::new(&mut c.shading.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
+            ui.horizontal(|ui| {
+                ui.label("tone map");
+                for tm in ToneMap::ALL {
+                    ui.radio_value(&mut c.shading.tone_map, Some(tm), tm.name());
+                }
+            });
+            ui.add(egui::Slider::new(&mut c.env_yaw, -3.2..=3.2).text("environment yaw"));
+            ui.add(egui::Slider::new(&mut c.env_pitch, -1.6..=1.6).text("environment pitch"));
+            screenshot = ui.button("screenshot (p)").clicked();
+            ui.collapsing("coefficients (rotated radiance, R G B)", |ui| {
+                egui::ScrollArea::vertical()
+                    .max_height(220.0)
+                    .show(ui, |ui| {
+                        for l in 0..=c.shading.lmax.min(info.coefficients.lmax()) {
+                            for m in -(l as isize)..=l as isize {
+                                let v = info.coefficients[(l, m)];
+                                ui.monospace(format!(
+                                    "l={l} m={m:+} {:+.4} {:+.4} {:+.4}",
+                                    v.x, v.y, v.z
+                                ));
+                            }
+                        }
+                    });
+            });
+            ui.small("drag: orbit · right/shift drag, arrows: environment · 0-8 m b w t +/- p h q");
+        });
+    screenshot
+}
+
+fn depth_view(ctx: &GpuContext, width: u32, height: u32) -> wgpu::TextureView {
+    ctx.device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("depth"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+/// Reads an 8-bit RGBA or BGRA texture back and writes it as PNG.
+fn save_screenshot(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    format: wgpu::TextureFormat,
+    path: &Path,
+) -> Result<()> {
+    let size = texture.size();
+    let (w, h) = (size.width as usize, size.height as usize);
+    let padded = (size.width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("screenshot"),
+        size: u64::from(padded) * h as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: None,
+            },
+        },
+        size,
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| anyhow!("screenshot: {e}"))?;
+    rx.recv()?.map_err(|e| anyhow!("screenshot: {e}"))?;
+    let bgra = matches!(
+        format,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+    );
+    let bytes = buffer
+        .get_mapped_range(..)
+        .map_err(|e| anyhow!("screenshot: {e}"))?
+        .to_vec();
+    buffer.unmap();
+    let mut pixels = Vec::with_capacity(w * h);
+    for row in bytes.chunks_exact(padded as usize).take(h) {
+        for p in row[..w * 4].chunks_exact(4) {
+            let (r, g, b) = if bgra {
+                (p[2], p[1], p[0])
+            } else {
+                (p[0], p[1], p[2])
+            };
+            // The target holds sRGB-encoded values; the writer encodes linear ones.
+            pixels.push([r, g, b].map(|v| srgb_to_linear(f32::from(v) / 255.0)));
+        }
+    }
+    let image = Image::new(w, h, pixels).map_err(|e| anyhow!("{e}"))?;
+    write_image(path, &image, &WriteOptions::default())
+        .with_context(|| format!("{}: writing the screenshot", path.display()))?;
+    Ok(())
+}

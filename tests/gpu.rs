@@ -1,0 +1,439 @@
+//! The GPU commands end to end: `render-mesh` against the CPU evaluation of
+//! SH irradiance at each pixel's normal, `project --gpu` against the CPU
+//! quadrature, `view --screenshot` under Xvfb, and their error messages.
+//! Without a GPU adapter (or Xvfb, for the viewer) the tests that need one
+//! print a SKIPPED line and pass, unless `SHLIGHT_REQUIRE_GPU=1`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+
+use glam::DVec3;
+use serde_json::json;
+use shlight_core::{ShCoeffs, analytic, irradiance};
+use shlight_io::{ReadOptions, read_image};
+
+use crate::util::{coefficients, json, s, shlight, shlight_err, shlight_ok, temp_dir, write_map};
+
+/// Whether GPU tests can run; panics under `SHLIGHT_REQUIRE_GPU=1` without
+/// an adapter, prints a SKIPPED line otherwise.
+fn have_gpu(test: &str) -> bool {
+    match shlight_gpu::GpuContext::headless() {
+        Ok(_) => true,
+        Err(e) if required() => panic!("{test}: SHLIGHT_REQUIRE_GPU=1 but {e}"),
+        Err(e) => {
+            skipped(test, &e.to_string());
+            false
+        }
+    }
+}
+
+fn required() -> bool {
+    std::env::var("SHLIGHT_REQUIRE_GPU").as_deref() == Ok("1")
+}
+
+/// Writes a mesh as OBJ (positions, normals, triangles).
+fn write_obj(path: &Path, mesh: &shlight_mesh::Mesh) {
+    let mut text = String::new();
+    for p in &mesh.positions {
+        writeln!(text, "v {} {} {}", p.x, p.y, p.z).unwrap();
+    }
+    for n in &mesh.normals {
+        writeln!(text, "vn {} {} {}", n.x, n.y, n.z).unwrap();
+    }
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| i + 1);
+        writeln!(text, "f {a}//{a} {b}//{b} {c}//{c}").unwrap();
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+/// Writes radiance coefficients as a coefficient file (y-up).
+fn write_coeffs(path: &Path, c: &ShCoeffs<DVec3>) {
+    let rows: Vec<[f64; 3]> = c.as_slice().iter().map(|v| v.to_array()).collect();
+    let doc = json!({
+        "format": "shlight-sh",
+        "format_version": 1,
+        "lmax": c.lmax(),
+        "frame": "y-up",
+        "mirror": false,
+        "quantity": "radiance",
+        "coefficients": rows,
+        "provenance": {},
+    });
+    std::fs::write(path, doc.to_string()).unwrap();
+}
+
+/// A light positive everywhere with bands 0..4 present.
+fn light() -> ShCoeffs<DVec3> {
+    let mut l = analytic::cap(4, [0.3, 0.8, 0.5], 0.5, DVec3::new(5.0, 3.0, 2.0));
+    l += &analytic::constant(4, DVec3::new(1.0, 1.1, 1.3));
+    l
+}
+
+/// The bound for per-pixel shading against the CPU; f32 shading of
+/// 25 terms measures a few 1e-6 (printed by the test).
+const SHADING_TOL: f64 = 1e-3;
+
+#[test]
+fn render_mesh_shades_each_pixel_as_the_cpu_irradiance_at_its_normal() {
+    if !have_gpu("render_mesh_shades_each_pixel_as_the_cpu_irradiance_at_its_normal") {
+        return;
+    }
+    let dir = temp_dir("gpu_render_mesh");
+    let (mesh, env) = (dir.join("sphere.obj"), dir.join("light.json"));
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(2.0, 48, 24));
+    let light = light();
+    write_coeffs(&env, &light);
+    let (normals, shaded) = (dir.join("n.exr"), dir.join("sh.exr"));
+    let common = ["--size", "80x60", "--lmax", "4", "--albedo", "0.5,0.75,1"];
+    let mut args = vec![
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&env),
+        "--mode",
+        "normals",
+        "-o",
+        s(&normals),
+    ];
+    args.extend(common);
+    shlight_ok(&args);
+    let mut args = vec!["render-mesh", s(&mesh), "--env", s(&env), "-o", s(&shaded)];
+    args.extend(common);
+    shlight_ok(&args);
+    let n = read_image(&normals, &ReadOptions::default()).unwrap();
+    let c = read_image(&shaded, &ReadOptions::default()).unwrap();
+    assert_eq!((n.width(), n.height()), (80, 60));
+    let e = irradiance(&light);
+    let albedo = [0.5, 0.75, 1.0];
+    let (mut covered, mut worst) = (0, 0.0f64);
+    for (normal, colour) in n.pixels().iter().zip(c.pixels()) {
+        let d = DVec3::from_array(normal.map(f64::from));
+        if d.length() == 0.0 {
+            assert_eq!(*colour, [0.0; 3], "no mesh, no background: 0");
+            continue;
+        }
+        assert!((d.length() - 1.0).abs() < 1e-5, "unit normals: {d}");
+        covered += 1;
+        let want = e.eval(d.to_array());
+        for k in 0..3 {
+            let want = albedo[k] / std::f64::consts::PI * want[k];
+            let err = (f64::from(colour[k]) - want).abs() / want;
+            assert!(err <= SHADING_TOL, "{colour:?} vs {want} at {d}");
+            worst = worst.max(err);
+        }
+    }
+    assert!(
+        covered > 80 * 60 / 8,
+        "the sphere is framed ({covered} pixels)"
+    );
+    eprintln!("render-mesh vs CPU irradiance over {covered} pixels: worst {worst:.2e}");
+}
+
+#[test]
+fn render_mesh_writes_a_png_with_the_map_behind() {
+    if !have_gpu("render_mesh_writes_a_png_with_the_map_behind") {
+        return;
+    }
+    let dir = temp_dir("gpu_render_mesh_png");
+    let (mesh, env, out) = (dir.join("s.obj"), dir.join("sky.exr"), dir.join("s.png"));
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(1.0, 32, 16));
+    // Bright upper half, dark lower half.
+    write_map(&env, 64, 32, |_, y| {
+        if y < 16 { [2.0, 2.0, 2.5] } else { [0.05; 3] }
+    });
+    shlight_ok(&[
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&env),
+        "--background",
+        "map",
+        "--size",
+        "64x48",
+        "-o",
+        s(&out),
+        "--camera",
+        "0,0,4",
+    ]);
+    let img = read_image(&out, &ReadOptions::default()).unwrap();
+    // Corners: the map (bright sky above, dark ground below); centre: the sphere.
+    let top = img.get(0, 0)[2];
+    let bottom = img.get(0, 47)[2];
+    assert!(top > 0.5 && bottom < 0.2, "sky {top}, ground {bottom}");
+    let centre = img.get(32, 24);
+    assert!(
+        centre != img.get(0, 0) && centre[0] > 0.05,
+        "the sphere at the centre: {centre:?}"
+    );
+}
+
+#[test]
+fn project_gpu_matches_the_cpu_quadrature() {
+    if !have_gpu("project_gpu_matches_the_cpu_quadrature") {
+        return;
+    }
+    let dir = temp_dir("gpu_project");
+    let map = dir.join("map.exr");
+    write_map(&map, 256, 128, |x, y| {
+        let spot = if (100..110).contains(&x) && (30..36).contains(&y) {
+            30.0
+        } else {
+            0.0
+        };
+        [
+            1.0 + spot + x as f32 / 256.0,
+            0.5 + y as f32 / 128.0,
+            0.25 + spot * 0.5,
+        ]
+    });
+    for up in ["y", "z"] {
+        let cpu = coefficients(&json(&shlight(&[
+            "project",
+            s(&map),
+            "--lmax",
+            "8",
+            "--up",
+            up,
+            "--format",
+            "json",
+        ])));
+        let gpu = coefficients(&json(&shlight(&[
+            "project",
+            s(&map),
+            "--lmax",
+            "8",
+            "--up",
+            up,
+            "--gpu",
+            "--format",
+            "json",
+        ])));
+        let largest = cpu.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (g, c) in gpu.iter().zip(&cpu) {
+            for k in 0..3 {
+                let scale = c[k].abs().max(1e-2 * largest);
+                assert!(
+                    (g[k] - c[k]).abs() <= 1e-4 * scale,
+                    "up {up}: {g:?} vs {c:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn gpu_commands_refuse_bad_input_by_name() {
+    let dir = temp_dir("gpu_errors");
+    let (mesh, env, out) = (dir.join("s.obj"), dir.join("light.json"), dir.join("o.exr"));
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(1.0, 8, 4));
+    write_coeffs(&env, &light());
+    // A mesh that is not one.
+    let broken = dir.join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
+    let err = shlight_err(&["render-mesh", s(&broken), "--env", s(&env), "-o", s(&out)]);
+    assert!(err.contains("broken.obj"), "{err}");
+    let missing = dir.join("missing.obj");
+    let err = shlight_err(&["render-mesh", s(&missing), "--env", s(&env), "-o", s(&out)]);
+    assert!(err.contains("missing.obj"), "{err}");
+    // An environment that is not 2:1, one that is missing, one of irradiance.
+    let square = dir.join("square.exr");
+    write_map(&square, 16, 16, |_, _| [1.0; 3]);
+    let err = shlight_err(&["render-mesh", s(&mesh), "--env", s(&square), "-o", s(&out)]);
+    assert!(
+        err.contains("square.exr") && err.contains("not an equirect"),
+        "{err}"
+    );
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&dir.join("none.exr")),
+        "-o",
+        s(&out),
+    ]);
+    assert!(err.contains("none.exr"), "{err}");
+    let irr = dir.join("irr.json");
+    std::fs::write(
+        &irr,
+        std::fs::read_to_string(&env)
+            .unwrap()
+            .replace("\"radiance\"", "\"irradiance\""),
+    )
+    .unwrap();
+    let err = shlight_err(&["render-mesh", s(&mesh), "--env", s(&irr), "-o", s(&out)]);
+    assert!(
+        err.contains("irr.json") && err.contains("irradiance"),
+        "{err}"
+    );
+    // Options the GPU path cannot honour.
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&env),
+        "--lmax",
+        "9",
+        "-o",
+        s(&out),
+    ]);
+    assert!(err.contains("--lmax 9"), "{err}");
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&env),
+        "-o",
+        s(&dir.join("o.jpg")),
+    ]);
+    assert!(err.contains("o.jpg"), "{err}");
+    let map = dir.join("map.exr");
+    write_map(&map, 16, 8, |_, _| [1.0; 3]);
+    let err = shlight_err(&["project", s(&map), "--gpu", "--lmax", "9"]);
+    assert!(err.contains("lmax 8"), "{err}");
+    let err = shlight_err(&["project", s(&map), "--gpu", "--method", "montecarlo"]);
+    assert!(err.contains("--gpu"), "{err}");
+    assert!(!out.exists(), "nothing written on failure");
+}
+
+/// An X server for the viewer: our own Xvfb on a free display number,
+/// killed (by its process id) when dropped.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Xvfb {
+    fn start() -> Option<Self> {
+        for n in 90..110 {
+            let socket = format!("/tmp/.X11-unix/X{n}");
+            if Path::new(&socket).exists() {
+                continue;
+            }
+            let display = format!(":{n}");
+            let Ok(mut child) = Command::new("Xvfb")
+                .args([
+                    display.as_str(),
+                    "-screen",
+                    "0",
+                    "800x600x24",
+                    "-nolisten",
+                    "tcp",
+                ])
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+            else {
+                return None;
+            };
+            for _ in 0..100 {
+                if Path::new(&socket).exists() {
+                    return Some(Self { child, display });
+                }
+                if let Ok(Some(_)) = child.try_wait() {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+        None
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+#[test]
+fn view_screenshot_shows_the_mesh_under_xvfb() {
+    let test = "view_screenshot_shows_the_mesh_under_xvfb";
+    if !have_gpu(test) {
+        return;
+    }
+    let Some(x) = Xvfb::start() else {
+        assert!(
+            !required(),
+            "{test}: SHLIGHT_REQUIRE_GPU=1 but Xvfb cannot be started"
+        );
+        skipped(test, "no Xvfb (apt install xvfb)");
+        return;
+    };
+    let dir = temp_dir("gpu_view");
+    let mesh = dir.join("s.obj");
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(1.0, 48, 24));
+    let env = Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps/default.exr");
+    let screenshot = |name: &str, extra: &[&str]| {
+        let shot = dir.join(name);
+        let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
+            .args([
+                "view",
+                s(&mesh),
+                "--env",
+                s(&env),
+                "--size",
+                "480x320",
+                "--frames",
+                "3",
+            ])
+            .args(["--screenshot", s(&shot)])
+            .args(extra)
+            .env("DISPLAY", &x.display)
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "view failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let img = read_image(&shot, &ReadOptions::default()).unwrap();
+        assert_eq!((img.width(), img.height()), (480, 320));
+        img
+    };
+    let bare = screenshot("bare.png", &["--hide-panel"]);
+    let with_panel = screenshot("panel.png", &[]);
+    drop(x);
+    let lum = |img: &shlight_io::Image, x: usize, y: usize| {
+        let p = img.get(x, y);
+        p[0] + p[1] + p[2]
+    };
+    let mean = |img: &shlight_io::Image, x0: usize, y0: usize, n: usize| {
+        let mut sum = 0.0;
+        for y in y0..y0 + n {
+            for x in x0..x0 + n {
+                sum += lum(img, x, y);
+            }
+        }
+        sum / (n * n) as f32
+    };
+    let all: Vec<f32> = bare.pixels().iter().map(|p| p[0] + p[1] + p[2]).collect();
+    let (lo, hi) = all
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(a, b), v| (a.min(*v), b.max(*v)));
+    assert!(hi - lo > 0.05, "not blank: luminance {lo}..{hi}");
+    // The sphere at the centre against the background in the four corners.
+    let centre = mean(&bare, 230, 150, 20);
+    for (x0, y0) in [(0, 0), (460, 0), (0, 300), (460, 300)] {
+        let corner = mean(&bare, x0, y0, 20);
+        assert!(
+            (centre - corner).abs() > 0.01,
+            "centre {centre} vs corner {corner}"
+        );
+    }
+    // The overlay panel, at the top left, changes what is there.
+    let d = (mean(&with_panel, 20, 20, 40) - mean(&bare, 20, 20, 40)).abs();
+    assert!(d > 0.01, "the panel shows ({d})");
+}
+
+/// Prints a SKIPPED line straight to stderr (past the test harness's output
+/// capture, so it shows in a normal `cargo test` run).
+fn skipped(test: &str, why: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
+}
