@@ -10,6 +10,7 @@ mod export;
 mod preview;
 mod progress;
 mod project;
+mod prt;
 mod render;
 mod synth;
 mod texels;
@@ -39,6 +40,8 @@ enum Command {
     Synth(synth::SynthArgs),
     /// Convert a coefficient file to an engine's format, or back.
     Convert(convert::ConvertArgs),
+    /// Bake precomputed radiance transfer (PRT) for a mesh.
+    Prt(prt::PrtArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -55,6 +58,7 @@ fn main() -> ExitCode {
         Command::Synth(args) => synth::run(&args, &ui),
         Command::Show { file } => coeff_file::show(&file),
         Command::Convert(args) => convert::run(&args),
+        Command::Prt(args) => prt::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

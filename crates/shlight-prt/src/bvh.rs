@@ -1,44 +1,26 @@
 //! A bounding-volume hierarchy over a mesh's triangles, for the visibility
 //! and bounce rays of PRT baking.
 //!
-//! - **Build**: binary, top-down, binned surface-area heuristic (16 bins on
-//!   the centroid bounds of the longest axis; cost 1 per node visit, 1 per
-//!   triangle test), leaves of at most [`MAX_LEAF`] triangles, nodes in
-//!   depth-first order with the two children next to each other. Triangles
-//!   are copied into leaf order, so a leaf reads contiguous memory.
-//! - **Traversal**: a fixed stack, the nearer child first (by the ray's
-//!   direction sign on the split axis); box tests by slabs, with the far
-//!   distance widened by `1 + 2 gamma(3)` so rounding never loses a box that
-//!   the ray touches (Ize 2013).
-//! - **Triangles**: the watertight test of Woop, Benthin and Wald (JCGT
-//!   2013): the ray is sheared to +z, edge functions are evaluated in the
-//!   sheared plane and redone in `f64` when one is exactly zero, so a ray
+//! - **Hierarchy**: the `obvhs` crate's compressed wide BVH (CWBVH, eight
+//!   children per node, 80-byte nodes; Ylitie et al. 2017), built by PLOC
+//!   with its "medium" parameters, traversed with its SIMD node test.
+//!   Chosen over a binned-SAH binary BVH written for shlight by
+//!   `benches/rays.rs`: on the bundled bunny and a 70k-triangle torus it cast
+//!   1.3x to 2x more PRT rays per second (README, "PRT").
+//! - **Triangles**: shlight's own watertight test (Woop, Benthin and Wald,
+//!   JCGT 2013): the ray is sheared to +z, edge functions are evaluated in
+//!   the sheared plane and redone in `f64` when one is exactly zero, so a ray
 //!   through an edge or a vertex shared by triangles hits at least one of
 //!   them, never slipping between. Both sides of a triangle are hit.
-//!
-//! Chosen over the `obvhs` crate by `benches/rays.rs` (rays per second on
-//! the bundled bunny and a 70k-triangle torus): see the README's PRT
-//! section for the figures.
+//!   Triangles are copied into the hierarchy's leaf order.
 
 use glam::Vec3;
-
-/// The most triangles in one leaf.
-pub const MAX_LEAF: usize = 4;
-const BINS: usize = 16;
-const STACK: usize = 64;
-/// `1 + 2 gamma(3)`, `gamma(n) = n u / (1 - n u)`, `u = 2^-24`.
-const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
-
-/// One node: a box and either two children (`count == 0`, the left child at
-/// `first`, the right at `first + 1`) or `count` triangles from `first`.
-#[derive(Clone, Copy, Debug)]
-#[repr(C)]
-struct Node {
-    min: Vec3,
-    first: u32,
-    max: Vec3,
-    count: u32,
-}
+use glam_obvhs::{UVec2, Vec3A};
+use obvhs::aabb::Aabb;
+use obvhs::cwbvh::CwBvh;
+use obvhs::cwbvh::builder::build_cwbvh;
+use obvhs::ray::Ray as TraversalRay;
+use obvhs::{Boundable, BvhBuildParams};
 
 /// Where a ray hit a triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,13 +38,12 @@ pub struct Hit {
 #[derive(Clone, Copy, Debug)]
 pub struct Ray {
     origin: Vec3,
-    inv_dir: Vec3,
+    /// The same ray for the hierarchy's node tests.
+    traversal: TraversalRay,
     /// Axes permuted so that `kz` is the direction's largest component
     /// (Woop et al.), and the shear that maps the direction to +z.
     k: [usize; 3],
     shear: Vec3,
-    /// Largest `t` of interest.
-    t_max: f32,
 }
 
 impl Ray {
@@ -70,28 +51,30 @@ impl Ray {
     #[must_use]
     pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Self {
         let a = dir.abs();
-        let kz = if a.x > a.y { if a.x > a.z { 0 } else { 2 } } else if a.y > a.z { 1 } else { 2 };
+        let kz = if a.x > a.y {
+            if a.x > a.z { 0 } else { 2 }
+        } else if a.y > a.z {
+            1
+        } else {
+            2
+        };
         let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
         if dir[kz] < 0.0 {
             core::mem::swap(&mut kx, &mut ky);
         }
+        let a3 = |v: Vec3| Vec3A::new(v.x, v.y, v.z);
+        // The node test takes the sign of a direction component from
+        // `d < 0` but inverts it as `signum(d) / EPSILON` when |d| <= EPSILON:
+        // -0.0 (and tiny components) would be inverted with the wrong sign
+        // or scale. Such components become +0.0 for the node tests only
+        // (triangle boxes are padded to cover the difference).
+        let snapped = Vec3::select(dir.abs().cmple(Vec3::splat(f32::EPSILON)), Vec3::ZERO, dir);
         Self {
             origin,
-            inv_dir: dir.recip(),
+            traversal: TraversalRay::new(a3(origin), a3(snapped), 0.0, t_max),
             k: [kx, ky, kz],
             shear: Vec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]),
-            t_max,
         }
-    }
-
-    /// Entry distance into the box, or `None` when missed within `(0, t_max)`.
-    #[inline(always)]
-    fn hits_box(&self, min: Vec3, max: Vec3, t_max: f32) -> Option<f32> {
-        let t1 = (min - self.origin) * self.inv_dir;
-        let t2 = (max - self.origin) * self.inv_dir;
-        let near = t1.min(t2).max_element().max(0.0);
-        let far = t1.max(t2).min_element().min(t_max) * FAR_SCALE;
-        (near <= far).then_some(near)
     }
 
     /// The watertight ray-triangle test: `(t, w0, w1, w2)` with unnormalised
@@ -128,20 +111,48 @@ impl Ray {
     }
 }
 
-/// The hierarchy: nodes, triangles in leaf order, and each one's index in
+/// A triangle's bounding box grown by [`BOX_PADDING`] of its largest
+/// coordinate: the hierarchy's node test is not conservative (it does not
+/// round outwards), and without the padding a ray aimed exactly at a vertex
+/// on a box's face can miss the box (the watertightness test below finds
+/// dozens of such rays on a sphere).
+struct PaddedBox(Aabb);
+
+/// Relative growth of triangle boxes, about 16 units in the last place.
+pub const BOX_PADDING: f32 = 16.0 * f32::EPSILON;
+
+impl PaddedBox {
+    fn around([a, b, c]: &[Vec3; 3]) -> Self {
+        let (lo, hi) = (a.min(*b).min(*c), a.max(*b).max(*c));
+        let pad =
+            Vec3::splat(lo.abs().max(hi.abs()).max_element() * BOX_PADDING + f32::MIN_POSITIVE);
+        let a3 = |v: Vec3| Vec3A::new(v.x, v.y, v.z);
+        Self(Aabb::new(a3(lo - pad), a3(hi + pad)))
+    }
+}
+
+impl Boundable for PaddedBox {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+/// The hierarchy, the triangles in its leaf order, and each one's index in
 /// the mesh.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    bvh: CwBvh,
     triangles: Vec<[Vec3; 3]>,
     ids: Vec<u32>,
 }
 
-struct Builder<'a> {
-    bounds: Vec<(Vec3, Vec3)>,
-    centroids: Vec<Vec3>,
-    order: &'a mut [u32],
-    nodes: Vec<Node>,
+impl std::fmt::Debug for Bvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Bvh")
+            .field("nodes", &self.bvh.nodes.len())
+            .field("triangles", &self.triangles.len())
+            .finish()
+    }
 }
 
 impl Bvh {
@@ -155,56 +166,50 @@ impl Bvh {
             .iter()
             .map(|t| t.map(|i| positions[i as usize]))
             .collect();
-        let bounds: Vec<(Vec3, Vec3)> = corners
-            .iter()
-            .map(|[a, b, c]| (a.min(*b).min(*c), a.max(*b).max(*c)))
-            .collect();
-        let centroids = bounds.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
-        let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
-        let mut builder = Builder {
-            bounds,
-            centroids,
-            order: &mut order,
-            nodes: Vec::with_capacity(2 * triangles.len().div_ceil(MAX_LEAF).max(1)),
-        };
-        builder.nodes.push(Node {
-            min: Vec3::ZERO,
-            first: 0,
-            max: Vec3::ZERO,
-            count: 0,
-        });
-        builder.build(0, 0, triangles.len());
-        let nodes = builder.nodes;
+        let boxes: Vec<PaddedBox> = corners.iter().map(PaddedBox::around).collect();
+        let bvh = build_cwbvh(
+            &boxes,
+            BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        // Leaf order.
+        let ids = bvh.primitive_indices.clone();
         Self {
-            nodes,
-            triangles: order.iter().map(|&i| corners[i as usize]).collect(),
-            ids: order,
+            triangles: ids.iter().map(|&i| corners[i as usize]).collect(),
+            ids,
+            bvh,
         }
     }
 
-    /// Number of nodes (inner and leaves).
+    /// Number of nodes (each with up to eight children).
     #[must_use]
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        self.bvh.nodes.len()
     }
 
     /// The nearest hit of `ray`, if any.
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        let mut best: Option<(f32, u32, [f32; 3])> = None;
-        let mut t_max = ray.t_max;
-        self.traverse(ray, |t_max_now, first, count| {
-            for k in first..first + count {
-                if let Some((t, w)) = ray.hits_triangle(&self.triangles[k], *t_max_now) {
-                    *t_max_now = t;
-                    best = Some((t, k as u32, w));
+        let mut traversal = ray.traversal;
+        let mut state = self.bvh.new_traversal(traversal.direction);
+        let mut node;
+        let mut best: Option<(f32, usize, [f32; 3])> = None;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            node.intersect_ray(&traversal, state.oct_inv4),
+            {
+                let k = state.primitive_id as usize;
+                if let Some((t, w)) = ray.hits_triangle(&self.triangles[k], traversal.tmax) {
+                    traversal.tmax = t;
+                    best = Some((t, k, w));
                 }
             }
-            false
-        }, &mut t_max);
+        );
         best.map(|(t, k, w)| Hit {
             t,
-            triangle: self.ids[k as usize],
+            triangle: self.ids[k],
             barycentrics: w,
         })
     }
@@ -212,161 +217,37 @@ impl Bvh {
     /// Whether anything blocks `ray` (the first hit found ends the search).
     #[must_use]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let mut t_max = ray.t_max;
+        let traversal = ray.traversal;
+        let mut state = self.bvh.new_traversal(traversal.direction);
+        let mut node;
         let mut hit = false;
-        self.traverse(ray, |t_max_now, first, count| {
-            hit = (first..first + count).any(|k| ray.hits_triangle(&self.triangles[k], *t_max_now).is_some());
-            hit
-        }, &mut t_max);
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            node.intersect_ray(&traversal, state.oct_inv4),
+            {
+                let k = state.primitive_id as usize;
+                if ray
+                    .hits_triangle(&self.triangles[k], traversal.tmax)
+                    .is_some()
+                {
+                    // Empty the traversal state: the macro's loop then ends.
+                    hit = true;
+                    state.stack.clear();
+                    state.current_group = UVec2::ZERO;
+                    state.primitive_group = UVec2::ZERO;
+                    break;
+                }
+            }
+        );
         hit
     }
-
-    /// Visits the leaves `ray` may reach, nearer child first; `leaf` gets the
-    /// current far limit (which it may shrink), the first triangle and the
-    /// count, and returns `true` to stop.
-    #[inline(always)]
-    fn traverse(&self, ray: &Ray, mut leaf: impl FnMut(&mut f32, usize, usize) -> bool, t_max: &mut f32) {
-        let root = &self.nodes[0];
-        if ray.hits_box(root.min, root.max, *t_max).is_none() {
-            return;
-        }
-        let mut stack = [0u32; STACK];
-        let mut top = 0;
-        let mut node = root;
-        loop {
-            if node.count > 0 {
-                if leaf(t_max, node.first as usize, node.count as usize) {
-                    return;
-                }
-            } else {
-                let (l, r) = (&self.nodes[node.first as usize], &self.nodes[node.first as usize + 1]);
-                let (hl, hr) = (ray.hits_box(l.min, l.max, *t_max), ray.hits_box(r.min, r.max, *t_max));
-                match (hl, hr) {
-                    (Some(a), Some(b)) => {
-                        let (near, far) = if a <= b { (node.first, node.first + 1) } else { (node.first + 1, node.first) };
-                        stack[top] = far;
-                        top += 1;
-                        node = &self.nodes[near as usize];
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = r;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            if top == 0 {
-                return;
-            }
-            top -= 1;
-            node = &self.nodes[stack[top] as usize];
-        }
-    }
 }
-
-impl Builder<'_> {
-    /// Fills node `index` with triangles `order[start..end]`, splitting it
-    /// when the surface-area heuristic says so.
-    fn build(&mut self, index: usize, start: usize, end: usize) {
-        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        let (mut clo, mut chi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for &i in &self.order[start..end] {
-            let (a, b) = self.bounds[i as usize];
-            lo = lo.min(a);
-            hi = hi.max(b);
-            let c = self.centroids[i as usize];
-            clo = clo.min(c);
-            chi = chi.max(c);
-        }
-        let n = end - start;
-        let leaf = Node { min: lo, first: start as u32, max: hi, count: n as u32 };
-        let extent = chi - clo;
-        let axis = extent.max_position();
-        if n <= 1 || extent[axis] <= 0.0 {
-            // Every centroid in one point: no split can separate them.
-            self.nodes[index] = leaf;
-            if n > MAX_LEAF {
-                self.split_at(index, start, end, start + n / 2, lo, hi);
-            }
-            return;
-        }
-        // Binned SAH on the longest centroid axis.
-        let scale = BINS as f32 / extent[axis];
-        let bin_of = |c: Vec3| (((c[axis] - clo[axis]) * scale) as usize).min(BINS - 1);
-        let mut counts = [0usize; BINS];
-        let mut boxes = [(Vec3::INFINITY, Vec3::NEG_INFINITY); BINS];
-        for &i in &self.order[start..end] {
-            let b = bin_of(self.centroids[i as usize]);
-            counts[b] += 1;
-            let (a, c) = self.bounds[i as usize];
-            boxes[b] = (boxes[b].0.min(a), boxes[b].1.max(c));
-        }
-        let area = |(a, b): (Vec3, Vec3)| {
-            let d = (b - a).max(Vec3::ZERO);
-            d.x * d.y + d.y * d.z + d.z * d.x
-        };
-        let mut right_cost = [0.0f32; BINS];
-        let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
-        for b in (1..BINS).rev() {
-            acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
-            cnt += counts[b];
-            right_cost[b] = area(acc) * cnt as f32;
-        }
-        let (mut best, mut best_cost) = (0, f32::INFINITY);
-        let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
-        for b in 0..BINS - 1 {
-            acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
-            cnt += counts[b];
-            if cnt == 0 || cnt == n {
-                continue;
-            }
-            let cost = area(acc) * cnt as f32 + right_cost[b + 1];
-            if cost < best_cost {
-                best_cost = cost;
-                best = b;
-            }
-        }
-        let parent_area = area((lo, hi));
-        let split_cost = 1.0 + best_cost / parent_area.max(f32::MIN_POSITIVE);
-        if n <= MAX_LEAF && split_cost >= n as f32 || best_cost == f32::INFINITY {
-            self.nodes[index] = leaf;
-            if n > MAX_LEAF {
-                self.split_at(index, start, end, start + n / 2, lo, hi);
-            }
-            return;
-        }
-        let mut mid = start;
-        for k in start..end {
-            if bin_of(self.centroids[self.order[k] as usize]) <= best {
-                self.order.swap(k, mid);
-                mid += 1;
-            }
-        }
-        self.split_at(index, start, end, mid, lo, hi);
-    }
-
-    /// Makes node `index` an inner node over `start..mid` and `mid..end`.
-    fn split_at(&mut self, index: usize, start: usize, end: usize, mid: usize, lo: Vec3, hi: Vec3) {
-        let first = self.nodes.len();
-        let empty = Node { min: Vec3::ZERO, first: 0, max: Vec3::ZERO, count: 0 };
-        self.nodes.push(empty);
-        self.nodes.push(empty);
-        self.nodes[index] = Node { min: lo, first: first as u32, max: hi, count: 0 };
-        self.build(first, start, mid);
-        self.build(first + 1, mid, end);
-    }
-}
-
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
     use rand::{Rng, SeedableRng, rngs::StdRng};
     use shlight_mesh::{Mesh, generate};
 
@@ -388,7 +269,8 @@ mod tests {
             let q = s.cross(e1);
             let v = d.dot(q) / det;
             let t = e2.dot(q) / det;
-            if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && best.is_none_or(|(bt, _)| t < bt) {
+            if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && best.is_none_or(|(bt, _)| t < bt)
+            {
                 best = Some((t, k as u32));
             }
         }
@@ -397,7 +279,11 @@ mod tests {
 
     fn random_unit(rng: &mut StdRng) -> Vec3 {
         loop {
-            let v = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+            let v = Vec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
             if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
                 return v.normalize();
             }
@@ -411,7 +297,11 @@ mod tests {
         let mut rng = StdRng::seed_from_u64(5);
         let (mut hits, mut mismatched) = (0, 0);
         for _ in 0..4000 {
-            let o = Vec3::new(rng.random_range(-2.5..2.5), rng.random_range(-0.5..2.5), rng.random_range(-2.5..2.5));
+            let o = Vec3::new(
+                rng.random_range(-2.5..2.5),
+                rng.random_range(-0.5..2.5),
+                rng.random_range(-2.5..2.5),
+            );
             let d = random_unit(&mut rng);
             let ray = Ray::new(o, d, f32::INFINITY);
             let got = bvh.closest_hit(&ray);
@@ -420,24 +310,27 @@ mod tests {
             match (got, want) {
                 (Some(g), Some((t, k))) => {
                     hits += 1;
-                    assert!((f64::from(g.t) - t).abs() < 1e-4 * t.max(1.0), "t {} vs {t}", g.t);
+                    assert!(
+                        (f64::from(g.t) - t).abs() < 1e-4 * t.max(1.0),
+                        "t {} vs {t}",
+                        g.t
+                    );
                     // A ray through a shared edge may report either triangle.
                     if g.triangle != k {
                         mismatched += 1;
                     }
-                    let tri = mesh.triangles[g.triangle as usize].map(|i| mesh.positions[i as usize]);
+                    let tri =
+                        mesh.triangles[g.triangle as usize].map(|i| mesh.positions[i as usize]);
                     let w = g.barycentrics;
-                    assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-5 && w.iter().all(|&x| x >= 0.0));
+                    assert!(
+                        (w.iter().sum::<f32>() - 1.0).abs() < 1e-5 && w.iter().all(|&x| x >= 0.0)
+                    );
                     let p = tri[0] * w[0] + tri[1] * w[1] + tri[2] * w[2];
                     assert!(p.distance(o + d * g.t) < 1e-4, "{p} vs {}", o + d * g.t);
                 }
                 (None, None) => {}
-                (g, w) => {
-                    // Only a grazing ray may disagree, within rounding of an edge.
-                    let t = g.map_or(w.unwrap().0, |g| f64::from(g.t));
-                    let _ = t;
-                    mismatched += 1;
-                }
+                // Only a ray grazing an edge may disagree, within rounding.
+                _ => mismatched += 1,
             }
         }
         assert!(hits > 1000, "{hits}");
@@ -454,7 +347,11 @@ mod tests {
         // not watertight lets some rays pass between the triangles.
         let mesh = generate::uv_sphere(1.0, 37, 23);
         let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
-        let origins = [Vec3::ZERO, Vec3::new(0.1, -0.2, 0.3), Vec3::new(-0.31, 0.17, 0.05)];
+        let origins = [
+            Vec3::ZERO,
+            Vec3::new(0.1, -0.2, 0.3),
+            Vec3::new(-0.31, 0.17, 0.05),
+        ];
         let mut targets: Vec<Vec3> = mesh.positions.clone();
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
@@ -469,7 +366,6 @@ mod tests {
             }
         }
         assert_eq!(misses, 0, "of {} rays", 3 * targets.len());
-        assert!(bvh.node_count() < 2 * mesh.triangle_count());
-        let _ = DVec3::ZERO;
+        assert!(bvh.node_count() < mesh.triangle_count());
     }
 }

@@ -77,25 +77,43 @@ fn document(mesh: &Mesh, prt: &ShprtFile) -> (Value, Vec<u8>) {
         while bin.len() % 4 != 0 {
             bin.push(0);
         }
-        views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len(), "target": target}));
+        views.push(
+            json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len(), "target": target}),
+        );
         let mut a = accessor;
         a["bufferView"] = json!(views.len() - 1);
         accessors.push(a);
         accessors.len() - 1
     };
-    let floats = |v: &mut dyn Iterator<Item = f32>| v.flat_map(f32::to_le_bytes).collect::<Vec<u8>>();
+    let floats =
+        |v: &mut dyn Iterator<Item = f32>| v.flat_map(f32::to_le_bytes).collect::<Vec<u8>>();
 
     let (lo, hi) = mesh.bounds();
     let pos = floats(&mut mesh.positions.iter().flat_map(|p| p.to_array()));
-    let i = push(&mut bin, &pos, ARRAY_BUFFER, json!({"componentType": FLOAT, "count": n, "type": "VEC3",
-        "min": lo.to_array(), "max": hi.to_array()}));
+    let i = push(
+        &mut bin,
+        &pos,
+        ARRAY_BUFFER,
+        json!({"componentType": FLOAT, "count": n, "type": "VEC3",
+        "min": lo.to_array(), "max": hi.to_array()}),
+    );
     attributes.insert("POSITION".into(), json!(i));
     let nor = floats(&mut mesh.normals.iter().flat_map(|p| p.to_array()));
-    let i = push(&mut bin, &nor, ARRAY_BUFFER, json!({"componentType": FLOAT, "count": n, "type": "VEC3"}));
+    let i = push(
+        &mut bin,
+        &nor,
+        ARRAY_BUFFER,
+        json!({"componentType": FLOAT, "count": n, "type": "VEC3"}),
+    );
     attributes.insert("NORMAL".into(), json!(i));
     if let Some(colors) = &mesh.colors {
         let col = floats(&mut colors.iter().flat_map(|p| p.to_array()));
-        let i = push(&mut bin, &col, ARRAY_BUFFER, json!({"componentType": FLOAT, "count": n, "type": "VEC3"}));
+        let i = push(
+            &mut bin,
+            &col,
+            ARRAY_BUFFER,
+            json!({"componentType": FLOAT, "count": n, "type": "VEC3"}),
+        );
         attributes.insert("COLOR_0".into(), json!(i));
     }
     let per_vertex = prt.channels * prt.coeffs_per_channel();
@@ -104,12 +122,27 @@ fn document(mesh: &Mesh, prt: &ShprtFile) -> (Value, Vec<u8>) {
             let row = &prt.transfer[v * per_vertex..][..per_vertex];
             (4 * k..4 * k + 4).map(move |f| row.get(f).copied().unwrap_or(0.0))
         }));
-        let i = push(&mut bin, &data, ARRAY_BUFFER, json!({"componentType": FLOAT, "count": n, "type": "VEC4"}));
+        let i = push(
+            &mut bin,
+            &data,
+            ARRAY_BUFFER,
+            json!({"componentType": FLOAT, "count": n, "type": "VEC4"}),
+        );
         attributes.insert(format!("_SH_TRANSFER_{k}"), json!(i));
     }
-    let idx: Vec<u8> = mesh.triangles.iter().flatten().flat_map(|i| i.to_le_bytes()).collect();
-    let indices = push(&mut bin, &idx, ELEMENT_ARRAY_BUFFER, json!({"componentType": UNSIGNED_INT,
-        "count": 3 * mesh.triangle_count(), "type": "SCALAR"}));
+    let idx: Vec<u8> = mesh
+        .triangles
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    let indices = push(
+        &mut bin,
+        &idx,
+        ELEMENT_ARRAY_BUFFER,
+        json!({"componentType": UNSIGNED_INT,
+        "count": 3 * mesh.triangle_count(), "type": "SCALAR"}),
+    );
     let doc = json!({
         "asset": {"version": "2.0", "generator": concat!("shlight ", env!("CARGO_PKG_VERSION"))},
         "scene": 0,
@@ -159,7 +192,9 @@ mod tests {
             lmax: 4,
             channels,
             vertex_count: mesh.vertex_count(),
-            transfer: (0..mesh.vertex_count() * per).map(|i| i as f32 * 0.25).collect(),
+            transfer: (0..mesh.vertex_count() * per)
+                .map(|i| i as f32 * 0.25)
+                .collect(),
             mode: "shadowed".into(),
             samples: 1035,
             bounces: 0,
@@ -174,7 +209,8 @@ mod tests {
     fn round_trip(name: &str, channels: usize) {
         let mesh = generate::torus(1.0, 0.3, 8, 6);
         let prt = fake(&mesh, channels);
-        let dir = std::env::temp_dir().join(format!("shlight-prt-gltf-{}-{name}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("shlight-prt-gltf-{}-{name}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(name);
         write_gltf(&path, &mesh, &prt).unwrap();
@@ -186,9 +222,13 @@ mod tests {
             Some(blob) => blob,
             None => {
                 let uri = gltf.document.buffers().next().unwrap().source();
-                let gltf::buffer::Source::Uri(uri) = uri else { panic!("no URI") };
+                let gltf::buffer::Source::Uri(uri) = uri else {
+                    panic!("no URI")
+                };
                 let data = uri.split_once(";base64,").unwrap().1;
-                base64::engine::general_purpose::STANDARD.decode(data).unwrap()
+                base64::engine::general_purpose::STANDARD
+                    .decode(data)
+                    .unwrap()
             }
         };
         let get = |_: gltf::Buffer| Some(buffer.as_slice());
@@ -205,7 +245,9 @@ mod tests {
         assert_eq!(count, if channels == 1 { 7 } else { 19 });
         let mut rebuilt = vec![vec![0.0f32; 4 * count]; mesh.vertex_count()];
         for k in 0..count {
-            let accessor = prim.get(&Semantic::Extras(format!("SH_TRANSFER_{k}"))).unwrap();
+            let accessor = prim
+                .get(&Semantic::Extras(format!("SH_TRANSFER_{k}")))
+                .unwrap();
             assert_eq!(accessor.dimensions(), gltf::accessor::Dimensions::Vec4);
             let values: Vec<[f32; 4]> = gltf::accessor::Iter::new(accessor, get).unwrap().collect();
             for (v, x) in values.iter().enumerate() {

@@ -64,7 +64,11 @@ pub fn render(mesh: &Mesh, colors: &[Vec3], width: usize, height: usize) -> Imag
         for y in y0..y1 {
             for x in x0..x1 {
                 let p = Vec3::new(x as f32 + 0.5, y as f32 + 0.5, 0.0);
-                let (l0, l1, l2) = (edge(b, c, p) / area, edge(c, a, p) / area, edge(a, b, p) / area);
+                let (l0, l1, l2) = (
+                    edge(b, c, p) / area,
+                    edge(c, a, p) / area,
+                    edge(a, b, p) / area,
+                );
                 if l0 < 0.0 || l1 < 0.0 || l2 < 0.0 {
                     continue;
                 }
@@ -146,7 +150,11 @@ mod tests {
     fn a_framed_sphere_fills_its_circle_and_colours_interpolate() {
         let sphere = generate::uv_sphere(1.0, 64, 32);
         // Colour = (normal.y + 1) / 2 in every channel: bright on top.
-        let colors: Vec<Vec3> = sphere.normals.iter().map(|n| Vec3::splat((n.y + 1.0) * 0.5)).collect();
+        let colors: Vec<Vec3> = sphere
+            .normals
+            .iter()
+            .map(|n| Vec3::splat((n.y + 1.0) * 0.5))
+            .collect();
         let img = render(&sphere, &colors, 64, 64);
         // The sphere's silhouette from distance d = 1.02/sin(17.5 deg) has
         // angular radius asin(1/d); its share of the square image:
@@ -156,7 +164,10 @@ mod tests {
         let covered = img.pixels().iter().filter(|p| p[0] > 0.0).count() as f32 / (64.0 * 64.0);
         assert!((covered - expected).abs() < 0.03, "{covered} vs {expected}");
         // The top of the disc is brighter than the bottom.
-        let column: Vec<f32> = (0..64).map(|y| img.get(32, y)[0]).filter(|&v| v > 0.0).collect();
+        let column: Vec<f32> = (0..64)
+            .map(|y| img.get(32, y)[0])
+            .filter(|&v| v > 0.0)
+            .collect();
         assert!(column.first().unwrap() > column.last().unwrap());
         assert!(img.get(0, 0) == [0.0; 3]);
     }

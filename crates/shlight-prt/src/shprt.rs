@@ -178,10 +178,11 @@ impl ShprtFile {
             return Err(bad(format!("bad header (\"format\" is not \"{FORMAT}\")")));
         }
         let uint = |key: &str| {
-            header
-                .get(key)
-                .and_then(Value::as_u64)
-                .ok_or_else(|| bad(format!("bad header (\"{key}\" is missing or not an integer)")))
+            header.get(key).and_then(Value::as_u64).ok_or_else(|| {
+                bad(format!(
+                    "bad header (\"{key}\" is missing or not an integer)"
+                ))
+            })
         };
         let version = uint("format_version")?;
         if version == 0 || version > FORMAT_VERSION {
@@ -208,7 +209,11 @@ impl ShprtFile {
             Some(Value::Array(a)) if a.len() == 3 && a.iter().all(Value::is_number) => {
                 Some([0, 1, 2].map(|i| a[i].as_f64().unwrap_or(0.0) as f32))
             }
-            _ => return Err(bad("bad header (\"albedo\" is not [r, g, b] or \"vertex\")".into())),
+            _ => {
+                return Err(bad(
+                    "bad header (\"albedo\" is not [r, g, b] or \"vertex\")".into(),
+                ));
+            }
         };
         let mesh_hash = header
             .get("mesh_hash")
@@ -288,7 +293,10 @@ mod tests {
         assert_eq!(bytes.len(), nl + 1 + 24 * 4);
         assert!(bytes[..nl].starts_with(b"{\""));
         // Vertex 1, channel 2 (blue), coefficient 3 is the last value.
-        assert_eq!(&bytes[bytes.len() - 4..], &(23.0f32 * 0.5 - 3.0).to_le_bytes());
+        assert_eq!(
+            &bytes[bytes.len() - 4..],
+            &(23.0f32 * 0.5 - 3.0).to_le_bytes()
+        );
         assert_eq!(f.vertex(1, 2)[3], 23.0 * 0.5 - 3.0);
         let back = ShprtFile::from_bytes(&bytes, Path::new("x.shprt")).unwrap();
         assert_eq!(back, f);
@@ -315,18 +323,31 @@ mod tests {
         assert!(err(&long).contains("wrong length"));
         assert!(err(b"{\"format\": 1}").contains("no header line"));
         assert!(err(b"nonsense\n").contains("bad header (not JSON"));
-        let text = String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap()]).into_owned();
+        let text =
+            String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap()])
+                .into_owned();
         for (from, to, what) in [
-            ("\"format_version\":1", "\"format_version\":7", "format_version 7"),
+            (
+                "\"format_version\":1",
+                "\"format_version\":7",
+                "format_version 7",
+            ),
             ("\"channels\":3", "\"channels\":2", "channels 2"),
             ("\"lmax\":1", "\"lmax\":\"one\"", "\"lmax\" is missing"),
-            ("\"format\":\"shlight-prt\"", "\"format\":\"x\"", "\"format\" is not"),
+            (
+                "\"format\":\"shlight-prt\"",
+                "\"format\":\"x\"",
+                "\"format\" is not",
+            ),
         ] {
             assert!(text.contains(from), "{text}");
             let e = err(format!("{}\n", text.replace(from, to)).as_bytes());
             assert!(e.contains(what), "{e}");
         }
         let e = ShprtFile::read(Path::new("/nonexistent/x.shprt")).unwrap_err();
-        assert!(e.to_string().starts_with("/nonexistent/x.shprt: cannot read"));
+        assert!(
+            e.to_string()
+                .starts_with("/nonexistent/x.shprt: cannot read")
+        );
     }
 }

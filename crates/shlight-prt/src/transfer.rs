@@ -251,7 +251,8 @@ pub fn bake(
         basis.eval(d.as_dvec3().to_array(), row);
     }
 
-    let bvh = (options.mode != Mode::Unshadowed).then(|| Bvh::new(&mesh.positions, &mesh.triangles));
+    let bvh =
+        (options.mode != Mode::Unshadowed).then(|| Bvh::new(&mesh.positions, &mesh.triangles));
     let (lo, hi) = mesh.bounds();
     let eps = OFFSET * (hi - lo).length();
     let keep_hits = matches!(options.mode, Mode::Interreflected { bounces } if bounces > 0);
@@ -264,7 +265,9 @@ pub fn bake(
     let mut blocked_chunks: Vec<&mut [Vec<Blocked>]> = if keep_hits {
         blocked.chunks_mut(CHUNK).collect()
     } else {
-        (0..n_vertices.div_ceil(CHUNK)).map(|_| &mut [][..]).collect()
+        (0..n_vertices.div_ceil(CHUNK))
+            .map(|_| &mut [][..])
+            .collect()
     };
     geometric
         .par_chunks_mut(CHUNK * nc)
@@ -334,7 +337,11 @@ pub fn bake(
     // T^0 = albedo x geometric transfer, per channel.
     let stride = channels * nc;
     let mut total = vec![0.0f32; n_vertices * stride];
-    for (v, (t, g)) in total.chunks_exact_mut(stride).zip(geometric.chunks_exact(nc)).enumerate() {
+    for (v, (t, g)) in total
+        .chunks_exact_mut(stride)
+        .zip(geometric.chunks_exact(nc))
+        .enumerate()
+    {
         for c in 0..channels {
             let rho = options.albedo.get(v, c);
             for (o, gi) in t[c * nc..][..nc].iter_mut().zip(g) {
@@ -366,7 +373,9 @@ pub fn bake(
                             &previous[c as usize * stride..][..stride],
                         );
                         for i in 0..stride {
-                            acc[i] += wa * f64::from(ta[i]) + wb * f64::from(tb[i]) + wc * f64::from(tc[i]);
+                            acc[i] += wa * f64::from(ta[i])
+                                + wb * f64::from(tb[i])
+                                + wc * f64::from(tc[i]);
                         }
                     }
                     for c in 0..channels {
@@ -376,7 +385,8 @@ pub fn bake(
                         }
                     }
                 }
-                let now = done.fetch_add(out.len() / stride, Ordering::Relaxed) + out.len() / stride;
+                let now =
+                    done.fetch_add(out.len() / stride, Ordering::Relaxed) + out.len() / stride;
                 progress(Stage::Bounce(bounce), now, n_vertices);
             });
         for (t, b) in total.iter_mut().zip(&next) {

@@ -128,18 +128,29 @@ fn plane_under_sphere_occlusion_matches_brute_force_and_the_cap_formula() {
             // 4096-direction bake less. A wrong offset or a ray passing
             // through the sphere costs 0.05 or more.
             let tol = if name == "constant" { 0.015 } else { 0.02 };
-            assert!((got - want).abs() < tol, "{name} light, d = {d}: bake {got}, brute force {want}");
+            assert!(
+                (got - want).abs() < tol,
+                "{name} light, d = {d}: bake {got}, brute force {want}"
+            );
             if name == "constant" {
                 // A smooth sphere of radius R at distance d occludes a cap of
                 // cosine-weighted share (R/D)^3, D = sqrt(d^2 + R^2); the
                 // 24 x 12 polygonal sphere sits inside it (less occlusion).
                 let cap = 1.0 - (1.0 / (d * d + 1.0).sqrt()).powi(3);
-                assert!((got - cap).abs() < 0.03, "d = {d}: bake {got}, cap formula {cap}");
+                assert!(
+                    (got - cap).abs() < 0.03,
+                    "d = {d}: bake {got}, cap formula {cap}"
+                );
             }
         }
     }
     // At the contact point the sphere covers the whole upper hemisphere.
-    assert!(t.exit_radiance(&constant.splat_rgb())[plane_vertex(4)].x.abs() < 0.01);
+    assert!(
+        t.exit_radiance(&constant.splat_rgb())[plane_vertex(4)]
+            .x
+            .abs()
+            < 0.01
+    );
 }
 
 #[test]
@@ -172,7 +183,12 @@ fn white_furnace_error_shrinks_geometrically_with_bounces() {
 fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
     let bowl = generate::bowl(1.0, 32, 8);
     let rho = 0.5;
-    let t = run(&bowl, Mode::Interreflected { bounces: 12 }, 2048, rho as f32);
+    let t = run(
+        &bowl,
+        Mode::Interreflected { bounces: 12 },
+        2048,
+        rho as f32,
+    );
     // Constant light: every point sees half bowl, half sky, so
     // L_o = rho (L/2 + L_o/2), L_o = rho L / (2 - rho).
     let closed = rho / (2.0 - rho);
@@ -197,7 +213,8 @@ fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
                         break;
                     }
                     Some((tt, k, u, w)) => {
-                        let [a, b, c] = bowl.triangles[k].map(|i| bowl.normals[i as usize].as_dvec3());
+                        let [a, b, c] =
+                            bowl.triangles[k].map(|i| bowl.normals[i as usize].as_dvec3());
                         n = (a * (1.0 - u - w) + b * u + c * w).normalize();
                         o = o + d * tt + n * 1e-6;
                         weight *= rho;
@@ -209,7 +226,10 @@ fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
         // 6000 paths of values in [0.25, 0.75] err ~0.002 (1 sigma); the
         // bake's transfer interpolation across bowl triangles a little more.
         let got = f64::from(exit[v].x);
-        assert!((got - want).abs() < 0.012, "vertex {v}: bake {got}, path tracer {want}");
+        assert!(
+            (got - want).abs() < 0.012,
+            "vertex {v}: bake {got}, path tracer {want}"
+        );
     }
 }
 
@@ -219,9 +239,17 @@ fn rotating_the_light_equals_baking_the_counter_rotated_mesh() {
     let q = DQuat::from_axis_angle(DVec3::new(0.3, 1.0, -0.2).normalize(), 0.9);
     let rotated = Mesh::new(
         "rotated",
-        mesh.positions.iter().map(|p| (q.inverse() * p.as_dvec3()).as_vec3()).collect(),
+        mesh.positions
+            .iter()
+            .map(|p| (q.inverse() * p.as_dvec3()).as_vec3())
+            .collect(),
         mesh.triangles.clone(),
-        Some(mesh.normals.iter().map(|n| (q.inverse() * n.as_dvec3()).as_vec3()).collect()),
+        Some(
+            mesh.normals
+                .iter()
+                .map(|n| (q.inverse() * n.as_dvec3()).as_vec3())
+                .collect(),
+        ),
         None,
     )
     .unwrap();
@@ -235,9 +263,14 @@ fn rotating_the_light_equals_baking_the_counter_rotated_mesh() {
     let rotation = ShRotation::from_quat(4, q);
     let a = run(&mesh, Mode::Shadowed, 8192, 0.8).exit_radiance(&rotation.apply(&light));
     let b = run(&rotated, Mode::Shadowed, 8192, 0.8).exit_radiance(&light);
-    let wrong = run(&mesh, Mode::Shadowed, 8192, 0.8).exit_radiance(&rotation.inverse().apply(&light));
+    let wrong =
+        run(&mesh, Mode::Shadowed, 8192, 0.8).exit_radiance(&rotation.inverse().apply(&light));
     let mean = |x: &[Vec3], y: &[Vec3]| {
-        x.iter().zip(y).map(|(p, q)| f64::from((p.x - q.x).abs())).sum::<f64>() / x.len() as f64
+        x.iter()
+            .zip(y)
+            .map(|(p, q)| f64::from((p.x - q.x).abs()))
+            .sum::<f64>()
+            / x.len() as f64
     };
     let scale = a.iter().map(|p| f64::from(p.x)).sum::<f64>() / a.len() as f64;
     // The two bakes see the scene through different direction sets: they
@@ -256,12 +289,24 @@ fn bakes_are_the_same_at_any_thread_count_and_seeds_matter() {
         albedo: Albedo::Constant([0.9, 0.5, 0.2]),
         ..BakeOptions::default()
     };
-    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    let pool = |n| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap()
+    };
     let one = pool(1).install(|| bake(&mesh, &options, &|_, _, _| {}));
     let three = pool(3).install(|| bake(&mesh, &options, &|_, _, _| {}));
     assert_eq!(one.channels, 3);
     assert_eq!(one.coeffs, three.coeffs);
-    let reseeded = bake(&mesh, &BakeOptions { seed: 1, ..options.clone() }, &|_, _, _| {});
+    let reseeded = bake(
+        &mesh,
+        &BakeOptions {
+            seed: 1,
+            ..options.clone()
+        },
+        &|_, _, _| {},
+    );
     assert_ne!(one.coeffs, reseeded.coeffs);
     // Channels scale with albedo in the shadowed term and more than linearly
     // with bounces: blue (0.2) over red (0.9) is below 0.2/0.9 on average.
