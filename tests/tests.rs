@@ -5,6 +5,7 @@ mod export;
 mod layouts_cli;
 mod montecarlo_cli;
 mod project;
+mod prt;
 mod render;
 mod synth;
 mod util;

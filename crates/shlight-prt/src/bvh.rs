@@ -77,8 +77,8 @@ impl Ray {
         }
     }
 
-    /// The watertight ray-triangle test: `(t, w0, w1, w2)` with unnormalised
-    /// barycentric weights and `t` already divided out, or `None`.
+    /// The watertight ray-triangle test: `(t, [w0, w1, w2])`, the distance
+    /// and the barycentric weights of the three corners, or `None`.
     #[inline(always)]
     fn hits_triangle(&self, tri: &[Vec3; 3], t_max: f32) -> Option<(f32, [f32; 3])> {
         let [kx, ky, kz] = self.k;
@@ -112,10 +112,11 @@ impl Ray {
 }
 
 /// A triangle's bounding box grown by [`BOX_PADDING`] of its largest
-/// coordinate: the hierarchy's node test is not conservative (it does not
-/// round outwards), and without the padding a ray aimed exactly at a vertex
-/// on a box's face can miss the box (the watertightness test below finds
-/// dozens of such rays on a sphere).
+/// coordinate, so that the hierarchy's node test, which does not round
+/// outwards, still reaches every box the exact ray touches: at a face, and
+/// with direction components below `f32::EPSILON` snapped to zero for the
+/// node tests ([`Ray::new`]; a `-0.0` component made rays through the seam
+/// of a sphere miss whole nodes before that).
 struct PaddedBox(Aabb);
 
 /// Relative growth of triangle boxes, about 16 units in the last place.
