@@ -5,8 +5,11 @@
 //!   children per node, 80-byte nodes; Ylitie et al. 2017), built by PLOC
 //!   with its "medium" parameters, traversed with its SIMD node test.
 //!   Chosen over a binned-SAH binary BVH written for shlight by
-//!   `benches/rays.rs`: on the bundled bunny and a 70k-triangle torus it cast
-//!   1.3x to 2x more PRT rays per second (README, "PRT").
+//!   `benches/rays.rs` (which keeps that candidate): with their own triangle
+//!   tests obvhs cast 1.3x to 1.5x more PRT rays per second on the bundled
+//!   bunny and a 70k-triangle torus; with shlight's watertight test in both,
+//!   1.1x to 1.2x more on the torus and about the same on the bunny
+//!   (README, "PRT", measured on a busy 2-core machine).
 //! - **Triangles**: shlight's own watertight test (Woop, Benthin and Wald,
 //!   JCGT 2013): the ray is sheared to +z, edge functions are evaluated in
 //!   the sheared plane and redone in `f64` when one is exactly zero, so a ray
