@@ -116,7 +116,10 @@ impl ShprtFile {
             "samples": self.samples,
             "bounces": self.bounces,
             "seed": self.seed,
-            "albedo": self.albedo.map_or(json!("vertex"), |a| json!(a)),
+            // Each f32 written as its shortest decimal (0.8, not 0.800000011920929).
+            "albedo": self.albedo.map_or(json!("vertex"), |a| {
+                json!(a.map(|x| x.to_string().parse::<f64>().unwrap_or(f64::NAN)))
+            }),
             "mesh_hash": format!("fnv1a64:{:016x}", self.mesh_hash),
             "mesh": self.mesh,
             "data": "f32 little-endian, vertex-major, then channel, then SH index l(l+1)+m",
@@ -298,6 +301,8 @@ mod tests {
             &(23.0f32 * 0.5 - 3.0).to_le_bytes()
         );
         assert_eq!(f.vertex(1, 2)[3], 23.0 * 0.5 - 3.0);
+        let header = String::from_utf8_lossy(&bytes[..nl]).into_owned();
+        assert!(header.contains("\"albedo\":[0.5,0.25,1.0]"), "{header}");
         let back = ShprtFile::from_bytes(&bytes, Path::new("x.shprt")).unwrap();
         assert_eq!(back, f);
         let mut grey = sample();
