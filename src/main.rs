@@ -13,6 +13,7 @@ mod irradiance;
 mod preview;
 mod progress;
 mod project;
+mod prt;
 mod render;
 mod render_mesh;
 mod synth;
@@ -53,6 +54,8 @@ enum Command {
     RenderMesh(render_mesh::RenderMeshArgs),
     /// Show a mesh lit by SH coefficients in a window (GPU).
     View(view::ViewArgs),
+    /// Bake precomputed radiance transfer (PRT) for a mesh.
+    Prt(prt::PrtArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -73,6 +76,7 @@ fn main() -> ExitCode {
         Command::Accuracy(args) => accuracy::run(&args, &ui),
         Command::RenderMesh(args) => render_mesh::run(&args, &ui),
         Command::View(args) => view::run(&args, &ui),
+        Command::Prt(args) => prt::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,6 +7,7 @@ mod gpu;
 mod layouts_cli;
 mod montecarlo_cli;
 mod project;
+mod prt;
 mod render;
 mod shaders;
 mod synth;

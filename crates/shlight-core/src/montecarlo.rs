@@ -353,6 +353,27 @@ pub fn project_montecarlo(
     })
 }
 
+/// One jittered equal-area grid of about `count` unit directions over the
+/// whole sphere, the `stratified` sampler's grid with a single replicate:
+/// `r = max(1, round(sqrt(count/2)))` rows equal in `cos θ`, `c = max(1,
+/// round(count/r))` columns equal in `φ`, one uniform point per cell (so
+/// every direction has density `1/(4π)`), `r c` directions in all, row by row
+/// from `+z`. The same `seed` gives the same directions bit for bit.
+///
+/// For estimators that reuse one set of directions many times (PRT baking
+/// shares it between all vertices of a mesh).
+#[must_use]
+pub fn stratified_directions(count: usize, seed: u64) -> Vec<DVec3> {
+    let rows = (((count as f64) / 2.0).sqrt().round() as usize).max(1);
+    let cols = (((count as f64) / rows as f64).round() as usize).max(1);
+    let source = Source::Stratified { rows, cols };
+    let tag = Sampler::Stratified as u64 + 1;
+    let mut rng = StdRng::seed_from_u64(stream(seed, tag, u64::MAX, u64::MAX));
+    (0..rows * cols)
+        .map(|k| source.point(0, k, &mut rng).0)
+        .collect()
+}
+
 fn from_iter(lmax: usize, it: impl Iterator<Item = DVec3>) -> ShCoeffs<DVec3> {
     let mut out = ShCoeffs::zeros(lmax);
     for (o, v) in out.as_mut_slice().iter_mut().zip(it) {
@@ -567,6 +588,24 @@ fn map_ordered<T>(jobs: &[Job], f: impl Fn(&Job) -> T) -> Vec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stratified_directions_fill_each_cell_once() {
+        let d = stratified_directions(1024, 7);
+        // rows = round(sqrt(512)) = 23, cols = round(1024 / 23) = 45.
+        assert_eq!(d.len(), 23 * 45);
+        assert_eq!(d, stratified_directions(1024, 7));
+        assert_ne!(d, stratified_directions(1024, 8));
+        for (k, w) in d.iter().enumerate() {
+            assert!((w.length() - 1.0).abs() < 1e-12);
+            let (row, col) = (k / 45, k % 45);
+            let omz = 1.0 - w.z;
+            assert!(omz >= 2.0 * row as f64 / 23.0 && omz <= 2.0 * (row + 1) as f64 / 23.0);
+            let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+            let cell = (phi / (2.0 * PI) * 45.0).floor() as usize;
+            assert!(cell == col || (phi - 2.0 * PI * col as f64 / 45.0).abs() < 1e-9);
+        }
+    }
 
     #[test]
     fn sampler_names_round_trip_and_errors_list_them() {

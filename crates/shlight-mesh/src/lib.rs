@@ -2,7 +2,9 @@
 //!
 //! A [`Mesh`] is an indexed triangle list with one position and one unit
 //! normal per vertex (and optional per-vertex linear colours). Meshes come
-//! from files ([`load`]) or from generators ([`generate`]); either way they
+//! from files ([`load`]: OBJ, PLY, OFF, glTF/GLB, each in its file's vertex
+//! order) or from generators ([`generate`]: sphere, plane, box, torus, bowl,
+//! plane under a sphere); either way they
 //! pass the same validation ([`Mesh::new`]), so code downstream may assume
 //! finite positions, in-range indices, no degenerate triangles and unit
 //! normals.

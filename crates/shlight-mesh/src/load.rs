@@ -1,4 +1,12 @@
 //! Loading meshes from files, by extension.
+//!
+//! Each format keeps the file's vertex order (documented per format: OBJ
+//! below, [`ply`], [`off`], [`gltf_file`]); that order is the order of the
+//! per-vertex records of a `.shprt` file baked from the mesh.
+
+mod gltf_file;
+mod off;
+mod ply;
 
 use std::path::Path;
 
@@ -11,9 +19,15 @@ use crate::{Mesh, MeshError};
 pub enum MeshFormat {
     /// Wavefront OBJ (`.obj`): every object and group, polygons triangulated.
     Obj,
+    /// Stanford PLY (`.ply`), ASCII or binary little-endian.
+    Ply,
+    /// Object File Format (`.off`), with optional colours or normals.
+    Off,
+    /// glTF 2.0 (`.gltf`, `.glb`): every triangle primitive of the scene.
+    Gltf,
 }
 
-const EXPECTED: &str = ".obj";
+const EXPECTED: &str = ".obj, .ply, .off, .gltf or .glb";
 
 impl MeshFormat {
     /// The format a file name's extension names (case-insensitive).
@@ -22,6 +36,9 @@ impl MeshFormat {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
             "obj" => Some(Self::Obj),
+            "ply" => Some(Self::Ply),
+            "off" => Some(Self::Off),
+            "gltf" | "glb" => Some(Self::Gltf),
             _ => None,
         }
     }
@@ -44,13 +61,17 @@ pub fn load(path: &Path) -> Result<Mesh, MeshError> {
     load_bytes(path, format, &bytes)
 }
 
-/// Parses and validates a mesh held in memory; `path` only names it in errors.
+/// Parses and validates a mesh held in memory; `path` names it in errors
+/// (and, for glTF, locates external buffer files).
 ///
 /// # Errors
 /// As [`load`], less the file reading.
 pub fn load_bytes(path: &Path, format: MeshFormat, bytes: &[u8]) -> Result<Mesh, MeshError> {
     match format {
         MeshFormat::Obj => obj(path, bytes),
+        MeshFormat::Ply => ply::read(path, bytes),
+        MeshFormat::Off => off::read(path, bytes),
+        MeshFormat::Gltf => gltf_file::read(path, bytes),
     }
 }
 

@@ -173,6 +173,29 @@ impl Mesh {
         bounds(&self.positions)
     }
 
+    /// A 64-bit FNV-1a hash of what a bake depends on: the vertex count,
+    /// then every position and normal as little-endian `f32` bits (x, y, z),
+    /// then the triangle count and every index as little-endian `u32`.
+    /// Files derived from a mesh (`.shprt`) record it, so a renderer can
+    /// check that it pairs them with the same mesh.
+    #[must_use]
+    pub fn content_hash(&self) -> u64 {
+        let mut h = Fnv1a::default();
+        h.write(&(self.positions.len() as u64).to_le_bytes());
+        for v in self.positions.iter().chain(&self.normals) {
+            for c in v.to_array() {
+                h.write(&c.to_bits().to_le_bytes());
+            }
+        }
+        h.write(&(self.triangles.len() as u64).to_le_bytes());
+        for t in &self.triangles {
+            for i in t {
+                h.write(&i.to_le_bytes());
+            }
+        }
+        h.0
+    }
+
     /// Total surface area, `sum |e1 x e2| / 2`.
     #[must_use]
     pub fn surface_area(&self) -> f64 {
@@ -183,6 +206,23 @@ impl Mesh {
                 0.5 * (b - a).cross(c - a).length()
             })
             .sum()
+    }
+}
+
+/// FNV-1a, 64 bits (offset basis 0xcbf29ce484222325, prime 0x100000001b3).
+struct Fnv1a(u64);
+
+impl Default for Fnv1a {
+    fn default() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv1a {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
     }
 }
 
@@ -217,6 +257,22 @@ mod tests {
             vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
             vec![[0, 1, 2], [0, 2, 3]],
         )
+    }
+
+    #[test]
+    fn content_hash_is_fnv1a_and_sees_every_change() {
+        let mut h = Fnv1a::default();
+        h.write(b"a");
+        assert_eq!(h.0, 0xaf63_dc4c_8601_ec8c); // the published FNV-1a 64 of "a"
+        let (p, t) = quad();
+        let m = Mesh::new("quad", p.clone(), t.clone(), None, None).unwrap();
+        let mut p2 = p.clone();
+        p2[2].x = 1.0 + f32::EPSILON;
+        let moved = Mesh::new("quad", p2, t.clone(), None, None).unwrap();
+        let flipped = Mesh::new("quad", p, vec![[0, 2, 1], [0, 3, 2]], None, None).unwrap();
+        assert_ne!(m.content_hash(), moved.content_hash());
+        assert_ne!(m.content_hash(), flipped.content_hash());
+        assert_eq!(m.content_hash(), m.clone().content_hash());
     }
 
     #[test]

@@ -1,0 +1,210 @@
+//! Rays per second of PRT visibility rays (vertex origins offset along the
+//! normal, the shared stratified directions above each vertex) on both
+//! cores, any-hit and closest-hit, on the bundled bunny (3,674 triangles)
+//! and a generated torus of 69,696 triangles:
+//!
+//! - `shlight_*`: shlight-prt's `Bvh` (obvhs's CWBVH with shlight's
+//!   watertight triangle test), what baking uses;
+//! - `own_bvh2_*`: the binned-SAH binary BVH written for shlight
+//!   (`rays/own_bvh.rs`), the candidate it was chosen over;
+//! - `obvhs_*`: obvhs alone (its CWBVH8 and BVH2, its own Möller-Trumbore
+//!   triangle test).
+//!
+//! `cargo bench -p shlight-prt --bench rays`; divan's "items/s" is rays/s.
+
+use std::path::Path;
+use std::time::Duration;
+
+use divan::Bencher;
+use divan::counter::ItemsCount;
+use glam::Vec3;
+use glam_obvhs::{UVec2, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::bvh2::builder::build_bvh2_from_tris;
+use obvhs::cwbvh::builder::build_cwbvh_from_tris;
+use obvhs::ray::{Ray as ORay, RayHit};
+use obvhs::triangle::Triangle;
+use rayon::prelude::*;
+use shlight_core::montecarlo::stratified_directions;
+use shlight_mesh::{Mesh, generate};
+use shlight_prt::bvh::{Bvh, Ray};
+
+#[path = "rays/own_bvh.rs"]
+mod own_bvh;
+
+fn main() {
+    divan::main();
+}
+
+/// About `count` PRT rays: every `step`-th vertex, all 1035 directions of
+/// the 1024-sample grid that lie above its tangent plane.
+fn rays(mesh: &Mesh, count: usize) -> Vec<(Vec3, Vec3)> {
+    let dirs: Vec<Vec3> = stratified_directions(1024, 0)
+        .iter()
+        .map(|d| d.as_vec3())
+        .collect();
+    let (lo, hi) = mesh.bounds();
+    let eps = shlight_prt::transfer::OFFSET * (hi - lo).length();
+    let step = (mesh.vertex_count() * dirs.len() / 2 / count).max(1);
+    let mut out = Vec::new();
+    for v in (0..mesh.vertex_count()).step_by(step) {
+        let (p, n) = (mesh.positions[v], mesh.normals[v]);
+        out.extend(
+            dirs.iter()
+                .filter(|d| d.dot(n) > 0.0)
+                .map(|d| (p + eps * n, *d)),
+        );
+    }
+    out
+}
+
+fn mesh(name: &str) -> Mesh {
+    match name {
+        "bunny" => shlight_mesh::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/bunny.obj"),
+        )
+        .unwrap(),
+        _ => generate::torus(1.0, 0.4, 264, 132),
+    }
+}
+
+const MESHES: &[&str] = &["bunny", "torus70k"];
+const RAYS: usize = 400_000;
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn shlight_occluded(bencher: Bencher, name: &str) {
+    let m = mesh(name);
+    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let rays = rays(&m, RAYS);
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter(|(o, d)| bvh.occluded(&Ray::new(*o, *d, f32::INFINITY)))
+            .count()
+    });
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn shlight_closest(bencher: Bencher, name: &str) {
+    let m = mesh(name);
+    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let rays = rays(&m, RAYS);
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter_map(|(o, d)| bvh.closest_hit(&Ray::new(*o, *d, f32::INFINITY)))
+            .count()
+    });
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn own_bvh2_occluded(bencher: Bencher, name: &str) {
+    let m = mesh(name);
+    let bvh = own_bvh::Bvh::new(&m.positions, &m.triangles);
+    let rays = rays(&m, RAYS);
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter(|(o, d)| bvh.occluded(&own_bvh::Ray::new(*o, *d, f32::INFINITY)))
+            .count()
+    });
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn own_bvh2_closest(bencher: Bencher, name: &str) {
+    let m = mesh(name);
+    let bvh = own_bvh::Bvh::new(&m.positions, &m.triangles);
+    let rays = rays(&m, RAYS);
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter_map(|(o, d)| bvh.closest_hit(&own_bvh::Ray::new(*o, *d, f32::INFINITY)))
+            .count()
+    });
+}
+
+fn obvhs_input(m: &Mesh) -> (Vec<Triangle>, Vec<ORay>) {
+    let v = |p: Vec3| Vec3A::new(p.x, p.y, p.z);
+    let tris = m
+        .triangles
+        .iter()
+        .map(|t| Triangle {
+            v0: v(m.positions[t[0] as usize]),
+            v1: v(m.positions[t[1] as usize]),
+            v2: v(m.positions[t[2] as usize]),
+        })
+        .collect();
+    let rays = rays(m, RAYS)
+        .into_iter()
+        .map(|(o, d)| ORay::new_inf(v(o), v(d)))
+        .collect();
+    (tris, rays)
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn obvhs_cwbvh_occluded(bencher: Bencher, name: &str) {
+    let (tris, rays) = obvhs_input(&mesh(name));
+    let bvh = build_cwbvh_from_tris(
+        &tris,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter(|ray| {
+                let mut state = bvh.new_traversal(ray.direction);
+                let mut node;
+                let mut hit = false;
+                obvhs::traverse!(bvh, node, state, node.intersect_ray(ray, state.oct_inv4), {
+                    let t = tris[bvh.primitive_indices[state.primitive_id as usize] as usize]
+                        .intersect(ray);
+                    if t < ray.tmax {
+                        // Any hit ends the search: empty the traversal state.
+                        hit = true;
+                        state.stack.clear();
+                        state.current_group = UVec2::ZERO;
+                        state.primitive_group = UVec2::ZERO;
+                        break;
+                    }
+                });
+                hit
+            })
+            .count()
+    });
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn obvhs_cwbvh_closest(bencher: Bencher, name: &str) {
+    let (tris, rays) = obvhs_input(&mesh(name));
+    let bvh = build_cwbvh_from_tris(
+        &tris,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter(|ray| {
+                let mut hit = RayHit::none();
+                bvh.ray_traverse(**ray, &mut hit, |r, id| {
+                    tris[bvh.primitive_indices[id] as usize].intersect(r)
+                })
+            })
+            .count()
+    });
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn obvhs_bvh2_closest(bencher: Bencher, name: &str) {
+    let (tris, rays) = obvhs_input(&mesh(name));
+    let bvh = build_bvh2_from_tris(
+        &tris,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    );
+    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
+        rays.par_iter()
+            .filter(|ray| {
+                let mut hit = RayHit::none();
+                bvh.ray_traverse(**ray, &mut hit, |r, id| {
+                    tris[bvh.primitive_indices[id] as usize].intersect(r)
+                })
+            })
+            .count()
+    });
+}

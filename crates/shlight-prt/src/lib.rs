@@ -1,0 +1,47 @@
+//! Precomputed radiance transfer (Sloan, Kautz & Snyder 2002) for shlight:
+//! per-vertex diffuse transfer vectors for any mesh, so a renderer shades
+//! soft shadows and bounce light under any distant SH lighting with one dot
+//! product per vertex.
+//!
+//! # Main items
+//! - [`bvh::Bvh`]: binned-SAH hierarchy with a watertight ray/triangle test;
+//!   occlusion and closest-hit queries with barycentrics.
+//! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
+//!   to any lmax, constant or per-vertex albedo, in parallel and
+//!   deterministic for a seed ([`transfer`] states the estimator).
+//! - [`ShprtFile`]: the `.shprt` file (docs/shprt.md): read, write.
+//! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
+//! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours.
+//!
+//! # Shading convention
+//! Exit radiance = transfer . (light radiance coefficients): albedo/pi is
+//! folded into the transfer, the light is the radiance `L_lm` of
+//! docs/conventions.md (not irradiance). A grey transfer (1 channel) is
+//! applied to each colour channel of the light.
+//!
+//! ```
+//! use shlight_core::analytic;
+//! use shlight_mesh::generate;
+//! use shlight_prt::transfer::{bake, BakeOptions, Mode};
+//!
+//! let sphere = generate::uv_sphere(1.0, 16, 8);
+//! let options = BakeOptions { mode: Mode::Shadowed, samples: 256, ..BakeOptions::default() };
+//! let t = bake(&sphere, &options, &|_, _, _| {});
+//! // Under constant radiance 1, a convex surface of albedo 0.8 leaves 0.8.
+//! let light = analytic::constant(4, glam::DVec3::ONE);
+//! let top = t.exit_radiance(&light)[0];
+//! assert!((top.x - 0.8).abs() < 1e-5);
+//! ```
+//!
+//! **Architecture invariant:** no GPU and no command line; files are
+//! written through shlight-io's atomic writer.
+
+pub mod bvh;
+mod error;
+pub mod gltf_export;
+pub mod preview;
+pub mod shprt;
+pub mod transfer;
+
+pub use error::PrtError;
+pub use shprt::ShprtFile;

@@ -1,0 +1,303 @@
+//! `shlight prt`: bake precomputed radiance transfer for a mesh.
+//!
+//! Loads the mesh (OBJ, PLY, OFF, glTF/GLB; shlight-mesh), bakes per-vertex
+//! transfer vectors (shlight-prt, in parallel with a progress bar), and
+//! writes a `.shprt` file (docs/shprt.md) or a glTF with `_SH_TRANSFER_k`
+//! attributes; with `--light` and `--preview`, shades the vertices under a
+//! coefficient file's radiance and rasterises them to a PNG.
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, ValueEnum};
+use glam::{DVec3, Vec3};
+use indicatif::ProgressBar;
+use shlight_io::{ToneMap, WriteOptions, write_image};
+use shlight_mesh::Mesh;
+use shlight_prt::ShprtFile;
+use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
+
+use crate::coeff_file::{CoeffFile, Quantity};
+use crate::progress::Ui;
+use crate::texels::parse_size;
+
+/// Light transport to bake.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ModeArg {
+    /// Cosine-weighted only: the SH irradiance transfer.
+    Unshadowed,
+    /// With self-shadowing.
+    Shadowed,
+    /// With self-shadowing and `--bounces` bounces of diffuse interreflection.
+    Interreflected,
+}
+
+/// Arguments of `shlight prt`.
+#[derive(Args, Debug)]
+pub struct PrtArgs {
+    /// The mesh: .obj, .ply, .off, .gltf or .glb.
+    pub mesh: PathBuf,
+    /// Highest SH degree of the transfer ((lmax+1)^2 coefficients per channel).
+    #[arg(long, default_value_t = 4)]
+    pub lmax: usize,
+    /// Directions per vertex over the whole sphere (a stratified grid of
+    /// about this many, shared by all vertices; about half are cast).
+    #[arg(long, default_value_t = 1024)]
+    pub samples: usize,
+    /// Light transport.
+    #[arg(long, value_enum, default_value_t = ModeArg::Shadowed)]
+    pub mode: ModeArg,
+    /// Bounces of interreflection (with --mode interreflected) [default: 2].
+    #[arg(long)]
+    pub bounces: Option<u32>,
+    /// Diffuse albedo, linear: one value or R,G,B [default: the mesh's vertex
+    /// colours if it has them, otherwise 0.8].
+    #[arg(long, value_parser = parse_albedo)]
+    pub albedo: Option<[f32; 3]>,
+    /// Seed of the direction set (the same seed gives the same file).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Output: .shprt (transfer file), .gltf or .glb (mesh with transfer attributes).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// A radiance coefficient file (`shlight project -o FILE.json`) to shade the preview with.
+    #[arg(long, requires = "preview")]
+    pub light: Option<PathBuf>,
+    /// Write a PNG (or EXR/HDR) of the mesh shaded by --light.
+    #[arg(long, requires = "light")]
+    pub preview: Option<PathBuf>,
+    /// Preview size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "512x512")]
+    pub preview_size: (usize, usize),
+    /// Preview exposure in stops [default: the mean vertex radiance at 0.25].
+    #[arg(long, allow_negative_numbers = true)]
+    pub preview_exposure: Option<f32>,
+}
+
+fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
+    let values: Vec<f32> = s
+        .split(',')
+        .map(|v| v.trim().parse::<f32>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("{s:?} is not a number or R,G,B"))?;
+    let rgb = match values.as_slice() {
+        [v] => [*v; 3],
+        [r, g, b] => [*r, *g, *b],
+        _ => return Err(format!("{s:?}: give one value or three (R,G,B)")),
+    };
+    if rgb.iter().any(|v| !(0.0..=1.0).contains(v)) {
+        return Err(format!("{s:?}: albedo values must lie in [0, 1]"));
+    }
+    Ok(rgb)
+}
+
+/// Runs `shlight prt`.
+pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
+    if args.output.is_none() && args.preview.is_none() {
+        bail!(
+            "nothing to write: give -o OUT.shprt (or .gltf/.glb) and/or --light L.json --preview P.png"
+        );
+    }
+    let mode = match (args.mode, args.bounces) {
+        (ModeArg::Interreflected, b) => Mode::Interreflected {
+            bounces: b.unwrap_or(2),
+        },
+        (_, Some(_)) => bail!("--bounces needs --mode interreflected"),
+        (ModeArg::Unshadowed, None) => Mode::Unshadowed,
+        (ModeArg::Shadowed, None) => Mode::Shadowed,
+    };
+    if args.samples == 0 {
+        bail!("--samples must be at least 1");
+    }
+    if args.lmax > 32 {
+        bail!(
+            "--lmax {} is beyond 32 (diffuse transfer needs 2 to 6)",
+            args.lmax
+        );
+    }
+    let output_kind = args.output.as_deref().map(output_kind).transpose()?;
+    for out in args.output.iter().chain(&args.preview) {
+        crate::project::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
+    }
+    // Read the light first: a bad light file fails before a long bake.
+    let light = args.light.as_deref().map(read_light).transpose()?;
+
+    let name = args.mesh.display().to_string();
+    let mesh = shlight_mesh::load(&args.mesh)?;
+    if mesh.report.degenerate_triangles > 0 {
+        ui.warn(format!(
+            "{name}: skipped {} degenerate triangles",
+            mesh.report.degenerate_triangles
+        ));
+    }
+    let (albedo, recorded) = match (args.albedo, &mesh.colors) {
+        (Some(rgb), _) => (Albedo::Constant(rgb), Some(rgb)),
+        (None, Some(colors)) => {
+            ui.note(format!("{name}: albedo from the mesh's vertex colours"));
+            (Albedo::PerVertex(colors.clone()), None)
+        }
+        (None, None) => (Albedo::Constant([0.8; 3]), Some([0.8; 3])),
+    };
+    let options = BakeOptions {
+        lmax: args.lmax,
+        samples: args.samples,
+        mode,
+        albedo,
+        seed: args.seed,
+    };
+    let bars = StageBars::new(ui);
+    let start = Instant::now();
+    let transfer = bake(&mesh, &options, &|stage, done, total| {
+        bars.update(stage, done, total)
+    });
+    bars.finish();
+    let seconds = start.elapsed().as_secs_f64();
+    ui.note(format!(
+        "{name}: {} vertices, {} triangles, {} transfer, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        mesh.vertex_count(),
+        mesh.triangle_count(),
+        mode.name(),
+        args.lmax,
+        transfer.samples,
+        transfer.rays,
+        transfer.rays as f64 / seconds.max(1e-9) / 1e6,
+    ));
+    let mesh_name = args
+        .mesh
+        .file_name()
+        .map_or(name.clone(), |n| n.to_string_lossy().into_owned());
+    let file = ShprtFile::from_transfer(
+        &transfer,
+        mode,
+        args.seed,
+        recorded,
+        mesh.content_hash(),
+        &mesh_name,
+    );
+    if let (Some(out), Some(kind)) = (&args.output, output_kind) {
+        match kind {
+            Output::Shprt => file.write(out)?,
+            Output::Gltf => shlight_prt::gltf_export::write_gltf(out, &mesh, &file)?,
+        }
+    }
+    if let (Some(path), Some(light)) = (&args.preview, &light) {
+        write_preview(path, &mesh, &file, light, args)?;
+    }
+    Ok(())
+}
+
+#[derive(Clone, Copy)]
+enum Output {
+    Shprt,
+    Gltf,
+}
+
+fn output_kind(path: &Path) -> Result<Output> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("shprt") => Ok(Output::Shprt),
+        Some("gltf" | "glb") => Ok(Output::Gltf),
+        _ => bail!(
+            "{}: unknown output format (use .shprt, .gltf or .glb)",
+            path.display()
+        ),
+    }
+}
+
+/// The radiance coefficients of a coefficient file.
+fn read_light(path: &Path) -> Result<shlight_core::ShCoeffs<DVec3>> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
+    let file = CoeffFile::from_json_str(&text, &name)?;
+    if file.quantity != Quantity::Radiance {
+        bail!(
+            "{name}: holds irradiance; PRT shading needs radiance coefficients (project without --quantity irradiance)"
+        );
+    }
+    Ok(file.coeffs)
+}
+
+/// Shades every vertex (`T . L`) and rasterises the mesh to `path`.
+fn write_preview(
+    path: &Path,
+    mesh: &Mesh,
+    file: &ShprtFile,
+    light: &shlight_core::ShCoeffs<DVec3>,
+    args: &PrtArgs,
+) -> Result<()> {
+    let radiance = file.exit_radiance(light);
+    let (w, h) = args.preview_size;
+    let image = shlight_prt::preview::render(mesh, &radiance, w, h);
+    let exposure = args
+        .preview_exposure
+        .unwrap_or_else(|| auto_exposure(&radiance));
+    write_image(
+        path,
+        &image,
+        &WriteOptions {
+            exposure_ev: exposure,
+            tone_map: ToneMap::Aces,
+            ..WriteOptions::default()
+        },
+    )?;
+    Ok(())
+}
+
+/// Stops that bring the mean vertex luminance to 0.25 (0 for a black mesh).
+fn auto_exposure(radiance: &[Vec3]) -> f32 {
+    let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
+    let mean = radiance.iter().map(luminance).sum::<f64>() / radiance.len().max(1) as f64;
+    if mean > 0.0 && mean.is_finite() {
+        (0.25 / mean).log2() as f32
+    } else {
+        0.0
+    }
+}
+
+/// One progress bar per stage of the bake, replaced when the stage changes.
+struct StageBars<'a> {
+    ui: &'a Ui,
+    current: Mutex<Option<(Stage, ProgressBar)>>,
+    furthest: AtomicUsize,
+}
+
+impl<'a> StageBars<'a> {
+    fn new(ui: &'a Ui) -> Self {
+        Self {
+            ui,
+            current: Mutex::new(None),
+            furthest: AtomicUsize::new(0),
+        }
+    }
+
+    fn update(&self, stage: Stage, done: usize, total: usize) {
+        let mut current = self.current.lock().expect("no panics while held");
+        if current.as_ref().is_none_or(|(s, _)| *s != stage) {
+            if let Some((_, bar)) = current.take() {
+                bar.finish_and_clear();
+            }
+            let label = match stage {
+                Stage::Rays => "rays".to_string(),
+                Stage::Bounce(k) => format!("bounce {k}"),
+            };
+            self.furthest.store(0, Ordering::Relaxed);
+            *current = Some((stage, self.ui.bar(total as u64, &label)));
+        }
+        let furthest = self.furthest.fetch_max(done, Ordering::Relaxed).max(done);
+        if let Some((_, bar)) = current.as_ref() {
+            bar.set_position(furthest as u64);
+        }
+    }
+
+    fn finish(&self) {
+        if let Some((_, bar)) = self.current.lock().expect("no panics while held").take() {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! `shlight prt`: the files it writes hold the library's bake, agree with a
+//! closed form, read back, and bad input is an error naming the file.
+
+use std::path::Path;
+
+use glam::DVec3;
+use serde_json::json;
+use shlight_core::analytic;
+use shlight_mesh::{Mesh, generate};
+use shlight_prt::ShprtFile;
+use shlight_prt::transfer::{Albedo, BakeOptions, Mode, bake};
+
+use crate::util::{s, shlight_err, shlight_ok, temp_dir};
+
+/// Writes `mesh` as OBJ with normals (`v`, `vn`, `f a//a b//b c//c`).
+fn write_obj(path: &Path, mesh: &Mesh) {
+    let mut text = String::new();
+    for p in &mesh.positions {
+        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+    }
+    for n in &mesh.normals {
+        text += &format!("vn {} {} {}\n", n.x, n.y, n.z);
+    }
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| i + 1);
+        text += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+/// A radiance coefficient file of constant radiance `value` (lmax 4).
+fn write_constant_light(path: &Path, value: f64, quantity: &str) {
+    let mut rows = vec![[0.0; 3]; 25];
+    rows[0] = [value * 2.0 * std::f64::consts::PI.sqrt(); 3];
+    let doc = json!({"format": "shlight-sh", "format_version": 1, "lmax": 4,
+        "frame": "y-up", "mirror": false, "quantity": quantity,
+        "coefficients": rows, "provenance": {}});
+    std::fs::write(path, doc.to_string()).unwrap();
+}
+
+#[test]
+fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
+    let dir = temp_dir("prt_shprt");
+    let obj = dir.join("bowl.obj");
+    write_obj(&obj, &generate::bowl(1.0, 24, 6));
+    let out = dir.join("bowl.shprt");
+    let args = [
+        "prt",
+        s(&obj),
+        "--mode",
+        "interreflected",
+        "--bounces",
+        "6",
+        "--samples",
+        "512",
+        "--albedo",
+        "0.5",
+        "--seed",
+        "4",
+        "-o",
+        s(&out),
+    ];
+    shlight_ok(&args);
+    let file = ShprtFile::read(&out).unwrap();
+    let mesh = shlight_mesh::load(&obj).unwrap();
+    assert_eq!(
+        (file.lmax, file.channels, file.vertex_count),
+        (4, 1, mesh.vertex_count())
+    );
+    assert_eq!(
+        (file.mode.as_str(), file.bounces, file.seed),
+        ("interreflected", 6, 4)
+    );
+    assert_eq!(file.albedo, Some([0.5; 3]));
+    assert_eq!(file.mesh_hash, mesh.content_hash());
+    let options = BakeOptions {
+        lmax: 4,
+        samples: 512,
+        mode: Mode::Interreflected { bounces: 6 },
+        albedo: Albedo::Constant([0.5; 3]),
+        seed: 4,
+    };
+    let library = bake(&mesh, &options, &|_, _, _| {});
+    assert_eq!(file.transfer, library.coeffs);
+    assert_eq!(file.samples, library.samples as u64);
+    // Half bowl, half sky from every point: L_o = rho L / (2 - rho) = 1/3
+    // (6 bounces leave (rho/2)^7 ~ 6e-5 out; 512 directions err ~0.01).
+    for e in file.exit_radiance(&analytic::constant(4, DVec3::ONE)) {
+        assert!((e.x - 1.0 / 3.0).abs() < 0.02, "{e}");
+    }
+    // The same command gives the same bytes.
+    let again = dir.join("again.shprt");
+    let mut args2 = args;
+    args2[13] = s(&again);
+    shlight_ok(&args2);
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
+}
+
+#[test]
+fn glb_output_loads_back_as_the_mesh_with_the_transfer_in_its_extras() {
+    let dir = temp_dir("prt_glb");
+    let obj = dir.join("torus.obj");
+    write_obj(&obj, &generate::torus(1.0, 0.4, 12, 8));
+    let glb = dir.join("torus.glb");
+    let shprt = dir.join("torus.shprt");
+    shlight_ok(&[
+        "prt",
+        s(&obj),
+        "--samples",
+        "64",
+        "--albedo",
+        "1,0.5,0.25",
+        "-o",
+        s(&glb),
+    ]);
+    shlight_ok(&[
+        "prt",
+        s(&obj),
+        "--samples",
+        "64",
+        "--albedo",
+        "1,0.5,0.25",
+        "-o",
+        s(&shprt),
+    ]);
+    let original = shlight_mesh::load(&obj).unwrap();
+    let back = shlight_mesh::load(&glb).unwrap();
+    assert_eq!(back.positions, original.positions);
+    assert_eq!(back.triangles, original.triangles);
+    let file = ShprtFile::read(&shprt).unwrap();
+    assert_eq!(file.channels, 3);
+    let bytes = std::fs::read(&glb).unwrap();
+    let text = String::from_utf8_lossy(&bytes);
+    for k in 0..19 {
+        assert!(
+            text.contains(&format!("\"_SH_TRANSFER_{k}\"")),
+            "attribute {k}"
+        );
+    }
+    assert!(!text.contains("_SH_TRANSFER_19"));
+    assert!(text.contains("\"shlight_prt\""));
+}
+
+#[test]
+fn preview_shows_the_sphere_and_its_contact_shadow() {
+    let dir = temp_dir("prt_preview");
+    let obj = dir.join("pus.obj");
+    write_obj(&obj, &generate::plane_under_sphere(1.0, 24, 12, 6.0, 12));
+    let light = dir.join("white.json");
+    write_constant_light(&light, 1.0, "radiance");
+    let png = dir.join("p.png");
+    let out = shlight_ok(&[
+        "prt",
+        s(&obj),
+        "--samples",
+        "256",
+        "--albedo",
+        "1",
+        "--light",
+        s(&light),
+        "--preview",
+        s(&png),
+        "--preview-size",
+        "96x64",
+        "--preview-exposure",
+        "0",
+    ]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("rays"));
+    let img = shlight_io::read_image(&png, &shlight_io::ReadOptions::default()).unwrap();
+    assert_eq!((img.width(), img.height()), (96, 64));
+    let values: Vec<f32> = img.pixels().iter().map(|p| p[1]).collect();
+    // Background black; the open plane under white light (exit radiance
+    // near 1, which ACES maps to 0.80) bright; around the contact, where the
+    // sphere hides most of the sky (exit radiance 0.29 at half a radius),
+    // and under the sphere, dark.
+    assert_eq!(values[0], 0.0);
+    let lit = values.iter().filter(|&&v| v > 0.7).count();
+    let dark = values.iter().filter(|&&v| v > 0.0 && v < 0.4).count();
+    assert!(lit > 500 && dark > 5, "lit {lit}, dark {dark}");
+}
+
+#[test]
+fn bad_meshes_and_arguments_are_errors_and_leave_outputs_alone() {
+    let dir = temp_dir("prt_bad");
+    let out = dir.join("out.shprt");
+    std::fs::write(&out, b"keep").unwrap();
+    let cases: [(&str, &[u8], &str); 5] = [
+        ("nan.obj", b"v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "non-finite"),
+        ("range.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", "out of range"),
+        ("empty.off", b"OFF\n0 0 0\n", "no vertices"),
+        ("flat.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n", "no usable triangles (1 degenerate)"),
+        ("junk.glb", b"glTF\x02\x00\x00\x00junk", "not a valid glTF"),
+    ];
+    for (name, bytes, what) in cases {
+        let mesh = dir.join(name);
+        std::fs::write(&mesh, bytes).unwrap();
+        let err = shlight_err(&["prt", s(&mesh), "-o", s(&out)]);
+        assert!(
+            err.contains(&format!("{}: ", mesh.display())) && err.contains(what),
+            "{name}: {err}"
+        );
+    }
+    assert_eq!(std::fs::read(&out).unwrap(), b"keep");
+
+    let obj = dir.join("ok.obj");
+    write_obj(&obj, &generate::cuboid(glam::Vec3::ONE));
+    let irr = dir.join("irr.json");
+    write_constant_light(&irr, 1.0, "irradiance");
+    for (args, what) in [
+        (vec!["-o", "x.png"], "unknown output format"),
+        (
+            vec!["--bounces", "2", "-o", s(&out)],
+            "--bounces needs --mode interreflected",
+        ),
+        (vec![], "nothing to write"),
+        (
+            vec!["--light", s(&irr), "--preview", "p.png"],
+            "holds irradiance",
+        ),
+        (vec!["--albedo", "2", "-o", s(&out)], "must lie in [0, 1]"),
+    ] {
+        let mut all = vec!["prt", s(&obj)];
+        all.extend(args);
+        let err = shlight_err(&all);
+        assert!(err.contains(what), "{all:?}: {err}");
+    }
+    assert_eq!(std::fs::read(&out).unwrap(), b"keep");
+}
