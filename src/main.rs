@@ -14,6 +14,7 @@ mod preview;
 mod progress;
 mod project;
 mod prt;
+mod prt_input;
 mod render;
 mod render_mesh;
 mod synth;

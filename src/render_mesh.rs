@@ -2,8 +2,9 @@
 //! GPU without a window.
 //!
 //! Each fragment shows the Lambertian radiance `ρ/π Σ_l A_l w_l Σ_m L_lm
-//! Y_lm(n)` at its interpolated unit normal (`--mode sh`), or the world
-//! normal itself (`--mode normals`, background 0). The frame is rendered in
+//! Y_lm(n)` at its interpolated unit normal (`--mode sh`), the per-vertex
+//! PRT radiance `T_v · L` of a `.shprt` file, interpolated (`--mode prt`),
+//! or the world normal itself (`--mode normals`, background 0). The frame is rendered in
 //! linear `f32`: EXR output holds those values untouched (no exposure, no
 //! tone map); PNG output gets `--exposure` and `--tone-map` on the CPU, as
 //! `shlight render` does.
@@ -16,7 +17,7 @@ use glam::Vec3;
 use shlight_core::Window;
 use shlight_gpu::{
     Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT,
-    MAX_LMAX, Mode, Renderer, Shading, render_frame,
+    MAX_LMAX, Mode, Renderer, Shading, Transfer, render_frame,
 };
 use shlight_io::{Format, Image, ToneMap, WriteOptions, write_image};
 
@@ -36,12 +37,18 @@ pub struct RenderMeshArgs {
     /// Which world axis a map's top row faces.
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
-    /// What the mesh shows: SH irradiance shading, or world unit normals.
-    #[arg(long, value_enum, default_value_t = RenderMode::Sh)]
-    pub mode: RenderMode,
-    /// Highest SH degree of the light used (0..=8).
-    #[arg(long, default_value_t = 2)]
-    pub lmax: usize,
+    /// What the mesh shows: SH irradiance shading, PRT (needs --prt), or
+    /// world unit normals [default: prt with --prt, else sh].
+    #[arg(long, value_enum)]
+    pub mode: Option<RenderMode>,
+    /// PRT transfer baked for this mesh by `shlight prt` (.shprt): each
+    /// vertex shows transfer · light (albedo is in the transfer).
+    #[arg(long, value_name = "FILE.shprt")]
+    pub prt: Option<PathBuf>,
+    /// Highest SH degree of the light used (0..=8) [default: 2; with --prt,
+    /// the transfer's lmax, at most 8].
+    #[arg(long)]
+    pub lmax: Option<usize>,
     /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
     #[arg(long, default_value = "none")]
     pub window: Window,
@@ -79,6 +86,8 @@ pub struct RenderMeshArgs {
 pub enum RenderMode {
     /// Per-fragment SH irradiance, times albedo / π.
     Sh,
+    /// Per-vertex PRT transfer · light (`--prt`), interpolated.
+    Prt,
     /// World-space unit normals (background 0).
     Normals,
 }
@@ -149,12 +158,24 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     if !matches!(format, Some(Format::Exr | Format::Png)) {
         bail!("{out}: render-mesh writes .exr (linear) or .png");
     }
-    if args.lmax > MAX_LMAX {
-        bail!("--lmax {}: the GPU shades to lmax {MAX_LMAX}", args.lmax);
+    if let Some(lmax) = args.lmax.filter(|&l| l > MAX_LMAX) {
+        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
     }
-    crate::project::refuse_overwriting(&args.output, &[args.mesh.clone(), args.env.clone()])?;
+    let mode = match (args.mode, &args.prt) {
+        (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
+        (Some(mode), _) => mode,
+        (None, Some(_)) => RenderMode::Prt,
+        (None, None) => RenderMode::Sh,
+    };
+    let mut inputs = vec![args.mesh.clone(), args.env.clone()];
+    inputs.extend(args.prt.clone());
+    crate::project::refuse_overwriting(&args.output, &inputs)?;
     let bar = ui.spinner("reading the mesh");
     let mesh = shlight_mesh::load(&args.mesh)?;
+    let transfer = match &args.prt {
+        Some(path) => Some(crate::prt_input::load_transfer(path, &mesh, &args.mesh)?),
+        None => None,
+    };
     bar.set_message("reading the environment");
     let env = Environment::load(&args.env, frame_of(&args.up))?;
     if args.background == BackgroundArg::Map && env.map.is_none() {
@@ -167,7 +188,16 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     let ctx = GpuContext::headless()?;
     let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
     renderer.set_mesh(&ctx, &mesh);
+    if let Some(t) = &transfer {
+        let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
+        renderer.set_transfer(&ctx, &t)?;
+    }
     renderer.set_light(&ctx, &env.radiance);
+    let lmax = match (args.lmax, &transfer) {
+        (Some(l), _) => l,
+        (None, Some(t)) if mode == RenderMode::Prt => t.lmax.min(MAX_LMAX),
+        (None, _) => 2,
+    };
     if let Some(map) = &env.map {
         renderer.set_environment(
             &ctx,
@@ -186,11 +216,12 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
         w as f32 / h as f32,
     )?;
     let shading = Shading {
-        mode: match args.mode {
+        mode: match mode {
             RenderMode::Sh => Mode::Sh,
+            RenderMode::Prt => Mode::Prt,
             RenderMode::Normals => Mode::Normals,
         },
-        lmax: args.lmax,
+        lmax,
         window: args.window,
         exposure_ev: 0.0,
         tone_map: None,
@@ -201,7 +232,7 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
             BackgroundArg::Sh => Background::Sh,
         },
     };
-    if env.radiance.lmax() < args.lmax {
+    if env.radiance.lmax() < lmax {
         ui.note(format!(
             "{} holds lmax {}; shading to lmax {}",
             env.path.display(),

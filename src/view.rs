@@ -20,10 +20,11 @@ use shlight_core::{ShRotation, Window};
 use shlight_gpu::wgpu;
 use shlight_gpu::{
     Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, DEPTH_FORMAT, GpuContext,
-    MAX_LMAX, Mode, Renderer, Shading,
+    MAX_LMAX, Mode, Renderer, Shading, Transfer,
 };
 use shlight_io::{Image, ToneMap, WriteOptions, srgb_to_linear, write_image};
 use shlight_mesh::Mesh;
+use shlight_prt::ShprtFile;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
@@ -31,23 +32,33 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::WindowId;
 
 use crate::environment::{DEFAULT_ENV, Environment, frame_of};
+
+/// The mesh `shlight view` shows when given none (relative to the
+/// repository root, like [`DEFAULT_ENV`]).
+pub const DEFAULT_MESH: &str = "meshes/bunny.obj";
 use crate::progress::Ui;
 use crate::texels::parse_size;
 
 /// Arguments of `shlight view`.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// The mesh (OBJ) [default: a generated sphere].
-    pub mesh: Option<PathBuf>,
+    /// The mesh (OBJ, PLY, OFF, glTF/GLB).
+    #[arg(default_value = DEFAULT_MESH)]
+    pub mesh: PathBuf,
+    /// PRT transfer baked for this mesh by `shlight prt` (.shprt): starts in
+    /// PRT mode (`m` cycles SH, PRT and normals).
+    #[arg(long, value_name = "FILE.shprt")]
+    pub prt: Option<PathBuf>,
     /// The light: an equirect map or a radiance coefficient file (.json).
     #[arg(long, default_value = DEFAULT_ENV)]
     pub env: PathBuf,
     /// Which world axis a map's top row faces.
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
-    /// Highest SH degree shown at start (0..=8).
-    #[arg(long, default_value_t = 2)]
-    pub lmax: usize,
+    /// Highest SH degree shown at start (0..=8) [default: 2; with --prt, the
+    /// transfer's lmax, at most 8].
+    #[arg(long)]
+    pub lmax: Option<usize>,
     /// Exposure in stops at start.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -70,8 +81,8 @@ pub struct ViewArgs {
 
 /// Runs `shlight view`.
 pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    if args.lmax > MAX_LMAX {
-        bail!("--lmax {}: the GPU shades to lmax {MAX_LMAX}", args.lmax);
+    if let Some(lmax) = args.lmax.filter(|&l| l > MAX_LMAX) {
+        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
     }
     if args.frames == 0 {
         bail!("--frames must be at least 1");
@@ -83,18 +94,26 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
     {
         bail!("{}: --screenshot writes PNG files", path.display());
     }
-    let mesh = match &args.mesh {
-        Some(path) => shlight_mesh::load(path)?,
-        None => {
-            ui.note("no MESH given: showing a generated sphere");
-            shlight_mesh::generate::uv_sphere(1.0, 128, 64)
+    let mesh = shlight_mesh::load(&args.mesh)?;
+    let transfer = match &args.prt {
+        Some(path) => {
+            let t = crate::prt_input::load_transfer(path, &mesh, &args.mesh)?;
+            ui.note(format!(
+                "{}: {} transfer to lmax {}, {} channel(s)",
+                path.display(),
+                t.mode,
+                t.lmax,
+                t.channels
+            ));
+            Some(t)
         }
+        None => None,
     };
     let env = Environment::load(&args.env, frame_of(&args.up))?;
     let event_loop = EventLoop::new()
         .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
     event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = App::new(args, mesh, env);
+    let mut app = App::new(args, mesh, transfer, env);
     event_loop
         .run_app(&mut app)
         .map_err(|e| anyhow!("window event loop: {e}"))?;
@@ -195,6 +214,8 @@ struct Running {
 struct App<'a> {
     args: &'a ViewArgs,
     mesh: Mesh,
+    /// `--prt`'s transfer, checked against the mesh.
+    transfer: Option<ShprtFile>,
     env: Environment,
     running: Option<Running>,
     controls: Controls,
@@ -212,21 +233,26 @@ struct App<'a> {
 }
 
 impl<'a> App<'a> {
-    fn new(args: &'a ViewArgs, mesh: Mesh, env: Environment) -> Self {
+    fn new(args: &'a ViewArgs, mesh: Mesh, transfer: Option<ShprtFile>, env: Environment) -> Self {
         let background = if env.map.is_some() {
             Background::Map
         } else {
             Background::Sh
         };
+        let (mode, lmax) = match &transfer {
+            Some(t) => (Mode::Prt, args.lmax.unwrap_or(t.lmax.min(MAX_LMAX))),
+            None => (Mode::Sh, args.lmax.unwrap_or(2)),
+        };
         Self {
             args,
             mesh,
+            transfer,
             env,
             running: None,
             controls: Controls {
                 shading: Shading {
-                    mode: Mode::Sh,
-                    lmax: args.lmax,
+                    mode,
+                    lmax,
                     window: Window::None,
                     exposure_ev: args.exposure,
                     tone_map: Some(args.tone_map),
@@ -291,6 +317,10 @@ impl<'a> App<'a> {
         surface.configure(&ctx.device, &config);
         let mut renderer = Renderer::new(&ctx, format);
         renderer.set_mesh(&ctx, &self.mesh);
+        if let Some(t) = &self.transfer {
+            let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
+            renderer.set_transfer(&ctx, &t)?;
+        }
         renderer.set_light(&ctx, &self.env.radiance);
         if let Some(map) = &self.env.map {
             renderer.set_environment(
@@ -377,6 +407,7 @@ impl<'a> App<'a> {
             adapter: &self.message,
             coefficients: &rotated,
             has_map: self.env.map.is_some(),
+            prt: self.transfer.as_ref().map(|t| t.mode.as_str()),
         };
         let controls = &mut self.controls;
         let mut screenshot = false;
@@ -520,8 +551,9 @@ impl<'a> App<'a> {
                 "q" => event_loop.exit(),
                 "m" => {
                     c.shading.mode = match c.shading.mode {
-                        Mode::Sh => Mode::Normals,
-                        _ => Mode::Sh,
+                        Mode::Sh if self.transfer.is_some() => Mode::Prt,
+                        Mode::Sh | Mode::Prt => Mode::Normals,
+                        Mode::Normals => Mode::Sh,
                     }
                 }
                 "b" => {
@@ -637,6 +669,8 @@ struct PanelInfo<'a> {
     adapter: &'a str,
     coefficients: &'a shlight_core::ShCoeffs<glam::DVec3>,
     has_map: bool,
+    /// The `--prt` file's mode (`shadowed`, ...), when there is one.
+    prt: Option<&'a str>,
 }
 
 /// The overlay panel; returns whether its screenshot button was pressed.
@@ -652,6 +686,9 @@ fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -> bo
             ui.horizontal(|ui| {
                 ui.label("mode");
                 ui.radio_value(&mut c.shading.mode, Mode::Sh, "SH irradiance");
+                if let Some(prt) = info.prt {
+                    ui.radio_value(&mut c.shading.mode, Mode::Prt, format!("PRT ({prt})"));
+                }
                 ui.radio_value(&mut c.shading.mode, Mode::Normals, "normals");
             });
             ui.horizontal(|ui| {

@@ -4,7 +4,6 @@
 //! Without a GPU adapter (or Xvfb, for the viewer) the tests that need one
 //! print a SKIPPED line and pass, unless `SHLIGHT_REQUIRE_GPU=1`.
 
-use std::fmt::Write as _;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 
@@ -13,7 +12,9 @@ use serde_json::json;
 use shlight_core::{ShCoeffs, analytic, irradiance};
 use shlight_io::{ReadOptions, read_image};
 
-use crate::util::{coefficients, json, s, shlight, shlight_err, shlight_ok, temp_dir, write_map};
+use crate::util::{
+    coefficients, json, s, shlight, shlight_err, shlight_ok, temp_dir, write_map, write_obj,
+};
 
 /// Whether GPU tests can run; panics under `SHLIGHT_REQUIRE_GPU=1` without
 /// an adapter, prints a SKIPPED line otherwise.
@@ -30,22 +31,6 @@ fn have_gpu(test: &str) -> bool {
 
 fn required() -> bool {
     std::env::var("SHLIGHT_REQUIRE_GPU").as_deref() == Ok("1")
-}
-
-/// Writes a mesh as OBJ (positions, normals, triangles).
-fn write_obj(path: &Path, mesh: &shlight_mesh::Mesh) {
-    let mut text = String::new();
-    for p in &mesh.positions {
-        writeln!(text, "v {} {} {}", p.x, p.y, p.z).unwrap();
-    }
-    for n in &mesh.normals {
-        writeln!(text, "vn {} {} {}", n.x, n.y, n.z).unwrap();
-    }
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|i| i + 1);
-        writeln!(text, "f {a}//{a} {b}//{b} {c}//{c}").unwrap();
-    }
-    std::fs::write(path, text).unwrap();
 }
 
 /// Writes radiance coefficients as a coefficient file (y-up).
@@ -436,4 +421,114 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
 fn skipped(test: &str, why: &str) {
     use std::io::Write as _;
     let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
+}
+
+#[test]
+fn render_mesh_shades_a_prt_bake_as_the_sh_irradiance_it_transfers() {
+    // On a convex sphere, unshadowed transfer is albedo/π times the R&H
+    // irradiance transfer, so `--prt` shading must match `--mode sh`
+    // shading, up to the vertex interpolation of the transfer and the bake's
+    // quadrature error.
+    if !have_gpu("render_mesh_shades_a_prt_bake_as_the_sh_irradiance_it_transfers") {
+        return;
+    }
+    let dir = temp_dir("gpu_render_prt");
+    let (mesh, env, bake) = (
+        dir.join("sphere.obj"),
+        dir.join("light.json"),
+        dir.join("sphere.shprt"),
+    );
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(2.0, 64, 32));
+    write_coeffs(&env, &light());
+    shlight_ok(&[
+        "prt",
+        s(&mesh),
+        "--mode",
+        "unshadowed",
+        "--lmax",
+        "4",
+        "--samples",
+        "4096",
+        "--albedo",
+        "0.5,0.75,1",
+        "-o",
+        s(&bake),
+        "-q",
+    ]);
+    let (sh, prt) = (dir.join("sh.exr"), dir.join("prt.exr"));
+    let common = ["--size", "64x48", "--env", s(&env)];
+    let mut args = vec![
+        "render-mesh",
+        s(&mesh),
+        "--lmax",
+        "4",
+        "--albedo",
+        "0.5,0.75,1",
+        "-o",
+        s(&sh),
+    ];
+    args.extend(common);
+    shlight_ok(&args);
+    // --prt alone selects PRT mode and the transfer's lmax.
+    let mut args = vec!["render-mesh", s(&mesh), "--prt", s(&bake), "-o", s(&prt)];
+    args.extend(common);
+    shlight_ok(&args);
+    let a = read_image(&sh, &ReadOptions::default()).unwrap();
+    let b = read_image(&prt, &ReadOptions::default()).unwrap();
+    let (mut covered, mut worst) = (0, 0.0f64);
+    for (x, y) in a.pixels().iter().zip(b.pixels()) {
+        if x[0] == 0.0 {
+            assert_eq!(*y, [0.0; 3], "the same silhouette");
+            continue;
+        }
+        covered += 1;
+        for k in 0..3 {
+            let err = (f64::from(y[k]) - f64::from(x[k])).abs() / f64::from(x[k]);
+            worst = worst.max(err);
+        }
+    }
+    assert!(covered > 64 * 48 / 8, "the sphere is framed ({covered})");
+    assert!(worst < 1e-2, "PRT vs SH shading: worst {worst:.2e}");
+    eprintln!("render-mesh --prt vs --mode sh over {covered} pixels: worst {worst:.2e}");
+
+    // A bake of another mesh is refused, naming both files.
+    let other = dir.join("other.obj");
+    write_obj(&other, &shlight_mesh::generate::uv_sphere(2.0, 32, 16));
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&other),
+        "--prt",
+        s(&bake),
+        "--env",
+        s(&env),
+        "-o",
+        s(&dir.join("x.png")),
+    ]);
+    assert!(err.contains(s(&bake)) && err.contains(s(&other)), "{err}");
+    let moved = dir.join("moved.obj");
+    let mut m = shlight_mesh::generate::uv_sphere(2.0, 64, 32);
+    m.positions[0].y += 0.01;
+    write_obj(&moved, &m);
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&moved),
+        "--prt",
+        s(&bake),
+        "--env",
+        s(&env),
+        "-o",
+        s(&dir.join("x.png")),
+    ]);
+    assert!(err.contains("another mesh"), "{err}");
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&mesh),
+        "--mode",
+        "prt",
+        "--env",
+        s(&env),
+        "-o",
+        s(&dir.join("x.png")),
+    ]);
+    assert!(err.contains("--prt"), "{err}");
 }

@@ -6,27 +6,11 @@ use std::path::Path;
 use glam::DVec3;
 use serde_json::json;
 use shlight_core::analytic;
-use shlight_mesh::{Mesh, generate};
+use shlight_mesh::generate;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, bake};
 
-use crate::util::{s, shlight_err, shlight_ok, temp_dir};
-
-/// Writes `mesh` as OBJ with normals (`v`, `vn`, `f a//a b//b c//c`).
-fn write_obj(path: &Path, mesh: &Mesh) {
-    let mut text = String::new();
-    for p in &mesh.positions {
-        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
-    }
-    for n in &mesh.normals {
-        text += &format!("vn {} {} {}\n", n.x, n.y, n.z);
-    }
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|i| i + 1);
-        text += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
-    }
-    std::fs::write(path, text).unwrap();
-}
+use crate::util::{s, shlight_err, shlight_ok, temp_dir, write_obj};
 
 /// A radiance coefficient file of constant radiance `value` (lmax 4).
 fn write_constant_light(path: &Path, value: f64, quantity: &str) {

@@ -139,3 +139,20 @@ pub fn write_spot(
         }
     });
 }
+
+/// Writes `mesh` as OBJ with normals (`v`, `vn`, `f a//a b//b c//c`), so it
+/// loads back with the same vertex order.
+pub fn write_obj(path: &Path, mesh: &shlight_mesh::Mesh) {
+    let mut text = String::new();
+    for p in &mesh.positions {
+        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+    }
+    for n in &mesh.normals {
+        text += &format!("vn {} {} {}\n", n.x, n.y, n.z);
+    }
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| i + 1);
+        text += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+    }
+    std::fs::write(path, text).unwrap();
+}
