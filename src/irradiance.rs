@@ -23,7 +23,6 @@ use shlight_core::irradiance_map::TexelSet;
 use shlight_core::layout::{self, EnvMap};
 use shlight_core::montecarlo::luminance;
 use shlight_core::projection::MapOrientation;
-use shlight_core::rotation::Frame;
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 
 use crate::progress::Ui;
@@ -93,11 +92,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         refuse_overwriting(out, std::slice::from_ref(&args.input))?;
     }
     let orientation = MapOrientation {
-        frame: if args.up == "z" {
-            Frame::ZUp
-        } else {
-            Frame::YUp
-        },
+        frame: crate::environment::frame_of(&args.up),
         mirror: args.mirror,
     };
     let read = ReadOptions {

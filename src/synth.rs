@@ -30,7 +30,6 @@ use clap::{Args, ValueEnum};
 use glam::DVec3;
 use rayon::prelude::*;
 use shlight_core::projection::MapOrientation;
-use shlight_core::rotation::Frame;
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
 use crate::progress::Ui;
@@ -160,11 +159,7 @@ impl Light {
 /// Runs `shlight synth`.
 pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
     let orientation = MapOrientation {
-        frame: if args.up == "z" {
-            Frame::ZUp
-        } else {
-            Frame::YUp
-        },
+        frame: crate::environment::frame_of(&args.up),
         mirror: args.mirror,
     };
     let grid = TexelGrid::new(

@@ -8,12 +8,12 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 
 use glam::DVec3;
-use serde_json::json;
 use shlight_core::{ShCoeffs, analytic, irradiance};
 use shlight_io::{ReadOptions, read_image};
 
 use crate::util::{
     coefficients, json, s, shlight, shlight_err, shlight_ok, temp_dir, write_map, write_obj,
+    write_radiance_rows,
 };
 
 /// Whether GPU tests can run; panics under `SHLIGHT_REQUIRE_GPU=1` without
@@ -36,17 +36,7 @@ fn required() -> bool {
 /// Writes radiance coefficients as a coefficient file (y-up).
 fn write_coeffs(path: &Path, c: &ShCoeffs<DVec3>) {
     let rows: Vec<[f64; 3]> = c.as_slice().iter().map(|v| v.to_array()).collect();
-    let doc = json!({
-        "format": "shlight-sh",
-        "format_version": 1,
-        "lmax": c.lmax(),
-        "frame": "y-up",
-        "mirror": false,
-        "quantity": "radiance",
-        "coefficients": rows,
-        "provenance": {},
-    });
-    std::fs::write(path, doc.to_string()).unwrap();
+    write_radiance_rows(path, &rows);
 }
 
 /// A light positive everywhere with bands 0..4 present.

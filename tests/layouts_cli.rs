@@ -3,13 +3,12 @@
 
 use std::path::Path;
 
-use serde_json::json;
 
 use crate::util::{
     assert_rows_near, coefficients, json, project_rows, s, shlight, shlight_err, shlight_ok,
     temp_dir, write_map,
 };
-use crate::util::{band1_direction, read_json, write_spot};
+use crate::util::{band1_direction, read_json, write_radiance_rows, write_spot};
 
 /// An lmax-2 radiance expansion: a constant 3 and smaller terms.
 fn rows() -> Vec<[f64; 3]> {
@@ -25,20 +24,6 @@ fn rows() -> Vec<[f64; 3]> {
         .collect()
 }
 
-fn write_coeffs(path: &Path, rows: &[[f64; 3]]) {
-    let doc = json!({
-        "format": "shlight-sh",
-        "format_version": 1,
-        "lmax": 2,
-        "frame": "y-up",
-        "mirror": false,
-        "quantity": "radiance",
-        "coefficients": rows,
-        "provenance": {},
-    });
-    std::fs::write(path, doc.to_string()).unwrap();
-}
-
 fn assert_points(rows: &[[f64; 3]], want: [f64; 3], what: &str) {
     let d = band1_direction(rows);
     let dot = d[0] * want[0] + d[1] * want[1] + d[2] * want[2];
@@ -50,7 +35,7 @@ fn rendered_layouts_project_back_to_their_coefficients() {
     let dir = temp_dir("layouts_round_trip");
     let file = dir.join("sh.json");
     let want = rows();
-    write_coeffs(&file, &want);
+    write_radiance_rows(&file, &want);
     // Faces of 64, discs of 256: the midpoint error is a few 1e-4 of the
     // largest coefficient (crates/shlight-core/src/layout.rs).
     for (layout, size) in [
@@ -198,7 +183,7 @@ fn missing_faces_and_wrong_sizes_are_errors_naming_the_file() {
     let err = shlight_err(&["project", s(&wide), "--layout", "faces"]);
     assert!(err.contains("{face}"), "{err}");
     let sh = dir.join("sh.json");
-    write_coeffs(&sh, &rows());
+    write_radiance_rows(&sh, &rows());
     let out = dir.join("x.exr");
     let err = shlight_err(&[
         "render",

@@ -156,3 +156,25 @@ pub fn write_obj(path: &Path, mesh: &shlight_mesh::Mesh) {
     }
     std::fs::write(path, text).unwrap();
 }
+
+/// Writes a radiance coefficient file (y-up) holding `rows` (`(lmax+1)^2`
+/// of them).
+pub fn write_radiance_rows(path: &Path, rows: &[[f64; 3]]) {
+    let lmax = (rows.len() as f64).sqrt() as usize - 1;
+    assert_eq!(
+        (lmax + 1) * (lmax + 1),
+        rows.len(),
+        "a square number of rows"
+    );
+    let doc = serde_json::json!({
+        "format": "shlight-sh",
+        "format_version": 1,
+        "lmax": lmax,
+        "frame": "y-up",
+        "mirror": false,
+        "quantity": "radiance",
+        "coefficients": rows,
+        "provenance": {},
+    });
+    std::fs::write(path, doc.to_string()).unwrap();
+}

@@ -37,22 +37,48 @@ pub struct Hit {
     pub barycentrics: [f32; 3],
 }
 
+/// The part of a ray the watertight triangle test (Woop, Benthin & Wald
+/// 2013) needs, computed once per ray: axes permuted so that `kz` is the
+/// direction's largest component, and the shear that maps the direction to
+/// +z. Shared by [`Ray`] and the hand-written BVH of the ray benchmark.
+#[derive(Clone, Copy, Debug)]
+pub struct WatertightRay {
+    origin: Vec3,
+    k: [usize; 3],
+    shear: Vec3,
+}
+
 /// A ray with what every test against it needs, computed once.
 #[derive(Clone, Copy, Debug)]
 pub struct Ray {
-    origin: Vec3,
     /// The same ray for the hierarchy's node tests.
     traversal: TraversalRay,
-    /// Axes permuted so that `kz` is the direction's largest component
-    /// (Woop et al.), and the shear that maps the direction to +z.
-    k: [usize; 3],
-    shear: Vec3,
+    /// The same ray for the triangle tests.
+    triangle: WatertightRay,
 }
 
 impl Ray {
     /// The ray `origin + t dir`, `0 < t < t_max`. `dir` need not be unit.
     #[must_use]
     pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Self {
+        let a3 = |v: Vec3| Vec3A::new(v.x, v.y, v.z);
+        // The node test takes the sign of a direction component from
+        // `d < 0` but inverts it as `signum(d) / EPSILON` when |d| <= EPSILON:
+        // -0.0 (and tiny components) would be inverted with the wrong sign
+        // or scale. Such components become +0.0 for the node tests only
+        // (triangle boxes are padded to cover the difference).
+        let snapped = Vec3::select(dir.abs().cmple(Vec3::splat(f32::EPSILON)), Vec3::ZERO, dir);
+        Self {
+            traversal: TraversalRay::new(a3(origin), a3(snapped), 0.0, t_max),
+            triangle: WatertightRay::new(origin, dir),
+        }
+    }
+}
+
+impl WatertightRay {
+    /// The ray `origin + t dir`; `dir` need not be unit.
+    #[must_use]
+    pub fn new(origin: Vec3, dir: Vec3) -> Self {
         let a = dir.abs();
         let kz = if a.x > a.y {
             if a.x > a.z { 0 } else { 2 }
@@ -65,25 +91,18 @@ impl Ray {
         if dir[kz] < 0.0 {
             core::mem::swap(&mut kx, &mut ky);
         }
-        let a3 = |v: Vec3| Vec3A::new(v.x, v.y, v.z);
-        // The node test takes the sign of a direction component from
-        // `d < 0` but inverts it as `signum(d) / EPSILON` when |d| <= EPSILON:
-        // -0.0 (and tiny components) would be inverted with the wrong sign
-        // or scale. Such components become +0.0 for the node tests only
-        // (triangle boxes are padded to cover the difference).
-        let snapped = Vec3::select(dir.abs().cmple(Vec3::splat(f32::EPSILON)), Vec3::ZERO, dir);
         Self {
             origin,
-            traversal: TraversalRay::new(a3(origin), a3(snapped), 0.0, t_max),
             k: [kx, ky, kz],
             shear: Vec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]),
         }
     }
 
     /// The watertight ray-triangle test: `(t, [w0, w1, w2])`, the distance
-    /// and the barycentric weights of the three corners, or `None`.
+    /// (`0 < t < t_max`) and the barycentric weights of the three corners,
+    /// or `None`.
     #[inline(always)]
-    fn hits_triangle(&self, tri: &[Vec3; 3], t_max: f32) -> Option<(f32, [f32; 3])> {
+    pub fn hits_triangle(&self, tri: &[Vec3; 3], t_max: f32) -> Option<(f32, [f32; 3])> {
         let [kx, ky, kz] = self.k;
         let s = self.shear;
         let rel = tri.map(|v| v - self.origin);
@@ -205,7 +224,10 @@ impl Bvh {
             node.intersect_ray(&traversal, state.oct_inv4),
             {
                 let k = state.primitive_id as usize;
-                if let Some((t, w)) = ray.hits_triangle(&self.triangles[k], traversal.tmax) {
+                if let Some((t, w)) = ray
+                    .triangle
+                    .hits_triangle(&self.triangles[k], traversal.tmax)
+                {
                     traversal.tmax = t;
                     best = Some((t, k, w));
                 }
@@ -233,6 +255,7 @@ impl Bvh {
             {
                 let k = state.primitive_id as usize;
                 if ray
+                    .triangle
                     .hits_triangle(&self.triangles[k], traversal.tmax)
                     .is_some()
                 {

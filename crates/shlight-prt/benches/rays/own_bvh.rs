@@ -21,6 +21,7 @@
 //! kept here so the comparison can be repeated.
 
 use glam::Vec3;
+use shlight_prt::bvh::WatertightRay;
 
 /// The most triangles in one leaf.
 pub const MAX_LEAF: usize = 4;
@@ -57,10 +58,8 @@ pub struct Hit {
 pub struct Ray {
     origin: Vec3,
     inv_dir: Vec3,
-    /// Axes permuted so that `kz` is the direction's largest component
-    /// (Woop et al.), and the shear that maps the direction to +z.
-    k: [usize; 3],
-    shear: Vec3,
+    /// The same ray for the (shared) watertight triangle test.
+    triangle: WatertightRay,
     /// Largest `t` of interest.
     t_max: f32,
 }
@@ -69,23 +68,10 @@ impl Ray {
     /// The ray `origin + t dir`, `0 < t < t_max`. `dir` need not be unit.
     #[must_use]
     pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Self {
-        let a = dir.abs();
-        let kz = if a.x > a.y {
-            if a.x > a.z { 0 } else { 2 }
-        } else if a.y > a.z {
-            1
-        } else {
-            2
-        };
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if dir[kz] < 0.0 {
-            core::mem::swap(&mut kx, &mut ky);
-        }
         Self {
             origin,
             inv_dir: dir.recip(),
-            k: [kx, ky, kz],
-            shear: Vec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]),
+            triangle: WatertightRay::new(origin, dir),
             t_max,
         }
     }
@@ -98,39 +84,6 @@ impl Ray {
         let near = t1.min(t2).max_element().max(0.0);
         let far = t1.max(t2).min_element().min(t_max) * FAR_SCALE;
         (near <= far).then_some(near)
-    }
-
-    /// The watertight ray-triangle test: `(t, w0, w1, w2)` with unnormalised
-    /// barycentric weights and `t` already divided out, or `None`.
-    #[inline(always)]
-    fn hits_triangle(&self, tri: &[Vec3; 3], t_max: f32) -> Option<(f32, [f32; 3])> {
-        let [kx, ky, kz] = self.k;
-        let s = self.shear;
-        let rel = tri.map(|v| v - self.origin);
-        let sheared = rel.map(|p| (p[kx] - s.x * p[kz], p[ky] - s.y * p[kz]));
-        let [(ax, ay), (bx, by), (cx, cy)] = sheared;
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            let f = |a: f32, b: f32, c: f32, d: f32| {
-                (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32
-            };
-            u = f(cx, by, cy, bx);
-            v = f(ax, cy, ay, cx);
-            w = f(bx, ay, by, ax);
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            return None;
-        }
-        let det = u + v + w;
-        if det == 0.0 {
-            return None;
-        }
-        let t_scaled = s.z * (u * rel[0][kz] + v * rel[1][kz] + w * rel[2][kz]);
-        let inv = det.recip();
-        let t = t_scaled * inv;
-        (t > 0.0 && t < t_max).then_some((t, [u * inv, v * inv, w * inv]))
     }
 }
 
@@ -203,7 +156,8 @@ impl Bvh {
             ray,
             |t_max_now, first, count| {
                 for k in first..first + count {
-                    if let Some((t, w)) = ray.hits_triangle(&self.triangles[k], *t_max_now) {
+                    if let Some((t, w)) = ray.triangle.hits_triangle(&self.triangles[k], *t_max_now)
+                    {
                         *t_max_now = t;
                         best = Some((t, k as u32, w));
                     }
@@ -227,8 +181,11 @@ impl Bvh {
         self.traverse(
             ray,
             |t_max_now, first, count| {
-                hit = (first..first + count)
-                    .any(|k| ray.hits_triangle(&self.triangles[k], *t_max_now).is_some());
+                hit = (first..first + count).any(|k| {
+                    ray.triangle
+                        .hits_triangle(&self.triangles[k], *t_max_now)
+                        .is_some()
+                });
                 hit
             },
             &mut t_max,
