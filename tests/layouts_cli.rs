@@ -3,7 +3,6 @@
 
 use std::path::Path;
 
-
 use crate::util::{
     assert_rows_near, coefficients, json, project_rows, s, shlight, shlight_err, shlight_ok,
     temp_dir, write_map,
