@@ -6,6 +6,10 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::rotation::Frame;
 use shlight_core::window::sphere_minimum;
+
+/// Highest lmax whose file gets `statistics.minimum` (the search costs
+/// `O(lmax^4)`: about 80 ms per channel at lmax 32).
+pub const MINIMUM_MAX_LMAX: usize = 32;
 use shlight_core::{ShCoeffs, lm_from_index};
 
 /// Version of the JSON layout written by this build.
@@ -161,8 +165,13 @@ impl CoeffFile {
     /// The JSON document (docs/coefficient-file.md).
     pub fn to_json(&self) -> Value {
         let rgb = |v: DVec3| json!([v.x, v.y, v.z]);
+        // The dense search costs O(lmax^4): beyond MINIMUM_MAX_LMAX it would
+        // dominate the run (minutes at lmax 128), so the field is null there.
         let minimum: Vec<Value> = (0..3)
             .map(|c| {
+                if self.coeffs.lmax() > MINIMUM_MAX_LMAX {
+                    return Value::Null;
+                }
                 let (v, d) = sphere_minimum(&self.coeffs.channel(c));
                 json!({ "value": v, "direction": d })
             })

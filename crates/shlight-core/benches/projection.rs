@@ -66,7 +66,7 @@ fn zup(bencher: Bencher, lmax: usize) {
 }
 
 /// The fast path in the default y-up frame (adds the rotation).
-#[divan::bench(args = [2, 8, 32], sample_count = 20, sample_size = 1)]
+#[divan::bench(args = [2, 8, 32, 128, 512], sample_count = 20, sample_size = 1)]
 fn yup(bencher: Bencher, lmax: usize) {
     run(bencher, lmax, Frame::YUp, false);
 }
