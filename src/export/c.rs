@@ -18,9 +18,9 @@
 //! unused functions do not warn); it needs `<math.h>` (`-lm` on some
 //! systems).
 
-use shlight_core::lm_from_index;
-
-use super::{ExportInput, Exported, band_weights, code_header, float_literal};
+use super::{
+    BAND_WEIGHT_COMMENT, ExportInput, Exported, band_weight_list, code_header, coefficient_rows,
+};
 use crate::coeff_file::Quantity;
 
 /// Renders the snippet.
@@ -33,23 +33,13 @@ pub fn render(input: &ExportInput<'_>) -> Exported {
         "#define SHLIGHT_LMAX {lmax}\n#define SHLIGHT_COUNT {n}\n\n"
     ));
     s.push_str("static const double shlight_coeffs[SHLIGHT_COUNT][3] = {\n");
-    for (i, v) in c.as_slice().iter().enumerate() {
-        let (l, m) = lm_from_index(i);
-        s.push_str(&format!(
-            "    {{{}, {}, {}}}, // l={l} m={m}\n",
-            float_literal(v.x),
-            float_literal(v.y),
-            float_literal(v.z)
-        ));
-    }
+    s.push_str(&coefficient_rows(c, "{", "}", true));
     s.push_str("};\n");
     let radiance = input.quantity == Quantity::Radiance;
     if radiance {
-        let a: Vec<String> = band_weights(lmax).into_iter().map(float_literal).collect();
         s.push_str(&format!(
-            "// A_l, the clamped-cosine eigenvalues: irradiance is A_l times radiance, band by band.\n\
-             static const double shlight_a[SHLIGHT_LMAX + 1] = {{{}}};\n",
-            a.join(", ")
+            "{BAND_WEIGHT_COMMENT}\nstatic const double shlight_a[SHLIGHT_LMAX + 1] = {{{}}};\n",
+            band_weight_list(lmax)
         ));
     }
     s.push_str(

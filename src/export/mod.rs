@@ -361,9 +361,45 @@ pub(crate) fn code_header(
     lines.iter().map(|l| format!("{comment} {l}\n")).collect()
 }
 
-/// `A_l`, `l = 0..=lmax`, for the snippets' irradiance of radiance files.
-pub(crate) fn band_weights(lmax: usize) -> Vec<f64> {
-    (0..=lmax).map(clamped_cosine_eigenvalue).collect()
+/// `A_l`, `l = 0..=lmax`, for the snippets' irradiance of radiance files,
+/// as comma-separated literals.
+pub(crate) fn band_weight_list(lmax: usize) -> String {
+    let a: Vec<String> = (0..=lmax)
+        .map(|l| float_literal(clamped_cosine_eigenvalue(l)))
+        .collect();
+    a.join(", ")
+}
+
+/// The comment above the snippets' `A_l` arrays.
+pub(crate) const BAND_WEIGHT_COMMENT: &str =
+    "// A_l, the clamped-cosine eigenvalues: irradiance is A_l times radiance, band by band.";
+
+/// The snippets' coefficient rows, one line each:
+/// `    {open}r, g, b{close}, // l=.. m=..`, the comma left off the last row
+/// unless `comma_after_last`.
+pub(crate) fn coefficient_rows(
+    coeffs: &ShCoeffs<DVec3>,
+    open: &str,
+    close: &str,
+    comma_after_last: bool,
+) -> String {
+    let n = coeffs.len();
+    let mut s = String::new();
+    for (i, v) in coeffs.as_slice().iter().enumerate() {
+        let (l, m) = lm_from_index(i);
+        let sep = if comma_after_last || i + 1 < n {
+            ","
+        } else {
+            ""
+        };
+        s.push_str(&format!(
+            "    {open}{}, {}, {}{close}{sep} // l={l} m={m}\n",
+            float_literal(v.x),
+            float_literal(v.y),
+            float_literal(v.z)
+        ));
+    }
+    s
 }
 
 /// Refuses values a 32-bit float cannot hold (the shader targets).
@@ -403,27 +439,17 @@ impl CLikeShader {
             self.konst,
             (self.array_open)(v3, n)
         ));
-        for (i, v) in c.as_slice().iter().enumerate() {
-            let (l, m) = lm_from_index(i);
-            let sep = if i + 1 < n { "," } else { "" };
-            s.push_str(&format!(
-                "    {v3}({}, {}, {}){sep} // l={l} m={m}\n",
-                float_literal(v.x),
-                float_literal(v.y),
-                float_literal(v.z)
-            ));
-        }
+        s.push_str(&coefficient_rows(c, &format!("{v3}("), ")", false));
         s.push_str(self.array_close);
         s.push('\n');
         let radiance = input.quantity == Quantity::Radiance;
         if radiance {
-            let a: Vec<String> = band_weights(lmax).into_iter().map(float_literal).collect();
             s.push_str(&format!(
-                "// A_l, the clamped-cosine eigenvalues: irradiance is A_l times radiance, band by band.\n{} float SHLIGHT_A[{}] = {}{}{}\n",
+                "{BAND_WEIGHT_COMMENT}\n{} float SHLIGHT_A[{}] = {}{}{}\n",
                 self.konst,
                 lmax + 1,
                 (self.array_open)("float", lmax + 1),
-                a.join(", "),
+                band_weight_list(lmax),
                 self.array_close
             ));
         }

@@ -21,9 +21,11 @@
 //! implementations).
 
 use anyhow::Result;
-use shlight_core::lm_from_index;
 
-use super::{ExportInput, Exported, band_weights, check_f32_range, code_header, float_literal};
+use super::{
+    BAND_WEIGHT_COMMENT, ExportInput, Exported, band_weight_list, check_f32_range, code_header,
+    coefficient_rows,
+};
 use crate::coeff_file::Quantity;
 
 /// Renders the snippet.
@@ -37,23 +39,13 @@ pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
     s.push_str(&format!(
         "var<private> SHLIGHT_COEFFS: array<vec3<f32>, {n}> = array<vec3<f32>, {n}>(\n"
     ));
-    for (i, v) in c.as_slice().iter().enumerate() {
-        let (l, m) = lm_from_index(i);
-        s.push_str(&format!(
-            "    vec3<f32>({}, {}, {}), // l={l} m={m}\n",
-            float_literal(v.x),
-            float_literal(v.y),
-            float_literal(v.z)
-        ));
-    }
+    s.push_str(&coefficient_rows(c, "vec3<f32>(", ")", true));
     s.push_str(");\n");
     let radiance = input.quantity == Quantity::Radiance;
     if radiance {
-        let a: Vec<String> = band_weights(lmax).into_iter().map(float_literal).collect();
         s.push_str(&format!(
-            "// A_l, the clamped-cosine eigenvalues: irradiance is A_l times radiance, band by band.\n\
-             var<private> SHLIGHT_A: array<f32, {k}> = array<f32, {k}>({});\n",
-            a.join(", "),
+            "{BAND_WEIGHT_COMMENT}\nvar<private> SHLIGHT_A: array<f32, {k}> = array<f32, {k}>({});\n",
+            band_weight_list(lmax),
             k = lmax + 1
         ));
     }

@@ -49,6 +49,26 @@ pub struct MapOrientation {
 }
 
 impl MapOrientation {
+    /// Every orientation: both frames, unmirrored and mirrored.
+    pub const ALL: [Self; 4] = [
+        Self {
+            frame: Frame::YUp,
+            mirror: false,
+        },
+        Self {
+            frame: Frame::YUp,
+            mirror: true,
+        },
+        Self {
+            frame: Frame::ZUp,
+            mirror: false,
+        },
+        Self {
+            frame: Frame::ZUp,
+            mirror: true,
+        },
+    ];
+
     /// World direction of a direction `d` given in the map's own y-up frame:
     /// `mirror` negates its `z` (for equirect maps that is `φ -> -φ`), then
     /// `Frame::YUp.rotation_to(frame)` turns it into the frame.
@@ -401,14 +421,9 @@ mod tests {
             (40, 80, 300),
             (1040, 8, 10),
         ] {
-            for frame in [Frame::YUp, Frame::ZUp] {
-                for mirror in [false, true] {
-                    let d = fast_vs_simple(w, h, lmax, MapOrientation { frame, mirror });
-                    assert!(
-                        d < 1e-12,
-                        "{w}x{h} lmax {lmax} {frame} mirror {mirror}: {d:e}"
-                    );
-                }
+            for o in MapOrientation::ALL {
+                let d = fast_vs_simple(w, h, lmax, o);
+                assert!(d < 1e-12, "{w}x{h} lmax {lmax} {o:?}: {d:e}");
             }
         }
     }

@@ -115,7 +115,7 @@ fn parity_sign(n: usize) -> f64 {
 /// it adds `E_{a b} x_b` to `y_a` and `(-1)^(a+b) E_{a b} x_a` to `y_b`.
 fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("fma") {
+    if crate::ring_transform::avx_fma() {
         // SAFETY: the CPU has the features the function is compiled for.
         unsafe { turn_y_band_avx(l, x, out) };
         return;
@@ -297,8 +297,8 @@ pub fn quarter_turn_x<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, turns: i32) -> 
         turns == 1 || turns == -1,
         "quarter_turn_x takes turns = 1 or -1"
     );
-    // Rx(±π/2) = Rz(∓π/2) Ry(π/2) Rz(±π/2) (conjugating Ry by Rz(∓π/2)
-    // takes its axis to ±X... applied right to left).
+    // Rx(±π/2) = Rz(∓π/2) Ry(π/2) Rz(±π/2): Rz(∓π/2) takes +Y to ±X, and
+    // rotating coefficients composes the same way (rightmost first).
     let s = f64::from(turns);
     rotate_z(&turn_y(&rotate_z(f, s * FRAC_PI_2)), -s * FRAC_PI_2)
 }

@@ -47,10 +47,11 @@ use crate::{Real, ShCoeffs, sh_index};
 pub(crate) static FORCE_PORTABLE: std::sync::atomic::AtomicBool =
     std::sync::atomic::AtomicBool::new(false);
 
-/// Whether the AVX + FMA kernels can run (and are not switched off by a test).
+/// Whether the AVX + FMA kernels can run (and are not switched off by a
+/// test); also used by [`crate::quarter_turn`].
 #[cfg(target_arch = "x86_64")]
 #[inline]
-fn avx_fma() -> bool {
+pub(crate) fn avx_fma() -> bool {
     #[cfg(test)]
     if FORCE_PORTABLE.load(std::sync::atomic::Ordering::Relaxed) {
         return false;

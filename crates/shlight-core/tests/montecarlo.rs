@@ -202,21 +202,11 @@ fn uniform_error_falls_as_inverse_sqrt_n_and_stratified_and_sobol_faster() {
     assert!(last[1] < last[0] && last[2] < last[0], "{last:?}");
 }
 
-fn orientations() -> Vec<MapOrientation> {
-    let mut v = Vec::new();
-    for frame in [Frame::YUp, Frame::ZUp] {
-        for mirror in [false, true] {
-            v.push(MapOrientation { frame, mirror });
-        }
-    }
-    v
-}
-
 #[test]
 fn importance_sampling_cuts_the_error_on_a_peaked_map_in_every_frame() {
     let case = peaked();
     let uni = run(&case, &opts(Sampler::Uniform, 16384, 5), None);
-    for o in orientations() {
+    for o in MapOrientation::ALL {
         let grid = grid_for(&case, o);
         let imp = run(&case, &opts(Sampler::Importance, 16384, 5), Some(&grid));
         let ratio = norm(&imp.std_error) / norm(&uni.std_error);
@@ -277,7 +267,7 @@ impl RadianceMap for Texels {
 fn importance_grid_from_equirect_texels_matches_the_map_in_every_frame() {
     let (w, h) = (96, 48);
     let sun = unit(-0.2, 0.7, 0.5);
-    for o in orientations() {
+    for o in MapOrientation::ALL {
         let px: Vec<[f32; 3]> = (0..w * h)
             .map(|k| {
                 let d = equirect_direction(k % w, k / w, w, h, o);

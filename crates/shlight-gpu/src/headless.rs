@@ -98,6 +98,28 @@ impl Offscreen {
         self.width as f32 / self.height as f32
     }
 
+    /// A command encoder holding one frame's draw into the colour and depth
+    /// targets.
+    fn encode_draw(
+        &self,
+        ctx: &GpuContext,
+        renderer: &Renderer,
+        camera: &Camera,
+        shading: &Shading,
+    ) -> Result<wgpu::CommandEncoder, GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        renderer.draw(
+            ctx,
+            &mut encoder,
+            &self.color_view,
+            &self.depth_view,
+            camera,
+            self.aspect(),
+            shading,
+        )?;
+        Ok(encoder)
+    }
+
     /// Draws one frame and waits for it, without reading it back (for timing).
     ///
     /// # Errors
@@ -109,16 +131,7 @@ impl Offscreen {
         camera: &Camera,
         shading: &Shading,
     ) -> Result<(), GpuError> {
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        renderer.draw(
-            ctx,
-            &mut encoder,
-            &self.color_view,
-            &self.depth_view,
-            camera,
-            self.aspect(),
-            shading,
-        )?;
+        let encoder = self.encode_draw(ctx, renderer, camera, shading)?;
         ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
         ctx.wait()
     }
@@ -139,16 +152,7 @@ impl Offscreen {
                 "headless frames need a renderer for {HEADLESS_FORMAT:?}"
             )));
         }
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        renderer.draw(
-            ctx,
-            &mut encoder,
-            &self.color_view,
-            &self.depth_view,
-            camera,
-            self.aspect(),
-            shading,
-        )?;
+        let mut encoder = self.encode_draw(ctx, renderer, camera, shading)?;
         encoder.copy_texture_to_buffer(
             self.color.as_image_copy(),
             wgpu::TexelCopyBufferInfo {

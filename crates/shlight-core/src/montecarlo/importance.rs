@@ -342,20 +342,10 @@ mod tests {
     use rand::rngs::StdRng;
     use rand::{Rng, SeedableRng};
 
-    fn orientations() -> Vec<MapOrientation> {
-        let mut v = Vec::new();
-        for frame in [Frame::YUp, Frame::ZUp] {
-            for mirror in [false, true] {
-                v.push(MapOrientation { frame, mirror });
-            }
-        }
-        v
-    }
-
     #[test]
     fn cell_centres_match_equirect_directions_and_pdf_lookup() {
         let (w, h) = (12, 7);
-        for o in orientations() {
+        for o in MapOrientation::ALL {
             let g = ImportanceGrid::from_fn(w, h, o, |d| 1.0 + d.x * 3.0 + d.y * d.y);
             for j in 0..h {
                 for i in 0..w {
@@ -442,7 +432,7 @@ mod tests {
     fn sampled_directions_have_the_stated_density() {
         // Histogram of samples per cell against P_ij.
         let (w, h) = (6, 4);
-        for o in orientations() {
+        for o in MapOrientation::ALL {
             let g = ImportanceGrid::from_fn(w, h, o, |d| (d.x + 2.0 * d.z).max(0.0));
             let mut rng = StdRng::seed_from_u64(7);
             let n = 200_000;

@@ -21,7 +21,7 @@
 //! kept here so the comparison can be repeated.
 
 use glam::Vec3;
-use shlight_prt::bvh::WatertightRay;
+use shlight_prt::bvh::{Hit, WatertightRay};
 
 /// The most triangles in one leaf.
 pub const MAX_LEAF: usize = 4;
@@ -39,18 +39,6 @@ struct Node {
     first: u32,
     max: Vec3,
     count: u32,
-}
-
-/// Where a ray hit a triangle.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// Distance along the (unit or not) direction: the point is `o + t d`.
-    pub t: f32,
-    /// Index of the triangle in the mesh's triangle list.
-    pub triangle: u32,
-    /// Barycentric weights of the triangle's three corners, in the order of
-    /// its indices; they sum to 1 and the point is `sum w_i p_i`.
-    pub barycentrics: [f32; 3],
 }
 
 /// A ray with what every test against it needs, computed once.
