@@ -283,7 +283,7 @@ impl<'a> StageBars<'a> {
                 bar.finish_and_clear();
             }
             let label = match stage {
-                Stage::Rays => "rays".to_string(),
+                Stage::Rays => "directions".to_string(),
                 Stage::Bounce(k) => format!("bounce {k}"),
             };
             self.furthest.store(0, Ordering::Relaxed);

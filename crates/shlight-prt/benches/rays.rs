@@ -3,12 +3,14 @@
 //! cores, any-hit and closest-hit, on the bundled bunny (3,674 triangles)
 //! and a generated torus of 69,696 triangles:
 //!
-//! - `shlight_*`: shlight-prt's `Bvh` (obvhs's CWBVH with shlight's
-//!   watertight triangle test), what baking uses;
-//! - `own_bvh2_*`: the binned-SAH binary BVH written for shlight
-//!   (`rays/own_bvh.rs`), the candidate it was chosen over;
-//! - `obvhs_*`: obvhs alone (its CWBVH8 and BVH2, its own Möller-Trumbore
-//!   triangle test).
+//! - `packets_*`: what baking does: direction by direction, the vertices
+//!   facing it in Morton order, eight parallel rays per AVX2 packet through
+//!   shlight-prt's binned-SAH `Bvh` (`packet.rs`), the ray-space vertices
+//!   computed per direction included;
+//! - `single_*`: the same `Bvh` one ray at a time, in vertex order (the
+//!   path of processors without AVX2);
+//! - `obvhs_*`: the obvhs crate's CWBVH8 and BVH2 with its own
+//!   Möller-Trumbore test, one ray at a time.
 //!
 //! `cargo bench -p shlight-prt --bench rays`; divan's "items/s" is rays/s.
 
@@ -28,9 +30,7 @@ use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::bvh::{Bvh, Ray};
-
-#[path = "rays/own_bvh.rs"]
-mod own_bvh;
+use shlight_prt::packet::{Direction, LANES, Packet};
 
 fn main() {
     divan::main();
@@ -72,7 +72,7 @@ const MESHES: &[&str] = &["bunny", "torus70k"];
 const RAYS: usize = 400_000;
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
-fn shlight_occluded(bencher: Bencher, name: &str) {
+fn single_occluded(bencher: Bencher, name: &str) {
     let m = mesh(name);
     let bvh = Bvh::new(&m.positions, &m.triangles);
     let rays = rays(&m, RAYS);
@@ -84,7 +84,7 @@ fn shlight_occluded(bencher: Bencher, name: &str) {
 }
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
-fn shlight_closest(bencher: Bencher, name: &str) {
+fn single_closest(bencher: Bencher, name: &str) {
     let m = mesh(name);
     let bvh = Bvh::new(&m.positions, &m.triangles);
     let rays = rays(&m, RAYS);
@@ -95,28 +95,77 @@ fn shlight_closest(bencher: Bencher, name: &str) {
     });
 }
 
-#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
-fn own_bvh2_occluded(bencher: Bencher, name: &str) {
-    let m = mesh(name);
-    let bvh = own_bvh::Bvh::new(&m.positions, &m.triangles);
-    let rays = rays(&m, RAYS);
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter(|(o, d)| bvh.occluded(&own_bvh::Ray::new(*o, *d, f32::INFINITY)))
-            .count()
+/// Every 8th direction of the 1024-direction grid, with the vertices facing
+/// it in Morton order (the order `transfer::bake` casts them in) and their
+/// ray origins: about as many rays as [`rays`] gives, cast direction-major.
+fn direction_major(mesh: &Mesh) -> (Mesh, Vec<(Vec3, Vec<Vec3>)>) {
+    let dirs: Vec<Vec3> = stratified_directions(1024, 0)
+        .iter()
+        .map(|d| d.as_vec3())
+        .step_by(8)
+        .collect();
+    // Sort the vertices along a Morton curve, as baking does.
+    let (lo, hi) = mesh.bounds();
+    let key = |p: Vec3| {
+        let q = ((p - lo) / (hi - lo).max(Vec3::splat(1e-30)) * 1023.0).as_uvec3();
+        (0..10).fold(0u64, |k, b| {
+            k | u64::from(q.x >> b & 1) << (3 * b)
+                | u64::from(q.y >> b & 1) << (3 * b + 1)
+                | u64::from(q.z >> b & 1) << (3 * b + 2)
+        })
+    };
+    let mut order: Vec<usize> = (0..mesh.vertex_count()).collect();
+    order.sort_by_key(|&v| key(mesh.positions[v]));
+    let eps = shlight_prt::transfer::OFFSET * (hi - lo).length();
+    let per_dir = dirs
+        .iter()
+        .map(|d| {
+            let origins = order
+                .iter()
+                .filter(|&&v| mesh.normals[v].dot(*d) > 0.0)
+                .map(|&v| mesh.positions[v] + eps * mesh.normals[v])
+                .collect();
+            (*d, origins)
+        })
+        .collect();
+    (mesh.clone(), per_dir)
+}
+
+fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
+    let (m, per_dir) = direction_major(&mesh(name));
+    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
+    bencher.counter(ItemsCount::new(count)).bench(|| {
+        per_dir
+            .par_iter()
+            .map(|(d, origins)| {
+                let dir = Direction::new(*d);
+                let local: Vec<[f32; 4]> =
+                    m.positions.iter().map(|p| dir.to_ray_space(*p)).collect();
+                origins
+                    .chunks(LANES)
+                    .map(|o| {
+                        let packet = Packet::new(&dir, o);
+                        if closest {
+                            bvh.closest_packet(&dir, &local, &packet).mask.count_ones()
+                        } else {
+                            bvh.occluded_packet(&dir, &local, &packet).count_ones()
+                        }
+                    })
+                    .sum::<u32>()
+            })
+            .sum::<u32>()
     });
 }
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
-fn own_bvh2_closest(bencher: Bencher, name: &str) {
-    let m = mesh(name);
-    let bvh = own_bvh::Bvh::new(&m.positions, &m.triangles);
-    let rays = rays(&m, RAYS);
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter_map(|(o, d)| bvh.closest_hit(&own_bvh::Ray::new(*o, *d, f32::INFINITY)))
-            .count()
-    });
+fn packets_occluded(bencher: Bencher, name: &str) {
+    packet_bench(bencher, name, false);
+}
+
+#[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
+fn packets_closest(bencher: Bencher, name: &str) {
+    packet_bench(bencher, name, true);
 }
 
 fn obvhs_input(m: &Mesh) -> (Vec<Triangle>, Vec<ORay>) {

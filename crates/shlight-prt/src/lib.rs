@@ -5,7 +5,8 @@
 //!
 //! # Main items
 //! - [`bvh::Bvh`]: binned-SAH hierarchy with a watertight ray/triangle test;
-//!   occlusion and closest-hit queries with barycentrics.
+//!   occlusion and closest-hit queries with barycentrics, for single rays
+//!   and for [`packet`]s of eight parallel rays (AVX2).
 //! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).
@@ -39,6 +40,7 @@
 pub mod bvh;
 mod error;
 pub mod gltf_export;
+pub mod packet;
 pub mod preview;
 pub mod shprt;
 pub mod transfer;

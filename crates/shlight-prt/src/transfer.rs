@@ -34,8 +34,10 @@
 //! of a triangle (an open mesh seen from behind) is blocked and brings no
 //! bounce light: surfaces are one-sided.
 //!
-//! Vertices are baked in parallel (rayon), each from the shared directions
-//! alone, so the result is the same bit for bit at any thread count.
+//! Directions are cast in parallel (rayon), each as packets of eight
+//! parallel rays from neighbouring vertices ([`crate::packet`]), and each
+//! vertex's sum runs over the directions in order, so the result is the
+//! same bit for bit at any thread count.
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
@@ -45,7 +47,8 @@ use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, ShCoeffs, sh_count};
 use shlight_mesh::Mesh;
 
-use crate::bvh::{Bvh, Ray};
+use crate::bvh::Bvh;
+use crate::packet::{Direction, LANES, Packet};
 
 /// Ray origins are offset along the normal by this times the bounding box
 /// diagonal.
@@ -219,12 +222,54 @@ struct Blocked {
     b2: f32,
 }
 
+/// A ray along one direction that met the front of a triangle: its vertex,
+/// the triangle and the barycentric weights of corners 1 and 2.
+#[derive(Clone, Copy, Debug)]
+struct FrontHit {
+    vertex: u32,
+    triangle: u32,
+    b1: f32,
+    b2: f32,
+}
+
 const CHUNK: usize = 64;
+
+/// Vertex indices sorted along a Morton (Z-order) curve through the mesh's
+/// bounding box, 10 bits per axis: neighbours in the list are neighbours in
+/// space, so consecutive vertices make coherent ray packets.
+fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
+    let scale = Vec3::splat(1023.0) / (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
+    let spread = |x: u32| {
+        let mut x = u64::from(x & 1023);
+        x = (x | (x << 16)) & 0x0300_00ff;
+        x = (x | (x << 8)) & 0x0300_f00f;
+        x = (x | (x << 4)) & 0x030c_30c3;
+        (x | (x << 2)) & 0x0924_9249
+    };
+    let mut keyed: Vec<(u64, u32)> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let q = ((*p - lo) * scale).clamp(Vec3::ZERO, Vec3::splat(1023.0));
+            let code = spread(q.x as u32) | spread(q.y as u32) << 1 | spread(q.z as u32) << 2;
+            (code, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
 
 /// Bakes the transfer of every vertex of `mesh`.
 ///
-/// `progress(stage, done, total)` is called from worker threads as vertices
-/// finish (in no fixed order; `done` only grows within a stage).
+/// Rays are cast direction by direction: for each shared direction, the
+/// vertices facing it are taken in Morton order eight at a time, and each
+/// eight is traced as one [`Packet`] of parallel rays. The transfer is then
+/// summed per vertex in direction order, so the result does not depend on
+/// the number of threads.
+///
+/// `progress(stage, done, total)` is called from worker threads as work
+/// finishes (in no fixed order; `done` only grows within a stage): for
+/// [`Stage::Rays`] in directions, for the bounces in vertices.
 ///
 /// # Panics
 /// If a per-vertex albedo has another length than the mesh's vertices.
@@ -250,77 +295,131 @@ pub fn bake(
     for (d, row) in dirs.iter().zip(ylm.chunks_exact_mut(nc)) {
         basis.eval(d.as_dvec3().to_array(), row);
     }
+    // sum_j max(n.s_j, 0) per vertex: the weights' denominators.
+    let totals: Vec<f64> = mesh
+        .normals
+        .par_iter()
+        .map(|n| dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum())
+        .collect();
 
-    let bvh =
-        (options.mode != Mode::Unshadowed).then(|| Bvh::new(&mesh.positions, &mesh.triangles));
-    let (lo, hi) = mesh.bounds();
-    let eps = OFFSET * (hi - lo).length();
+    let shadowed = options.mode != Mode::Unshadowed;
     let keep_hits = matches!(options.mode, Mode::Interreflected { bounces } if bounces > 0);
+    // The mesh with its vertices in Morton order: `order[s]` is the vertex
+    // at rank `s`, so the vertices facing a direction, taken in rank order,
+    // make coherent packets and every pass reads memory in sequence.
+    let bounds = mesh.bounds();
+    let order = morton_order(&mesh.positions, bounds);
+    let mut rank = vec![0u32; n_vertices];
+    for (s, &v) in order.iter().enumerate() {
+        rank[v as usize] = s as u32;
+    }
+    let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
+    let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
+    let words = n_vertices.div_ceil(64);
+    // Bit s of row j: the ray from the vertex of rank s along direction j
+    // escapes.
+    let mut visible = vec![0u64; if shadowed { dirs.len() * words } else { 0 }];
+    let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
     let rays = AtomicU64::new(0);
-    let done = AtomicUsize::new(0);
+    if shadowed {
+        let triangles: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| rank[i as usize]))
+            .collect();
+        let bvh = Bvh::new(&positions, &triangles);
+        let eps = OFFSET * (bounds.1 - bounds.0).length();
+        let done = AtomicUsize::new(0);
+        visible
+            .par_chunks_mut(words.max(1))
+            .zip(front_hits.par_iter_mut())
+            .enumerate()
+            .for_each_init(
+                || (Vec::new(), Vec::new()),
+                |(local, facing), (j, (row, hits))| {
+                    let d = dirs[j];
+                    let dir = Direction::new(d);
+                    local.clear();
+                    local.extend(positions.iter().map(|p| dir.to_ray_space(*p)));
+                    facing.clear();
+                    facing.extend(
+                        normals
+                            .iter()
+                            .enumerate()
+                            .filter(|(_, n)| n.dot(d) > 0.0)
+                            .map(|(s, _)| s as u32),
+                    );
+                    for eight in facing.chunks(LANES) {
+                        let mut origins = [Vec3::ZERO; LANES];
+                        for (o, &s) in origins.iter_mut().zip(eight) {
+                            *o = positions[s as usize] + eps * normals[s as usize];
+                        }
+                        let packet = Packet::new(&dir, &origins[..eight.len()]);
+                        let escaped = if keep_hits {
+                            let found = bvh.closest_packet(&dir, local, &packet);
+                            for (k, &s) in eight.iter().enumerate() {
+                                if found.mask >> k & 1 == 0 {
+                                    continue;
+                                }
+                                let triangle = found.triangle[k];
+                                let tri = mesh.triangles[triangle as usize]
+                                    .map(|i| mesh.positions[i as usize]);
+                                let face = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+                                if face.dot(d) < 0.0 {
+                                    let [_, b1, b2] = found.barycentrics[k];
+                                    hits.push(FrontHit {
+                                        vertex: order[s as usize],
+                                        triangle,
+                                        b1,
+                                        b2,
+                                    });
+                                }
+                            }
+                            !found.mask
+                        } else {
+                            !bvh.occluded_packet(&dir, local, &packet)
+                        };
+                        for (k, &s) in eight.iter().enumerate() {
+                            if escaped >> k & 1 == 1 {
+                                row[s as usize / 64] |= 1 << (s % 64);
+                            }
+                        }
+                    }
+                    rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
+                    progress(
+                        Stage::Rays,
+                        done.fetch_add(1, Ordering::Relaxed) + 1,
+                        dirs.len(),
+                    );
+                },
+            );
+    }
 
-    // Geometric transfer (no albedo) per vertex, and the blocked directions.
-    let mut geometric = vec![0.0f32; n_vertices * nc];
-    let mut blocked: Vec<Vec<Blocked>> = vec![Vec::new(); if keep_hits { n_vertices } else { 0 }];
-    let mut blocked_chunks: Vec<&mut [Vec<Blocked>]> = if keep_hits {
-        blocked.chunks_mut(CHUNK).collect()
-    } else {
-        (0..n_vertices.div_ceil(CHUNK))
-            .map(|_| &mut [][..])
-            .collect()
-    };
-    geometric
+    // Geometric transfer (no albedo) per vertex, in rank order: the sum over
+    // the escaping directions above the tangent plane of w_j Y(s_j),
+    // w_j = n.s_j / total.
+    let mut ranked = vec![0.0f32; n_vertices * nc];
+    ranked
         .par_chunks_mut(CHUNK * nc)
-        .zip(blocked_chunks.par_iter_mut())
         .enumerate()
-        .for_each(|(chunk, (out, hits_out))| {
+        .for_each(|(chunk, out)| {
             let mut acc = vec![0.0f64; nc];
-            let mut cast = 0u64;
             for (k, t) in out.chunks_exact_mut(nc).enumerate() {
-                let v = chunk * CHUNK + k;
-                let (p, n) = (mesh.positions[v], mesh.normals[v]);
-                let origin = p + eps * n;
-                let total: f64 = dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum();
+                let s = chunk * CHUNK + k;
+                let (n, total) = (normals[s], totals[order[s] as usize]);
                 acc.fill(0.0);
                 if total > 0.0 {
                     for (j, d) in dirs.iter().enumerate() {
                         let cos = n.dot(*d);
-                        if cos <= 0.0 {
+                        if cos <= 0.0
+                            || shadowed && visible[j * words + s / 64] >> (s % 64) & 1 == 0
+                        {
                             continue;
                         }
                         let w = f64::from(cos) / total;
-                        let visible = match (&bvh, options.mode) {
-                            (None, _) => true,
-                            (Some(bvh), Mode::Interreflected { bounces }) if bounces > 0 => {
-                                cast += 1;
-                                match bvh.closest_hit(&Ray::new(origin, *d, f32::INFINITY)) {
-                                    None => true,
-                                    Some(hit) => {
-                                        let tri = mesh.triangles[hit.triangle as usize]
-                                            .map(|i| mesh.positions[i as usize]);
-                                        let face = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-                                        if face.dot(*d) < 0.0 {
-                                            hits_out[k].push(Blocked {
-                                                triangle: hit.triangle,
-                                                w: w as f32,
-                                                b1: hit.barycentrics[1],
-                                                b2: hit.barycentrics[2],
-                                            });
-                                        }
-                                        false
-                                    }
-                                }
-                            }
-                            (Some(bvh), _) => {
-                                cast += 1;
-                                !bvh.occluded(&Ray::new(origin, *d, f32::INFINITY))
-                            }
-                        };
-                        if visible {
-                            let y = &ylm[j * nc..][..nc];
-                            for (a, yi) in acc.iter_mut().zip(y) {
-                                *a += w * yi;
-                            }
+                        let y = &ylm[j * nc..][..nc];
+                        for (a, yi) in acc.iter_mut().zip(y) {
+                            *a += w * yi;
                         }
                     }
                 }
@@ -328,11 +427,44 @@ pub fn bake(
                     *ti = *a as f32;
                 }
             }
-            rays.fetch_add(cast, Ordering::Relaxed);
-            let now = done.fetch_add(out.len() / nc, Ordering::Relaxed) + out.len() / nc;
-            progress(Stage::Rays, now, n_vertices);
         });
-    drop(blocked_chunks);
+    let mut geometric = vec![0.0f32; n_vertices * nc];
+    for (s, t) in ranked.chunks_exact(nc).enumerate() {
+        geometric[order[s] as usize * nc..][..nc].copy_from_slice(t);
+    }
+    drop(ranked);
+
+    // The front hits per vertex, in direction order, with their weights.
+    let mut first = vec![0usize; n_vertices + 1];
+    for h in front_hits.iter().flatten() {
+        first[h.vertex as usize + 1] += 1;
+    }
+    for v in 0..n_vertices {
+        first[v + 1] += first[v];
+    }
+    let mut blocked = vec![
+        Blocked {
+            triangle: 0,
+            w: 0.0,
+            b1: 0.0,
+            b2: 0.0
+        };
+        first[n_vertices]
+    ];
+    let mut next_slot = first.clone();
+    for (j, hits) in front_hits.into_iter().enumerate() {
+        for h in hits {
+            let v = h.vertex as usize;
+            let cos = mesh.normals[v].dot(dirs[j]);
+            blocked[next_slot[v]] = Blocked {
+                triangle: h.triangle,
+                w: (f64::from(cos) / totals[v]) as f32,
+                b1: h.b1,
+                b2: h.b2,
+            };
+            next_slot[v] += 1;
+        }
+    }
 
     // T^0 = albedo x geometric transfer, per channel.
     let stride = channels * nc;
@@ -363,7 +495,7 @@ pub fn bake(
                 for (k, t) in out.chunks_exact_mut(stride).enumerate() {
                     let v = chunk * CHUNK + k;
                     acc.fill(0.0);
-                    for h in &blocked[v] {
+                    for h in &blocked[first[v]..first[v + 1]] {
                         let [a, b, c] = mesh.triangles[h.triangle as usize];
                         let wa = f64::from(h.w * (1.0 - h.b1 - h.b2));
                         let (wb, wc) = (f64::from(h.w * h.b1), f64::from(h.w * h.b2));

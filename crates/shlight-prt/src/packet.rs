@@ -1,0 +1,783 @@
+//! Bundles of up to eight parallel rays traced together through a [`Bvh`].
+//!
+//! PRT baking shares one set of directions among all vertices, so the rays
+//! along one direction `d` from nearby vertices are parallel and start
+//! close together: they cross the same nodes. A [`Packet`] holds eight such
+//! rays, and one traversal tests all eight against a box or a triangle with
+//! AVX2 (one 8-lane instruction per step), visiting a node when any live ray
+//! needs it.
+//!
+//! Baking takes the vertices facing a direction in Morton order, so the
+//! eight origins of a packet are neighbours on the surface.
+//!
+//! - **Boxes** are tested in world space. The rays share `1/d`, so the near
+//!   and far planes of every axis are chosen once per direction, and a
+//!   plane's distance is one fused multiply-subtract, `plane/d - o/d`; the
+//!   far distance is widened as in [`Bvh`]'s single rays, and the boxes'
+//!   padding covers the rounding of `o/d`.
+//! - **Triangles** are tested in *ray space*, the orthonormal frame
+//!   `(e1, e2, d)` in which every ray of the bundle runs along +z: a point
+//!   `p` has coordinates `(e1.p, e2.p, d.p)`. The caller computes them once
+//!   per direction for every mesh vertex ([`Direction::to_ray_space`]), so a
+//!   vertex has the same coordinates in every triangle that shares it; the
+//!   edge functions of a shared edge are then exact negatives of each other
+//!   and redone in `f64` when zero, as in the watertight test of
+//!   [`crate::bvh`], so no ray slips between two triangles. The distance to
+//!   a hit is the difference of the `z` coordinates (`d` is unit).
+//!
+//! On processors without AVX2 and FMA (or when [`set_packets_enabled`] turns
+//! them off, for tests) each live ray of a packet is traced alone through
+//! [`Bvh::occluded`] and [`Bvh::closest_hit`]; the answers agree but for rays
+//! grazing an edge, where rounding differs.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use glam::Vec3;
+
+use crate::bvh::{Bvh, Ray};
+
+/// Rays in a packet: one AVX register of eight lanes per group.
+pub const LANES: usize = 8 * GROUPS;
+/// 8-lane groups in a packet. One: with two (16 rays from a wider patch of
+/// vertices) a packet visited 1.5x the nodes (105 against 71 on the torus
+/// of `benches/transfer.rs`) at twice the work per node, and baking was
+/// slower; four-wide nodes folded from the binary hierarchy cost more
+/// instructions per ray too (callgrind), so neither is kept.
+const GROUPS: usize = 1;
+
+static DISABLED: AtomicBool = AtomicBool::new(false);
+
+/// Turns the AVX2 packet traversal off (`false`) or back on, for every
+/// thread: each ray is then traced alone. For tests and benchmarks.
+pub fn set_packets_enabled(enabled: bool) {
+    DISABLED.store(!enabled, Ordering::Relaxed);
+}
+
+/// Whether packets are traced with AVX2 (the processor has AVX2 and FMA, and
+/// [`set_packets_enabled`] has not turned them off).
+#[must_use]
+pub fn packets_enabled() -> bool {
+    if DISABLED.load(Ordering::Relaxed) {
+        return false;
+    }
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// The direction a packet's rays share, and its ray-space frame.
+#[derive(Clone, Copy, Debug)]
+pub struct Direction {
+    dir: Vec3,
+    inv: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+}
+
+impl Direction {
+    /// The unit direction `dir` (normalised here).
+    #[must_use]
+    pub fn new(dir: Vec3) -> Self {
+        let dir = dir.normalize();
+        let (e1, e2) = dir.any_orthonormal_pair();
+        Self {
+            dir,
+            inv: crate::bvh::safe_inverse(dir),
+            e1,
+            e2,
+        }
+    }
+
+    /// The unit direction.
+    #[must_use]
+    pub fn dir(&self) -> Vec3 {
+        self.dir
+    }
+
+    /// `p` in ray space: `(e1.p, e2.p, d.p)` (the fourth entry is 0).
+    #[inline]
+    #[must_use]
+    pub fn to_ray_space(&self, p: Vec3) -> [f32; 4] {
+        [self.e1.dot(p), self.e2.dot(p), self.dir.dot(p), 0.0]
+    }
+}
+
+/// Up to [`LANES`] rays along one [`Direction`]: origins in world and in
+/// ray space, lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub struct Packet {
+    world: [[f32; LANES]; 3],
+    local: [[f32; LANES]; 3],
+    origins: [Vec3; LANES],
+    /// Bit `k` set: lane `k` holds a ray.
+    live: u32,
+}
+
+impl Packet {
+    /// Rays from `origins` (at most [`LANES`]) along `dir`.
+    ///
+    /// # Panics
+    /// If there are more than [`LANES`] origins.
+    #[must_use]
+    pub fn new(dir: &Direction, origins: &[Vec3]) -> Self {
+        assert!(origins.len() <= LANES, "at most {LANES} rays in a packet");
+        let mut p = Self {
+            world: [[0.0; LANES]; 3],
+            local: [[0.0; LANES]; 3],
+            origins: [Vec3::ZERO; LANES],
+            live: ((1u64 << origins.len()) - 1) as u32,
+        };
+        for (k, o) in origins.iter().enumerate() {
+            let r = dir.to_ray_space(*o);
+            for a in 0..3 {
+                p.world[a][k] = o[a];
+                p.local[a][k] = r[a];
+            }
+            p.origins[k] = *o;
+        }
+        p
+    }
+}
+
+/// The nearest hits of a packet's rays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PacketHits {
+    /// Bit `k` set: lane `k` hit something.
+    pub mask: u32,
+    /// Distance per lane (meaningful where `mask` is set).
+    pub t: [f32; LANES],
+    /// Mesh triangle per lane.
+    pub triangle: [u32; LANES],
+    /// Barycentric weights of the triangle's corners per lane.
+    pub barycentrics: [[f32; 3]; LANES],
+}
+
+impl Bvh {
+    /// Which rays of `packet` (along `dir`, from `0 < t`) are blocked: bit
+    /// `k` set for lane `k`. `local` holds the mesh's vertices in `dir`'s
+    /// ray space ([`Direction::to_ray_space`], indexed like the positions the
+    /// hierarchy was built from).
+    #[must_use]
+    pub fn occluded_packet(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        if packets_enabled() {
+            assert!(self.corners_within(local.len()));
+            // SAFETY: AVX2 and FMA are present (checked just above), and
+            // every corner index is below `local.len()`.
+            return unsafe { avx2::occluded(self, dir, local, packet) };
+        }
+        let _ = local;
+        let mut out = 0;
+        for k in lanes(packet.live) {
+            if self.occluded(&Ray::new(packet.origins[k], dir.dir, f32::INFINITY)) {
+                out |= 1 << k;
+            }
+        }
+        out
+    }
+
+    /// The nearest hit of each ray of `packet` (see
+    /// [`occluded_packet`](Self::occluded_packet) for `local`).
+    #[must_use]
+    pub fn closest_packet(
+        &self,
+        dir: &Direction,
+        local: &[[f32; 4]],
+        packet: &Packet,
+    ) -> PacketHits {
+        #[cfg(target_arch = "x86_64")]
+        if packets_enabled() {
+            assert!(self.corners_within(local.len()));
+            // SAFETY: as in `occluded_packet`.
+            return unsafe { avx2::closest(self, dir, local, packet) };
+        }
+        let _ = local;
+        let mut out = PacketHits {
+            mask: 0,
+            t: [f32::INFINITY; LANES],
+            triangle: [0; LANES],
+            barycentrics: [[0.0; 3]; LANES],
+        };
+        for k in lanes(packet.live) {
+            if let Some(h) = self.closest_hit(&Ray::new(packet.origins[k], dir.dir, f32::INFINITY))
+            {
+                out.mask |= 1 << k;
+                out.t[k] = h.t;
+                out.triangle[k] = h.triangle;
+                out.barycentrics[k] = h.barycentrics;
+            }
+        }
+        out
+    }
+
+    /// Whether every corner index is below `n`.
+    fn corners_within(&self, n: usize) -> bool {
+        self.max_corner.is_none_or(|m| (m as usize) < n)
+    }
+}
+
+/// The set bits of `mask`, lowest first.
+fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            k
+        })
+    })
+}
+
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    //! The AVX2 traversal: [`GROUPS`] registers of eight lanes, one lane per
+    //! ray; lane masks are bit sets, bit `8g + k` for lane `k` of group `g`.
+
+    use std::arch::x86_64::*;
+
+    use super::{Direction, GROUPS, LANES, Packet, PacketHits, lanes};
+    use crate::bvh::{Bvh, FAR_SCALE, INNER, Node, STACK, edge_functions};
+
+    type V = [__m256; GROUPS];
+
+    /// `[e(0), e(1), ...]`, one value per lane group: a loop, not a closure,
+    /// so the intrinsics in `e` are compiled with the caller's features.
+    macro_rules! each {
+        ($g:ident => $e:expr) => {{
+            let mut out = [_mm256_setzero_ps(); GROUPS];
+            for $g in 0..GROUPS {
+                out[$g] = $e;
+            }
+            out
+        }};
+    }
+
+    /// What every test of one traversal shares.
+    struct Rays {
+        /// `o * (1/d)` per axis: a plane's distance is `plane / d - o / d`.
+        o_inv: [V; 3],
+        inv: [__m256; 3],
+        /// Offsets (in f32s) of the near and far planes of each axis in a
+        /// [`Node`]: `min` at 0..3, `max` at 4..7.
+        near: [usize; 3],
+        far: [usize; 3],
+        /// Ray-space origins.
+        r: [V; 3],
+        /// Per axis: the right child of a split on it is the nearer.
+        reversed: [bool; 3],
+    }
+
+    #[inline(always)]
+    unsafe fn load(a: &[f32; LANES]) -> V {
+        unsafe { each!(g => _mm256_loadu_ps(a.as_ptr().add(8 * g))) }
+    }
+
+    #[inline(always)]
+    unsafe fn store(x: &V) -> [f32; LANES] {
+        let mut o = [0.0f32; LANES];
+        for (g, x) in x.iter().enumerate() {
+            unsafe { _mm256_storeu_ps(o.as_mut_ptr().add(8 * g), *x) };
+        }
+        o
+    }
+
+    /// The bit set of lanes where `x` is set.
+    #[inline(always)]
+    unsafe fn bits(x: &V) -> u32 {
+        let mut m = 0;
+        for (g, x) in x.iter().enumerate() {
+            m |= (unsafe { _mm256_movemask_ps(*x) } as u32) << (8 * g);
+        }
+        m
+    }
+
+    /// Select masks from the bit set `bits`.
+    #[inline(always)]
+    unsafe fn lane_masks(bits: u32) -> V {
+        unsafe {
+            let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+            each!(g => {
+                let b = _mm256_set1_epi32((bits >> (8 * g)) as i32);
+                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(b, lane_bits), lane_bits))
+            })
+        }
+    }
+
+    /// The edge functions `uvw` of the lanes in `zeros` redone from the
+    /// relative corners `e` (`ax, ay, bx, by, cx, cy`) in `f64`.
+    #[cold]
+    #[inline(never)]
+    fn redo_in_f64(e: &[[f32; LANES]; 6], uvw: &mut [[f32; LANES]; 3], zeros: u32) {
+        for l in lanes(zeros) {
+            (uvw[0][l], uvw[1][l], uvw[2][l]) = edge_functions(e.map(|x| x[l]));
+        }
+    }
+
+    impl Rays {
+        #[inline(always)]
+        unsafe fn new(dir: &Direction, p: &Packet) -> Self {
+            unsafe {
+                let d = dir.dir.to_array();
+                let inv = dir.inv.to_array();
+                let near = [0, 1, 2].map(|a| if inv[a] >= 0.0 { a } else { a + 4 });
+                let inv = [
+                    _mm256_set1_ps(inv[0]),
+                    _mm256_set1_ps(inv[1]),
+                    _mm256_set1_ps(inv[2]),
+                ];
+                let (wx, wy, wz) = (load(&p.world[0]), load(&p.world[1]), load(&p.world[2]));
+                Self {
+                    o_inv: [
+                        each!(g => _mm256_mul_ps(wx[g], inv[0])),
+                        each!(g => _mm256_mul_ps(wy[g], inv[1])),
+                        each!(g => _mm256_mul_ps(wz[g], inv[2])),
+                    ],
+                    inv,
+                    near,
+                    far: near.map(|i| (i + 4) % 8),
+                    r: [load(&p.local[0]), load(&p.local[1]), load(&p.local[2])],
+                    reversed: d.map(|x| x < 0.0),
+                }
+            }
+        }
+
+        /// Lanes whose ray meets `node`'s box within `(0, t_max)`.
+        #[inline(always)]
+        unsafe fn hits_box(&self, node: &Node, t_max: &V) -> u32 {
+            unsafe {
+                let f = (node as *const Node).cast::<f32>();
+                let [n0, n1, n2] = self.near.map(|i| *f.add(i));
+                let [f0, f1, f2] = self.far.map(|i| *f.add(i));
+                let (n0, n1, n2) = (_mm256_set1_ps(n0), _mm256_set1_ps(n1), _mm256_set1_ps(n2));
+                let (f0, f1, f2) = (_mm256_set1_ps(f0), _mm256_set1_ps(f1), _mm256_set1_ps(f2));
+                let scale = _mm256_set1_ps(FAR_SCALE);
+                let [ix, iy, iz] = self.inv;
+                let [ox, oy, oz] = &self.o_inv;
+                let ok = each!(g => {
+                    let near = _mm256_max_ps(
+                        _mm256_max_ps(_mm256_fmsub_ps(n0, ix, ox[g]), _mm256_fmsub_ps(n1, iy, oy[g])),
+                        _mm256_max_ps(_mm256_fmsub_ps(n2, iz, oz[g]), _mm256_setzero_ps()),
+                    );
+                    let far = _mm256_min_ps(
+                        _mm256_min_ps(_mm256_fmsub_ps(f0, ix, ox[g]), _mm256_fmsub_ps(f1, iy, oy[g])),
+                        _mm256_min_ps(_mm256_fmsub_ps(f2, iz, oz[g]), t_max[g]),
+                    );
+                    _mm256_cmp_ps::<_CMP_LE_OQ>(near, _mm256_mul_ps(far, scale))
+                });
+                bits(&ok)
+            }
+        }
+
+        /// Triangle `k` (leaf order) against every lane: `(hit lanes, t,
+        /// [u, v, w], 1/det)` with `0 < t < t_max` on hit lanes.
+        #[inline(always)]
+        unsafe fn hits_triangle(
+            &self,
+            bvh: &Bvh,
+            local: &[[f32; 4]],
+            k: usize,
+            live: u32,
+            t_max: &V,
+        ) -> (u32, V, [V; 3], V) {
+            unsafe {
+                let [ia, ib, ic] = *bvh.corners.get_unchecked(k);
+                let a = local.get_unchecked(ia as usize);
+                let b = local.get_unchecked(ib as usize);
+                let c = local.get_unchecked(ic as usize);
+                let [rx, ry, rz] = &self.r;
+                let (sax, say, saz) = (
+                    _mm256_set1_ps(a[0]),
+                    _mm256_set1_ps(a[1]),
+                    _mm256_set1_ps(a[2]),
+                );
+                let (sbx, sby, sbz) = (
+                    _mm256_set1_ps(b[0]),
+                    _mm256_set1_ps(b[1]),
+                    _mm256_set1_ps(b[2]),
+                );
+                let (scx, scy, scz) = (
+                    _mm256_set1_ps(c[0]),
+                    _mm256_set1_ps(c[1]),
+                    _mm256_set1_ps(c[2]),
+                );
+                let ax = each!(g => _mm256_sub_ps(sax, rx[g]));
+                let ay = each!(g => _mm256_sub_ps(say, ry[g]));
+                let bx = each!(g => _mm256_sub_ps(sbx, rx[g]));
+                let by = each!(g => _mm256_sub_ps(sby, ry[g]));
+                let cx = each!(g => _mm256_sub_ps(scx, rx[g]));
+                let cy = each!(g => _mm256_sub_ps(scy, ry[g]));
+                let mut u = each!(g => _mm256_sub_ps(_mm256_mul_ps(cx[g], by[g]), _mm256_mul_ps(cy[g], bx[g])));
+                let mut v = each!(g => _mm256_sub_ps(_mm256_mul_ps(ax[g], cy[g]), _mm256_mul_ps(ay[g], cx[g])));
+                let mut w = each!(g => _mm256_sub_ps(_mm256_mul_ps(bx[g], ay[g]), _mm256_mul_ps(by[g], ax[g])));
+                let zero = _mm256_setzero_ps();
+                let zeros = bits(&each!(g => _mm256_or_ps(
+                    _mm256_or_ps(
+                        _mm256_cmp_ps::<_CMP_EQ_OQ>(u[g], zero),
+                        _mm256_cmp_ps::<_CMP_EQ_OQ>(v[g], zero),
+                    ),
+                    _mm256_cmp_ps::<_CMP_EQ_OQ>(w[g], zero),
+                ))) & live;
+                if zeros != 0 {
+                    // Rare: an edge through a ray. Redo those lanes in f64.
+                    let e = [
+                        store(&ax),
+                        store(&ay),
+                        store(&bx),
+                        store(&by),
+                        store(&cx),
+                        store(&cy),
+                    ];
+                    let mut uvw = [store(&u), store(&v), store(&w)];
+                    redo_in_f64(&e, &mut uvw, zeros);
+                    (u, v, w) = (load(&uvw[0]), load(&uvw[1]), load(&uvw[2]));
+                }
+                let one = _mm256_set1_ps(1.0);
+                let inv =
+                    each!(g => _mm256_div_ps(one, _mm256_add_ps(_mm256_add_ps(u[g], v[g]), w[g])));
+                let t = each!(g => _mm256_mul_ps(
+                    _mm256_add_ps(
+                        _mm256_add_ps(
+                            _mm256_mul_ps(u[g], _mm256_sub_ps(saz, rz[g])),
+                            _mm256_mul_ps(v[g], _mm256_sub_ps(sbz, rz[g])),
+                        ),
+                        _mm256_mul_ps(w[g], _mm256_sub_ps(scz, rz[g])),
+                    ),
+                    inv[g],
+                ));
+                let abs_mask = _mm256_set1_ps(-0.0);
+                let infinity = _mm256_set1_ps(f32::INFINITY);
+                let ok = each!(g => {
+                    let neg = _mm256_or_ps(
+                        _mm256_or_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(u[g], zero), _mm256_cmp_ps::<_CMP_LT_OQ>(v[g], zero)),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(w[g], zero),
+                    );
+                    let pos = _mm256_or_ps(
+                        _mm256_or_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(u[g], zero), _mm256_cmp_ps::<_CMP_GT_OQ>(v[g], zero)),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(w[g], zero),
+                    );
+                    // 1/det is finite exactly when det != 0.
+                    let finite = _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, inv[g]), infinity);
+                    let ahead = _mm256_and_ps(
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(t[g], zero),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(t[g], t_max[g]),
+                    );
+                    _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_and_ps(finite, ahead))
+                });
+                (bits(&ok) & live, t, [u, v, w], inv)
+            }
+        }
+    }
+
+    /// One step of a traversal at inner node `node`: the lanes of `mask`
+    /// that reach each child, nearer child first.
+    #[inline(always)]
+    unsafe fn children(
+        rays: &Rays,
+        nodes: &[Node],
+        node: &Node,
+        mask: u32,
+        t_max: &V,
+    ) -> ((usize, u32), (usize, u32)) {
+        unsafe {
+            let left = node.first as usize;
+            let ml = rays.hits_box(nodes.get_unchecked(left), t_max) & mask;
+            let mr = rays.hits_box(nodes.get_unchecked(left + 1), t_max) & mask;
+            if *rays.reversed.get_unchecked((node.kind - INNER) as usize) {
+                ((left + 1, mr), (left, ml))
+            } else {
+                ((left, ml), (left + 1, mr))
+            }
+        }
+    }
+
+    /// Lanes of `packet` blocked along `dir`.
+    ///
+    /// # Safety
+    /// AVX2 and FMA must be available, and every corner index of `bvh`
+    /// below `local.len()`.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn occluded(
+        bvh: &Bvh,
+        dir: &Direction,
+        local: &[[f32; 4]],
+        packet: &Packet,
+    ) -> u32 {
+        unsafe {
+            let rays = Rays::new(dir, packet);
+            let t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
+            let nodes = &bvh.nodes;
+            let mut blocked = 0u32;
+            let mut mask = rays.hits_box(&nodes[0], &t_max) & packet.live;
+            if mask == 0 {
+                return 0;
+            }
+            let mut stack = [(0u32, 0u32); STACK];
+            let mut top = 0;
+            let mut index = 0usize;
+            loop {
+                let node = nodes.get_unchecked(index);
+                if node.kind < INNER {
+                    let first = node.first as usize;
+                    for k in first..first + node.kind as usize {
+                        let (hits, ..) = rays.hits_triangle(bvh, local, k, mask, &t_max);
+                        blocked |= hits;
+                        mask &= !hits;
+                        if mask == 0 {
+                            break;
+                        }
+                    }
+                } else {
+                    let ((near, mn), (far, mf)) = children(&rays, nodes, node, mask, &t_max);
+                    if mn != 0 {
+                        if mf != 0 {
+                            *stack.get_unchecked_mut(top) = (far as u32, mf);
+                            top += 1;
+                        }
+                        index = near;
+                        mask = mn;
+                        continue;
+                    }
+                    if mf != 0 {
+                        index = far;
+                        mask = mf;
+                        continue;
+                    }
+                }
+                // Next node on the stack with a ray still open.
+                loop {
+                    if top == 0 {
+                        return blocked;
+                    }
+                    top -= 1;
+                    let (i, m) = *stack.get_unchecked(top);
+                    mask = m & !blocked;
+                    if mask != 0 {
+                        index = i as usize;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Nearest hits of `packet`'s rays along `dir`.
+    ///
+    /// # Safety
+    /// As [`occluded`].
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn closest(
+        bvh: &Bvh,
+        dir: &Direction,
+        local: &[[f32; 4]],
+        packet: &Packet,
+    ) -> PacketHits {
+        unsafe {
+            let rays = Rays::new(dir, packet);
+            let mut t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
+            let mut best = [_mm256_setzero_ps(); GROUPS];
+            let mut bary = [[_mm256_setzero_ps(); GROUPS]; 3];
+            let mut hit_mask = 0u32;
+            let nodes = &bvh.nodes;
+            let mut mask = rays.hits_box(&nodes[0], &t_max) & packet.live;
+            let mut stack = [(0u32, 0u32); STACK];
+            let mut top = 0;
+            let mut index = 0usize;
+            while mask != 0 {
+                let node = nodes.get_unchecked(index);
+                if node.kind < INNER {
+                    let first = node.first as usize;
+                    for k in first..first + node.kind as usize {
+                        let (hits, t, [u, v, w], inv) =
+                            rays.hits_triangle(bvh, local, k, mask, &t_max);
+                        if hits != 0 {
+                            let sel = lane_masks(hits);
+                            let id = _mm256_castsi256_ps(_mm256_set1_epi32(k as i32));
+                            for g in 0..GROUPS {
+                                t_max[g] = _mm256_blendv_ps(t_max[g], t[g], sel[g]);
+                                best[g] = _mm256_blendv_ps(best[g], id, sel[g]);
+                                bary[0][g] = _mm256_blendv_ps(
+                                    bary[0][g],
+                                    _mm256_mul_ps(u[g], inv[g]),
+                                    sel[g],
+                                );
+                                bary[1][g] = _mm256_blendv_ps(
+                                    bary[1][g],
+                                    _mm256_mul_ps(v[g], inv[g]),
+                                    sel[g],
+                                );
+                                bary[2][g] = _mm256_blendv_ps(
+                                    bary[2][g],
+                                    _mm256_mul_ps(w[g], inv[g]),
+                                    sel[g],
+                                );
+                            }
+                            hit_mask |= hits;
+                        }
+                    }
+                } else {
+                    let ((near, mn), (far, mf)) = children(&rays, nodes, node, mask, &t_max);
+                    if mn != 0 {
+                        if mf != 0 {
+                            *stack.get_unchecked_mut(top) = (far as u32, mf);
+                            top += 1;
+                        }
+                        index = near;
+                        mask = mn;
+                        continue;
+                    }
+                    if mf != 0 {
+                        index = far;
+                        mask = mf;
+                        continue;
+                    }
+                }
+                if top == 0 {
+                    break;
+                }
+                top -= 1;
+                let (i, m) = *stack.get_unchecked(top);
+                index = i as usize;
+                mask = m;
+            }
+            let (t, k) = (store(&t_max), store(&best));
+            let [u, v, w] = [store(&bary[0]), store(&bary[1]), store(&bary[2])];
+            let mut out = PacketHits {
+                mask: hit_mask,
+                t,
+                triangle: [0; LANES],
+                barycentrics: [[0.0; 3]; LANES],
+            };
+            for l in lanes(hit_mask) {
+                out.triangle[l] = bvh.ids[k[l].to_bits() as usize];
+                out.barycentrics[l] = [u[l], v[l], w[l]];
+            }
+            out
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng, rngs::StdRng};
+    use shlight_mesh::generate;
+
+    fn random_unit(rng: &mut StdRng) -> Vec3 {
+        loop {
+            let v = Vec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
+            if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    #[test]
+    fn packets_agree_with_single_rays() {
+        // On a processor with AVX2 this compares the 8-lane traversal with
+        // the single-ray one, ray by ray; elsewhere both are single rays.
+        let mesh = generate::plane_under_sphere(1.0, 24, 12, 4.0, 6);
+        let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
+        let mut rng = StdRng::seed_from_u64(11);
+        let (mut hits, mut mismatched, mut rays) = (0, 0, 0);
+        for _ in 0..60 {
+            let dir = Direction::new(random_unit(&mut rng));
+            let local: Vec<[f32; 4]> = mesh
+                .positions
+                .iter()
+                .map(|p| dir.to_ray_space(*p))
+                .collect();
+            for _ in 0..20 {
+                // Eight origins close together, as baking makes them.
+                let centre = Vec3::new(
+                    rng.random_range(-2.0..2.0),
+                    rng.random_range(-0.2..2.2),
+                    rng.random_range(-2.0..2.0),
+                );
+                let n = rng.random_range(1..=LANES);
+                let origins: Vec<Vec3> = (0..n)
+                    .map(|_| centre + random_unit(&mut rng) * rng.random_range(0.0..0.2))
+                    .collect();
+                let packet = Packet::new(&dir, &origins);
+                let blocked = bvh.occluded_packet(&dir, &local, &packet);
+                let found = bvh.closest_packet(&dir, &local, &packet);
+                assert_eq!(blocked >> n, 0, "only live lanes");
+                assert_eq!(blocked, found.mask, "occlusion and closest hits agree");
+                for (k, o) in origins.iter().enumerate() {
+                    rays += 1;
+                    let single = bvh.closest_hit(&Ray::new(*o, dir.dir(), f32::INFINITY));
+                    match (found.mask >> k & 1 == 1, single) {
+                        (true, Some(h)) => {
+                            hits += 1;
+                            assert!((found.t[k] - h.t).abs() < 1e-4 * h.t.max(1.0));
+                            if found.triangle[k] != h.triangle {
+                                mismatched += 1;
+                            }
+                            let w = found.barycentrics[k];
+                            assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+                            let tri = mesh.triangles[found.triangle[k] as usize]
+                                .map(|i| mesh.positions[i as usize]);
+                            let p = tri[0] * w[0] + tri[1] * w[1] + tri[2] * w[2];
+                            assert!(p.distance(*o + dir.dir() * found.t[k]) < 1e-4);
+                        }
+                        (false, None) => {}
+                        // Only a ray grazing an edge may disagree.
+                        _ => mismatched += 1,
+                    }
+                }
+            }
+        }
+        assert!(hits > 1500, "{hits} of {rays}");
+        assert!(mismatched <= 3, "{mismatched} disagreements in {rays} rays");
+    }
+
+    #[test]
+    fn parallel_rays_through_shared_edges_and_vertices_never_slip_through() {
+        // Bundles of parallel rays from inside a closed sphere aimed exactly
+        // at its vertices and edge midpoints must all hit.
+        let mesh = generate::uv_sphere(1.0, 37, 23);
+        let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
+        let mut targets: Vec<Vec3> = mesh.positions.clone();
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            targets.extend([(a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5]);
+        }
+        let mut rng = StdRng::seed_from_u64(3);
+        let (mut cast, mut missed) = (0, 0);
+        for d in [
+            Vec3::X,
+            Vec3::Y,
+            Vec3::NEG_Z,
+            random_unit(&mut rng),
+            random_unit(&mut rng),
+        ] {
+            let dir = Direction::new(d);
+            let local: Vec<[f32; 4]> = mesh
+                .positions
+                .iter()
+                .map(|p| dir.to_ray_space(*p))
+                .collect();
+            let origins: Vec<Vec3> = targets
+                .iter()
+                .filter(|q| q.dot(dir.dir()) > 0.3)
+                .map(|q| *q - 0.5 * dir.dir())
+                .collect();
+            for eight in origins.chunks(LANES) {
+                let packet = Packet::new(&dir, eight);
+                let blocked = bvh.occluded_packet(&dir, &local, &packet);
+                cast += eight.len();
+                missed += eight.len() - blocked.count_ones() as usize;
+                assert_eq!(bvh.closest_packet(&dir, &local, &packet).mask, blocked);
+            }
+        }
+        assert!(cast > 3000, "{cast}");
+        assert_eq!(missed, 0, "of {cast} rays");
+    }
+}
