@@ -30,7 +30,7 @@ use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::bvh::{Bvh, Ray};
-use shlight_prt::packet::{Direction, LANES, Packet};
+use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
 
 fn main() {
     divan::main();
@@ -133,7 +133,7 @@ fn direction_major(mesh: &Mesh) -> (Mesh, Vec<(Vec3, Vec<Vec3>)>) {
 
 fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
     let (m, per_dir) = direction_major(&mesh(name));
-    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let bvh = PacketBvh::new(Bvh::new(&m.positions, &m.triangles));
     let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
     bencher.counter(ItemsCount::new(count)).bench(|| {
         per_dir
@@ -147,9 +147,9 @@ fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
                     .map(|o| {
                         let packet = Packet::new(&dir, o);
                         if closest {
-                            bvh.closest_packet(&dir, &local, &packet).mask.count_ones()
+                            bvh.closest(&dir, &local, &packet).mask.count_ones()
                         } else {
-                            bvh.occluded_packet(&dir, &local, &packet).count_ones()
+                            bvh.occluded(&dir, &local, &packet).count_ones()
                         }
                     })
                     .sum::<u32>()

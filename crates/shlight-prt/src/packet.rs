@@ -34,7 +34,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::Vec3;
 
-use crate::bvh::{Bvh, Ray};
+use crate::bvh::{Bvh, INNER, Ray};
 
 /// Rays in a packet: one AVX register of eight lanes per group.
 pub const LANES: usize = 8 * GROUPS;
@@ -157,16 +157,119 @@ pub struct PacketHits {
     pub barycentrics: [[f32; 3]; LANES],
 }
 
-impl Bvh {
+/// A [`Bvh`] laid out for packet traversal, once per octant of directions:
+/// each node holds its two children's boxes, as near and far planes along
+/// the octant's directions, the nearer child first, in one 64-byte line.
+/// A visit then reads one cache line at fixed offsets. Eight copies of the
+/// inner nodes, about a third of the triangles' memory together.
+#[derive(Clone, Debug)]
+pub struct PacketBvh {
+    bvh: Bvh,
+    octants: Vec<Vec<Node2>>,
+    /// The root: [`Node2::child`]'s code and count.
+    root: (u32, u32),
+}
+
+/// One node of a [`PacketBvh`]: per child slot (nearer first), the box's
+/// near and far planes on each axis, and the child: below [`LEAF`] an
+/// inner node's index, `LEAF | first` a leaf of `count` triangles from
+/// `first` (leaf order).
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub(crate) struct Node2 {
+    near: [[f32; 2]; 3],
+    far: [[f32; 2]; 3],
+    child: [u32; 2],
+    count: [u32; 2],
+}
+
+/// [`Node2::child`] of a leaf: `LEAF | first`.
+const LEAF: u32 = 1 << 31;
+
+/// The octant of directions `dir` is in: bit `a` set when `1/d_a < 0`.
+fn octant(dir: &Direction) -> usize {
+    usize::from(dir.inv.x < 0.0)
+        | usize::from(dir.inv.y < 0.0) << 1
+        | usize::from(dir.inv.z < 0.0) << 2
+}
+
+impl PacketBvh {
+    /// The packet layout of `bvh`.
+    #[must_use]
+    pub fn new(bvh: Bvh) -> Self {
+        let root = &bvh.nodes[0];
+        let root_code = if root.kind < INNER {
+            (LEAF | root.first, root.kind)
+        } else {
+            (0, 0)
+        };
+        let octants = (0..8)
+            .map(|o| {
+                let mut nodes = Vec::with_capacity(bvh.nodes.len() / 2 + 1);
+                if root.kind >= INNER {
+                    Self::lay_out(&bvh, o, 0, &mut nodes);
+                }
+                nodes
+            })
+            .collect();
+        Self {
+            bvh,
+            octants,
+            root: root_code,
+        }
+    }
+
+    /// The binary hierarchy.
+    #[must_use]
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// Appends the node for inner binary node `n` and its subtree, for
+    /// octant `o`; returns its index.
+    fn lay_out(bvh: &Bvh, o: usize, n: usize, out: &mut Vec<Node2>) -> u32 {
+        let index = out.len();
+        let neg = [o & 1 != 0, o & 2 != 0, o & 4 != 0];
+        let node = bvh.nodes[n];
+        let (l, r) = (node.first as usize, node.first as usize + 1);
+        let slots = if neg[(node.kind - INNER) as usize] {
+            [r, l]
+        } else {
+            [l, r]
+        };
+        out.push(Node2 {
+            near: [[0.0; 2]; 3],
+            far: [[0.0; 2]; 3],
+            child: [0; 2],
+            count: [0; 2],
+        });
+        for (s, &c) in slots.iter().enumerate() {
+            let child = bvh.nodes[c];
+            for a in 0..3 {
+                let (lo, hi) = (child.min[a], child.max[a]);
+                let (near, far) = if neg[a] { (hi, lo) } else { (lo, hi) };
+                out[index].near[a][s] = near;
+                out[index].far[a][s] = far;
+            }
+            if child.kind < INNER {
+                out[index].child[s] = LEAF | child.first;
+                out[index].count[s] = child.kind;
+            } else {
+                out[index].child[s] = Self::lay_out(bvh, o, c, out);
+            }
+        }
+        index as u32
+    }
+
     /// Which rays of `packet` (along `dir`, from `0 < t`) are blocked: bit
     /// `k` set for lane `k`. `local` holds the mesh's vertices in `dir`'s
     /// ray space ([`Direction::to_ray_space`], indexed like the positions the
     /// hierarchy was built from).
     #[must_use]
-    pub fn occluded_packet(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
+    pub fn occluded(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
         #[cfg(target_arch = "x86_64")]
         if packets_enabled() {
-            assert!(self.corners_within(local.len()));
+            assert!(self.bvh.corners_within(local.len()));
             // SAFETY: AVX2 and FMA are present (checked just above), and
             // every corner index is below `local.len()`.
             return unsafe { avx2::occluded(self, dir, local, packet) };
@@ -174,7 +277,8 @@ impl Bvh {
         let _ = local;
         let mut out = 0;
         for k in lanes(packet.live) {
-            if self.occluded(&Ray::new(packet.origins[k], dir.dir, f32::INFINITY)) {
+            let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
+            if self.bvh.occluded(&ray) {
                 out |= 1 << k;
             }
         }
@@ -182,18 +286,13 @@ impl Bvh {
     }
 
     /// The nearest hit of each ray of `packet` (see
-    /// [`occluded_packet`](Self::occluded_packet) for `local`).
+    /// [`occluded`](Self::occluded) for `local`).
     #[must_use]
-    pub fn closest_packet(
-        &self,
-        dir: &Direction,
-        local: &[[f32; 4]],
-        packet: &Packet,
-    ) -> PacketHits {
+    pub fn closest(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> PacketHits {
         #[cfg(target_arch = "x86_64")]
         if packets_enabled() {
-            assert!(self.corners_within(local.len()));
-            // SAFETY: as in `occluded_packet`.
+            assert!(self.bvh.corners_within(local.len()));
+            // SAFETY: as in `occluded`.
             return unsafe { avx2::closest(self, dir, local, packet) };
         }
         let _ = local;
@@ -204,8 +303,8 @@ impl Bvh {
             barycentrics: [[0.0; 3]; LANES],
         };
         for k in lanes(packet.live) {
-            if let Some(h) = self.closest_hit(&Ray::new(packet.origins[k], dir.dir, f32::INFINITY))
-            {
+            let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
+            if let Some(h) = self.bvh.closest_hit(&ray) {
                 out.mask |= 1 << k;
                 out.t[k] = h.t;
                 out.triangle[k] = h.triangle;
@@ -214,7 +313,9 @@ impl Bvh {
         }
         out
     }
+}
 
+impl Bvh {
     /// Whether every corner index is below `n`.
     fn corners_within(&self, n: usize) -> bool {
         self.max_corner.is_none_or(|m| (m as usize) < n)
@@ -239,8 +340,10 @@ mod avx2 {
 
     use std::arch::x86_64::*;
 
-    use super::{Direction, GROUPS, LANES, Packet, PacketHits, lanes};
-    use crate::bvh::{Bvh, FAR_SCALE, INNER, Node, STACK, edge_functions};
+    use super::{
+        Direction, GROUPS, LANES, LEAF, Node2, Packet, PacketBvh, PacketHits, lanes, octant,
+    };
+    use crate::bvh::{Bvh, FAR_SCALE, STACK, edge_functions};
 
     type V = [__m256; GROUPS];
 
@@ -261,14 +364,8 @@ mod avx2 {
         /// `o * (1/d)` per axis: a plane's distance is `plane / d - o / d`.
         o_inv: [V; 3],
         inv: [__m256; 3],
-        /// Offsets (in f32s) of the near and far planes of each axis in a
-        /// [`Node`]: `min` at 0..3, `max` at 4..7.
-        near: [usize; 3],
-        far: [usize; 3],
         /// Ray-space origins.
         r: [V; 3],
-        /// Per axis: the right child of a split on it is the nearer.
-        reversed: [bool; 3],
     }
 
     #[inline(always)]
@@ -321,9 +418,7 @@ mod avx2 {
         #[inline(always)]
         unsafe fn new(dir: &Direction, p: &Packet) -> Self {
             unsafe {
-                let d = dir.dir.to_array();
                 let inv = dir.inv.to_array();
-                let near = [0, 1, 2].map(|a| if inv[a] >= 0.0 { a } else { a + 4 });
                 let inv = [
                     _mm256_set1_ps(inv[0]),
                     _mm256_set1_ps(inv[1]),
@@ -337,23 +432,18 @@ mod avx2 {
                         each!(g => _mm256_mul_ps(wz[g], inv[2])),
                     ],
                     inv,
-                    near,
-                    far: near.map(|i| (i + 4) % 8),
                     r: [load(&p.local[0]), load(&p.local[1]), load(&p.local[2])],
-                    reversed: d.map(|x| x < 0.0),
                 }
             }
         }
 
-        /// Lanes whose ray meets `node`'s box within `(0, t_max)`.
+        /// Lanes whose ray meets the box of slot `s` of `node` within
+        /// `(0, t_max)`.
         #[inline(always)]
-        unsafe fn hits_box(&self, node: &Node, t_max: &V) -> u32 {
+        unsafe fn hits_box(&self, node: &Node2, s: usize, t_max: &V) -> u32 {
             unsafe {
-                let f = (node as *const Node).cast::<f32>();
-                let [n0, n1, n2] = self.near.map(|i| *f.add(i));
-                let [f0, f1, f2] = self.far.map(|i| *f.add(i));
-                let (n0, n1, n2) = (_mm256_set1_ps(n0), _mm256_set1_ps(n1), _mm256_set1_ps(n2));
-                let (f0, f1, f2) = (_mm256_set1_ps(f0), _mm256_set1_ps(f1), _mm256_set1_ps(f2));
+                let [n0, n1, n2] = [0, 1, 2].map(|a| _mm256_set1_ps(node.near[a][s]));
+                let [f0, f1, f2] = [0, 1, 2].map(|a| _mm256_set1_ps(node.far[a][s]));
                 let scale = _mm256_set1_ps(FAR_SCALE);
                 let [ix, iy, iz] = self.inv;
                 let [ox, oy, oz] = &self.o_inv;
@@ -472,24 +562,67 @@ mod avx2 {
         }
     }
 
-    /// One step of a traversal at inner node `node`: the lanes of `mask`
-    /// that reach each child, nearer child first.
+    /// A visit of inner node `node` by the lanes of `mask`: the lanes
+    /// reaching each of its two slots (nearer first).
     #[inline(always)]
-    unsafe fn children(
-        rays: &Rays,
-        nodes: &[Node],
-        node: &Node,
-        mask: u32,
-        t_max: &V,
-    ) -> ((usize, u32), (usize, u32)) {
+    unsafe fn visit(rays: &Rays, node: &Node2, mask: u32, t_max: &V) -> [u32; 2] {
         unsafe {
-            let left = node.first as usize;
-            let ml = rays.hits_box(nodes.get_unchecked(left), t_max) & mask;
-            let mr = rays.hits_box(nodes.get_unchecked(left + 1), t_max) & mask;
-            if *rays.reversed.get_unchecked((node.kind - INNER) as usize) {
-                ((left + 1, mr), (left, ml))
-            } else {
-                ((left, ml), (left + 1, mr))
+            [
+                rays.hits_box(node, 0, t_max) & mask,
+                rays.hits_box(node, 1, t_max) & mask,
+            ]
+        }
+    }
+
+    /// Walks `tree` for `packet`, nearer children first, calling
+    /// `leaf(first, count, lanes, t_max)` for each leaf some lanes reach;
+    /// `leaf` returns the lanes still open after it (any-hit drops the
+    /// blocked ones) and may lower `t_max`. Stops when no lane is open.
+    #[inline(always)]
+    unsafe fn walk(
+        tree: &PacketBvh,
+        nodes: &[Node2],
+        rays: &Rays,
+        live: u32,
+        t_max: &mut V,
+        mut leaf: impl FnMut(usize, usize, u32, &mut V) -> u32,
+    ) {
+        unsafe {
+            let mut open = live;
+            let mut stack = [(0u32, 0u32, 0u32); STACK];
+            let mut top = 0;
+            let mut current = (tree.root.0, tree.root.1, live);
+            loop {
+                let (child, count, lanes) = current;
+                let mask = lanes & open;
+                if mask != 0 {
+                    if child & LEAF != 0 {
+                        open &= leaf((child & !LEAF) as usize, count as usize, mask, t_max) | !mask;
+                        if open == 0 {
+                            return;
+                        }
+                    } else {
+                        let node = nodes.get_unchecked(child as usize);
+                        let [m0, m1] = visit(rays, node, mask, t_max);
+                        if m0 != 0 {
+                            if m1 != 0 {
+                                *stack.get_unchecked_mut(top) = (node.child[1], node.count[1], m1);
+                                top += 1;
+                            }
+                            current = (node.child[0], node.count[0], m0);
+                            continue;
+                        }
+                        if m1 != 0 {
+                            current = (node.child[1], node.count[1], m1);
+                            continue;
+                        }
+                    }
+                }
+                if top == 0 {
+                    return;
+                }
+                top -= 1;
+                current = *stack.get_unchecked(top);
             }
         }
     }
@@ -497,70 +630,38 @@ mod avx2 {
     /// Lanes of `packet` blocked along `dir`.
     ///
     /// # Safety
-    /// AVX2 and FMA must be available, and every corner index of `bvh`
+    /// AVX2 and FMA must be available, and every corner index of `tree`
     /// below `local.len()`.
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn occluded(
-        bvh: &Bvh,
+        tree: &PacketBvh,
         dir: &Direction,
         local: &[[f32; 4]],
         packet: &Packet,
     ) -> u32 {
         unsafe {
             let rays = Rays::new(dir, packet);
-            let t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
-            let nodes = &bvh.nodes;
+            let mut t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
             let mut blocked = 0u32;
-            let mut mask = rays.hits_box(&nodes[0], &t_max) & packet.live;
-            if mask == 0 {
-                return 0;
-            }
-            let mut stack = [(0u32, 0u32); STACK];
-            let mut top = 0;
-            let mut index = 0usize;
-            loop {
-                let node = nodes.get_unchecked(index);
-                if node.kind < INNER {
-                    let first = node.first as usize;
-                    for k in first..first + node.kind as usize {
-                        let (hits, ..) = rays.hits_triangle(bvh, local, k, mask, &t_max);
+            walk(
+                tree,
+                &tree.octants[octant(dir)],
+                &rays,
+                packet.live,
+                &mut t_max,
+                |first, count, mut mask, t_max| {
+                    for k in first..first + count {
+                        let (hits, ..) = rays.hits_triangle(&tree.bvh, local, k, mask, t_max);
                         blocked |= hits;
                         mask &= !hits;
                         if mask == 0 {
                             break;
                         }
                     }
-                } else {
-                    let ((near, mn), (far, mf)) = children(&rays, nodes, node, mask, &t_max);
-                    if mn != 0 {
-                        if mf != 0 {
-                            *stack.get_unchecked_mut(top) = (far as u32, mf);
-                            top += 1;
-                        }
-                        index = near;
-                        mask = mn;
-                        continue;
-                    }
-                    if mf != 0 {
-                        index = far;
-                        mask = mf;
-                        continue;
-                    }
-                }
-                // Next node on the stack with a ray still open.
-                loop {
-                    if top == 0 {
-                        return blocked;
-                    }
-                    top -= 1;
-                    let (i, m) = *stack.get_unchecked(top);
-                    mask = m & !blocked;
-                    if mask != 0 {
-                        index = i as usize;
-                        break;
-                    }
-                }
-            }
+                    mask
+                },
+            );
+            blocked
         }
     }
 
@@ -570,7 +671,7 @@ mod avx2 {
     /// As [`occluded`].
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn closest(
-        bvh: &Bvh,
+        tree: &PacketBvh,
         dir: &Direction,
         local: &[[f32; 4]],
         packet: &Packet,
@@ -581,18 +682,17 @@ mod avx2 {
             let mut best = [_mm256_setzero_ps(); GROUPS];
             let mut bary = [[_mm256_setzero_ps(); GROUPS]; 3];
             let mut hit_mask = 0u32;
-            let nodes = &bvh.nodes;
-            let mut mask = rays.hits_box(&nodes[0], &t_max) & packet.live;
-            let mut stack = [(0u32, 0u32); STACK];
-            let mut top = 0;
-            let mut index = 0usize;
-            while mask != 0 {
-                let node = nodes.get_unchecked(index);
-                if node.kind < INNER {
-                    let first = node.first as usize;
-                    for k in first..first + node.kind as usize {
+            let bvh = &tree.bvh;
+            walk(
+                tree,
+                &tree.octants[octant(dir)],
+                &rays,
+                packet.live,
+                &mut t_max,
+                |first, count, mask, t_max| {
+                    for k in first..first + count {
                         let (hits, t, [u, v, w], inv) =
-                            rays.hits_triangle(bvh, local, k, mask, &t_max);
+                            rays.hits_triangle(bvh, local, k, mask, t_max);
                         if hits != 0 {
                             let sel = lane_masks(hits);
                             let id = _mm256_castsi256_ps(_mm256_set1_epi32(k as i32));
@@ -618,31 +718,9 @@ mod avx2 {
                             hit_mask |= hits;
                         }
                     }
-                } else {
-                    let ((near, mn), (far, mf)) = children(&rays, nodes, node, mask, &t_max);
-                    if mn != 0 {
-                        if mf != 0 {
-                            *stack.get_unchecked_mut(top) = (far as u32, mf);
-                            top += 1;
-                        }
-                        index = near;
-                        mask = mn;
-                        continue;
-                    }
-                    if mf != 0 {
-                        index = far;
-                        mask = mf;
-                        continue;
-                    }
-                }
-                if top == 0 {
-                    break;
-                }
-                top -= 1;
-                let (i, m) = *stack.get_unchecked(top);
-                index = i as usize;
-                mask = m;
-            }
+                    mask
+                },
+            );
             let (t, k) = (store(&t_max), store(&best));
             let [u, v, w] = [store(&bary[0]), store(&bary[1]), store(&bary[2])];
             let mut out = PacketHits {
@@ -684,7 +762,8 @@ mod tests {
         // On a processor with AVX2 this compares the 8-lane traversal with
         // the single-ray one, ray by ray; elsewhere both are single rays.
         let mesh = generate::plane_under_sphere(1.0, 24, 12, 4.0, 6);
-        let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
+        let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
+        let bvh = tree.bvh();
         let mut rng = StdRng::seed_from_u64(11);
         let (mut hits, mut mismatched, mut rays) = (0, 0, 0);
         for _ in 0..60 {
@@ -706,8 +785,8 @@ mod tests {
                     .map(|_| centre + random_unit(&mut rng) * rng.random_range(0.0..0.2))
                     .collect();
                 let packet = Packet::new(&dir, &origins);
-                let blocked = bvh.occluded_packet(&dir, &local, &packet);
-                let found = bvh.closest_packet(&dir, &local, &packet);
+                let blocked = tree.occluded(&dir, &local, &packet);
+                let found = tree.closest(&dir, &local, &packet);
                 assert_eq!(blocked >> n, 0, "only live lanes");
                 assert_eq!(blocked, found.mask, "occlusion and closest hits agree");
                 for (k, o) in origins.iter().enumerate() {
@@ -743,7 +822,7 @@ mod tests {
         // Bundles of parallel rays from inside a closed sphere aimed exactly
         // at its vertices and edge midpoints must all hit.
         let mesh = generate::uv_sphere(1.0, 37, 23);
-        let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
+        let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
         let mut targets: Vec<Vec3> = mesh.positions.clone();
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
@@ -771,10 +850,10 @@ mod tests {
                 .collect();
             for eight in origins.chunks(LANES) {
                 let packet = Packet::new(&dir, eight);
-                let blocked = bvh.occluded_packet(&dir, &local, &packet);
+                let blocked = tree.occluded(&dir, &local, &packet);
                 cast += eight.len();
                 missed += eight.len() - blocked.count_ones() as usize;
-                assert_eq!(bvh.closest_packet(&dir, &local, &packet).mask, blocked);
+                assert_eq!(tree.closest(&dir, &local, &packet).mask, blocked);
             }
         }
         assert!(cast > 3000, "{cast}");

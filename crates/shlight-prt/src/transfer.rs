@@ -48,7 +48,7 @@ use shlight_core::{ShBasis, ShCoeffs, sh_count};
 use shlight_mesh::Mesh;
 
 use crate::bvh::Bvh;
-use crate::packet::{Direction, LANES, Packet};
+use crate::packet::{Direction, LANES, Packet, PacketBvh};
 
 /// Ray origins are offset along the normal by this times the bounding box
 /// diagonal.
@@ -327,7 +327,7 @@ pub fn bake(
             .iter()
             .map(|t| t.map(|i| rank[i as usize]))
             .collect();
-        let bvh = Bvh::new(&positions, &triangles);
+        let bvh = PacketBvh::new(Bvh::new(&positions, &triangles));
         let eps = OFFSET * (bounds.1 - bounds.0).length();
         let done = AtomicUsize::new(0);
         visible
@@ -356,7 +356,7 @@ pub fn bake(
                         }
                         let packet = Packet::new(&dir, &origins[..eight.len()]);
                         let escaped = if keep_hits {
-                            let found = bvh.closest_packet(&dir, local, &packet);
+                            let found = bvh.closest(&dir, local, &packet);
                             for (k, &s) in eight.iter().enumerate() {
                                 if found.mask >> k & 1 == 0 {
                                     continue;
@@ -377,7 +377,7 @@ pub fn bake(
                             }
                             !found.mask
                         } else {
-                            !bvh.occluded_packet(&dir, local, &packet)
+                            !bvh.occluded(&dir, local, &packet)
                         };
                         for (k, &s) in eight.iter().enumerate() {
                             if escaped >> k & 1 == 1 {
