@@ -574,12 +574,15 @@ mod avx2 {
         }
     }
 
-    /// Walks `tree` for `packet`, nearer children first, calling
+    /// Walks `tree` for `packet`, nearer children first (farther first
+    /// when `FAR_FIRST`: an any-hit ray from a surface is blocked, if at
+    /// all, by something across the mesh rather than by its own
+    /// neighbourhood, and finding it sooner ends the walk sooner), calling
     /// `leaf(first, count, lanes, t_max)` for each leaf some lanes reach;
     /// `leaf` returns the lanes still open after it (any-hit drops the
     /// blocked ones) and may lower `t_max`. Stops when no lane is open.
     #[inline(always)]
-    unsafe fn walk(
+    unsafe fn walk<const FAR_FIRST: bool>(
         tree: &PacketBvh,
         nodes: &[Node2],
         rays: &Rays,
@@ -603,17 +606,19 @@ mod avx2 {
                         }
                     } else {
                         let node = nodes.get_unchecked(child as usize);
-                        let [m0, m1] = visit(rays, node, mask, t_max);
-                        if m0 != 0 {
-                            if m1 != 0 {
-                                *stack.get_unchecked_mut(top) = (node.child[1], node.count[1], m1);
+                        let m = visit(rays, node, mask, t_max);
+                        let (a, b) = if FAR_FIRST { (1, 0) } else { (0, 1) };
+                        if m[a] != 0 {
+                            if m[b] != 0 {
+                                *stack.get_unchecked_mut(top) =
+                                    (node.child[b], node.count[b], m[b]);
                                 top += 1;
                             }
-                            current = (node.child[0], node.count[0], m0);
+                            current = (node.child[a], node.count[a], m[a]);
                             continue;
                         }
-                        if m1 != 0 {
-                            current = (node.child[1], node.count[1], m1);
+                        if m[b] != 0 {
+                            current = (node.child[b], node.count[b], m[b]);
                             continue;
                         }
                     }
@@ -643,7 +648,7 @@ mod avx2 {
             let rays = Rays::new(dir, packet);
             let mut t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
             let mut blocked = 0u32;
-            walk(
+            walk::<true>(
                 tree,
                 &tree.octants[octant(dir)],
                 &rays,
@@ -683,7 +688,7 @@ mod avx2 {
             let mut bary = [[_mm256_setzero_ps(); GROUPS]; 3];
             let mut hit_mask = 0u32;
             let bvh = &tree.bvh;
-            walk(
+            walk::<false>(
                 tree,
                 &tree.octants[octant(dir)],
                 &rays,
