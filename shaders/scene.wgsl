@@ -49,8 +49,11 @@ const BACKGROUND_MAP: u32 = 1u;
 const BACKGROUND_SH: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-// Radiance coefficients L_i (rgb), i < (lmax+1)^2, in shlight's basis.
-@group(0) @binding(1) var<storage, read> light: array<vec4<f32>>;
+// Radiance coefficients L_i (rgb), i < (lmax+1)^2, in shlight's basis. A
+// uniform block: sh_reconstruct reads it at constant indices, which CPU
+// rasterisers (llvmpipe) serve as one load for all lanes, where a storage
+// buffer costs a bounds-checked load per lane.
+@group(0) @binding(1) var<uniform> light: array<vec4<f32>, SH_MAX_COUNT>;
 
 // sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32>
 // returns sum_l factors_l sum_m L_lm Y_lm(d) over the light's coefficients,

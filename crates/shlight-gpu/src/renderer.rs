@@ -104,7 +104,7 @@ impl Renderer {
             label: Some("mesh"),
             entries: &[
                 uniform_entry(0, vf),
-                storage_entry(1, vf),
+                uniform_entry(1, vf),
                 storage_entry(2, wgpu::ShaderStages::VERTEX),
             ],
         });
@@ -112,7 +112,7 @@ impl Renderer {
             label: Some("background"),
             entries: &[
                 uniform_entry(0, vf),
-                storage_entry(1, vf),
+                uniform_entry(1, vf),
                 wgpu::BindGroupLayoutEntry {
                     binding: 2,
                     visibility: wgpu::ShaderStages::FRAGMENT,
@@ -143,7 +143,7 @@ impl Renderer {
         let light = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("light"),
             size: (LIGHT_SLOTS * 16) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let transfer = device.create_buffer(&wgpu::BufferDescriptor {

@@ -59,6 +59,14 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
         literal(0.5 / std::f64::consts::PI.sqrt())
     ));
     line("var sum = (factors[0][0] * q0_0) * light[0].rgb;".into());
+    // g_l = sqrt2 f_l, the weight of the m != 0 terms of band l.
+    for l in 1..=lmax {
+        line(format!(
+            "let g{l} = SH_SQRT2 * factors[{}][{}];",
+            l / 4,
+            l % 4
+        ));
+    }
     for m in 0..=lmax {
         if m > 0 {
             // C_m + i S_m = (C_{m-1} + i S_{m-1}) (x + i y).
@@ -92,14 +100,21 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
                     l - 2
                 ));
             }
-            let (f, centre) = (format!("factors[{}][{}]", l / 4, l % 4), l * (l + 1));
+            let centre = l * (l + 1);
             if m == 0 {
                 if l > 0 {
-                    line(format!("sum += ({f} * q{l}_0) * light[{centre}].rgb;"));
+                    line(format!(
+                        "sum += (factors[{}][{}] * q{l}_0) * light[{centre}].rgb;",
+                        l / 4,
+                        l % 4
+                    ));
                 }
             } else {
+                // Two scalars, then one multiply-add per colour channel
+                // for each of the pair's coefficients.
+                line(format!("let t{l}_{m} = g{l} * q{l}_{m};"));
                 line(format!(
-                    "sum += ({f} * SH_SQRT2 * q{l}_{m}) * (c{m} * light[{}].rgb + s{m} * light[{}].rgb);",
+                    "sum += (t{l}_{m} * c{m}) * light[{}].rgb + (t{l}_{m} * s{m}) * light[{}].rgb;",
                     centre + m,
                     centre - m
                 ));
