@@ -7,7 +7,8 @@
 //! - `frame_sphere_sh` / `frame_bunny_sh`: SH irradiance per fragment at
 //!   lmax 2 and 8, for a generated sphere of 99,500 triangles (250 segments
 //!   x 200 rings) and the bundled bunny (`meshes/bunny.obj`, 3,674
-//!   triangles), each framed to fill the image's height;
+//!   triangles), each framed by `Camera::framing` (its bounding sphere
+//!   just fits the image's height);
 //! - `frame_bunny_prt`: PRT of the bunny, 3-channel transfer vectors of
 //!   lmax 2 and 8 (pseudo-random values: the frame time does not depend on
 //!   them), the light's lmax the same;
@@ -98,7 +99,7 @@ fn bench_frame(
     }
     let target = Offscreen::new(ctx, 1920, 1080).unwrap();
     let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
-    // The first frame compiles the pipelines' shaders.
+    // The first frame builds the pipelines for this lmax (shader compilation).
     target.draw(ctx, &renderer, &camera, &shading).unwrap();
     if readback {
         bencher.bench_local(|| target.render(ctx, &renderer, &camera, &shading).unwrap());
