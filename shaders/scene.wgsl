@@ -19,7 +19,8 @@ struct Frame {
     albedo: vec4<f32>,
     // Linear scale 2^EV applied before the tone map.
     exposure: f32,
-    // Highest degree of the light used.
+    // Highest degree of the light used (the PRT sum; the SH passes have it
+    // built into their pipeline's sh_reconstruct).
     lmax: u32,
     // MODE_* below.
     mode: u32,
@@ -48,28 +49,18 @@ const BACKGROUND_MAP: u32 = 1u;
 const BACKGROUND_SH: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-// Radiance coefficients L_i (rgb), i < (lmax+1)^2, in shlight's basis.
-@group(0) @binding(1) var<storage, read> light: array<vec4<f32>>;
+// Radiance coefficients L_i (rgb), i < (lmax+1)^2, in shlight's basis. A
+// uniform block: sh_reconstruct reads it at constant indices, which CPU
+// rasterisers (llvmpipe) serve as one load for all lanes, where a storage
+// buffer costs a bounds-checked load per lane.
+@group(0) @binding(1) var<uniform> light: array<vec4<f32>, SH_MAX_COUNT>;
 
-fn band_factor(factors: array<vec4<f32>, 3>, l: u32) -> f32 {
-    return factors[l / 4u][l % 4u];
-}
-
-// sum_l factor_l sum_m L_lm Y_lm(d) over the light's coefficients.
-fn sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32> {
-    var y: array<f32, 81>;
-    let lmax = min(frame.lmax, SH_MAX_LMAX);
-    sh_basis(d, lmax, &y);
-    var sum = vec3<f32>(0.0);
-    for (var l = 0u; l <= lmax; l = l + 1u) {
-        var band = vec3<f32>(0.0);
-        for (var i = l * l; i < (l + 1u) * (l + 1u); i = i + 1u) {
-            band = band + light[i].rgb * y[i];
-        }
-        sum = sum + band_factor(factors, l) * band;
-    }
-    return sum;
-}
+// sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32>
+// returns sum_l factors_l sum_m L_lm Y_lm(d) over the light's coefficients,
+// factors_l = factors[l / 4][l % 4] (irradiance_band or radiance_band). It is
+// written out as straight-line code for the pipeline's lmax and appended to
+// the module (crates/shlight-gpu/src/sh_expansion.rs): no loops, no local
+// arrays, every recurrence factor a literal.
 
 // The curves of shlight-io's ToneMap, channel by channel; negatives and NaN give 0.
 fn tone_map(x_in: vec3<f32>, curve: u32) -> vec3<f32> {

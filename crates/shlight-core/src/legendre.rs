@@ -106,19 +106,22 @@ impl<T: Real> Legendre<T> {
 
     /// `-sqrt((2m+1)/(2m))`, the sectoral step from `Pbar_{m-1}^{m-1}` to `Pbar_m^m` (over `s`), `m >= 1`.
     #[inline]
-    pub(crate) fn sectoral_factor(&self, m: usize) -> T {
+    #[must_use]
+    pub fn sectoral_factor(&self, m: usize) -> T {
         self.sectoral[m]
     }
 
     /// `sqrt(2m+3)`, the step from `Pbar_m^m` to `Pbar_{m+1}^m` (over `x`).
     #[inline]
-    pub(crate) fn diagonal_factor(&self, m: usize) -> T {
+    #[must_use]
+    pub fn diagonal_factor(&self, m: usize) -> T {
         self.diagonal[m]
     }
 
     /// `(a_l^m, a_l^m b_l^m)` for `l = m+2..=lmax`.
     #[inline]
-    pub(crate) fn column_factors(&self, m: usize) -> &[[T; 2]] {
+    #[must_use]
+    pub fn column_factors(&self, m: usize) -> &[[T; 2]] {
         let start = m * self.lmax.saturating_sub(1) - m * m.saturating_sub(1) / 2;
         &self.ab[start..start + self.lmax.saturating_sub(m + 1)]
     }

@@ -1,15 +1,29 @@
 //! GPU frame time and GPU projection, beside the CPU projection of the same
 //! map in the same run.
 //!
-//! - `frame_1080p`: one 1920x1080 frame (submit and wait) of a generated
-//!   sphere of 99,500 triangles (250 segments x 200 rings) shaded per
-//!   fragment at lmax 2 and 8, no background;
+//! Frames are 1920x1080, drawn and waited for (no read-back unless named),
+//! lit by an lmax 8 light (a coloured cap), no background:
+//!
+//! - `frame_sphere_sh` / `frame_bunny_sh`: SH irradiance per fragment at
+//!   lmax 2 and 8, for a generated sphere of 99,500 triangles (250 segments
+//!   x 200 rings) and the bundled bunny (`meshes/bunny.obj`, 3,674
+//!   triangles), each framed by `Camera::framing` (its bounding sphere
+//!   just fits the image's height);
+//! - `frame_bunny_prt`: PRT of the bunny, 3-channel transfer vectors of
+//!   lmax 2 and 8 (pseudo-random values: the frame time does not depend on
+//!   them), the light's lmax the same;
+//! - `frame_sphere_normals`: the sphere in normals mode, the floor every
+//!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);
+//! - `frame_sphere_readback`: `frame_sphere_sh` at lmax 2 with the frame
+//!   read back to the CPU (`Offscreen::render`), so the read-back's share
+//!   is the difference;
 //! - `project_gpu` / `project_cpu`: a 2048x1024 equirect map to lmax 8
 //!   (GPU: upload, both passes and read-back; CPU: shlight-core's
 //!   `project_equirect`, both cores).
 //!
-//! Run: `cargo bench -p shlight-gpu --bench gpu`. Without a GPU adapter the
-//! GPU benchmarks print a SKIPPED line and measure nothing.
+//! Run: `cargo bench -p shlight-gpu --bench gpu` (or name one, e.g.
+//! `-- frame_bunny`). Without a GPU adapter the GPU benchmarks print a
+//! SKIPPED line and measure nothing.
 
 use std::sync::OnceLock;
 
@@ -17,8 +31,9 @@ use glam::Vec3;
 use shlight_core::analytic;
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_gpu::{
-    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Offscreen, Renderer, Shading,
+    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading, Transfer,
 };
+use shlight_mesh::Mesh;
 
 fn main() {
     divan::main();
@@ -39,6 +54,100 @@ fn context() -> Option<&'static GpuContext> {
     .as_ref()
 }
 
+fn sphere() -> Mesh {
+    shlight_mesh::generate::uv_sphere(1.0, 250, 200)
+}
+
+fn bunny() -> Mesh {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/bunny.obj");
+    shlight_mesh::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `count` values in [-1, 1) from a fixed linear congruential sequence.
+fn pseudo_random(count: usize) -> Vec<f32> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    (0..count)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 40) as f32 / (1u64 << 24) as f32) * 2.0 - 1.0
+        })
+        .collect()
+}
+
+/// Times `Offscreen::draw` (or `render` with `readback`) of `mesh` at
+/// 1920x1080 under `shading`, with PRT transfer vectors of `prt_lmax`.
+fn bench_frame(
+    bencher: divan::Bencher,
+    mesh: &Mesh,
+    shading: Shading,
+    prt_lmax: Option<usize>,
+    readback: bool,
+) {
+    let Some(ctx) = context() else { return };
+    let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
+    renderer.set_mesh(ctx, mesh);
+    renderer.set_light(
+        ctx,
+        &analytic::cap(8, [0.3, 0.8, 0.5], 0.5, glam::DVec3::new(5.0, 3.0, 2.0)),
+    );
+    if let Some(lmax) = prt_lmax {
+        let data = pseudo_random(mesh.vertex_count() * 3 * (lmax + 1) * (lmax + 1));
+        let transfer = Transfer::new(lmax, 3, mesh.vertex_count(), &data).unwrap();
+        renderer.set_transfer(ctx, &transfer).unwrap();
+    }
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
+    // The first frame builds the pipelines for this lmax (shader compilation).
+    target.draw(ctx, &renderer, &camera, &shading).unwrap();
+    if readback {
+        bencher.bench_local(|| target.render(ctx, &renderer, &camera, &shading).unwrap());
+    } else {
+        bencher.bench_local(|| target.draw(ctx, &renderer, &camera, &shading).unwrap());
+    }
+}
+
+fn sh(lmax: usize) -> Shading {
+    Shading {
+        lmax,
+        ..Default::default()
+    }
+}
+
+#[divan::bench(args = [2, 8], sample_count = 10, sample_size = 1)]
+fn frame_sphere_sh(bencher: divan::Bencher, lmax: usize) {
+    bench_frame(bencher, &sphere(), sh(lmax), None, false);
+}
+
+#[divan::bench(args = [2, 8], sample_count = 10, sample_size = 1)]
+fn frame_bunny_sh(bencher: divan::Bencher, lmax: usize) {
+    bench_frame(bencher, &bunny(), sh(lmax), None, false);
+}
+
+#[divan::bench(args = [2, 8], sample_count = 10, sample_size = 1)]
+fn frame_bunny_prt(bencher: divan::Bencher, lmax: usize) {
+    let shading = Shading {
+        mode: Mode::Prt,
+        ..sh(lmax)
+    };
+    bench_frame(bencher, &bunny(), shading, Some(lmax), false);
+}
+
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn frame_sphere_normals(bencher: divan::Bencher) {
+    let shading = Shading {
+        mode: Mode::Normals,
+        ..sh(2)
+    };
+    bench_frame(bencher, &sphere(), shading, None, false);
+}
+
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn frame_sphere_readback(bencher: divan::Bencher) {
+    bench_frame(bencher, &sphere(), sh(2), None, true);
+}
+
 /// A 2048x1024 map with smooth variation and a bright spot.
 fn map() -> Vec<[f32; 3]> {
     let (w, h) = (2048, 1024);
@@ -53,26 +162,6 @@ fn map() -> Vec<[f32; 3]> {
             [1.0 + x + spot, 0.5 + y, 0.2 + x * y]
         })
         .collect()
-}
-
-#[divan::bench(args = [2, 8], sample_count = 20, sample_size = 1)]
-fn frame_1080p(bencher: divan::Bencher, lmax: usize) {
-    let Some(ctx) = context() else { return };
-    let mesh = shlight_mesh::generate::uv_sphere(1.0, 250, 200);
-    let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
-    renderer.set_mesh(ctx, &mesh);
-    renderer.set_light(
-        ctx,
-        &analytic::cap(8, [0.3, 0.8, 0.5], 0.5, glam::DVec3::new(5.0, 3.0, 2.0)),
-    );
-    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
-    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
-    let shading = Shading {
-        lmax,
-        ..Default::default()
-    };
-    target.draw(ctx, &renderer, &camera, &shading).unwrap();
-    bencher.bench_local(|| target.draw(ctx, &renderer, &camera, &shading).unwrap());
 }
 
 #[divan::bench(sample_count = 10, sample_size = 1)]

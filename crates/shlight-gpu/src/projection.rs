@@ -43,7 +43,8 @@ impl GpuProjector {
     /// Compiles the pipelines.
     #[must_use]
     pub fn new(ctx: &GpuContext) -> Self {
-        let module = shaders::create(&ctx.device, PROJECT_MODULE);
+        // The projection has no sh_reconstruct: its lmax is a run-time parameter.
+        let module = shaders::create(&ctx.device, PROJECT_MODULE, 0);
         let pipeline = |entry: &str| {
             ctx.device
                 .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -2,6 +2,8 @@
 //! and PRT transfer, and the two passes (background, then mesh) that draw a
 //! frame into any colour target.
 
+use std::sync::OnceLock;
+
 use glam::{DMat3, DVec3, Vec3};
 use shlight_core::ShCoeffs;
 use shlight_core::projection::MapOrientation;
@@ -30,8 +32,11 @@ struct GpuMesh {
 /// Draws meshes lit by SH coefficients into targets of one colour format.
 pub struct Renderer {
     color_format: wgpu::TextureFormat,
-    mesh_pipeline: wgpu::RenderPipeline,
-    background_pipeline: wgpu::RenderPipeline,
+    /// Per lmax, built on first use (each compiles its own `sh_reconstruct`).
+    mesh_pipelines: [OnceLock<wgpu::RenderPipeline>; MAX_LMAX + 1],
+    background_pipelines: [OnceLock<wgpu::RenderPipeline>; MAX_LMAX + 1],
+    mesh_pipeline_layout: wgpu::PipelineLayout,
+    background_pipeline_layout: wgpu::PipelineLayout,
     mesh_layout: wgpu::BindGroupLayout,
     background_layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
@@ -84,7 +89,9 @@ fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
 }
 
 impl Renderer {
-    /// Pipelines and empty buffers for colour targets of `color_format`.
+    /// Pipeline layouts and empty buffers for colour targets of
+    /// `color_format`. The pipelines are built on first use, one per lmax
+    /// of SH shading (a frame at a new lmax compiles its shaders first).
     ///
     /// A float format (e.g. `Rgba32Float`) receives linear radiance when the
     /// shading has no tone map; an `*Srgb` format is encoded by the
@@ -97,7 +104,7 @@ impl Renderer {
             label: Some("mesh"),
             entries: &[
                 uniform_entry(0, vf),
-                storage_entry(1, vf),
+                uniform_entry(1, vf),
                 storage_entry(2, wgpu::ShaderStages::VERTEX),
             ],
         });
@@ -105,7 +112,7 @@ impl Renderer {
             label: Some("background"),
             entries: &[
                 uniform_entry(0, vf),
-                storage_entry(1, vf),
+                uniform_entry(1, vf),
                 wgpu::BindGroupLayoutEntry {
                     binding: 2,
                     visibility: wgpu::ShaderStages::FRAGMENT,
@@ -118,8 +125,6 @@ impl Renderer {
                 },
             ],
         });
-        let mesh_module = shaders::create(device, MESH_MODULE);
-        let background_module = shaders::create(device, BACKGROUND_MODULE);
         let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: None,
@@ -127,73 +132,8 @@ impl Renderer {
                 immediate_size: 0,
             })
         };
-        let targets = [Some(wgpu::ColorTargetState {
-            format: color_format,
-            blend: None,
-            write_mask: wgpu::ColorWrites::ALL,
-        })];
-        let mesh_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("mesh"),
-            layout: Some(&pipeline_layout(&mesh_layout)),
-            vertex: wgpu::VertexState {
-                module: &mesh_module,
-                entry_point: Some("vs_mesh"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 24,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
-                })],
-            },
-            primitive: wgpu::PrimitiveState {
-                // Both faces: meshes with inconsistent winding still show.
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &mesh_module,
-                entry_point: Some("fs_mesh"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let background_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("background"),
-            layout: Some(&pipeline_layout(&background_layout)),
-            vertex: wgpu::VertexState {
-                module: &background_module,
-                entry_point: Some("vs_background"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &background_module,
-                entry_point: Some("fs_background"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let mesh_pipeline_layout = pipeline_layout(&mesh_layout);
+        let background_pipeline_layout = pipeline_layout(&background_layout);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("frame"),
             size: std::mem::size_of::<FrameUniform>() as u64,
@@ -203,7 +143,7 @@ impl Renderer {
         let light = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("light"),
             size: (LIGHT_SLOTS * 16) as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let transfer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -218,8 +158,10 @@ impl Renderer {
             bind_background(device, &background_layout, &uniform, &light, &environment);
         Self {
             color_format,
-            mesh_pipeline,
-            background_pipeline,
+            mesh_pipelines: Default::default(),
+            background_pipelines: Default::default(),
+            mesh_pipeline_layout,
+            background_pipeline_layout,
             mesh_layout,
             background_layout,
             uniform,
@@ -418,11 +360,12 @@ impl Renderer {
             self.color_format,
             wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
         );
+        let lmax = shading.lmax.min(self.light_lmax);
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
             view_proj: camera.view_proj(aspect),
             env_from_world,
-            lmax: shading.lmax.min(self.light_lmax),
+            lmax,
             prt: self.prt.map(|(l, c, _)| (l, c)),
             encode_srgb,
         });
@@ -451,13 +394,31 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        let device = &ctx.device;
         if shading.mode != Mode::Normals && shading.background != crate::Background::None {
-            pass.set_pipeline(&self.background_pipeline);
+            // Only the SH background evaluates sh_reconstruct.
+            let l = if shading.background == crate::Background::Sh {
+                lmax
+            } else {
+                0
+            };
+            pass.set_pipeline(self.background_pipelines[l].get_or_init(|| {
+                background_pipeline(
+                    device,
+                    &self.background_pipeline_layout,
+                    self.color_format,
+                    l,
+                )
+            }));
             pass.set_bind_group(0, &self.background_bind, &[]);
             pass.draw(0..3, 0..1);
         }
         if let Some(mesh) = &self.mesh {
-            pass.set_pipeline(&self.mesh_pipeline);
+            // Only SH mode evaluates sh_reconstruct.
+            let l = if shading.mode == Mode::Sh { lmax } else { 0 };
+            pass.set_pipeline(self.mesh_pipelines[l].get_or_init(|| {
+                mesh_pipeline(device, &self.mesh_pipeline_layout, self.color_format, l)
+            }));
             pass.set_bind_group(0, &self.mesh_bind, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -465,6 +426,100 @@ impl Renderer {
         }
         Ok(())
     }
+}
+
+/// The mesh pipeline with `sh_reconstruct` for `lmax` (SH mode; the other
+/// modes use lmax 0's).
+fn mesh_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    color_format: wgpu::TextureFormat,
+    lmax: usize,
+) -> wgpu::RenderPipeline {
+    let module = shaders::create(device, MESH_MODULE, lmax);
+    let targets = [Some(wgpu::ColorTargetState {
+        format: color_format,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    })];
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("mesh"),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_mesh"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: 24,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+            })],
+        },
+        primitive: wgpu::PrimitiveState {
+            // Both faces: meshes with inconsistent winding still show.
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_mesh"),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The background pipeline with `sh_reconstruct` for `lmax` (the SH
+/// background; the map uses lmax 0's).
+fn background_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    color_format: wgpu::TextureFormat,
+    lmax: usize,
+) -> wgpu::RenderPipeline {
+    let module = shaders::create(device, BACKGROUND_MODULE, lmax);
+    let targets = [Some(wgpu::ColorTargetState {
+        format: color_format,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    })];
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("background"),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_background"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_background"),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// The map's own y-up frame from world, as a matrix

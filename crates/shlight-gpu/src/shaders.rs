@@ -3,9 +3,15 @@
 //!
 //! WGSL has no `#include`, so a module is its prelude files followed by its
 //! own file: `sh.wgsl` (the SH basis) for all, `scene.wgsl` (frame uniform,
-//! light coefficients, tone maps) for the two render passes. [`MODULES`]
+//! light coefficients, tone maps) for the two render passes. The render
+//! passes' modules also get `sh_reconstruct`, written out for one lmax
+//! (`sh_expansion.rs`), so they are compiled once per lmax. [`MODULES`]
 //! lists every module; [`FILES`] every file, so a test can check that each
-//! file in the directory belongs to a module and that each module validates.
+//! file in the directory belongs to a module and that each module validates
+//! at every lmax.
+
+use crate::MAX_LMAX;
+use crate::sh_expansion::sh_reconstruct_wgsl;
 
 /// A shader file: its name in `shaders/` and its text.
 pub type ShaderFile = (&'static str, &'static str);
@@ -32,13 +38,23 @@ pub struct ShaderModuleSource {
     pub name: &'static str,
     /// Files concatenated in this order.
     pub files: &'static [&'static str],
+    /// Whether the generated `sh_reconstruct` for an lmax follows the files.
+    pub sh_reconstruct: bool,
 }
 
 impl ShaderModuleSource {
-    /// The concatenated WGSL text.
+    /// The concatenated WGSL text at lmax [`MAX_LMAX`].
     #[must_use]
     pub fn source(&self) -> String {
-        self.files
+        self.source_at(MAX_LMAX)
+    }
+
+    /// The concatenated WGSL text, then `sh_reconstruct` written out for
+    /// `lmax` (at most [`MAX_LMAX`]) when the module has it.
+    #[must_use]
+    pub fn source_at(&self, lmax: usize) -> String {
+        let mut text = self
+            .files
             .iter()
             .map(|name| {
                 FILES
@@ -48,7 +64,12 @@ impl ShaderModuleSource {
                     .expect("module files are in FILES")
             })
             .collect::<Vec<_>>()
-            .join("\n")
+            .join("\n");
+        if self.sh_reconstruct {
+            text.push('\n');
+            text.push_str(&sh_reconstruct_wgsl(lmax));
+        }
+        text
     }
 }
 
@@ -56,31 +77,39 @@ impl ShaderModuleSource {
 pub const MESH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "mesh",
     files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl"],
+    sh_reconstruct: true,
 };
 /// The environment background (map or SH reconstruction).
 pub const BACKGROUND_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "background",
     files: &["sh.wgsl", "scene.wgsl", "background.wgsl"],
+    sh_reconstruct: true,
 };
 /// The compute projection of equirect maps.
 pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "project",
     files: &["sh.wgsl", "project.wgsl"],
+    sh_reconstruct: false,
 };
 /// The SH basis alone (a module of functions, validated on its own).
 pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "sh",
     files: &["sh.wgsl"],
+    sh_reconstruct: false,
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
 pub const MODULES: [ShaderModuleSource; 4] =
     [SH_MODULE, MESH_MODULE, BACKGROUND_MODULE, PROJECT_MODULE];
 
-/// Compiles a module on `device`.
-pub(crate) fn create(device: &wgpu::Device, module: ShaderModuleSource) -> wgpu::ShaderModule {
+/// Compiles a module on `device`, at `lmax` if it has `sh_reconstruct`.
+pub(crate) fn create(
+    device: &wgpu::Device,
+    module: ShaderModuleSource,
+    lmax: usize,
+) -> wgpu::ShaderModule {
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(module.name),
-        source: wgpu::ShaderSource::Wgsl(module.source().into()),
+        source: wgpu::ShaderSource::Wgsl(module.source_at(lmax).into()),
     })
 }

@@ -1,0 +1,166 @@
+//! The WGSL function `sh_reconstruct` of the render passes, written out as
+//! straight-line code for one lmax.
+//!
+//! ```text
+//! sh_reconstruct(d, factors) = sum_{l <= lmax} f_l sum_m L_lm Y_lm(d),
+//!     f_l = factors[l / 4][l % 4]   (A_l w_l for irradiance, w_l for radiance)
+//! ```
+//!
+//! with `L_lm` the light's coefficients (`light[l(l+1)+m]`, `scene.wgsl`).
+//! The basis is written as in `shaders/sh.wgsl`: with `z = cos(theta)` and
+//! `C_m + i S_m = (x + i y)^m`,
+//!
+//! ```text
+//! Y_l^0 = Q_l^0,   Y_l^m = sqrt2 Q_l^m C_m,   Y_l^-m = sqrt2 Q_l^m S_m   (m > 0),
+//! Q_0^0 = 1/sqrt(4 pi),   Q_m^m = sectoral_m Q_{m-1}^{m-1},
+//! Q_{m+1}^m = diagonal_m z Q_m^m,   Q_l^m = a z Q_{l-1}^m - (a b) Q_{l-2}^m,
+//! ```
+//!
+//! `Q_l^m = Pbar_l^m(z) / sin(theta)^m`: the recurrences of shlight-core's
+//! [`Legendre`] with the `sin(theta)` factor carried by `C_m, S_m`, so
+//! nothing divides by `sin(theta)` at the poles. The recurrence factors are
+//! [`Legendre`]'s own (f64, rounded to f32 literals).
+//!
+//! Why generated: a shader that loops over `l` and `m` to a run-time lmax
+//! keeps `Y` in a local array (or a recurrence table) indexed by loop
+//! variables, which CPU rasterisers such as Mesa's llvmpipe keep in memory,
+//! lane by lane; written out for a fixed lmax, every value stays in
+//! registers and every factor is a literal. The renderer builds one pipeline
+//! per lmax (0..=[`MAX_LMAX`]) on first use.
+
+use std::fmt::Write;
+
+use shlight_core::legendre::Legendre;
+
+use crate::MAX_LMAX;
+
+/// A WGSL float literal holding `x` rounded to f32 (shortest round trip).
+fn literal(x: f64) -> String {
+    format!("{:?}", x as f32)
+}
+
+/// The WGSL text of `sh_reconstruct` for `lmax` (clamped to [`MAX_LMAX`]).
+#[must_use]
+pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
+    let lmax = lmax.min(MAX_LMAX);
+    let legendre = Legendre::<f64>::new(lmax);
+    let mut s = String::new();
+    let mut line = |text: String| {
+        s.push_str("    ");
+        s.push_str(&text);
+        s.push('\n');
+    };
+    line(format!(
+        "// Generated for lmax {lmax} (crates/shlight-gpu/src/sh_expansion.rs)."
+    ));
+    line("let z = d.z;".into());
+    line(format!(
+        "let q0_0 = {};",
+        literal(0.5 / std::f64::consts::PI.sqrt())
+    ));
+    line("var sum = (factors[0][0] * q0_0) * light[0].rgb;".into());
+    // g_l = sqrt2 f_l, the weight of the m != 0 terms of band l.
+    for l in 1..=lmax {
+        line(format!(
+            "let g{l} = SH_SQRT2 * factors[{}][{}];",
+            l / 4,
+            l % 4
+        ));
+    }
+    for m in 0..=lmax {
+        if m > 0 {
+            // C_m + i S_m = (C_{m-1} + i S_{m-1}) (x + i y).
+            if m == 1 {
+                line("let c1 = d.x;".into());
+                line("let s1 = d.y;".into());
+            } else {
+                let p = m - 1;
+                line(format!("let c{m} = c{p} * d.x - s{p} * d.y;"));
+                line(format!("let s{m} = c{p} * d.y + s{p} * d.x;"));
+            }
+            line(format!(
+                "let q{m}_{m} = {} * q{p}_{p};",
+                literal(legendre.sectoral_factor(m)),
+                p = m - 1
+            ));
+        }
+        for l in m..=lmax {
+            if l == m + 1 {
+                line(format!(
+                    "let q{l}_{m} = {} * z * q{m}_{m};",
+                    literal(legendre.diagonal_factor(m))
+                ));
+            } else if l > m + 1 {
+                let [a, ab] = legendre.column_factors(m)[l - m - 2];
+                line(format!(
+                    "let q{l}_{m} = {} * z * q{}_{m} - {} * q{}_{m};",
+                    literal(a),
+                    l - 1,
+                    literal(ab),
+                    l - 2
+                ));
+            }
+            let centre = l * (l + 1);
+            if m == 0 {
+                if l > 0 {
+                    line(format!(
+                        "sum += (factors[{}][{}] * q{l}_0) * light[{centre}].rgb;",
+                        l / 4,
+                        l % 4
+                    ));
+                }
+            } else {
+                // Two scalars, then one multiply-add per colour channel
+                // for each of the pair's coefficients.
+                line(format!("let t{l}_{m} = g{l} * q{l}_{m};"));
+                line(format!(
+                    "sum += (t{l}_{m} * c{m}) * light[{}].rgb + (t{l}_{m} * s{m}) * light[{}].rgb;",
+                    centre + m,
+                    centre - m
+                ));
+            }
+        }
+    }
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// sum_l factors_l sum_m L_lm Y_lm(d) to lmax {lmax}, factors_l = factors[l / 4][l % 4]."
+    );
+    let _ = writeln!(
+        out,
+        "fn sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32> {{"
+    );
+    out.push_str(&s);
+    out.push_str("    return sum;\n}\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_coefficient_is_summed_once() {
+        for lmax in 0..=MAX_LMAX {
+            let text = sh_reconstruct_wgsl(lmax);
+            for i in 0..(lmax + 1) * (lmax + 1) {
+                assert_eq!(
+                    text.matches(&format!("light[{i}]")).count(),
+                    1,
+                    "lmax {lmax}: coefficient {i}\n{text}"
+                );
+            }
+            let beyond = (lmax + 1) * (lmax + 1);
+            assert!(!text.contains(&format!("light[{beyond}]")), "{text}");
+        }
+    }
+
+    #[test]
+    fn literals_round_trip_to_the_f32_value() {
+        for x in [0.282_094_791_773_878_14, -1.224_744_871_391_589, 3.0, 1e-9] {
+            let text = literal(x);
+            assert!(text.contains('.') || text.contains('e'), "{text}");
+            assert_eq!(text.parse::<f32>().unwrap(), x as f32);
+        }
+    }
+}
