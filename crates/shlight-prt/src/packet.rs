@@ -592,7 +592,8 @@ mod avx2 {
     ) {
         unsafe {
             let mut open = live;
-            let mut stack = [(0u32, 0u32, 0u32); STACK];
+            // Left uninitialised: every entry is written before it is read.
+            let mut stack = [const { std::mem::MaybeUninit::<(u32, u32, u32)>::uninit() }; STACK];
             let mut top = 0;
             let mut current = (tree.root.0, tree.root.1, live);
             loop {
@@ -610,8 +611,11 @@ mod avx2 {
                         let (a, b) = if FAR_FIRST { (1, 0) } else { (0, 1) };
                         if m[a] != 0 {
                             if m[b] != 0 {
-                                *stack.get_unchecked_mut(top) =
-                                    (node.child[b], node.count[b], m[b]);
+                                stack.get_unchecked_mut(top).write((
+                                    node.child[b],
+                                    node.count[b],
+                                    m[b],
+                                ));
                                 top += 1;
                             }
                             current = (node.child[a], node.count[a], m[a]);
@@ -627,7 +631,7 @@ mod avx2 {
                     return;
                 }
                 top -= 1;
-                current = *stack.get_unchecked(top);
+                current = stack.get_unchecked(top).assume_init();
             }
         }
     }
