@@ -95,44 +95,21 @@ fn single_closest(bencher: Bencher, name: &str) {
     });
 }
 
-/// Every 8th direction of the 1024-direction grid, with the vertices facing
-/// it in Morton order (the order `transfer::bake` casts them in) and their
-/// ray origins: about as many rays as [`rays`] gives, cast direction-major.
-fn direction_major(mesh: &Mesh) -> (Mesh, Vec<(Vec3, Vec<Vec3>)>) {
+/// Every 8th direction of the 1024-direction grid, with the rays baking
+/// casts along it (`transfer::cast_rays`): about as many rays as [`rays`]
+/// gives, cast direction-major.
+fn direction_major(mesh: &Mesh) -> Vec<(Vec3, Vec<Vec3>)> {
     let dirs: Vec<Vec3> = stratified_directions(1024, 0)
         .iter()
         .map(|d| d.as_vec3())
         .step_by(8)
         .collect();
-    // Sort the vertices along a Morton curve, as baking does.
-    let (lo, hi) = mesh.bounds();
-    let key = |p: Vec3| {
-        let q = ((p - lo) / (hi - lo).max(Vec3::splat(1e-30)) * 1023.0).as_uvec3();
-        (0..10).fold(0u64, |k, b| {
-            k | u64::from(q.x >> b & 1) << (3 * b)
-                | u64::from(q.y >> b & 1) << (3 * b + 1)
-                | u64::from(q.z >> b & 1) << (3 * b + 2)
-        })
-    };
-    let mut order: Vec<usize> = (0..mesh.vertex_count()).collect();
-    order.sort_by_key(|&v| key(mesh.positions[v]));
-    let eps = shlight_prt::transfer::OFFSET * (hi - lo).length();
-    let per_dir = dirs
-        .iter()
-        .map(|d| {
-            let origins = order
-                .iter()
-                .filter(|&&v| mesh.normals[v].dot(*d) > 0.0)
-                .map(|&v| mesh.positions[v] + eps * mesh.normals[v])
-                .collect();
-            (*d, origins)
-        })
-        .collect();
-    (mesh.clone(), per_dir)
+    shlight_prt::transfer::cast_rays(mesh, &dirs)
 }
 
 fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
-    let (m, per_dir) = direction_major(&mesh(name));
+    let m = mesh(name);
+    let per_dir = direction_major(&m);
     let bvh = PacketBvh::new(Bvh::new(&m.positions, &m.triangles));
     let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
     bencher.counter(ItemsCount::new(count)).bench(|| {

@@ -5,8 +5,9 @@
 //!
 //! # Main items
 //! - [`bvh::Bvh`]: binned-SAH hierarchy with a watertight ray/triangle test;
-//!   occlusion and closest-hit queries with barycentrics, for single rays
-//!   and for [`packet`]s of eight parallel rays (AVX2).
+//!   occlusion and closest-hit queries with barycentrics for single rays.
+//! - [`packet::PacketBvh`]: the same hierarchy traced by packets of eight
+//!   parallel rays with AVX2, what baking uses.
 //! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).

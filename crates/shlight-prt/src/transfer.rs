@@ -234,10 +234,11 @@ struct FrontHit {
 
 const CHUNK: usize = 64;
 
-/// Vertex indices sorted along a Morton (Z-order) curve through the mesh's
-/// bounding box, 10 bits per axis: neighbours in the list are neighbours in
-/// space, so consecutive vertices make coherent ray packets.
-fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
+/// Vertex indices sorted along a Morton (Z-order) curve through the
+/// bounding box `(lo, hi)`, 10 bits per axis: neighbours in the list are
+/// neighbours in space, so consecutive vertices make coherent ray packets.
+#[must_use]
+pub fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
     let scale = Vec3::splat(1023.0) / (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
     let spread = |x: u32| {
         let mut x = u64::from(x & 1023);
@@ -257,6 +258,28 @@ fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
         .collect();
     keyed.sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The rays [`bake`] casts along each of `dirs`: the direction, and the
+/// origins (`p + eps n`) of the vertices facing it (`n.d > 0`) in Morton
+/// order. For benchmarks and comparisons with other ray casters; `bake`
+/// makes the same rays as it goes.
+#[must_use]
+pub fn cast_rays(mesh: &Mesh, dirs: &[Vec3]) -> Vec<(Vec3, Vec<Vec3>)> {
+    let bounds = mesh.bounds();
+    let eps = OFFSET * (bounds.1 - bounds.0).length();
+    let order = morton_order(&mesh.positions, bounds);
+    dirs.iter()
+        .map(|d| {
+            let origins = order
+                .iter()
+                .map(|&v| (mesh.positions[v as usize], mesh.normals[v as usize]))
+                .filter(|(_, n)| n.dot(*d) > 0.0)
+                .map(|(p, n)| p + eps * n)
+                .collect();
+            (*d, origins)
+        })
+        .collect()
 }
 
 /// Bakes the transfer of every vertex of `mesh`.
