@@ -11,14 +11,16 @@
 // Pass 1 (`project_rows`): one workgroup per row computes the row's ring
 // sums (`ring_sums`, written out per lmax by crates/shlight-gpu/src/
 // ring_sums.rs and appended to this file with ROW_THREADS, RING_SLOTS,
-// LEGENDRE_COUNT and the workgroup memory it uses). Pass 2
+// RING_SCALARS, LEGENDRE_COUNT and the workgroup memory it uses). Pass 2
 // (`legendre_sums`): one workgroup per coefficient sums w times the ring
 // sum over the rows. The tables (psi per column, w per row) come from the
 // CPU in f64 rounded to f32; the CPU turns the result from the map's pole
 // to its frame (y-up) in f64, as `project_equirect` does.
 
 struct ProjectParams {
-    width: u32,
+    // Quads (4 texels) per row: rows are padded with zero texels to a
+    // multiple of 4.
+    quads: u32,
     height: u32,
     // First row of the rows now in `texels` (large maps go in chunks).
     row_offset: u32,
@@ -26,12 +28,13 @@ struct ProjectParams {
 }
 
 @group(0) @binding(0) var<uniform> params: ProjectParams;
-// This chunk's texels, row-major, packed RGB.
-@group(0) @binding(1) var<storage, read> texels: array<f32>;
-// Per column: cos psi, sin psi (psi the azimuth about the map's pole).
-@group(0) @binding(2) var<storage, read> columns: array<vec2<f32>>;
-// Ring sums: row j, slot k at j * RING_SLOTS + k (rgb, 0).
-@group(0) @binding(3) var<storage, read_write> rings: array<vec4<f32>>;
+// This chunk's texels, row-major, packed RGB: a quad of 4 texels in 3 vec4.
+@group(0) @binding(1) var<storage, read> texels: array<vec4<f32>>;
+// Per pair of columns: cos psi, sin psi of each (psi the azimuth about the
+// map's pole).
+@group(0) @binding(2) var<storage, read> columns: array<vec4<f32>>;
+// Ring sums: row j, slot k, channel c at j * RING_SCALARS + 3 k + c.
+@group(0) @binding(3) var<storage, read_write> rings: array<f32>;
 // Per row j: w_l^m(j) at j * LEGENDRE_COUNT + l (l + 1) / 2 + m.
 @group(0) @binding(4) var<storage, read> weights: array<f32>;
 // The coefficients about the map's pole (pass 2).
@@ -64,7 +67,8 @@ fn legendre_sums(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocat
     let p = centre / 2u + m;
     var sum = vec3<f32>(0.0);
     for (var j = t; j < params.height; j = j + REDUCE_THREADS) {
-        sum = sum + weights[j * LEGENDRE_COUNT + p] * rings[j * RING_SLOTS + slot].xyz;
+        let k = j * RING_SCALARS + 3u * slot;
+        sum = sum + weights[j * LEGENDRE_COUNT + p] * vec3<f32>(rings[k], rings[k + 1u], rings[k + 2u]);
     }
     reduce_scratch[t] = sum;
     workgroupBarrier();

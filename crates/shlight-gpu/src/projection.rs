@@ -11,9 +11,10 @@
 //!
 //! with the exact row solid angles `Omega_j` ([`equirect_row_solid_angle`])
 //! and texel-centre angles, in `f32` on the GPU. Pass 1 computes each row's
-//! ring sums (one workgroup of 64 per row, code written out per lmax by
-//! `ring_sums.rs`, a shared-memory tree), pass 2 the Legendre sums (one
-//! workgroup of 64 per coefficient). The tables are computed in `f64` on
+//! ring sums (one workgroup of 32 per row, code written out per lmax by
+//! `ring_sums.rs`, rows padded with zero texels to whole quads of 4), pass 2
+//! the Legendre sums (one workgroup of 64 per coefficient, a shared-memory
+//! tree). The tables are computed in `f64` on
 //! the CPU: `(cos psi, sin psi)` per column and `w_l^m(j)` per row, from
 //! shlight-core's [`Legendre`]. The CPU then turns the coefficients from
 //! the map's pole to its frame in `f64`
@@ -42,7 +43,7 @@ use crate::{GpuContext, GpuError};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct ProjectParams {
-    width: u32,
+    quads: u32,
     height: u32,
     row_offset: u32,
     pad: u32,
@@ -122,7 +123,9 @@ impl GpuProjector {
             )));
         }
         let limits = ctx.device.limits();
-        let row_bytes = (w * 12) as u64;
+        // Rows padded with zero texels to whole quads (4 texels, 3 vec4).
+        let padded = w.next_multiple_of(4);
+        let row_bytes = (padded * 12) as u64;
         let max_binding = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
@@ -141,7 +144,7 @@ impl GpuProjector {
         // Azimuth about the map's pole (z-up): psi = -phi, or +phi mirrored
         // (as shlight-core's ring transform).
         let sign = if o.mirror { 1.0 } else { -1.0 };
-        let columns: Vec<[f32; 2]> = (0..w)
+        let columns: Vec<[f32; 2]> = (0..padded)
             .map(|i| {
                 let psi = sign * 2.0 * PI * ((i as f64 + 0.5) / w as f64 - 0.5);
                 [psi.cos() as f32, psi.sin() as f32]
@@ -182,7 +185,7 @@ impl GpuProjector {
         });
         let rings = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ring sums"),
-            size: (h * slots * 16) as u64,
+            size: (h * 3 * slots * 4) as u64,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
@@ -238,17 +241,24 @@ impl GpuProjector {
             while start < h {
                 let n = chunk_rows.min(h - start);
                 let p = ProjectParams {
-                    width: w as u32,
+                    quads: (padded / 4) as u32,
                     height: h as u32,
                     row_offset: start as u32,
                     pad: 0,
                 };
                 ctx.queue.write_buffer(&params, 0, bytemuck::bytes_of(&p));
-                ctx.queue.write_buffer(
-                    &texels,
-                    0,
-                    bytemuck::cast_slice(&map.pixels[start * w..(start + n) * w]),
-                );
+                let chunk = &map.pixels[start * w..(start + n) * w];
+                if padded == w {
+                    ctx.queue
+                        .write_buffer(&texels, 0, bytemuck::cast_slice(chunk));
+                } else {
+                    let mut rows = vec![[0.0f32; 3]; n * padded];
+                    for (to, from) in rows.chunks_mut(padded).zip(chunk.chunks(w)) {
+                        to[..w].copy_from_slice(from);
+                    }
+                    ctx.queue
+                        .write_buffer(&texels, 0, bytemuck::cast_slice(&rows));
+                }
                 let mut encoder = device.create_command_encoder(&Default::default());
                 {
                     let mut pass = encoder.begin_compute_pass(&Default::default());

@@ -18,12 +18,25 @@
 //! about the map's pole: the ring transform of shlight-core's
 //! `project_equirect`.
 //!
-//! A workgroup of [`ROW_THREADS`] invocations sums one row: invocation `t`
-//! takes texels `t, t + 64, ...` into `2 lmax + 1` accumulators (registers:
-//! every index is a constant), then the workgroup adds the 64 partial sums
-//! of each of the `3 (2 lmax + 1)` scalars by a tree in workgroup memory
-//! (6 rounds, one barrier each) and invocation 0 writes the row's slots.
+//! A workgroup of [`ROW_THREADS`] (32) invocations sums one row, in quads
+//! of four texels (three `vec4` loads of packed RGB, two `vec4` of
+//! azimuths): invocation `t` takes quads `t, t + 32, ...` into `2 lmax + 1`
+//! accumulators (registers: every index is a constant). The workgroup then
+//! writes its `32 x 3 (2 lmax + 1)` partial sums to workgroup memory
+//! (invocation-major: `3 (2 lmax + 1)` is odd, so both this write and the
+//! read below touch distinct shared-memory banks on a GPU), and invocation
+//! `t` adds the 32 partial sums of scalars `t, t + 32, ...` below
+//! `3 (2 lmax + 1)` and writes them: one barrier.
 //!
+//! Measured on Mesa's lavapipe (README, GPU speed), where every load from a
+//! storage buffer or workgroup memory is a separate bounds-checked access
+//! per lane and component: the texel loads alone (lmax 0) take about half
+//! the pass at lmax 8; this reduction costs a third of the accesses of a
+//! tree and one barrier instead of six; 32 invocations per row rather than
+//! 64 halve it again (pass 1 at lmax 8: about 125 ms with 64, 100 ms with
+//! 32). On a GPU, 32 per row still gives 32,768 invocations for a 2048-row
+//! map's 1024 rows, each with five independent loads per quad in flight.
+
 //! Why generated: written with loops over `m` to a run-time lmax, the
 //! accumulators would be a function-local array indexed by a loop variable,
 //! which Mesa's llvmpipe keeps in memory lane by lane; written out for a
@@ -36,8 +49,9 @@ use shlight_core::legendre::legendre_count;
 use crate::MAX_LMAX;
 use crate::sh_expansion::azimuth_power;
 
-/// Invocations per row in the first pass (the workgroup size).
-pub(crate) const ROW_THREADS: usize = 64;
+/// Invocations per row in the first pass (the workgroup size; a GPU's
+/// 32-wide warp, and few partial sums for llvmpipe to reduce).
+pub(crate) const ROW_THREADS: usize = 32;
 
 /// Ring-sum slots per row for `lmax`: `C_0`, then `C_m`, `S_m` for each `m >= 1`.
 #[must_use]
@@ -82,14 +96,20 @@ pub(crate) fn ring_sums_wgsl(lmax: usize) -> String {
         "const LEGENDRE_COUNT: u32 = {}u;",
         legendre_count(lmax)
     ));
-    w("// Partial sums of the row: scalar q = 3 slot + channel of invocation t at q * ROW_THREADS + t.".into());
+    w("// Scalars per row, 3 RING_SLOTS (odd: the scratch's two access patterns".into());
+    w("// spread over a GPU's shared-memory banks).".into());
+    w(format!("const RING_SCALARS: u32 = {}u;", 3 * slots));
+    w("// Partial sums of the row: scalar 3 slot + channel of invocation t at t * RING_SCALARS + scalar.".into());
     w(format!(
         "var<workgroup> ring_scratch: array<f32, {}>;",
         3 * slots * n
     ));
     w(String::new());
-    w("// Adds the ring sums of map row `row` (row `local_row` of `texels`) into".into());
-    w("// `rings[row * RING_SLOTS + slot]`; invocation `t` of the row's workgroup.".into());
+    w("// Writes the ring sums of map row `row` (row `local_row` of `texels`) to".into());
+    w(
+        "// `rings[row * RING_SCALARS + 3 slot + channel]`; invocation `t` of the row's workgroup."
+            .into(),
+    );
     w("fn ring_sums(local_row: u32, row: u32, t: u32) {".into());
     let mut body = String::new();
     let mut line = |indent: usize, text: String| {
@@ -100,66 +120,61 @@ pub(crate) fn ring_sums_wgsl(lmax: usize) -> String {
     }
     line(
         1,
-        "for (var x = t; x < params.width; x = x + ROW_THREADS) {".into(),
+        "for (var q = t; q < params.quads; q = q + ROW_THREADS) {".into(),
     );
-    line(2, "let k = 3u * (local_row * params.width + x);".into());
-    line(
-        2,
-        "let f = vec3<f32>(texels[k], texels[k + 1u], texels[k + 2u]);".into(),
-    );
-    line(2, format!("r{} = r{0} + f;", ring_slot(0, false)));
+    line(2, "let k = 3u * (local_row * params.quads + q);".into());
+    line(2, "let v0 = texels[k];".into());
+    line(2, "let v1 = texels[k + 1u];".into());
+    line(2, "let v2 = texels[k + 2u];".into());
     if lmax > 0 {
-        line(2, "let col = columns[x];".into());
+        line(2, "let ab = columns[2u * q];".into());
+        line(2, "let cd = columns[2u * q + 1u];".into());
     }
-    for m in 1..=lmax {
-        for text in azimuth_power(m, "col.x", "col.y") {
-            line(2, text);
+    // The quad's four texels (RGB packed in three vec4) and azimuths.
+    let quad = [
+        ("v0.xyz", "ab.x", "ab.y"),
+        ("vec3<f32>(v0.w, v1.xy)", "ab.z", "ab.w"),
+        ("vec3<f32>(v1.zw, v2.x)", "cd.x", "cd.y"),
+        ("v2.yzw", "cd.z", "cd.w"),
+    ];
+    for (f, x, y) in quad {
+        line(2, "{".into());
+        line(3, format!("let f = {f};"));
+        line(3, format!("r{} = r{0} + f;", ring_slot(0, false)));
+        for m in 1..=lmax {
+            for text in azimuth_power(m, x, y) {
+                line(3, text);
+            }
+            let (c, s) = (ring_slot(m, false), ring_slot(m, true));
+            line(3, format!("r{c} = r{c} + f * c{m};"));
+            line(3, format!("r{s} = r{s} + f * s{m};"));
         }
-        let (c, s) = (ring_slot(m, false), ring_slot(m, true));
-        line(2, format!("r{c} = r{c} + f * c{m};"));
-        line(2, format!("r{s} = r{s} + f * s{m};"));
+        line(2, "}".into());
     }
     line(1, "}".into());
-    let scalar = |slot: usize, ch: usize| (3 * slot + ch) * n;
+    // Scalar `3 slot + channel` of invocation t at t * SCALARS + scalar.
     for slot in 0..slots {
         for (ch, name) in ["x", "y", "z"].iter().enumerate() {
             line(
                 1,
-                format!("ring_scratch[{}u + t] = r{slot}.{name};", scalar(slot, ch)),
+                format!(
+                    "ring_scratch[t * RING_SCALARS + {}u] = r{slot}.{name};",
+                    3 * slot + ch
+                ),
             );
         }
     }
     line(1, "workgroupBarrier();".into());
+    // More scalars than invocations from lmax 5 on: some take two.
     line(
         1,
-        "for (var s = ROW_THREADS / 2u; s > 0u; s = s >> 1u) {".into(),
+        "for (var q = t; q < RING_SCALARS; q = q + ROW_THREADS) {".into(),
     );
-    line(2, "if t < s {".into());
-    for q in 0..3 * slots {
-        let base = q * n;
-        line(
-            3,
-            format!(
-                "ring_scratch[{base}u + t] = ring_scratch[{base}u + t] + ring_scratch[{base}u + t + s];"
-            ),
-        );
-    }
+    line(2, "var sum = 0.0;".into());
+    line(2, "for (var i = 0u; i < ROW_THREADS; i = i + 1u) {".into());
+    line(3, "sum = sum + ring_scratch[i * RING_SCALARS + q];".into());
     line(2, "}".into());
-    line(2, "workgroupBarrier();".into());
-    line(1, "}".into());
-    line(1, "if t == 0u {".into());
-    line(2, "let base = row * RING_SLOTS;".into());
-    for slot in 0..slots {
-        line(
-            2,
-            format!(
-                "rings[base + {slot}u] = vec4<f32>(ring_scratch[{}u], ring_scratch[{}u], ring_scratch[{}u], 0.0);",
-                scalar(slot, 0),
-                scalar(slot, 1),
-                scalar(slot, 2)
-            ),
-        );
-    }
+    line(2, "rings[row * RING_SCALARS + q] = sum;".into());
     line(1, "}".into());
     out.push_str(&body);
     out.push_str("}\n");
@@ -190,24 +205,31 @@ mod tests {
     }
 
     #[test]
-    fn every_slot_is_accumulated_once_and_written_once() {
+    fn every_slot_sums_each_texel_of_a_quad_once_and_is_reduced_once() {
         for lmax in 0..=MAX_LMAX {
             let text = ring_sums_wgsl(lmax);
             let slots = ring_slots(lmax);
             for slot in 0..slots {
                 assert_eq!(
                     text.matches(&format!("r{slot} = r{slot} + f")).count(),
-                    1,
-                    "lmax {lmax}: slot {slot}\n{text}"
-                );
-                assert_eq!(
-                    text.matches(&format!("rings[base + {slot}u]")).count(),
-                    1,
+                    4,
                     "lmax {lmax}: slot {slot}\n{text}"
                 );
             }
+            for q in 0..3 * slots {
+                assert_eq!(
+                    text.matches(&format!("ring_scratch[t * RING_SCALARS + {q}u]"))
+                        .count(),
+                    1,
+                    "lmax {lmax}: scalar {q}\n{text}"
+                );
+            }
+            let beyond = 3 * slots;
             assert!(!text.contains(&format!("r{slots} ")), "{text}");
-            assert!(!text.contains(&format!("rings[base + {slots}u]")), "{text}");
+            assert!(
+                !text.contains(&format!("RING_SCALARS + {beyond}u]")),
+                "{text}"
+            );
             assert!(!text.contains(&format!("let c{} ", lmax + 1)), "{text}");
         }
     }
