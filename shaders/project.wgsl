@@ -1,89 +1,74 @@
 // Projection of an equirect map to SH by exact texel-solid-angle quadrature
-// (shaders/README.md), the GPU twin of shlight-core's `project_equirect`:
+// (shaders/README.md), the GPU twin of shlight-core's `project_equirect`,
+// by the same ring transform, about the map's own pole (z-up):
 //
-//   L_i = sum_rows Omega_j sum_x f(x, j) Y_i(d(x, j)),
+//   C_m(j) + i S_m(j) = sum_x f(x, j) e^{i m psi_x},
+//   L_l^0 = sum_j w_l^0(j) C_0(j),
+//   L_l^m = sum_j w_l^m(j) C_m(j),  L_l^-m = sum_j w_l^m(j) S_m(j)   (m > 0),
+//   w_l^m(j) = Omega_j Pbar_l^m(cos theta_j) (times sqrt2 for m > 0),
 //   Omega_j = (2 pi / W)(cos(j pi / H) - cos((j + 1) pi / H)).
 //
-// Pass 1 (`project_rows`): one workgroup per row; each invocation sums
-// f Y_i over every 64th texel of the row, the workgroup reduces the 64
-// partial sums per coefficient in shared memory, and writes Omega_j times
-// the row sum. Pass 2 (`reduce_rows`): one workgroup per coefficient sums
-// the rows. The per-row (cos theta, sin theta, Omega) and per-column
-// (cos phi, sin phi) tables come from the CPU in f64 rounded to f32.
+// Pass 1 (`project_rows`): one workgroup per row computes the row's ring
+// sums (`ring_sums`, written out per lmax by crates/shlight-gpu/src/
+// ring_sums.rs and appended to this file with ROW_THREADS, RING_SLOTS,
+// RING_SCALARS, LEGENDRE_COUNT and the workgroup memory it uses). Pass 2
+// (`legendre_sums`): one workgroup per coefficient sums w times the ring
+// sum over the rows. The tables (psi per column, w per row) come from the
+// CPU in f64 rounded to f32; the CPU turns the result from the map's pole
+// to its frame (y-up) in f64, as `project_equirect` does.
 
 struct ProjectParams {
-    // World from the map's own y-up frame (frame and mirror).
-    world_from_map: mat4x4<f32>,
-    width: u32,
+    // Quads (4 texels) per row: rows are padded with zero texels to a
+    // multiple of 4.
+    quads: u32,
     height: u32,
     // First row of the rows now in `texels` (large maps go in chunks).
     row_offset: u32,
-    lmax: u32,
+    pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: ProjectParams;
-// This chunk's texels, row-major, packed RGB.
-@group(0) @binding(1) var<storage, read> texels: array<f32>;
-// Per row of the whole map: cos theta, sin theta, Omega, 0.
-@group(0) @binding(2) var<storage, read> rows: array<vec4<f32>>;
-// Per column: cos phi, sin phi.
-@group(0) @binding(3) var<storage, read> columns: array<vec2<f32>>;
-// Row sums, row-major: row j, coefficient i at j * (lmax+1)^2 + i.
-@group(0) @binding(4) var<storage, read_write> partials: array<vec4<f32>>;
-// The coefficients (pass 2).
+// This chunk's texels, row-major, packed RGB: a quad of 4 texels in 3 vec4.
+@group(0) @binding(1) var<storage, read> texels: array<vec4<f32>>;
+// Per pair of columns: cos psi, sin psi of each (psi the azimuth about the
+// map's pole).
+@group(0) @binding(2) var<storage, read> columns: array<vec4<f32>>;
+// Ring sums: row j, slot k, channel c at j * RING_SCALARS + 3 k + c.
+@group(0) @binding(3) var<storage, read_write> rings: array<f32>;
+// Per row j: w_l^m(j) at j * LEGENDRE_COUNT + l (l + 1) / 2 + m.
+@group(0) @binding(4) var<storage, read> weights: array<f32>;
+// The coefficients about the map's pole (pass 2).
 @group(0) @binding(5) var<storage, read_write> result: array<vec4<f32>>;
 
-const ROW_THREADS: u32 = 64u;
-const REDUCE_THREADS: u32 = 256u;
+const REDUCE_THREADS: u32 = 64u;
 
-var<workgroup> row_scratch: array<vec3<f32>, 64>;
-var<workgroup> reduce_scratch: array<vec3<f32>, 256>;
+var<workgroup> reduce_scratch: array<vec3<f32>, 64>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(ROW_THREADS)
 fn project_rows(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) t: u32) {
-    let local_row = group.x;
-    let row = params.row_offset + local_row;
-    let count = sh_count(params.lmax);
-    let ring = rows[row];
-    var acc: array<vec3<f32>, 81>;
-    for (var i = 0u; i < count; i = i + 1u) {
-        acc[i] = vec3<f32>(0.0);
-    }
-    var y: array<f32, 81>;
-    for (var x = t; x < params.width; x = x + ROW_THREADS) {
-        let col = columns[x];
-        let d_map = vec3<f32>(ring.y * col.x, ring.x, ring.y * col.y);
-        let d = (params.world_from_map * vec4<f32>(d_map, 0.0)).xyz;
-        sh_basis(d, params.lmax, &y);
-        let k = 3u * (local_row * params.width + x);
-        let f = vec3<f32>(texels[k], texels[k + 1u], texels[k + 2u]);
-        for (var i = 0u; i < count; i = i + 1u) {
-            acc[i] = acc[i] + f * y[i];
-        }
-    }
-    for (var i = 0u; i < count; i = i + 1u) {
-        row_scratch[t] = acc[i];
-        workgroupBarrier();
-        for (var s = ROW_THREADS / 2u; s > 0u; s = s >> 1u) {
-            if t < s {
-                row_scratch[t] = row_scratch[t] + row_scratch[t + s];
-            }
-            workgroupBarrier();
-        }
-        if t == 0u {
-            partials[row * count + i] = vec4<f32>(ring.z * row_scratch[0], 0.0);
-        }
-        workgroupBarrier();
-    }
+    ring_sums(group.x, params.row_offset + group.x, t);
 }
 
-@compute @workgroup_size(256)
-fn reduce_rows(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) t: u32) {
+@compute @workgroup_size(REDUCE_THREADS)
+fn legendre_sums(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) t: u32) {
     let i = group.x;
-    let count = sh_count(params.lmax);
+    let l = sh_band(i);
+    let centre = l * (l + 1u);
+    // |m| and the ring slot: C_0, C_m at 2m - 1, S_m at 2m.
+    var m = 0u;
+    var slot = 0u;
+    if i > centre {
+        m = i - centre;
+        slot = 2u * m - 1u;
+    } else if i < centre {
+        m = centre - i;
+        slot = 2u * m;
+    }
+    let p = centre / 2u + m;
     var sum = vec3<f32>(0.0);
     for (var j = t; j < params.height; j = j + REDUCE_THREADS) {
-        sum = sum + partials[j * count + i].xyz;
+        let k = j * RING_SCALARS + 3u * slot;
+        sum = sum + weights[j * LEGENDRE_COUNT + p] * vec3<f32>(rings[k], rings[k + 1u], rings[k + 2u]);
     }
     reduce_scratch[t] = sum;
     workgroupBarrier();

@@ -1,4 +1,8 @@
-// Real orthonormal spherical harmonics on the GPU (shaders/README.md).
+// Real orthonormal spherical harmonics on the GPU (shaders/README.md): the
+// constants and index helpers every module shares. The basis itself is
+// written out per lmax in Rust (crates/shlight-gpu/src/sh_expansion.rs:
+// `sh_reconstruct`; the projection needs only Pbar_l^m per row, from
+// shlight-core on the CPU, and e^{i m psi} per texel, ring_sums.rs).
 //
 // shlight's basis (docs/conventions.md): Condon-Shortley phase included,
 // flat index i = l(l+1) + m, polar axis world +z. With z = cos(theta) and
@@ -16,6 +20,9 @@
 //   a = sqrt((4l^2-1)/(l^2-m^2)),  b = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)).
 //
 // Any lmax up to SH_MAX_LMAX; nothing is hard-wired to 9 coefficients.
+// (A loop to a run-time lmax filling a local array<f32, 81> is what the
+// first version did here; llvmpipe keeps such an array in memory lane by
+// lane: README, GPU speed.)
 
 // Highest degree the shaders evaluate.
 const SH_MAX_LMAX: u32 = 8u;
@@ -27,48 +34,6 @@ const SH_SQRT2: f32 = 1.41421356237310;
 // Coefficient count (lmax + 1)^2.
 fn sh_count(lmax: u32) -> u32 {
     return (lmax + 1u) * (lmax + 1u);
-}
-
-// Writes Y_i(d), i < sh_count(lmax), into y, for a unit direction d.
-fn sh_basis(d: vec3<f32>, lmax_in: u32, y: ptr<function, array<f32, 81>>) {
-    let lmax = min(lmax_in, SH_MAX_LMAX);
-    let z = d.z;
-    var c = 1.0;
-    var s = 0.0;
-    var qmm = 0.282094791773878;
-    for (var m = 0u; m <= lmax; m = m + 1u) {
-        let mf = f32(m);
-        if m > 0u {
-            qmm = -sqrt((2.0 * mf + 1.0) / (2.0 * mf)) * qmm;
-            let c2 = c * d.x - s * d.y;
-            s = c * d.y + s * d.x;
-            c = c2;
-        }
-        var q_prev2 = 0.0;
-        var q_prev = qmm;
-        for (var l = m; l <= lmax; l = l + 1u) {
-            let lf = f32(l);
-            var q = qmm;
-            if l == m + 1u {
-                q = sqrt(2.0 * mf + 3.0) * z * qmm;
-            } else if l > m + 1u {
-                let a = sqrt((4.0 * lf * lf - 1.0) / (lf * lf - mf * mf));
-                let b = sqrt(((lf - 1.0) * (lf - 1.0) - mf * mf) / (4.0 * (lf - 1.0) * (lf - 1.0) - 1.0));
-                q = a * (z * q_prev - b * q_prev2);
-            }
-            if l > m {
-                q_prev2 = q_prev;
-                q_prev = q;
-            }
-            let centre = l * (l + 1u);
-            if m == 0u {
-                (*y)[centre] = q;
-            } else {
-                (*y)[centre + m] = SH_SQRT2 * q * c;
-                (*y)[centre - m] = SH_SQRT2 * q * s;
-            }
-        }
-    }
 }
 
 // Band of coefficient index i: the l with l^2 <= i < (l+1)^2.

@@ -149,8 +149,12 @@ pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -
     to_frame(zup, o.frame)
 }
 
-/// Coefficients computed about the map's pole (z-up) turned into `frame`.
-fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {
+/// Coefficients computed about the map's pole (z-up) turned into `frame`:
+/// unchanged for z-up, a quarter turn about X (`Rx(-90°)`,
+/// [`crate::quarter_turn`]) for y-up. The last step of [`project_equirect`],
+/// public for other routes to the same ring sums (the GPU's).
+#[must_use]
+pub fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {
     match frame {
         Frame::ZUp => zup,
         // z-up -> y-up is Rx(-90°) (`Frame::rotation_to`).

@@ -18,7 +18,8 @@
 //!   read back to the CPU (`Offscreen::render`), so the read-back's share
 //!   is the difference;
 //! - `project_gpu` / `project_cpu`: a 2048x1024 equirect map to lmax 8
-//!   (GPU: upload, both passes and read-back; CPU: shlight-core's
+//!   (GPU: tables, upload, both passes and read-back, also at lmax 0 and 2,
+//!   lmax 0 being the floor of texel loads; CPU: shlight-core's
 //!   `project_equirect`, both cores).
 //!
 //! Run: `cargo bench -p shlight-gpu --bench gpu` (or name one, e.g.
@@ -164,8 +165,8 @@ fn map() -> Vec<[f32; 3]> {
         .collect()
 }
 
-#[divan::bench(sample_count = 10, sample_size = 1)]
-fn project_gpu(bencher: divan::Bencher) {
+#[divan::bench(args = [0, 2, 8], sample_count = 10, sample_size = 1)]
+fn project_gpu(bencher: divan::Bencher, lmax: usize) {
     let Some(ctx) = context() else { return };
     let pixels = map();
     let view = EquirectView {
@@ -176,7 +177,7 @@ fn project_gpu(bencher: divan::Bencher) {
     let projector = GpuProjector::new(ctx);
     bencher.bench_local(|| {
         projector
-            .project(ctx, view, 8, MapOrientation::default())
+            .project(ctx, view, lmax, MapOrientation::default())
             .unwrap()
     });
 }

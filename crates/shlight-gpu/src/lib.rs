@@ -22,6 +22,7 @@ mod headless;
 mod projection;
 mod readback;
 mod renderer;
+mod ring_sums;
 mod sh_expansion;
 pub mod shaders;
 mod shading;

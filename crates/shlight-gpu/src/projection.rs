@@ -1,22 +1,40 @@
 //! Projection of equirect maps to SH on the GPU (`shaders/project.wgsl`).
 //!
-//! The same quadrature as shlight-core's [`shlight_core::projection::project_equirect`]:
-//! `L_i = sum_j Omega_j sum_x f(x, j) Y_i(d(x, j))` with the exact row solid
-//! angles `Omega_j` ([`equirect_row_solid_angle`]) and texel-centre
-//! directions, in `f32` on the GPU: pass 1 sums each row (one workgroup of 64
-//! per row, shared-memory tree reduction), pass 2 sums the rows (one
-//! workgroup of 256 per coefficient). The row and column tables (`cos θ`,
-//! `sin θ`, `Ω` per row; `cos φ`, `sin φ` per column) are computed in `f64`
-//! on the CPU. Maps whose texels exceed one storage binding are sent in
-//! chunks of rows.
+//! The same quadrature as shlight-core's [`shlight_core::projection::project_equirect`],
+//! by the same ring transform about the map's pole:
+//!
+//! ```text
+//! L_l^m = sum_j w_l^m(j) C_m(j),  L_l^-m = sum_j w_l^m(j) S_m(j),
+//! C_m(j) + i S_m(j) = sum_x f(x, j) e^{i m psi_x},
+//! w_l^m(j) = Omega_j Pbar_l^m(cos theta_j)  (times sqrt2 for m > 0)
+//! ```
+//!
+//! with the exact row solid angles `Omega_j` ([`equirect_row_solid_angle`])
+//! and texel-centre angles, in `f32` on the GPU. Pass 1 computes each row's
+//! ring sums (one workgroup of 32 per row, code written out per lmax by
+//! `ring_sums.rs`, rows padded with zero texels to whole quads of 4), pass 2
+//! the Legendre sums (one workgroup of 64 per coefficient, a shared-memory
+//! tree). The tables are computed in `f64` on
+//! the CPU: `(cos psi, sin psi)` per column and `w_l^m(j)` per row, from
+//! shlight-core's [`Legendre`]. The CPU then turns the coefficients from
+//! the map's pole to its frame in `f64`
+//! ([`shlight_core::projection::to_frame`]). Maps whose texels exceed one
+//! storage binding are sent in chunks of rows.
+//!
+//! Per texel this is `2 lmax + 1` multiply-adds per channel and the powers
+//! of `e^{i psi}`, against `(lmax + 1)^2` basis values and multiply-adds for
+//! a per-texel basis; no basis is evaluated per texel at all.
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, SQRT_2};
+use std::sync::OnceLock;
 
-use glam::{DMat3, DVec3, Mat4};
+use glam::DVec3;
 use shlight_core::ShCoeffs;
-use shlight_core::projection::{EquirectView, MapOrientation, equirect_row_solid_angle};
+use shlight_core::legendre::{Legendre, legendre_count, legendre_index};
+use shlight_core::projection::{EquirectView, MapOrientation, equirect_row_solid_angle, to_frame};
 use wgpu::util::DeviceExt;
 
+use crate::ring_sums::ring_slots;
 use crate::shaders::{self, PROJECT_MODULE};
 use crate::shading::MAX_LMAX;
 use crate::{GpuContext, GpuError};
@@ -25,26 +43,29 @@ use crate::{GpuContext, GpuError};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct ProjectParams {
-    world_from_map: [[f32; 4]; 4],
-    width: u32,
+    quads: u32,
     height: u32,
     row_offset: u32,
-    lmax: u32,
+    pad: u32,
 }
 
-/// The two compute pipelines of the projection.
+/// The two compute pipelines of the projection at one lmax.
 #[derive(Debug)]
-pub struct GpuProjector {
+struct Pipelines {
     rows: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
 }
 
-impl GpuProjector {
-    /// Compiles the pipelines.
-    #[must_use]
-    pub fn new(ctx: &GpuContext) -> Self {
-        // The projection has no sh_reconstruct: its lmax is a run-time parameter.
-        let module = shaders::create(&ctx.device, PROJECT_MODULE, 0);
+/// The projection's compute pipelines, one pair per lmax (0..=[`MAX_LMAX`]),
+/// each built on first use.
+#[derive(Debug, Default)]
+pub struct GpuProjector {
+    pipelines: [OnceLock<Pipelines>; MAX_LMAX + 1],
+}
+
+impl Pipelines {
+    fn new(ctx: &GpuContext, lmax: usize) -> Self {
+        let module = shaders::create(&ctx.device, PROJECT_MODULE, lmax);
         let pipeline = |entry: &str| {
             ctx.device
                 .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -52,14 +73,27 @@ impl GpuProjector {
                     layout: None,
                     module: &module,
                     entry_point: Some(entry),
-                    compilation_options: Default::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        // Every workgroup variable is written before it is read.
+                        zero_initialize_workgroup_memory: false,
+                        ..Default::default()
+                    },
                     cache: None,
                 })
         };
         Self {
             rows: pipeline("project_rows"),
-            reduce: pipeline("reduce_rows"),
+            reduce: pipeline("legendre_sums"),
         }
+    }
+}
+
+impl GpuProjector {
+    /// A projector; each lmax's pipelines are compiled by its first
+    /// projection (`ctx` is the context every projection will use).
+    #[must_use]
+    pub fn new(_ctx: &GpuContext) -> Self {
+        Self::default()
     }
 
     /// Radiance coefficients to `lmax` of an equirect map read in `o`.
@@ -89,7 +123,9 @@ impl GpuProjector {
             )));
         }
         let limits = ctx.device.limits();
-        let row_bytes = (w * 12) as u64;
+        // Rows padded with zero texels to whole quads (4 texels, 3 vec4).
+        let padded = w.next_multiple_of(4);
+        let row_bytes = (padded * 12) as u64;
         let max_binding = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
@@ -102,20 +138,36 @@ impl GpuProjector {
             )));
         }
         let count = (lmax + 1) * (lmax + 1);
+        let slots = ring_slots(lmax);
+        let pipelines = self.pipelines[lmax].get_or_init(|| Pipelines::new(ctx, lmax));
         let device = &ctx.device;
-        let rows: Vec<[f32; 4]> = (0..h)
-            .map(|j| {
-                let theta = PI * (j as f64 + 0.5) / h as f64;
-                let omega = equirect_row_solid_angle(j, w, h);
-                [theta.cos() as f32, theta.sin() as f32, omega as f32, 0.0]
-            })
-            .collect();
-        let columns: Vec<[f32; 2]> = (0..w)
+        // Azimuth about the map's pole (z-up): psi = -phi, or +phi mirrored
+        // (as shlight-core's ring transform).
+        let sign = if o.mirror { 1.0 } else { -1.0 };
+        let columns: Vec<[f32; 2]> = (0..padded)
             .map(|i| {
-                let phi = 2.0 * PI * ((i as f64 + 0.5) / w as f64 - 0.5);
-                [phi.cos() as f32, phi.sin() as f32]
+                let psi = sign * 2.0 * PI * ((i as f64 + 0.5) / w as f64 - 0.5);
+                [psi.cos() as f32, psi.sin() as f32]
             })
             .collect();
+        let legendre = Legendre::<f64>::new(lmax);
+        let per_row = legendre_count(lmax);
+        let mut pbar = vec![0.0; per_row];
+        let mut weights = Vec::with_capacity(h * per_row);
+        for j in 0..h {
+            let theta = PI * (j as f64 + 0.5) / h as f64;
+            legendre.eval(theta.cos(), &mut pbar);
+            let omega = equirect_row_solid_angle(j, w, h);
+            let row = weights.len();
+            weights.resize(row + per_row, 0.0);
+            for l in 0..=lmax {
+                for m in 0..=l {
+                    let p = legendre_index(l, m);
+                    let scale = if m == 0 { omega } else { SQRT_2 * omega };
+                    weights[row + p] = (scale * pbar[p]) as f32;
+                }
+            }
+        }
         let storage = |label, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -123,17 +175,17 @@ impl GpuProjector {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
-        let rows_buffer = storage("rows", bytemuck::cast_slice(&rows));
         let columns_buffer = storage("columns", bytemuck::cast_slice(&columns));
+        let weights_buffer = storage("legendre weights", bytemuck::cast_slice(&weights));
         let texels = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("texels"),
             size: chunk_rows as u64 * row_bytes,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let partials = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("row sums"),
-            size: (h * count * 16) as u64,
+        let rings = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ring sums"),
+            size: (h * 3 * slots * 4) as u64,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
@@ -155,54 +207,66 @@ impl GpuProjector {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let world_from_map = world_from_map(o);
         fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
                 binding,
                 resource: buffer.as_entire_binding(),
             }
         }
+        // At lmax 0 the first pass reads no azimuths, so its layout (derived
+        // from the shader) has no binding 2.
+        let rows_entries = [
+            entry(0, &params),
+            entry(1, &texels),
+            entry(3, &rings),
+            entry(2, &columns_buffer),
+        ];
         let rows_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("project rows"),
-            layout: &self.rows.get_bind_group_layout(0),
-            entries: &[
-                entry(0, &params),
-                entry(1, &texels),
-                entry(2, &rows_buffer),
-                entry(3, &columns_buffer),
-                entry(4, &partials),
-            ],
+            layout: &pipelines.rows.get_bind_group_layout(0),
+            entries: &rows_entries[..if lmax == 0 { 3 } else { 4 }],
         });
         let reduce_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reduce rows"),
-            layout: &self.reduce.get_bind_group_layout(0),
-            entries: &[entry(0, &params), entry(4, &partials), entry(5, &result)],
+            label: Some("legendre sums"),
+            layout: &pipelines.reduce.get_bind_group_layout(0),
+            entries: &[
+                entry(0, &params),
+                entry(3, &rings),
+                entry(4, &weights_buffer),
+                entry(5, &result),
+            ],
         });
         ctx.checked(|| {
             let mut start = 0;
             while start < h {
                 let n = chunk_rows.min(h - start);
                 let p = ProjectParams {
-                    world_from_map,
-                    width: w as u32,
+                    quads: (padded / 4) as u32,
                     height: h as u32,
                     row_offset: start as u32,
-                    lmax: lmax as u32,
+                    pad: 0,
                 };
                 ctx.queue.write_buffer(&params, 0, bytemuck::bytes_of(&p));
-                ctx.queue.write_buffer(
-                    &texels,
-                    0,
-                    bytemuck::cast_slice(&map.pixels[start * w..(start + n) * w]),
-                );
+                let chunk = &map.pixels[start * w..(start + n) * w];
+                if padded == w {
+                    ctx.queue
+                        .write_buffer(&texels, 0, bytemuck::cast_slice(chunk));
+                } else {
+                    let mut rows = vec![[0.0f32; 3]; n * padded];
+                    for (to, from) in rows.chunks_mut(padded).zip(chunk.chunks(w)) {
+                        to[..w].copy_from_slice(from);
+                    }
+                    ctx.queue
+                        .write_buffer(&texels, 0, bytemuck::cast_slice(&rows));
+                }
                 let mut encoder = device.create_command_encoder(&Default::default());
                 {
                     let mut pass = encoder.begin_compute_pass(&Default::default());
-                    pass.set_pipeline(&self.rows);
+                    pass.set_pipeline(&pipelines.rows);
                     pass.set_bind_group(0, &rows_bind, &[]);
                     pass.dispatch_workgroups(n as u32, 1, 1);
                     if start + n == h {
-                        pass.set_pipeline(&self.reduce);
+                        pass.set_pipeline(&pipelines.reduce);
                         pass.set_bind_group(0, &reduce_bind, &[]);
                         pass.dispatch_workgroups(count as u32, 1, 1);
                     }
@@ -220,19 +284,9 @@ impl GpuProjector {
             .iter()
             .map(|v| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])))
             .collect();
-        Ok(ShCoeffs::from_vec(coeffs).expect("(lmax+1)^2 coefficients"))
+        let about_pole = ShCoeffs::from_vec(coeffs).expect("(lmax+1)^2 coefficients");
+        Ok(to_frame(about_pole, o.frame))
     }
-}
-
-/// World from the map's own y-up frame, as the shader's 4x4 matrix
-/// ([`MapOrientation::world_from_map`] applied to the axes).
-fn world_from_map(o: MapOrientation) -> [[f32; 4]; 4] {
-    let m = DMat3::from_cols(
-        o.world_from_map(DVec3::X),
-        o.world_from_map(DVec3::Y),
-        o.world_from_map(DVec3::Z),
-    );
-    Mat4::from_mat3(m.as_mat3()).to_cols_array_2d()
 }
 
 /// [`GpuProjector::project`] with pipelines compiled for this one call.

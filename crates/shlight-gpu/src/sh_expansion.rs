@@ -35,8 +35,23 @@ use shlight_core::legendre::Legendre;
 use crate::MAX_LMAX;
 
 /// A WGSL float literal holding `x` rounded to f32 (shortest round trip).
-fn literal(x: f64) -> String {
+pub(crate) fn literal(x: f64) -> String {
     format!("{:?}", x as f32)
+}
+
+/// The two WGSL lines that define `c{m}` and `s{m}`, `C_m + i S_m = (x + i y)^m`,
+/// from `c{m-1}`, `s{m-1}` (`m >= 1`; at `m = 1`, `x` and `y` themselves):
+/// `C_m + i S_m = (C_{m-1} + i S_{m-1}) (x + i y)`.
+pub(crate) fn azimuth_power(m: usize, x: &str, y: &str) -> [String; 2] {
+    assert!(m >= 1, "C_0 + i S_0 = 1 needs no line");
+    if m == 1 {
+        return [format!("let c1 = {x};"), format!("let s1 = {y};")];
+    }
+    let p = m - 1;
+    [
+        format!("let c{m} = c{p} * {x} - s{p} * {y};"),
+        format!("let s{m} = c{p} * {y} + s{p} * {x};"),
+    ]
 }
 
 /// The WGSL text of `sh_reconstruct` for `lmax` (clamped to [`MAX_LMAX`]).
@@ -69,14 +84,8 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
     }
     for m in 0..=lmax {
         if m > 0 {
-            // C_m + i S_m = (C_{m-1} + i S_{m-1}) (x + i y).
-            if m == 1 {
-                line("let c1 = d.x;".into());
-                line("let s1 = d.y;".into());
-            } else {
-                let p = m - 1;
-                line(format!("let c{m} = c{p} * d.x - s{p} * d.y;"));
-                line(format!("let s{m} = c{p} * d.y + s{p} * d.x;"));
+            for text in azimuth_power(m, "d.x", "d.y") {
+                line(text);
             }
             line(format!(
                 "let q{m}_{m} = {} * q{p}_{p};",

@@ -5,12 +5,14 @@
 //! own file: `sh.wgsl` (the SH basis) for all, `scene.wgsl` (frame uniform,
 //! light coefficients, tone maps) for the two render passes. The render
 //! passes' modules also get `sh_reconstruct`, written out for one lmax
-//! (`sh_expansion.rs`), so they are compiled once per lmax. [`MODULES`]
+//! (`sh_expansion.rs`), and the projection's module its `ring_sums`
+//! (`ring_sums.rs`), so each is compiled once per lmax. [`MODULES`]
 //! lists every module; [`FILES`] every file, so a test can check that each
 //! file in the directory belongs to a module and that each module validates
 //! at every lmax.
 
 use crate::MAX_LMAX;
+use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
 
 /// A shader file: its name in `shaders/` and its text.
@@ -38,8 +40,9 @@ pub struct ShaderModuleSource {
     pub name: &'static str,
     /// Files concatenated in this order.
     pub files: &'static [&'static str],
-    /// Whether the generated `sh_reconstruct` for an lmax follows the files.
-    pub sh_reconstruct: bool,
+    /// The WGSL written out for one lmax that follows the files, if any
+    /// (`sh_reconstruct`, or the projection's `ring_sums`).
+    pub generated: Option<fn(usize) -> String>,
 }
 
 impl ShaderModuleSource {
@@ -49,8 +52,8 @@ impl ShaderModuleSource {
         self.source_at(MAX_LMAX)
     }
 
-    /// The concatenated WGSL text, then `sh_reconstruct` written out for
-    /// `lmax` (at most [`MAX_LMAX`]) when the module has it.
+    /// The concatenated WGSL text, then the module's generated code written
+    /// out for `lmax` (at most [`MAX_LMAX`]) when it has some.
     #[must_use]
     pub fn source_at(&self, lmax: usize) -> String {
         let mut text = self
@@ -65,9 +68,9 @@ impl ShaderModuleSource {
             })
             .collect::<Vec<_>>()
             .join("\n");
-        if self.sh_reconstruct {
+        if let Some(generate) = self.generated {
             text.push('\n');
-            text.push_str(&sh_reconstruct_wgsl(lmax));
+            text.push_str(&generate(lmax.min(MAX_LMAX)));
         }
         text
     }
@@ -77,32 +80,32 @@ impl ShaderModuleSource {
 pub const MESH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "mesh",
     files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl"],
-    sh_reconstruct: true,
+    generated: Some(sh_reconstruct_wgsl),
 };
 /// The environment background (map or SH reconstruction).
 pub const BACKGROUND_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "background",
     files: &["sh.wgsl", "scene.wgsl", "background.wgsl"],
-    sh_reconstruct: true,
+    generated: Some(sh_reconstruct_wgsl),
 };
-/// The compute projection of equirect maps.
+/// The compute projection of equirect maps (its `ring_sums` per lmax).
 pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "project",
     files: &["sh.wgsl", "project.wgsl"],
-    sh_reconstruct: false,
+    generated: Some(ring_sums_wgsl),
 };
 /// The SH basis alone (a module of functions, validated on its own).
 pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "sh",
     files: &["sh.wgsl"],
-    sh_reconstruct: false,
+    generated: None,
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
 pub const MODULES: [ShaderModuleSource; 4] =
     [SH_MODULE, MESH_MODULE, BACKGROUND_MODULE, PROJECT_MODULE];
 
-/// Compiles a module on `device`, at `lmax` if it has `sh_reconstruct`.
+/// Compiles a module on `device`, at `lmax` if it has generated code.
 pub(crate) fn create(
     device: &wgpu::Device,
     module: ShaderModuleSource,
