@@ -40,7 +40,12 @@ fn main() -> std::io::Result<()> {
     }
     let floats = mesh.positions.iter().flat_map(|p| p.to_array());
     bytes.extend(floats.flat_map(f32::to_le_bytes));
-    bytes.extend(mesh.triangles.iter().flatten().flat_map(|i| i.to_le_bytes()));
+    bytes.extend(
+        mesh.triangles
+            .iter()
+            .flatten()
+            .flat_map(|i| i.to_le_bytes()),
+    );
     for (d, origins) in &per_dir {
         for o in origins {
             let ray = o.to_array().into_iter().chain(d.to_array());
@@ -56,8 +61,11 @@ fn main() -> std::io::Result<()> {
             .par_iter()
             .map(|(d, origins)| {
                 let dir = Direction::new(*d);
-                let local: Vec<[f32; 4]> =
-                    mesh.positions.iter().map(|p| dir.to_ray_space(*p)).collect();
+                let local: Vec<[f32; 4]> = mesh
+                    .positions
+                    .iter()
+                    .map(|p| dir.to_ray_space(*p))
+                    .collect();
                 origins
                     .chunks(LANES)
                     .map(|o| {
@@ -74,7 +82,10 @@ fn main() -> std::io::Result<()> {
     };
     let threads = rayon::current_num_threads();
     for n in [1, threads] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap();
         for (name, closest) in [("occluded", false), ("closest", true)] {
             let best = (0..3)
                 .map(|_| {
