@@ -30,7 +30,10 @@ use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::bvh::{Bvh, Ray};
-use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
+use shlight_prt::packet::PacketBvh;
+
+#[path = "rays/cast.rs"]
+mod cast;
 
 fn main() {
     divan::main();
@@ -112,27 +115,9 @@ fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
     let per_dir = direction_major(&m);
     let bvh = PacketBvh::new(Bvh::new(&m.positions, &m.triangles));
     let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
-    bencher.counter(ItemsCount::new(count)).bench(|| {
-        per_dir
-            .par_iter()
-            .map(|(d, origins)| {
-                let dir = Direction::new(*d);
-                let local: Vec<[f32; 4]> =
-                    m.positions.iter().map(|p| dir.to_ray_space(*p)).collect();
-                origins
-                    .chunks(LANES)
-                    .map(|o| {
-                        let packet = Packet::new(&dir, o);
-                        if closest {
-                            bvh.closest(&dir, &local, &packet).mask.count_ones()
-                        } else {
-                            bvh.occluded(&dir, &local, &packet).count_ones()
-                        }
-                    })
-                    .sum::<u32>()
-            })
-            .sum::<u32>()
-    });
+    bencher
+        .counter(ItemsCount::new(count))
+        .bench(|| cast::cast_packets(&bvh, &m.positions, &per_dir, closest));
 }
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]

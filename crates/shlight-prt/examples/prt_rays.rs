@@ -11,15 +11,18 @@
 //! and unit direction, 6 `f32`).
 
 use std::io::Write;
+
 use std::time::Instant;
 
 use glam::Vec3;
-use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_mesh::generate;
 use shlight_prt::bvh::Bvh;
-use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
+use shlight_prt::packet::PacketBvh;
 use shlight_prt::transfer::cast_rays;
+
+#[path = "../benches/rays/cast.rs"]
+mod cast;
 
 fn main() -> std::io::Result<()> {
     let out = std::env::args()
@@ -56,30 +59,7 @@ fn main() -> std::io::Result<()> {
     println!("{count} rays written to {out}");
 
     let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
-    let cast = |closest: bool| -> u32 {
-        per_dir
-            .par_iter()
-            .map(|(d, origins)| {
-                let dir = Direction::new(*d);
-                let local: Vec<[f32; 4]> = mesh
-                    .positions
-                    .iter()
-                    .map(|p| dir.to_ray_space(*p))
-                    .collect();
-                origins
-                    .chunks(LANES)
-                    .map(|o| {
-                        let packet = Packet::new(&dir, o);
-                        if closest {
-                            tree.closest(&dir, &local, &packet).mask.count_ones()
-                        } else {
-                            tree.occluded(&dir, &local, &packet).count_ones()
-                        }
-                    })
-                    .sum::<u32>()
-            })
-            .sum()
-    };
+    let cast = |closest: bool| cast::cast_packets(&tree, &mesh.positions, &per_dir, closest);
     let threads = rayon::current_num_threads();
     for n in [1, threads] {
         let pool = rayon::ThreadPoolBuilder::new()

@@ -495,7 +495,7 @@ impl Builder<'_> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use rand::{Rng, SeedableRng, rngs::StdRng};
     use shlight_mesh::{Mesh, generate};
@@ -526,7 +526,8 @@ mod tests {
         best
     }
 
-    fn random_unit(rng: &mut StdRng) -> Vec3 {
+    /// A random unit vector, uniform over the sphere.
+    pub(crate) fn random_unit(rng: &mut StdRng) -> Vec3 {
         loop {
             let v = Vec3::new(
                 rng.random_range(-1.0..1.0),

@@ -750,21 +750,9 @@ mod avx2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bvh::tests::random_unit;
     use rand::{Rng, SeedableRng, rngs::StdRng};
     use shlight_mesh::generate;
-
-    fn random_unit(rng: &mut StdRng) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            );
-            if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
 
     #[test]
     fn packets_agree_with_single_rays() {
