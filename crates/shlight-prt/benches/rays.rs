@@ -74,15 +74,20 @@ fn mesh(name: &str) -> Mesh {
 const MESHES: &[&str] = &["bunny", "torus70k"];
 const RAYS: usize = 400_000;
 
+/// Times `hit` over every ray in parallel; items are rays.
+fn cast_each<R: Sync>(bencher: Bencher, rays: &[R], hit: impl Fn(&R) -> bool + Sync) {
+    bencher
+        .counter(ItemsCount::new(rays.len()))
+        .bench(|| rays.par_iter().filter(|r| hit(r)).count());
+}
+
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
 fn single_occluded(bencher: Bencher, name: &str) {
     let m = mesh(name);
     let bvh = Bvh::new(&m.positions, &m.triangles);
     let rays = rays(&m, RAYS);
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter(|(o, d)| bvh.occluded(&Ray::new(*o, *d, f32::INFINITY)))
-            .count()
+    cast_each(bencher, &rays, |(o, d)| {
+        bvh.occluded(&Ray::new(*o, *d, f32::INFINITY))
     });
 }
 
@@ -91,10 +96,8 @@ fn single_closest(bencher: Bencher, name: &str) {
     let m = mesh(name);
     let bvh = Bvh::new(&m.positions, &m.triangles);
     let rays = rays(&m, RAYS);
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter_map(|(o, d)| bvh.closest_hit(&Ray::new(*o, *d, f32::INFINITY)))
-            .count()
+    cast_each(bencher, &rays, |(o, d)| {
+        bvh.closest_hit(&Ray::new(*o, *d, f32::INFINITY)).is_some()
     });
 }
 
@@ -156,27 +159,23 @@ fn obvhs_cwbvh_occluded(bencher: Bencher, name: &str) {
         BvhBuildParams::medium_build(),
         &mut Duration::default(),
     );
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter(|ray| {
-                let mut state = bvh.new_traversal(ray.direction);
-                let mut node;
-                let mut hit = false;
-                obvhs::traverse!(bvh, node, state, node.intersect_ray(ray, state.oct_inv4), {
-                    let t = tris[bvh.primitive_indices[state.primitive_id as usize] as usize]
-                        .intersect(ray);
-                    if t < ray.tmax {
-                        // Any hit ends the search: empty the traversal state.
-                        hit = true;
-                        state.stack.clear();
-                        state.current_group = UVec2::ZERO;
-                        state.primitive_group = UVec2::ZERO;
-                        break;
-                    }
-                });
-                hit
-            })
-            .count()
+    cast_each(bencher, &rays, |ray| {
+        let mut state = bvh.new_traversal(ray.direction);
+        let mut node;
+        let mut hit = false;
+        obvhs::traverse!(bvh, node, state, node.intersect_ray(ray, state.oct_inv4), {
+            let t =
+                tris[bvh.primitive_indices[state.primitive_id as usize] as usize].intersect(ray);
+            if t < ray.tmax {
+                // Any hit ends the search: empty the traversal state.
+                hit = true;
+                state.stack.clear();
+                state.current_group = UVec2::ZERO;
+                state.primitive_group = UVec2::ZERO;
+                break;
+            }
+        });
+        hit
     });
 }
 
@@ -188,15 +187,10 @@ fn obvhs_cwbvh_closest(bencher: Bencher, name: &str) {
         BvhBuildParams::medium_build(),
         &mut Duration::default(),
     );
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter(|ray| {
-                let mut hit = RayHit::none();
-                bvh.ray_traverse(**ray, &mut hit, |r, id| {
-                    tris[bvh.primitive_indices[id] as usize].intersect(r)
-                })
-            })
-            .count()
+    cast_each(bencher, &rays, |ray| {
+        bvh.ray_traverse(*ray, &mut RayHit::none(), |r, id| {
+            tris[bvh.primitive_indices[id] as usize].intersect(r)
+        })
     });
 }
 
@@ -208,14 +202,9 @@ fn obvhs_bvh2_closest(bencher: Bencher, name: &str) {
         BvhBuildParams::medium_build(),
         &mut Duration::default(),
     );
-    bencher.counter(ItemsCount::new(rays.len())).bench(|| {
-        rays.par_iter()
-            .filter(|ray| {
-                let mut hit = RayHit::none();
-                bvh.ray_traverse(**ray, &mut hit, |r, id| {
-                    tris[bvh.primitive_indices[id] as usize].intersect(r)
-                })
-            })
-            .count()
+    cast_each(bencher, &rays, |ray| {
+        bvh.ray_traverse(*ray, &mut RayHit::none(), |r, id| {
+            tris[bvh.primitive_indices[id] as usize].intersect(r)
+        })
     });
 }

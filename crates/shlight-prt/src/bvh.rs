@@ -497,34 +497,9 @@ impl Builder<'_> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::brute_force;
     use rand::{Rng, SeedableRng, rngs::StdRng};
-    use shlight_mesh::{Mesh, generate};
-
-    /// Möller-Trumbore in f64 against every triangle: an independent
-    /// reference for the hierarchy and the watertight test.
-    fn reference_closest(mesh: &Mesh, o: Vec3, d: Vec3) -> Option<(f64, u32)> {
-        let (o, d) = (o.as_dvec3(), d.as_dvec3());
-        let mut best: Option<(f64, u32)> = None;
-        for (k, t) in mesh.triangles.iter().enumerate() {
-            let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec3());
-            let (e1, e2) = (b - a, c - a);
-            let p = d.cross(e2);
-            let det = e1.dot(p);
-            if det.abs() < 1e-300 {
-                continue;
-            }
-            let s = o - a;
-            let u = s.dot(p) / det;
-            let q = s.cross(e1);
-            let v = d.dot(q) / det;
-            let t = e2.dot(q) / det;
-            if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && best.is_none_or(|(bt, _)| t < bt)
-            {
-                best = Some((t, k as u32));
-            }
-        }
-        best
-    }
+    use shlight_mesh::generate;
 
     /// A random unit vector, uniform over the sphere.
     pub(crate) fn random_unit(rng: &mut StdRng) -> Vec3 {
@@ -555,7 +530,8 @@ pub(crate) mod tests {
             let d = random_unit(&mut rng);
             let ray = Ray::new(o, d, f32::INFINITY);
             let got = bvh.closest_hit(&ray);
-            let want = reference_closest(&mesh, o, d);
+            let want = brute_force::closest_hit(&mesh, o.as_dvec3(), d.as_dvec3(), 0.0)
+                .map(|(t, k, ..)| (t, k as u32));
             assert_eq!(bvh.occluded(&ray), got.is_some());
             match (got, want) {
                 (Some(g), Some((t, k))) => {

@@ -38,6 +38,7 @@
 //! **Architecture invariant:** no GPU and no command line; files are
 //! written through shlight-io's atomic writer.
 
+pub mod brute_force;
 pub mod bvh;
 mod error;
 pub mod gltf_export;

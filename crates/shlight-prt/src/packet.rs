@@ -36,19 +36,18 @@ use glam::Vec3;
 
 use crate::bvh::{Bvh, INNER, Ray};
 
-/// Rays in a packet: one AVX register of eight lanes per group.
-pub const LANES: usize = 8 * GROUPS;
-/// 8-lane groups in a packet. One: with two (16 rays from a wider patch of
-/// vertices) a packet visited 1.5x the nodes (105 against 71 on the torus
-/// of `benches/transfer.rs`) at twice the work per node, and baking was
-/// slower; four-wide nodes folded from the binary hierarchy cost more
-/// instructions per ray too (callgrind), so neither is kept.
-const GROUPS: usize = 1;
+/// Rays in a packet: one AVX register. Sixteen (two registers, rays from a
+/// wider patch of vertices) visited 1.5x the nodes per packet (105 against
+/// 71 on the torus of `benches/transfer.rs`) at twice the work per node,
+/// and baking was slower; four-wide nodes folded from the binary hierarchy
+/// cost more instructions per ray too (callgrind), so neither is kept.
+pub const LANES: usize = 8;
 
 static DISABLED: AtomicBool = AtomicBool::new(false);
 
 /// Turns the AVX2 packet traversal off (`false`) or back on, for every
-/// thread: each ray is then traced alone. For tests and benchmarks.
+/// [`PacketBvh`] built afterwards: each ray is then traced alone. For tests
+/// and benchmarks.
 pub fn set_packets_enabled(enabled: bool) {
     DISABLED.store(!enabled, Ordering::Relaxed);
 }
@@ -168,6 +167,9 @@ pub struct PacketBvh {
     octants: Vec<Vec<Node2>>,
     /// The root: [`Node2::child`]'s code and count.
     root: (u32, u32),
+    /// Packets are traced with AVX2 ([`packets_enabled`] when built; the
+    /// octant layouts are empty otherwise).
+    avx2: bool,
 }
 
 /// One node of a [`PacketBvh`]: per child slot (nearer first), the box's
@@ -203,10 +205,11 @@ impl PacketBvh {
         } else {
             (0, 0)
         };
+        let avx2 = packets_enabled();
         let octants = (0..8)
             .map(|o| {
-                let mut nodes = Vec::with_capacity(bvh.nodes.len() / 2 + 1);
-                if root.kind >= INNER {
+                let mut nodes = Vec::new();
+                if avx2 && root.kind >= INNER {
                     Self::lay_out(&bvh, o, 0, &mut nodes);
                 }
                 nodes
@@ -216,6 +219,7 @@ impl PacketBvh {
             bvh,
             octants,
             root: root_code,
+            avx2,
         }
     }
 
@@ -268,13 +272,13 @@ impl PacketBvh {
     #[must_use]
     pub fn occluded(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
         #[cfg(target_arch = "x86_64")]
-        if packets_enabled() {
+        if self.avx2 {
             assert!(self.bvh.corners_within(local.len()));
-            // SAFETY: AVX2 and FMA are present (checked just above), and
-            // every corner index is below `local.len()`.
+            // SAFETY: AVX2 and FMA are present (checked when `self` was
+            // built), and every corner index is below `local.len()`.
             return unsafe { avx2::occluded(self, dir, local, packet) };
         }
-        let _ = local;
+        let _ = (local, self.avx2);
         let mut out = 0;
         for k in lanes(packet.live) {
             let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
@@ -290,12 +294,12 @@ impl PacketBvh {
     #[must_use]
     pub fn closest(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> PacketHits {
         #[cfg(target_arch = "x86_64")]
-        if packets_enabled() {
+        if self.avx2 {
             assert!(self.bvh.corners_within(local.len()));
             // SAFETY: as in `occluded`.
             return unsafe { avx2::closest(self, dir, local, packet) };
         }
-        let _ = local;
+        let _ = (local, self.avx2);
         let mut out = PacketHits {
             mask: 0,
             t: [f32::INFINITY; LANES],
@@ -335,72 +339,51 @@ fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
 
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
-    //! The AVX2 traversal: [`GROUPS`] registers of eight lanes, one lane per
-    //! ray; lane masks are bit sets, bit `8g + k` for lane `k` of group `g`.
+    //! The AVX2 traversal: one lane per ray; lane masks are bit sets, bit
+    //! `k` for lane `k`.
 
     use std::arch::x86_64::*;
 
-    use super::{
-        Direction, GROUPS, LANES, LEAF, Node2, Packet, PacketBvh, PacketHits, lanes, octant,
-    };
+    use super::{Direction, LANES, LEAF, Node2, Packet, PacketBvh, PacketHits, lanes, octant};
     use crate::bvh::{Bvh, FAR_SCALE, STACK, edge_functions};
-
-    type V = [__m256; GROUPS];
-
-    /// `[e(0), e(1), ...]`, one value per lane group: a loop, not a closure,
-    /// so the intrinsics in `e` are compiled with the caller's features.
-    macro_rules! each {
-        ($g:ident => $e:expr) => {{
-            let mut out = [_mm256_setzero_ps(); GROUPS];
-            for $g in 0..GROUPS {
-                out[$g] = $e;
-            }
-            out
-        }};
-    }
 
     /// What every test of one traversal shares.
     struct Rays {
         /// `o * (1/d)` per axis: a plane's distance is `plane / d - o / d`.
-        o_inv: [V; 3],
+        o_inv: [__m256; 3],
         inv: [__m256; 3],
         /// Ray-space origins.
-        r: [V; 3],
+        r: [__m256; 3],
     }
 
     #[inline(always)]
-    unsafe fn load(a: &[f32; LANES]) -> V {
-        unsafe { each!(g => _mm256_loadu_ps(a.as_ptr().add(8 * g))) }
+    unsafe fn load(a: &[f32; LANES]) -> __m256 {
+        unsafe { _mm256_loadu_ps(a.as_ptr()) }
     }
 
     #[inline(always)]
-    unsafe fn store(x: &V) -> [f32; LANES] {
+    unsafe fn store(x: __m256) -> [f32; LANES] {
         let mut o = [0.0f32; LANES];
-        for (g, x) in x.iter().enumerate() {
-            unsafe { _mm256_storeu_ps(o.as_mut_ptr().add(8 * g), *x) };
-        }
+        unsafe { _mm256_storeu_ps(o.as_mut_ptr(), x) };
         o
     }
 
     /// The bit set of lanes where `x` is set.
     #[inline(always)]
-    unsafe fn bits(x: &V) -> u32 {
-        let mut m = 0;
-        for (g, x) in x.iter().enumerate() {
-            m |= (unsafe { _mm256_movemask_ps(*x) } as u32) << (8 * g);
-        }
-        m
+    unsafe fn bits(x: __m256) -> u32 {
+        unsafe { _mm256_movemask_ps(x) as u32 }
     }
 
-    /// Select masks from the bit set `bits`.
+    /// A select mask from the bit set `bits`.
     #[inline(always)]
-    unsafe fn lane_masks(bits: u32) -> V {
+    unsafe fn lane_mask(bits: u32) -> __m256 {
         unsafe {
             let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-            each!(g => {
-                let b = _mm256_set1_epi32((bits >> (8 * g)) as i32);
-                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(b, lane_bits), lane_bits))
-            })
+            let b = _mm256_set1_epi32(bits as i32);
+            _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                _mm256_and_si256(b, lane_bits),
+                lane_bits,
+            ))
         }
     }
 
@@ -427,9 +410,9 @@ mod avx2 {
                 let (wx, wy, wz) = (load(&p.world[0]), load(&p.world[1]), load(&p.world[2]));
                 Self {
                     o_inv: [
-                        each!(g => _mm256_mul_ps(wx[g], inv[0])),
-                        each!(g => _mm256_mul_ps(wy[g], inv[1])),
-                        each!(g => _mm256_mul_ps(wz[g], inv[2])),
+                        _mm256_mul_ps(wx, inv[0]),
+                        _mm256_mul_ps(wy, inv[1]),
+                        _mm256_mul_ps(wz, inv[2]),
                     ],
                     inv,
                     r: [load(&p.local[0]), load(&p.local[1]), load(&p.local[2])],
@@ -440,25 +423,25 @@ mod avx2 {
         /// Lanes whose ray meets the box of slot `s` of `node` within
         /// `(0, t_max)`.
         #[inline(always)]
-        unsafe fn hits_box(&self, node: &Node2, s: usize, t_max: &V) -> u32 {
+        unsafe fn hits_box(&self, node: &Node2, s: usize, t_max: __m256) -> u32 {
             unsafe {
                 let [n0, n1, n2] = [0, 1, 2].map(|a| _mm256_set1_ps(node.near[a][s]));
                 let [f0, f1, f2] = [0, 1, 2].map(|a| _mm256_set1_ps(node.far[a][s]));
                 let scale = _mm256_set1_ps(FAR_SCALE);
                 let [ix, iy, iz] = self.inv;
-                let [ox, oy, oz] = &self.o_inv;
-                let ok = each!(g => {
+                let [ox, oy, oz] = self.o_inv;
+                let ok = {
                     let near = _mm256_max_ps(
-                        _mm256_max_ps(_mm256_fmsub_ps(n0, ix, ox[g]), _mm256_fmsub_ps(n1, iy, oy[g])),
-                        _mm256_max_ps(_mm256_fmsub_ps(n2, iz, oz[g]), _mm256_setzero_ps()),
+                        _mm256_max_ps(_mm256_fmsub_ps(n0, ix, ox), _mm256_fmsub_ps(n1, iy, oy)),
+                        _mm256_max_ps(_mm256_fmsub_ps(n2, iz, oz), _mm256_setzero_ps()),
                     );
                     let far = _mm256_min_ps(
-                        _mm256_min_ps(_mm256_fmsub_ps(f0, ix, ox[g]), _mm256_fmsub_ps(f1, iy, oy[g])),
-                        _mm256_min_ps(_mm256_fmsub_ps(f2, iz, oz[g]), t_max[g]),
+                        _mm256_min_ps(_mm256_fmsub_ps(f0, ix, ox), _mm256_fmsub_ps(f1, iy, oy)),
+                        _mm256_min_ps(_mm256_fmsub_ps(f2, iz, oz), t_max),
                     );
                     _mm256_cmp_ps::<_CMP_LE_OQ>(near, _mm256_mul_ps(far, scale))
-                });
-                bits(&ok)
+                };
+                bits(ok)
             }
         }
 
@@ -471,14 +454,14 @@ mod avx2 {
             local: &[[f32; 4]],
             k: usize,
             live: u32,
-            t_max: &V,
-        ) -> (u32, V, [V; 3], V) {
+            t_max: __m256,
+        ) -> (u32, __m256, [__m256; 3], __m256) {
             unsafe {
                 let [ia, ib, ic] = *bvh.corners.get_unchecked(k);
                 let a = local.get_unchecked(ia as usize);
                 let b = local.get_unchecked(ib as usize);
                 let c = local.get_unchecked(ic as usize);
-                let [rx, ry, rz] = &self.r;
+                let [rx, ry, rz] = self.r;
                 let (sax, say, saz) = (
                     _mm256_set1_ps(a[0]),
                     _mm256_set1_ps(a[1]),
@@ -494,70 +477,76 @@ mod avx2 {
                     _mm256_set1_ps(c[1]),
                     _mm256_set1_ps(c[2]),
                 );
-                let ax = each!(g => _mm256_sub_ps(sax, rx[g]));
-                let ay = each!(g => _mm256_sub_ps(say, ry[g]));
-                let bx = each!(g => _mm256_sub_ps(sbx, rx[g]));
-                let by = each!(g => _mm256_sub_ps(sby, ry[g]));
-                let cx = each!(g => _mm256_sub_ps(scx, rx[g]));
-                let cy = each!(g => _mm256_sub_ps(scy, ry[g]));
-                let mut u = each!(g => _mm256_sub_ps(_mm256_mul_ps(cx[g], by[g]), _mm256_mul_ps(cy[g], bx[g])));
-                let mut v = each!(g => _mm256_sub_ps(_mm256_mul_ps(ax[g], cy[g]), _mm256_mul_ps(ay[g], cx[g])));
-                let mut w = each!(g => _mm256_sub_ps(_mm256_mul_ps(bx[g], ay[g]), _mm256_mul_ps(by[g], ax[g])));
+                let ax = _mm256_sub_ps(sax, rx);
+                let ay = _mm256_sub_ps(say, ry);
+                let bx = _mm256_sub_ps(sbx, rx);
+                let by = _mm256_sub_ps(sby, ry);
+                let cx = _mm256_sub_ps(scx, rx);
+                let cy = _mm256_sub_ps(scy, ry);
+                let mut u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+                let mut v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+                let mut w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
                 let zero = _mm256_setzero_ps();
-                let zeros = bits(&each!(g => _mm256_or_ps(
+                let zeros = bits(_mm256_or_ps(
                     _mm256_or_ps(
-                        _mm256_cmp_ps::<_CMP_EQ_OQ>(u[g], zero),
-                        _mm256_cmp_ps::<_CMP_EQ_OQ>(v[g], zero),
+                        _mm256_cmp_ps::<_CMP_EQ_OQ>(u, zero),
+                        _mm256_cmp_ps::<_CMP_EQ_OQ>(v, zero),
                     ),
-                    _mm256_cmp_ps::<_CMP_EQ_OQ>(w[g], zero),
-                ))) & live;
+                    _mm256_cmp_ps::<_CMP_EQ_OQ>(w, zero),
+                )) & live;
                 if zeros != 0 {
                     // Rare: an edge through a ray. Redo those lanes in f64.
                     let e = [
-                        store(&ax),
-                        store(&ay),
-                        store(&bx),
-                        store(&by),
-                        store(&cx),
-                        store(&cy),
+                        store(ax),
+                        store(ay),
+                        store(bx),
+                        store(by),
+                        store(cx),
+                        store(cy),
                     ];
-                    let mut uvw = [store(&u), store(&v), store(&w)];
+                    let mut uvw = [store(u), store(v), store(w)];
                     redo_in_f64(&e, &mut uvw, zeros);
                     (u, v, w) = (load(&uvw[0]), load(&uvw[1]), load(&uvw[2]));
                 }
                 let one = _mm256_set1_ps(1.0);
-                let inv =
-                    each!(g => _mm256_div_ps(one, _mm256_add_ps(_mm256_add_ps(u[g], v[g]), w[g])));
-                let t = each!(g => _mm256_mul_ps(
+                let inv = _mm256_div_ps(one, _mm256_add_ps(_mm256_add_ps(u, v), w));
+                let t = _mm256_mul_ps(
                     _mm256_add_ps(
                         _mm256_add_ps(
-                            _mm256_mul_ps(u[g], _mm256_sub_ps(saz, rz[g])),
-                            _mm256_mul_ps(v[g], _mm256_sub_ps(sbz, rz[g])),
+                            _mm256_mul_ps(u, _mm256_sub_ps(saz, rz)),
+                            _mm256_mul_ps(v, _mm256_sub_ps(sbz, rz)),
                         ),
-                        _mm256_mul_ps(w[g], _mm256_sub_ps(scz, rz[g])),
+                        _mm256_mul_ps(w, _mm256_sub_ps(scz, rz)),
                     ),
-                    inv[g],
-                ));
+                    inv,
+                );
                 let abs_mask = _mm256_set1_ps(-0.0);
                 let infinity = _mm256_set1_ps(f32::INFINITY);
-                let ok = each!(g => {
+                let ok = {
                     let neg = _mm256_or_ps(
-                        _mm256_or_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(u[g], zero), _mm256_cmp_ps::<_CMP_LT_OQ>(v[g], zero)),
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(w[g], zero),
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
                     );
                     let pos = _mm256_or_ps(
-                        _mm256_or_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(u[g], zero), _mm256_cmp_ps::<_CMP_GT_OQ>(v[g], zero)),
-                        _mm256_cmp_ps::<_CMP_GT_OQ>(w[g], zero),
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
                     );
                     // 1/det is finite exactly when det != 0.
-                    let finite = _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, inv[g]), infinity);
+                    let finite =
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, inv), infinity);
                     let ahead = _mm256_and_ps(
-                        _mm256_cmp_ps::<_CMP_GT_OQ>(t[g], zero),
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(t[g], t_max[g]),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max),
                     );
                     _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_and_ps(finite, ahead))
-                });
-                (bits(&ok) & live, t, [u, v, w], inv)
+                };
+                (bits(ok) & live, t, [u, v, w], inv)
             }
         }
     }
@@ -565,7 +554,7 @@ mod avx2 {
     /// A visit of inner node `node` by the lanes of `mask`: the lanes
     /// reaching each of its two slots (nearer first).
     #[inline(always)]
-    unsafe fn visit(rays: &Rays, node: &Node2, mask: u32, t_max: &V) -> [u32; 2] {
+    unsafe fn visit(rays: &Rays, node: &Node2, mask: u32, t_max: __m256) -> [u32; 2] {
         unsafe {
             [
                 rays.hits_box(node, 0, t_max) & mask,
@@ -587,8 +576,8 @@ mod avx2 {
         nodes: &[Node2],
         rays: &Rays,
         live: u32,
-        t_max: &mut V,
-        mut leaf: impl FnMut(usize, usize, u32, &mut V) -> u32,
+        t_max: &mut __m256,
+        mut leaf: impl FnMut(usize, usize, u32, &mut __m256) -> u32,
     ) {
         unsafe {
             let mut open = live;
@@ -607,7 +596,7 @@ mod avx2 {
                         }
                     } else {
                         let node = nodes.get_unchecked(child as usize);
-                        let m = visit(rays, node, mask, t_max);
+                        let m = visit(rays, node, mask, *t_max);
                         let (a, b) = if FAR_FIRST { (1, 0) } else { (0, 1) };
                         if m[a] != 0 {
                             if m[b] != 0 {
@@ -650,7 +639,7 @@ mod avx2 {
     ) -> u32 {
         unsafe {
             let rays = Rays::new(dir, packet);
-            let mut t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
+            let mut t_max = _mm256_set1_ps(f32::INFINITY);
             let mut blocked = 0u32;
             walk::<true>(
                 tree,
@@ -660,7 +649,7 @@ mod avx2 {
                 &mut t_max,
                 |first, count, mut mask, t_max| {
                     for k in first..first + count {
-                        let (hits, ..) = rays.hits_triangle(&tree.bvh, local, k, mask, t_max);
+                        let (hits, ..) = rays.hits_triangle(&tree.bvh, local, k, mask, *t_max);
                         blocked |= hits;
                         mask &= !hits;
                         if mask == 0 {
@@ -687,9 +676,9 @@ mod avx2 {
     ) -> PacketHits {
         unsafe {
             let rays = Rays::new(dir, packet);
-            let mut t_max = [_mm256_set1_ps(f32::INFINITY); GROUPS];
-            let mut best = [_mm256_setzero_ps(); GROUPS];
-            let mut bary = [[_mm256_setzero_ps(); GROUPS]; 3];
+            let mut t_max = _mm256_set1_ps(f32::INFINITY);
+            let mut best = _mm256_setzero_ps();
+            let mut bary = [_mm256_setzero_ps(); 3];
             let mut hit_mask = 0u32;
             let bvh = &tree.bvh;
             walk::<false>(
@@ -701,28 +690,14 @@ mod avx2 {
                 |first, count, mask, t_max| {
                     for k in first..first + count {
                         let (hits, t, [u, v, w], inv) =
-                            rays.hits_triangle(bvh, local, k, mask, t_max);
+                            rays.hits_triangle(bvh, local, k, mask, *t_max);
                         if hits != 0 {
-                            let sel = lane_masks(hits);
+                            let sel = lane_mask(hits);
                             let id = _mm256_castsi256_ps(_mm256_set1_epi32(k as i32));
-                            for g in 0..GROUPS {
-                                t_max[g] = _mm256_blendv_ps(t_max[g], t[g], sel[g]);
-                                best[g] = _mm256_blendv_ps(best[g], id, sel[g]);
-                                bary[0][g] = _mm256_blendv_ps(
-                                    bary[0][g],
-                                    _mm256_mul_ps(u[g], inv[g]),
-                                    sel[g],
-                                );
-                                bary[1][g] = _mm256_blendv_ps(
-                                    bary[1][g],
-                                    _mm256_mul_ps(v[g], inv[g]),
-                                    sel[g],
-                                );
-                                bary[2][g] = _mm256_blendv_ps(
-                                    bary[2][g],
-                                    _mm256_mul_ps(w[g], inv[g]),
-                                    sel[g],
-                                );
+                            *t_max = _mm256_blendv_ps(*t_max, t, sel);
+                            best = _mm256_blendv_ps(best, id, sel);
+                            for (b, x) in bary.iter_mut().zip([u, v, w]) {
+                                *b = _mm256_blendv_ps(*b, _mm256_mul_ps(x, inv), sel);
                             }
                             hit_mask |= hits;
                         }
@@ -730,8 +705,8 @@ mod avx2 {
                     mask
                 },
             );
-            let (t, k) = (store(&t_max), store(&best));
-            let [u, v, w] = [store(&bary[0]), store(&bary[1]), store(&bary[2])];
+            let (t, k) = (store(t_max), store(best));
+            let [u, v, w] = [store(bary[0]), store(bary[1]), store(bary[2])];
             let mut out = PacketHits {
                 mask: hit_mask,
                 t,

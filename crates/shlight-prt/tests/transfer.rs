@@ -10,6 +10,7 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 use shlight_core::zonal::clamped_cosine_eigenvalue;
 use shlight_core::{ShCoeffs, ShRotation, analytic, lm_from_index, sh_eval};
 use shlight_mesh::{Mesh, generate};
+use shlight_prt::brute_force::closest_hit;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Transfer, bake};
 
 fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
@@ -21,30 +22,6 @@ fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
         seed: 11,
     };
     bake(mesh, &options, &|_, _, _| {})
-}
-
-/// Möller-Trumbore in f64 over every triangle: the nearest hit's distance,
-/// triangle and barycentrics `(u, v)` of corners 1 and 2.
-fn cast(mesh: &Mesh, o: DVec3, d: DVec3) -> Option<(f64, usize, f64, f64)> {
-    let mut best: Option<(f64, usize, f64, f64)> = None;
-    for (k, t) in mesh.triangles.iter().enumerate() {
-        let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec3());
-        let (e1, e2) = (b - a, c - a);
-        let p = d.cross(e2);
-        let det = e1.dot(p);
-        if det.abs() < 1e-300 {
-            continue;
-        }
-        let s = o - a;
-        let u = s.dot(p) / det;
-        let q = s.cross(e1);
-        let v = d.dot(q) / det;
-        let t = e2.dot(q) / det;
-        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 1e-9 && best.is_none_or(|b| t < b.0) {
-            best = Some((t, k, u, v));
-        }
-    }
-    best
 }
 
 /// A cosine-distributed direction about `n` (Malley's method).
@@ -96,7 +73,7 @@ fn brute_exit(mesh: &Mesh, v: usize, light: &ShCoeffs<f64>, rho: f64, n_rays: us
     let mut sum = 0.0;
     for _ in 0..n_rays {
         let d = cosine_direction(n, &mut rng);
-        if cast(mesh, o, d).is_none() {
+        if closest_hit(mesh, o, d, 1e-9).is_none() {
             sum += light_at(light, d);
         }
     }
@@ -207,7 +184,7 @@ fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
             let (mut o, mut n, mut weight) = (bowl.positions[v].as_dvec3() + n0 * 1e-6, n0, rho);
             for _ in 0..40 {
                 let d = cosine_direction(n, &mut rng);
-                match cast(&bowl, o, d) {
+                match closest_hit(&bowl, o, d, 1e-9) {
                     None => {
                         sum += weight * (1.0 + 0.5 * d.y);
                         break;
