@@ -28,7 +28,7 @@ use crate::texels::parse_size;
 /// Arguments of `shlight render-mesh`.
 #[derive(Args, Debug)]
 pub struct RenderMeshArgs {
-    /// The mesh (OBJ).
+    /// The mesh (OBJ, PLY, OFF, glTF/GLB).
     pub mesh: PathBuf,
     /// The light: an equirect map (projected to lmax 8) or a radiance
     /// coefficient file (.json).
@@ -103,17 +103,9 @@ pub enum BackgroundArg {
     Sh,
 }
 
-/// `X,Y,Z`.
+/// `X,Y,Z` as a vector (`synth`'s parser, in f32).
 pub fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
-    let v: Vec<f32> = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| format!("{s:?} is not three numbers X,Y,Z"))?;
-    match v.as_slice() {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Vec3::new(*x, *y, *z)),
-        _ => Err(format!("{s:?} is not three finite numbers X,Y,Z")),
-    }
+    crate::synth::parse_vec3(s).map(|v| v.as_vec3())
 }
 
 /// The camera for a mesh of `bounds`: `--camera`/`--target`, or framed.

@@ -440,12 +440,9 @@ impl<'a> App<'a> {
         let frame = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
-            other => {
+            _ => {
                 // Lost, outdated or timed out: reconfigure and try next frame.
                 r.surface.configure(&r.ctx.device, &r.config);
-                if matches!(other, wgpu::CurrentSurfaceTexture::Timeout) {
-                    return Ok(());
-                }
                 return Ok(());
             }
         };
@@ -470,7 +467,14 @@ impl<'a> App<'a> {
         if let Some(t) = &capture_target {
             views.push(t.create_view(&Default::default()));
         }
-        let mut extra = Vec::new();
+        // The overlay's buffers are the same for every target: upload once.
+        let extra = r.egui_renderer.update_buffers(
+            &r.ctx.device,
+            &r.ctx.queue,
+            &mut encoder,
+            &jobs,
+            &screen,
+        );
         for view in &views {
             r.renderer.draw(
                 &r.ctx,
@@ -481,13 +485,6 @@ impl<'a> App<'a> {
                 aspect,
                 &self.controls.shading,
             )?;
-            extra.extend(r.egui_renderer.update_buffers(
-                &r.ctx.device,
-                &r.ctx.queue,
-                &mut encoder,
-                &jobs,
-                &screen,
-            ));
             let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("overlay"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {

@@ -32,8 +32,8 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::zonal::{cap_zonal, clamped_cosine_eigenvalue};
-use shlight_core::{ShCoeffs, sh_eval};
+use shlight_core::ShCoeffs;
+use shlight_core::zonal::{self, cap_zonal, clamped_cosine_eigenvalue};
 
 use crate::lambert::polygon_irradiance;
 
@@ -124,28 +124,15 @@ impl Truncated {
     pub fn eval(&self, n: DVec3) -> f64 {
         match self {
             Truncated::Zonal { axis, c } => {
-                let p = legendre(c.len().saturating_sub(1), axis.dot(n).clamp(-1.0, 1.0));
+                let p = zonal::legendre_polynomials(
+                    c.len().saturating_sub(1),
+                    axis.dot(n).clamp(-1.0, 1.0),
+                );
                 c.iter().zip(&p).map(|(c, p)| c * p).sum()
             }
             Truncated::Sh(e) => e.eval(n.to_array()),
         }
     }
-}
-
-/// Legendre polynomials `P_0(x) .. P_n(x)` by Bonnet's recurrence
-/// `(l+1) P_{l+1} = (2l+1) x P_l - l P_{l-1}`.
-#[must_use]
-pub fn legendre(n: usize, x: f64) -> Vec<f64> {
-    let mut p = Vec::with_capacity(n + 1);
-    p.push(1.0);
-    if n >= 1 {
-        p.push(x);
-    }
-    for l in 1..n {
-        let lf = l as f64;
-        p.push(((2.0 * lf + 1.0) * x * p[l] - lf * p[l - 1]) / (lf + 1.0));
-    }
-    p
 }
 
 impl Oracle {
@@ -264,10 +251,7 @@ impl Oracle {
     #[must_use]
     pub fn coefficients(&self, lmax: usize) -> Option<ShCoeffs<f64>> {
         let (axis, z) = self.zonal(lmax)?;
-        let y = sh_eval(lmax, axis.to_array());
-        Some(ShCoeffs::from_fn(lmax, |l, m| {
-            (4.0 * PI / (2 * l + 1) as f64).sqrt() * z[l] * y[shlight_core::sh_index(l, m)]
-        }))
+        Some(zonal::zonal_to_sh(&z, axis.to_array()))
     }
 
     /// The SH irradiance truncated at `lmax` (module docs).
@@ -518,6 +502,22 @@ mod tests {
 
     /// `∫_lo^1 h(t) P_l(t) dt` by composite Simpson on 20000 panels, for
     /// checking zonal coefficients without the core's quadrature.
+    /// Legendre polynomials `P_0(x) .. P_n(x)` by Bonnet's recurrence
+    /// `(l+1) P_{l+1} = (2l+1) x P_l - l P_{l-1}`, written here so that the
+    /// core's zonal coefficients are checked against an independent copy.
+    fn legendre(n: usize, x: f64) -> Vec<f64> {
+        let mut p = Vec::with_capacity(n + 1);
+        p.push(1.0);
+        if n >= 1 {
+            p.push(x);
+        }
+        for l in 1..n {
+            let lf = l as f64;
+            p.push(((2.0 * lf + 1.0) * x * p[l] - lf * p[l - 1]) / (lf + 1.0));
+        }
+        p
+    }
+
     fn simpson_legendre(lmax: usize, lo: f64, h: impl Fn(f64) -> f64) -> Vec<f64> {
         let n = 20_000;
         let step = (1.0 - lo) / n as f64;

@@ -98,7 +98,7 @@ pub const PROJECTION_LMAX: usize = 2;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SuiteOptions {
     /// A subset that runs in a few seconds: fewer lmax, resolutions up to
-    /// 512x256, cube faces up to 64, Monte Carlo up to 2^14 samples.
+    /// 512x256, cube faces up to 64, Monte Carlo up to 2^16 samples.
     pub quick: bool,
 }
 

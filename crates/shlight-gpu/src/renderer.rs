@@ -95,7 +95,8 @@ impl Renderer {
     ///
     /// A float format (e.g. `Rgba32Float`) receives linear radiance when the
     /// shading has no tone map; an `*Srgb` format is encoded by the
-    /// hardware, any other 8-bit format by the shader.
+    /// hardware, `Rgba8Unorm` and `Bgra8Unorm` by the shader (when a tone
+    /// map is set).
     #[must_use]
     pub fn new(ctx: &GpuContext, color_format: wgpu::TextureFormat) -> Self {
         let device = &ctx.device;
