@@ -251,11 +251,7 @@ struct Settings<'a> {
 
 impl<'a> Settings<'a> {
     fn new(args: &'a ProjectArgs) -> Result<Self> {
-        let frame = if args.up == "z" {
-            Frame::ZUp
-        } else {
-            Frame::YUp
-        };
+        let frame = crate::environment::frame_of(&args.up);
         let window = match args.window.trim() {
             "auto" => None,
             spec => Some(

@@ -27,6 +27,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use shlight_core::layout::{EnvMap, Layout, render_map};
 use shlight_core::projection::MapOrientation;
+use shlight_core::rotation::Frame;
 
 use crate::oracle::Oracle;
 
@@ -115,10 +116,8 @@ fn texel_point(
         let z0 = (PI * y as f64 / h as f64).cos();
         let z1 = (PI * (y + 1) as f64 / h as f64).cos();
         let z = (z0 + (z1 - z0) * v).clamp(-1.0, 1.0);
-        let (sin_p, cos_p) = (2.0 * PI * ((x as f64 + u) / w as f64 - 0.5)).sin_cos();
-        let s = (1.0 - z * z).sqrt();
-        // The y-up frame: (sin θ cos φ, cos θ, sin θ sin φ).
-        return (DVec3::new(s * cos_p, z, s * sin_p), 1.0);
+        let phi = 2.0 * PI * ((x as f64 + u) / w as f64 - 0.5);
+        return (Frame::YUp.direction(z.acos(), phi), 1.0);
     }
     let (cols, _) = layout.cube_grid().expect("a cube layout");
     let f = w / cols;

@@ -283,16 +283,22 @@ struct Case {
     oracle: Oracle,
     exact: Vec<f64>,
     peak: f64,
+    /// The irradiance truncated at [`PROJECTION_LMAX`] at the normals: what
+    /// the quadrature and Monte Carlo sweeps are measured against.
+    projection_reference: Vec<f64>,
 }
 
 impl Case {
     fn new(oracle: Oracle, normals: &[DVec3]) -> Self {
         let exact: Vec<f64> = normals.iter().map(|n| oracle.irradiance(*n)).collect();
         let peak = peak(&exact);
+        let truncated = oracle.truncated(PROJECTION_LMAX);
+        let projection_reference = normals.iter().map(|n| truncated.eval(*n)).collect();
         Self {
             oracle,
             exact,
             peak,
+            projection_reference,
         }
     }
 
@@ -452,7 +458,7 @@ fn quadrature_sweep(
 ) {
     let o = &case.oracle;
     let lmax = PROJECTION_LMAX;
-    let reference = case.truncated_at(&o.truncated(lmax), normals);
+    let reference = &case.projection_reference;
     let sizes: Vec<(usize, usize)> = match layout {
         Layout::Equirect => options
             .equirect_widths()
@@ -483,7 +489,7 @@ fn quadrature_sweep(
         let px = render_texel_means(o, layout, w, h);
         let map = EnvMap::new(layout, MapOrientation::default(), w, h, &px).expect("fits");
         let l = project_map(&map, lmax).channel(0);
-        let e = case.errors(&sh_irradiance(&l, normals), &reference);
+        let e = case.errors(&sh_irradiance(&l, normals), reference);
         let mut bound = quadrature_bound(o, lmax, texel_radius(layout, w, h), case.peak);
         if exact_rule || (o.band_limit().is_some() && h >= BAND_LIMITED_ROWS) {
             bound = bound.min(BAND_LIMITED_TOL);
@@ -609,7 +615,7 @@ fn mc_sweep(
 ) {
     let o = &case.oracle;
     let lmax = PROJECTION_LMAX;
-    let reference = case.truncated_at(&o.truncated(lmax), normals);
+    let reference = &case.projection_reference;
     let grid = (sampler == Sampler::Importance)
         .then(|| ImportanceGrid::from_fn(128, 64, MapOrientation::default(), |d| o.radiance(d)));
     let method = format!("mc-{sampler}");
@@ -625,7 +631,7 @@ fn mc_sweep(
                 sampler,
                 seed: 0x5eed_0000 + seed,
             };
-            let out = mc_once(case, &opts, grid.as_ref(), normals, &reference);
+            let out = mc_once(case, &opts, grid.as_ref(), normals, reference);
             used = out.samples;
             outcomes.push(out);
         }
@@ -685,23 +691,26 @@ fn lmax_curve(case: &Case, options: SuiteOptions, normals: &[DVec3]) -> LmaxCurv
         (1024, 512)
     };
     let samples = 1 << 16;
-    let px = o
-        .renderable()
-        .then(|| render_texel_means(o, Layout::Equirect, resolution.0, resolution.1));
+    // Quadrature coefficients do not depend on lmax: project once, to the
+    // top, and keep the first bands of it.
+    let projected = o.renderable().then(|| {
+        let px = render_texel_means(o, Layout::Equirect, resolution.0, resolution.1);
+        let map = EnvMap::new(
+            Layout::Equirect,
+            MapOrientation::default(),
+            resolution.0,
+            resolution.1,
+            &px,
+        )
+        .expect("fits");
+        project_map(&map, top).channel(0)
+    });
     let (mut truncation, mut quadrature, mut montecarlo) = (Vec::new(), Vec::new(), Vec::new());
     for &l in &lmax {
         let reference = case.truncated_at(&o.truncated(l), normals);
         truncation.push(case.errors(&reference, &case.exact).mean);
-        if let Some(px) = &px {
-            let map = EnvMap::new(
-                Layout::Equirect,
-                MapOrientation::default(),
-                resolution.0,
-                resolution.1,
-                px,
-            )
-            .expect("fits");
-            let c = project_map(&map, l).channel(0);
+        if let Some(projected) = &projected {
+            let c = projected.resized(l);
             quadrature.push(case.errors(&sh_irradiance(&c, normals), &reference).mean);
             let opts = McOptions {
                 lmax: l,
