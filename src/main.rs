@@ -9,6 +9,7 @@ mod coeff_file;
 mod convert;
 mod environment;
 mod export;
+mod gpu_scene;
 mod irradiance;
 mod preview;
 mod progress;

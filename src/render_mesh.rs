@@ -17,7 +17,7 @@ use glam::Vec3;
 use shlight_core::Window;
 use shlight_gpu::{
     Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT,
-    MAX_LMAX, Mode, Renderer, Shading, Transfer, render_frame,
+    Mode, Shading, render_frame,
 };
 use shlight_io::{Format, Image, ToneMap, WriteOptions, write_image};
 
@@ -150,9 +150,7 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     if !matches!(format, Some(Format::Exr | Format::Png)) {
         bail!("{out}: render-mesh writes .exr (linear) or .png");
     }
-    if let Some(lmax) = args.lmax.filter(|&l| l > MAX_LMAX) {
-        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
-    }
+    crate::gpu_scene::check_lmax(args.lmax)?;
     let mode = match (args.mode, &args.prt) {
         (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
         (Some(mode), _) => mode,
@@ -178,27 +176,12 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     }
     bar.set_message("opening the GPU");
     let ctx = GpuContext::headless()?;
-    let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
-    renderer.set_mesh(&ctx, &mesh);
-    if let Some(t) = &transfer {
-        let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
-        renderer.set_transfer(&ctx, &t)?;
-    }
-    renderer.set_light(&ctx, &env.radiance);
-    let lmax = match (args.lmax, &transfer) {
-        (Some(l), _) => l,
-        (None, Some(t)) if mode == RenderMode::Prt => t.lmax.min(MAX_LMAX),
-        (None, _) => 2,
-    };
-    if let Some(map) = &env.map {
-        renderer.set_environment(
-            &ctx,
-            map.width(),
-            map.height(),
-            map.pixels(),
-            env.orientation,
-        );
-    }
+    let renderer =
+        crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
+    let lmax = crate::gpu_scene::shading_lmax(
+        args.lmax,
+        transfer.as_ref().filter(|_| mode == RenderMode::Prt),
+    );
     let (w, h) = args.size;
     let camera = camera_for(
         mesh.bounds(),

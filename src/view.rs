@@ -20,7 +20,7 @@ use shlight_core::{ShRotation, Window};
 use shlight_gpu::wgpu;
 use shlight_gpu::{
     Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, DEPTH_FORMAT, GpuContext,
-    MAX_LMAX, Mode, Renderer, Shading, Transfer,
+    MAX_LMAX, Mode, Renderer, Shading,
 };
 use shlight_io::{Image, ToneMap, WriteOptions, srgb_to_linear, write_image};
 use shlight_mesh::Mesh;
@@ -81,9 +81,7 @@ pub struct ViewArgs {
 
 /// Runs `shlight view`.
 pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    if let Some(lmax) = args.lmax.filter(|&l| l > MAX_LMAX) {
-        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
-    }
+    crate::gpu_scene::check_lmax(args.lmax)?;
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
@@ -239,10 +237,12 @@ impl<'a> App<'a> {
         } else {
             Background::Sh
         };
-        let (mode, lmax) = match &transfer {
-            Some(t) => (Mode::Prt, args.lmax.unwrap_or(t.lmax.min(MAX_LMAX))),
-            None => (Mode::Sh, args.lmax.unwrap_or(2)),
+        let mode = if transfer.is_some() {
+            Mode::Prt
+        } else {
+            Mode::Sh
         };
+        let lmax = crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref());
         Self {
             args,
             mesh,
@@ -315,22 +315,13 @@ impl<'a> App<'a> {
         config.present_mode = wgpu::PresentMode::AutoNoVsync;
         config.view_formats = vec![];
         surface.configure(&ctx.device, &config);
-        let mut renderer = Renderer::new(&ctx, format);
-        renderer.set_mesh(&ctx, &self.mesh);
-        if let Some(t) = &self.transfer {
-            let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
-            renderer.set_transfer(&ctx, &t)?;
-        }
-        renderer.set_light(&ctx, &self.env.radiance);
-        if let Some(map) = &self.env.map {
-            renderer.set_environment(
-                &ctx,
-                map.width(),
-                map.height(),
-                map.pixels(),
-                self.env.orientation,
-            );
-        }
+        let renderer = crate::gpu_scene::renderer(
+            &ctx,
+            format,
+            &self.mesh,
+            self.transfer.as_ref(),
+            &self.env,
+        )?;
         let depth = depth_view(&ctx, config.width, config.height);
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(

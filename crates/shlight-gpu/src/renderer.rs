@@ -4,7 +4,7 @@
 
 use std::sync::OnceLock;
 
-use glam::{DMat3, DVec3, Vec3};
+use glam::{DMat3, DVec3};
 use shlight_core::ShCoeffs;
 use shlight_core::projection::MapOrientation;
 use shlight_mesh::Mesh;
@@ -26,7 +26,6 @@ struct GpuMesh {
     indices: wgpu::Buffer,
     index_count: u32,
     vertex_count: usize,
-    bounds: (Vec3, Vec3),
 }
 
 /// Draws meshes lit by SH coefficients into targets of one colour format.
@@ -46,8 +45,9 @@ pub struct Renderer {
     mesh_bind: wgpu::BindGroup,
     background_bind: wgpu::BindGroup,
     mesh: Option<GpuMesh>,
+    /// The light's lmax as uploaded (at most [`MAX_LMAX`]).
     light_lmax: usize,
-    prt: Option<(usize, usize, usize)>,
+    prt: Option<(usize, usize)>,
     map_orientation: MapOrientation,
     environment_rotation: DMat3,
 }
@@ -211,17 +211,10 @@ impl Renderer {
             indices: index_buffer,
             index_count: indices.len() as u32,
             vertex_count: mesh.vertex_count(),
-            bounds: mesh.bounds(),
         });
         if self.prt.is_some() {
             self.clear_transfer(ctx);
         }
-    }
-
-    /// The bounding box of the mesh, if one is set.
-    #[must_use]
-    pub fn mesh_bounds(&self) -> Option<(Vec3, Vec3)> {
-        self.mesh.as_ref().map(|m| m.bounds)
     }
 
     /// Uploads radiance coefficients (linear RGB, world frame, shlight's
@@ -235,12 +228,6 @@ impl Renderer {
         ctx.queue
             .write_buffer(&self.light, 0, bytemuck::cast_slice(&slots));
         self.light_lmax = lmax;
-    }
-
-    /// The light's lmax as uploaded (at most [`MAX_LMAX`]).
-    #[must_use]
-    pub fn light_lmax(&self) -> usize {
-        self.light_lmax
     }
 
     /// Uploads an equirect environment map (`width x height` linear RGB
@@ -300,7 +287,7 @@ impl Renderer {
                 contents: bytemuck::cast_slice(t.data),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-        self.prt = Some((t.lmax, t.channels, t.vertex_count));
+        self.prt = Some((t.lmax, t.channels));
         self.mesh_bind = bind_mesh(
             &ctx.device,
             &self.mesh_layout,
@@ -326,12 +313,6 @@ impl Renderer {
             &self.light,
             &self.transfer,
         );
-    }
-
-    /// `(lmax, channels)` of the PRT transfer, if one is set.
-    #[must_use]
-    pub fn transfer_shape(&self) -> Option<(usize, usize)> {
-        self.prt.map(|(l, c, _)| (l, c))
     }
 
     /// Records a frame into `encoder`: clears `color` to 0 and `depth` to 1,
@@ -367,7 +348,7 @@ impl Renderer {
             view_proj: camera.view_proj(aspect),
             env_from_world,
             lmax,
-            prt: self.prt.map(|(l, c, _)| (l, c)),
+            prt: self.prt,
             encode_srgb,
         });
         ctx.queue

@@ -58,18 +58,4 @@ impl<'a> Transfer<'a> {
             data,
         })
     }
-
-    /// Coefficients per vector, `(lmax+1)^2`.
-    #[must_use]
-    pub fn count(&self) -> usize {
-        (self.lmax + 1) * (self.lmax + 1)
-    }
-
-    /// The vector of vertex `v`, channel `c`.
-    #[must_use]
-    pub fn vector(&self, v: usize, c: usize) -> &'a [f32] {
-        let n = self.count();
-        let start = (v * self.channels + c) * n;
-        &self.data[start..start + n]
-    }
 }

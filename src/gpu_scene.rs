@@ -1,0 +1,55 @@
+//! What `render-mesh` and `view` hand the GPU renderer: the mesh, its PRT
+//! transfer (`--prt`), the light and the map (`--env`), and the lmax to
+//! shade at.
+
+use anyhow::{Result, bail};
+use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, Transfer, wgpu};
+use shlight_mesh::Mesh;
+use shlight_prt::ShprtFile;
+
+use crate::environment::Environment;
+
+/// Refuses an `--lmax` above what the GPU shades.
+pub fn check_lmax(lmax: Option<usize>) -> Result<()> {
+    if let Some(lmax) = lmax.filter(|&l| l > MAX_LMAX) {
+        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
+    }
+    Ok(())
+}
+
+/// The lmax to shade at: `--lmax`, else the transfer's (to [`MAX_LMAX`])
+/// when shading by PRT, else 2.
+pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize {
+    requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
+}
+
+/// A renderer for colour targets of `format` holding `mesh`, its
+/// `transfer` (if any), the light of `env` and its map (if any).
+///
+/// # Errors
+/// A transfer the GPU cannot hold.
+pub fn renderer(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    mesh: &Mesh,
+    transfer: Option<&ShprtFile>,
+    env: &Environment,
+) -> Result<Renderer> {
+    let mut renderer = Renderer::new(ctx, format);
+    renderer.set_mesh(ctx, mesh);
+    if let Some(t) = transfer {
+        let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
+        renderer.set_transfer(ctx, &t)?;
+    }
+    renderer.set_light(ctx, &env.radiance);
+    if let Some(map) = &env.map {
+        renderer.set_environment(
+            ctx,
+            map.width(),
+            map.height(),
+            map.pixels(),
+            env.orientation,
+        );
+    }
+    Ok(renderer)
+}
