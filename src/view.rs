@@ -19,8 +19,8 @@ use glam::{DMat3, Vec3};
 use shlight_core::{ShRotation, Window};
 use shlight_gpu::wgpu;
 use shlight_gpu::{
-    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, DEPTH_FORMAT, GpuContext,
-    MAX_LMAX, Mode, Renderer, Shading,
+    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, MAX_LMAX, Mode,
+    Renderer, Shading,
 };
 use shlight_io::{Image, ToneMap, WriteOptions, srgb_to_linear, write_image};
 use shlight_mesh::Mesh;
@@ -322,7 +322,7 @@ impl<'a> App<'a> {
             self.transfer.as_ref(),
             &self.env,
         )?;
-        let depth = depth_view(&ctx, config.width, config.height);
+        let depth = shlight_gpu::depth_view(&ctx, config.width, config.height);
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui_ctx,
@@ -359,7 +359,7 @@ impl<'a> App<'a> {
             r.config.width = width;
             r.config.height = height;
             r.surface.configure(&r.ctx.device, &r.config);
-            r.depth = depth_view(&r.ctx, width, height);
+            r.depth = shlight_gpu::depth_view(&r.ctx, width, height);
         }
     }
 
@@ -723,25 +723,6 @@ fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -> bo
     screenshot
 }
 
-fn depth_view(ctx: &GpuContext, width: u32, height: u32) -> wgpu::TextureView {
-    ctx.device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("depth"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
-}
-
 /// Reads an 8-bit RGBA or BGRA texture back and writes it as PNG.
 fn save_screenshot(
     ctx: &GpuContext,
@@ -772,23 +753,11 @@ fn save_screenshot(
         size,
     );
     ctx.queue.submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| anyhow!("screenshot: {e}"))?;
-    rx.recv()?.map_err(|e| anyhow!("screenshot: {e}"))?;
+    let bytes = shlight_gpu::read_buffer(ctx, &buffer).context("screenshot")?;
     let bgra = matches!(
         format,
         wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
     );
-    let bytes = buffer
-        .get_mapped_range(..)
-        .map_err(|e| anyhow!("screenshot: {e}"))?
-        .to_vec();
-    buffer.unmap();
     let mut pixels = Vec::with_capacity(w * h);
     for row in bytes.chunks_exact(padded as usize).take(h) {
         for p in row[..w * 4].chunks_exact(4) {

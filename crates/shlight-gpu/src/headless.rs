@@ -73,7 +73,6 @@ impl Offscreen {
             HEADLESS_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         );
-        let depth = texture(DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
         let padded_row = (width as u32 * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
@@ -85,7 +84,7 @@ impl Offscreen {
             width: width as u32,
             height: height as u32,
             color_view: color.create_view(&Default::default()),
-            depth_view: depth.create_view(&Default::default()),
+            depth_view: depth_view(ctx, width as u32, height as u32),
             color,
             readback,
             padded_row,
@@ -194,4 +193,26 @@ pub fn render_frame(
     height: usize,
 ) -> Result<Frame, GpuError> {
     Offscreen::new(ctx, width, height)?.render(ctx, renderer, camera, shading)
+}
+
+/// A depth target of `width x height` in [`DEPTH_FORMAT`], for
+/// [`Renderer::draw`].
+#[must_use]
+pub fn depth_view(ctx: &GpuContext, width: u32, height: u32) -> wgpu::TextureView {
+    ctx.device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("depth"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
 }

@@ -4,7 +4,10 @@ use crate::{GpuContext, GpuError};
 
 /// Maps `buffer` (`MAP_READ`) after the queue's work, copies its bytes out
 /// and unmaps it.
-pub(crate) fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+///
+/// # Errors
+/// A lost device or a failed mapping.
+pub fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.map_async(wgpu::MapMode::Read, .., move |r| {
         let _ = tx.send(r);
