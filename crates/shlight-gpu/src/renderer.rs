@@ -10,7 +10,7 @@ use shlight_core::projection::MapOrientation;
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
-use crate::shaders::{self, BACKGROUND_MODULE, MESH_MODULE};
+use crate::shaders::{self, BACKGROUND_MODULE, MESH_MODULE, ShaderModuleSource};
 use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading};
 use crate::{Camera, GpuContext, GpuError, Transfer};
 
@@ -385,10 +385,11 @@ impl Renderer {
                 0
             };
             pass.set_pipeline(self.background_pipelines[l].get_or_init(|| {
-                background_pipeline(
+                pipeline(
                     device,
                     &self.background_pipeline_layout,
                     self.color_format,
+                    &BACKGROUND_PASS,
                     l,
                 )
             }));
@@ -399,7 +400,13 @@ impl Renderer {
             // Only SH mode evaluates sh_reconstruct.
             let l = if shading.mode == Mode::Sh { lmax } else { 0 };
             pass.set_pipeline(self.mesh_pipelines[l].get_or_init(|| {
-                mesh_pipeline(device, &self.mesh_pipeline_layout, self.color_format, l)
+                pipeline(
+                    device,
+                    &self.mesh_pipeline_layout,
+                    self.color_format,
+                    &MESH_PASS,
+                    l,
+                )
             }));
             pass.set_bind_group(0, &self.mesh_bind, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
@@ -410,92 +417,83 @@ impl Renderer {
     }
 }
 
-/// The mesh pipeline with `sh_reconstruct` for `lmax` (SH mode; the other
-/// modes use lmax 0's).
-fn mesh_pipeline(
+/// What the mesh and background pipelines differ in.
+struct Pass {
+    label: &'static str,
+    module: &'static ShaderModuleSource,
+    vertex_entry: &'static str,
+    fragment_entry: &'static str,
+    vertex_buffers: &'static [Option<wgpu::VertexBufferLayout<'static>>],
+    depth_write: bool,
+    depth_compare: wgpu::CompareFunction,
+}
+
+/// The mesh: positions and normals interleaved, depth tested and written,
+/// both faces drawn (meshes with inconsistent winding still show).
+const MESH_PASS: Pass = Pass {
+    label: "mesh",
+    module: &MESH_MODULE,
+    vertex_entry: "vs_mesh",
+    fragment_entry: "fs_mesh",
+    vertex_buffers: &[Some(wgpu::VertexBufferLayout {
+        array_stride: 24,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+    })],
+    depth_write: true,
+    depth_compare: wgpu::CompareFunction::Less,
+};
+
+/// The background: one full-screen triangle behind everything.
+const BACKGROUND_PASS: Pass = Pass {
+    label: "background",
+    module: &BACKGROUND_MODULE,
+    vertex_entry: "vs_background",
+    fragment_entry: "fs_background",
+    vertex_buffers: &[],
+    depth_write: false,
+    depth_compare: wgpu::CompareFunction::Always,
+};
+
+/// The render pipeline of `pass` for colour targets of `color_format`,
+/// with `sh_reconstruct` written out for `lmax`.
+fn pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     color_format: wgpu::TextureFormat,
+    pass: &Pass,
     lmax: usize,
 ) -> wgpu::RenderPipeline {
-    let module = shaders::create(device, MESH_MODULE, lmax);
+    let module = shaders::create(device, *pass.module, lmax);
     let targets = [Some(wgpu::ColorTargetState {
         format: color_format,
         blend: None,
         write_mask: wgpu::ColorWrites::ALL,
     })];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("mesh"),
+        label: Some(pass.label),
         layout: Some(layout),
         vertex: wgpu::VertexState {
             module: &module,
-            entry_point: Some("vs_mesh"),
+            entry_point: Some(pass.vertex_entry),
             compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: 24,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
-            })],
+            buffers: pass.vertex_buffers,
         },
         primitive: wgpu::PrimitiveState {
-            // Both faces: meshes with inconsistent winding still show.
             cull_mode: None,
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_write_enabled: Some(pass.depth_write),
+            depth_compare: Some(pass.depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,
-            entry_point: Some("fs_mesh"),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
-
-/// The background pipeline with `sh_reconstruct` for `lmax` (the SH
-/// background; the map uses lmax 0's).
-fn background_pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    color_format: wgpu::TextureFormat,
-    lmax: usize,
-) -> wgpu::RenderPipeline {
-    let module = shaders::create(device, BACKGROUND_MODULE, lmax);
-    let targets = [Some(wgpu::ColorTargetState {
-        format: color_format,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    })];
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("background"),
-        layout: Some(layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_background"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Always),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_background"),
+            entry_point: Some(pass.fragment_entry),
             compilation_options: Default::default(),
             targets: &targets,
         }),
