@@ -207,28 +207,10 @@ fn gpu_commands_refuse_bad_input_by_name() {
     // A mesh that is not one.
     let broken = dir.join("broken.obj");
     std::fs::write(&broken, "v 0 0 0\nf 1 2 3\n").unwrap();
-    let err = shlight_err(&["render-mesh", s(&broken), "--env", s(&env), "-o", s(&out)]);
-    assert!(err.contains("broken.obj"), "{err}");
     let missing = dir.join("missing.obj");
-    let err = shlight_err(&["render-mesh", s(&missing), "--env", s(&env), "-o", s(&out)]);
-    assert!(err.contains("missing.obj"), "{err}");
     // An environment that is not 2:1, one that is missing, one of irradiance.
     let square = dir.join("square.exr");
     write_map(&square, 16, 16, |_, _| [1.0; 3]);
-    let err = shlight_err(&["render-mesh", s(&mesh), "--env", s(&square), "-o", s(&out)]);
-    assert!(
-        err.contains("square.exr") && err.contains("not an equirect"),
-        "{err}"
-    );
-    let err = shlight_err(&[
-        "render-mesh",
-        s(&mesh),
-        "--env",
-        s(&dir.join("none.exr")),
-        "-o",
-        s(&out),
-    ]);
-    assert!(err.contains("none.exr"), "{err}");
     let irr = dir.join("irr.json");
     std::fs::write(
         &irr,
@@ -237,32 +219,31 @@ fn gpu_commands_refuse_bad_input_by_name() {
             .replace("\"radiance\"", "\"irradiance\""),
     )
     .unwrap();
-    let err = shlight_err(&["render-mesh", s(&mesh), "--env", s(&irr), "-o", s(&out)]);
-    assert!(
-        err.contains("irr.json") && err.contains("irradiance"),
-        "{err}"
-    );
-    // Options the GPU path cannot honour.
-    let err = shlight_err(&[
-        "render-mesh",
-        s(&mesh),
-        "--env",
-        s(&env),
-        "--lmax",
-        "9",
-        "-o",
-        s(&out),
-    ]);
-    assert!(err.contains("--lmax 9"), "{err}");
-    let err = shlight_err(&[
-        "render-mesh",
-        s(&mesh),
-        "--env",
-        s(&env),
-        "-o",
-        s(&dir.join("o.jpg")),
-    ]);
-    assert!(err.contains("o.jpg"), "{err}");
+    let (none, jpg) = (dir.join("none.exr"), dir.join("o.jpg"));
+    // Mesh, environment, output, more arguments, what the error names.
+    type Case<'a> = (&'a Path, &'a Path, &'a Path, &'a [&'a str], &'a [&'a str]);
+    let cases: [Case; 7] = [
+        (&broken, &env, &out, &[], &["broken.obj"]),
+        (&missing, &env, &out, &[], &["missing.obj"]),
+        (
+            &mesh,
+            &square,
+            &out,
+            &[],
+            &["square.exr", "not an equirect"],
+        ),
+        (&mesh, &none, &out, &[], &["none.exr"]),
+        (&mesh, &irr, &out, &[], &["irr.json", "irradiance"]),
+        // Options the GPU path cannot honour.
+        (&mesh, &env, &out, &["--lmax", "9"], &["--lmax 9"]),
+        (&mesh, &env, &jpg, &[], &["o.jpg"]),
+    ];
+    for (mesh, env, out, more, names) in cases {
+        let mut args = vec!["render-mesh", s(mesh), "--env", s(env), "-o", s(out)];
+        args.extend_from_slice(more);
+        let err = shlight_err(&args);
+        assert!(names.iter().all(|n| err.contains(n)), "{err}");
+    }
     let map = dir.join("map.exr");
     write_map(&map, 16, 8, |_, _| [1.0; 3]);
     let err = shlight_err(&["project", s(&map), "--gpu", "--lmax", "9"]);
@@ -283,9 +264,15 @@ impl Xvfb {
     fn start() -> Option<Self> {
         for n in 90..110 {
             let socket = format!("/tmp/.X11-unix/X{n}");
-            if Path::new(&socket).exists() {
+            // Taken while its lock names a live process; a lock or socket
+            // left by a killed server does not keep a display.
+            let lock = std::fs::read_to_string(format!("/tmp/.X{n}-lock")).ok();
+            let pid = lock.as_deref().map(str::trim).filter(|p| !p.is_empty());
+            if pid.is_some_and(|p| Path::new(&format!("/proc/{p}")).exists()) {
                 continue;
             }
+            let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
+            let _ = std::fs::remove_file(&socket);
             let display = format!(":{n}");
             let Ok(mut child) = Command::new("Xvfb")
                 .args([
@@ -322,6 +309,10 @@ impl Drop for Xvfb {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+        // Killed, the server leaves its lock and socket behind.
+        let n = &self.display[1..];
+        let _ = std::fs::remove_file(format!("/tmp/.X{n}-lock"));
+        let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{n}"));
     }
 }
 
