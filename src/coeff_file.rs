@@ -238,6 +238,19 @@ impl CoeffFile {
         serde_json::to_string_pretty(&self.to_json()).expect("JSON values serialise")
     }
 
+    /// Reads the coefficient file at `path`, which must hold radiance:
+    /// `user` (e.g. `--env`) and `fix` complete the message that refuses
+    /// irradiance, from which radiance cannot be recovered.
+    pub fn read_radiance(path: &std::path::Path, user: &str, fix: &str) -> Result<Self> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
+        let file = Self::from_json_str(&text, &name)?;
+        if file.quantity != Quantity::Radiance {
+            bail!("{name}: holds irradiance; {user} needs radiance coefficients ({fix})");
+        }
+        Ok(file)
+    }
+
     /// Reads a coefficient file's text; `name` is used in error messages.
     pub fn from_json_str(text: &str, name: &str) -> Result<Self> {
         let v: Value =

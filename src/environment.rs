@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use glam::DVec3;
 use shlight_core::ShCoeffs;
 use shlight_core::layout::Layout;
@@ -13,7 +13,7 @@ use shlight_core::rotation::Frame;
 use shlight_gpu::MAX_LMAX;
 use shlight_io::{Image, ReadOptions, read_image};
 
-use crate::coeff_file::{CoeffFile, Quantity};
+use crate::coeff_file::CoeffFile;
 
 /// The bundled map used when no `--env` is given.
 pub const DEFAULT_ENV: &str = "envmaps/default.exr";
@@ -44,15 +44,8 @@ impl Environment {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"));
         if is_json {
-            let text =
-                std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
-            let file = CoeffFile::from_json_str(&text, &name)?;
-            if file.quantity != Quantity::Radiance {
-                bail!(
-                    "{name}: holds irradiance; --env needs radiance coefficients \
-                     (shlight project --quantity radiance)"
-                );
-            }
+            let file =
+                CoeffFile::read_radiance(path, "--env", "shlight project --quantity radiance")?;
             let lmax = file.coeffs.lmax().min(MAX_LMAX);
             return Ok(Self {
                 path: path.to_path_buf(),
@@ -72,10 +65,7 @@ impl Environment {
                  (shlight project {name} --lmax 8 -o light.json) and pass the JSON file"
             );
         }
-        if let Some((x, y)) = (0..w * h)
-            .find(|&k| image.pixels()[k].iter().any(|v| !v.is_finite()))
-            .map(|k| (k % w, k / w))
-        {
+        if let Some((x, y)) = image.stats().first_non_finite {
             bail!("{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it");
         }
         let orientation = MapOrientation {

@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::{DVec3, Vec3};
 use indicatif::ProgressBar;
@@ -20,7 +20,7 @@ use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
-use crate::coeff_file::{CoeffFile, Quantity};
+use crate::coeff_file::CoeffFile;
 use crate::progress::Ui;
 use crate::texels::parse_size;
 
@@ -123,7 +123,14 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         crate::project::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
     }
     // Read the light first: a bad light file fails before a long bake.
-    let light = args.light.as_deref().map(read_light).transpose()?;
+    let light = args
+        .light
+        .as_deref()
+        .map(|path| {
+            CoeffFile::read_radiance(path, "PRT shading", "project without --quantity irradiance")
+                .map(|f| f.coeffs)
+        })
+        .transpose()?;
 
     let name = args.mesh.display().to_string();
     let mesh = shlight_mesh::load(&args.mesh)?;
@@ -208,19 +215,6 @@ fn output_kind(path: &Path) -> Result<Output> {
             path.display()
         ),
     }
-}
-
-/// The radiance coefficients of a coefficient file.
-fn read_light(path: &Path) -> Result<shlight_core::ShCoeffs<DVec3>> {
-    let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
-    let file = CoeffFile::from_json_str(&text, &name)?;
-    if file.quantity != Quantity::Radiance {
-        bail!(
-            "{name}: holds irradiance; PRT shading needs radiance coefficients (project without --quantity irradiance)"
-        );
-    }
-    Ok(file.coeffs)
 }
 
 /// Shades every vertex (`T . L`) and rasterises the mesh to `path`.
