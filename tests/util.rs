@@ -160,6 +160,12 @@ pub fn write_obj(path: &Path, mesh: &shlight_mesh::Mesh) {
 /// Writes a radiance coefficient file (y-up) holding `rows` (`(lmax+1)^2`
 /// of them).
 pub fn write_radiance_rows(path: &Path, rows: &[[f64; 3]]) {
+    write_coefficient_rows(path, rows, "radiance");
+}
+
+/// A y-up coefficient file holding `quantity` (`radiance`, `irradiance`)
+/// with these coefficient rows.
+pub fn write_coefficient_rows(path: &Path, rows: &[[f64; 3]], quantity: &str) {
     let lmax = (rows.len() as f64).sqrt() as usize - 1;
     assert_eq!(
         (lmax + 1) * (lmax + 1),
@@ -172,7 +178,7 @@ pub fn write_radiance_rows(path: &Path, rows: &[[f64; 3]]) {
         "lmax": lmax,
         "frame": "y-up",
         "mirror": false,
-        "quantity": "radiance",
+        "quantity": quantity,
         "coefficients": rows,
         "provenance": {},
     });
