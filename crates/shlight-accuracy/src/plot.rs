@@ -11,7 +11,7 @@ use glam::DVec3;
 use plotters::prelude::*;
 use shlight_io::{Image, IoError, WriteOptions, srgb_to_linear, write_atomically, write_image};
 
-use crate::suite::{LmaxCurve, Report, Sweep};
+use crate::suite::{LmaxCurve, PROJECTION_LMAX, Report, Sweep};
 
 /// Colours of the series, in order (sRGB).
 const PALETTE: [RGBColor; 6] = [
@@ -146,26 +146,13 @@ fn sweep_label(s: &Sweep, name: &str) -> String {
 /// # Errors
 /// When plotters fails to draw.
 pub fn mc_plot(report: &Report, case: &str) -> std::io::Result<String> {
-    let mut series: Vec<Series> = report
-        .sweeps
-        .iter()
-        .filter(|s| s.case == case && s.method.starts_with("mc-"))
-        .map(|s| Series {
-            label: sweep_label(s, s.method.trim_start_matches("mc-")),
-            points: s.x.iter().copied().zip(s.rms.iter().copied()).collect(),
-            dashed: false,
-        })
-        .collect();
-    if let Some(first) = series.first() {
-        let xs: Vec<f64> = first.points.iter().map(|p| p.0).collect();
-        let (x0, y0) = first.points[0];
-        series.push(reference("N^-1/2", &xs, x0, y0, -0.5));
-    }
-    log_log_svg(
-        &format!("Monte Carlo projection error, {case}, lmax 2"),
+    sweep_plot(
+        report,
+        |s| s.case == case && s.method.starts_with("mc-"),
+        |s| sweep_label(s, s.method.trim_start_matches("mc-")),
+        ("N^-1/2", -0.5),
+        &format!("Monte Carlo projection error, {case}, lmax {PROJECTION_LMAX}"),
         "samples N",
-        "RMS relative irradiance error",
-        &series,
     )
 }
 
@@ -175,12 +162,33 @@ pub fn mc_plot(report: &Report, case: &str) -> std::io::Result<String> {
 /// # Errors
 /// When plotters fails to draw.
 pub fn quadrature_plot(report: &Report) -> std::io::Result<String> {
+    sweep_plot(
+        report,
+        |s| s.method == "quadrature-equirect" && s.rms.iter().any(|v| *v > 0.0),
+        |s| sweep_label(s, &s.case),
+        ("W^-2", -2.0),
+        &format!("Quadrature projection error (equirect W x W/2), lmax {PROJECTION_LMAX}"),
+        "map width W",
+    )
+}
+
+/// The RMS error of the sweeps `keep` picks, one line each (`label`), and
+/// a reference power law `(name, exponent)` through the first line's
+/// first point.
+fn sweep_plot(
+    report: &Report,
+    keep: impl Fn(&Sweep) -> bool,
+    label: impl Fn(&Sweep) -> String,
+    (name, exponent): (&str, f64),
+    title: &str,
+    x_label: &str,
+) -> std::io::Result<String> {
     let mut series: Vec<Series> = report
         .sweeps
         .iter()
-        .filter(|s| s.method == "quadrature-equirect" && s.rms.iter().any(|v| *v > 0.0))
+        .filter(|s| keep(s))
         .map(|s| Series {
-            label: sweep_label(s, &s.case),
+            label: label(s),
             points: s.x.iter().copied().zip(s.rms.iter().copied()).collect(),
             dashed: false,
         })
@@ -188,14 +196,9 @@ pub fn quadrature_plot(report: &Report) -> std::io::Result<String> {
     if let Some(first) = series.first() {
         let xs: Vec<f64> = first.points.iter().map(|p| p.0).collect();
         let (x0, y0) = first.points[0];
-        series.push(reference("W^-2", &xs, x0, y0, -2.0));
+        series.push(reference(name, &xs, x0, y0, exponent));
     }
-    log_log_svg(
-        "Quadrature projection error (equirect W x W/2), lmax 2",
-        "map width W",
-        "RMS relative irradiance error",
-        &series,
-    )
+    log_log_svg(title, x_label, "RMS relative irradiance error", &series)
 }
 
 /// Truncation and projection error against lmax for one oracle (mean
@@ -296,20 +299,18 @@ pub fn write_pictures(report: &Report, dir: &Path) -> Result<Vec<std::path::Path
         write_svg(&path, &svg)?;
         written.push(path);
     }
+    let normals = crate::suite::normals();
     for oracle in crate::oracle::suite_oracles()
         .into_iter()
         .filter(|o| MAPPED_ORACLES.contains(&o.name.as_str()))
     {
-        let t = oracle.truncated(2);
-        let normals = crate::suite::normals();
-        let peak = normals
-            .iter()
-            .map(|n| oracle.irradiance(*n).abs())
-            .fold(0.0, f64::max);
+        let t = oracle.truncated(PROJECTION_LMAX);
+        let exact: Vec<f64> = normals.iter().map(|n| oracle.irradiance(*n)).collect();
+        let peak = crate::error::peak(&exact);
         let (image, _) = error_map(ERROR_MAP_SIZE.0, ERROR_MAP_SIZE.1, None, |d| {
             (t.eval(d) - oracle.irradiance(d)).abs() / peak
         });
-        let path = dir.join(format!("error-{}-lmax2.png", oracle.name));
+        let path = dir.join(format!("error-{}-lmax{PROJECTION_LMAX}.png", oracle.name));
         write_error_map(&path, &image)?;
         written.push(path);
     }
