@@ -65,7 +65,7 @@ use shlight_core::montecarlo::{ImportanceGrid, McOptions, Sampler, project_monte
 use shlight_core::projection::MapOrientation;
 use shlight_core::quadrature::fibonacci_sphere;
 use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, sh_eval};
+use shlight_core::{ShBasis, ShCoeffs};
 
 use crate::error::{ErrorStats, log_log_slope, peak, relative_to_peak};
 use crate::oracle::{Oracle, Shape, Truncated, suite_oracles};
@@ -580,18 +580,22 @@ fn mc_once(
     let e = case.errors(&sh_irradiance(&l, normals), reference);
     let lmax = options.lmax;
     let a: Vec<f64> = (0..=lmax).map(clamped_cosine_eigenvalue).collect();
-    let sigma = normals
-        .iter()
-        .map(|n| {
-            let y = sh_eval(lmax, n.to_array());
-            (0..y.len())
-                .map(|i| {
-                    let (l, _) = shlight_core::lm_from_index(i);
-                    (a[l] * y[i]).abs() * se[i]
-                })
-                .sum::<f64>()
-        })
-        .fold(0.0f64, f64::max);
+    // sigma(n) = sum_i |A_l Y_i(n)| se_i, at its largest over the normals.
+    let weights: Vec<f64> = (0..se.len())
+        .map(|i| a[shlight_core::lm_from_index(i).0].abs() * se[i])
+        .collect();
+    let basis = ShBasis::<f64>::new(lmax);
+    let mut y = vec![0.0; basis.count()];
+    let mut sigma = 0.0f64;
+    for n in normals {
+        basis.eval(n.to_array(), &mut y);
+        sigma = sigma.max(
+            y.iter()
+                .zip(&weights)
+                .map(|(y, w)| y.abs() * w)
+                .sum::<f64>(),
+        );
+    }
     let z = o.coefficients(lmax).map(|exact| {
         (0..exact.len())
             .filter(|&i| se[i] > 0.0)
