@@ -17,9 +17,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
-use shlight_accuracy::error::ErrorStats;
+use shlight_accuracy::error::{self, ErrorStats};
 use shlight_core::irradiance;
-use shlight_core::irradiance_map::TexelSet;
+use shlight_core::irradiance_map::irradiance_brute_force;
 use shlight_core::layout::{self, EnvMap};
 use shlight_core::montecarlo::luminance;
 use shlight_core::projection::MapOrientation;
@@ -117,8 +117,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         .collect();
 
     let bar = ui.bar(normals.len() as u64, "irradiance");
-    let texels = TexelSet::from_map(&map);
-    let exact = texels.irradiance_at(&normals, &|n| bar.inc(n as u64));
+    let exact = irradiance_brute_force(&map, &normals, &|n| bar.inc(n as u64));
     bar.finish_and_clear();
     let to_image = |values: &[DVec3]| {
         Image::new(
@@ -146,24 +145,18 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let reference: Vec<f64> = exact.iter().map(|e| luminance(*e)).collect();
     let estimate: Vec<f64> = sh.iter().map(|e| luminance(*e)).collect();
     let weights: Vec<f64> = (0..w * h).map(|k| grid.solid_angle(k % w, k / w)).collect();
-    let peak = reference.iter().fold(0.0f64, |m, e| m.max(e.abs()));
-    if peak <= 0.0 {
+    if error::peak(&reference) <= 0.0 {
         bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
     }
-    let abs: Vec<f64> = estimate
-        .iter()
-        .zip(&reference)
-        .map(|(s, e)| (s - e).abs())
-        .collect();
-    let of_peak: Vec<f64> = abs.iter().map(|d| d / peak).collect();
     // Pointwise, with E below 1e-3 of its peak counted as 1e-3 of the peak.
-    let pointwise: Vec<f64> = abs
-        .iter()
-        .zip(&reference)
-        .map(|(d, e)| d / e.abs().max(1e-3 * peak))
-        .collect();
-    let p = ErrorStats::weighted(&pointwise, &weights);
-    let q = ErrorStats::weighted(&of_peak, &weights);
+    let p = ErrorStats::weighted(
+        &error::pointwise_errors(&estimate, &reference, 1e-3),
+        &weights,
+    );
+    let q = ErrorStats::weighted(
+        &error::peak_relative_errors(&estimate, &reference),
+        &weights,
+    );
     println!(
         "{name}: SH irradiance (lmax {lmax}) against brute force over {} normals ({}x{} texels of input):",
         normals.len(),

@@ -73,13 +73,18 @@ pub fn peak(reference: &[f64]) -> f64 {
 /// Relative errors `|est - reference| / peak(reference)` (module docs).
 #[must_use]
 pub fn relative_to_peak(estimate: &[f64], reference: &[f64]) -> ErrorStats {
+    ErrorStats::of(peak_relative_errors(estimate, reference))
+}
+
+/// The errors of [`relative_to_peak`], one per value.
+#[must_use]
+pub fn peak_relative_errors(estimate: &[f64], reference: &[f64]) -> Vec<f64> {
     let p = peak(reference).max(f64::MIN_POSITIVE);
-    ErrorStats::of(
-        estimate
-            .iter()
-            .zip(reference)
-            .map(|(e, r)| (e - r).abs() / p),
-    )
+    estimate
+        .iter()
+        .zip(reference)
+        .map(|(e, r)| (e - r).abs() / p)
+        .collect()
 }
 
 /// Pointwise relative errors `|est - reference| / |reference|`, for
@@ -87,13 +92,18 @@ pub fn relative_to_peak(estimate: &[f64], reference: &[f64]) -> ErrorStats {
 /// `floor * peak(reference)` counts as that floor.
 #[must_use]
 pub fn pointwise(estimate: &[f64], reference: &[f64], floor: f64) -> ErrorStats {
+    ErrorStats::of(pointwise_errors(estimate, reference, floor))
+}
+
+/// The errors of [`pointwise`], one per value.
+#[must_use]
+pub fn pointwise_errors(estimate: &[f64], reference: &[f64], floor: f64) -> Vec<f64> {
     let f = floor * peak(reference);
-    ErrorStats::of(
-        estimate
-            .iter()
-            .zip(reference)
-            .map(|(e, r)| (e - r).abs() / r.abs().max(f).max(f64::MIN_POSITIVE)),
-    )
+    estimate
+        .iter()
+        .zip(reference)
+        .map(|(e, r)| (e - r).abs() / r.abs().max(f).max(f64::MIN_POSITIVE))
+        .collect()
 }
 
 /// The least-squares slope of `ln y` against `ln x`: the exponent `p` of
