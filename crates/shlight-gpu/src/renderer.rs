@@ -147,16 +147,24 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let transfer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("transfer (none)"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
+        let transfer = no_transfer(device);
         let environment = environment_texture(ctx, 1, 1, &[[0.0; 3]]);
-        let mesh_bind = bind_mesh(device, &mesh_layout, &uniform, &light, &transfer);
-        let background_bind =
-            bind_background(device, &background_layout, &uniform, &light, &environment);
+        let mesh_bind = bind_group(
+            device,
+            &mesh_layout,
+            "mesh",
+            &uniform,
+            &light,
+            transfer.as_entire_binding(),
+        );
+        let background_bind = bind_group(
+            device,
+            &background_layout,
+            "background",
+            &uniform,
+            &light,
+            wgpu::BindingResource::TextureView(&environment),
+        );
         Self {
             color_format,
             mesh_pipelines: Default::default(),
@@ -249,12 +257,13 @@ impl Renderer {
         }
         self.environment = environment_texture(ctx, w, h, &data);
         self.map_orientation = orientation;
-        self.background_bind = bind_background(
+        self.background_bind = bind_group(
             &ctx.device,
             &self.background_layout,
+            "background",
             &self.uniform,
             &self.light,
-            &self.environment,
+            wgpu::BindingResource::TextureView(&self.environment),
         );
     }
 
@@ -288,30 +297,25 @@ impl Renderer {
                 usage: wgpu::BufferUsages::STORAGE,
             });
         self.prt = Some((t.lmax, t.channels));
-        self.mesh_bind = bind_mesh(
-            &ctx.device,
-            &self.mesh_layout,
-            &self.uniform,
-            &self.light,
-            &self.transfer,
-        );
+        self.rebind_mesh(ctx);
         Ok(())
     }
 
     fn clear_transfer(&mut self, ctx: &GpuContext) {
         self.prt = None;
-        self.transfer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("transfer (none)"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        self.mesh_bind = bind_mesh(
+        self.transfer = no_transfer(&ctx.device);
+        self.rebind_mesh(ctx);
+    }
+
+    /// The mesh pass's bind group over the current transfer buffer.
+    fn rebind_mesh(&mut self, ctx: &GpuContext) {
+        self.mesh_bind = bind_group(
             &ctx.device,
             &self.mesh_layout,
+            "mesh",
             &self.uniform,
             &self.light,
-            &self.transfer,
+            self.transfer.as_entire_binding(),
         );
     }
 
@@ -512,15 +516,18 @@ fn orientation_matrix(o: MapOrientation) -> DMat3 {
     )
 }
 
-fn bind_mesh(
+/// The bind group of a pass: the frame uniform, the light, and the pass's
+/// own third binding (the mesh's transfer or the background's map).
+fn bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
+    label: &str,
     uniform: &wgpu::Buffer,
     light: &wgpu::Buffer,
-    transfer: &wgpu::Buffer,
+    third: wgpu::BindingResource<'_>,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("mesh"),
+        label: Some(label),
         layout,
         entries: &[
             wgpu::BindGroupEntry {
@@ -533,36 +540,19 @@ fn bind_mesh(
             },
             wgpu::BindGroupEntry {
                 binding: 2,
-                resource: transfer.as_entire_binding(),
+                resource: third,
             },
         ],
     })
 }
 
-fn bind_background(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    uniform: &wgpu::Buffer,
-    light: &wgpu::Buffer,
-    environment: &wgpu::TextureView,
-) -> wgpu::BindGroup {
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("background"),
-        layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: light.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(environment),
-            },
-        ],
+/// The storage buffer bound while no PRT transfer is set.
+fn no_transfer(device: &wgpu::Device) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("transfer (none)"),
+        size: 16,
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
     })
 }
 
