@@ -83,6 +83,16 @@ impl MapOrientation {
         Frame::YUp.rotation_to(self.frame) * d
     }
 
+    /// `s` in `ψ = s φ`: the azimuth `ψ` about the map's pole (its z-up
+    /// frame, `d_zup = (sin θ cos φ, -sin θ sin φ, cos θ)`) of texel azimuth
+    /// `φ`; -1, or +1 when mirrored. What the ring transforms (CPU and GPU)
+    /// turn each row by.
+    #[inline]
+    #[must_use]
+    pub fn pole_azimuth_sign(self) -> f64 {
+        if self.mirror { 1.0 } else { -1.0 }
+    }
+
     /// The inverse of [`MapOrientation::world_from_map`].
     #[inline]
     #[must_use]
@@ -142,9 +152,7 @@ pub fn project_equirect(map: EquirectView<'_>, lmax: usize, o: MapOrientation) -
         map.width * map.height,
         "pixel count must be width * height"
     );
-    // Azimuth about the z-up pole: d_zup = (sin t cos p, -sin t sin p, cos t)
-    // so ψ = -φ (or +φ when mirrored).
-    let sign = if o.mirror { 1.0 } else { -1.0 };
+    let sign = o.pole_azimuth_sign();
     let zup = crate::ring_transform::project_rings(map, lmax, sign);
     to_frame(zup, o.frame)
 }
@@ -180,9 +188,7 @@ pub fn project_equirect_simple(
         w * h,
         "pixel count must be width * height"
     );
-    // Azimuth about the z-up pole: d_zup = (sin t cos p, -sin t sin p, cos t)
-    // so ψ = -φ (or +φ when mirrored).
-    let sign = if o.mirror { 1.0 } else { -1.0 };
+    let sign = o.pole_azimuth_sign();
     let trig: Vec<[f64; 2]> = (0..=lmax)
         .flat_map(|m| {
             (0..w).map(move |i| {

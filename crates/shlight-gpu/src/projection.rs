@@ -25,13 +25,15 @@
 //! of `e^{i psi}`, against `(lmax + 1)^2` basis values and multiply-adds for
 //! a per-texel basis; no basis is evaluated per texel at all.
 
-use std::f64::consts::{PI, SQRT_2};
+use std::f64::consts::SQRT_2;
 use std::sync::OnceLock;
 
 use glam::DVec3;
 use shlight_core::ShCoeffs;
 use shlight_core::legendre::{Legendre, legendre_count, legendre_index};
-use shlight_core::projection::{EquirectView, MapOrientation, equirect_row_solid_angle, to_frame};
+use shlight_core::projection::{
+    EquirectView, MapOrientation, equirect_angles, equirect_row_solid_angle, to_frame,
+};
 use wgpu::util::DeviceExt;
 
 use crate::ring_sums::ring_slots;
@@ -141,12 +143,12 @@ impl GpuProjector {
         let slots = ring_slots(lmax);
         let pipelines = self.pipelines[lmax].get_or_init(|| Pipelines::new(ctx, lmax));
         let device = &ctx.device;
-        // Azimuth about the map's pole (z-up): psi = -phi, or +phi mirrored
-        // (as shlight-core's ring transform).
-        let sign = if o.mirror { 1.0 } else { -1.0 };
+        // Azimuth about the map's pole, as shlight-core's ring transform
+        // (the padding columns hold zero texels; their angles do not matter).
+        let sign = o.pole_azimuth_sign();
         let columns: Vec<[f32; 2]> = (0..padded)
             .map(|i| {
-                let psi = sign * 2.0 * PI * ((i as f64 + 0.5) / w as f64 - 0.5);
+                let psi = sign * equirect_angles(i, 0, w, h).1;
                 [psi.cos() as f32, psi.sin() as f32]
             })
             .collect();
@@ -155,7 +157,7 @@ impl GpuProjector {
         let mut pbar = vec![0.0; per_row];
         let mut weights = Vec::with_capacity(h * per_row);
         for j in 0..h {
-            let theta = PI * (j as f64 + 0.5) / h as f64;
+            let theta = equirect_angles(0, j, w, h).0;
             legendre.eval(theta.cos(), &mut pbar);
             let omega = equirect_row_solid_angle(j, w, h);
             let row = weights.len();
