@@ -7,6 +7,7 @@ use std::sync::OnceLock;
 use glam::{DMat3, DVec3};
 use shlight_core::ShCoeffs;
 use shlight_core::projection::MapOrientation;
+use shlight_io::Image;
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
@@ -251,11 +252,17 @@ impl Renderer {
         orientation: MapOrientation,
     ) {
         let max = ctx.device.limits().max_texture_dimension_2d as usize;
-        let (mut w, mut h, mut data) = (width, height, pixels.to_vec());
-        while w > max || h > max {
-            (w, h, data) = halve(w, h, &data);
+        if width > max || height > max {
+            let mut image = Image::new(width, height, pixels.to_vec())
+                .expect("width * height texels (the caller's map)");
+            while image.width() > max || image.height() > max {
+                image = image.halve();
+            }
+            self.environment =
+                environment_texture(ctx, image.width(), image.height(), image.pixels());
+        } else {
+            self.environment = environment_texture(ctx, width, height, pixels);
         }
-        self.environment = environment_texture(ctx, w, h, &data);
         self.map_orientation = orientation;
         self.background_bind = bind_group(
             &ctx.device,
@@ -584,30 +591,4 @@ fn environment_texture(
         bytemuck::cast_slice(&rgba),
     );
     texture.create_view(&Default::default())
-}
-
-/// A map at half the size (rounded up), each texel the mean of up to 2x2.
-fn halve(w: usize, h: usize, pixels: &[[f32; 3]]) -> (usize, usize, Vec<[f32; 3]>) {
-    let (hw, hh) = (w.div_ceil(2), h.div_ceil(2));
-    let mut out = Vec::with_capacity(hw * hh);
-    for y in 0..hh {
-        for x in 0..hw {
-            let mut sum = [0.0f32; 3];
-            let mut n = 0.0f32;
-            for (sx, sy) in [
-                (2 * x, 2 * y),
-                (2 * x + 1, 2 * y),
-                (2 * x, 2 * y + 1),
-                (2 * x + 1, 2 * y + 1),
-            ] {
-                if sx < w && sy < h {
-                    let p = pixels[sy * w + sx];
-                    sum = [sum[0] + p[0], sum[1] + p[1], sum[2] + p[2]];
-                    n += 1.0;
-                }
-            }
-            out.push(sum.map(|s| s / n));
-        }
-    }
-    (hw, hh, out)
 }
