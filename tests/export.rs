@@ -218,7 +218,7 @@ fn have(tool: &str, test: &str) -> bool {
         .output()
         .is_ok_and(|o| o.status.success());
     if !ok {
-        eprintln!("SKIPPED {test}: `{tool}` is not installed");
+        crate::util::skipped(test, &format!("`{tool}` is not installed"));
     }
     ok
 }

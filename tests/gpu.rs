@@ -12,8 +12,8 @@ use shlight_core::{ShCoeffs, analytic, irradiance};
 use shlight_io::{ReadOptions, read_image};
 
 use crate::util::{
-    coefficients, json, s, shlight, shlight_err, shlight_ok, temp_dir, write_map, write_obj,
-    write_radiance_rows,
+    coefficients, json, s, shlight, shlight_err, shlight_ok, skipped, temp_dir, write_map,
+    write_obj, write_radiance_rows,
 };
 
 /// Whether GPU tests can run; panics under `SHLIGHT_REQUIRE_GPU=1` without
@@ -395,13 +395,6 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     // The overlay panel, at the top left, changes what is there.
     let d = (mean(&with_panel, 20, 20, 40) - mean(&bare, 20, 20, 40)).abs();
     assert!(d > 0.01, "the panel shows ({d})");
-}
-
-/// Prints a SKIPPED line straight to stderr (past the test harness's output
-/// capture, so it shows in a normal `cargo test` run).
-fn skipped(test: &str, why: &str) {
-    use std::io::Write as _;
-    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
 }
 
 #[test]

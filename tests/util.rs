@@ -184,3 +184,10 @@ pub fn write_coefficient_rows(path: &Path, rows: &[[f64; 3]], quantity: &str) {
     });
     std::fs::write(path, doc.to_string()).unwrap();
 }
+
+/// Prints a SKIPPED line straight to stderr (past the test harness's output
+/// capture, so that a skipped test is seen in a passing run).
+pub fn skipped(test: &str, why: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
+}

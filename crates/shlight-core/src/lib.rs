@@ -77,6 +77,7 @@
 pub mod analytic;
 pub mod basis;
 pub mod coeffs;
+mod cpu_features;
 pub mod hardcoded;
 pub mod index;
 pub mod irradiance_map;

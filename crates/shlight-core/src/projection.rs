@@ -443,7 +443,7 @@ mod tests {
         // The AVX + FMA kernels run wherever the CPU has them; this checks
         // the portable ones too (both the direct sums and the FFT path).
         use std::sync::atomic::Ordering;
-        crate::ring_transform::FORCE_PORTABLE.store(true, Ordering::Relaxed);
+        crate::cpu_features::FORCE_PORTABLE.store(true, Ordering::Relaxed);
         for (w, h, lmax) in [(48, 24, 6), (40, 20, 5), (50, 26, 7), (50, 25, 60)] {
             let o = MapOrientation {
                 frame: Frame::ZUp,
@@ -452,7 +452,7 @@ mod tests {
             let d = fast_vs_simple(w, h, lmax, o);
             assert!(d < 1e-12, "{w}x{h} lmax {lmax}: {d:e}");
         }
-        crate::ring_transform::FORCE_PORTABLE.store(false, Ordering::Relaxed);
+        crate::cpu_features::FORCE_PORTABLE.store(false, Ordering::Relaxed);
     }
 
     #[test]

@@ -115,7 +115,7 @@ fn parity_sign(n: usize) -> f64 {
 /// it adds `E_{a b} x_b` to `y_a` and `(-1)^(a+b) E_{a b} x_a` to `y_b`.
 fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
     #[cfg(target_arch = "x86_64")]
-    if crate::ring_transform::avx_fma() {
+    if crate::cpu_features::avx_fma() {
         // SAFETY: the CPU has the features the function is compiled for.
         unsafe { turn_y_band_avx(l, x, out) };
         return;

@@ -42,22 +42,8 @@ use crate::legendre::Legendre;
 use crate::projection::{EquirectView, equirect_row_solid_angle};
 use crate::{Real, ShCoeffs, sh_index};
 
-/// Tests set this to run the portable code on CPUs that have AVX and FMA.
-#[cfg(test)]
-pub(crate) static FORCE_PORTABLE: std::sync::atomic::AtomicBool =
-    std::sync::atomic::AtomicBool::new(false);
-
-/// Whether the AVX + FMA kernels can run (and are not switched off by a
-/// test); also used by [`crate::quarter_turn`].
 #[cfg(target_arch = "x86_64")]
-#[inline]
-pub(crate) fn avx_fma() -> bool {
-    #[cfg(test)]
-    if FORCE_PORTABLE.load(std::sync::atomic::Ordering::Relaxed) {
-        return false;
-    }
-    std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("fma")
-}
+use crate::cpu_features::avx_fma;
 
 /// Lanes (row pairs) per recurrence pass in phase 2.
 const LANES: usize = 16;
