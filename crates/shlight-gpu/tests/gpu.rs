@@ -5,8 +5,7 @@
 use glam::{DVec3, Vec3};
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::rotation::Frame;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, Window, analytic, irradiance, sh_eval};
+use shlight_core::{ShCoeffs, Window, analytic, irradiance};
 use shlight_gpu::{
     Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading, Transfer,
     render_frame,
@@ -229,13 +228,11 @@ fn sphere_shading_matches_cpu_irradiance_at_each_pixels_normal() {
 /// The SH of the clamped cosine about `n` times `albedo / pi`, to `lmax`:
 /// `T_lm = albedo/pi A_l Y_lm(n)`, so `T . L = albedo/pi E(n)`.
 fn diffuse_transfer(n: Vec3, lmax: usize, albedo: f64) -> Vec<f32> {
-    let y = sh_eval(lmax, [f64::from(n.x), f64::from(n.y), f64::from(n.z)]);
-    y.iter()
-        .enumerate()
-        .map(|(i, y)| {
-            let l = (i as f64).sqrt() as usize;
-            (albedo / std::f64::consts::PI * clamped_cosine_eigenvalue(l) * y) as f32
-        })
+    let n = n.as_dvec3().to_array();
+    analytic::cosine_lobe(lmax, n, albedo / std::f64::consts::PI)
+        .as_slice()
+        .iter()
+        .map(|&t| t as f32)
         .collect()
 }
 
