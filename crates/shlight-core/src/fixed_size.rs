@@ -1,11 +1,14 @@
 //! What the fixed-size SH types ([`crate::ShL1`], [`crate::ShL2`],
-//! [`crate::ShL1Rgb`], [`crate::ShL2Rgb`]) share: the clamped-cosine
-//! eigenvalues of degrees 0 to 2, a fixed-length dot product, and their
-//! per-coefficient arithmetic.
+//! [`crate::ShL1Rgb`], [`crate::ShL2Rgb`]) share: their evaluation (the
+//! basis constants of [`crate::hardcoded`] folded into the coefficients,
+//! then one dot product with the monomials of the direction), the
+//! clamped-cosine eigenvalues of degrees 0 to 2, rotation by
+//! [`crate::ShRotationL2`], and their methods and per-coefficient
+//! arithmetic (the macros `impl_fixed_sh` and `impl_fixed_arith`).
 
 use core::f64::consts::PI;
 
-use crate::hardcoded::eval_hardcoded;
+use crate::hardcoded::{K00, K1, K2_2, K20, K22, eval_hardcoded};
 use crate::{GlamReal, ShRotationL2};
 
 /// `A_l` for `l = 0, 1, 2`: `pi, 2 pi / 3, pi / 4`, the Funk-Hecke
@@ -38,6 +41,51 @@ pub(crate) fn basis<T: GlamReal, const N: usize>(d: T::Vec3) -> [T; N] {
     let mut out = [<T as crate::Real>::ZERO; N];
     eval_hardcoded(lmax_of(N), x, y, z, &mut out);
     out
+}
+
+/// The weights `w` with `f(d) = sum_i w_i p_i(d)` for the monomials
+/// `p = [1, y, z, x, xy, yz, z^2, xz, x^2 - y^2]` of [`monomials`]: the
+/// basis constants and signs of [`crate::hardcoded`] folded into the
+/// coefficients, and `Y_2^0 = K20 (3 z^2 - 1)` split between `z^2` and the
+/// constant. Evaluation then costs one product per coefficient and the
+/// basis constants are applied once per expansion, not once per direction
+/// (inside a loop the compiler lifts this out).
+#[inline(always)]
+pub(crate) fn monomial_weights<T: GlamReal, const N: usize>(c: &[T; N]) -> [T; N] {
+    let k = T::from_f64;
+    let mut w = [<T as crate::Real>::ZERO; N];
+    w[0] = c[0] * k(K00);
+    w[1] = -c[1] * k(K1);
+    w[2] = c[2] * k(K1);
+    w[3] = -c[3] * k(K1);
+    if N == 9 {
+        let c: [T; 9] = core::array::from_fn(|i| c[i]);
+        let tail = [
+            c[4] * k(K2_2),
+            -c[5] * k(K2_2),
+            c[6] * k(3.0 * K20),
+            -c[7] * k(K2_2),
+            c[8] * k(K22),
+        ];
+        w[0] -= c[6] * k(K20);
+        w[4..9].copy_from_slice(&tail);
+    }
+    w
+}
+
+/// `[1, y, z, x]` or `[1, y, z, x, xy, yz, z^2, xz, x^2 - y^2]` at `d`.
+#[inline(always)]
+pub(crate) fn monomials<T: GlamReal, const N: usize>(d: T::Vec3) -> [T; N] {
+    let [x, y, z] = T::vec3_to_array(d);
+    let mut p = [T::ONE; N];
+    p[1] = y;
+    p[2] = z;
+    p[3] = x;
+    if N == 9 {
+        let tail = [x * y, y * z, z * z, x * z, x * x - y * y];
+        p[4..9].copy_from_slice(&tail);
+    }
+    p
 }
 
 /// `E_i = A_l L_i`, `l` the degree of `i`.
@@ -230,7 +278,8 @@ macro_rules! impl_fixed_sh {
             #[inline]
             #[must_use]
             pub fn eval(&self, d: T::Vec3) -> T {
-                $crate::fixed_size::dot(&self.coeffs, &$crate::fixed_size::basis(d))
+                let w = $crate::fixed_size::monomial_weights(&self.coeffs);
+                $crate::fixed_size::dot(&w, &$crate::fixed_size::monomials(d))
             }
 
             /// Irradiance coefficients from radiance ones: `E_l^m = A_l L_l^m`
@@ -344,15 +393,19 @@ macro_rules! impl_fixed_sh {
             }
 
             /// The function at the unit direction `d` (RGB in `x, y, z`):
-            /// the basis once, then one dot product per channel.
+            /// the basis once, then one dot product per channel. (The basis
+            /// constants are folded into the coefficients first, so "the
+            /// basis" is its monomials `1, y, z, x, xy, yz, z^2, xz, x^2 - y^2`;
+            /// in a loop that folding is lifted out.)
             #[inline]
             #[must_use]
             pub fn eval(&self, d: T::Vec3) -> T::Vec3 {
-                let y = $crate::fixed_size::basis(d);
+                use $crate::fixed_size::{dot, monomial_weights};
+                let p = $crate::fixed_size::monomials(d);
                 T::vec3_from_array([
-                    $crate::fixed_size::dot(&self.r, &y),
-                    $crate::fixed_size::dot(&self.g, &y),
-                    $crate::fixed_size::dot(&self.b, &y),
+                    dot(&monomial_weights(&self.r), &p),
+                    dot(&monomial_weights(&self.g), &p),
+                    dot(&monomial_weights(&self.b), &p),
                 ])
             }
 

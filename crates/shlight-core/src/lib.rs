@@ -14,6 +14,14 @@
 //!   clamped-cosine `A_l` for every `l`, normalised Phong lobes.
 //! - [`ShRotation`]: block-diagonal rotation matrices for any lmax, built
 //!   once and applied many times; [`rotation::Frame`] switches y-up / z-up.
+//! - [`ShL1`], [`ShL2`] (scalar) and [`ShL1Rgb`], [`ShL2Rgb`] (RGB, stored
+//!   channel-planar, like Unity's `SphericalHarmonicsL2`): fixed-size `Copy`
+//!   expansions to lmax 1 and 2 for the runtime hot path, in `f32` or `f64`
+//!   ([`GlamReal`] pairs each with glam's `Vec3`/`Mat3`/`Quat`). Radiance at
+//!   a glam direction, irradiance `E_l^m = A_l L_l^m` as coefficients or
+//!   directly, rotation by a matrix or quaternion ([`ShRotationL2`]: the
+//!   3x3 and 5x5 blocks), `+ - *` and `lerp`, and conversion to and from
+//!   [`ShCoeffs`] (truncating a longer expansion, zero-padding a shorter one).
 //! - [`Window`] and [`window::auto_window`]: ringing suppression, and the
 //!   weakest window that makes a function or its irradiance non-negative.
 //! - [`projection`] and [`layout`]: environment maps of every layout

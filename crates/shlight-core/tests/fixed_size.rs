@@ -1,7 +1,7 @@
 //! The fixed-size SH types ([`ShL1`], [`ShL2`], [`ShL1Rgb`], [`ShL2Rgb`],
 //! [`ShRotationL2`]) against independent routes: the general basis
 //! evaluated by the Legendre recurrence (an [`ShBasis`] built for lmax 6,
-//! past the hard-coded polynomials the fixed types use), the core's
+//! past the hard-coded polynomials whose constants the fixed types use), the core's
 //! [`irradiance`] and [`ShRotation`] (Ivanic-Ruedenberg), re-projection of
 //! `f(R^T d)` by exact quadrature, and the closed forms of a directional
 //! light's truncated irradiance. Every check runs in `f32` and `f64`.
@@ -19,8 +19,8 @@ use shlight_core::{
 };
 
 /// The reference basis is built for this lmax so that it runs the Legendre
-/// recurrence (the hard-coded polynomials, which the fixed types call, stop
-/// at lmax 4).
+/// recurrence, not the hard-coded polynomials (they stop at lmax 4) whose
+/// constants the fixed types use.
 const RECURRENCE_LMAX: usize = 6;
 
 /// Random directions and rotations per check.
