@@ -14,6 +14,14 @@
 //!   clamped-cosine `A_l` for every `l`, normalised Phong lobes.
 //! - [`ShRotation`]: block-diagonal rotation matrices for any lmax, built
 //!   once and applied many times; [`rotation::Frame`] switches y-up / z-up.
+//! - [`ShL1`], [`ShL2`] (scalar) and [`ShL1Rgb`], [`ShL2Rgb`] (RGB, stored
+//!   channel-planar, like Unity's `SphericalHarmonicsL2`): fixed-size `Copy`
+//!   expansions to lmax 1 and 2 for the runtime hot path, in `f32` or `f64`
+//!   ([`GlamReal`] pairs each with glam's `Vec3`/`Mat3`/`Quat`). Radiance at
+//!   a glam direction, irradiance `E_l^m = A_l L_l^m` as coefficients or
+//!   directly, rotation by a matrix or quaternion ([`ShRotationL2`]: the
+//!   3x3 and 5x5 blocks), `+ - *` and `lerp`, and conversion to and from
+//!   [`ShCoeffs`] (truncating a longer expansion, zero-padding a shorter one).
 //! - [`Window`] and [`window::auto_window`]: ringing suppression, and the
 //!   weakest window that makes a function or its irradiance non-negative.
 //! - [`projection`] and [`layout`]: environment maps of every layout
@@ -78,6 +86,8 @@ pub mod analytic;
 pub mod basis;
 pub mod coeffs;
 mod cpu_features;
+mod fixed_size;
+mod glam_real;
 pub mod hardcoded;
 pub mod index;
 pub mod irradiance_map;
@@ -90,15 +100,22 @@ pub mod quarter_turn;
 mod real;
 mod ring_transform;
 pub mod rotation;
+mod rotation_l2;
+mod sh_l1;
+mod sh_l2;
 mod value;
 pub mod window;
 pub mod zonal;
 
 pub use basis::{ShBasis, sh_eval};
 pub use coeffs::ShCoeffs;
+pub use glam_real::GlamReal;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
 pub use real::Real;
 pub use rotation::ShRotation;
+pub use rotation_l2::ShRotationL2;
+pub use sh_l1::{ShL1, ShL1Rgb};
+pub use sh_l2::{ShL2, ShL2Rgb};
 pub use value::ShValue;
 pub use window::Window;
 pub use zonal::{ZonalKernel, irradiance};
