@@ -11,7 +11,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use shlight_format::{ExportFormat, export, read_coefficients};
+use shlight_format::export::gltf;
+use shlight_format::{ExportFormat, ExportInput, export, read_coefficients};
 
 /// Arguments of `shlight convert`.
 #[derive(Args, Debug)]
@@ -29,10 +30,28 @@ pub struct ConvertArgs {
     /// .gltf).
     #[arg(long, value_parser = crate::values::export_format())]
     pub format: Option<ExportFormat>,
+    /// Add the light to this existing glTF asset (.gltf or .glb) in place,
+    /// as an EXT_lights_image_based light its default scene uses; nothing
+    /// else in the asset changes.
+    #[arg(long, value_name = "SCENE.gltf|glb", conflicts_with_all = ["output", "format"])]
+    pub into: Option<PathBuf>,
 }
 
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
+    if let Some(scene) = &args.into {
+        crate::project::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
+        let file = read_coefficients(&args.input)?;
+        let input = ExportInput {
+            coeffs: &file.coeffs,
+            quantity: file.quantity,
+            frame: file.frame,
+        };
+        for note in gltf::add_light_to_file(&input, scene)? {
+            eprintln!("note: {note}");
+        }
+        return Ok(());
+    }
     let format = match (args.format, &args.output) {
         (Some(f), _) => f,
         (None, Some(path)) => ExportFormat::from_path(path)?,

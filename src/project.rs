@@ -5,7 +5,7 @@
 //! [`load`] (read, check, `--sanitize`), [`project_map`] (layout and method),
 //! the window (per channel), `--preview`, `--rotate`, the quantity, and
 //! [`write_output`] (the one place that knows output formats: shlight's
-//! JSON, or any exporter of [`crate::export`]).
+//! JSON, or any exporter of [`shlight_format::export()`]).
 
 use std::collections::HashMap;
 use std::io::Write;

@@ -2,7 +2,9 @@
 
 mod accuracy;
 mod batch;
+mod engine_frames;
 mod export;
+mod gltf_asset;
 mod gpu;
 mod layouts_cli;
 mod montecarlo_cli;

@@ -42,7 +42,8 @@ use crate::{CoeffFile, FormatError, Quantity, Result};
 
 #[cfg(test)]
 pub(crate) use engine::basis_polynomial;
-pub(crate) use engine::{basis_constant, engine_coeffs, frame_words, rgb_array};
+pub use engine::engine_frame;
+pub(crate) use engine::{basis_constant, engine_coeffs, frame_words, rgb_array, transform};
 pub(crate) use snippet::{
     BAND_WEIGHT_COMMENT, CLikeShader, band_weight_list, check_f32_range, code_header,
     coefficient_rows, float_literal,
@@ -383,7 +384,7 @@ mod tests {
             quantity: Quantity::Radiance,
             frame: Frame::ZUp,
         };
-        let (c, notes) = engine_coeffs(&input, Quantity::Radiance, "x").unwrap();
+        let (c, notes) = engine_coeffs(&input, Quantity::Radiance, ExportFormat::Threejs).unwrap();
         assert_eq!(c.lmax(), 2);
         assert!(notes[0].contains("dropped"), "{notes:?}");
         let want = shlight_core::sh_eval(2, [0.0, 1.0, 0.0]);
@@ -396,7 +397,7 @@ mod tests {
             quantity: Quantity::Radiance,
             frame: Frame::YUp,
         };
-        let (c, notes) = engine_coeffs(&input, Quantity::Radiance, "x").unwrap();
+        let (c, notes) = engine_coeffs(&input, Quantity::Radiance, ExportFormat::Threejs).unwrap();
         assert_eq!(c.lmax(), 2);
         assert!(c.band(2).iter().all(|v| *v == DVec3::ZERO));
         assert!(notes[0].contains("zeros"), "{notes:?}");

@@ -49,7 +49,7 @@ pub struct ShprtFile {
     /// Constant linear RGB albedo, or `None` for per-vertex albedo (the
     /// mesh's colours).
     pub albedo: Option<[f32; 3]>,
-    /// [`shlight_mesh::Mesh::content_hash`] of the baked mesh.
+    /// The baked mesh's content hash (shlight-mesh's `Mesh::content_hash`).
     pub mesh_hash: u64,
     /// The mesh as named on the command line (informational).
     pub mesh: String,

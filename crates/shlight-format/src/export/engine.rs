@@ -2,12 +2,56 @@
 //! the coefficients they start from and the constants of the basis
 //! polynomials their shaders evaluate.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::{Frame, ShRotation};
 
-use super::ExportInput;
+use super::{ExportFormat, ExportInput};
 use crate::{Quantity, Result};
+
+/// How an engine shows the equirect map that shlight reads in its y-up
+/// frame: the texel shlight puts at direction `d` (docs/conventions.md)
+/// is where the engine puts it at `M d`, in the engine's own world axes.
+/// `None` for formats that keep the file's own frame (txt and the shader
+/// snippets).
+///
+/// | format | engine, and the mapping it uses | `M d` for `d = (x, y, z)` |
+/// |---|---|---|
+/// | `threejs` | three.js `equirectUv` (backgrounds, PMREM, `LightProbeGenerator`) | `(x, y, z)` |
+/// | `filament` | Filament `cmgen` (`equirectangularToCubemap`, then its default `mirrorCubemap`) | `(-z, y, x)`: a quarter turn, `yaw:-90` |
+/// | `gltf` | Khronos glTF Sample Viewer (`panorama_to_cubemap`, default `environmentRotation` 90) | `(-z, y, x)` |
+/// | `unity` | Unity `Skybox/Panoramic` (`ToRadialCoords`), left-handed world | `(x, y, -z)`: a mirror |
+///
+/// Exporting rotates (or, for Unity, mirrors) the coefficients by `M`, so
+/// the light lines up with the engine's own skybox of the same map; reading
+/// a file back applies `M^T`. Sources and measurements: docs/exporters.md.
+#[must_use]
+pub fn engine_frame(format: ExportFormat) -> Option<DMat3> {
+    match format {
+        ExportFormat::Threejs => Some(DMat3::IDENTITY),
+        // (x, y, z) -> (-z, y, x): +X (the image centre) to +Z.
+        ExportFormat::Filament | ExportFormat::Gltf => {
+            Some(DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::NEG_X))
+        }
+        ExportFormat::Unity => Some(DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0))),
+        _ => None,
+    }
+}
+
+/// `f` carried by the orthogonal matrix `m` (`g(m d) = f(d)`): a rotation
+/// for `det m = +1`; for `det m = -1`, the rotation `-m` followed by the
+/// parity `d -> -d`, which multiplies band `l` by `(-1)^l`.
+pub(crate) fn transform(f: &ShCoeffs<DVec3>, m: DMat3) -> ShCoeffs<DVec3> {
+    if m == DMat3::IDENTITY {
+        return f.clone();
+    }
+    if m.determinant() > 0.0 {
+        return ShRotation::from_mat3(f.lmax(), m).apply(f);
+    }
+    ShRotation::from_mat3(f.lmax(), -m)
+        .apply(f)
+        .scaled_per_band(|l| if l % 2 == 0 { 1.0 } else { -1.0 })
+}
 
 /// `k_i`, the constant of the basis polynomial in shlight's basis (CS
 /// phase), `Y_i(n) = k_i p_i(n)` with
@@ -42,14 +86,17 @@ pub(crate) fn basis_polynomial(n: [f64; 3]) -> [f64; 9] {
     ]
 }
 
-/// The coefficients an lmax-2, y-up engine format starts from: truncated or
-/// zero-padded to lmax 2 (with a note), turned to the y-up frame, converted
-/// to `want`.
+/// The coefficients an lmax-2 engine format starts from: truncated or
+/// zero-padded to lmax 2 (with a note), turned to the y-up frame, carried
+/// into the engine's picture of the map ([`engine_frame`]), converted to
+/// `want`.
 pub(crate) fn engine_coeffs(
     input: &ExportInput<'_>,
     want: Quantity,
-    format: &str,
+    format: ExportFormat,
 ) -> Result<(ShCoeffs<DVec3>, Vec<String>)> {
+    let m = engine_frame(format).expect("an engine format");
+    let format = format.name();
     let mut notes = Vec::new();
     let lmax = input.coeffs.lmax();
     if lmax > 2 {
@@ -63,7 +110,7 @@ pub(crate) fn engine_coeffs(
         ));
     }
     let c = input.coeffs.resized(2);
-    let c = to_frame(&c, input.frame, Frame::YUp);
+    let c = transform(&to_frame(&c, input.frame, Frame::YUp), m);
     let c = crate::convert_quantity(&c, input.quantity, want)?;
     Ok((c, notes))
 }

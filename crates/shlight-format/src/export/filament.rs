@@ -35,16 +35,14 @@
 //! ...), which is therefore `E(n) / pi`: the radiance a white Lambertian
 //! surface reflects (Filament multiplies by the diffuse colour only).
 //!
-//! - **Frame**: Filament's world, right-handed, +Y up: the axes of shlight's
-//!   y-up frame (and glTF's; Filament's gltfio loads glTF without an axis
-//!   change). A z-up file is rotated first. Note that cmgen reads an
-//!   equirect image differently from three.js: its `equirectangularToCubemap`
-//!   puts the image centre at +Z (`u = 0.5 + atan2(x, z) / 2pi`) and then
-//!   mirrors x by default (`mirrorCubemap`), so the texel shlight's y-up
-//!   frame reads at `(x, y, z)` is at `(-z, y, x)` for cmgen, a quarter turn
-//!   about +Y. Coefficients from shlight and from cmgen of the same image
-//!   differ by that turn (give the same rotation to the IndirectLight, or
-//!   rotate before exporting, to pair shlight's SH with a cmgen cube map).
+//! - **Frame**: Filament's world, right-handed, +Y up, with the map where
+//!   cmgen puts it: its `equirectangularToCubemap` puts the image centre at
+//!   +Z (`u = 0.5 + atan2(x, z) / 2pi`) and then mirrors x by default
+//!   (`mirrorCubemap`), so the texel shlight's y-up frame reads at
+//!   `(x, y, z)` is at `(-z, y, x)` for cmgen, a quarter turn about +Y,
+//!   which the export applies ([`super::engine_frame`]): the light lines up
+//!   with a cmgen skybox of the same image. A z-up file is turned to y-up
+//!   first; reading back turns the other way.
 //! - **lmax 2** exactly (the shader form exists for 3 bands only).
 //!
 //! # Reading back
@@ -59,12 +57,14 @@ use glam::DVec3;
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, lm_from_index, lmax_from_count};
 
-use super::{ExportInput, Exported, basis_constant, engine_coeffs};
+use super::{
+    ExportFormat, ExportInput, Exported, basis_constant, engine_coeffs, engine_frame, transform,
+};
 use crate::{Imported, Quantity};
 
 /// Renders sh.txt.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
-    let (e, notes) = engine_coeffs(input, Quantity::Irradiance, "filament")?;
+    let (e, notes) = engine_coeffs(input, Quantity::Irradiance, ExportFormat::Filament)?;
     let mut text = String::new();
     for (i, v) in e.as_slice().iter().enumerate() {
         let (l, m) = lm_from_index(i);
@@ -75,6 +75,13 @@ pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
         ));
     }
     Ok(Exported { text, notes })
+}
+
+/// Coefficients in Filament's world back in shlight's y-up frame: the
+/// inverse of [`engine_frame`]'s quarter turn.
+fn from_filament(c: &ShCoeffs<DVec3>) -> ShCoeffs<DVec3> {
+    let m = engine_frame(ExportFormat::Filament).expect("an engine");
+    transform(c, m.transpose())
 }
 
 /// Reads an sh.txt back (see the module documentation for which).
@@ -156,14 +163,14 @@ pub fn read(text: &str, name: &str) -> Result<Imported> {
                 *v *= pi / basis_constant(i);
             }
             Ok(Imported {
-                coeffs: e,
+                coeffs: from_filament(&e),
                 quantity: Quantity::Irradiance,
                 frame: Frame::YUp,
                 source: "Filament sh.txt (pre-scaled irradiance)",
             })
         }
         (false, false) => Ok(Imported {
-            coeffs,
+            coeffs: from_filament(&coeffs),
             quantity: Quantity::Radiance,
             frame: Frame::YUp,
             source: "Filament sh.txt (radiance)",
@@ -218,7 +225,9 @@ mod tests {
             .collect();
         let e = shlight_core::irradiance(&radiance);
         for n in [[0.6, 0.0, -0.8], [0.0, 1.0, 0.0], [-0.48, 0.6, 0.64]] {
-            let got = irradiance_sh(&sh, n);
+            // cmgen shows the texel shlight reads at (x, y, z) at (-z, y, x).
+            let [x, y, z] = n;
+            let got = irradiance_sh(&sh, [-z, y, x]);
             let want = e.eval(n) / std::f64::consts::PI;
             assert!((got - want).abs().max_element() < 1e-13, "{got} vs {want}");
         }

@@ -34,8 +34,11 @@
 //!   this writes; Babylon's own `CubeMapToSphericalPolynomialTools`
 //!   computes its harmonics the same way (`convertIncidentRadianceToIrradiance`).
 //! - **Frame**: glTF's world, right-handed, +Y up (glTF 2.0 spec, "Coordinate
-//!   System and Units"), the axes of shlight's y-up frame. A z-up file is
-//!   rotated first. `rotation` is the identity, `intensity` 1.
+//!   System and Units"), with the map where the Khronos glTF Sample Viewer
+//!   shows it (default `environmentRotation` 90: the image centre at +Z):
+//!   shlight's y-up `(x, y, z)` is glTF `(-z, y, x)`
+//!   ([`super::engine_frame`]). A z-up file is turned to y-up first.
+//!   `rotation` is the identity, `intensity` 1.
 //! - **lmax 2** exactly.
 //!
 //! The extension also requires `specularImages` and `specularImageSize`
@@ -49,7 +52,9 @@ use serde_json::{Value, json};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
 
-use super::{ExportInput, Exported, engine_coeffs, rgb_array};
+use super::{
+    ExportFormat, ExportInput, Exported, engine_coeffs, engine_frame, rgb_array, transform,
+};
 use crate::{FormatError, Imported, Quantity, Result};
 
 /// The extension's name.
@@ -65,7 +70,7 @@ const SPECULAR_NOTE: &str = "EXT_lights_image_based also requires specularImages
 /// The light object: `irradianceCoefficients` of `input`, and what they
 /// are in words under `extras.shlight`.
 fn light(input: &ExportInput<'_>) -> Result<(Value, Vec<String>)> {
-    let (e, mut notes) = engine_coeffs(input, Quantity::Irradiance, "gltf")?;
+    let (e, mut notes) = engine_coeffs(input, Quantity::Irradiance, ExportFormat::Gltf)?;
     notes.push(SPECULAR_NOTE.into());
     let coeffs: Vec<[f64; 3]> = e.as_slice().iter().map(|v| rgb_array(*v)).collect();
     let light = json!({
@@ -447,8 +452,11 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
             }
         }
     }
+    // Back from the glTF world of the Sample Viewer's picture of the map.
+    let m = engine_frame(ExportFormat::Gltf).expect("an engine");
+    let coeffs = ShCoeffs::from_vec(coeffs).expect("9 coefficients");
     Ok(Imported {
-        coeffs: ShCoeffs::from_vec(coeffs).expect("9 coefficients"),
+        coeffs: transform(&coeffs, m.transpose()),
         quantity: Quantity::Irradiance,
         frame: Frame::YUp,
         source: "glTF EXT_lights_image_based",
@@ -511,7 +519,10 @@ mod tests {
         let v: Value = serde_json::from_str(&out.text).unwrap();
         let e = shlight_core::irradiance(&radiance);
         for n in [[0.0, 0.6, 0.8], [1.0, 0.0, 0.0], [0.0, -0.8, 0.6]] {
-            let got = babylon_lambertian_radiance(&v, n);
+            // The Sample Viewer shows the texel shlight reads at (x, y, z)
+            // at (-z, y, x) of the glTF world.
+            let [x, y, z] = n;
+            let got = babylon_lambertian_radiance(&v, [-z, y, x]);
             let want = e.eval(n).x / std::f64::consts::PI;
             assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         }

@@ -39,12 +39,12 @@ use serde_json::{Value, json};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
 
-use super::{ExportInput, Exported, engine_coeffs};
+use super::{ExportFormat, ExportInput, Exported, engine_coeffs};
 use crate::{Imported, Quantity};
 
 /// Renders the `LightProbe.toJSON()` document.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
-    let (radiance, notes) = engine_coeffs(input, Quantity::Radiance, "threejs")?;
+    let (radiance, notes) = engine_coeffs(input, Quantity::Radiance, ExportFormat::Threejs)?;
     let no_phase = radiance.toggled_cs_phase();
     let sh: Vec<f64> = no_phase
         .as_slice()

@@ -50,28 +50,17 @@ use serde_json::{Value, json};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
 
-use super::{ExportInput, Exported, basis_constant, engine_coeffs};
+use super::{
+    ExportFormat, ExportInput, Exported, basis_constant, engine_coeffs, engine_frame, transform,
+};
 use crate::{Imported, Quantity};
 
 /// The `"format"` tag of the JSON this writes.
 pub const FORMAT_TAG: &str = "shlight-unity-sh-l2";
 
-/// Mirrors z: `(-1)^(l+m)` per coefficient (its own inverse).
-fn flip_z(c: &ShCoeffs<DVec3>) -> ShCoeffs<DVec3> {
-    let mut out = c.clone();
-    for (i, v) in out.as_mut_slice().iter_mut().enumerate() {
-        let (l, m) = shlight_core::lm_from_index(i);
-        if (l as isize + m).rem_euclid(2) == 1 {
-            *v = -*v;
-        }
-    }
-    out
-}
-
 /// `sh[c, i]` as the 27 floats of `SphericalHarmonicsL2`.
 fn unity_floats(input: &ExportInput<'_>) -> Result<(Vec<f64>, Vec<String>)> {
-    let (e, notes) = engine_coeffs(input, Quantity::Irradiance, "unity")?;
-    let e = flip_z(&e);
+    let (e, notes) = engine_coeffs(input, Quantity::Irradiance, ExportFormat::Unity)?;
     let mut sh = vec![0.0; 27];
     for (i, v) in e.as_slice().iter().enumerate() {
         let s = *v * (basis_constant(i) / std::f64::consts::PI);
@@ -169,7 +158,8 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
     )
     .expect("9 coefficients");
     Ok(Imported {
-        coeffs: flip_z(&e),
+        // The mirror is its own inverse.
+        coeffs: transform(&e, engine_frame(ExportFormat::Unity).expect("an engine")),
         quantity: Quantity::Irradiance,
         frame: Frame::YUp,
         source: "Unity SphericalHarmonicsL2",
