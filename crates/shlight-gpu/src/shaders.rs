@@ -27,11 +27,11 @@ pub const FILES: [ShaderFile; 5] = [
     ("project.wgsl", PROJECT),
 ];
 
-const SH: &str = include_str!("../../../shaders/sh.wgsl");
-const SCENE: &str = include_str!("../../../shaders/scene.wgsl");
-const MESH: &str = include_str!("../../../shaders/mesh.wgsl");
-const BACKGROUND: &str = include_str!("../../../shaders/background.wgsl");
-const PROJECT: &str = include_str!("../../../shaders/project.wgsl");
+const SH: &str = include_str!("../shaders/sh.wgsl");
+const SCENE: &str = include_str!("../shaders/scene.wgsl");
+const MESH: &str = include_str!("../shaders/mesh.wgsl");
+const BACKGROUND: &str = include_str!("../shaders/background.wgsl");
+const PROJECT: &str = include_str!("../shaders/project.wgsl");
 
 /// A compiled unit: a name and its files in order.
 #[derive(Clone, Copy, Debug)]
