@@ -12,7 +12,7 @@
 //!
 //! accumulated in `f64`: `O(texels)` per normal, with no truncation in
 //! angular frequency. It is the same texel-centre quadrature that
-//! [`crate::layout::project_map`] uses, applied to the clamped cosine
+//! [`crate::projection::project_map`] uses, applied to the clamped cosine
 //! instead of `Y_l^m`, so its only error is that rule's: `O(h²)` in the
 //! texel size where the map is smooth, and the cosine's kink at the horizon
 //! of `n`, which moves the result by at most one ring of texels' worth

@@ -14,12 +14,18 @@
 //!   clamped-cosine `A_l` for every `l`, normalised Phong lobes.
 //! - [`ShRotation`]: block-diagonal rotation matrices for any lmax, built
 //!   once and applied many times; [`rotation::Frame`] switches y-up / z-up.
-//! - [`Window`] and [`window::auto_window`]: ringing suppression, and the
-//!   weakest window that makes a function or its irradiance non-negative.
-//! - [`projection`] and [`layout`]: environment maps of every layout
-//!   (equirect, cube cross, strip, angular map, mirror ball) to SH by exact
-//!   texel-solid-angle quadrature; equirect maps by a fast ring transform
-//!   (FFT rows, vectorised Legendre sums) to any lmax.
+//! - [`Window`] and [`auto_window()`]: ringing suppression, and the weakest
+//!   window that makes a function or its irradiance non-negative;
+//!   [`sphere_minimum()`]: the global minimum of an expansion.
+//! - [`layout`] and [`equirect`]: the geometry of environment maps of every
+//!   layout (equirect, cube cross, strip, angular map, mirror ball): texel
+//!   directions, exact texel solid angles, lookups; [`MapOrientation`]: how
+//!   a map's frame meets world directions.
+//! - [`projection`]: environment maps to SH by exact texel-solid-angle
+//!   quadrature, one entry point ([`projection::project`]) over any
+//!   [`TexelSource`] (a contiguous image, a [`StridedImage`], six
+//!   [`CubeFaces`], a user's own type); equirect maps by a fast ring
+//!   transform (FFT rows, vectorised Legendre sums) to any lmax.
 //! - [`montecarlo`]: the Monte Carlo estimator (uniform, stratified, Sobol,
 //!   luminance importance sampling) with standard errors.
 //! - [`irradiance_map`]: brute-force irradiance of a map (every texel,
@@ -75,30 +81,49 @@
 #![deny(missing_docs)]
 
 pub mod analytic;
+pub mod auto_window;
 pub mod basis;
 pub mod coeffs;
 mod cpu_features;
+mod cube_faces;
+pub mod equirect;
 pub mod hardcoded;
 pub mod index;
 pub mod irradiance_map;
 pub mod layout;
 pub mod legendre;
 pub mod montecarlo;
+pub mod orientation;
 pub mod projection;
 pub mod quadrature;
 pub mod quarter_turn;
+pub mod radiance_map;
 mod real;
 mod ring_transform;
 pub mod rotation;
+pub mod sphere_minimum;
+mod strided_image;
+mod texel_source;
 mod value;
 pub mod window;
 pub mod zonal;
 
+pub use auto_window::auto_window;
 pub use basis::{ShBasis, sh_eval};
 pub use coeffs::ShCoeffs;
+pub use cube_faces::CubeFaces;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
+pub use orientation::MapOrientation;
 pub use real::Real;
 pub use rotation::ShRotation;
+pub use sphere_minimum::sphere_minimum;
+pub use strided_image::StridedImage;
+pub use texel_source::TexelSource;
 pub use value::ShValue;
 pub use window::Window;
 pub use zonal::{ZonalKernel, irradiance};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -10,10 +10,12 @@ use glam::DVec3;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use shlight_core::layout::{
-    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, cube_texel_solid_angle, project_map, render_map,
+    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, cube_texel_solid_angle, render_map,
 };
 use shlight_core::montecarlo::RadianceMap;
-use shlight_core::projection::{MapOrientation, equirect_direction, equirect_row_solid_angle};
+use shlight_core::projection::{
+    MapOrientation, equirect_direction, equirect_row_solid_angle, project_map,
+};
 use shlight_core::quadrature::gauss_legendre;
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, analytic};

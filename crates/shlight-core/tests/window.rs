@@ -14,11 +14,12 @@ use std::time::Instant;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::quadrature::fibonacci_sphere;
-use shlight_core::window::{
-    AUTO_WINDOW_MARGIN, AutoWindow, AutoWindowError, ParseWindowErrorKind, WindowFamily,
-    WindowTarget, auto_window, sphere_minimum,
+use shlight_core::auto_window::{
+    AUTO_WINDOW_MARGIN, AutoWindow, AutoWindowError, WindowTarget, auto_window,
 };
+use shlight_core::quadrature::fibonacci_sphere;
+use shlight_core::sphere_minimum::sphere_minimum;
+use shlight_core::window::{ParseWindowErrorKind, WindowFamily};
 use shlight_core::zonal::{clamped_cosine_eigenvalue, legendre_polynomials, zonal_to_sh};
 use shlight_core::{ShBasis, ShCoeffs, Window, irradiance, sh_eval, sh_index};
 
