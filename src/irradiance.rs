@@ -137,7 +137,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         return Ok(());
     };
     let e_sh = irradiance(&shlight_core::projection::project_map(&map, lmax));
-    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(n.to_array())).collect();
+    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(*n)).collect();
     let diff: Vec<DVec3> = sh.iter().zip(&exact).map(|(s, e)| *s - *e).collect();
     write(&outputs[1], &sh)?;
     write(&outputs[2], &diff)?;

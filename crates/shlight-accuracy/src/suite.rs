@@ -275,10 +275,7 @@ impl Report {
 /// The normals of the suite: [`NORMALS`] Fibonacci-sphere points.
 #[must_use]
 pub fn normals() -> Vec<DVec3> {
-    fibonacci_sphere(NORMALS)
-        .into_iter()
-        .map(DVec3::from)
-        .collect()
+    fibonacci_sphere(NORMALS).into_iter().collect()
 }
 
 /// An oracle with its reference values at the normals.
@@ -372,7 +369,7 @@ fn quadrature_bound(o: &Oracle, lmax: usize, r: f64, peak: f64) -> f64 {
 /// SH irradiance of radiance coefficients `l` at the normals.
 fn sh_irradiance(l: &ShCoeffs<f64>, normals: &[DVec3]) -> Vec<f64> {
     let e = shlight_core::irradiance(l);
-    normals.iter().map(|n| e.eval(n.to_array())).collect()
+    normals.iter().map(|n| e.eval(*n)).collect()
 }
 
 /// Runs the suite; `progress` is told what runs next.
@@ -585,7 +582,7 @@ fn mc_once(case: &Case, options: &McOptions, normals: &[DVec3], reference: &[f64
     let mut y = vec![0.0; basis.count()];
     let mut sigma = 0.0f64;
     for n in normals {
-        basis.eval(n.to_array(), &mut y);
+        basis.eval(*n, &mut y);
         sigma = sigma.max(
             y.iter()
                 .zip(&weights)

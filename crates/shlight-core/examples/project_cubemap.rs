@@ -83,7 +83,7 @@ fn main() {
         DVec3::X,
         DVec3::new(0.4, 0.6, -0.7).normalize(),
     ] {
-        let sh = e.eval(n.to_array());
+        let sh = e.eval(n);
         let exact = brute(n);
         println!(
             "({:>6.3}, {:>6.3}, {:>6.3})  ({:>8.3}, {:>8.3}, {:>8.3})  ({:>8.3}, {:>8.3}, {:>8.3})",

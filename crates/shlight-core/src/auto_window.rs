@@ -12,6 +12,8 @@
 use core::f64::consts::PI;
 use core::fmt;
 
+use glam::DVec3;
+
 use crate::ShCoeffs;
 use crate::sphere_minimum::{Minimiser, dense_point_count};
 use crate::window::{Window, WindowFamily};
@@ -42,7 +44,7 @@ pub struct AutoWindow {
     /// window was chosen, `min_before` when none was.
     pub min_after: f64,
     /// Where the unwindowed target takes `min_before` (a unit vector).
-    pub argmin_before: [f64; 3],
+    pub argmin_before: DVec3,
 }
 
 /// Why [`auto_window`] found no window.
@@ -59,7 +61,7 @@ pub enum AutoWindowError {
         /// Minimum of the target over the sphere.
         min: f64,
         /// Where the target takes `min`.
-        argmin: [f64; 3],
+        argmin: DVec3,
     },
 }
 
@@ -154,7 +156,7 @@ pub const AUTO_WINDOW_MARGIN: f64 = 1e-9;
 /// use shlight_core::window::WindowFamily;
 /// use shlight_core::{ShCoeffs, Window, irradiance};
 /// // A directional light from +Z: its 9-term irradiance dips to -19/480 at cos t = -8/15.
-/// let light = ShCoeffs::from_vec(shlight_core::sh_eval(2, [0.0, 0.0, 1.0])).unwrap();
+/// let light = ShCoeffs::from_vec(shlight_core::sh_eval(2, glam::DVec3::new(0.0, 0.0, 1.0))).unwrap();
 /// let auto = auto_window(&light, WindowFamily::Hanning, WindowTarget::Irradiance).unwrap();
 /// assert!((auto.min_before + 19.0 / 480.0).abs() < 1e-12);
 /// let Window::Hanning { w } = auto.window else { panic!() };
@@ -379,7 +381,7 @@ mod tests {
     fn laplacian_bound_keeps_the_constant_half() {
         let t = ShCoeffs::from_vec(crate::sh_eval(
             6,
-            crate::sphere_minimum::normalize([0.2, 0.5, -0.7]),
+            glam::DVec3::new(0.2, 0.5, -0.7).normalize(),
         ))
         .unwrap();
         let lam = laplacian_bound(&t);

@@ -190,7 +190,7 @@ mod tests {
     #[test]
     fn hemisphere_matches_the_closed_form_and_converges_as_h_squared() {
         let o = MapOrientation::default();
-        let normals: Vec<DVec3> = fibonacci_sphere(500).into_iter().map(DVec3::from).collect();
+        let normals: Vec<DVec3> = fibonacci_sphere(500).into_iter().collect();
         let mut errors = Vec::new();
         for (w, h) in [(64, 32), (128, 64), (256, 128)] {
             let px = render_map(Layout::Equirect, o, w, h, |d| {

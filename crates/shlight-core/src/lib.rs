@@ -60,10 +60,10 @@
 //! ```
 //! use shlight_core::{ShCoeffs, analytic, irradiance};
 //! // A directional light from +Z of unit irradiance, kept to lmax 2:
-//! let light: ShCoeffs<f64> = analytic::directional(2, [0.0, 0.0, 1.0], 1.0);
+//! let light: ShCoeffs<f64> = analytic::directional(2, glam::DVec3::new(0.0, 0.0, 1.0), 1.0);
 //! let e = irradiance(&light);
 //! // Ramamoorthi-Hanrahan's 9-term irradiance facing the light is 17/16.
-//! assert!((e.eval([0.0, 0.0, 1.0]) - 17.0 / 16.0).abs() < 1e-14);
+//! assert!((e.eval(glam::DVec3::new(0.0, 0.0, 1.0)) - 17.0 / 16.0).abs() < 1e-14);
 //! ```
 //!
 //! # References
@@ -87,7 +87,7 @@ pub mod coeffs;
 mod cpu_features;
 mod cube_faces;
 pub mod equirect;
-pub mod hardcoded;
+mod hardcoded;
 pub mod index;
 pub mod irradiance_map;
 pub mod layout;
@@ -108,19 +108,26 @@ mod value;
 pub mod window;
 pub mod zonal;
 
-pub use auto_window::auto_window;
+pub use auto_window::{AutoWindow, AutoWindowError, WindowTarget, auto_window};
 pub use basis::{ShBasis, sh_eval};
 pub use coeffs::ShCoeffs;
 pub use cube_faces::CubeFaces;
+pub use equirect::EquirectView;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
+pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError};
+pub use montecarlo::{
+    ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
+};
 pub use orientation::MapOrientation;
+pub use projection::{project, project_map};
+pub use radiance_map::RadianceMap;
 pub use real::Real;
-pub use rotation::ShRotation;
+pub use rotation::{Frame, ShRotation};
 pub use sphere_minimum::sphere_minimum;
 pub use strided_image::StridedImage;
 pub use texel_source::TexelSource;
 pub use value::ShValue;
-pub use window::Window;
+pub use window::{Window, WindowFamily};
 pub use zonal::{ZonalKernel, irradiance};
 
 /// The README's example, compiled and run as a doctest.

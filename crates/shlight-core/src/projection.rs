@@ -181,7 +181,7 @@ mod tests {
                 for j in 0..h {
                     let omega = equirect_row_solid_angle(j, w, h);
                     for i in 0..w {
-                        basis.eval(equirect_direction(i, j, w, h, o).to_array(), &mut y);
+                        basis.eval(equirect_direction(i, j, w, h, o), &mut y);
                         let f = DVec3::from(px[j * w + i].map(f64::from));
                         for k in 0..y.len() {
                             slow[k] += f * (y[k] * omega);
@@ -306,7 +306,7 @@ mod tests {
             4,
             o,
         );
-        let want: ShCoeffs<f64> = analytic::linear_gradient(4, axis.to_array(), 1.0, 0.5);
+        let want: ShCoeffs<f64> = analytic::linear_gradient(4, axis, 1.0, 0.5);
         for k in 0..25 {
             assert!(
                 (got[k].x - want[k]).abs() < 1e-4,

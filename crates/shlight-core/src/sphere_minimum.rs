@@ -5,6 +5,8 @@
 
 use core::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::quadrature::fibonacci_sphere;
 use crate::{ShBasis, ShCoeffs};
 
@@ -52,10 +54,10 @@ pub fn dense_point_count(lmax: usize) -> usize {
 /// f[(1, 0)] = 1.0; // sqrt(3 / (4 pi)) z, lowest at -Z
 /// let (min, at) = sphere_minimum(&f);
 /// assert!((min + (3.0 / (4.0 * std::f64::consts::PI)).sqrt()).abs() < 1e-12);
-/// assert!((at[2] + 1.0).abs() < 1e-9);
+/// assert!((at.z + 1.0).abs() < 1e-9);
 /// ```
 #[must_use]
-pub fn sphere_minimum(f: &ShCoeffs<f64>) -> (f64, [f64; 3]) {
+pub fn sphere_minimum(f: &ShCoeffs<f64>) -> (f64, DVec3) {
     let m = Minimiser::new(f, dense_point_count(f.lmax()));
     m.minimum(&vec![1.0; f.lmax() + 1])
 }
@@ -96,7 +98,7 @@ impl Minimiser {
     pub(crate) fn new(target: &ShCoeffs<f64>, n: usize) -> Self {
         let lmax = target.lmax();
         let basis = ShBasis::<f64>::new(lmax);
-        let points = fibonacci_sphere(n);
+        let points: Vec<[f64; 3]> = fibonacci_sphere(n).iter().map(DVec3::to_array).collect();
         let count = basis.count();
         let block = (lmax + 1) * CHUNK;
         let mut band_sums = vec![0.0; n.div_ceil(CHUNK) * block];
@@ -147,14 +149,14 @@ impl Minimiser {
     }
 
     /// Minimum of `sum_l factors[l] t_l(d)` over the sphere.
-    pub(crate) fn minimum(&self, factors: &[f64]) -> (f64, [f64; 3]) {
+    pub(crate) fn minimum(&self, factors: &[f64]) -> (f64, DVec3) {
         self.minimum_until(factors, f64::NEG_INFINITY)
     }
 
     /// Like [`Minimiser::minimum`], but returns as soon as a value below
     /// `stop_below` is found (that value and its point; then not necessarily
     /// the minimum). Makes a failing feasibility test cheap.
-    pub(crate) fn minimum_until(&self, factors: &[f64], stop_below: f64) -> (f64, [f64; 3]) {
+    pub(crate) fn minimum_until(&self, factors: &[f64], stop_below: f64) -> (f64, DVec3) {
         let n = self.points.len();
         let lmax = self.target.lmax();
         let mut values = vec![0.0; n.div_ceil(CHUNK) * CHUNK];
@@ -212,7 +214,7 @@ impl Minimiser {
             .sum();
         let noise = NOISE_ULPS * f64::EPSILON * bound;
         let mut scratch = vec![0.0; basis.count()];
-        let mut eval = |d: [f64; 3]| g.eval_with(&basis, d, &mut scratch);
+        let mut eval = |d: [f64; 3]| g.eval_with(&basis, DVec3::from(d), &mut scratch);
         let mut best = (f64::INFINITY, [0.0, 0.0, 1.0]);
         for &i in &picked {
             let p = self.points[i];
@@ -231,7 +233,7 @@ impl Minimiser {
                 break;
             }
         }
-        best
+        (best.0, DVec3::from(best.1))
     }
 }
 

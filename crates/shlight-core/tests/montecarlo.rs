@@ -43,7 +43,7 @@ fn gradient() -> Case {
     Case {
         name: "gradient",
         map: Box::new(move |d| RGB * (1.0 + 0.5 * d.dot(a))),
-        exact: analytic::linear_gradient(LMAX, a.to_array(), RGB, RGB * 0.5),
+        exact: analytic::linear_gradient(LMAX, a, RGB, RGB * 0.5),
     }
 }
 
@@ -51,7 +51,7 @@ fn gradient() -> Case {
 /// uniform sky of `sky`.
 fn cap(name: &'static str, axis: DVec3, half: f64, value: f64, sky: f64) -> Case {
     let c = half.cos();
-    let mut exact = analytic::cap(LMAX, axis.to_array(), half, RGB * value);
+    let mut exact = analytic::cap(LMAX, axis, half, RGB * value);
     exact += &analytic::constant(LMAX, RGB * sky);
     Case {
         name,

@@ -267,7 +267,7 @@ fn a_procedural_source_projects_to_the_closed_form() {
             f: |d: DVec3| 1.0 + 0.5 * d.dot(axis),
         };
         let got = project(&source, 4, o).unwrap();
-        let want: ShCoeffs<f64> = analytic::linear_gradient(4, axis.to_array(), 1.0, 0.5);
+        let want: ShCoeffs<f64> = analytic::linear_gradient(4, axis, 1.0, 0.5);
         for k in 0..want.len() {
             assert!((got[k].x - want[k]).abs() < QUADRATURE_TOL, "{o:?} k {k}");
             assert!(

@@ -16,6 +16,9 @@ use crate::{ShCoeffs, sh_index};
 /// reference the fast path is tested and benchmarked against.
 ///
 /// Panics if `pixels.len() != width * height`.
+///
+/// A test and benchmark reference, hidden from the documentation.
+#[doc(hidden)]
 #[must_use]
 pub fn project_equirect_simple(
     map: EquirectView<'_>,

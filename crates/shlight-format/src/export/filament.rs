@@ -194,9 +194,11 @@ mod tests {
 
     #[test]
     fn the_shader_gives_irradiance_over_pi_and_reads_back() {
-        let radiance =
-            &shlight_core::analytic::directional(2, [0.6, 0.0, -0.8], DVec3::new(2.0, 1.0, 0.5))
-                + &shlight_core::analytic::constant(2, DVec3::splat(0.25));
+        let radiance = &shlight_core::analytic::directional(
+            2,
+            DVec3::new(0.6, 0.0, -0.8),
+            DVec3::new(2.0, 1.0, 0.5),
+        ) + &shlight_core::analytic::constant(2, DVec3::splat(0.25));
         let out = render(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -219,7 +221,7 @@ mod tests {
         let e = shlight_core::irradiance(&radiance);
         for n in [[0.6, 0.0, -0.8], [0.0, 1.0, 0.0], [-0.48, 0.6, 0.64]] {
             let got = irradiance_sh(&sh, n);
-            let want = e.eval(n) / std::f64::consts::PI;
+            let want = e.eval(DVec3::from(n)) / std::f64::consts::PI;
             assert!((got - want).abs().max_element() < 1e-13, "{got} vs {want}");
         }
         let back = read(&out.text, "sh.txt").unwrap();
