@@ -20,7 +20,7 @@ use glam::DVec3;
 use shlight_accuracy::error::{self, ErrorStats};
 use shlight_core::irradiance;
 use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::{self, EnvMap};
+use shlight_core::layout::EnvMap;
 use shlight_core::montecarlo::luminance;
 use shlight_core::projection::MapOrientation;
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
@@ -136,8 +136,8 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let Some(lmax) = args.sh else {
         return Ok(());
     };
-    let e_sh = irradiance(&layout::project_map(&map, lmax));
-    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(n.to_array())).collect();
+    let e_sh = irradiance(&shlight_core::projection::project_map(&map, lmax));
+    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(*n)).collect();
     let diff: Vec<DVec3> = sh.iter().zip(&exact).map(|(s, e)| *s - *e).collect();
     write(&outputs[1], &sh)?;
     write(&outputs[2], &diff)?;

@@ -17,13 +17,14 @@ use clap::{Args, ValueEnum};
 use glam::{DMat3, DQuat, DVec3};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
-use shlight_core::layout::{self, EnvMap, Layout};
+use shlight_core::auto_window::{WindowTarget, auto_window};
+use shlight_core::layout::{EnvMap, Layout};
 use shlight_core::montecarlo::{
-    DEFAULT_SEED, ImportanceGrid, McOptions, Sampler, project_montecarlo,
+    DEFAULT_SEED, ImportanceGrid, McOptions, SamplerKind, project_montecarlo,
 };
 use shlight_core::projection::MapOrientation;
 use shlight_core::rotation::{Frame, rotate_once};
-use shlight_core::window::{WindowFamily, WindowTarget, auto_window};
+use shlight_core::window::WindowFamily;
 use shlight_core::zonal::clamped_cosine_eigenvalue;
 use shlight_core::{ShCoeffs, ShRotation, Window, irradiance};
 use shlight_io::{Image, PixelStats, ReadOptions, ToneMap, read_image};
@@ -70,7 +71,7 @@ pub struct ProjectArgs {
     /// Monte Carlo: how directions are drawn [default: sobol]. importance
     /// follows the map's luminance.
     #[arg(long, value_parser = sampler_parser())]
-    pub sampler: Option<Sampler>,
+    pub sampler: Option<SamplerKind>,
     /// Monte Carlo: seed of the random streams (equal seeds give identical
     /// files) [default: 6001130381083431937].
     #[arg(long, allow_negative_numbers = true)]
@@ -190,9 +191,9 @@ fn parse_samples(s: &str) -> std::result::Result<usize, String> {
 }
 
 /// `--sampler NAME`: one of the Monte Carlo samplers' names.
-fn sampler_parser() -> impl TypedValueParser<Value = Sampler> {
-    PossibleValuesParser::new(Sampler::ALL.map(Sampler::name)).map(|name| {
-        name.parse::<Sampler>()
+fn sampler_parser() -> impl TypedValueParser<Value = SamplerKind> {
+    PossibleValuesParser::new(SamplerKind::ALL.map(SamplerKind::name)).map(|name| {
+        name.parse::<SamplerKind>()
             .expect("possible values are sampler names")
     })
 }
@@ -244,8 +245,9 @@ struct Settings<'a> {
     rotation: Option<(RotationRecord, DMat3)>,
     read: ReadOptions,
     preview: PreviewOptions,
-    /// Monte Carlo options (`--method montecarlo`).
-    montecarlo: Option<McOptions>,
+    /// Monte Carlo options (`--method montecarlo`) and the sampler's kind;
+    /// the sampler itself is built per map ([`project_map`]).
+    montecarlo: Option<(McOptions, SamplerKind)>,
     /// The device and pipelines of `--gpu`.
     gpu: Option<(shlight_gpu::GpuContext, shlight_gpu::GpuProjector)>,
 }
@@ -272,12 +274,15 @@ impl<'a> Settings<'a> {
             }
         };
         let montecarlo = match args.method {
-            Method::MonteCarlo => Some(McOptions {
-                lmax: args.lmax,
-                samples: args.samples.unwrap_or(DEFAULT_SAMPLES),
-                sampler: args.sampler.unwrap_or_default(),
-                seed: args.seed.unwrap_or(DEFAULT_SEED),
-            }),
+            Method::MonteCarlo => Some((
+                McOptions {
+                    lmax: args.lmax,
+                    samples: args.samples.unwrap_or(DEFAULT_SAMPLES),
+                    seed: args.seed.unwrap_or(DEFAULT_SEED),
+                    ..McOptions::default()
+                },
+                args.sampler.unwrap_or_default(),
+            )),
             Method::Quadrature => {
                 let given: Vec<&str> = [
                     ("--samples", args.samples.is_some()),
@@ -769,7 +774,7 @@ struct Projection {
 /// The projection step: the place where layouts and methods meet.
 ///
 /// Quadrature sums texel × basis × exact texel solid angle
-/// ([`layout::project_map`]). Monte Carlo looks the map up bilinearly
+/// ([`shlight_core::projection::project_map`]). Monte Carlo looks the map up bilinearly
 /// ([`EnvMap::radiance_bilinear`]) and, for importance sampling, draws from
 /// [`ImportanceGrid::from_equirect`] over an equirect map's texels, or from
 /// [`ImportanceGrid::from_map`] on a grid of the map's size otherwise.
@@ -799,14 +804,14 @@ fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Projec
             }
         }
         (None, None) => Projection {
-            coeffs: layout::project_map(&map, s.args.lmax),
+            coeffs: shlight_core::projection::project_map(&map, s.args.lmax),
             std_error: None,
             samples: None,
             seed: None,
             sampler: None,
         },
-        (Some(options), _) => {
-            let grid = (options.sampler == Sampler::Importance).then(|| match layout {
+        (Some((options, kind)), _) => {
+            let sampler = kind.sampler(|| match layout {
                 Layout::Equirect => {
                     ImportanceGrid::from_equirect(width, height, pixels, s.orientation)
                 }
@@ -816,8 +821,11 @@ fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Projec
                     ImportanceGrid::from_map(&map, 2 * rows, rows, s.orientation)
                 }
             });
-            let estimate =
-                project_montecarlo(&map, options, grid.as_ref()).map_err(|e| anyhow!("{e}"))?;
+            let options = McOptions {
+                sampler,
+                ..options.clone()
+            };
+            let estimate = project_montecarlo(&map, &options);
             Projection {
                 coeffs: estimate.coeffs,
                 std_error: Some(estimate.std_error),

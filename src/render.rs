@@ -185,7 +185,7 @@ mod tests {
             let image = render(&coeffs, &grid, &ProgressBar::hidden());
             for y in 0..18 {
                 for x in 0..36 {
-                    let want = coeffs.eval(grid.direction(x, y).unwrap().to_array());
+                    let want = coeffs.eval(grid.direction(x, y).unwrap());
                     let got = DVec3::from(image.get(x, y).map(f64::from));
                     assert!((got - want).abs().max_element() < 1e-5, "{x} {y}");
                 }

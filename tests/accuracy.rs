@@ -10,8 +10,9 @@ use glam::DVec3;
 use shlight_accuracy::error::relative_to_peak;
 use shlight_accuracy::oracle::{Oracle, Shape, unit};
 use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::{EnvMap, Layout, project_map};
+use shlight_core::layout::{EnvMap, Layout};
 use shlight_core::montecarlo::luminance;
+use shlight_core::projection::project_map;
 use shlight_core::projection::{MapOrientation, equirect_direction};
 use shlight_core::quadrature::fibonacci_sphere;
 use shlight_io::{ReadOptions, read_image};
@@ -178,10 +179,7 @@ fn directional_nine_term_figures_reproduce_the_published_numbers() {
     assert!((e2.eval(perpendicular) - 3.0 / 32.0).abs() < 1e-14);
     assert!((e2.eval(-d) - 1.0 / 16.0).abs() < 1e-14);
     assert!((e2.eval(d) - 17.0 / 16.0).abs() < 1e-14);
-    let normals: Vec<DVec3> = fibonacci_sphere(200_000)
-        .into_iter()
-        .map(DVec3::from)
-        .collect();
+    let normals: Vec<DVec3> = fibonacci_sphere(200_000).into_iter().collect();
     let exact: Vec<f64> = normals.iter().map(|n| sun.irradiance(*n)).collect();
     let est: Vec<f64> = normals.iter().map(|n| e2.eval(*n)).collect();
     let stats = relative_to_peak(&est, &exact);
@@ -212,10 +210,7 @@ fn real_map_errors(path: &Path, normals: &[DVec3]) -> ((f64, f64), (f64, f64)) {
         .map(luminance)
         .collect();
     let e = shlight_core::irradiance(&project_map(&map, 2));
-    let est: Vec<f64> = normals
-        .iter()
-        .map(|n| luminance(e.eval(n.to_array())))
-        .collect();
+    let est: Vec<f64> = normals.iter().map(|n| luminance(e.eval(*n))).collect();
     let peak = relative_to_peak(&est, &exact);
     let point = shlight_accuracy::error::pointwise(&est, &exact, 1e-3);
     ((peak.mean, peak.max), (point.mean, point.max))
@@ -234,10 +229,7 @@ fn real_map_errors(path: &Path, normals: &[DVec3]) -> ((f64, f64), (f64, f64)) {
 /// is small (facing away from the sun or the softboxes).
 #[test]
 fn real_maps_nine_term_irradiance_against_brute_force() {
-    let normals: Vec<DVec3> = fibonacci_sphere(2000)
-        .into_iter()
-        .map(DVec3::from)
-        .collect();
+    let normals: Vec<DVec3> = fibonacci_sphere(2000).into_iter().collect();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps");
     for name in ["park", "city", "sky", "studio"] {
         let ((mean, max), (pmean, pmax)) =

@@ -64,7 +64,7 @@ impl Case {
         } else {
             Frame::YUp.rotation_to(self.frame) * n
         };
-        irradiance(&self.radiance.resized(lmax)).eval(d.to_array())
+        irradiance(&self.radiance.resized(lmax)).eval(d)
     }
 
     fn radiance_at(&self, lmax: usize, w: DVec3, own_frame: bool) -> DVec3 {
@@ -73,7 +73,7 @@ impl Case {
         } else {
             Frame::YUp.rotation_to(self.frame) * w
         };
-        self.radiance.resized(lmax).eval(d.to_array())
+        self.radiance.resized(lmax).eval(d)
     }
 }
 
@@ -99,7 +99,7 @@ fn random_radiance(lmax: usize, seed: u64) -> ShCoeffs<DVec3> {
 }
 
 fn cases() -> Vec<Case> {
-    let sun = &analytic::directional(2, [0.48, 0.6, 0.64], DVec3::new(3.0, 2.5, 2.0))
+    let sun = &analytic::directional(2, DVec3::new(0.48, 0.6, 0.64), DVec3::new(3.0, 2.5, 2.0))
         + &analytic::constant(2, DVec3::new(0.2, 0.3, 0.5));
     vec![
         Case {
@@ -116,8 +116,11 @@ fn cases() -> Vec<Case> {
         },
         Case {
             name: "zup4",
-            radiance: &analytic::directional(4, [0.0, -0.6, 0.8], DVec3::new(1.0, 2.0, 0.5))
-                + &random_radiance(4, 11),
+            radiance: &analytic::directional(
+                4,
+                DVec3::new(0.0, -0.6, 0.8),
+                DVec3::new(1.0, 2.0, 0.5),
+            ) + &random_radiance(4, 11),
             frame: Frame::ZUp,
             irradiance_file: false,
         },
@@ -615,8 +618,12 @@ fn check_snippet_values(what: &str, case: &Case, values: &[Vec<DVec3>]) {
 fn high_lmax_case() -> Case {
     Case {
         name: "lmax8",
-        radiance: &analytic::cap(8, [0.36, 0.48, 0.8], 0.4, DVec3::new(4.0, 3.0, 2.0))
-            + &random_radiance(8, 23),
+        radiance: &analytic::cap(
+            8,
+            DVec3::new(0.36, 0.48, 0.8),
+            0.4,
+            DVec3::new(4.0, 3.0, 2.0),
+        ) + &random_radiance(8, 23),
         frame: Frame::ZUp,
         irradiance_file: false,
     }
@@ -940,8 +947,8 @@ fn json_to_engine_formats_and_back_keeps_the_coefficients() {
     let back = ShCoeffs::from_vec(c).unwrap();
     let m: DMat3 = Frame::YUp.rotation_to(Frame::ZUp);
     for n in normals() {
-        let got = back.eval(n.to_array());
-        let want = radiance.eval((m * n).to_array());
+        let got = back.eval(n);
+        let want = radiance.eval(m * n);
         assert!((got - want).abs().max_element() < 1e-9, "{n}");
     }
 }

@@ -41,7 +41,7 @@ fn write_coeffs(path: &Path, c: &ShCoeffs<DVec3>) {
 
 /// A light positive everywhere with bands 0..4 present.
 fn light() -> ShCoeffs<DVec3> {
-    let mut l = analytic::cap(4, [0.3, 0.8, 0.5], 0.5, DVec3::new(5.0, 3.0, 2.0));
+    let mut l = analytic::cap(4, DVec3::new(0.3, 0.8, 0.5), 0.5, DVec3::new(5.0, 3.0, 2.0));
     l += &analytic::constant(4, DVec3::new(1.0, 1.1, 1.3));
     l
 }
@@ -91,7 +91,7 @@ fn render_mesh_shades_each_pixel_as_the_cpu_irradiance_at_its_normal() {
         }
         assert!((d.length() - 1.0).abs() < 1e-5, "unit normals: {d}");
         covered += 1;
-        let want = e.eval(d.to_array());
+        let want = e.eval(d);
         for k in 0..3 {
             let want = albedo[k] / std::f64::consts::PI * want[k];
             let err = (f64::from(colour[k]) - want).abs() / want;

@@ -74,7 +74,7 @@ fn constant_and_gradient_maps_give_their_closed_forms() {
     ]);
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", "z"]);
     let want = scaled(
-        &analytic::linear_gradient(LMAX, axis, 1.5, -0.75),
+        &analytic::linear_gradient(LMAX, glam::DVec3::from(axis), 1.5, -0.75),
         [1.0, 0.5, 0.25],
     );
     assert_rows_near(&got, &want, SMOOTH_TOL, "gradient");
@@ -100,7 +100,12 @@ fn hemisphere_and_caps_give_their_closed_forms() {
         ]);
         let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", up]);
         let want = scaled(
-            &analytic::cap(LMAX, axis, std::f64::consts::FRAC_PI_2, 1.0),
+            &analytic::cap(
+                LMAX,
+                glam::DVec3::from(axis),
+                std::f64::consts::FRAC_PI_2,
+                1.0,
+            ),
             [3.0, 2.0, 1.0],
         );
         assert_rows_near(&got, &want, SMOOTH_TOL, &format!("hemisphere, {up}-up"));
@@ -127,7 +132,7 @@ fn hemisphere_and_caps_give_their_closed_forms() {
     ]);
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--mirror"]);
     let want = scaled(
-        &analytic::cap(LMAX, axis, 40f64.to_radians(), 4.0),
+        &analytic::cap(LMAX, glam::DVec3::from(axis), 40f64.to_radians(), 4.0),
         [1.0; 3],
     );
     assert_rows_near(&got, &want, EDGE_TOL, "cap");
@@ -167,10 +172,7 @@ fn a_one_texel_sun_is_the_delta_at_its_texel_centre() {
         String::from_utf8_lossy(&out.stderr)
     );
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", "z"]);
-    let want = scaled(
-        &analytic::directional(LMAX, d.to_array(), 5.0),
-        [1.0, 0.9, 0.8],
-    );
+    let want = scaled(&analytic::directional(LMAX, d, 5.0), [1.0, 0.9, 0.8]);
     // Exact but for the f32 texel value.
     assert_rows_near(&got, &want, 1e-6, "one-texel sun");
 
@@ -214,12 +216,18 @@ fn a_small_cap_sun_keeps_its_irradiance_and_is_near_the_delta() {
     let got = project_rows(&map, &["--lmax", "2"]);
     let a = half.to_radians();
     let radiance = 2.0 / (std::f64::consts::PI * a.sin().powi(2));
-    let cap = scaled(&analytic::cap(2, axis, a, radiance), [1.0; 3]);
+    let cap = scaled(
+        &analytic::cap(2, glam::DVec3::from(axis), a, radiance),
+        [1.0; 3],
+    );
     // The cap is ~9 texels across and normalised to its power; measured 1e-4.
     assert_rows_near(&got, &cap, 1e-3, "cap sun vs cap");
     // The cap and the delta differ by l(l+1)a²/4 relatively in degree l
     // (4e-3 at l = 2, a = 3°); measured 1.3e-3 of the largest coefficient.
-    let delta = scaled(&analytic::directional(2, axis, 2.0), [1.0; 3]);
+    let delta = scaled(
+        &analytic::directional(2, glam::DVec3::from(axis), 2.0),
+        [1.0; 3],
+    );
     assert_rows_near(&got, &delta, 3e-3, "cap sun vs delta");
     // Its power is exact: L_00 = 2 sqrt(pi) * mean = L * solid angle / (2 sqrt(pi)).
     let want00 = radiance * 2.0 * std::f64::consts::PI * (1.0 - a.cos())

@@ -130,7 +130,7 @@ impl Truncated {
                 );
                 c.iter().zip(&p).map(|(c, p)| c * p).sum()
             }
-            Truncated::Sh(e) => e.eval(n.to_array()),
+            Truncated::Sh(e) => e.eval(n),
         }
     }
 }
@@ -251,7 +251,7 @@ impl Oracle {
     #[must_use]
     pub fn coefficients(&self, lmax: usize) -> Option<ShCoeffs<f64>> {
         let (axis, z) = self.zonal(lmax)?;
-        Some(zonal::zonal_to_sh(&z, axis.to_array()))
+        Some(zonal::zonal_to_sh(&z, axis))
     }
 
     /// The SH irradiance truncated at `lmax` (module docs).
@@ -263,7 +263,7 @@ impl Oracle {
                 c: (0..=lmax).map(|l| series_term(l, z[l])).collect(),
             },
             None => Truncated::Sh(ShCoeffs::project_fn(lmax, POLYGON_RULE_DEGREE, |n| {
-                self.irradiance(DVec3::from(n))
+                self.irradiance(n)
             })),
         }
     }
@@ -593,7 +593,7 @@ mod tests {
         // The closed-form series and the core's rotated coefficients agree.
         let e = shlight_core::irradiance(&cap.coefficients(6).unwrap());
         for n in shlight_core::quadrature::fibonacci_sphere(50) {
-            let got = cap.truncated(6).eval(DVec3::from(n));
+            let got = cap.truncated(6).eval(n);
             assert!((got - e.eval(n)).abs() < 1e-13);
         }
     }
@@ -607,10 +607,7 @@ mod tests {
         q.directions
             .iter()
             .zip(&q.weights)
-            .map(|(d, w)| {
-                let d = DVec3::from(*d);
-                w * o.radiance(d) * n.dot(d).max(0.0)
-            })
+            .map(|(&d, w)| w * o.radiance(d) * n.dot(d).max(0.0))
             .sum()
     }
 
@@ -618,7 +615,6 @@ mod tests {
     fn closed_forms_match_numerical_integration() {
         for o in suite_oracles().iter().filter(|o| o.renderable()) {
             for n in shlight_core::quadrature::fibonacci_sphere(6) {
-                let n = DVec3::from(n);
                 let (got, want) = (o.irradiance(n), numeric_irradiance(o, n));
                 assert!((got - want).abs() < 5e-3, "{}: {got} vs {want}", o.name);
             }
@@ -633,7 +629,7 @@ mod tests {
                 let t = o.truncated(lmax);
                 let worst = shlight_core::quadrature::fibonacci_sphere(300)
                     .into_iter()
-                    .map(|n| (t.eval(DVec3::from(n)) - o.irradiance(DVec3::from(n))).abs())
+                    .map(|n| (t.eval(n) - o.irradiance(n)).abs())
                     .fold(0.0f64, f64::max);
                 if let Some(b) = bound {
                     assert!(worst <= b + 1e-12, "{} lmax {lmax}: {worst} > {b}", o.name);

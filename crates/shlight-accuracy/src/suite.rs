@@ -60,9 +60,12 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::layout::{EnvMap, Layout, project_map};
-use shlight_core::montecarlo::{ImportanceGrid, McOptions, Sampler, project_montecarlo};
+use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::montecarlo::{
+    ImportanceGrid, McOptions, Sampler, SamplerKind, project_montecarlo,
+};
 use shlight_core::projection::MapOrientation;
+use shlight_core::projection::project_map;
 use shlight_core::quadrature::fibonacci_sphere;
 use shlight_core::zonal::clamped_cosine_eigenvalue;
 use shlight_core::{ShBasis, ShCoeffs};
@@ -272,10 +275,7 @@ impl Report {
 /// The normals of the suite: [`NORMALS`] Fibonacci-sphere points.
 #[must_use]
 pub fn normals() -> Vec<DVec3> {
-    fibonacci_sphere(NORMALS)
-        .into_iter()
-        .map(DVec3::from)
-        .collect()
+    fibonacci_sphere(NORMALS).into_iter().collect()
 }
 
 /// An oracle with its reference values at the normals.
@@ -369,7 +369,7 @@ fn quadrature_bound(o: &Oracle, lmax: usize, r: f64, peak: f64) -> f64 {
 /// SH irradiance of radiance coefficients `l` at the normals.
 fn sh_irradiance(l: &ShCoeffs<f64>, normals: &[DVec3]) -> Vec<f64> {
     let e = shlight_core::irradiance(l);
-    normals.iter().map(|n| e.eval(n.to_array())).collect()
+    normals.iter().map(|n| e.eval(*n)).collect()
 }
 
 /// Runs the suite; `progress` is told what runs next.
@@ -401,7 +401,7 @@ pub fn run(options: SuiteOptions, progress: &dyn Fn(&str)) -> Report {
             .iter()
             .find(|c| c.oracle.name == *name)
             .expect("a suite oracle");
-        for sampler in Sampler::ALL {
+        for sampler in SamplerKind::ALL {
             progress(&format!("monte carlo ({sampler}): {name}"));
             mc_sweep(case, sampler, options, &normals, &mut report);
         }
@@ -566,16 +566,10 @@ struct McOutcome {
     z: Option<Vec<f64>>,
 }
 
-fn mc_once(
-    case: &Case,
-    options: &McOptions,
-    grid: Option<&ImportanceGrid>,
-    normals: &[DVec3],
-    reference: &[f64],
-) -> McOutcome {
+fn mc_once(case: &Case, options: &McOptions, normals: &[DVec3], reference: &[f64]) -> McOutcome {
     let o = &case.oracle;
     let f = radiance_fn(o);
-    let est = project_montecarlo(&f, options, grid).expect("grid given for importance");
+    let est = project_montecarlo(&f, options);
     let (l, se) = (est.coeffs.channel(0), est.std_error.channel(0));
     let e = case.errors(&sh_irradiance(&l, normals), reference);
     let lmax = options.lmax;
@@ -588,7 +582,7 @@ fn mc_once(
     let mut y = vec![0.0; basis.count()];
     let mut sigma = 0.0f64;
     for n in normals {
-        basis.eval(n.to_array(), &mut y);
+        basis.eval(*n, &mut y);
         sigma = sigma.max(
             y.iter()
                 .zip(&weights)
@@ -612,7 +606,7 @@ fn mc_once(
 
 fn mc_sweep(
     case: &Case,
-    sampler: Sampler,
+    kind: SamplerKind,
     options: SuiteOptions,
     normals: &[DVec3],
     report: &mut Report,
@@ -620,9 +614,9 @@ fn mc_sweep(
     let o = &case.oracle;
     let lmax = PROJECTION_LMAX;
     let reference = &case.projection_reference;
-    let grid = (sampler == Sampler::Importance)
-        .then(|| ImportanceGrid::from_fn(128, 64, MapOrientation::default(), |d| o.radiance(d)));
-    let method = format!("mc-{sampler}");
+    let sampler = kind
+        .sampler(|| ImportanceGrid::from_fn(128, 64, MapOrientation::default(), |d| o.radiance(d)));
+    let method = format!("mc-{kind}");
     let first = report.rows.len();
     let (mut x, mut mean) = (Vec::new(), Vec::new());
     for n in options.mc_samples() {
@@ -632,10 +626,10 @@ fn mc_sweep(
             let opts = McOptions {
                 lmax,
                 samples: n,
-                sampler,
+                sampler: sampler.clone(),
                 seed: 0x5eed_0000 + seed,
             };
-            let out = mc_once(case, &opts, grid.as_ref(), normals, reference);
+            let out = mc_once(case, &opts, normals, reference);
             used = out.samples;
             outcomes.push(out);
         }
@@ -678,8 +672,8 @@ fn mc_sweep(
             pass: first_seed.errors.max <= first_seed.bound,
         });
     }
-    let range = match sampler {
-        Sampler::Uniform | Sampler::Importance => IID_RATE,
+    let range = match kind {
+        SamplerKind::Uniform | SamplerKind::Importance => IID_RATE,
         _ => QMC_RATE,
     };
     finish_sweep(report, first, o, &method, x, mean, Some(range));
@@ -722,7 +716,7 @@ fn lmax_curve(case: &Case, options: SuiteOptions, normals: &[DVec3]) -> LmaxCurv
                 sampler: Sampler::Sobol,
                 seed: 0x5eed_0000,
             };
-            montecarlo.push(mc_once(case, &opts, None, normals, &reference).errors.mean);
+            montecarlo.push(mc_once(case, &opts, normals, &reference).errors.mean);
         }
     }
     LmaxCurve {

@@ -79,7 +79,7 @@ fn baseline_google_style_sum_lmax2(bencher: Bencher) {
     let mut out = vec![0.0f64; N];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         for (o, v) in out.iter_mut().zip(&d) {
-            *o = google_style::eval_sh_sum(2, black_box(&coeffs), black_box(*v));
+            *o = google_style::eval_sh_sum(2, black_box(&coeffs), black_box(v.to_array()));
         }
         black_box(&mut out);
     });

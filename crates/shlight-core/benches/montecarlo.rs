@@ -23,7 +23,6 @@ fn sky(d: DVec3) -> DVec3 {
 }
 
 fn bench(bencher: Bencher, sampler: Sampler, lmax: usize) {
-    let grid = ImportanceGrid::from_map(&sky, 256, 128, MapOrientation::default());
     let o = McOptions {
         lmax,
         samples: N,
@@ -32,7 +31,7 @@ fn bench(bencher: Bencher, sampler: Sampler, lmax: usize) {
     };
     bencher
         .counter(ItemsCount::new(N))
-        .bench(|| project_montecarlo(&sky, black_box(&o), Some(&grid)).unwrap());
+        .bench(|| project_montecarlo(&sky, black_box(&o)));
 }
 
 #[divan::bench(args = [2, 8])]
@@ -52,5 +51,6 @@ fn sobol(bencher: Bencher, lmax: usize) {
 
 #[divan::bench(args = [2, 8])]
 fn importance(bencher: Bencher, lmax: usize) {
-    bench(bencher, Sampler::Importance, lmax);
+    let grid = ImportanceGrid::from_map(&sky, 256, 128, MapOrientation::default());
+    bench(bencher, Sampler::Importance(grid), lmax);
 }

@@ -7,14 +7,16 @@
 
 use core::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::zonal::{cap_zonal, clamped_cosine_zonal, zonal_to_sh};
-use crate::{ShCoeffs, ShValue};
+use crate::{Real, ShCoeffs, ShValue};
 
 /// Constant radiance `value` in every direction: only `f_0^0 = 2 sqrt(pi) value`.
 #[must_use]
-pub fn constant<C: ShValue<Scalar = f64>>(lmax: usize, value: C) -> ShCoeffs<C> {
+pub fn constant<C: ShValue>(lmax: usize, value: C) -> ShCoeffs<C> {
     let mut f = ShCoeffs::zeros(lmax);
-    f[0] = value.scale(2.0 * PI.sqrt());
+    f[0] = value.scale(C::Scalar::from_f64(2.0 * PI.sqrt()));
     f
 }
 
@@ -24,29 +26,24 @@ pub fn constant<C: ShValue<Scalar = f64>>(lmax: usize, value: C) -> ShCoeffs<C> 
 /// Its irradiance is `value * max(n . d, 0)`; truncated at lmax 2 it is
 /// `value (1/4 + cos/2 + (5/32)(3 cos^2 - 1))` (17/16 at 0 degrees).
 #[must_use]
-pub fn directional<C: ShValue<Scalar = f64>>(lmax: usize, d: [f64; 3], value: C) -> ShCoeffs<C> {
+pub fn directional<C: ShValue>(lmax: usize, d: DVec3, value: C) -> ShCoeffs<C> {
     ShCoeffs::from_vec(crate::sh_eval(lmax, d))
         .expect("basis count is a square")
-        .map(|y| value.scale(y))
+        .map(|y| value.scale(C::Scalar::from_f64(y)))
 }
 
 /// Radiance `value * max(axis . d, 0)`: a clamped-cosine lobe about `axis`.
 #[must_use]
-pub fn cosine_lobe<C: ShValue<Scalar = f64>>(lmax: usize, axis: [f64; 3], value: C) -> ShCoeffs<C> {
-    zonal_to_sh(&clamped_cosine_zonal(lmax), axis).map(|c| value.scale(c))
+pub fn cosine_lobe<C: ShValue>(lmax: usize, axis: DVec3, value: C) -> ShCoeffs<C> {
+    zonal_to_sh(&clamped_cosine_zonal(lmax), axis).map(|c| value.scale(C::Scalar::from_f64(c)))
 }
 
 /// Uniform radiance `value` inside the spherical cap of half-angle
 /// `half_angle` (radians, `0..=pi`) about `axis`, zero outside.
 /// `half_angle = pi/2` is the uniform hemisphere.
 #[must_use]
-pub fn cap<C: ShValue<Scalar = f64>>(
-    lmax: usize,
-    axis: [f64; 3],
-    half_angle: f64,
-    value: C,
-) -> ShCoeffs<C> {
-    zonal_to_sh(&cap_zonal(lmax, half_angle), axis).map(|c| value.scale(c))
+pub fn cap<C: ShValue>(lmax: usize, axis: DVec3, half_angle: f64, value: C) -> ShCoeffs<C> {
+    zonal_to_sh(&cap_zonal(lmax, half_angle), axis).map(|c| value.scale(C::Scalar::from_f64(c)))
 }
 
 /// Radiance varying linearly with the direction, `a + b (axis . d)` (a sky
@@ -54,18 +51,13 @@ pub fn cap<C: ShValue<Scalar = f64>>(
 /// `f_0^0 = 2 sqrt(pi) a`, and band 1 is `b` times the directional
 /// coefficients of `axis` scaled by `4 pi / 3`.
 #[must_use]
-pub fn linear_gradient<C: ShValue<Scalar = f64>>(
-    lmax: usize,
-    axis: [f64; 3],
-    a: C,
-    b: C,
-) -> ShCoeffs<C> {
+pub fn linear_gradient<C: ShValue>(lmax: usize, axis: DVec3, a: C, b: C) -> ShCoeffs<C> {
     let mut f = constant(lmax, a);
     if lmax >= 1 {
         let y = crate::sh_eval(1, axis);
         for i in 1..4 {
             // int (axis . d) Y_1^m(d) dd = (4 pi / 3) Y_1^m(axis)
-            f[i] = b.scale(4.0 * PI / 3.0 * y[i]);
+            f[i] = b.scale(C::Scalar::from_f64(4.0 * PI / 3.0 * y[i]));
         }
     }
     f
@@ -75,15 +67,15 @@ pub fn linear_gradient<C: ShValue<Scalar = f64>>(
 mod tests {
     use super::*;
 
-    fn unit(v: [f64; 3]) -> [f64; 3] {
+    fn unit(v: [f64; 3]) -> DVec3 {
         let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        [v[0] / n, v[1] / n, v[2] / n]
+        DVec3::new(v[0] / n, v[1] / n, v[2] / n)
     }
 
     #[test]
     fn closed_forms_match_numerical_projection() {
         let axis = unit([0.3, -0.5, 0.8]);
-        let dot = |d: [f64; 3]| d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+        let dot = |d: DVec3| d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
         // Band-limited sources are reproduced exactly by a product rule.
         let c = constant(4, 1.5f64);
         let g = linear_gradient(4, axis, 0.7f64, 0.2);

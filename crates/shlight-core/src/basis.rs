@@ -16,10 +16,12 @@
 //! on the unit azimuth vector (Sloan 2008, appendix A1, kept unit-length so
 //! nothing underflows at high `m`), and the polar part from the normalised
 //! Legendre recurrences. For `lmax <= 4` the hard-coded polynomials of
-//! [`crate::hardcoded`] are used.
+//! the hard-coded polynomials are used.
 
 use crate::hardcoded::{Lanes, QuadraticForm, eval_hardcoded, eval_hardcoded_with};
 use crate::legendre::Legendre;
+use glam::DVec3;
+
 use crate::{Real, sh_count};
 
 /// Lanes the batch evaluator processes together (a multiple of every SIMD width).
@@ -33,7 +35,7 @@ const LANES: usize = 16;
 /// use shlight_core::ShBasis;
 /// let basis = ShBasis::<f64>::new(2);
 /// let mut y = [0.0; 9];
-/// basis.eval([0.0, 0.0, 1.0], &mut y);
+/// basis.eval(glam::DVec3::Z, &mut y);
 /// assert!((y[2] - 0.4886025119029199).abs() < 1e-15); // Y_1^0 at +Z
 /// ```
 #[derive(Clone, Debug)]
@@ -66,9 +68,10 @@ impl<T: Real> ShBasis<T> {
 
     /// Writes `Y_l^m(d)` to `out[l*(l+1)+m]` for every `l <= lmax`.
     ///
-    /// Precondition: `d = [x, y, z]` has unit length. Panics if `out` is
-    /// shorter than [`ShBasis::count`].
-    pub fn eval(&self, d: [T; 3], out: &mut [T]) {
+    /// Precondition: `d` (a `glam::Vec3` for `f32`, `DVec3` for `f64`) has
+    /// unit length. Panics if `out` is shorter than [`ShBasis::count`].
+    pub fn eval(&self, d: T::Vec3, out: &mut [T]) {
+        let d: [T; 3] = d.into();
         if self.lmax <= 4 {
             eval_hardcoded(self.lmax, d[0], d[1], d[2], out);
         } else {
@@ -276,11 +279,11 @@ fn load_lanes<T: Real>(
 /// directions.
 ///
 /// ```
-/// let y = shlight_core::sh_eval(1, [1.0, 0.0, 0.0]);
+/// let y = shlight_core::sh_eval(1, glam::DVec3::X);
 /// assert!((y[3] + 0.4886025119029199).abs() < 1e-15); // Y_1^1 = -sqrt(3/4pi) x
 /// ```
 #[must_use]
-pub fn sh_eval(lmax: usize, d: [f64; 3]) -> Vec<f64> {
+pub fn sh_eval(lmax: usize, d: DVec3) -> Vec<f64> {
     let mut out = vec![0.0; sh_count(lmax)];
     ShBasis::new(lmax).eval(d, &mut out);
     out
@@ -320,7 +323,7 @@ mod tests {
             basis.eval_sum_batch(&coeffs, &x, &y, &z, &mut out);
             let mut one = vec![0.0; basis.count()];
             for (k, v) in d.iter().enumerate() {
-                basis.eval(*v, &mut one);
+                basis.eval(glam::DVec3::from(*v), &mut one);
                 let want: f64 = one.iter().zip(&coeffs).map(|(a, b)| a * b).sum();
                 assert!((out[k] - want).abs() < 1e-14, "lmax {lmax} k {k}");
             }
@@ -342,7 +345,7 @@ mod tests {
             basis.eval_batch(&x, &y, &z, &mut out);
             let mut one = vec![0.0; basis.count()];
             for k in 0..n {
-                basis.eval(d[k], &mut one);
+                basis.eval(glam::DVec3::from(d[k]), &mut one);
                 for i in 0..basis.count() {
                     assert_eq!(out[i * n + k], one[i], "lmax {lmax} i {i} k {k}");
                 }

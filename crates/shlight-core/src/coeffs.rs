@@ -20,7 +20,7 @@ use crate::{Real, ShBasis, ShValue, lmax_from_count, sh_count, sh_index};
 /// use glam::DVec3;
 /// let mut sh = ShCoeffs::<DVec3>::zeros(2);
 /// sh[(0, 0)] = DVec3::splat(2.0 * std::f64::consts::PI.sqrt()); // constant radiance 1
-/// let v = sh.eval([0.0, 1.0, 0.0]);
+/// let v = sh.eval(DVec3::new(0.0, 1.0, 0.0));
 /// assert!((v - DVec3::ONE).abs().max_element() < 1e-14);
 /// ```
 #[derive(Clone, Debug, PartialEq)]
@@ -185,7 +185,7 @@ impl<C: ShValue> ShCoeffs<C> {
     ///
     /// Builds the basis tables each call; use [`ShCoeffs::eval_with`] in loops.
     #[must_use]
-    pub fn eval(&self, d: [S<C>; 3]) -> C {
+    pub fn eval(&self, d: <S<C> as Real>::Vec3) -> C {
         self.eval_with(
             &ShBasis::new(self.lmax),
             d,
@@ -196,7 +196,12 @@ impl<C: ShValue> ShCoeffs<C> {
     /// The function at unit direction `d`, with a prepared basis (of at
     /// least this `lmax`) and a scratch buffer of `basis.count()` values.
     #[must_use]
-    pub fn eval_with(&self, basis: &ShBasis<S<C>>, d: [S<C>; 3], scratch: &mut [S<C>]) -> C {
+    pub fn eval_with(
+        &self,
+        basis: &ShBasis<S<C>>,
+        d: <S<C> as Real>::Vec3,
+        scratch: &mut [S<C>],
+    ) -> C {
         basis.eval(d, scratch);
         self.dot_scalar(scratch)
     }
@@ -224,7 +229,7 @@ impl<C: ShValue> ShCoeffs<C> {
     /// polynomial of degree `<= degree - lmax` the result is exact; otherwise
     /// larger `degree` gives better accuracy.
     #[must_use]
-    pub fn project_fn(lmax: usize, degree: usize, f: impl Fn([f64; 3]) -> C) -> Self
+    pub fn project_fn(lmax: usize, degree: usize, f: impl Fn(DVec3) -> C) -> Self
     where
         C: ShValue<Scalar = f64>,
     {
@@ -350,17 +355,17 @@ impl ShCoeffs<DVec3> {
         })
     }
 
-    /// Rounded to single precision.
+    /// Rounded to single precision (a new expansion).
     #[must_use]
-    pub fn as_f32(&self) -> ShCoeffs<Vec3> {
+    pub fn to_f32(&self) -> ShCoeffs<Vec3> {
         self.map(|v| v.as_vec3())
     }
 }
 
 impl ShCoeffs<Vec3> {
-    /// Widened to double precision.
+    /// Widened to double precision (a new expansion).
     #[must_use]
-    pub fn as_f64(&self) -> ShCoeffs<DVec3> {
+    pub fn to_f64(&self) -> ShCoeffs<DVec3> {
         self.map(|v| v.as_dvec3())
     }
 }
@@ -436,7 +441,7 @@ mod tests {
         let a = sample();
         let rgb = ShCoeffs::<DVec3>::from_channels(&a, &a.scaled(2.0), &a.scaled(3.0));
         assert_eq!(rgb.channel(1), a.scaled(2.0));
-        let v = rgb.eval([0.0, 0.6, 0.8]);
-        assert!((v.y - 2.0 * a.eval([0.0, 0.6, 0.8])).abs() < 1e-14);
+        let v = rgb.eval(DVec3::new(0.0, 0.6, 0.8));
+        assert!((v.y - 2.0 * a.eval(DVec3::new(0.0, 0.6, 0.8))).abs() < 1e-14);
     }
 }

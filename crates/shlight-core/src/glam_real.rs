@@ -15,9 +15,9 @@ use crate::{Real, ShValue};
 /// Directions are `Self::Vec3` (unit length), rotations `Self::Mat3`
 /// (column vectors, `d -> R d`) or `Self::Quat` (`d -> q d q*`), and an RGB
 /// value is a `Self::Vec3` (red, green, blue in `x`, `y`, `z`).
-pub trait GlamReal: Real + ShValue<Scalar = Self> {
-    /// The 3-vector of this precision (`Vec3`, `DVec3`).
-    type Vec3: ShValue<Scalar = Self>;
+///
+/// The 3-vector is [`Real::Vec3`] (`Vec3`, `DVec3`), also an RGB value.
+pub trait GlamReal: Real<Vec3: ShValue<Scalar = Self>> + ShValue<Scalar = Self> {
     /// The 3x3 matrix of this precision (`Mat3`, `DMat3`).
     type Mat3: Copy + Debug + PartialEq;
     /// The quaternion of this precision (`Quat`, `DQuat`).
@@ -36,7 +36,6 @@ pub trait GlamReal: Real + ShValue<Scalar = Self> {
 macro_rules! impl_glam_real {
     ($t:ty, $v:ty, $m:ty, $q:ty) => {
         impl GlamReal for $t {
-            type Vec3 = $v;
             type Mat3 = $m;
             type Quat = $q;
             #[inline(always)]

@@ -12,7 +12,7 @@
 //!
 //! accumulated in `f64`: `O(texels)` per normal, with no truncation in
 //! angular frequency. It is the same texel-centre quadrature that
-//! [`crate::layout::project_map`] uses, applied to the clamped cosine
+//! [`crate::projection::project_map`] uses, applied to the clamped cosine
 //! instead of `Y_l^m`, so its only error is that rule's: `O(h²)` in the
 //! texel size where the map is smooth, and the cosine's kink at the horizon
 //! of `n`, which moves the result by at most one ring of texels' worth
@@ -190,7 +190,7 @@ mod tests {
     #[test]
     fn hemisphere_matches_the_closed_form_and_converges_as_h_squared() {
         let o = MapOrientation::default();
-        let normals: Vec<DVec3> = fibonacci_sphere(500).into_iter().map(DVec3::from).collect();
+        let normals: Vec<DVec3> = fibonacci_sphere(500).into_iter().collect();
         let mut errors = Vec::new();
         for (w, h) in [(64, 32), (128, 64), (256, 128)] {
             let px = render_map(Layout::Equirect, o, w, h, |d| {

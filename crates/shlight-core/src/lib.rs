@@ -22,12 +22,18 @@
 //!   directly, rotation by a matrix or quaternion ([`ShRotationL2`]: the
 //!   3x3 and 5x5 blocks), `+ - *` and `lerp`, and conversion to and from
 //!   [`ShCoeffs`] (truncating a longer expansion, zero-padding a shorter one).
-//! - [`Window`] and [`window::auto_window`]: ringing suppression, and the
-//!   weakest window that makes a function or its irradiance non-negative.
-//! - [`projection`] and [`layout`]: environment maps of every layout
-//!   (equirect, cube cross, strip, angular map, mirror ball) to SH by exact
-//!   texel-solid-angle quadrature; equirect maps by a fast ring transform
-//!   (FFT rows, vectorised Legendre sums) to any lmax.
+//! - [`Window`] and [`auto_window()`]: ringing suppression, and the weakest
+//!   window that makes a function or its irradiance non-negative;
+//!   [`sphere_minimum()`]: the global minimum of an expansion.
+//! - [`layout`] and [`equirect`]: the geometry of environment maps of every
+//!   layout (equirect, cube cross, strip, angular map, mirror ball): texel
+//!   directions, exact texel solid angles, lookups; [`MapOrientation`]: how
+//!   a map's frame meets world directions.
+//! - [`projection`]: environment maps to SH by exact texel-solid-angle
+//!   quadrature, one entry point ([`projection::project`]) over any
+//!   [`TexelSource`] (a contiguous image, a [`StridedImage`], six
+//!   [`CubeFaces`], a user's own type); equirect maps by a fast ring
+//!   transform (FFT rows, vectorised Legendre sums) to any lmax.
 //! - [`montecarlo`]: the Monte Carlo estimator (uniform, stratified, Sobol,
 //!   luminance importance sampling) with standard errors.
 //! - [`irradiance_map`]: brute-force irradiance of a map (every texel,
@@ -62,10 +68,10 @@
 //! ```
 //! use shlight_core::{ShCoeffs, analytic, irradiance};
 //! // A directional light from +Z of unit irradiance, kept to lmax 2:
-//! let light: ShCoeffs<f64> = analytic::directional(2, [0.0, 0.0, 1.0], 1.0);
+//! let light: ShCoeffs<f64> = analytic::directional(2, glam::DVec3::new(0.0, 0.0, 1.0), 1.0);
 //! let e = irradiance(&light);
 //! // Ramamoorthi-Hanrahan's 9-term irradiance facing the light is 17/16.
-//! assert!((e.eval([0.0, 0.0, 1.0]) - 17.0 / 16.0).abs() < 1e-14);
+//! assert!((e.eval(glam::DVec3::new(0.0, 0.0, 1.0)) - 17.0 / 16.0).abs() < 1e-14);
 //! ```
 //!
 //! # References
@@ -83,39 +89,65 @@
 #![deny(missing_docs)]
 
 pub mod analytic;
+pub mod auto_window;
 pub mod basis;
 pub mod coeffs;
 mod cpu_features;
+mod cube_faces;
+pub mod equirect;
 mod fixed_size;
 mod glam_real;
-pub mod hardcoded;
+mod hardcoded;
 pub mod index;
 pub mod irradiance_map;
 pub mod layout;
 pub mod legendre;
 pub mod montecarlo;
+pub mod orientation;
 pub mod projection;
 pub mod quadrature;
 pub mod quarter_turn;
+pub mod radiance_map;
 mod real;
 mod ring_transform;
 pub mod rotation;
 mod rotation_l2;
 mod sh_l1;
 mod sh_l2;
+pub mod sphere_minimum;
+mod strided_image;
+mod texel_source;
 mod value;
 pub mod window;
 pub mod zonal;
 
+pub use auto_window::{AutoWindow, AutoWindowError, WindowTarget, auto_window};
 pub use basis::{ShBasis, sh_eval};
 pub use coeffs::ShCoeffs;
+pub use cube_faces::CubeFaces;
+pub use equirect::EquirectView;
 pub use glam_real::GlamReal;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
+pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError};
+pub use montecarlo::{
+    ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
+};
+pub use orientation::MapOrientation;
+pub use projection::{project, project_map};
+pub use radiance_map::RadianceMap;
 pub use real::Real;
-pub use rotation::ShRotation;
+pub use rotation::{Frame, ShRotation};
 pub use rotation_l2::ShRotationL2;
 pub use sh_l1::{ShL1, ShL1Rgb};
 pub use sh_l2::{ShL2, ShL2Rgb};
+pub use sphere_minimum::sphere_minimum;
+pub use strided_image::StridedImage;
+pub use texel_source::TexelSource;
 pub use value::ShValue;
-pub use window::Window;
+pub use window::{Window, WindowFamily};
 pub use zonal::{ZonalKernel, irradiance};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

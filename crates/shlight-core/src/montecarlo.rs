@@ -71,27 +71,8 @@ use rand::{Rng, SeedableRng};
 
 use crate::{ShBasis, ShCoeffs};
 
+pub use crate::radiance_map::{RadianceMap, luminance};
 pub use importance::{DEFENSIVE_FRACTION, ImportanceGrid};
-
-/// A distant radiance field that can be looked up in any direction.
-pub trait RadianceMap: Sync {
-    /// Radiance arriving from the unit world direction `d`, linear RGB.
-    fn radiance(&self, d: DVec3) -> DVec3;
-}
-
-impl<F: Fn(DVec3) -> DVec3 + Sync> RadianceMap for F {
-    fn radiance(&self, d: DVec3) -> DVec3 {
-        self(d)
-    }
-}
-
-/// Rec.709 / sRGB-primaries luminance of linear RGB:
-/// `Y = 0.2126 R + 0.7152 G + 0.0722 B`.
-#[inline]
-#[must_use]
-pub fn luminance(rgb: DVec3) -> f64 {
-    0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z
-}
 
 /// Independent replicates `K` of the stratified and Sobol samplers, from
 /// whose spread their standard error is estimated (see the module docs).
@@ -107,10 +88,10 @@ const BATCH: usize = 64;
 /// Chunks computed in parallel before being merged (bounds memory).
 const WINDOW: usize = 64;
 
-/// How directions are drawn on the sphere (see the module docs for each
-/// distribution and its density `p`).
+/// The name of a [`Sampler`]: what a command line or a settings file
+/// chooses before any map (and so any [`ImportanceGrid`]) exists.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Sampler {
+pub enum SamplerKind {
     /// Independent uniform directions, `p = 1/(4π)`.
     Uniform,
     /// Jittered equal-area cells in `(cos θ, φ)`, one point per cell,
@@ -127,25 +108,43 @@ pub enum Sampler {
     Importance,
 }
 
-impl Sampler {
-    /// Every sampler, in the order of the names `uniform`, `stratified`,
-    /// `sobol`, `importance`.
-    pub const ALL: [Sampler; 4] = [
-        Sampler::Uniform,
-        Sampler::Stratified,
-        Sampler::Sobol,
-        Sampler::Importance,
-    ];
+/// How directions are drawn on the sphere (see the module docs for each
+/// distribution and its density `p`). The importance sampler owns the
+/// density it draws from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Sampler {
+    /// Independent uniform directions, `p = 1/(4π)`.
+    Uniform,
+    /// Jittered equal-area cells in `(cos θ, φ)`, one point per cell,
+    /// [`REPLICATES`] independent grids; `p = 1/(4π)` for each point.
+    Stratified,
+    /// Owen-scrambled 2-D Sobol (0,2)-nets on the equal-area map,
+    /// [`REPLICATES`] independent scramblings; `p = 1/(4π)` for each point.
+    /// The default.
+    #[default]
+    Sobol,
+    /// Independent directions from this [`ImportanceGrid`]:
+    /// `p(ω) = P(cell)/Ω(cell)`, proportional to luminance plus a uniform
+    /// floor.
+    Importance(ImportanceGrid),
+}
 
-    /// The name parsed by [`FromStr`] and written by [`fmt::Display`].
+impl Sampler {
+    /// Which sampler this is.
     #[must_use]
-    pub fn name(self) -> &'static str {
+    pub fn kind(&self) -> SamplerKind {
         match self {
-            Sampler::Uniform => "uniform",
-            Sampler::Stratified => "stratified",
-            Sampler::Sobol => "sobol",
-            Sampler::Importance => "importance",
+            Sampler::Uniform => SamplerKind::Uniform,
+            Sampler::Stratified => SamplerKind::Stratified,
+            Sampler::Sobol => SamplerKind::Sobol,
+            Sampler::Importance(_) => SamplerKind::Importance,
         }
+    }
+
+    /// The sampler's [name](SamplerKind::name).
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
     }
 }
 
@@ -155,7 +154,49 @@ impl fmt::Display for Sampler {
     }
 }
 
-/// The error of parsing a [`Sampler`] from an unknown name.
+impl SamplerKind {
+    /// Every sampler, in the order of the names `uniform`, `stratified`,
+    /// `sobol`, `importance`.
+    pub const ALL: [SamplerKind; 4] = [
+        SamplerKind::Uniform,
+        SamplerKind::Stratified,
+        SamplerKind::Sobol,
+        SamplerKind::Importance,
+    ];
+
+    /// The name parsed by [`FromStr`] and written by [`fmt::Display`].
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Uniform => "uniform",
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
+            SamplerKind::Importance => "importance",
+        }
+    }
+}
+
+impl SamplerKind {
+    /// The sampler of this kind; `grid` is called only for
+    /// [`SamplerKind::Importance`], to build the density it draws from.
+    #[must_use]
+    pub fn sampler(self, grid: impl FnOnce() -> ImportanceGrid) -> Sampler {
+        match self {
+            SamplerKind::Uniform => Sampler::Uniform,
+            SamplerKind::Stratified => Sampler::Stratified,
+            SamplerKind::Sobol => Sampler::Sobol,
+            SamplerKind::Importance => Sampler::Importance(grid()),
+        }
+    }
+}
+
+impl fmt::Display for SamplerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The error of parsing a [`SamplerKind`] from an unknown name.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ParseSamplerError {
     input: String,
@@ -173,11 +214,11 @@ impl fmt::Display for ParseSamplerError {
 
 impl std::error::Error for ParseSamplerError {}
 
-impl FromStr for Sampler {
+impl FromStr for SamplerKind {
     type Err = ParseSamplerError;
     /// `uniform`, `stratified`, `sobol` or `importance`, ASCII case-insensitive.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Sampler::ALL
+        SamplerKind::ALL
             .into_iter()
             .find(|k| s.eq_ignore_ascii_case(k.name()))
             .ok_or_else(|| ParseSamplerError {
@@ -187,7 +228,7 @@ impl FromStr for Sampler {
 }
 
 /// What [`project_montecarlo`] estimates and how.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct McOptions {
     /// Highest degree estimated: `(lmax+1)²` coefficients.
     pub lmax: usize,
@@ -225,57 +266,31 @@ pub struct McEstimate {
     pub samples: usize,
 }
 
-/// Why [`project_montecarlo`] could not run.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum McError {
-    /// [`Sampler::Importance`] was asked for without an [`ImportanceGrid`].
-    MissingImportanceGrid,
-}
-
-impl fmt::Display for McError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            McError::MissingImportanceGrid => {
-                f.write_str("importance sampling needs an importance grid")
-            }
-        }
-    }
-}
-
-impl std::error::Error for McError {}
-
 /// Estimates the radiance coefficients `L_l^m`, `l <= options.lmax`, of
 /// `map` by Monte Carlo integration,
 /// `L_l^m ≈ (1/N) Σ_i L(ω_i) Y_l^m(ω_i) / p(ω_i)`, with the standard error
 /// of every coefficient (see the module docs for the samplers and the error
 /// estimates).
 ///
-/// `importance` is the density for [`Sampler::Importance`] (required there,
-/// ignored by the other samplers). Work runs in parallel with the `rayon`
-/// feature; the result is identical for any thread count.
+/// Work runs in parallel with the `rayon` feature; the result is identical
+/// for any thread count.
 ///
 /// ```
 /// use glam::DVec3;
 /// use shlight_core::montecarlo::{McOptions, Sampler, project_montecarlo};
 /// let sky = |d: DVec3| DVec3::splat(1.0 + 0.5 * d.z);
 /// let opts = McOptions { samples: 4096, sampler: Sampler::Sobol, ..McOptions::default() };
-/// let est = project_montecarlo(&sky, &opts, None).unwrap();
+/// let est = project_montecarlo(&sky, &opts);
 /// let l00 = 2.0 * std::f64::consts::PI.sqrt(); // ∫ 1 · Y_0^0
 /// assert!((est.coeffs[0].x - l00).abs() < 4.0 * est.std_error[0].x + 1e-12);
 /// ```
-pub fn project_montecarlo(
-    map: &impl RadianceMap,
-    options: &McOptions,
-    importance: Option<&ImportanceGrid>,
-) -> Result<McEstimate, McError> {
+#[must_use]
+pub fn project_montecarlo(map: &impl RadianceMap, options: &McOptions) -> McEstimate {
     let k = REPLICATES;
-    let tag = options.sampler as u64 + 1;
-    let (source, reps, per_rep) = match options.sampler {
+    let tag = options.sampler.kind() as u64 + 1;
+    let (source, reps, per_rep) = match &options.sampler {
         Sampler::Uniform => (Source::Uniform, 1, options.samples.max(2)),
-        Sampler::Importance => {
-            let grid = importance.ok_or(McError::MissingImportanceGrid)?;
-            (Source::Importance(grid), 1, options.samples.max(2))
-        }
+        Sampler::Importance(grid) => (Source::Importance(grid), 1, options.samples.max(2)),
         Sampler::Stratified => {
             let n = ((options.samples as f64 / k as f64).round() as usize).max(1);
             let rows = (((n as f64) / 2.0).sqrt().round() as usize).max(1);
@@ -346,11 +361,11 @@ pub fn project_montecarlo(
         });
         (from_iter(lmax, mean.iter().copied()), from_iter(lmax, se))
     };
-    Ok(McEstimate {
+    McEstimate {
         coeffs,
         std_error,
         samples: reps * per_rep,
-    })
+    }
 }
 
 /// One jittered equal-area grid of about `count` unit directions over the
@@ -367,7 +382,7 @@ pub fn stratified_directions(count: usize, seed: u64) -> Vec<DVec3> {
     let rows = (((count as f64) / 2.0).sqrt().round() as usize).max(1);
     let cols = (((count as f64) / rows as f64).round() as usize).max(1);
     let source = Source::Stratified { rows, cols };
-    let tag = Sampler::Stratified as u64 + 1;
+    let tag = SamplerKind::Stratified as u64 + 1;
     let mut rng = StdRng::seed_from_u64(stream(seed, tag, u64::MAX, u64::MAX));
     (0..rows * cols)
         .map(|k| source.point(0, k, &mut rng).0)
@@ -609,11 +624,11 @@ mod tests {
 
     #[test]
     fn sampler_names_round_trip_and_errors_list_them() {
-        for s in Sampler::ALL {
-            assert_eq!(s.to_string().parse::<Sampler>().unwrap(), s);
-            assert_eq!(s.name().to_uppercase().parse::<Sampler>().unwrap(), s);
+        for s in SamplerKind::ALL {
+            assert_eq!(s.to_string().parse::<SamplerKind>().unwrap(), s);
+            assert_eq!(s.name().to_uppercase().parse::<SamplerKind>().unwrap(), s);
         }
-        let e = "halton".parse::<Sampler>().unwrap_err().to_string();
+        let e = "halton".parse::<SamplerKind>().unwrap_err().to_string();
         for name in ["uniform", "stratified", "sobol", "importance", "halton"] {
             assert!(e.contains(name), "{e}");
         }
@@ -629,7 +644,7 @@ mod tests {
                 sampler,
                 seed: 1,
             };
-            project_montecarlo(&map, &o, None).unwrap().samples
+            project_montecarlo(&map, &o).samples
         };
         assert_eq!(run(Sampler::Uniform, 1000), 1000);
         assert_eq!(run(Sampler::Uniform, 0), 2);
@@ -643,13 +658,18 @@ mod tests {
     }
 
     #[test]
-    fn importance_needs_a_grid() {
-        let o = McOptions {
-            sampler: Sampler::Importance,
-            ..McOptions::default()
-        };
-        let e = project_montecarlo(&|_: DVec3| DVec3::ONE, &o, None).unwrap_err();
-        assert_eq!(e, McError::MissingImportanceGrid);
+    fn a_sampler_names_its_kind() {
+        let grid = ImportanceGrid::from_fn(4, 2, crate::MapOrientation::default(), |_| 1.0);
+        let samplers = [
+            Sampler::Uniform,
+            Sampler::Stratified,
+            Sampler::Sobol,
+            Sampler::Importance(grid),
+        ];
+        for (s, k) in samplers.iter().zip(SamplerKind::ALL) {
+            assert_eq!(s.kind(), k);
+            assert_eq!(s.to_string(), k.name());
+        }
     }
 
     #[test]
@@ -663,7 +683,7 @@ mod tests {
             sampler: Sampler::Uniform,
             seed: 3,
         };
-        let e = project_montecarlo(&map, &o, None).unwrap();
+        let e = project_montecarlo(&map, &o);
         let want = 2.0 * PI.sqrt() * 1.0e6;
         assert!((e.coeffs[0].x - want).abs() < 1e-9 * want);
         assert!(e.std_error[0].x < 1e-9 * want, "{}", e.std_error[0].x);

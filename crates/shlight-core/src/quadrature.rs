@@ -3,6 +3,8 @@
 
 use core::f64::consts::PI;
 
+use glam::DVec3;
+
 /// Nodes `x_i` and weights `w_i` of the `n`-point Gauss-Legendre rule on
 /// `[-1, 1]`: `sum_i w_i p(x_i) = int_{-1}^{1} p(x) dx` exactly for every
 /// polynomial of degree `<= 2n - 1`.
@@ -80,7 +82,7 @@ fn legendre_p_and_derivative(n: usize, z: f64) -> (f64, f64) {
 #[derive(Clone, Debug)]
 pub struct SphereQuadrature {
     /// Unit directions `(sin t cos p, sin t sin p, cos t)` in world axes.
-    pub directions: Vec<[f64; 3]>,
+    pub directions: Vec<DVec3>,
     /// Weights (solid angles), summing to `4 pi`.
     pub weights: Vec<f64>,
 }
@@ -99,7 +101,7 @@ impl SphereQuadrature {
             let s = (1.0 - x * x).max(0.0).sqrt();
             for j in 0..nphi {
                 let phi = 2.0 * PI * (j as f64 + 0.5) / nphi as f64;
-                directions.push([s * phi.cos(), s * phi.sin(), x]);
+                directions.push(DVec3::new(s * phi.cos(), s * phi.sin(), x));
                 weights.push(w * 2.0 * PI / nphi as f64);
             }
         }
@@ -132,14 +134,14 @@ impl SphereQuadrature {
 /// assert_eq!(d.len(), 1000);
 /// ```
 #[must_use]
-pub fn fibonacci_sphere(n: usize) -> Vec<[f64; 3]> {
+pub fn fibonacci_sphere(n: usize) -> Vec<DVec3> {
     let golden = (1.0 + 5f64.sqrt()) / 2.0;
     (0..n)
         .map(|i| {
             let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
             let s = (1.0 - z * z).max(0.0).sqrt();
             let phi = 2.0 * PI * (i as f64 / golden).fract();
-            [s * phi.cos(), s * phi.sin(), z]
+            DVec3::new(s * phi.cos(), s * phi.sin(), z)
         })
         .collect()
 }

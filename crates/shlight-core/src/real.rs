@@ -36,6 +36,9 @@ pub trait Real:
     const BIG: Self;
     /// `1 / BIG`.
     const SMALL: Self;
+    /// The glam vector of three of these: `glam::Vec3` for `f32`,
+    /// `glam::DVec3` for `f64`, the type of directions in the public API.
+    type Vec3: Copy + Debug + PartialEq + Send + Sync + From<[Self; 3]> + Into<[Self; 3]>;
     /// Converts from `f64` (rounding for `f32`).
     fn from_f64(x: f64) -> Self;
     /// Converts to `f64` (exact).
@@ -49,8 +52,9 @@ pub trait Real:
 }
 
 macro_rules! impl_real {
-    ($t:ty, $big:expr, $small:expr) => {
+    ($t:ty, $v:ty, $big:expr, $small:expr) => {
         impl Real for $t {
+            type Vec3 = $v;
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const BIG: Self = $big;
@@ -78,11 +82,13 @@ macro_rules! impl_real {
 // 2^600 and 2^-600; 2^60 and 2^-60.
 impl_real!(
     f64,
+    glam::DVec3,
     f64::from_bits(((1023 + 600) as u64) << 52),
     f64::from_bits(((1023 - 600) as u64) << 52)
 );
 impl_real!(
     f32,
+    glam::Vec3,
     f32::from_bits(((127 + 60) as u32) << 23),
     f32::from_bits(((127 - 60) as u32) << 23)
 );

@@ -38,8 +38,9 @@ use glam::DVec3;
 use realfft::num_complex::Complex;
 use realfft::{RealFftPlanner, RealToComplex};
 
+use crate::equirect::equirect_row_solid_angle;
 use crate::legendre::Legendre;
-use crate::projection::{EquirectView, equirect_row_solid_angle};
+use crate::texel_source::{TexelSource, read_row};
 use crate::{Real, ShCoeffs, sh_index};
 
 #[cfg(target_arch = "x86_64")]
@@ -68,9 +69,14 @@ struct BlockStart {
 }
 
 /// Radiance coefficients of an equirect map about its own pole (z-up), the
-/// azimuth of texel column `i` being `sign * φ_i`.
-pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> ShCoeffs<DVec3> {
-    let (w, h) = (map.width, map.height);
+/// azimuth of texel column `i` being `sign * φ_i`. Rows are read through
+/// [`read_row`]: straight from the source when it stores them contiguously.
+pub(crate) fn project_rings<S: TexelSource + ?Sized>(
+    map: &S,
+    lmax: usize,
+    sign: f64,
+) -> ShCoeffs<DVec3> {
+    let (w, h) = map.size();
     let pairs = h.div_ceil(2);
     let blocks = pairs.div_ceil(LANES);
     let cols = lmax + 1;
@@ -94,13 +100,11 @@ pub(crate) fn project_rings(map: EquirectView<'_>, lmax: usize, sign: f64) -> Sh
         for lane in 0..LANES.min(pairs - b * LANES) {
             let p = b * LANES + lane;
             let j2 = h - 1 - p;
-            azimuth.row(&map.pixels[p * w..(p + 1) * w], &mut s.ring_a, &mut s.bufs);
+            let row = read_row(map, p, &mut s.texels);
+            azimuth.row(row, &mut s.ring_a, &mut s.bufs);
             if j2 != p {
-                azimuth.row(
-                    &map.pixels[j2 * w..(j2 + 1) * w],
-                    &mut s.ring_b,
-                    &mut s.bufs,
-                );
+                let row = read_row(map, j2, &mut s.texels);
+                azimuth.row(row, &mut s.ring_b, &mut s.bufs);
             } else {
                 s.ring_b.iter_mut().for_each(|r| *r = [0.0; 6]);
             }
@@ -228,6 +232,9 @@ struct Scratch {
     ring_a: Vec<[f64; 6]>,
     ring_b: Vec<[f64; 6]>,
     sectoral: Vec<[f64; 2]>,
+    /// A row read texel by texel from a source that does not store it
+    /// contiguously.
+    texels: Vec<[f32; 3]>,
     bufs: RowBuffers,
 }
 
@@ -250,6 +257,7 @@ impl Scratch {
             ring_a: vec![[0.0; 6]; lmax + 1],
             ring_b: vec![[0.0; 6]; lmax + 1],
             sectoral: vec![[0.0; 2]; lmax + 1],
+            texels: Vec::new(),
             bufs: RowBuffers {
                 channels: [vec![0.0; w], vec![0.0; w], vec![0.0; w]],
                 quarters: core::array::from_fn(|_| {

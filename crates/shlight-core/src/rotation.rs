@@ -108,7 +108,7 @@ use core::str::FromStr;
 
 use glam::{DMat3, DQuat, DVec3};
 
-use crate::{ShCoeffs, ShValue, sh_index};
+use crate::{Real, ShCoeffs, ShValue, sh_index};
 
 /// How far `R^T R` may be from the identity (max absolute entry), and
 /// `det R` from `+1`, for [`ShRotation::try_from_mat3`] to accept `R` as a
@@ -136,9 +136,9 @@ pub const ORTHONORMAL_TOLERANCE: f64 = 1e-6;
 /// use shlight_core::{ShCoeffs, ShRotation, sh_eval};
 /// // A quarter turn about +Z takes a light at +X to +Y.
 /// let rot = ShRotation::from_mat3(4, DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2));
-/// let at_x = ShCoeffs::from_vec(sh_eval(4, [1.0, 0.0, 0.0])).unwrap();
+/// let at_x = ShCoeffs::from_vec(sh_eval(4, glam::DVec3::new(1.0, 0.0, 0.0))).unwrap();
 /// let got = rot.apply(&at_x);
-/// let want = sh_eval(4, [0.0, 1.0, 0.0]);
+/// let want = sh_eval(4, glam::DVec3::new(0.0, 1.0, 0.0));
 /// for (g, w) in got.as_slice().iter().zip(&want) {
 ///     assert!((g - w).abs() < 1e-14);
 /// }
@@ -225,9 +225,9 @@ impl ShRotation {
     /// ```
     /// use shlight_core::rotation::{Frame, ShRotation};
     /// use shlight_core::{ShCoeffs, sh_eval};
-    /// let light_yup = ShCoeffs::from_vec(sh_eval(2, [0.0, 1.0, 0.0])).unwrap();
+    /// let light_yup = ShCoeffs::from_vec(sh_eval(2, glam::DVec3::new(0.0, 1.0, 0.0))).unwrap();
     /// let light_zup = ShRotation::between_frames(2, Frame::YUp, Frame::ZUp).apply(&light_yup);
-    /// let want = sh_eval(2, [0.0, 0.0, 1.0]);
+    /// let want = sh_eval(2, glam::DVec3::new(0.0, 0.0, 1.0));
     /// assert!(light_zup.as_slice().iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-15));
     /// ```
     #[must_use]
@@ -265,7 +265,7 @@ impl ShRotation {
     /// `f` may have a lower `lmax` than the rotation (the result has `f`'s
     /// `lmax`). Panics if `f.lmax() > self.lmax()`. Cost `O(f.lmax()^3)`.
     #[must_use]
-    pub fn apply<C: ShValue<Scalar = f64>>(&self, f: &ShCoeffs<C>) -> ShCoeffs<C> {
+    pub fn apply<C: ShValue>(&self, f: &ShCoeffs<C>) -> ShCoeffs<C> {
         self.check_lmax(f.lmax());
         let mut out = ShCoeffs::zeros(f.lmax());
         for l in 0..=f.lmax() {
@@ -277,7 +277,7 @@ impl ShRotation {
     /// [`ShRotation::apply`] in place (one scratch band of `2 lmax + 1` values).
     ///
     /// Panics if `f.lmax() > self.lmax()`.
-    pub fn apply_in_place<C: ShValue<Scalar = f64>>(&self, f: &mut ShCoeffs<C>) {
+    pub fn apply_in_place<C: ShValue>(&self, f: &mut ShCoeffs<C>) {
         self.check_lmax(f.lmax());
         let mut scratch = vec![C::ZERO; 2 * f.lmax() + 1];
         for l in 0..=f.lmax() {
@@ -398,16 +398,17 @@ impl Mul for ShRotation {
 ///
 /// ```
 /// use shlight_core::{ShCoeffs, rotation::rotate_z, sh_eval};
-/// let at_x = ShCoeffs::from_vec(sh_eval(3, [1.0, 0.0, 0.0])).unwrap();
+/// let at_x = ShCoeffs::from_vec(sh_eval(3, glam::DVec3::new(1.0, 0.0, 0.0))).unwrap();
 /// let got = rotate_z(&at_x, std::f64::consts::FRAC_PI_2);
-/// let want = sh_eval(3, [0.0, 1.0, 0.0]);
+/// let want = sh_eval(3, glam::DVec3::new(0.0, 1.0, 0.0));
 /// assert!(got.as_slice().iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-14));
 /// ```
 #[must_use]
-pub fn rotate_z<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, angle: f64) -> ShCoeffs<C> {
+pub fn rotate_z<C: ShValue>(f: &ShCoeffs<C>, angle: f64) -> ShCoeffs<C> {
     let mut out = f.clone();
     for m in 1..=f.lmax() {
         let (s, c) = (m as f64 * angle).sin_cos();
+        let (s, c) = (C::Scalar::from_f64(s), C::Scalar::from_f64(c));
         let mi = m as isize;
         for l in m..=f.lmax() {
             let (ip, im) = (sh_index(l, mi), sh_index(l, -mi));
@@ -691,7 +692,7 @@ const PARALLEL_FROM_DEGREE: usize = 48;
 ///
 /// Precondition as [`ShRotation::from_mat3`]: `r` is a rotation.
 #[must_use]
-pub fn rotate_once<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, r: DMat3) -> ShCoeffs<C> {
+pub fn rotate_once<C: ShValue>(f: &ShCoeffs<C>, r: DMat3) -> ShCoeffs<C> {
     debug_assert!(is_rotation(r), "rotate_once: {r:?} is not a rotation");
     let mut out = f.clone();
     if f.lmax() == 0 {
@@ -710,12 +711,12 @@ pub fn rotate_once<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, r: DMat3) -> ShCoe
 
 /// `out = b * x` for a row-major square block `b`.
 #[inline]
-fn mat_vec<C: ShValue<Scalar = f64>>(b: &[f64], x: &[C], out: &mut [C]) {
+fn mat_vec<C: ShValue>(b: &[f64], x: &[C], out: &mut [C]) {
     let n = x.len();
     for (o, row) in out.iter_mut().zip(b.chunks_exact(n)) {
         let mut acc = C::ZERO;
         for (&bij, &xj) in row.iter().zip(x) {
-            acc += xj.scale(bij);
+            acc += xj.scale(C::Scalar::from_f64(bij));
         }
         *o = acc;
     }

@@ -16,7 +16,9 @@
 
 use core::f64::consts::PI;
 
-use crate::{ShBasis, ShCoeffs, ShValue};
+use glam::DVec3;
+
+use crate::{Real, ShBasis, ShCoeffs, ShValue};
 
 /// Legendre polynomials `P_0(x) .. P_lmax(x)` (unnormalised, `P_l(1) = 1`) by
 /// Bonnet's recurrence `(l+1) P_{l+1} = (2l+1) x P_l - l P_{l-1}`.
@@ -139,8 +141,8 @@ impl ZonalKernel {
 
     /// The convolution `(h * f)_l^m = Lambda_l f_l^m`.
     #[must_use]
-    pub fn apply<C: ShValue<Scalar = f64>>(&self, f: &ShCoeffs<C>) -> ShCoeffs<C> {
-        f.scaled_per_band(|l| self.eigenvalue(l))
+    pub fn apply<C: ShValue>(&self, f: &ShCoeffs<C>) -> ShCoeffs<C> {
+        f.scaled_per_band(|l| C::Scalar::from_f64(self.eigenvalue(l)))
     }
 }
 
@@ -156,7 +158,7 @@ pub fn zonal_factor(l: usize) -> f64 {
 ///
 /// `E(n) = int L(w) max(n . w, 0) dw` then evaluates as `sum E_l^m Y_l^m(n)`.
 #[must_use]
-pub fn irradiance<C: ShValue<Scalar = f64>>(radiance: &ShCoeffs<C>) -> ShCoeffs<C> {
+pub fn irradiance<C: ShValue>(radiance: &ShCoeffs<C>) -> ShCoeffs<C> {
     ZonalKernel::clamped_cosine(radiance.lmax()).apply(radiance)
 }
 
@@ -165,11 +167,11 @@ pub fn irradiance<C: ShValue<Scalar = f64>>(radiance: &ShCoeffs<C>) -> ShCoeffs<
 ///
 /// ```
 /// use shlight_core::zonal::{zonal_to_sh};
-/// let f = zonal_to_sh(&[1.0, 2.0], [0.0, 0.0, 1.0]);
+/// let f = zonal_to_sh(&[1.0, 2.0], glam::DVec3::Z);
 /// assert!((f[(1, 0)] - 2.0).abs() < 1e-15); // along +Z nothing changes
 /// ```
 #[must_use]
-pub fn zonal_to_sh(h: &[f64], axis: [f64; 3]) -> ShCoeffs<f64> {
+pub fn zonal_to_sh(h: &[f64], axis: DVec3) -> ShCoeffs<f64> {
     let lmax = h.len().saturating_sub(1);
     let basis = ShBasis::<f64>::new(lmax);
     let mut y = vec![0.0; basis.count()];
@@ -294,11 +296,11 @@ mod tests {
     fn directional_light_nine_term_irradiance_matches_the_published_figures() {
         // L_lm = Y_lm(d) (unit irradiance E_perp = 1 from +Z); E2(n) at 0, 90, 180 degrees.
         let d = [0.0, 0.0, 1.0];
-        let l: ShCoeffs<f64> = crate::analytic::directional(2, d, 1.0);
+        let l: ShCoeffs<f64> = crate::analytic::directional(2, glam::DVec3::from(d), 1.0);
         let e = irradiance(&l);
         let at = |deg: f64| {
             let t = deg.to_radians();
-            e.eval([t.sin(), 0.0, t.cos()])
+            e.eval(DVec3::new(t.sin(), 0.0, t.cos()))
         };
         assert!((at(0.0) - 17.0 / 16.0).abs() < 1e-14);
         assert!((at(90.0) - 3.0 / 32.0).abs() < 1e-14);

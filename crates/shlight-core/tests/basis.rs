@@ -134,8 +134,8 @@ fn addition_theorem_holds() {
         for _ in 0..20 {
             let a = random_unit(&mut rng);
             let b = random_unit(&mut rng);
-            basis.eval(a, &mut ya);
-            basis.eval(b, &mut yb);
+            basis.eval(glam::DVec3::from(a), &mut ya);
+            basis.eval(glam::DVec3::from(b), &mut yb);
             let p = legendre_polynomials(lmax, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
             for l in 0..=lmax {
                 let s: f64 = (l * l..(l + 1) * (l + 1)).map(|i| ya[i] * yb[i]).sum();
@@ -160,7 +160,7 @@ fn azimuth_recurrence_matches_trigonometry_at_high_degree() {
     let mut rng = StdRng::seed_from_u64(3);
     for _ in 0..4 {
         let d = random_unit(&mut rng);
-        basis.eval(d, &mut y);
+        basis.eval(glam::DVec3::from(d), &mut y);
         leg.eval(d[2], &mut p);
         let phi = d[1].atan2(d[0]);
         let mut worst = 0.0f64;
@@ -206,11 +206,11 @@ fn hardcoded_forms_match_the_recurrence() {
     let (mut a, mut b) = (vec![0.0; 36], vec![0.0; 36]);
     let (mut a32, mut b32) = (vec![0.0f32; 36], vec![0.0f32; 36]);
     for d in dirs {
-        hard64.eval(d, &mut a);
-        rec64.eval(d, &mut b);
+        hard64.eval(glam::DVec3::from(d), &mut a);
+        rec64.eval(glam::DVec3::from(d), &mut b);
         let d32 = [d[0] as f32, d[1] as f32, d[2] as f32];
-        hard32.eval(d32, &mut a32);
-        rec32.eval(d32, &mut b32);
+        hard32.eval(glam::Vec3::from(d32), &mut a32);
+        rec32.eval(glam::Vec3::from(d32), &mut b32);
         for i in 0..25 {
             assert!(
                 (a[i] - b[i]).abs() <= HARDCODED_TOL_F64,
@@ -237,7 +237,7 @@ fn bands_one_and_two_match_their_closed_forms() {
     let k20 = (5.0 / (16.0 * PI)).sqrt();
     for _ in 0..100 {
         let [x, yy, z] = random_unit(&mut rng);
-        basis.eval([x, yy, z], &mut y);
+        basis.eval(glam::DVec3::from([x, yy, z]), &mut y);
         let want = [
             1.0 / (2.0 * PI.sqrt()),
             -k1 * yy,
@@ -274,7 +274,10 @@ fn f32_batch_tracks_f64_scalar() {
             // Compare at the rounded direction so only evaluation error counts.
             let dr = [x[k] as f64, y[k] as f64, z[k] as f64];
             let nrm = (dr[0] * dr[0] + dr[1] * dr[1] + dr[2] * dr[2]).sqrt();
-            b64.eval([dr[0] / nrm, dr[1] / nrm, dr[2] / nrm], &mut one);
+            b64.eval(
+                glam::DVec3::from([dr[0] / nrm, dr[1] / nrm, dr[2] / nrm]),
+                &mut one,
+            );
             for i in 0..b64.count() {
                 let tol = 1e-6 * (lmax as f64 + 1.0);
                 assert!(

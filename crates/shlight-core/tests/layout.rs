@@ -10,10 +10,12 @@ use glam::DVec3;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use shlight_core::layout::{
-    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, cube_texel_solid_angle, project_map, render_map,
+    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, cube_texel_solid_angle, render_map,
 };
 use shlight_core::montecarlo::RadianceMap;
-use shlight_core::projection::{MapOrientation, equirect_direction, equirect_row_solid_angle};
+use shlight_core::projection::{
+    MapOrientation, equirect_direction, equirect_row_solid_angle, project_map,
+};
 use shlight_core::quadrature::gauss_legendre;
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, analytic};
@@ -741,7 +743,7 @@ const RECOVERY: [(Layout, usize, f64); 9] = [
 #[test]
 fn projection_recovers_band_limited_functions() {
     let want = random_expansion(11);
-    let f = |d: DVec3| want.eval(d.to_array());
+    let f = |d: DVec3| want.eval(d);
     let mut failed = Vec::new();
     for (layout, size, tol) in RECOVERY {
         let mut worst = 0.0f64;
@@ -763,7 +765,7 @@ fn projection_recovers_band_limited_functions() {
 #[test]
 fn projection_error_is_second_order() {
     let want = random_expansion(3);
-    let f = |d: DVec3| want.eval(d.to_array());
+    let f = |d: DVec3| want.eval(d);
     let o = MapOrientation::default();
     for (layout, size) in [
         (Layout::Equirect, 64),
@@ -791,7 +793,7 @@ fn projection_error_is_second_order() {
 #[test]
 fn projection_of_simple_lights() {
     let axis = DVec3::new(0.48, 0.6, -0.64);
-    let grad: ShCoeffs<f64> = analytic::linear_gradient(4, axis.to_array(), 1.0, 0.5);
+    let grad: ShCoeffs<f64> = analytic::linear_gradient(4, axis, 1.0, 0.5);
     for (layout, size, tol) in [
         (Layout::Equirect, 256, 1.4e-4),
         (Layout::CrossHorizontal, 64, 8e-4),
@@ -820,7 +822,7 @@ fn projection_of_simple_lights() {
 #[test]
 fn equirect_and_cross_projections_agree() {
     let want = random_expansion(5);
-    let f = |d: DVec3| want.eval(d.to_array());
+    let f = |d: DVec3| want.eval(d);
     for o in orientations() {
         // Measured 1.6e-5 and 2.2e-5 from the true coefficients.
         let equirect = project_rendered(Layout::Equirect, o, 512, f);
@@ -846,7 +848,7 @@ fn equirect_ring_path_equals_the_texel_sum() {
         for y in 0..h {
             for x in 0..w {
                 let d = m.texel_direction(x, y).unwrap();
-                let y_lm = shlight_core::sh_eval(6, d.to_array());
+                let y_lm = shlight_core::sh_eval(6, d);
                 let f = DVec3::from(px[y * w + x].map(f64::from)) * m.texel_solid_angle(x, y);
                 for k in 0..y_lm.len() {
                     slow[k] += f * y_lm[k];
@@ -879,7 +881,7 @@ fn cube_projection_equals_the_texel_sum() {
             let Some(d) = m.texel_direction(x, y) else {
                 continue;
             };
-            let y_lm = shlight_core::sh_eval(7, d.to_array());
+            let y_lm = shlight_core::sh_eval(7, d);
             let f = DVec3::from(px[y * w + x].map(f64::from)) * m.texel_solid_angle(x, y);
             for k in 0..y_lm.len() {
                 slow[k] += f * y_lm[k];

@@ -11,7 +11,8 @@ use glam::DVec3;
 use shlight_core::ShCoeffs;
 use shlight_core::analytic;
 use shlight_core::montecarlo::{
-    ImportanceGrid, McEstimate, McOptions, RadianceMap, Sampler, luminance, project_montecarlo,
+    ImportanceGrid, McEstimate, McOptions, RadianceMap, Sampler, SamplerKind, luminance,
+    project_montecarlo,
 };
 use shlight_core::projection::{MapOrientation, equirect_direction};
 use shlight_core::rotation::Frame;
@@ -42,7 +43,7 @@ fn gradient() -> Case {
     Case {
         name: "gradient",
         map: Box::new(move |d| RGB * (1.0 + 0.5 * d.dot(a))),
-        exact: analytic::linear_gradient(LMAX, a.to_array(), RGB, RGB * 0.5),
+        exact: analytic::linear_gradient(LMAX, a, RGB, RGB * 0.5),
     }
 }
 
@@ -50,7 +51,7 @@ fn gradient() -> Case {
 /// uniform sky of `sky`.
 fn cap(name: &'static str, axis: DVec3, half: f64, value: f64, sky: f64) -> Case {
     let c = half.cos();
-    let mut exact = analytic::cap(LMAX, axis.to_array(), half, RGB * value);
+    let mut exact = analytic::cap(LMAX, axis, half, RGB * value);
     exact += &analytic::constant(LMAX, RGB * sky);
     Case {
         name,
@@ -77,8 +78,18 @@ fn opts(sampler: Sampler, samples: usize, seed: u64) -> McOptions {
     }
 }
 
-fn run(case: &Case, o: &McOptions, grid: Option<&ImportanceGrid>) -> McEstimate {
-    project_montecarlo(case, o, grid).expect("grid given for importance")
+fn run(case: &Case, o: &McOptions) -> McEstimate {
+    project_montecarlo(case, o)
+}
+
+/// The sampler of `kind`, importance sampling drawing from `grid`.
+fn sampler_of(kind: SamplerKind, grid: &ImportanceGrid) -> Sampler {
+    match kind {
+        SamplerKind::Uniform => Sampler::Uniform,
+        SamplerKind::Stratified => Sampler::Stratified,
+        SamplerKind::Sobol => Sampler::Sobol,
+        SamplerKind::Importance => Sampler::Importance(grid.clone()),
+    }
 }
 
 fn grid_for(case: &Case, o: MapOrientation) -> ImportanceGrid {
@@ -95,10 +106,10 @@ fn each_sampler_is_unbiased_within_its_reported_standard_error() {
     let cases = [gradient(), wide_cap(), peaked()];
     for case in &cases {
         let grid = grid_for(case, MapOrientation::default());
-        for sampler in Sampler::ALL {
+        for sampler in SamplerKind::ALL {
             let (mut over3, mut over4, mut checks) = (0, 0, 0);
             for seed in 0..4 {
-                let e = run(case, &opts(sampler, 16384, seed), Some(&grid));
+                let e = run(case, &opts(sampler_of(sampler, &grid), 16384, seed));
                 for k in 0..e.coeffs.len() {
                     // The channels are scaled copies: a coefficient counts once,
                     // as its worst channel.
@@ -132,9 +143,9 @@ fn reported_standard_errors_match_the_spread_over_seeds() {
     let seeds = 30;
     for case in [gradient(), wide_cap(), peaked()] {
         let grid = grid_for(&case, MapOrientation::default());
-        for sampler in Sampler::ALL {
+        for sampler in SamplerKind::ALL {
             let runs: Vec<McEstimate> = (0..seeds)
-                .map(|s| run(&case, &opts(sampler, 4096, 1000 + s), Some(&grid)))
+                .map(|s| run(&case, &opts(sampler_of(sampler, &grid), 4096, 1000 + s)))
                 .collect();
             let count = runs[0].coeffs.len();
             let (mut var_obs, mut var_rep) = (0.0, 0.0);
@@ -184,7 +195,7 @@ fn uniform_error_falls_as_inverse_sqrt_n_and_stratified_and_sobol_faster() {
             let mut sq = 0.0;
             let mut used = 0;
             for s in 0..seeds {
-                let e = run(&case, &opts(sampler, n, 77 + s), None);
+                let e = run(&case, &opts(sampler.clone(), n, 77 + s));
                 used = e.samples;
                 sq += norm(&(&e.coeffs - &case.exact)).powi(2);
             }
@@ -205,10 +216,10 @@ fn uniform_error_falls_as_inverse_sqrt_n_and_stratified_and_sobol_faster() {
 #[test]
 fn importance_sampling_cuts_the_error_on_a_peaked_map_in_every_frame() {
     let case = peaked();
-    let uni = run(&case, &opts(Sampler::Uniform, 16384, 5), None);
+    let uni = run(&case, &opts(Sampler::Uniform, 16384, 5));
     for o in MapOrientation::ALL {
         let grid = grid_for(&case, o);
-        let imp = run(&case, &opts(Sampler::Importance, 16384, 5), Some(&grid));
+        let imp = run(&case, &opts(Sampler::Importance(grid.clone()), 16384, 5));
         let ratio = norm(&imp.std_error) / norm(&uni.std_error);
         let err = &imp.coeffs - &case.exact;
         let worst = (0..err.len())
@@ -233,7 +244,7 @@ fn importance_sampling_cuts_the_error_on_a_peaked_map_in_every_frame() {
             ..o
         };
         let wrong = ImportanceGrid::from_cell_luminance(w, h, flipped, &lum);
-        let bad = run(&case, &opts(Sampler::Importance, 16384, 5), Some(&wrong));
+        let bad = run(&case, &opts(Sampler::Importance(wrong), 16384, 5));
         let bad_ratio = norm(&bad.std_error) / norm(&uni.std_error);
         assert!(bad_ratio > 1.0, "{o:?}: control {bad_ratio}");
     }
@@ -288,11 +299,11 @@ fn importance_grid_from_equirect_texels_matches_the_map_in_every_frame() {
             seed: 9,
         };
         let o_imp = McOptions {
-            sampler: Sampler::Importance,
-            ..o_uni
+            sampler: Sampler::Importance(grid),
+            ..o_uni.clone()
         };
-        let uni = project_montecarlo(&map, &o_uni, None).unwrap();
-        let imp = project_montecarlo(&map, &o_imp, Some(&grid)).unwrap();
+        let uni = project_montecarlo(&map, &o_uni);
+        let imp = project_montecarlo(&map, &o_imp);
         let ratio = norm(&imp.std_error) / norm(&uni.std_error);
         // Both are unbiased for the same texel map: they agree within the errors.
         let mut worst: f64 = 0.0;
@@ -317,7 +328,11 @@ fn importance_grid_from_equirect_texels_matches_the_map_in_every_frame() {
             ..o
         };
         let wrong = ImportanceGrid::from_equirect(w, h, &map.px, other);
-        let bad = project_montecarlo(&map, &o_imp, Some(&wrong)).unwrap();
+        let o_bad = McOptions {
+            sampler: Sampler::Importance(wrong),
+            ..o_uni.clone()
+        };
+        let bad = project_montecarlo(&map, &o_bad);
         let bad_ratio = norm(&bad.std_error) / norm(&uni.std_error);
         assert!(bad_ratio > 1.0, "{o:?}: control {bad_ratio}");
     }
@@ -327,10 +342,10 @@ fn importance_grid_from_equirect_texels_matches_the_map_in_every_frame() {
 fn results_repeat_for_a_seed_and_differ_between_seeds() {
     let case = wide_cap();
     let grid = grid_for(&case, MapOrientation::default());
-    for sampler in Sampler::ALL {
-        let a = run(&case, &opts(sampler, 5000, 42), Some(&grid));
-        let b = run(&case, &opts(sampler, 5000, 42), Some(&grid));
-        let c = run(&case, &opts(sampler, 5000, 43), Some(&grid));
+    for sampler in SamplerKind::ALL {
+        let a = run(&case, &opts(sampler_of(sampler, &grid), 5000, 42));
+        let b = run(&case, &opts(sampler_of(sampler, &grid), 5000, 42));
+        let c = run(&case, &opts(sampler_of(sampler, &grid), 5000, 43));
         assert_eq!(a, b, "{sampler}");
         assert_ne!(a.coeffs, c.coeffs, "{sampler}");
         assert_eq!(a.samples, c.samples);
@@ -348,12 +363,12 @@ fn results_are_identical_with_one_and_two_threads() {
             .build()
             .unwrap()
     };
-    for sampler in Sampler::ALL {
+    for sampler in SamplerKind::ALL {
         // Enough chunks (2048 points each) that the split really differs.
-        let o = opts(sampler, 40_000, 11);
-        let one = pool(1).install(|| run(&case, &o, Some(&grid)));
-        let two = pool(2).install(|| run(&case, &o, Some(&grid)));
-        let three = pool(3).install(|| run(&case, &o, Some(&grid)));
+        let o = opts(sampler_of(sampler, &grid), 40_000, 11);
+        let one = pool(1).install(|| run(&case, &o));
+        let two = pool(2).install(|| run(&case, &o));
+        let three = pool(3).install(|| run(&case, &o));
         assert_eq!(one, two, "{sampler}");
         assert_eq!(one, three, "{sampler}");
     }

@@ -71,7 +71,7 @@ fn random_coeffs(rng: &mut StdRng, lmax: usize) -> ShCoeffs<f64> {
 
 /// The coefficients of a directional light from `d`: `Y_l^m(d)`.
 fn light(lmax: usize, d: DVec3) -> ShCoeffs<f64> {
-    ShCoeffs::from_vec(sh_eval(lmax, d.to_array())).unwrap()
+    ShCoeffs::from_vec(sh_eval(lmax, d)).unwrap()
 }
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
@@ -143,8 +143,8 @@ fn rotating_the_projection_equals_projecting_the_rotated_function() {
             // g(d) = f(R^T d), projected exactly (degree 2 lmax).
             let basis = ShBasis::<f64>::new(lmax);
             let projected = ShCoeffs::project_fn(lmax, 2 * lmax, |d| {
-                let e = r.transpose() * DVec3::from_array(d);
-                f.eval_with(&basis, e.to_array(), &mut vec![0.0; sh_count(lmax)])
+                let e = r.transpose() * DVec3::from_array(d.to_array());
+                f.eval_with(&basis, e, &mut vec![0.0; sh_count(lmax)])
             });
             let scale = max_abs(projected.as_slice()).max(1.0);
             worst = worst.max(max_abs_diff(rotated.as_slice(), projected.as_slice()) / scale);
@@ -354,8 +354,8 @@ fn frame_conversion_preserves_every_texel() {
     for _ in 0..50 {
         let t = rng.random_range(0.0..PI);
         let p = rng.random_range(0.0..2.0 * PI);
-        let a = f_yup.eval(Frame::YUp.direction(t, p).to_array());
-        let b = f_zup.eval(Frame::ZUp.direction(t, p).to_array());
+        let a = f_yup.eval(Frame::YUp.direction(t, p));
+        let b = f_zup.eval(Frame::ZUp.direction(t, p));
         assert!((a - b).abs() < 1e-12, "texel ({t}, {p}): {a} vs {b}");
     }
 }

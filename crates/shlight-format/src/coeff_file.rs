@@ -160,7 +160,7 @@ impl CoeffFile {
                     return Value::Null;
                 }
                 let (v, d) = sphere_minimum(&self.coeffs.channel(c));
-                json!({ "value": v, "direction": d })
+                json!({ "value": v, "direction": d.to_array() })
             })
             .collect();
         let p = &self.provenance;

@@ -310,7 +310,7 @@ mod tests {
         let basis = shlight_core::ShBasis::<f64>::new(2);
         let mut y = [0.0; 9];
         for d in [[0.36, 0.48, 0.8], [-0.6, 0.0, -0.8], [0.0, -1.0, 0.0]] {
-            basis.eval(d, &mut y);
+            basis.eval(DVec3::from(d), &mut y);
             let p = basis_polynomial(d);
             for i in 0..9 {
                 assert!((basis_constant(i) * p[i] - y[i]).abs() < 1e-15, "i={i}");
@@ -378,7 +378,7 @@ mod tests {
     fn engine_coeffs_truncate_pad_and_turn_to_y_up() {
         // A directional light from +Z in a z-up file is a light from +Y in y-up.
         let light: ShCoeffs<DVec3> =
-            shlight_core::analytic::directional(4, [0.0, 0.0, 1.0], DVec3::ONE);
+            shlight_core::analytic::directional(4, DVec3::new(0.0, 0.0, 1.0), DVec3::ONE);
         let input = ExportInput {
             coeffs: &light,
             quantity: Quantity::Radiance,
@@ -387,7 +387,7 @@ mod tests {
         let (c, notes) = engine_coeffs(&input, Quantity::Radiance, ExportFormat::Threejs).unwrap();
         assert_eq!(c.lmax(), 2);
         assert!(notes[0].contains("dropped"), "{notes:?}");
-        let want = shlight_core::sh_eval(2, [0.0, 1.0, 0.0]);
+        let want = shlight_core::sh_eval(2, DVec3::new(0.0, 1.0, 0.0));
         for (g, w) in c.as_slice().iter().zip(&want) {
             assert!((g.x - w).abs() < 1e-14);
         }

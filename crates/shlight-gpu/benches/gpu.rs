@@ -91,7 +91,12 @@ fn bench_frame(
     renderer.set_mesh(ctx, mesh);
     renderer.set_light(
         ctx,
-        &analytic::cap(8, [0.3, 0.8, 0.5], 0.5, glam::DVec3::new(5.0, 3.0, 2.0)),
+        &analytic::cap(
+            8,
+            glam::DVec3::new(0.3, 0.8, 0.5),
+            0.5,
+            glam::DVec3::new(5.0, 3.0, 2.0),
+        ),
     );
     if let Some(lmax) = prt_lmax {
         let data = pseudo_random(mesh.vertex_count() * 3 * (lmax + 1) * (lmax + 1));

@@ -136,9 +136,14 @@ fn gpu_projection_refuses_what_it_cannot_do() {
 
 /// A light positive everywhere with every band 0..8 present.
 fn test_light() -> ShCoeffs<DVec3> {
-    let mut light = analytic::cap(8, [0.3, 0.8, 0.5], 0.4, DVec3::new(6.0, 4.0, 2.0));
+    let mut light = analytic::cap(8, DVec3::new(0.3, 0.8, 0.5), 0.4, DVec3::new(6.0, 4.0, 2.0));
     light += &analytic::constant(8, DVec3::new(1.0, 1.2, 1.5));
-    light += &analytic::cap(8, [-0.7, -0.2, 0.4], 0.7, DVec3::new(0.5, 1.5, 3.0));
+    light += &analytic::cap(
+        8,
+        DVec3::new(-0.7, -0.2, 0.4),
+        0.7,
+        DVec3::new(0.5, 1.5, 3.0),
+    );
     light
 }
 
@@ -206,7 +211,7 @@ fn sphere_shading_matches_cpu_irradiance_at_each_pixels_normal() {
                 (length - 1.0).abs() < 1e-5,
                 "normals mode writes unit normals ({length})"
             );
-            let expected = e.eval(normal);
+            let expected = e.eval(DVec3::from(normal));
             for k in 0..3 {
                 let want = f64::from(albedo[k]) / std::f64::consts::PI * expected[k];
                 let err = (f64::from(c[k]) - want).abs() / want.abs();
@@ -229,7 +234,7 @@ fn sphere_shading_matches_cpu_irradiance_at_each_pixels_normal() {
 /// `T_lm = albedo/pi A_l Y_lm(n)`, so `T . L = albedo/pi E(n)`.
 fn diffuse_transfer(n: Vec3, lmax: usize, albedo: f64) -> Vec<f32> {
     let n = n.as_dvec3().to_array();
-    analytic::cosine_lobe(lmax, n, albedo / std::f64::consts::PI)
+    analytic::cosine_lobe(lmax, DVec3::from(n), albedo / std::f64::consts::PI)
         .as_slice()
         .iter()
         .map(|&t| t as f32)
@@ -482,7 +487,7 @@ fn the_background_shows_the_map_and_its_sh_reconstruction_turned_with_the_light(
     };
     let d = DVec3::new(0.3, -0.5, 0.8).normalize();
     let got = centre_background(&ctx, &renderer, d.as_vec3(), &shading);
-    let want = window.apply(&light.resized(4)).eval(d.to_array());
+    let want = window.apply(&light.resized(4)).eval(d);
     for k in 0..3 {
         assert!(
             (f64::from(got[k]) - want[k]).abs() <= 1e-4 * want[k].abs(),

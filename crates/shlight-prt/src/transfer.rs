@@ -342,7 +342,7 @@ pub fn bake(
     let basis = ShBasis::<f64>::new(lmax);
     let mut ylm = vec![0.0f64; dirs.len() * nc];
     for (d, row) in dirs.iter().zip(ylm.chunks_exact_mut(nc)) {
-        basis.eval(d.as_dvec3().to_array(), row);
+        basis.eval(d.as_dvec3(), row);
     }
     // sum_j max(n.s_j, 0) per vertex: the weights' denominators.
     let totals: Vec<f64> = mesh

@@ -33,7 +33,7 @@ fn cosine_direction(n: DVec3, rng: &mut StdRng) -> DVec3 {
 }
 
 fn light_at(light: &ShCoeffs<f64>, d: DVec3) -> f64 {
-    let y = sh_eval(light.lmax(), d.to_array());
+    let y = sh_eval(light.lmax(), d);
     light.as_slice().iter().zip(&y).map(|(a, b)| a * b).sum()
 }
 
@@ -49,7 +49,7 @@ fn convex_sphere_shadowed_equals_unshadowed_equals_the_irradiance_transfer() {
     // Funk-Hecke: int max(n.s, 0) Y_lm(s) ds = A_l Y_lm(n).
     let mut worst = 0.0f64;
     for (v, n) in sphere.normals.iter().enumerate() {
-        let y = sh_eval(4, n.as_dvec3().to_array());
+        let y = sh_eval(4, n.as_dvec3());
         for (i, yi) in y.iter().enumerate() {
             let (l, _) = lm_from_index(i);
             let want = f64::from(rho) / PI * clamped_cosine_eigenvalue(l) * yi;
@@ -91,7 +91,7 @@ fn plane_under_sphere_occlusion_matches_brute_force_and_the_cap_formula() {
     // distances 0, 0.5, 1, 1.5 from the contact.
     let plane_vertex = |i: usize| sphere_vertices + i * (divisions as usize + 1) + 4;
     let constant = analytic::constant(4, 1.0);
-    let sun = analytic::directional(4, DVec3::new(0.6, 0.8, 0.0).normalize().to_array(), 1.0);
+    let sun = analytic::directional(4, DVec3::new(0.6, 0.8, 0.0).normalize(), 1.0);
     for (light, name) in [(&constant, "constant"), (&sun, "directional")] {
         let rgb = light.splat_rgb::<DVec3>();
         let exit = t.exit_radiance(&rgb);
@@ -173,7 +173,7 @@ fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
         assert!((f64::from(e.x) - closed).abs() < 0.01, "{e} vs {closed}");
     }
     // A sky brighter above, 1 + 0.5 y, through an independent path tracer.
-    let sky = analytic::linear_gradient(4, [0.0, 1.0, 0.0], 1.0, 0.5);
+    let sky = analytic::linear_gradient(4, DVec3::new(0.0, 1.0, 0.0), 1.0, 0.5);
     let exit = t.exit_radiance(&sky.splat_rgb());
     let mut rng = StdRng::seed_from_u64(3);
     for v in [0usize, 1 + 3 * 32 + 5, 1 + 6 * 32 + 20] {
@@ -232,7 +232,7 @@ fn rotating_the_light_equals_baking_the_counter_rotated_mesh() {
     .unwrap();
     let mut light = analytic::cap(
         4,
-        DVec3::new(0.2, 0.9, 0.4).normalize().to_array(),
+        DVec3::new(0.2, 0.9, 0.4).normalize(),
         0.5,
         DVec3::splat(3.0),
     );

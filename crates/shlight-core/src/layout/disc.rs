@@ -24,7 +24,7 @@ const INTERIOR_RELATIVE_ERROR: f64 = 1e-17;
 /// Which disc mapping: the two differ only in `direction`, `image_point`
 /// and the density `dω/dA`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Disc {
+pub(crate) enum Disc {
     /// Debevec's angular map (light probe): `θ = π r` from `-Z`.
     Angular,
     /// Orthographic view of a mirror ball from `+Z`: `θ = 2 asin r` from `+Z`.
@@ -36,7 +36,7 @@ impl Disc {
     /// `v` up:
     /// angular `(sin(πr) u/r, sin(πr) v/r, -cos(πr))`;
     /// mirror ball `n = (u, v, sqrt(1 - r²))`, `d = (2 n_z u, 2 n_z v, 1 - 2r²)`.
-    pub(super) fn direction(self, u: f64, v: f64) -> DVec3 {
+    pub(crate) fn direction(self, u: f64, v: f64) -> DVec3 {
         let r2 = u * u + v * v;
         match self {
             Disc::Angular => {
@@ -56,7 +56,7 @@ impl Disc {
 
     /// The single map-frame direction of the whole rim `r = 1`: `+Z` for
     /// the angular map, `-Z` for the mirror ball.
-    pub(super) fn pole(self) -> DVec3 {
+    pub(crate) fn pole(self) -> DVec3 {
         match self {
             Disc::Angular => DVec3::Z,
             Disc::MirrorBall => DVec3::NEG_Z,
@@ -68,7 +68,7 @@ impl Disc {
     /// `r = atan2(s, -dz)/π`, mirror ball `r = sin(atan2(s, dz)/2)`, and
     /// `(u, v) = r (dx, dy)/s`. The pole (`s = 0` on the rim side) has no
     /// azimuth and lands at `(1, 0)`.
-    pub(super) fn image_point(self, d: DVec3) -> (f64, f64) {
+    pub(crate) fn image_point(self, d: DVec3) -> (f64, f64) {
         let s = d.x.hypot(d.y);
         let r = match self {
             Disc::Angular => s.atan2(-d.z) / PI,
@@ -120,7 +120,7 @@ impl Disc {
 ///   crosses the square's edges, so the integrand is smooth on each piece,
 ///   then [`POLAR_POINTS`]-point Gauss-Legendre per piece.
 #[derive(Clone, Debug)]
-pub(super) struct DiscRule {
+pub(crate) struct DiscRule {
     disc: Disc,
     /// Tensor rule nodes and weights on `[-1, 1]`.
     tensor: Vec<(f64, f64)>,
@@ -130,7 +130,7 @@ pub(super) struct DiscRule {
 
 impl DiscRule {
     /// Rules for an `n x n` disc map.
-    pub(super) fn new(disc: Disc, n: usize) -> Self {
+    pub(crate) fn new(disc: Disc, n: usize) -> Self {
         let h = 2.0 / n as f64;
         let zip = |(x, w): (Vec<f64>, Vec<f64>)| x.into_iter().zip(w).collect::<Vec<_>>();
         let tensor = match disc {
@@ -146,7 +146,7 @@ impl DiscRule {
 
     /// Solid angle covered by the part of the square `[u0, u1] x [v0, v1]`
     /// (disc coordinates) inside the unit disc.
-    pub(super) fn solid_angle(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> f64 {
+    pub(crate) fn solid_angle(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> f64 {
         let far = u0.abs().max(u1.abs()).powi(2) + v0.abs().max(v1.abs()).powi(2);
         if far <= 1.0 {
             return match self.disc {

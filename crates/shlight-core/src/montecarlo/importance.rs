@@ -6,8 +6,9 @@ use core::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::{RadianceMap, luminance};
-use crate::projection::{MapOrientation, equirect_direction, equirect_row_solid_angle};
+use crate::equirect::{equirect_direction, equirect_row_solid_angle};
+use crate::orientation::MapOrientation;
+use crate::radiance_map::{RadianceMap, luminance};
 
 /// Share of the probability spread uniformly over the sphere (the
 /// "defensive" mixture): `P(cell) = (1 - α) w/Σw + α Ω/(4π)`, `α = 0.1`.
@@ -42,7 +43,7 @@ pub const DEFENSIVE_FRACTION: f64 = 0.1;
 /// Sampling inverts the 2-D CDF: a row from the marginal CDF of the row
 /// masses, then a column from that row's conditional CDF (binary searches),
 /// then `(cos θ, φ)` uniformly inside the cell.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ImportanceGrid {
     width: usize,
     height: usize,

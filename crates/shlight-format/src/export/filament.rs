@@ -201,9 +201,11 @@ mod tests {
 
     #[test]
     fn the_shader_gives_irradiance_over_pi_and_reads_back() {
-        let radiance =
-            &shlight_core::analytic::directional(2, [0.6, 0.0, -0.8], DVec3::new(2.0, 1.0, 0.5))
-                + &shlight_core::analytic::constant(2, DVec3::splat(0.25));
+        let radiance = &shlight_core::analytic::directional(
+            2,
+            DVec3::new(0.6, 0.0, -0.8),
+            DVec3::new(2.0, 1.0, 0.5),
+        ) + &shlight_core::analytic::constant(2, DVec3::splat(0.25));
         let out = render(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -228,7 +230,7 @@ mod tests {
             // cmgen shows the texel shlight reads at (x, y, z) at (-z, y, x).
             let [x, y, z] = n;
             let got = irradiance_sh(&sh, [-z, y, x]);
-            let want = e.eval(n) / std::f64::consts::PI;
+            let want = e.eval(DVec3::from(n)) / std::f64::consts::PI;
             assert!((got - want).abs().max_element() < 1e-13, "{got} vs {want}");
         }
         let back = read(&out.text, "sh.txt").unwrap();

@@ -508,8 +508,9 @@ mod tests {
 
     #[test]
     fn babylon_reads_irradiance_over_pi() {
-        let radiance = &shlight_core::analytic::directional(2, [0.0, 0.6, 0.8], DVec3::ONE)
-            + &shlight_core::analytic::constant(2, DVec3::splat(0.3));
+        let radiance =
+            &shlight_core::analytic::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
+                + &shlight_core::analytic::constant(2, DVec3::splat(0.3));
         let out = render(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -523,7 +524,7 @@ mod tests {
             // at (-z, y, x) of the glTF world.
             let [x, y, z] = n;
             let got = babylon_lambertian_radiance(&v, [-z, y, x]);
-            let want = e.eval(n).x / std::f64::consts::PI;
+            let want = e.eval(DVec3::from(n)).x / std::f64::consts::PI;
             assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         }
         assert!(out.notes.iter().any(|n| n.contains("specularImages")));

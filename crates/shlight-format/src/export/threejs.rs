@@ -214,8 +214,11 @@ mod tests {
 
     #[test]
     fn get_irradiance_at_of_the_export_is_shlight_irradiance() {
-        let light =
-            shlight_core::analytic::directional(2, [0.48, 0.6, 0.64], DVec3::new(1.0, 0.5, 0.25));
+        let light = shlight_core::analytic::directional(
+            2,
+            DVec3::new(0.48, 0.6, 0.64),
+            DVec3::new(1.0, 0.5, 0.25),
+        );
         let out = render(&ExportInput {
             coeffs: &light,
             quantity: Quantity::Radiance,
@@ -233,7 +236,7 @@ mod tests {
         let e = shlight_core::irradiance(&light);
         for n in [[0.0, 1.0, 0.0], [0.6, 0.0, 0.8], [-0.36, 0.48, -0.8]] {
             let got = get_irradiance_at(&c, n);
-            let want = e.eval(n);
+            let want = e.eval(DVec3::from(n));
             assert!((got[0] - want.x).abs() < 2e-6, "{got:?} vs {want}");
         }
         // The identity behind it: three.js constants are A_l times its basis constants.

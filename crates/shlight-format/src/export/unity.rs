@@ -183,8 +183,9 @@ mod tests {
     #[test]
     fn shade_sh9_gives_irradiance_over_pi_in_unity_axes() {
         // A light from shlight's +Z is Unity's -Z.
-        let radiance = &shlight_core::analytic::directional(2, [0.0, 0.6, 0.8], DVec3::ONE)
-            + &shlight_core::analytic::constant(2, DVec3::splat(0.1));
+        let radiance =
+            &shlight_core::analytic::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
+                + &shlight_core::analytic::constant(2, DVec3::splat(0.1));
         let (sh, _) = unity_floats(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -200,7 +201,7 @@ mod tests {
             [-0.36, -0.48, 0.8],
         ] {
             let got = shade_sh9_red(&p, nu);
-            let want = e.eval([nu[0], nu[1], -nu[2]]).x / std::f64::consts::PI;
+            let want = e.eval(DVec3::from([nu[0], nu[1], -nu[2]])).x / std::f64::consts::PI;
             assert!((got - want).abs() < 1e-13, "{nu:?}: {got} vs {want}");
         }
         // Uniform radiance c: AddAmbientLight(c) puts c in sh[., 0], ShadeSH9 = c.
