@@ -3,6 +3,7 @@
 mod accuracy;
 mod batch;
 mod export;
+mod export_shaders;
 mod gpu;
 mod layouts_cli;
 mod montecarlo_cli;
