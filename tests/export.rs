@@ -7,7 +7,11 @@
 //! `irradianceCoefficients`, Filament `Irradiance_SphericalHarmonics`,
 //! Unity `ShadeSH9`, R&H eq. 13, the generated C / GLSL / HLSL compiled and
 //! run), is evaluated at many normals and compared with shlight's `E(n)`
-//! (or `E/pi`, or `L`, as the target defines).
+//! (or `E/pi`, or `L`, as the target defines). The C snippet is compiled
+//! as C99 (`cc`) and C++17 (`c++`); the GLSL and HLSL ones as C++ in double
+//! precision. `export_shaders` compiles the shader snippets with naga and
+//! glslang and runs them on the GPU. A missing compiler prints a SKIPPED
+//! line, and fails the test under `SHLIGHT_REQUIRE_ALL=1`.
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -24,6 +28,7 @@ use crate::util::{have_tool, shlight, temp_dir};
 // ---------------------------------------------------------------- helpers
 
 /// A test light: radiance coefficients in `frame`, stored as `quantity`.
+#[derive(Clone)]
 pub(crate) struct Case {
     pub(crate) name: &'static str,
     pub(crate) radiance: ShCoeffs<DVec3>,

@@ -10,11 +10,12 @@
 //! - HLSL: glslang's HLSL front end (`glslangValidator -D`) to SPIR-V,
 //!   read back and validated by naga.
 //!
-//! Every module is handed to wgpu as naga IR, so the one that ran is the
-//! one that was validated. Without a GPU adapter (Mesa's lavapipe in CI) the
+//! The compiling and validating is a test of its own, without a GPU. Every
+//! module is handed to wgpu as naga IR, so the one that ran is the one that
+//! was validated. Without a GPU adapter (Mesa's lavapipe in CI) the GPU
 //! test prints a SKIPPED line, or fails under `SHLIGHT_REQUIRE_GPU=1` /
-//! `SHLIGHT_REQUIRE_ALL=1`; so does a missing `glslangValidator` under
-//! `SHLIGHT_REQUIRE_ALL=1`.
+//! `SHLIGHT_REQUIRE_ALL=1`; a missing `glslangValidator` skips the HLSL
+//! likewise, failing under `SHLIGHT_REQUIRE_ALL=1`.
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -309,7 +310,7 @@ fn projected_case(dir: &Path) -> (Case, std::path::PathBuf) {
     write_map(&map, 64, 32, |x, y| {
         let (u, v) = ((x as f32 + 0.5) / 64.0, (y as f32 + 0.5) / 32.0);
         [
-            1.0 + (6.28 * u).cos() * (3.14 * v).sin(),
+            1.0 + (std::f32::consts::TAU * u).cos() * (std::f32::consts::PI * v).sin(),
             0.5 + v * v,
             0.2 + u * (1.0 - v),
         ]
@@ -331,24 +332,30 @@ fn projected_case(dir: &Path) -> (Case, std::path::PathBuf) {
     (case, map)
 }
 
-#[test]
-fn shader_snippets_run_on_the_gpu_give_shlight_values() {
-    let test = "shader_snippets_run_on_the_gpu_give_shlight_values";
-    let Some(ctx) = gpu_context(test) else {
-        return;
-    };
+/// A snippet compiled into its compute shader and validated, with the case
+/// it holds.
+struct Compiled {
+    what: String,
+    case: Case,
+    module: naga::Module,
+}
+
+/// Every case (and a projected map) exported as WGSL, GLSL and HLSL (HLSL
+/// only when `glslangValidator` is installed, else [`have_tool`] skips it
+/// for `test`), each put into its compute shader, compiled and validated;
+/// a rejected shader fails `test`.
+fn compile_all(test: &str, dir: &Path) -> Vec<Compiled> {
     let hlsl = have_tool("glslangValidator", test);
-    let dir = temp_dir("export_shaders_gpu");
-    let (projected, map) = projected_case(&dir);
+    let (projected, map) = projected_case(dir);
     let mut all: Vec<(Case, Option<std::path::PathBuf>)> =
         cases().into_iter().map(|c| (c, None)).collect();
     all.push((high_lmax_case(), None));
     all.push((projected, Some(map)));
-    let mut worst = 0.0f64;
-    for (case, map) in &all {
+    let mut compiled = Vec::new();
+    for (case, map) in all {
         let input = match map {
             Some(_) => None,
-            None => Some(case.write(&dir)),
+            None => Some(case.write(dir)),
         };
         for format in ["wgsl", "glsl", "hlsl"] {
             if format == "hlsl" && !hlsl {
@@ -357,7 +364,7 @@ fn shader_snippets_run_on_the_gpu_give_shlight_values() {
             let out = dir.join(format!("sh.{format}"));
             // Coefficient files through `convert`; the map through
             // `project --format`.
-            let snippet = match (&input, map) {
+            let snippet = match (&input, &map) {
                 (Some(file), _) => convert(file, &out, format),
                 (None, Some(map)) => {
                     let o = shlight(&[
@@ -384,12 +391,39 @@ fn shader_snippets_run_on_the_gpu_give_shlight_values() {
             let module = match format {
                 "wgsl" => naga_wgsl(&wgsl_compute(&snippet, radiance)),
                 "glsl" => naga_glsl(&glsl_compute(&snippet, radiance)),
-                _ => hlsl_via_glslang(&dir, &hlsl_compute(&snippet, radiance)),
+                _ => hlsl_via_glslang(dir, &hlsl_compute(&snippet, radiance)),
             }
             .unwrap_or_else(|e| panic!("{what}: {e}"));
-            let values = run(&ctx, module, &what);
-            worst = worst.max(check(&what, case, &values));
+            compiled.push(Compiled {
+                what,
+                case: case.clone(),
+                module,
+            });
         }
+    }
+    compiled
+}
+
+/// Without a GPU: every snippet compiles and validates inside its compute
+/// shader (the GPU test below runs these very modules).
+#[test]
+fn shader_snippets_compile_into_compute_shaders() {
+    let test = "shader_snippets_compile_into_compute_shaders";
+    let compiled = compile_all(test, &temp_dir("export_shaders_compile"));
+    // 7 light sets (5 cases, lmax 8, a projected map) in 2 or 3 languages.
+    assert!(compiled.len() >= 14, "{} shaders", compiled.len());
+}
+
+#[test]
+fn shader_snippets_run_on_the_gpu_give_shlight_values() {
+    let test = "shader_snippets_run_on_the_gpu_give_shlight_values";
+    let Some(ctx) = gpu_context(test) else {
+        return;
+    };
+    let mut worst = 0.0f64;
+    for c in compile_all(test, &temp_dir("export_shaders_gpu")) {
+        let values = run(&ctx, c.module, &c.what);
+        worst = worst.max(check(&c.what, &c.case, &values));
     }
     // Shown with --nocapture: the measured margin under GPU_TOL.
     eprintln!(
