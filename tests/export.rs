@@ -7,7 +7,11 @@
 //! `irradianceCoefficients`, Filament `Irradiance_SphericalHarmonics`,
 //! Unity `ShadeSH9`, R&H eq. 13, the generated C / GLSL / HLSL compiled and
 //! run), is evaluated at many normals and compared with shlight's `E(n)`
-//! (or `E/pi`, or `L`, as the target defines).
+//! (or `E/pi`, or `L`, as the target defines). The C snippet is compiled
+//! as C99 (`cc`) and C++17 (`c++`); the GLSL and HLSL ones as C++ in double
+//! precision. `export_shaders` compiles the shader snippets with naga and
+//! glslang and runs them on the GPU. A missing compiler prints a SKIPPED
+//! line, and fails the test under `SHLIGHT_REQUIRE_ALL=1`.
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -18,16 +22,18 @@ use serde_json::{Value, json};
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, analytic, irradiance};
 
-use crate::util::{shlight, temp_dir};
+use crate::export_shaders;
+use crate::util::{have_tool, shlight, temp_dir};
 
 // ---------------------------------------------------------------- helpers
 
 /// A test light: radiance coefficients in `frame`, stored as `quantity`.
-struct Case {
-    name: &'static str,
-    radiance: ShCoeffs<DVec3>,
-    frame: Frame,
-    irradiance_file: bool,
+#[derive(Clone)]
+pub(crate) struct Case {
+    pub(crate) name: &'static str,
+    pub(crate) radiance: ShCoeffs<DVec3>,
+    pub(crate) frame: Frame,
+    pub(crate) irradiance_file: bool,
 }
 
 impl Case {
@@ -40,7 +46,7 @@ impl Case {
         }
     }
 
-    fn write(&self, dir: &Path) -> PathBuf {
+    pub(crate) fn write(&self, dir: &Path) -> PathBuf {
         let path = dir.join(format!("{}.json", self.name));
         let c = self.stored();
         let doc = json!({
@@ -58,7 +64,7 @@ impl Case {
 
     /// shlight's `E(n)` of the radiance kept to `lmax`, at `n` given in the
     /// y-up world axes (engines) or in the file's own axes (`own_frame`).
-    fn irradiance_at(&self, lmax: usize, n: DVec3, own_frame: bool) -> DVec3 {
+    pub(crate) fn irradiance_at(&self, lmax: usize, n: DVec3, own_frame: bool) -> DVec3 {
         let d = if own_frame {
             n
         } else {
@@ -67,7 +73,7 @@ impl Case {
         irradiance(&self.radiance.resized(lmax)).eval(d)
     }
 
-    fn radiance_at(&self, lmax: usize, w: DVec3, own_frame: bool) -> DVec3 {
+    pub(crate) fn radiance_at(&self, lmax: usize, w: DVec3, own_frame: bool) -> DVec3 {
         let d = if own_frame {
             w
         } else {
@@ -98,7 +104,7 @@ fn random_radiance(lmax: usize, seed: u64) -> ShCoeffs<DVec3> {
     })
 }
 
-fn cases() -> Vec<Case> {
+pub(crate) fn cases() -> Vec<Case> {
     let sun = &analytic::directional(2, DVec3::new(0.48, 0.6, 0.64), DVec3::new(3.0, 2.5, 2.0))
         + &analytic::constant(2, DVec3::new(0.2, 0.3, 0.5));
     vec![
@@ -185,7 +191,7 @@ fn assert_matches(
     }
 }
 
-fn convert(input: &Path, out: &Path, format: &str) -> String {
+pub(crate) fn convert(input: &Path, out: &Path, format: &str) -> String {
     let o = shlight(&[
         "convert",
         input.to_str().unwrap(),
@@ -212,18 +218,6 @@ fn floats(v: &Value) -> Vec<f64> {
 
 fn rgb(v: &[f64]) -> DVec3 {
     DVec3::new(v[0], v[1], v[2])
-}
-
-/// Whether `tool --version` runs; prints a loud skip line when not.
-fn have(tool: &str, test: &str) -> bool {
-    let ok = Command::new(tool)
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        crate::util::skipped(test, &format!("`{tool}` is not installed"));
-    }
-    ok
 }
 
 // ---------------------------------------------------------------- txt
@@ -615,7 +609,7 @@ fn check_snippet_values(what: &str, case: &Case, values: &[Vec<DVec3>]) {
 }
 
 /// A case of high lmax to show the loops work beyond 2.
-fn high_lmax_case() -> Case {
+pub(crate) fn high_lmax_case() -> Case {
     Case {
         name: "lmax8",
         radiance: &analytic::cap(
@@ -631,7 +625,13 @@ fn high_lmax_case() -> Case {
 
 #[test]
 fn c_snippet_compiled_and_run_gives_shlight_values() {
-    if !have("cc", "c_snippet_compiled_and_run_gives_shlight_values") {
+    let test = "c_snippet_compiled_and_run_gives_shlight_values";
+    // The header is C99 and is also included from C++.
+    let compilers: Vec<(&str, &str)> = [("cc", "c"), ("c++", "cpp")]
+        .into_iter()
+        .filter(|(tool, _)| have_tool(tool, test))
+        .collect();
+    if compilers.is_empty() {
         return;
     }
     let dir = temp_dir("export_c");
@@ -653,8 +653,10 @@ fn c_snippet_compiled_and_run_gives_shlight_values() {
              }}\n    return 0;\n}}\n",
             normals_initialiser()
         );
-        let values = run_native(&dir, "cc", &main, "c");
-        check_snippet_values("C", &case, &values);
+        for (compiler, lang) in &compilers {
+            let values = run_native(&dir, compiler, &main, lang);
+            check_snippet_values(&format!("C ({compiler})"), &case, &values);
+        }
     }
 }
 
@@ -689,7 +691,7 @@ fn cpp_main(vec3: &str, irradiance_only: bool) -> String {
 
 #[test]
 fn hlsl_snippet_compiled_as_cpp_gives_shlight_values() {
-    if !have("c++", "hlsl_snippet_compiled_as_cpp_gives_shlight_values") {
+    if !have_tool("c++", "hlsl_snippet_compiled_as_cpp_gives_shlight_values") {
         return;
     }
     let dir = temp_dir("export_hlsl");
@@ -740,37 +742,20 @@ fn glsl_as_cpp(text: &str) -> String {
 #[test]
 fn glsl_snippet_validates_and_compiled_as_cpp_gives_shlight_values() {
     let dir = temp_dir("export_glsl");
-    let cpp = have("c++", "glsl_snippet_..._compiled_as_cpp");
-    let naga = have("naga", "glsl_snippet_validates (naga validation)");
+    let cpp = have_tool(
+        "c++",
+        "glsl_snippet_validates_and_compiled_as_cpp_gives_shlight_values",
+    );
     let mut all = cases();
     all.push(high_lmax_case());
     for case in all {
         let text = convert(&case.write(&dir), &dir.join("sh.glsl"), "glsl");
         assert!(text.contains("const vec3 SHLIGHT_COEFFS["));
-        if naga {
-            let radiance = if case.irradiance_file {
-                ""
-            } else {
-                " + shlight_radiance(vec3(1.0, 0.0, 0.0))"
-            };
-            let frag = format!(
-                "#version 450\n{text}\nlayout(location = 0) out vec4 o;\n\
-                 void main() {{ o = vec4(shlight_irradiance(vec3(0.0, 0.0, 1.0)){radiance}, 1.0); }}\n"
-            );
-            let path = dir.join("t.frag.glsl");
-            std::fs::write(&path, frag).unwrap();
-            let out = Command::new("naga")
-                .args(["--shader-stage", "frag"])
-                .arg(&path)
-                .output()
-                .unwrap();
-            assert!(
-                out.status.success(),
-                "naga rejects the GLSL of {}: {}{}",
-                case.name,
-                String::from_utf8_lossy(&out.stdout),
-                String::from_utf8_lossy(&out.stderr)
-            );
+        // naga, in-process: the snippet inside the compute shader that the
+        // GPU test runs (the snippet has no entry point of its own).
+        let shader = export_shaders::glsl_compute(&text, !case.irradiance_file);
+        if let Err(e) = export_shaders::naga_glsl(&shader) {
+            panic!("naga rejects the GLSL of {}:\n{e}", case.name);
         }
         if cpp {
             let source = format!(
@@ -787,39 +772,56 @@ fn glsl_snippet_validates_and_compiled_as_cpp_gives_shlight_values() {
 
 // ---------------------------------------------------------------- WGSL
 
-/// The lines of `shlight_expand` with declarations and types spelled out
-/// of the way, to compare two languages statement by statement.
+/// The statements of `shlight_expand` (its signature from the name on) with
+/// declarations and types spelled out of the way, to compare two languages
+/// statement by statement. WGSL has no `?:`: its band weight
+/// `var w: f32 = 1.0; if (irradiance) { w = SHLIGHT_A[l]; }` is read as
+/// GLSL's `float w = irradiance ? SHLIGHT_A[l] : 1.0;`.
 fn expand_statements(text: &str) -> Vec<String> {
     let start = text.find("shlight_expand(").unwrap();
     let body = &text[start..];
     let end = body.find("\n}\n").unwrap();
-    body[..end]
+    let lines: Vec<String> = body[..end]
         .lines()
-        .skip(1)
         .map(|l| l.split("//").next().unwrap().trim().to_string())
-        .filter(|l| !l.is_empty() && !l.contains("irradiance") && !l.starts_with("w ="))
-        .filter(|l| !l.contains(" w =") && !l.contains(" w:") && l != "}")
+        .filter(|l| !l.is_empty())
         .map(|l| {
             let mut l = l
                 .replace("vec3<f32>", "vec3")
                 .replace("f32(", "float(")
                 .replace(": f32", "")
-                .replace(": i32", "");
-            for decl in ["var ", "let ", "float ", "int ", "vec3 "] {
+                .replace(": i32", "")
+                .replace(": bool", "")
+                .replace(": vec3", "");
+            for decl in ["var ", "let ", "float ", "int ", "vec3 ", "bool "] {
                 l = l.replace(&format!("({decl}"), "(");
+                l = l.replace(&format!(", {decl}"), ", ");
                 if let Some(rest) = l.strip_prefix(decl) {
                     l = rest.to_string();
                 }
             }
-            l
+            // The signature (from its name on): WGSL's return type.
+            l.replace(") -> vec3 {", ") {")
         })
-        .collect()
+        .collect();
+    let wgsl_weight = ["w = 1.0;", "if (irradiance) {", "w = SHLIGHT_A[l];", "}"];
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        if lines[i..].starts_with(&wgsl_weight.map(String::from)) {
+            out.push("w = irradiance ? SHLIGHT_A[l] : 1.0;".to_string());
+            i += wgsl_weight.len();
+        } else {
+            out.push(lines[i].clone());
+            i += 1;
+        }
+    }
+    out
 }
 
 #[test]
 fn wgsl_snippet_validates_holds_the_numbers_and_is_the_tested_evaluator() {
     let dir = temp_dir("export_wgsl");
-    let naga = have("naga", "wgsl validation");
     let mut all = cases();
     all.push(high_lmax_case());
     for case in all {
@@ -871,18 +873,13 @@ fn wgsl_snippet_validates_holds_the_numbers_and_is_the_tested_evaluator() {
             "{}",
             case.name
         );
-        if naga {
-            let out = Command::new("naga")
-                .arg(dir.join("sh.wgsl"))
-                .output()
-                .unwrap();
-            assert!(
-                out.status.success(),
-                "naga rejects the WGSL of {}: {}{}",
-                case.name,
-                String::from_utf8_lossy(&out.stdout),
-                String::from_utf8_lossy(&out.stderr)
-            );
+        // naga, in-process: the snippet as written (a module of its own) and
+        // inside the compute shader that the GPU test runs.
+        let shader = export_shaders::wgsl_compute(&text, !case.irradiance_file);
+        for (what, source) in [("snippet", &text), ("compute shader", &shader)] {
+            if let Err(e) = export_shaders::naga_wgsl(source) {
+                panic!("naga rejects the WGSL {what} of {}:\n{e}", case.name);
+            }
         }
     }
 }

@@ -2,7 +2,8 @@
 //! SH irradiance at each pixel's normal, `project --gpu` against the CPU
 //! quadrature, `view --screenshot` under Xvfb, and their error messages.
 //! Without a GPU adapter (or Xvfb, for the viewer) the tests that need one
-//! print a SKIPPED line and pass, unless `SHLIGHT_REQUIRE_GPU=1`.
+//! print a SKIPPED line and pass, unless `SHLIGHT_REQUIRE_GPU=1` or
+//! `SHLIGHT_REQUIRE_ALL=1`.
 
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
@@ -12,25 +13,14 @@ use shlight_core::{ShCoeffs, analytic, irradiance};
 use shlight_io::{ReadOptions, read_image};
 
 use crate::util::{
-    coefficients, json, s, shlight, shlight_err, shlight_ok, skipped, temp_dir, write_map,
-    write_obj, write_radiance_rows,
+    coefficients, gpu_context, json, s, shlight, shlight_err, shlight_ok, skip_gpu, temp_dir,
+    write_map, write_obj, write_radiance_rows,
 };
 
-/// Whether GPU tests can run; panics under `SHLIGHT_REQUIRE_GPU=1` without
-/// an adapter, prints a SKIPPED line otherwise.
+/// Whether GPU tests can run; [`skip_gpu`] (SKIPPED line, or a failure
+/// under `SHLIGHT_REQUIRE_GPU=1` / `SHLIGHT_REQUIRE_ALL=1`) when not.
 fn have_gpu(test: &str) -> bool {
-    match shlight_gpu::GpuContext::headless() {
-        Ok(_) => true,
-        Err(e) if required() => panic!("{test}: SHLIGHT_REQUIRE_GPU=1 but {e}"),
-        Err(e) => {
-            skipped(test, &e.to_string());
-            false
-        }
-    }
-}
-
-fn required() -> bool {
-    std::env::var("SHLIGHT_REQUIRE_GPU").as_deref() == Ok("1")
+    gpu_context(test).is_some()
 }
 
 /// Writes radiance coefficients as a coefficient file (y-up).
@@ -323,11 +313,7 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
         return;
     }
     let Some(x) = Xvfb::start() else {
-        assert!(
-            !required(),
-            "{test}: SHLIGHT_REQUIRE_GPU=1 but Xvfb cannot be started"
-        );
-        skipped(test, "no Xvfb (apt install xvfb)");
+        skip_gpu(test, "Xvfb cannot be started (apt install xvfb)");
         return;
     };
     let dir = temp_dir("gpu_view");

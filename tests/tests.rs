@@ -4,6 +4,7 @@ mod accuracy;
 mod batch;
 mod engine_frames;
 mod export;
+mod export_shaders;
 mod gltf_asset;
 mod gpu;
 mod layouts_cli;

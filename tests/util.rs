@@ -185,9 +185,62 @@ pub fn write_coefficient_rows(path: &Path, rows: &[[f64; 3]], quantity: &str) {
     std::fs::write(path, doc.to_string()).unwrap();
 }
 
-/// Prints a SKIPPED line straight to stderr (past the test harness's output
-/// capture, so that a skipped test is seen in a passing run).
-pub fn skipped(test: &str, why: &str) {
+/// `SHLIGHT_REQUIRE_ALL=1` (set by CI): no test may skip, for any reason.
+pub const REQUIRE_ALL: &str = "SHLIGHT_REQUIRE_ALL";
+
+/// `SHLIGHT_REQUIRE_GPU=1`: no test may skip for want of a GPU adapter (or
+/// the X server the viewer needs).
+pub const REQUIRE_GPU: &str = "SHLIGHT_REQUIRE_GPU";
+
+fn switched_on(var: &str) -> bool {
+    std::env::var(var).as_deref() == Ok("1")
+}
+
+/// Skips `test` because `why` (a missing tool): prints a SKIPPED line, or
+/// panics under `SHLIGHT_REQUIRE_ALL=1`.
+pub fn skip(test: &str, why: &str) {
+    skip_unless(test, why, &[REQUIRE_ALL]);
+}
+
+/// Skips `test` for want of a GPU: prints a SKIPPED line, or panics under
+/// `SHLIGHT_REQUIRE_GPU=1` or `SHLIGHT_REQUIRE_ALL=1`.
+pub fn skip_gpu(test: &str, why: &str) {
+    skip_unless(test, why, &[REQUIRE_GPU, REQUIRE_ALL]);
+}
+
+/// Panics when one of `switches` is `1`, else prints `SKIPPED test: why`.
+///
+/// The line is written with `write!` on the process's own stderr handle:
+/// the test harness captures only the `print!`/`eprint!` macros, so this
+/// line shows in a passing run (`cargo test` without `--nocapture`).
+fn skip_unless(test: &str, why: &str, switches: &[&str]) {
+    if let Some(var) = switches.iter().find(|v| switched_on(v)) {
+        panic!("{test}: {var}=1 but it would be skipped: {why}");
+    }
     use std::io::Write as _;
     let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
+}
+
+/// The headless GPU context, or `None` after [`skip_gpu`] when there is no
+/// adapter.
+pub fn gpu_context(test: &str) -> Option<shlight_gpu::GpuContext> {
+    match shlight_gpu::GpuContext::headless() {
+        Ok(ctx) => Some(ctx),
+        Err(e) => {
+            skip_gpu(test, &e.to_string());
+            None
+        }
+    }
+}
+
+/// Whether `tool --version` runs; [`skip`]s `test` when it does not.
+pub fn have_tool(tool: &str, test: &str) -> bool {
+    let ok = std::process::Command::new(tool)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        skip(test, &format!("`{tool}` is not installed"));
+    }
+    ok
 }

@@ -118,6 +118,37 @@ fn failed_image_writes_leave_the_old_file() {
     assert_eq!(dir.entries(), ["map.exr", "sub.png"]);
 }
 
+/// A temporary file that cannot be made fails the write: a `Write` error
+/// naming the destination, the old file as it was, nothing left behind.
+/// The destination's name is 250 bytes, so its temporary name
+/// (`.NAME.tmp-PID-N`) passes the 255-byte limit on a file name of Unix
+/// file systems: refused for every user, root included, unlike a
+/// directory without write permission (below).
+#[cfg(unix)]
+#[test]
+fn temporary_file_that_cannot_be_made_leaves_the_old_file() {
+    let dir = TempDir::new("atomic-long-name");
+    let name = format!("{}.png", "m".repeat(246));
+    assert_eq!(name.len(), 250);
+    let path = dir.join(&name);
+    std::fs::write(&path, OLD).unwrap();
+    let result = write_image(&path, &hdr_image(8, 8), &WriteOptions::default());
+    assert_kind!(result, IoErrorKind::Write(_));
+    assert!(
+        result
+            .unwrap_err()
+            .to_string()
+            .starts_with(&path.display().to_string())
+    );
+    assert_eq!(std::fs::read(&path).unwrap(), OLD);
+    assert_eq!(dir.entries(), [name]);
+}
+
+/// A directory without write permission: where the system enforces it the
+/// write fails and the old file stays; root (as in many containers and CI
+/// machines) may write anyway, and then the write must succeed and leave
+/// only the new file. The refusal itself is tested for every user by
+/// [`temporary_file_that_cannot_be_made_leaves_the_old_file`].
 #[cfg(unix)]
 #[test]
 fn read_only_directory() {
@@ -128,8 +159,6 @@ fn read_only_directory() {
     let path = ro.join("map.png");
     std::fs::write(&path, OLD).unwrap();
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
-    // Root (as in some containers) may write anyway; then there is nothing
-    // to test.
     let probe = ro.join("probe");
     let enforced = std::fs::write(&probe, b"").is_err();
     let _ = std::fs::remove_file(&probe);
@@ -140,8 +169,9 @@ fn read_only_directory() {
         assert_kind!(result, IoErrorKind::Write(_));
         assert_eq!(std::fs::read(&path).unwrap(), OLD);
     } else {
-        eprintln!("note: permissions not enforced (running as root?); checked the write only");
         result.unwrap();
+        let back = read(&path).unwrap();
+        assert_eq!((back.width(), back.height()), (8, 8));
     }
     let mut names: Vec<_> = std::fs::read_dir(&ro)
         .unwrap()
