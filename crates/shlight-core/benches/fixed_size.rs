@@ -24,7 +24,7 @@ const N: usize = 4096;
 fn normals() -> Vec<Vec3> {
     shlight_core::quadrature::fibonacci_sphere(N)
         .iter()
-        .map(|d| DVec3::from_array(*d).as_vec3())
+        .map(|d| d.as_vec3())
         .collect()
 }
 
@@ -39,7 +39,7 @@ fn radiance() -> ShCoeffs<DVec3> {
 /// `ShL2Rgb<f32>::eval_irradiance` (radiance in, the `A_l` applied inside).
 #[divan::bench]
 fn fixed_rgb_l2_eval_irradiance_f32(bencher: Bencher) {
-    let sh = ShL2Rgb::<f32>::from_coeffs(&radiance().as_f32());
+    let sh = ShL2Rgb::<f32>::from_coeffs(&radiance().to_f32());
     let n = normals();
     let mut out = vec![Vec3::ZERO; N];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
@@ -54,7 +54,7 @@ fn fixed_rgb_l2_eval_irradiance_f32(bencher: Bencher) {
 /// `ShL2Rgb<f32>::eval` of irradiance coefficients converted once.
 #[divan::bench]
 fn fixed_rgb_l2_eval_f32_preconverted(bencher: Bencher) {
-    let e = ShL2Rgb::<f32>::from_coeffs(&radiance().as_f32()).irradiance();
+    let e = ShL2Rgb::<f32>::from_coeffs(&radiance().to_f32()).irradiance();
     let n = normals();
     let mut out = vec![Vec3::ZERO; N];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
@@ -71,7 +71,7 @@ fn fixed_rgb_l2_eval_f32_preconverted(bencher: Bencher) {
 /// and scratch buffer (`ShCoeffs::eval_with`).
 #[divan::bench]
 fn general_rgb_l2_eval_with_f32(bencher: Bencher) {
-    let e = irradiance(&radiance()).as_f32();
+    let e = irradiance(&radiance()).to_f32();
     let basis = ShBasis::<f32>::new(2);
     let mut scratch = vec![0.0f32; basis.count()];
     let n = normals();
@@ -79,7 +79,7 @@ fn general_rgb_l2_eval_with_f32(bencher: Bencher) {
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         let e = black_box(&e);
         for (o, d) in out.iter_mut().zip(black_box(&n)) {
-            *o = e.eval_with(&basis, d.to_array(), &mut scratch);
+            *o = e.eval_with(&basis, *d, &mut scratch);
         }
         black_box(&mut out);
     });
@@ -92,7 +92,7 @@ fn rotation() -> DMat3 {
 /// One RGB lmax 2 probe rotated by a matrix: blocks built and applied.
 #[divan::bench]
 fn fixed_rgb_l2_rotate_f32(bencher: Bencher) {
-    let sh = ShL2Rgb::<f32>::from_coeffs(&radiance().as_f32());
+    let sh = ShL2Rgb::<f32>::from_coeffs(&radiance().to_f32());
     let r: Mat3 = rotation().as_mat3();
     bencher.bench_local(|| black_box(&sh).rotated(black_box(r)));
 }

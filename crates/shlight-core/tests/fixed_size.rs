@@ -111,7 +111,7 @@ fn rgb_t<T: GlamReal>(c: &ShCoeffs<DVec3>) -> ShCoeffs<T::Vec3> {
 fn general_eval<C: shlight_core::ShValue<Scalar = f64>>(c: &ShCoeffs<C>, d: DVec3) -> C {
     let basis = ShBasis::<f64>::new(RECURRENCE_LMAX);
     let mut y = vec![0.0; basis.count()];
-    basis.eval(d.to_array(), &mut y);
+    basis.eval(d, &mut y);
     c.dot_scalar(&y[..c.len()])
 }
 
@@ -333,7 +333,7 @@ fn basis_matches_the_analytic_directional_light() {
     let mut rng = rng(7);
     for _ in 0..SAMPLES {
         let a = random_direction(&mut rng);
-        let want: ShCoeffs<f64> = analytic::directional(RECURRENCE_LMAX, a.to_array(), 1.0);
+        let want: ShCoeffs<f64> = analytic::directional(RECURRENCE_LMAX, a, 1.0);
         let got = ShL2::<f64>::basis(a);
         for (i, (g, w)) in got.coeffs.iter().zip(want.as_slice()).enumerate() {
             assert!((g - w).abs() < TOL_F64, "coefficient {i} at {a}");
@@ -387,8 +387,7 @@ fn check_rotation<T: GlamReal>(
             }
         }
         // Re-projection of g(d) = f(R^T d): exact quadrature to degree 6.
-        let reproj =
-            ShCoeffs::project_fn(2, 6, |d| general_eval(&c2, r.transpose() * DVec3::from(d)));
+        let reproj = ShCoeffs::project_fn(2, 6, |d| general_eval(&c2, r.transpose() * d));
         for (i, w) in reproj.as_slice().iter().enumerate() {
             assert!(
                 (by_mat.coeffs[i].to_f64() - w).abs() < t,
@@ -421,7 +420,7 @@ fn check_rotation<T: GlamReal>(
         let (a, aw) = dir::<T>(random_direction(&mut rng));
         let moved = ShL2::<T>::basis(a).rotated(mat(r));
         let (_, raw) = dir::<T>(r * aw);
-        let at_ra: ShCoeffs<f64> = analytic::directional(2, raw.to_array(), 1.0);
+        let at_ra: ShCoeffs<f64> = analytic::directional(2, raw, 1.0);
         for (i, w) in at_ra.as_slice().iter().enumerate() {
             assert!(
                 (moved.coeffs[i].to_f64() - w).abs() < t,
@@ -517,7 +516,7 @@ fn conversions_to_and_from_sh_coeffs() {
         [2.0, 0.0, 0.0, 0.0]
     );
 
-    let rgb = random_rgb(&mut rng, 3).as_f32();
+    let rgb = random_rgb(&mut rng, 3).to_f32();
     let f = ShL2Rgb::<f32>::from_coeffs(&rgb);
     for i in 0..9 {
         assert_eq!(
@@ -567,8 +566,8 @@ fn arithmetic_matches_the_general_expansion() {
     assert_eq!(a - a, ShL2::ZERO);
 
     let (ra, rb) = (
-        random_rgb(&mut rng, 1).as_f32(),
-        random_rgb(&mut rng, 1).as_f32(),
+        random_rgb(&mut rng, 1).to_f32(),
+        random_rgb(&mut rng, 1).to_f32(),
     );
     let (x, y) = (
         ShL1Rgb::<f32>::from_coeffs(&ra),

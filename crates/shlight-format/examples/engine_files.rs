@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Radiance coefficients to lmax 2 in shlight's y-up frame: a warm sun
     // high in the -Z half of the sky over a dim blue sky.
     let sun = DVec3::new(0.3, 0.8, -0.5).normalize();
-    let light = &analytic::directional(2, sun.to_array(), DVec3::new(3.0, 2.8, 2.5))
+    let light = &analytic::directional(2, sun, DVec3::new(3.0, 2.8, 2.5))
         + &analytic::constant(2, DVec3::new(0.15, 0.2, 0.3));
     let mut file = CoeffFile::new(light, Frame::YUp, Quantity::Radiance);
     file.provenance.input = "a sun and a sky (closed form)".into();
