@@ -13,7 +13,7 @@ use shlight_core::rotation::Frame;
 use shlight_gpu::MAX_LMAX;
 use shlight_io::{Image, ReadOptions, read_image};
 
-use crate::coeff_file::CoeffFile;
+use shlight_format::CoeffFile;
 
 /// The bundled map used when no `--env` is given.
 pub const DEFAULT_ENV: &str = "envmaps/default.exr";

@@ -1,14 +1,13 @@
 //! `shlight`: spherical-harmonics lighting from the command line.
 //!
 //! The binary parses arguments, calls the library crates and maps errors to
-//! messages and exit codes; all mathematics lives in `shlight-core` and all
-//! file formats in `shlight-io`.
+//! messages and exit codes; all mathematics lives in `shlight-core`, image
+//! files in `shlight-io`, and shlight's own files and engine formats in
+//! `shlight-format`.
 
 mod accuracy;
-mod coeff_file;
 mod convert;
 mod environment;
-mod export;
 mod gpu_scene;
 mod irradiance;
 mod preview;
@@ -20,6 +19,7 @@ mod render;
 mod render_mesh;
 mod synth;
 mod texels;
+mod values;
 mod view;
 
 use std::process::ExitCode;
@@ -65,6 +65,12 @@ enum Command {
     },
 }
 
+/// `shlight show FILE`: a coefficient file as a readable table.
+fn show(path: &std::path::Path) -> anyhow::Result<()> {
+    print!("{}", shlight_format::CoeffFile::read(path)?.to_table());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let ui = progress::Ui::new(cli.quiet);
@@ -72,7 +78,7 @@ fn main() -> ExitCode {
         Command::Project(args) => project::run(&args, &ui),
         Command::Render(args) => render::run(&args, &ui),
         Command::Synth(args) => synth::run(&args, &ui),
-        Command::Show { file } => coeff_file::show(&file),
+        Command::Show { file } => show(&file),
         Command::Convert(args) => convert::run(&args),
         Command::Irradiance(args) => irradiance::run(&args, &ui),
         Command::Accuracy(args) => accuracy::run(&args, &ui),

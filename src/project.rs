@@ -28,11 +28,12 @@ use shlight_core::zonal::clamped_cosine_eigenvalue;
 use shlight_core::{ShCoeffs, ShRotation, Window, irradiance};
 use shlight_io::{Image, PixelStats, ReadOptions, ToneMap, read_image};
 
-use crate::coeff_file::{CoeffFile, Provenance, Quantity, RotationRecord, SanitizeCounts};
-use crate::export::{self, ExportFormat, ExportInput, Exported};
 use crate::preview::{PreviewOptions, write_preview};
 use crate::progress::Ui;
 use crate::texels::{LayoutArg, TexelGrid, parse_size};
+use shlight_format::{
+    CoeffFile, ExportFormat, Exported, Provenance, Quantity, RotationRecord, SanitizeCounts,
+};
 
 /// Arguments of `shlight project`.
 #[derive(Args, Debug)]
@@ -75,7 +76,7 @@ pub struct ProjectArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub seed: Option<u64>,
     /// What the coefficients hold.
-    #[arg(long, value_enum, default_value_t = Quantity::Radiance)]
+    #[arg(long, value_parser = crate::values::quantity(), default_value = "radiance")]
     pub quantity: Quantity,
     /// Ringing window: none, hanning:W, lanczos:W, laplacian:LAMBDA, or auto
     /// (per colour channel, the weakest Hanning window that makes that
@@ -109,7 +110,7 @@ pub struct ProjectArgs {
     pub output: Option<PathBuf>,
     /// Output format [default: json]: shlight's coefficient file, or an
     /// engine or shader format (docs/exporters.md).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = crate::values::export_format())]
     pub format: Option<ExportFormat>,
     /// Write a preview image: input | SH radiance | SH irradiance/π, side
     /// by side. With several inputs, a directory for one NAME.png each.
@@ -409,7 +410,7 @@ fn names_dir(p: &Path) -> bool {
 /// overwriting an input before anything is read; output directories made.
 fn plan(args: &ProjectArgs) -> Result<Vec<Job>> {
     let n = args.inputs.len();
-    let ext = output_extension(args.format.unwrap_or(ExportFormat::Json));
+    let ext = args.format.unwrap_or(ExportFormat::Json).extension();
     let out_dir = match &args.output {
         None if n > 1 => {
             bail!("{n} inputs need -o DIR: one .{ext} file per input is written there")
@@ -875,52 +876,6 @@ fn rotate_std_error(rotation: &ShRotation, se: &ShCoeffs<DVec3>) -> ShCoeffs<DVe
     out
 }
 
-/// The file extension of an output format, for `-o DIR` batches.
-pub fn output_extension(format: ExportFormat) -> &'static str {
-    match format {
-        ExportFormat::Json | ExportFormat::Threejs | ExportFormat::Unity => "json",
-        ExportFormat::Txt | ExportFormat::Filament => "txt",
-        ExportFormat::Gltf => "gltf",
-        ExportFormat::Wgsl => "wgsl",
-        ExportFormat::Glsl => "glsl",
-        ExportFormat::Hlsl => "hlsl",
-        // Static arrays and static inline functions: a header.
-        ExportFormat::C => "h",
-    }
-}
-
-/// The text of `file` in `format`, and the exporter's notes (truncation,
-/// padding, missing parts): the output step's only format switch. `json`
-/// is shlight's coefficient file; every other format goes through
-/// [`export::render`], the same as `shlight convert`.
-pub fn format_output(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
-    match format {
-        ExportFormat::Json => Ok(Exported {
-            text: file.to_json_string() + "\n",
-            notes: Vec::new(),
-        }),
-        f => {
-            let mut out = export::render(
-                &ExportInput {
-                    coeffs: &file.coeffs,
-                    quantity: file.quantity,
-                    frame: file.frame,
-                },
-                f,
-            )
-            .with_context(|| format!("{}: exporting as {}", file.provenance.input, f.name()))?;
-            if file.std_error.is_some() {
-                out.notes.push(format!(
-                    "{} has no place for the Monte Carlo standard errors; they are kept only in \
-                     shlight's JSON (--format json)",
-                    f.name()
-                ));
-            }
-            Ok(out)
-        }
-    }
-}
-
 /// Writes `file` in `format` to `dest` (atomically for files), with the
 /// exporter's notes through `ui` (silenced by `--quiet`), naming the input.
 /// Without `--format`, a terminal gets the readable table of `shlight show`
@@ -937,7 +892,7 @@ pub fn write_output(
             text: file.to_table(),
             notes: Vec::new(),
         },
-        (f, _) => format_output(file, f.unwrap_or(ExportFormat::Json))?,
+        (f, _) => shlight_format::export(file, f.unwrap_or(ExportFormat::Json))?,
     };
     for note in &out.notes {
         ui.note(format!("{}: {note}", file.provenance.input));
@@ -998,18 +953,6 @@ mod tests {
         assert!(help("samples").contains(&format!("[default: {DEFAULT_SAMPLES}]")));
         assert!(help("sampler").contains(&format!("[default: {}]", d.sampler)));
         assert_eq!((d.samples, d.seed), (DEFAULT_SAMPLES, DEFAULT_SEED));
-    }
-
-    #[test]
-    fn batch_extensions_name_their_format_where_an_extension_can() {
-        for &f in ExportFormat::value_variants() {
-            let ext = output_extension(f);
-            match ExportFormat::from_path(Path::new(&format!("x.{ext}"))) {
-                Ok(g) => assert_eq!(g, f, "{ext}"),
-                // .json and .txt are shared; convert asks for --format.
-                Err(_) => assert!(ext == "json" || ext == "txt", "{ext}"),
-            }
-        }
     }
 
     #[test]

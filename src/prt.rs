@@ -20,9 +20,9 @@ use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
-use crate::coeff_file::CoeffFile;
 use crate::progress::Ui;
 use crate::texels::parse_size;
+use shlight_format::CoeffFile;
 
 /// Light transport to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -176,14 +176,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         .mesh
         .file_name()
         .map_or(name.clone(), |n| n.to_string_lossy().into_owned());
-    let file = ShprtFile::from_transfer(
-        &transfer,
-        mode,
-        args.seed,
-        recorded,
-        mesh.content_hash(),
-        &mesh_name,
-    );
+    let file = transfer.to_shprt(mode, args.seed, recorded, mesh.content_hash(), &mesh_name);
     if let (Some(out), Some(kind)) = (&args.output, output_kind) {
         match kind {
             Output::Shprt => file.write(out)?,
@@ -225,7 +218,8 @@ fn write_preview(
     light: &shlight_core::ShCoeffs<DVec3>,
     args: &PrtArgs,
 ) -> Result<()> {
-    let radiance = file.exit_radiance(light);
+    let radiance =
+        shlight_prt::transfer::exit_radiance(&file.transfer, file.lmax, file.channels, light);
     let (w, h) = args.preview_size;
     let image = shlight_prt::preview::render(mesh, &radiance, w, h);
     let exposure = args

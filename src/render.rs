@@ -17,9 +17,9 @@ use shlight_core::projection::MapOrientation;
 use shlight_core::{ShBasis, ShCoeffs, irradiance};
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
-use crate::coeff_file::{CoeffFile, Quantity};
 use crate::progress::Ui;
 use crate::texels::{LayoutArg, TexelGrid, default_size, parse_size};
+use shlight_format::{CoeffFile, Quantity};
 
 /// Arguments of `shlight render`.
 #[derive(Args, Debug)]
@@ -53,9 +53,7 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
     let name = args.input.display().to_string();
     crate::project::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
-    let text =
-        std::fs::read_to_string(&args.input).with_context(|| format!("{name}: cannot read"))?;
-    let file = CoeffFile::from_json_str(&text, &name)?;
+    let file = CoeffFile::read(&args.input)?;
     let coeffs = match (file.quantity, args.irradiance) {
         (Quantity::Radiance, true) => irradiance(&file.coeffs),
         (Quantity::Irradiance, false) => {

@@ -11,7 +11,8 @@
 //! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).
-//! - [`ShprtFile`]: the `.shprt` file (docs/shprt.md): read, write.
+//! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
+//!   ([`ShprtFile`], docs/shprt.md, read and written by shlight-format).
 //! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
 //! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours.
 //!
@@ -44,8 +45,7 @@ mod error;
 pub mod gltf_export;
 pub mod packet;
 pub mod preview;
-pub mod shprt;
 pub mod transfer;
 
 pub use error::PrtError;
-pub use shprt::ShprtFile;
+pub use shlight_format::ShprtFile;

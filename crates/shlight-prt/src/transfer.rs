@@ -45,6 +45,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, ShCoeffs, sh_count};
+use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 
 use crate::bvh::Bvh;
@@ -174,6 +175,31 @@ pub struct Transfer {
 }
 
 impl Transfer {
+    /// The `.shprt` file of this bake and what produced it.
+    #[must_use]
+    pub fn to_shprt(
+        &self,
+        mode: Mode,
+        seed: u64,
+        albedo: Option<[f32; 3]>,
+        mesh_hash: u64,
+        mesh: &str,
+    ) -> ShprtFile {
+        ShprtFile {
+            lmax: self.lmax,
+            channels: self.channels,
+            vertex_count: self.vertex_count,
+            transfer: self.coeffs.clone(),
+            mode: mode.name().to_string(),
+            samples: self.samples as u64,
+            bounces: mode.bounces(),
+            seed,
+            albedo,
+            mesh_hash,
+            mesh: mesh.to_string(),
+        }
+    }
+
     /// Exit radiance per vertex under the radiance coefficients `light`:
     /// `sum_i T_i L_i` per channel, over the coefficients both have (a grey
     /// transfer is applied to each colour channel of the light).

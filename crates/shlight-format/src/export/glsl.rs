@@ -18,7 +18,7 @@
 //! `sin^m`, times the trig-free azimuth terms `C_m, S_m` of Sloan 2008),
 //! in 32-bit floats. The header comment says all this in the file.
 
-use anyhow::Result;
+use crate::Result;
 
 use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
 

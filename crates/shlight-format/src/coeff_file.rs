@@ -1,37 +1,24 @@
 //! shlight's coefficient file: self-describing JSON (docs/coefficient-file.md).
 
-use anyhow::{Context, Result, bail};
-use clap::ValueEnum;
+use std::path::Path;
+
 use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::rotation::Frame;
 use shlight_core::window::sphere_minimum;
+use shlight_core::{ShCoeffs, lm_from_index};
+
+use crate::{FormatError, Quantity, Result};
 
 /// Highest lmax whose file gets `statistics.minimum` (the search costs
 /// `O(lmax^4)`: about 80 ms per channel at lmax 32).
 pub const MINIMUM_MAX_LMAX: usize = 32;
-use shlight_core::{ShCoeffs, lm_from_index};
 
 /// Version of the JSON layout written by this build.
 pub const FORMAT_VERSION: u64 = 1;
 
-/// What a coefficient file's numbers are.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Quantity {
-    /// Distant radiance `L(w)`.
-    Radiance,
-    /// Irradiance `E(n) = A_l L_lm` (Ramamoorthi & Hanrahan 2001).
-    Irradiance,
-}
-
-impl Quantity {
-    fn name(self) -> &'static str {
-        match self {
-            Quantity::Radiance => "radiance",
-            Quantity::Irradiance => "irradiance",
-        }
-    }
-}
+/// The `format` field of a coefficient file.
+pub const FORMAT: &str = "shlight-sh";
 
 /// Where the coefficients came from.
 ///
@@ -234,53 +221,89 @@ impl CoeffFile {
     }
 
     /// Pretty-printed JSON.
+    #[must_use]
     pub fn to_json_string(&self) -> String {
         serde_json::to_string_pretty(&self.to_json()).expect("JSON values serialise")
+    }
+
+    /// Writes the JSON file to `path` atomically (a temporary file renamed
+    /// into place), so a failure leaves an existing file as it was.
+    ///
+    /// # Errors
+    /// [`FormatError::Write`] naming the file.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let text = self.to_json_string() + "\n";
+        shlight_io::write_atomically(path, |w| w.write_all(text.as_bytes()))?;
+        Ok(())
+    }
+
+    /// Reads the coefficient file at `path`.
+    ///
+    /// # Errors
+    /// [`FormatError::Read`] when it cannot be read, [`FormatError::Invalid`]
+    /// naming the file when it is not a valid coefficient file.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = read_text(path)?;
+        Self::from_json_str(&text, &path.display().to_string())
     }
 
     /// Reads the coefficient file at `path`, which must hold radiance:
     /// `user` (e.g. `--env`) and `fix` complete the message that refuses
     /// irradiance, from which radiance cannot be recovered.
-    pub fn read_radiance(path: &std::path::Path, user: &str, fix: &str) -> Result<Self> {
+    ///
+    /// # Errors
+    /// As [`CoeffFile::read`], and [`FormatError::Invalid`] for irradiance.
+    pub fn read_radiance(path: &Path, user: &str, fix: &str) -> Result<Self> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
-        let file = Self::from_json_str(&text, &name)?;
+        let file = Self::read(path)?;
         if file.quantity != Quantity::Radiance {
-            bail!("{name}: holds irradiance; {user} needs radiance coefficients ({fix})");
+            return Err(FormatError::invalid(
+                &name,
+                format!("holds irradiance; {user} needs radiance coefficients ({fix})"),
+            ));
         }
         Ok(file)
     }
 
-    /// Reads a coefficient file's text; `name` is used in error messages.
+    /// Parses a coefficient file's text; `name` is used in error messages.
+    ///
+    /// # Errors
+    /// [`FormatError::Invalid`] naming `name` and the first problem found.
     pub fn from_json_str(text: &str, name: &str) -> Result<Self> {
+        let bad = |message: String| FormatError::invalid(name, message);
         let v: Value =
-            serde_json::from_str(text).with_context(|| format!("{name}: not valid JSON"))?;
+            serde_json::from_str(text).map_err(|e| bad(format!("not valid JSON ({e})")))?;
         let field = |k: &str| {
             v.get(k)
-                .with_context(|| format!("{name}: missing field \"{k}\""))
+                .ok_or_else(|| bad(format!("missing field \"{k}\"")))
         };
-        if field("format")?.as_str() != Some("shlight-sh") {
-            bail!("{name}: not a shlight coefficient file (\"format\" is not \"shlight-sh\")");
+        if field("format")?.as_str() != Some(FORMAT) {
+            return Err(bad(format!(
+                "not a shlight coefficient file (\"format\" is not \"{FORMAT}\")"
+            )));
         }
         let version = field("format_version")?.as_u64().unwrap_or(0);
         if version == 0 || version > FORMAT_VERSION {
-            bail!(
-                "{name}: format_version {version} is not supported (this build reads 1..={FORMAT_VERSION})"
-            );
+            return Err(bad(format!(
+                "format_version {version} is not supported (this build reads 1..={FORMAT_VERSION})"
+            )));
         }
         let lmax = field("lmax")?
             .as_u64()
-            .with_context(|| format!("{name}: \"lmax\" is not an integer"))?
-            as usize;
+            .ok_or_else(|| bad("\"lmax\" is not an integer".into()))? as usize;
         let rows = field("coefficients")?
             .as_array()
-            .with_context(|| format!("{name}: \"coefficients\" is not an array"))?;
-        if rows.len() != (lmax + 1) * (lmax + 1) {
-            bail!(
-                "{name}: lmax {lmax} needs {} coefficients, the file has {}",
-                (lmax + 1) * (lmax + 1),
+            .ok_or_else(|| bad("\"coefficients\" is not an array".into()))?;
+        let want = lmax
+            .checked_add(1)
+            .and_then(|n| n.checked_mul(n))
+            .filter(|&n| n == rows.len());
+        if want.is_none() {
+            return Err(bad(format!(
+                "lmax {lmax} needs {} coefficients, the file has {}",
+                (lmax as u128 + 1) * (lmax as u128 + 1),
                 rows.len()
-            );
+            )));
         }
         let mut coeffs = Vec::with_capacity(rows.len());
         for (i, row) in rows.iter().enumerate() {
@@ -288,7 +311,9 @@ impl CoeffFile {
                 Some(c) => coeffs.push(c),
                 None => {
                     let (l, m) = lm_from_index(i);
-                    bail!("{name}: coefficient {i} (l={l}, m={m}) is not three numbers");
+                    return Err(bad(format!(
+                        "coefficient {i} (l={l}, m={m}) is not three numbers"
+                    )));
                 }
             }
         }
@@ -296,11 +321,11 @@ impl CoeffFile {
             .as_str()
             .unwrap_or("")
             .parse::<Frame>()
-            .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+            .map_err(|e| bad(e.to_string()))?;
         let quantity = match field("quantity")?.as_str() {
             Some("radiance") => Quantity::Radiance,
             Some("irradiance") => Quantity::Irradiance,
-            other => bail!("{name}: unknown quantity {other:?}"),
+            other => return Err(bad(format!("unknown quantity {other:?}"))),
         };
         let p = field("provenance")?;
         let s = |k: &str| p.get(k).and_then(Value::as_str).unwrap_or("").to_string();
@@ -308,8 +333,8 @@ impl CoeffFile {
         let opt_u64 = |k: &str| -> Result<Option<u64>> {
             match p.get(k) {
                 None | Some(Value::Null) => Ok(None),
-                Some(v) => v.as_u64().map(Some).with_context(|| {
-                    format!("{name}: provenance \"{k}\" is not a non-negative integer")
+                Some(v) => v.as_u64().map(Some).ok_or_else(|| {
+                    bad(format!("provenance \"{k}\" is not a non-negative integer"))
                 }),
             }
         };
@@ -321,17 +346,15 @@ impl CoeffFile {
                     w.get(c)
                         .and_then(Value::as_str)
                         .map(str::to_string)
-                        .with_context(|| {
-                            format!("{name}: provenance \"windows\" has no string \"{c}\"")
-                        })
+                        .ok_or_else(|| bad(format!("provenance \"windows\" has no string \"{c}\"")))
                 };
                 [channel("red")?, channel("green")?, channel("blue")?]
             }
         };
         let rotate = match p.get("rotate") {
             None | Some(Value::Null) => None,
-            Some(r) => Some(read_rotation(r).with_context(|| {
-                format!("{name}: provenance \"rotate\" is not {{\"spec\": text, \"matrix\": 3x3 numbers}}")
+            Some(r) => Some(read_rotation(r).ok_or_else(|| {
+                bad("provenance \"rotate\" is not {\"spec\": text, \"matrix\": 3x3 numbers}".into())
             })?),
         };
         let stats = v.get("statistics");
@@ -343,8 +366,8 @@ impl CoeffFile {
                     c.get(k)
                         .and_then(Value::as_u64)
                         .map(|n| n as usize)
-                        .with_context(|| {
-                            format!("{name}: statistics \"sanitized\" has no count \"{k}\"")
+                        .ok_or_else(|| {
+                            bad(format!("statistics \"sanitized\" has no count \"{k}\""))
                         })
                 };
                 Some(SanitizeCounts {
@@ -365,17 +388,17 @@ impl CoeffFile {
                 let rows = rows
                     .as_array()
                     .filter(|r| r.len() == coeffs.len())
-                    .with_context(|| {
-                        format!(
-                            "{name}: statistics \"std_error\" is not {} rows of three numbers",
+                    .ok_or_else(|| {
+                        bad(format!(
+                            "statistics \"std_error\" is not {} rows of three numbers",
                             coeffs.len()
-                        )
+                        ))
                     })?;
                 let mut se = Vec::with_capacity(rows.len());
                 for (i, row) in rows.iter().enumerate() {
-                    se.push(read_rgb(row).with_context(|| {
+                    se.push(read_rgb(row).ok_or_else(|| {
                         let (l, m) = lm_from_index(i);
-                        format!("{name}: std_error {i} (l={l}, m={m}) is not three numbers")
+                        bad(format!("std_error {i} (l={l}, m={m}) is not three numbers"))
                     })?);
                 }
                 Some(ShCoeffs::from_vec(se).expect("length checked"))
@@ -484,12 +507,15 @@ fn read_rotation(r: &Value) -> Option<RotationRecord> {
     Some(RotationRecord { spec, matrix })
 }
 
-/// `shlight show FILE`: reads a coefficient file and prints its table.
-pub fn show(path: &std::path::Path) -> Result<()> {
-    let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).with_context(|| format!("{name}: cannot read"))?;
-    print!("{}", CoeffFile::from_json_str(&text, &name)?.to_table());
-    Ok(())
+/// The text of the file at `path` (UTF-8).
+pub(crate) fn read_text(path: &Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|source| FormatError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    String::from_utf8(bytes).map_err(|_| {
+        FormatError::invalid(&path.display().to_string(), "not a text file (not UTF-8)")
+    })
 }
 
 #[cfg(test)]

@@ -14,12 +14,10 @@
 
 use std::path::Path;
 
-use glam::{DVec3, Vec3};
 use serde_json::{Value, json};
-use shlight_core::{ShCoeffs, sh_count};
+use shlight_core::sh_count;
 
-use crate::PrtError;
-use crate::transfer::{Mode, Transfer, exit_radiance};
+use crate::{FormatError, Result};
 
 /// The `format` key's value.
 pub const FORMAT: &str = "shlight-prt";
@@ -58,31 +56,6 @@ pub struct ShprtFile {
 }
 
 impl ShprtFile {
-    /// A file from a bake's result and what produced it.
-    #[must_use]
-    pub fn from_transfer(
-        transfer: &Transfer,
-        mode: Mode,
-        seed: u64,
-        albedo: Option<[f32; 3]>,
-        mesh_hash: u64,
-        mesh: &str,
-    ) -> Self {
-        Self {
-            lmax: transfer.lmax,
-            channels: transfer.channels,
-            vertex_count: transfer.vertex_count,
-            transfer: transfer.coeffs.clone(),
-            mode: mode.name().to_string(),
-            samples: transfer.samples as u64,
-            bounces: mode.bounces(),
-            seed,
-            albedo,
-            mesh_hash,
-            mesh: mesh.to_string(),
-        }
-    }
-
     /// Coefficients per vertex and channel, `(lmax+1)^2`.
     #[must_use]
     pub fn coeffs_per_channel(&self) -> usize {
@@ -94,13 +67,6 @@ impl ShprtFile {
     pub fn vertex(&self, v: usize, c: usize) -> &[f32] {
         let nc = self.coeffs_per_channel();
         &self.transfer[(v * self.channels + c) * nc..][..nc]
-    }
-
-    /// Exit radiance per vertex under radiance coefficients `light`
-    /// (`sum_i T_i L_i` per channel; see [`crate::transfer::exit_radiance`]).
-    #[must_use]
-    pub fn exit_radiance(&self, light: &ShCoeffs<DVec3>) -> Vec<Vec3> {
-        exit_radiance(&self.transfer, self.lmax, self.channels, light)
     }
 
     /// The header line's JSON object.
@@ -141,8 +107,8 @@ impl ShprtFile {
     /// Writes the file atomically (a temporary file renamed into place).
     ///
     /// # Errors
-    /// [`PrtError::Write`] naming the file.
-    pub fn write(&self, path: &Path) -> Result<(), PrtError> {
+    /// [`FormatError::Write`] naming the file.
+    pub fn write(&self, path: &Path) -> Result<()> {
         let bytes = self.to_bytes();
         shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
         Ok(())
@@ -151,10 +117,10 @@ impl ShprtFile {
     /// Reads a `.shprt` file.
     ///
     /// # Errors
-    /// [`PrtError::Read`] when it cannot be read; [`PrtError::Format`]
+    /// [`FormatError::Read`] when it cannot be read; [`FormatError::Invalid`]
     /// naming the file for a bad header or data of the wrong length.
-    pub fn read(path: &Path) -> Result<Self, PrtError> {
-        let bytes = std::fs::read(path).map_err(|source| PrtError::Read {
+    pub fn read(path: &Path) -> Result<Self> {
+        let bytes = std::fs::read(path).map_err(|source| FormatError::Read {
             path: path.to_path_buf(),
             source,
         })?;
@@ -165,11 +131,9 @@ impl ShprtFile {
     ///
     /// # Errors
     /// As [`ShprtFile::read`].
-    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self, PrtError> {
-        let bad = |message: String| PrtError::Format {
-            path: path.to_path_buf(),
-            message,
-        };
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self> {
+        let name = path.display().to_string();
+        let bad = |message: String| FormatError::invalid(&name, message);
         let end = bytes
             .iter()
             .take(MAX_HEADER)

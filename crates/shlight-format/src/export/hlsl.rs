@@ -19,7 +19,7 @@
 //! The evaluator is the one of the GLSL snippet with HLSL spellings
 //! (`float3`, `static const`, `{ ... }` initialisers); 32-bit floats.
 
-use anyhow::Result;
+use crate::Result;
 
 use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
 

@@ -33,14 +33,14 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use anyhow::{Result, bail};
+use crate::{FormatError, Result};
 use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
 
-use super::{ExportInput, Exported, Imported, engine_coeffs};
-use crate::coeff_file::Quantity;
+use super::{ExportInput, Exported, engine_coeffs};
+use crate::{Imported, Quantity};
 
 /// Renders the `LightProbe.toJSON()` document.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
@@ -131,11 +131,21 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
     find_probes(v.get("object").unwrap_or(v), &mut probes);
     let probe = match probes.as_slice() {
         [p] => *p,
-        [] => bail!("{name}: no LightProbe object"),
-        more => bail!(
-            "{name}: {} LightProbe objects; shlight reads files with one",
-            more.len()
-        ),
+        [] => {
+            return Err(FormatError::invalid(
+                name,
+                "no LightProbe object".to_string(),
+            ));
+        }
+        more => {
+            return Err(FormatError::invalid(
+                name,
+                format!(
+                    "{} LightProbe objects; shlight reads files with one",
+                    more.len()
+                ),
+            ));
+        }
     };
     let sh: Vec<f64> = probe
         .get("sh")
@@ -143,15 +153,21 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
         .map(|a| a.iter().filter_map(Value::as_f64).collect())
         .unwrap_or_default();
     if sh.len() != 27 {
-        bail!(
-            "{name}: the LightProbe's \"sh\" must be 27 numbers (9 RGB coefficients), found {}",
-            sh.len()
-        );
+        return Err(FormatError::invalid(
+            name,
+            format!(
+                "the LightProbe's \"sh\" must be 27 numbers (9 RGB coefficients), found {}",
+                sh.len()
+            ),
+        ));
     }
     let intensity = match probe.get("intensity") {
         None => 1.0,
         Some(i) => i.as_f64().ok_or_else(|| {
-            anyhow::anyhow!("{name}: the LightProbe's \"intensity\" is not a number")
+            FormatError::invalid(
+                name,
+                "the LightProbe's \"intensity\" is not a number".to_string(),
+            )
         })?,
     };
     let coeffs: Vec<DVec3> = sh
@@ -170,7 +186,8 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::{a_l, basis_polynomial};
+    use crate::export::basis_polynomial;
+    use shlight_core::zonal::clamped_cosine_eigenvalue as a_l;
 
     /// three.js `SphericalHarmonics3.getIrradianceAt`, constants as in its source.
     fn get_irradiance_at(c: &[[f64; 3]], n: [f64; 3]) -> [f64; 3] {

@@ -23,7 +23,7 @@
 use shlight_core::lm_from_index;
 
 use super::{ExportInput, Exported, frame_words};
-use crate::coeff_file::Quantity;
+use crate::Quantity;
 
 /// Renders the table.
 pub fn render(input: &ExportInput<'_>) -> Exported {

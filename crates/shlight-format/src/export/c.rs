@@ -21,7 +21,7 @@
 use super::{
     BAND_WEIGHT_COMMENT, ExportInput, Exported, band_weight_list, code_header, coefficient_rows,
 };
-use crate::coeff_file::Quantity;
+use crate::Quantity;
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Exported {

@@ -20,13 +20,13 @@
 //! variables (a `const` array may only be indexed by constants in some
 //! implementations).
 
-use anyhow::Result;
+use crate::Result;
 
 use super::{
     BAND_WEIGHT_COMMENT, ExportInput, Exported, band_weight_list, check_f32_range, code_header,
     coefficient_rows,
 };
-use crate::coeff_file::Quantity;
+use crate::Quantity;
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {

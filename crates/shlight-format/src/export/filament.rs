@@ -54,13 +54,13 @@
 //! lines named `L00`) to radiance. Files marked `irradiance` without
 //! `pre-scaled base` are refused: cmgen versions disagree on a `1/pi` there.
 
-use anyhow::{Result, bail};
+use crate::{FormatError, Result};
 use glam::DVec3;
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, lm_from_index, lmax_from_count};
 
-use super::{ExportInput, Exported, Imported, basis_constant, engine_coeffs};
-use crate::coeff_file::Quantity;
+use super::{ExportInput, Exported, basis_constant, engine_coeffs};
+use crate::{Imported, Quantity};
 
 /// Renders sh.txt.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
@@ -86,7 +86,12 @@ pub fn read(text: &str, name: &str) -> Result<Imported> {
         if line.is_empty() {
             continue;
         }
-        let bad = || anyhow::anyhow!("{name}: line {}: expected \"(r, g, b); // Llm...\"", k + 1);
+        let bad = || {
+            FormatError::invalid(
+                name,
+                format!("line {}: expected \"(r, g, b); // Llm...\"", k + 1),
+            )
+        };
         let rest = line.strip_prefix('(').ok_or_else(bad)?;
         let (numbers, comment) = rest.split_once(')').ok_or_else(bad)?;
         let v: Vec<f64> = numbers
@@ -106,10 +111,13 @@ pub fn read(text: &str, name: &str) -> Result<Imported> {
         let label = format!("L{l}{m}");
         let mut parts = comment.split(',').map(str::trim);
         if parts.next() != Some(label.as_str()) {
-            bail!(
-                "{name}: line {}: expected coefficient {label}, found {comment:?}",
-                k + 1
-            );
+            return Err(FormatError::invalid(
+                name,
+                format!(
+                    "line {}: expected coefficient {label}, found {comment:?}",
+                    k + 1
+                ),
+            ));
         }
         let flags: Vec<&str> = parts.collect();
         kinds.push((
@@ -118,23 +126,29 @@ pub fn read(text: &str, name: &str) -> Result<Imported> {
         ));
     }
     let Some(lmax) = lmax_from_count(values.len()).filter(|_| !values.is_empty()) else {
-        bail!(
-            "{name}: {} coefficients is not a whole number of bands (1, 4, 9, ...)",
-            values.len()
-        );
+        return Err(FormatError::invalid(
+            name,
+            format!(
+                "{} coefficients is not a whole number of bands (1, 4, 9, ...)",
+                values.len()
+            ),
+        ));
     };
     let kind = kinds[0];
     if kinds.iter().any(|k| *k != kind) {
-        bail!("{name}: lines disagree on irradiance / pre-scaled");
+        return Err(FormatError::invalid(
+            name,
+            "lines disagree on irradiance / pre-scaled".to_string(),
+        ));
     }
     let coeffs = ShCoeffs::from_vec(values).expect("square count");
     match kind {
         (true, true) => {
             if lmax != 2 {
-                bail!(
-                    "{name}: pre-scaled sh.txt has 9 lines, found {}",
-                    coeffs.len()
-                );
+                return Err(FormatError::invalid(
+                    name,
+                    format!("pre-scaled sh.txt has 9 lines, found {}", coeffs.len()),
+                ));
             }
             let pi = std::f64::consts::PI;
             let mut e = coeffs;
@@ -154,11 +168,16 @@ pub fn read(text: &str, name: &str) -> Result<Imported> {
             frame: Frame::YUp,
             source: "Filament sh.txt (radiance)",
         }),
-        (true, false) => bail!(
-            "{name}: irradiance coefficients that are not pre-scaled: cmgen versions differ by a \
+        (true, false) => Err(FormatError::invalid(
+            name,
+            "irradiance coefficients that are not pre-scaled: cmgen versions differ by a \
              factor 1/pi there; write them with --sh-shader (pre-scaled) or as radiance"
-        ),
-        (false, true) => bail!("{name}: pre-scaled but not irradiance: not something cmgen writes"),
+                .to_string(),
+        )),
+        (false, true) => Err(FormatError::invalid(
+            name,
+            "pre-scaled but not irradiance: not something cmgen writes".to_string(),
+        )),
     }
 }
 

@@ -44,14 +44,14 @@
 //!   turn about +Y away: set the skybox rotation to 180 to match.)
 //! - **lmax 2** exactly.
 
-use anyhow::{Result, anyhow, bail};
+use crate::{FormatError, Result};
 use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
 
-use super::{ExportInput, Exported, Imported, basis_constant, engine_coeffs};
-use crate::coeff_file::Quantity;
+use super::{ExportInput, Exported, basis_constant, engine_coeffs};
+use crate::{Imported, Quantity};
 
 /// The `"format"` tag of the JSON this writes.
 pub const FORMAT_TAG: &str = "shlight-unity-sh-l2";
@@ -142,16 +142,24 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
     let sh: Vec<f64> = v
         .get("SphericalHarmonicsL2")
         .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("{name}: no \"SphericalHarmonicsL2\" array"))?
+        .ok_or_else(|| FormatError::invalid(name, "no \"SphericalHarmonicsL2\" array".to_string()))?
         .iter()
         .map(|x| x.as_f64())
         .collect::<Option<_>>()
-        .ok_or_else(|| anyhow!("{name}: \"SphericalHarmonicsL2\" holds something not a number"))?;
+        .ok_or_else(|| {
+            FormatError::invalid(
+                name,
+                "\"SphericalHarmonicsL2\" holds something not a number".to_string(),
+            )
+        })?;
     if sh.len() != 27 {
-        bail!(
-            "{name}: \"SphericalHarmonicsL2\" must be 27 numbers (shr0..shb8), found {}",
-            sh.len()
-        );
+        return Err(FormatError::invalid(
+            name,
+            format!(
+                "\"SphericalHarmonicsL2\" must be 27 numbers (shr0..shb8), found {}",
+                sh.len()
+            ),
+        ));
     }
     let pi = std::f64::consts::PI;
     let e = ShCoeffs::from_vec(

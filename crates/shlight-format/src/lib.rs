@@ -1,0 +1,65 @@
+//! shlight's files and the engine formats it writes and reads back.
+//!
+//! One job: turning SH coefficients into bytes and back, with typed errors
+//! that name the file ([`FormatError`]) and no command-line, GPU or
+//! error-erasing dependency, so engines, bakers and research tools can read
+//! and write everything the `shlight` command does.
+//!
+//! # Main items
+//! - [`CoeffFile`]: shlight's self-describing JSON coefficient file
+//!   (docs/coefficient-file.md): lmax, basis and phase, frame, quantity,
+//!   colour space, provenance and statistics; [`CoeffFile::read`],
+//!   [`CoeffFile::write`] (atomic), [`CoeffFile::to_table`].
+//! - [`export()`] and [`ExportFormat`]: the same file as a Ramamoorthi-Hanrahan
+//!   table, a three.js LightProbe, a glTF asset, Filament's sh.txt, Unity's
+//!   SphericalHarmonicsL2, or WGSL / GLSL / HLSL / C code with an
+//!   evaluator; each exporter's module states exactly what its numbers are
+//!   and which engine source it follows (docs/exporters.md).
+//! - [`read_coefficients`]: any file `shlight convert` reads (a coefficient
+//!   file or an engine format that keeps enough), as a [`CoeffFile`].
+//! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
+//! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
+//!   (docs/shprt.md).
+//!
+//! # Conventions
+//! Coefficients are in shlight's basis (real orthonormal SH with the
+//! Condon-Shortley phase, index `l(l+1)+m`; `shlight_core`'s crate
+//! documentation and docs/conventions.md), linear Rec.709 RGB. Exporters
+//! convert to each target's basis, quantity and frame.
+//!
+//! # Example
+//! ```
+//! use glam::DVec3;
+//! use shlight_core::{analytic, rotation::Frame};
+//! use shlight_format::{CoeffFile, ExportFormat, Quantity, export};
+//!
+//! // A sun from +Y over a dim sky, as radiance coefficients to lmax 2.
+//! let light = &analytic::directional(2, [0.0, 1.0, 0.0], DVec3::new(3.0, 2.9, 2.7))
+//!     + &analytic::constant(2, DVec3::splat(0.2));
+//! let file = CoeffFile::new(light, Frame::YUp, Quantity::Radiance);
+//! let three = export(&file, ExportFormat::Threejs).unwrap();
+//! assert!(three.text.contains("\"type\": \"LightProbe\""));
+//! // The JSON file reads back to the same coefficients.
+//! let back = CoeffFile::from_json_str(&file.to_json_string(), "sky.json").unwrap();
+//! assert_eq!(back.coeffs, file.coeffs);
+//! ```
+//!
+//! **Architecture invariant:** no clap, anyhow or GPU dependency; files are
+//! written through shlight-io's atomic writer (a temporary file renamed
+//! into place).
+
+#![deny(missing_docs)]
+
+pub mod coeff_file;
+mod error;
+pub mod export;
+mod import;
+mod quantity;
+pub mod shprt;
+
+pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
+pub use error::{FormatError, Result};
+pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
+pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
+pub use quantity::{Quantity, convert_quantity};
+pub use shprt::ShprtFile;
