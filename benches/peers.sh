@@ -92,7 +92,8 @@ import sys, numpy as np, OpenEXR
 out, src = sys.argv[1], sys.argv[2]
 with OpenEXR.File(src) as f:
     ch = f.channels()
-    img = np.stack([ch[c].pixels.astype(np.float32) for c in "RGB"], -1)
+    # Separate R, G, B channels, or one interleaved "RGB" entry.
+    img = (np.stack([ch[c].pixels for c in "RGB"], -1) if "R" in ch else ch["RGB"].pixels).astype(np.float32)
 H, W = 1024, 2048
 h, w = img.shape[:2]
 ys = (np.arange(H) + .5) * h / H - .5
