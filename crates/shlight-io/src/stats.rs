@@ -58,7 +58,7 @@ impl Image {
     /// Counts of non-finite and negative channel values, and the range of the
     /// finite ones. See [`PixelStats`].
     ///
-    /// One pass over the values, in blocks of [`STATS_BLOCK`] values with
+    /// One pass over the values, in blocks of 12 288 values with
     /// branch-free lanes (they vectorise); only a block that holds a
     /// non-finite value is scanned again, for the first one's position.
     #[must_use]
