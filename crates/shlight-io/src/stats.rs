@@ -138,24 +138,28 @@ fn block_stats(values: &[f32]) -> PixelStats {
     let mut negative = [0_u32; LANES];
     let mut min = [f32::INFINITY; LANES];
     let mut max = [f32::NEG_INFINITY; LANES];
-    let mut lane = |k: usize, v: f32| {
-        // NaN compares false: not finite.
+    let (blocks, tail) = values.as_chunks::<LANES>();
+    for block in blocks {
+        for k in 0..LANES {
+            let v = block[k];
+            // NaN compares false: not finite.
+            let finite = v.abs() < f32::INFINITY;
+            non_finite[k] += u32::from(!finite);
+            negative[k] += u32::from(finite & (v < 0.0));
+            let low = if finite { v } else { f32::INFINITY };
+            let high = if finite { v } else { f32::NEG_INFINITY };
+            min[k] = if low < min[k] { low } else { min[k] };
+            max[k] = if high > max[k] { high } else { max[k] };
+        }
+    }
+    for (k, &v) in tail.iter().enumerate() {
         let finite = v.abs() < f32::INFINITY;
         non_finite[k] += u32::from(!finite);
         negative[k] += u32::from(finite & (v < 0.0));
-        let low = if finite { v } else { f32::INFINITY };
-        let high = if finite { v } else { f32::NEG_INFINITY };
-        min[k] = if low < min[k] { low } else { min[k] };
-        max[k] = if high > max[k] { high } else { max[k] };
-    };
-    let mut chunks = values.chunks_exact(LANES);
-    for chunk in &mut chunks {
-        for (k, &v) in chunk.iter().enumerate() {
-            lane(k, v);
+        if finite {
+            min[k] = min[k].min(v);
+            max[k] = max[k].max(v);
         }
-    }
-    for (k, &v) in chunks.remainder().iter().enumerate() {
-        lane(k, v);
     }
     PixelStats {
         non_finite: non_finite.iter().map(|&n| n as usize).sum(),
