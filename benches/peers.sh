@@ -4,12 +4,29 @@
 #
 #   benches/peers.sh [LMAX...]        (default: 2 8 32 128 512)
 #
-# Installs what it needs into target/peers/: ducc0 from PyPI in a virtual
-# environment, Filament's cmgen from the Debian package libfilament-tools
-# when apt can install it (skipped with a note otherwise). Both cores are
-# used by every tool (ducc0 nthreads=2, rayon's default).
+# Environment: PEERS_DIR (default target/peers) holds the virtual
+# environment and the maps; SHLIGHT names the binary to time (default: built
+# here in release, under CARGO_TARGET_DIR or target/).
 #
-# What is timed:
+# Installs what it needs into $PEERS_DIR: ducc0, numpy and OpenEXR (the
+# Academy Software Foundation's Python bindings) from PyPI in a virtual
+# environment, Filament's cmgen from the Debian package libfilament-tools
+# when apt can install it (skipped with a note otherwise). Every tool uses
+# every core (ducc0 nthreads = the core count, rayon's default).
+#
+# Two tables:
+#
+# 1. End to end on a 2048x1024 float OpenEXR (ZIP, the OpenEXR default),
+#    made from envmaps/park.exr by bilinear upsampling: `shlight project
+#    MAP.exr --lmax L --up y|z -o out.json` (process start to exit: read,
+#    statistics, projection, quarter turn for y-up, writing the file)
+#    against the peer pair, OpenEXR's reader plus ducc0's
+#    adjoint_synthesis_2d of the three channels in one Python process
+#    (timed inside the process, so without the interpreter's start and
+#    imports; the pair writes nothing). Medians of 7 runs; ratio =
+#    shlight / pair (below 1: shlight is faster).
+#
+# 2. Against each peer on the generated map below, z-up; what is timed:
 #   shlight   projection alone, in-process (cargo bench --bench projection is
 #             the divan benchmark; here the `shlight project` binary end to end
 #             on the same map as .hdr, minus nothing: decode + project + write)
@@ -18,19 +35,23 @@
 #   cmgen     cmgen --sh=3 end to end from the .hdr (lmax 2 only)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-LMAXES=("${@:-2 8 32 128 512}")
+LMAXES=("$@")
 [ $# -eq 0 ] && LMAXES=(2 8 32 128 512)
-DIR=target/peers
+DIR=${PEERS_DIR:-target/peers}
 mkdir -p "$DIR"
 
-echo "== building shlight (release)"
-cargo build --release --quiet
-SHLIGHT=target/release/shlight
+if [ -z "${SHLIGHT:-}" ]; then
+    echo "== building shlight (release)"
+    cargo build --release --quiet -p shlight
+    SHLIGHT=${CARGO_TARGET_DIR:-target}/release/shlight
+fi
 
 if [ ! -x "$DIR/venv/bin/python" ]; then
-    echo "== installing ducc0 and numpy into $DIR/venv"
     python3 -m venv "$DIR/venv"
-    "$DIR/venv/bin/pip" install --quiet ducc0 numpy
+fi
+if ! "$DIR/venv/bin/python" -c "import ducc0, numpy, OpenEXR" 2>/dev/null; then
+    echo "== installing ducc0, numpy and OpenEXR into $DIR/venv"
+    "$DIR/venv/bin/pip" install --quiet ducc0 numpy OpenEXR
 fi
 PY="$DIR/venv/bin/python"
 
@@ -65,6 +86,49 @@ with open(f"{d}/map.hdr", "wb") as f:
     f.write(rgbe.tobytes())
 PY
 
+echo "== end to end: 2048x1024 float OpenEXR (ZIP) from envmaps/park.exr"
+"$PY" - "$DIR/map.exr" envmaps/park.exr <<'PY'
+import sys, numpy as np, OpenEXR
+out, src = sys.argv[1], sys.argv[2]
+with OpenEXR.File(src) as f:
+    ch = f.channels()
+    # Separate R, G, B channels, or one interleaved "RGB" entry.
+    img = (np.stack([ch[c].pixels for c in "RGB"], -1) if "R" in ch else ch["RGB"].pixels).astype(np.float32)
+H, W = 1024, 2048
+h, w = img.shape[:2]
+ys = (np.arange(H) + .5) * h / H - .5
+xs = (np.arange(W) + .5) * w / W - .5
+y0 = np.clip(np.floor(ys).astype(int), 0, h - 1); y1 = np.clip(y0 + 1, 0, h - 1)
+fy = np.clip(ys - np.floor(ys), 0, 1)[:, None, None]
+x0 = np.floor(xs).astype(int) % w; x1 = (x0 + 1) % w
+fx = (xs - np.floor(xs))[None, :, None]
+top = img[y0][:, x0] * (1 - fx) + img[y0][:, x1] * fx
+bottom = img[y1][:, x0] * (1 - fx) + img[y1][:, x1] * fx
+up = (top * (1 - fy) + bottom * fy).astype(np.float32)
+header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
+channels = {c: OpenEXR.Channel(np.ascontiguousarray(up[..., i])) for i, c in enumerate("RGB")}
+with OpenEXR.File(header, channels) as f:
+    f.write(out)
+PY
+
+pair_ms() { # map lmax -> median ms of OpenEXR read + ducc0 over 7 runs
+    "$PY" - "$@" <<'PY'
+import os, sys, time, statistics, numpy as np, OpenEXR, ducc0
+path, L = sys.argv[1], int(sys.argv[2])
+ts = []
+for _ in range(7):
+    t = time.perf_counter()
+    with OpenEXR.File(path) as f:
+        ch = f.channels()
+        planes = [ch[c].pixels for c in "RGB"] if "R" in ch else [ch["RGB"].pixels[..., c] for c in range(3)]
+    for p in planes:
+        ducc0.sht.experimental.adjoint_synthesis_2d(
+            map=p[None].astype(np.float64), spin=0, lmax=L, geometry="F1", nthreads=os.cpu_count())
+    ts.append(time.perf_counter() - t)
+print(f"{statistics.median(ts) * 1e3:.1f}")
+PY
+}
+
 median_ms() { # command... -> median wall time of 7 runs in ms
     "$PY" - "$@" <<'PY'
 import subprocess, sys, time, statistics
@@ -76,18 +140,30 @@ PY
 }
 
 echo
+echo "end to end (ms, medians of 7; ratio = shlight / pair)"
+printf "%-6s %12s %12s %8s %12s %8s\n" lmax "pair" "shlight y" "ratio" "shlight z" "ratio"
+for L in "${LMAXES[@]}"; do
+    P=$(pair_ms "$DIR/map.exr" "$L")
+    Y=$(median_ms "$SHLIGHT" project "$DIR/map.exr" --up y --lmax "$L" -o "$DIR/out.json" --quiet)
+    Z=$(median_ms "$SHLIGHT" project "$DIR/map.exr" --up z --lmax "$L" -o "$DIR/out.json" --quiet)
+    printf "%-6s %12s %12s %8s %12s %8s\n" "$L" "$P" "$Y" "$("$PY" -c "print(f'{$Y / $P:.2f}')")" \
+        "$Z" "$("$PY" -c "print(f'{$Z / $P:.2f}')")"
+done
+
+echo
+echo "projection alone against ducc0 (ms; the .hdr map; ratio = ducc0 / shlight)"
 printf "%-6s %14s %14s %14s %10s\n" lmax "shlight (ms)" "ducc0 (ms)" "cmgen (ms)" "ducc0/shl"
 for L in "${LMAXES[@]}"; do
     S=$(median_ms "$SHLIGHT" project "$DIR/map.hdr" --up z --lmax "$L" -o "$DIR/out.json" --quiet)
     D=$("$PY" - "$DIR" "$L" <<'PY'
-import sys, time, statistics, numpy as np, ducc0
+import os, sys, time, statistics, numpy as np, ducc0
 d, L = sys.argv[1], int(sys.argv[2])
 img = np.load(f"{d}/map.npy").astype(np.float64)
 ts = []
 for _ in range(7):
     t = time.perf_counter()
     for c in range(3):
-        ducc0.sht.experimental.adjoint_synthesis_2d(map=img[None, :, :, c], spin=0, lmax=L, geometry="F1", nthreads=2)
+        ducc0.sht.experimental.adjoint_synthesis_2d(map=img[None, :, :, c], spin=0, lmax=L, geometry="F1", nthreads=os.cpu_count())
     ts.append(time.perf_counter() - t)
 print(f"{statistics.median(ts) * 1e3:.1f}")
 PY

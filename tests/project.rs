@@ -93,7 +93,7 @@ fn a_constant_map_gives_the_constant_coefficient_and_irradiance_pi() {
     assert_eq!(v["quantity"], "radiance");
     assert_eq!(v["basis"]["condon_shortley_phase"], true);
     assert_eq!(v["frame"], "z-up");
-    // The minimum of a constant is the constant; past lmax 32 the (lmax^4)
+    // The minimum of a constant is the constant; past lmax 16 the (lmax^4)
     // search is skipped and the field is null, so high lmax stays fast.
     let m = &v["statistics"]["minimum"]["green"]["value"];
     assert!((m.as_f64().unwrap() - 2.0).abs() < 1e-3, "{m}");

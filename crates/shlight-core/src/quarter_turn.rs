@@ -14,36 +14,61 @@
 //! ```
 //!
 //! (`conj(U) d U^T` for the unitary `U` from complex to real SH, whose
-//! mixed even-odd entries vanish). `d(π/2)` comes from the three-term
-//! recurrence in the row index at `cos β = 0`,
+//! mixed even-odd entries vanish). At `β = π/2` the reflection
+//! `d_{m m'}(π - β) = (-1)^(l+m) d_{m,-m'}(β)` (Varshalovich, Moskalev &
+//! Khersonskii, *Quantum Theory of Angular Momentum*, 4.4) gives
+//! `d_{a,-b} = (-1)^(l+a) d_{a b}`, so
+//!
+//! ```text
+//! even:  M_{a b}   = s_a s_b d_{a b}   when a + b + l is even, else 0
+//! odd:   M_{-a,-b} = 2 d_{a b}         when a + b + l is odd,  else 0
+//! ```
+//!
+//! with `s_0 = 1`, `s_{b>0} = sqrt2`: each block is a checkerboard, and only
+//! the columns `m' >= 0` of `d` are needed. Both blocks are signed-symmetric
+//! (`d_{m m'} = (-1)^(m-m') d_{m' m}`), with the one sign `(-1)^l` (even) or
+//! `(-1)^(l+1)` (odd) on their non-zero entries, so each row of `d` is used
+//! up to the diagonal only, as it leaves the recurrence; no matrix is stored.
+//! Per band and channel that is about `(l+1)^2 / 2` multiply-adds for the
+//! rows and as many for their transposes.
+//!
+//! `d(π/2)` comes from the three-term recurrence in the row index at
+//! `cos β = 0`,
 //!
 //! ```text
 //! sqrt((l+m)(l-m+1)) d_{m-1,m'} = 2 m' d_{m m'} - sqrt((l-m)(l+m+1)) d_{m+1,m'},
 //! ```
 //!
 //! run from the edge `d_{l m'} = (-1)^(l-m') 2^-l sqrt(C(2l, l+m'))` down to
-//! `m = |m'|`, the direction in which the values grow (stable); the other
-//! entries follow from `d_{m m'} = (-1)^(m-m') d_{m' m} = d_{-m',-m}`.
+//! `m = m'`, the direction in which the values grow (stable); each column
+//! runs on its own, so columns of one parity of `m'` sit side by side in
+//! vector lanes, matching the checkerboard.
 //! A quarter turn about X is `Rz(-π/2) Ry(π/2) Rz(π/2)`, and the `Rz` are
-//! signed swaps within each `(m, -m)` pair.
+//! exact signed swaps within each `(m, -m)` pair, done per band.
 
-use core::f64::consts::FRAC_PI_2;
+use core::f64::consts::SQRT_2;
 
-use crate::rotation::rotate_z;
 use crate::{ShCoeffs, ShValue};
 
 /// The rows of `d^l(π/2)` from `m = l` down to `0`, by the recurrence (see
-/// the module docs), all columns `m'` of a row at once (vector lanes).
+/// the module docs), columns `m' = 0..=m` only, split by the parity of `m'`
+/// (index `k` of part `p` is column `m' = 2k + p`).
 struct HalfPiRows {
     l: usize,
-    /// `2 m'` per column, `m' = -l..=l`.
-    twice_mprime: Vec<f64>,
-    /// Row `m`, exact for `|m'| <= m` (column `l + m'`).
-    cur: Vec<f64>,
+    /// `2 m'` per column of each part.
+    twice_mprime: [Vec<f64>; 2],
+    /// Row `m`, exact for `m' <= m`.
+    cur: [Vec<f64>; 2],
     /// Row `m + 1`.
-    prev: Vec<f64>,
+    prev: [Vec<f64>; 2],
     /// The row `cur` holds; `None` before the first.
     m: Option<usize>,
+}
+
+/// The number of columns `m' = 0..=l` of each parity: even, odd.
+fn parts(l: usize) -> [usize; 2] {
+    // m' = 0, 2, .. <= l and m' = 1, 3, .. <= l.
+    [l / 2 + 1, l.div_ceil(2)]
 }
 
 impl HalfPiRows {
@@ -55,47 +80,62 @@ impl HalfPiRows {
             .map(|k| (2 * k - 1) as f64 / (2 * k) as f64)
             .product::<f64>()
             .sqrt();
-        let mut edge = vec![0.0; 2 * l + 1];
-        edge[l] = if l.is_multiple_of(2) { centre } else { -centre };
+        let mut edge = vec![0.0; l + 1];
+        edge[0] = parity_sign(l) * centre;
         for mp in 0..l {
             // C(2l, l+m'+1) / C(2l, l+m') = (l-m') / (l+m'+1).
             let ratio = ((l - mp) as f64 / (l + mp + 1) as f64).sqrt();
-            edge[l + mp + 1] = -edge[l + mp] * ratio;
-            edge[l - mp - 1] = -edge[l - mp] * ratio;
+            edge[mp + 1] = -edge[mp] * ratio;
         }
+        let split = |v: &[f64], p: usize| v.iter().skip(p).step_by(2).copied().collect::<Vec<_>>();
+        let columns: Vec<f64> = (0..=l).map(|mp| 2.0 * mp as f64).collect();
         Self {
             l,
-            twice_mprime: (0..=2 * l).map(|i| 2.0 * (i as f64 - l as f64)).collect(),
-            cur: edge,
-            prev: vec![0.0; 2 * l + 1],
+            twice_mprime: [split(&columns, 0), split(&columns, 1)],
+            cur: [split(&edge, 0), split(&edge, 1)],
+            prev: parts(l).map(|n| vec![0.0; n]),
             m: None,
         }
     }
 
-    /// The next row `m` and its entries `d_{m m'}` for `m' = -m..=m`.
-    fn next_row(&mut self) -> Option<(usize, &[f64])> {
+    /// The next row `m` and its entries `d_{m m'}`, `m' = 0..=m`, as the
+    /// even-`m'` part (`m / 2 + 1` entries) and the odd-`m'` part
+    /// (`(m + 1) / 2` entries).
+    #[inline(always)]
+    fn next_row<const FMA: bool>(&mut self) -> Option<(usize, [&[f64]; 2])> {
         let l = self.l;
         let m = match self.m {
             None => l,
             Some(0) => return None,
             Some(m) => {
-                // Row m - 1 from rows m and m + 1, columns |m'| <= m - 1.
+                // Row m - 1 from rows m and m + 1, columns m' <= m - 1.
                 let (mf, lf) = (m as f64, l as f64);
                 let up = ((lf - mf) * (lf + mf + 1.0)).sqrt();
                 let inv = 1.0 / ((lf + mf) * (lf - mf + 1.0)).sqrt();
-                let cols = l + 1 - m..l + m;
-                let prev = &mut self.prev[cols.clone()];
-                let cur = &self.cur[cols.clone()];
-                for ((p, &c), &k) in prev.iter_mut().zip(cur).zip(&self.twice_mprime[cols]) {
-                    *p = (k * c - up * *p) * inv;
+                for (p, n) in [(0, m.div_ceil(2)), (1, m / 2)] {
+                    let prev = &mut self.prev[p][..n];
+                    let cur = &self.cur[p][..n];
+                    let k = &self.twice_mprime[p][..n];
+                    for ((p, &c), &k) in prev.iter_mut().zip(cur).zip(k) {
+                        *p = mul_add::<FMA>(k, c, -up * *p) * inv;
+                    }
                 }
                 core::mem::swap(&mut self.prev, &mut self.cur);
                 m - 1
             }
         };
         self.m = Some(m);
-        Some((m, &self.cur[l - m..=l + m]))
+        Some((
+            m,
+            [&self.cur[0][..m / 2 + 1], &self.cur[1][..m.div_ceil(2)]],
+        ))
     }
+}
+
+/// `a b + c`, fused when the kernel is compiled for FMA.
+#[inline(always)]
+fn mul_add<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA { a.mul_add(b, c) } else { a * b + c }
 }
 
 /// `(-1)^n`.
@@ -104,15 +144,12 @@ fn parity_sign(n: usize) -> f64 {
     if n.is_multiple_of(2) { 1.0 } else { -1.0 }
 }
 
+/// Band-`l` values of three channels (unused ones zero), split by the
+/// parity of `|m|`: `v[c][p][k]` is the value at `|m| = 2k + p`.
+type Split = [[Vec<f64>; 2]; 3];
+
 /// Applies the band-`l` block of the quarter turn about Y, `Ry(π/2)`, to
 /// `x` (the `2l + 1` coefficients of band `l`) into `out`.
-///
-/// Row `a` of `d` gives row `a` of the even block `E` and row `-a` of the
-/// odd block `O` (module docs) as each row leaves the recurrence, so no
-/// matrix is stored. Both blocks are signed-symmetric,
-/// `E_{b a} = (-1)^(a+b) E_{a b}` (from `d_{m m'} = (-1)^(m-m') d_{m' m}`
-/// and `d_{a,-b} = d_{b,-a}`), so row `a` is needed only up to the diagonal:
-/// it adds `E_{a b} x_b` to `y_a` and `(-1)^(a+b) E_{a b} x_a` to `y_b`.
 fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
     #[cfg(target_arch = "x86_64")]
     if crate::cpu_features::avx_fma() {
@@ -120,22 +157,23 @@ fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
         unsafe { turn_y_band_avx(l, x, out) };
         return;
     }
-    turn_y_band_body(l, x, out);
+    turn_y_band_body::<C, false>(l, x, out);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
 unsafe fn turn_y_band_avx<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
-    turn_y_band_body(l, x, out);
+    turn_y_band_body::<C, true>(l, x, out);
 }
 
+/// The band's product with the even block `E = S D S` and the odd block
+/// `O = 2 D` (module docs; `D` the checkerboard part of `d`, `S` the
+/// `s_b`): inputs are scaled by `S` on the way in, outputs by `S` (even)
+/// or 2 (odd) on the way out.
 #[inline(always)]
-fn turn_y_band_body<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
+fn turn_y_band_body<C: ShValue<Scalar = f64>, const FMA: bool>(l: usize, x: &[C], out: &mut [C]) {
     debug_assert!(C::CHANNELS <= 3);
-    let sqrt2 = 2f64.sqrt();
-    let signs: Vec<f64> = (0..=l).map(parity_sign).collect();
-    // Per channel (three, unused ones zero): even inputs x_{+b} (b = 0..=l)
-    // and odd inputs x_{-b} (b = 1..=l at index b - 1), and their sums.
+    let scale = |b: usize| if b == 0 { 1.0 } else { SQRT_2 };
     let channel = |c: usize, i: usize| {
         if c < C::CHANNELS {
             x[i].channel(c)
@@ -143,151 +181,207 @@ fn turn_y_band_body<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) 
             0.0
         }
     };
-    let even_in: [Vec<f64>; 3] =
-        core::array::from_fn(|c| (0..=l).map(|b| channel(c, l + b)).collect());
-    let odd_in: [Vec<f64>; 3] =
-        core::array::from_fn(|c| (1..=l).map(|b| channel(c, l - b)).collect());
-    let mut even_out: [Vec<f64>; 3] = core::array::from_fn(|_| vec![0.0; l + 1]);
-    let mut odd_out: [Vec<f64>; 3] = core::array::from_fn(|_| vec![0.0; l]);
-    // Row a of E (b = 0..=a) and of O (b = 1..=a at index b - 1), and the
-    // same times (-1)^b.
-    let (mut e, mut e_signed) = (vec![0.0; l + 1], vec![0.0; l + 1]);
-    let (mut o, mut o_signed) = (vec![0.0; l], vec![0.0; l]);
+    let n = parts(l);
+    // Even inputs S x_{+b}; odd inputs x_{-b} (0 at b = 0, which has none).
+    let even_in: Split = core::array::from_fn(|c| {
+        core::array::from_fn(|p| {
+            (0..n[p])
+                .map(|k| 2 * k + p)
+                .map(|b| scale(b) * channel(c, l + b))
+                .collect()
+        })
+    });
+    let odd_in: Split = core::array::from_fn(|c| {
+        core::array::from_fn(|p| {
+            (0..n[p])
+                .map(|k| 2 * k + p)
+                .map(|b| if b == 0 { 0.0 } else { channel(c, l - b) })
+                .collect()
+        })
+    });
+    let mut even_out: Split = core::array::from_fn(|_| n.map(|len| vec![0.0; len]));
+    let mut odd_out: Split = core::array::from_fn(|_| n.map(|len| vec![0.0; len]));
+    let sign_even = parity_sign(l);
     let mut rows = HalfPiRows::new(l);
-    while let Some((a, d)) = rows.next_row() {
-        // d[a + b] = d_{a b}, d[a - b] = d_{a,-b}.
-        if a == 0 {
-            e[0] = d[0];
-            symmetric_rows(&e[..1], &[], &even_in, &mut even_out, 0, 1.0);
-            continue;
+    while let Some((a, d)) = rows.next_row::<FMA>() {
+        // Non-zero columns of the even block's row a: b = a + l (mod 2);
+        // the odd block's: the other parity (its b = 0 entry meets x = 0).
+        let q = (a + l) % 2;
+        block_row::<FMA>(d[q], a, q, &even_in, &mut even_out, sign_even);
+        if a > 0 {
+            block_row::<FMA>(d[1 - q], a, 1 - q, &odd_in, &mut odd_out, -sign_even);
         }
-        e[0] = sqrt2 * d[a];
-        let plus = &d[a + 1..=2 * a];
-        let minus = d[..a].iter().rev();
-        for ((((eb, ob), &p), &n), &s) in e[1..=a]
-            .iter_mut()
-            .zip(&mut o[..a])
-            .zip(plus)
-            .zip(minus)
-            .zip(&signs[1..=a])
-        {
-            let n = s * n;
-            *eb = p + n;
-            *ob = p - n;
-        }
-        for ((es, &ev), &s) in e_signed[..a].iter_mut().zip(&e[..a]).zip(&signs) {
-            *es = s * ev;
-        }
-        for ((os, &ov), &s) in o_signed[..a - 1]
-            .iter_mut()
-            .zip(&o[..a - 1])
-            .zip(&signs[1..])
-        {
-            *os = s * ov;
-        }
-        let sa = signs[a];
-        symmetric_rows(&e[..=a], &e_signed[..a], &even_in, &mut even_out, a, sa);
-        symmetric_rows(
-            &o[..a],
-            &o_signed[..a - 1],
-            &odd_in,
-            &mut odd_out,
-            a - 1,
-            sa,
-        );
     }
     for c in 0..C::CHANNELS {
         for b in 0..=l {
-            out[l + b].set_channel(c, even_out[c][b]);
+            let (p, k) = (b % 2, b / 2);
+            out[l + b].set_channel(c, scale(b) * even_out[c][p][k]);
             if b > 0 {
-                out[l - b].set_channel(c, odd_out[c][b - 1]);
+                out[l - b].set_channel(c, 2.0 * odd_out[c][p][k]);
             }
         }
     }
 }
 
-/// Row `a` of a signed-symmetric block given up to its diagonal (`row[b]`,
-/// `b = 0..=a`; `signed[b]` = `row[b]` times the block's `(-1)^b`, `b < a`),
-/// for three channels: `y_a += sum_b row[b] x_b` and
-/// `y_b += sign_a x_a signed[b]` for `b < a`.
+/// Row `a` of a signed-symmetric checkerboard block, given up to its
+/// diagonal by `row[k]` (the entry at column `b = 2k + p`), for three
+/// channels: `y_a += sum_b row_b x_b` over `b <= a`, and `y_b += sign x_a
+/// row_b` for `b < a` (the transposed entries).
 #[inline(always)]
-fn symmetric_rows(
+fn block_row<const FMA: bool>(
     row: &[f64],
-    signed: &[f64],
-    x: &[Vec<f64>; 3],
-    y: &mut [Vec<f64>; 3],
     a: usize,
-    sign_a: f64,
+    p: usize,
+    x: &Split,
+    y: &mut Split,
+    sign: f64,
 ) {
-    let xs = x.each_ref().map(|v| &v[..=a]);
-    let mut acc = [[0.0; 4]; 3];
-    let body = row.len() / 4 * 4;
-    for (i, r) in row[..body].chunks_exact(4).enumerate() {
-        for (c, xc) in xs.iter().enumerate() {
-            let xv = &xc[4 * i..4 * i + 4];
-            for k in 0..4 {
-                acc[c][k] += r[k] * xv[k];
-            }
+    let (pa, ka) = (a % 2, a / 2);
+    // The diagonal b = a lies in this parity exactly when a = p (mod 2).
+    let diagonal = pa == p;
+    let n = row.len() - usize::from(diagonal);
+    let xa = [x[0][pa][ka], x[1][pa][ka], x[2][pa][ka]];
+    let alpha = xa.map(|v| sign * v);
+    let r = &row[..n];
+    let [x0, x1, x2] = [&x[0][p][..n], &x[1][p][..n], &x[2][p][..n]];
+    let dot = {
+        let [y0, y1, y2] = y;
+        let ys = [&mut y0[p][..n], &mut y1[p][..n], &mut y2[p][..n]];
+        row_kernel::<FMA>(r, [x0, x1, x2], ys, alpha)
+    };
+    for c in 0..3 {
+        let mut sum = dot[c];
+        if diagonal {
+            sum = mul_add::<FMA>(row[n], xa[c], sum);
         }
-    }
-    for (c, xc) in xs.iter().enumerate() {
-        let mut dot = (acc[c][0] + acc[c][1]) + (acc[c][2] + acc[c][3]);
-        for b in body..row.len() {
-            dot += row[b] * xc[b];
-        }
-        y[c][a] += dot;
-    }
-    let alpha = xs.map(|xc| sign_a * xc[a]);
-    let [y0, y1, y2] = y;
-    for (((y0b, y1b), y2b), &s) in y0[..a]
-        .iter_mut()
-        .zip(&mut y1[..a])
-        .zip(&mut y2[..a])
-        .zip(signed)
-    {
-        *y0b += alpha[0] * s;
-        *y1b += alpha[1] * s;
-        *y2b += alpha[2] * s;
+        y[c][pa][ka] += sum;
     }
 }
 
-/// Rotates coefficients by a quarter turn about Y, `Ry(π/2)`:
-/// `g(d) = f(Ry(π/2)^-1 d)`, bands in parallel with the `rayon` feature.
-fn turn_y<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>) -> ShCoeffs<C> {
-    let lmax = f.lmax();
-    let band = |l: usize| {
-        let mut out = vec![C::ZERO; 2 * l + 1];
-        turn_y_band(l, f.band(l), &mut out);
-        out
-    };
-    #[cfg(feature = "rayon")]
-    let bands: Vec<Vec<C>> = {
-        use rayon::prelude::*;
-        // Largest bands first for load balance.
-        let mut b: Vec<Vec<C>> = (0..lmax + 1)
-            .into_par_iter()
-            .with_max_len(1)
-            .map(|i| band(lmax - i))
-            .collect();
-        b.reverse();
-        b
-    };
-    #[cfg(not(feature = "rayon"))]
-    let bands: Vec<Vec<C>> = (0..=lmax).map(band).collect();
-    let mut out = f.clone();
-    for (l, b) in bands.into_iter().enumerate() {
-        out.band_mut(l).copy_from_slice(&b);
+/// For three channels `c`: returns `sum_i r_i x_c[i]` and adds
+/// `alpha_c r_i` to `y_c[i]`; all slices of one length.
+#[inline(always)]
+fn row_kernel<const FMA: bool>(
+    r: &[f64],
+    x: [&[f64]; 3],
+    y: [&mut [f64]; 3],
+    alpha: [f64; 3],
+) -> [f64; 3] {
+    let n = r.len();
+    assert!(x.iter().all(|v| v.len() == n) && y.iter().all(|v| v.len() == n));
+    #[cfg(target_arch = "x86_64")]
+    if FMA {
+        // SAFETY: FMA kernels run only from `turn_y_band_avx`, after the
+        // CPU was found to have AVX and FMA; the lengths are checked above.
+        return unsafe { row_kernel_avx(r, x, y, alpha) };
     }
-    out
+    let [x0, x1, x2] = x;
+    let [y0, y1, y2] = y;
+    let mut dot = [0.0; 3];
+    for i in 0..n {
+        let ri = r[i];
+        dot[0] = mul_add::<FMA>(ri, x0[i], dot[0]);
+        dot[1] = mul_add::<FMA>(ri, x1[i], dot[1]);
+        dot[2] = mul_add::<FMA>(ri, x2[i], dot[2]);
+        y0[i] = mul_add::<FMA>(alpha[0], ri, y0[i]);
+        y1[i] = mul_add::<FMA>(alpha[1], ri, y1[i]);
+        y2[i] = mul_add::<FMA>(alpha[2], ri, y2[i]);
+    }
+    dot
+}
+
+/// [`row_kernel`] in 256-bit AVX registers with fused multiply-adds, four
+/// entries at a time (the compiler does not vectorise the portable loop's
+/// three dot products and three updates by itself).
+///
+/// # Safety
+/// The CPU must have AVX and FMA; every slice must be as long as `r`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx,fma")]
+unsafe fn row_kernel_avx(
+    r: &[f64],
+    x: [&[f64]; 3],
+    y: [&mut [f64]; 3],
+    alpha: [f64; 3],
+) -> [f64; 3] {
+    use core::arch::x86_64::{
+        __m256d, _mm_add_pd, _mm_cvtsd_f64, _mm_unpackhi_pd, _mm256_castpd256_pd128,
+        _mm256_extractf128_pd, _mm256_fmadd_pd, _mm256_loadu_pd, _mm256_set1_pd, _mm256_setzero_pd,
+        _mm256_storeu_pd,
+    };
+    let n = r.len();
+    let [x0, x1, x2] = x;
+    let [y0, y1, y2] = y;
+    let (a0, a1, a2) = (
+        _mm256_set1_pd(alpha[0]),
+        _mm256_set1_pd(alpha[1]),
+        _mm256_set1_pd(alpha[2]),
+    );
+    let (mut d0, mut d1, mut d2) = (
+        _mm256_setzero_pd(),
+        _mm256_setzero_pd(),
+        _mm256_setzero_pd(),
+    );
+    let mut i = 0;
+    while i + 4 <= n {
+        // SAFETY: i + 4 <= n, the length of every slice.
+        unsafe {
+            let rv = _mm256_loadu_pd(r.as_ptr().add(i));
+            d0 = _mm256_fmadd_pd(rv, _mm256_loadu_pd(x0.as_ptr().add(i)), d0);
+            d1 = _mm256_fmadd_pd(rv, _mm256_loadu_pd(x1.as_ptr().add(i)), d1);
+            d2 = _mm256_fmadd_pd(rv, _mm256_loadu_pd(x2.as_ptr().add(i)), d2);
+            let p0 = y0.as_mut_ptr().add(i);
+            _mm256_storeu_pd(p0, _mm256_fmadd_pd(a0, rv, _mm256_loadu_pd(p0)));
+            let p1 = y1.as_mut_ptr().add(i);
+            _mm256_storeu_pd(p1, _mm256_fmadd_pd(a1, rv, _mm256_loadu_pd(p1)));
+            let p2 = y2.as_mut_ptr().add(i);
+            _mm256_storeu_pd(p2, _mm256_fmadd_pd(a2, rv, _mm256_loadu_pd(p2)));
+        }
+        i += 4;
+    }
+    let sum = |v: __m256d| {
+        let pair = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd::<1>(v));
+        _mm_cvtsd_f64(_mm_add_pd(pair, _mm_unpackhi_pd(pair, pair)))
+    };
+    let mut dot = [sum(d0), sum(d1), sum(d2)];
+    for i in i..n {
+        let ri = r[i];
+        dot[0] = ri.mul_add(x0[i], dot[0]);
+        dot[1] = ri.mul_add(x1[i], dot[1]);
+        dot[2] = ri.mul_add(x2[i], dot[2]);
+        y0[i] = alpha[0].mul_add(ri, y0[i]);
+        y1[i] = alpha[1].mul_add(ri, y1[i]);
+        y2[i] = alpha[2].mul_add(ri, y2[i]);
+    }
+    dot
+}
+
+/// Rotates band `l` about Z by `turns` quarter turns, exactly:
+/// `g^m = c f^m - s f^-m`, `g^-m = c f^-m + s f^m` with
+/// `(c, s) = (cos, sin)(m turns π/2)`, each 0 or ±1 (see
+/// [`crate::rotation::rotate_z`]).
+fn quarter_turn_z_band<C: ShValue<Scalar = f64>>(l: usize, band: &mut [C], turns: i32) {
+    for m in 1..=l {
+        let (ip, im) = (l + m, l - m);
+        let (fp, fm) = (band[ip], band[im]);
+        let (gp, gm) = match (m as i64 * i64::from(turns)).rem_euclid(4) {
+            0 => (fp, fm),
+            1 => (-fm, fp),
+            2 => (-fp, -fm),
+            _ => (fm, -fp),
+        };
+        band[ip] = gp;
+        band[im] = gm;
+    }
 }
 
 /// Rotates coefficients by a quarter turn about X: `turns = 1` for
 /// `Rx(+π/2)` (`(x, y, z) -> (x, -z, y)`), `turns = -1` for `Rx(-π/2)`;
 /// `g(d) = f(R^-1 d)`, the same convention as [`crate::rotation::ShRotation`].
 ///
-/// Equals `rotate_once(f, R)` to rounding, at a fraction of the cost:
-/// `(l+1)^2 + l^2` multiply-adds per band and channel, and no rotation
-/// blocks built by recurrence.
+/// Equals `rotate_once(f, R)` to rounding, at a fraction of the cost: about
+/// `(l+1)^2` multiply-adds per band and channel, and no rotation blocks built
+/// by recurrence. Bands run in parallel with the `rayon` feature.
 ///
 /// # Panics
 /// If `turns` is not `1` or `-1`.
@@ -299,16 +393,50 @@ pub fn quarter_turn_x<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, turns: i32) -> 
     );
     // Rx(±π/2) = Rz(∓π/2) Ry(π/2) Rz(±π/2): Rz(∓π/2) takes +Y to ±X, and
     // rotating coefficients composes the same way (rightmost first).
-    let s = f64::from(turns);
-    rotate_z(&turn_y(&rotate_z(f, s * FRAC_PI_2)), -s * FRAC_PI_2)
+    let band = |l: usize, x: &[C], out: &mut [C]| {
+        let mut y = x.to_vec();
+        quarter_turn_z_band(l, &mut y, turns);
+        turn_y_band(l, &y, out);
+        quarter_turn_z_band(l, out, -turns);
+    };
+    let mut out = ShCoeffs::<C>::zeros(f.lmax());
+    // Bands as disjoint slices, largest first (for load balance).
+    let mut bands: Vec<(usize, &mut [C])> = Vec::with_capacity(f.lmax() + 1);
+    let mut rest = out.as_mut_slice();
+    for l in 0..=f.lmax() {
+        let (head, tail) = rest.split_at_mut(2 * l + 1);
+        bands.push((l, head));
+        rest = tail;
+    }
+    bands.reverse();
+    #[cfg(feature = "rayon")]
+    {
+        use rayon::prelude::*;
+        bands
+            .into_par_iter()
+            .with_max_len(1)
+            .for_each(|(l, o)| band(l, f.band(l), o));
+    }
+    #[cfg(not(feature = "rayon"))]
+    for (l, o) in bands {
+        band(l, f.band(l), o);
+    }
+    out
 }
 
 #[cfg(test)]
 mod tests {
+    use core::f64::consts::FRAC_PI_2;
+
     use glam::{DMat3, DVec3};
 
     use super::*;
-    use crate::rotation::rotate_once;
+    use crate::rotation::{rotate_once, rotate_z};
+
+    /// Rounding of the quarter turn against other routes: a few hundred
+    /// multiply-adds per coefficient at the lmax tested, each within an
+    /// ulp of values of order 1.
+    const TOL: f64 = 1e-12;
 
     fn random(lmax: usize, seed: u64) -> ShCoeffs<DVec3> {
         let mut s = seed;
@@ -322,28 +450,148 @@ mod tests {
         ShCoeffs::from_vec((0..n).map(|_| DVec3::new(next(), next(), next())).collect()).unwrap()
     }
 
-    fn max_diff(a: &ShCoeffs<DVec3>, b: &ShCoeffs<DVec3>) -> f64 {
-        a.as_slice()
-            .iter()
-            .zip(b.as_slice())
+    fn max_diff(a: &[DVec3], b: &[DVec3]) -> f64 {
+        a.iter()
+            .zip(b)
             .map(|(x, y)| (*x - *y).abs().max_element())
             .fold(0.0, f64::max)
     }
 
+    /// The whole of `d^l(π/2)`, `(2l+1)^2` entries (row `l + m`, column
+    /// `l + m'`), from the recurrence run over every column `-l..=l`
+    /// (rows `m >= |m'|`) and the symmetries `d_{m m'} = (-1)^(m-m') d_{m' m}
+    /// = d_{-m',-m}` for the rest: no use of the reflection in `β` that the
+    /// fast route relies on.
+    fn dense_d(l: usize) -> Vec<Vec<f64>> {
+        let li = l as i64;
+        let n = 2 * l + 1;
+        let centre = (1..=l)
+            .map(|k| (2 * k - 1) as f64 / (2 * k) as f64)
+            .product::<f64>()
+            .sqrt();
+        // Row l over all columns.
+        let mut row = vec![0.0; n];
+        row[l] = parity_sign(l) * centre;
+        for mp in 0..l {
+            let ratio = ((l - mp) as f64 / (l + mp + 1) as f64).sqrt();
+            row[l + mp + 1] = -row[l + mp] * ratio;
+            row[l - mp - 1] = -row[l - mp] * ratio;
+        }
+        let mut table = vec![vec![0.0; n]; n]; // valid for m >= |m'|
+        table[n - 1] = row.clone();
+        let mut prev = vec![0.0; n];
+        let mut cur = row;
+        for m in (1..=l).rev() {
+            let (mf, lf) = (m as f64, l as f64);
+            let up = ((lf - mf) * (lf + mf + 1.0)).sqrt();
+            let down = ((lf + mf) * (lf - mf + 1.0)).sqrt();
+            let next: Vec<f64> = (0..n)
+                .map(|j| (2.0 * (j as f64 - lf) * cur[j] - up * prev[j]) / down)
+                .collect();
+            prev = cur;
+            cur = next;
+            table[l + m - 1] = cur.clone();
+        }
+        let t = |m: i64, mp: i64| table[(li + m) as usize][(li + mp) as usize];
+        let sign = |k: i64| if k.rem_euclid(2) == 0 { 1.0 } else { -1.0 };
+        let get = |m: i64, mp: i64| {
+            if m >= mp.abs() {
+                t(m, mp)
+            } else if -m >= mp.abs() {
+                sign(m - mp) * t(-m, -mp)
+            } else if mp >= m.abs() {
+                sign(m - mp) * t(mp, m)
+            } else {
+                t(-mp, -m)
+            }
+        };
+        (-li..=li)
+            .map(|m| (-li..=li).map(|mp| get(m, mp)).collect())
+            .collect()
+    }
+
+    /// `Ry(π/2)` on band `l` by the module docs' first formula, from the
+    /// dense `d`: every entry of both blocks, no checkerboard, no symmetry.
+    fn dense_turn_y(l: usize, x: &[DVec3]) -> Vec<DVec3> {
+        let d = dense_d(l);
+        let at = |m: usize, mp: isize| d[l + m][(l as isize + mp) as usize];
+        let r2 = SQRT_2;
+        let mut y = vec![DVec3::ZERO; 2 * l + 1];
+        for a in 0..=l {
+            for b in 0..=l {
+                let e = match (a, b) {
+                    (0, 0) => at(0, 0),
+                    (_, 0) => r2 * at(a, 0),
+                    (0, _) => r2 * at(0, b as isize),
+                    _ => at(a, b as isize) + parity_sign(b) * at(a, -(b as isize)),
+                };
+                y[l + a] += x[l + b] * e;
+                if a > 0 && b > 0 {
+                    let o = at(a, b as isize) - parity_sign(b) * at(a, -(b as isize));
+                    y[l - a] += x[l - b] * o;
+                }
+            }
+        }
+        y
+    }
+
     #[test]
     fn band_one_of_d_half_pi_is_the_textbook_matrix() {
-        // d^1(β): d_11 = (1+c)/2, d_10 = -s/sqrt2, d_1-1 = (1-c)/2, d_00 = c.
+        // d^1(β): d_11 = (1+c)/2, d_10 = -s/sqrt2, d_00 = c (columns m' >= 0).
         let r = 0.5f64.sqrt();
         let mut rows = HalfPiRows::new(1);
-        let (m, d) = rows.next_row().unwrap();
+        let (m, [even, odd]) = rows.next_row::<false>().unwrap();
         assert_eq!(m, 1);
-        for (got, want) in d.iter().zip([0.5, -r, 0.5]) {
-            assert!((got - want).abs() < 1e-15, "{d:?}");
+        assert!((even[0] + r).abs() < 1e-15 && (odd[0] - 0.5).abs() < 1e-15);
+        let (m, [even, odd]) = rows.next_row::<false>().unwrap();
+        assert_eq!((m, even.len(), odd.len()), (0, 1, 0));
+        assert!(even[0].abs() < 1e-15);
+        assert!(rows.next_row::<false>().is_none());
+    }
+
+    #[test]
+    fn the_dense_reference_is_orthogonal_and_reflects_at_half_pi() {
+        // Checks the reference itself: d d^T = I, and the reflection
+        // d_{m,-m'} = (-1)^(l+m) d_{m m'} the fast route relies on.
+        for l in [1, 2, 7, 20] {
+            let d = dense_d(l);
+            let n = 2 * l + 1;
+            for i in 0..n {
+                for j in 0..n {
+                    let dot: f64 = (0..n).map(|k| d[i][k] * d[j][k]).sum();
+                    let want = if i == j { 1.0 } else { 0.0 };
+                    assert!((dot - want).abs() < TOL, "l {l}: (d d^T)_{i}{j} = {dot}");
+                    let reflected = parity_sign(l + i + l) * d[i][j]; // m = i - l
+                    assert!((d[i][n - 1 - j] - reflected).abs() < TOL, "l {l}");
+                }
+            }
         }
-        let (m, d) = rows.next_row().unwrap();
-        assert_eq!((m, d.len()), (0, 1));
-        assert!(d[0].abs() < 1e-15);
-        assert!(rows.next_row().is_none());
+    }
+
+    #[test]
+    fn fast_band_turn_matches_the_dense_blocks() {
+        for l in [0, 1, 2, 3, 4, 5, 8, 13, 32, 61] {
+            let f = random(l, 3 + l as u64);
+            let x = f.band(l);
+            let want = dense_turn_y(l, x);
+            let mut got = vec![DVec3::ZERO; 2 * l + 1];
+            turn_y_band(l, x, &mut got);
+            let d = max_diff(&got, &want);
+            assert!(d < TOL, "band {l}: {d:e}");
+        }
+    }
+
+    #[test]
+    fn portable_and_vector_kernels_agree() {
+        for l in [0, 1, 6, 33, 200] {
+            let f = random(l, 11 + l as u64);
+            let mut a = vec![DVec3::ZERO; 2 * l + 1];
+            let mut b = vec![DVec3::ZERO; 2 * l + 1];
+            turn_y_band(l, f.band(l), &mut a);
+            turn_y_band_body::<DVec3, false>(l, f.band(l), &mut b);
+            let d = max_diff(&a, &b);
+            assert!(d < TOL, "band {l}: {d:e}");
+        }
     }
 
     #[test]
@@ -351,10 +599,52 @@ mod tests {
         let rx = DMat3::from_cols(DVec3::X, DVec3::Z, DVec3::NEG_Y); // (x,y,z)->(x,-z,y)
         for lmax in [0, 1, 2, 5, 16, 40] {
             let f = random(lmax, 7 + lmax as u64);
-            let d = max_diff(&quarter_turn_x(&f, 1), &rotate_once(&f, rx));
-            assert!(d < 1e-12, "lmax {lmax} +: {d:e}");
-            let d = max_diff(&quarter_turn_x(&f, -1), &rotate_once(&f, rx.transpose()));
-            assert!(d < 1e-12, "lmax {lmax} -: {d:e}");
+            let d = max_diff(
+                quarter_turn_x(&f, 1).as_slice(),
+                rotate_once(&f, rx).as_slice(),
+            );
+            assert!(d < TOL, "lmax {lmax} +: {d:e}");
+            let d = max_diff(
+                quarter_turn_x(&f, -1).as_slice(),
+                rotate_once(&f, rx.transpose()).as_slice(),
+            );
+            assert!(d < TOL, "lmax {lmax} -: {d:e}");
+        }
+    }
+
+    #[test]
+    fn quarter_turns_match_rotation_by_reprojection() {
+        // g(d) = f(R^-1 d) projected by a product rule exact to degree
+        // 2 lmax: an independent route from the Wigner blocks.
+        let lmax = 12;
+        let f = random(lmax, 5);
+        for turns in [1, -1] {
+            let g = ShCoeffs::<DVec3>::project_fn(lmax, 2 * lmax, |d| {
+                let (x, y, z) = (d.x, d.y, d.z);
+                // Rx(+π/2)^-1 (x, y, z) = (x, z, -y); Rx(-π/2)^-1 = (x, -z, y).
+                let back = if turns == 1 {
+                    DVec3::new(x, z, -y)
+                } else {
+                    DVec3::new(x, -z, y)
+                };
+                f.eval(back)
+            });
+            let d = max_diff(quarter_turn_x(&f, turns).as_slice(), g.as_slice());
+            assert!(d < TOL, "turns {turns}: {d:e}");
+        }
+    }
+
+    #[test]
+    fn z_quarter_turns_are_rotate_z() {
+        let f = random(9, 2);
+        for turns in [1, -1, 2, 3] {
+            let mut got = f.clone();
+            for l in 0..=9 {
+                quarter_turn_z_band(l, got.band_mut(l), turns);
+            }
+            let want = rotate_z(&f, f64::from(turns) * FRAC_PI_2);
+            let d = max_diff(got.as_slice(), want.as_slice());
+            assert!(d < TOL, "turns {turns}: {d:e}");
         }
     }
 
@@ -376,12 +666,25 @@ mod tests {
                 }
                 std::mem::swap(&mut y, &mut z);
             }
-            let d = x
-                .iter()
-                .zip(&y)
-                .map(|(a, b)| (*a - *b).abs().max_element())
-                .fold(0.0, f64::max);
+            let d = max_diff(x, &y);
             assert!(d < 1e-10, "band {l}: {d:e}");
+        }
+    }
+
+    #[test]
+    fn scalar_coefficients_turn_like_each_rgb_channel() {
+        let f = random(20, 9);
+        let g = quarter_turn_x(&f, 1);
+        for c in 0..3 {
+            let got = quarter_turn_x(&f.channel(c), 1);
+            let want = g.channel(c);
+            let d = got
+                .as_slice()
+                .iter()
+                .zip(want.as_slice())
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(d < TOL, "channel {c}: {d:e}");
         }
     }
 }

@@ -11,8 +11,15 @@ use shlight_core::{ShCoeffs, lm_from_index};
 use crate::{FormatError, Quantity, Result};
 
 /// Highest lmax whose file gets `statistics.minimum` (the search costs
-/// `O(lmax^4)`: about 80 ms per channel at lmax 32).
-pub const MINIMUM_MAX_LMAX: usize = 32;
+/// `O(lmax^4)`: about 80 ms per channel at lmax 32, more than the rest of
+/// a 2048x1024 projection; about 5 ms at 16).
+pub const MINIMUM_MAX_LMAX: usize = 16;
+
+/// Highest lmax written as pretty-printed JSON (one number per line, for
+/// people); files above it are compact JSON on one line, the same document
+/// (docs/coefficient-file.md), written straight from the coefficients: a
+/// pretty file at lmax 512 is 26 MB of mostly indentation.
+pub const PRETTY_MAX_LMAX: usize = 32;
 
 /// Version of the JSON layout written by this build.
 pub const FORMAT_VERSION: u64 = 1;
@@ -151,6 +158,11 @@ impl CoeffFile {
 
     /// The JSON document (docs/coefficient-file.md).
     pub fn to_json(&self) -> Value {
+        self.document(true)
+    }
+
+    /// The JSON document, with `coefficients` `null` unless `with_rows`.
+    fn document(&self, with_rows: bool) -> Value {
         let rgb = |v: DVec3| json!([v.x, v.y, v.z]);
         // The dense search costs O(lmax^4): beyond MINIMUM_MAX_LMAX it would
         // dominate the run (minutes at lmax 128), so the field is null there.
@@ -191,7 +203,11 @@ impl CoeffFile {
             "mirror": self.mirror,
             "quantity": self.quantity.name(),
             "color_space": "linear-rec709",
-            "coefficients": self.coeffs.as_slice().iter().map(|v| rgb(*v)).collect::<Vec<_>>(),
+            "coefficients": if with_rows {
+                self.coeffs.as_slice().iter().map(|v| rgb(*v)).collect()
+            } else {
+                Value::Null
+            },
             "provenance": {
                 "tool": concat!("shlight ", env!("CARGO_PKG_VERSION")),
                 "input": p.input,
@@ -220,10 +236,35 @@ impl CoeffFile {
         doc
     }
 
-    /// Pretty-printed JSON.
+    /// The file's JSON text: pretty-printed up to [`PRETTY_MAX_LMAX`],
+    /// compact (one line) above it. Both are the document of
+    /// [`CoeffFile::to_json`], with the same numbers.
     #[must_use]
     pub fn to_json_string(&self) -> String {
-        serde_json::to_string_pretty(&self.to_json()).expect("JSON values serialise")
+        if self.coeffs.lmax() <= PRETTY_MAX_LMAX {
+            return serde_json::to_string_pretty(&self.to_json()).expect("JSON values serialise");
+        }
+        // The document without its rows, written member by member, with the
+        // rows written straight from the coefficients in its place: no
+        // value tree of (lmax+1)^2 arrays.
+        let doc = self.document(false);
+        let rows = self.coeffs.as_slice();
+        let mut out = Vec::with_capacity(rows.len() * 3 * 24 + 4096);
+        out.push(b'{');
+        for (i, (key, value)) in doc.as_object().expect("an object").iter().enumerate() {
+            if i > 0 {
+                out.push(b',');
+            }
+            serde_json::to_writer(&mut out, key).expect("writes to memory");
+            out.push(b':');
+            if key == "coefficients" {
+                write_rows(&mut out, rows);
+            } else {
+                serde_json::to_writer(&mut out, value).expect("writes to memory");
+            }
+        }
+        out.push(b'}');
+        String::from_utf8(out).expect("serde_json writes UTF-8")
     }
 
     /// Writes the JSON file to `path` atomically (a temporary file renamed
@@ -518,6 +559,27 @@ pub(crate) fn read_text(path: &Path) -> Result<String> {
     })
 }
 
+/// `rows` as a compact JSON array of `[r, g, b]` arrays, numbers as
+/// serde_json writes them (shortest round-trip form; non-finite as `null`,
+/// as in a value tree).
+fn write_rows(out: &mut Vec<u8>, rows: &[DVec3]) {
+    out.push(b'[');
+    for (i, v) in rows.iter().enumerate() {
+        if i > 0 {
+            out.push(b',');
+        }
+        out.push(b'[');
+        for (c, x) in v.to_array().iter().enumerate() {
+            if c > 0 {
+                out.push(b',');
+            }
+            serde_json::to_writer(&mut *out, x).expect("writes to memory");
+        }
+        out.push(b']');
+    }
+    out.push(b']');
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -582,6 +644,39 @@ mod tests {
         assert_eq!(back.provenance, plain.provenance);
         assert_eq!(back.sanitized, None);
         assert_eq!(back.std_error, None);
+    }
+
+    #[test]
+    fn files_above_the_pretty_lmax_are_compact_with_the_same_document() {
+        let at = |lmax: usize| {
+            let mut file = sample_file();
+            file.coeffs = ShCoeffs::from_fn(lmax, |l, m| {
+                let x = (l * l) as f64 + 0.37 * m as f64;
+                DVec3::new(x.sin(), 1.0 / (1.0 + x), -x.sqrt().exp())
+            });
+            file.std_error = None;
+            file
+        };
+        let pretty = at(PRETTY_MAX_LMAX).to_json_string();
+        assert!(
+            pretty.contains("\n    ["),
+            "pretty rows, one number per line"
+        );
+        let mut file = at(PRETTY_MAX_LMAX + 8);
+        let compact = file.to_json_string();
+        assert!(!compact.contains('\n') && !compact.contains(": "));
+        // serde_json's own serialisation of the value tree, parsed back:
+        // the same document, the same numbers.
+        let parsed: Value = serde_json::from_str(&compact).unwrap();
+        assert_eq!(parsed, file.to_json());
+        let back = CoeffFile::from_json_str(&compact, "c.json").unwrap();
+        assert_eq!(back.coeffs, file.coeffs);
+        assert_eq!(back.provenance, file.provenance);
+        // A non-finite coefficient is null in both, as the value tree has it.
+        file.coeffs[5] = DVec3::new(f64::NAN, f64::INFINITY, 1.0);
+        let parsed: Value = serde_json::from_str(&file.to_json_string()).unwrap();
+        assert_eq!(parsed["coefficients"][5], json!([null, null, 1.0]));
+        assert_eq!(parsed, file.to_json());
     }
 
     #[test]

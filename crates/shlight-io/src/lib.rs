@@ -67,11 +67,14 @@
 
 mod atomic;
 mod error;
+mod exr_compression;
 mod format;
 mod image;
 mod image_codecs;
 mod openexr;
+mod panic_message;
 mod read;
+mod read_options;
 mod srgb;
 mod stats;
 mod tone_map;
@@ -80,10 +83,12 @@ mod write;
 
 pub use crate::atomic::write_atomically;
 pub use crate::error::{IoError, IoErrorKind};
+pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
-pub use crate::read::{ReadOptions, read_image};
+pub use crate::read::read_image;
+pub use crate::read_options::ReadOptions;
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};
 pub use crate::stats::{PixelStats, SanitizeReport};
 pub use crate::tone_map::{ParseToneMapError, ToneMap};
-pub use crate::write::{ExrCompression, WriteOptions, write_image};
+pub use crate::write::{WriteOptions, write_image};

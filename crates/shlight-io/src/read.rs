@@ -3,36 +3,8 @@
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
-use crate::{Format, Image, IoError, IoErrorKind, image_codecs, openexr};
-
-/// How [`read_image`] reads a file.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ReadOptions {
-    /// The OpenEXR layer to read, by name (`""` is the unnamed layer; see
-    /// the crate docs for how layers are named). `None` takes the first
-    /// layer with R, G, B channels, else the first with a lone Y channel.
-    /// Ignored for other formats.
-    pub layer: Option<String>,
-    /// The largest pixel count (width x height) accepted. Larger images are
-    /// refused with [`IoErrorKind::TooLarge`], judged from the file's header
-    /// before any pixel memory is allocated. Default: 2^28 (e.g. 16384 x
-    /// 16384).
-    pub max_pixels: usize,
-}
-
-impl ReadOptions {
-    /// The default [`ReadOptions::max_pixels`], 2^28.
-    pub const DEFAULT_MAX_PIXELS: usize = 1 << 28;
-}
-
-impl Default for ReadOptions {
-    fn default() -> Self {
-        Self {
-            layer: None,
-            max_pixels: Self::DEFAULT_MAX_PIXELS,
-        }
-    }
-}
+use crate::panic_message::panic_message;
+use crate::{Format, Image, IoError, IoErrorKind, ReadOptions, image_codecs, openexr};
 
 /// Reads the image file at `path` as linear RGB.
 ///
@@ -88,13 +60,4 @@ fn decode(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<Image, 
             panic_message(payload.as_ref())
         )))
     })
-}
-
-/// The message of a caught panic.
-pub(crate) fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_owned())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown cause".to_owned())
 }

@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use crate::atomic::write_file_atomically;
-use crate::{Format, Image, IoError, IoErrorKind, ToneMap, image_codecs, openexr};
+use crate::{ExrCompression, Format, Image, IoError, IoErrorKind, ToneMap, image_codecs, openexr};
 
 /// How [`write_image`] writes a file.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,16 +27,6 @@ impl Default for WriteOptions {
             exr_compression: ExrCompression::Zip,
         }
     }
-}
-
-/// The compression of written OpenEXR files; both are lossless.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ExrCompression {
-    /// No compression.
-    None,
-    /// zlib over blocks of 16 scan lines (OpenEXR `ZIP_COMPRESSION`).
-    #[default]
-    Zip,
 }
 
 /// Writes `image` to `path`, in the format its extension names

@@ -93,3 +93,58 @@ fn sanitize_without_a_positive_value_uses_zero_for_infinity() {
     assert_eq!(report.infinity_replacement, 0.0);
     assert_eq!(image.pixels(), &[[0.0; 3]; 2]);
 }
+
+/// `Image::stats` against a plain value-by-value count on an image large
+/// enough for its vector lanes and several of its blocks, with non-finite
+/// and negative values at scattered places (block and lane edges
+/// included).
+#[test]
+fn stats_of_a_large_image_match_a_plain_count() {
+    let (w, h) = (301, 97);
+    let mut state = 12345_u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 40) as u32
+    };
+    let mut pixels: Vec<[f32; 3]> = (0..w * h)
+        .map(|_| std::array::from_fn(|_| next() as f32 / 1e5 - 20.0))
+        .collect();
+    // Positions in channel values: lane and block (3 * 4096) edges.
+    for (i, v) in [
+        (7, f32::NAN),
+        (8, f32::INFINITY),
+        (12287, f32::NEG_INFINITY),
+        (12288, f32::NAN),
+        (30000, -0.0),
+        (w * h * 3 - 1, f32::INFINITY),
+    ] {
+        pixels[i / 3][i % 3] = v;
+    }
+    let image = Image::new(w, h, pixels.clone()).unwrap();
+    let values: Vec<f32> = pixels.iter().flatten().copied().collect();
+    let finite: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let first = values.iter().position(|v| !v.is_finite()).unwrap() / 3;
+    let want = PixelStats {
+        non_finite: values.len() - finite.len(),
+        first_non_finite: Some((first % w, first / w)),
+        negative: finite.iter().filter(|&&v| v < 0.0).count(),
+        min_value: finite.iter().copied().fold(f32::INFINITY, f32::min),
+        max_value: finite.iter().copied().fold(f32::NEG_INFINITY, f32::max),
+    };
+    assert_eq!(image.stats(), want);
+    assert_eq!(want.non_finite, 5);
+    assert_eq!(want.first_non_finite, Some((2, 0)));
+
+    // Moving the first non-finite value into a later block moves the
+    // reported position with it.
+    let mut later = pixels;
+    for i in [7, 8, 12287] {
+        later[i / 3][i % 3] = 1.0;
+    }
+    let image = Image::new(w, h, later).unwrap();
+    let stats = image.stats();
+    assert_eq!(stats.first_non_finite, Some((4096 % w, 4096 / w)));
+    assert_eq!(stats.non_finite, 2);
+}

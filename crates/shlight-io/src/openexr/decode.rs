@@ -22,7 +22,7 @@ use exr::prelude::f16;
 
 use super::inspect;
 use super::layers::{self, Colour};
-use crate::read::panic_message;
+use crate::panic_message::panic_message;
 use crate::{Image, IoErrorKind, ReadOptions};
 
 /// Decodes an OpenEXR file held in `bytes`.
