@@ -76,6 +76,7 @@
 
 pub mod analytic;
 pub mod basis;
+pub mod channel_windows;
 pub mod coeffs;
 mod cpu_features;
 pub mod hardcoded;
@@ -90,6 +91,7 @@ pub mod quarter_turn;
 mod real;
 mod ring_transform;
 pub mod rotation;
+pub mod std_error_rotation;
 mod value;
 pub mod window;
 pub mod zonal;
