@@ -3,12 +3,16 @@
 mod accuracy;
 mod batch;
 mod export;
+#[cfg(feature = "gpu")]
 mod gpu;
 mod layouts_cli;
+#[cfg(not(feature = "gpu"))]
+mod lean;
 mod montecarlo_cli;
 mod project;
 mod prt;
 mod render;
+#[cfg(feature = "gpu")]
 mod shaders;
 mod synth;
 mod util;

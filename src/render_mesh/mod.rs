@@ -11,19 +11,22 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow, bail};
+#[cfg(feature = "gpu")]
+mod gpu;
+
+use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
 use shlight_core::Window;
-use shlight_gpu::{
-    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT,
-    Mode, Shading, render_frame,
-};
-use shlight_io::{Format, Image, ToneMap, WriteOptions, write_image};
+use shlight_io::{Format, ToneMap};
 
-use crate::environment::{Environment, frame_of};
 use crate::progress::Ui;
 use crate::texels::parse_size;
+
+/// `--fov`'s default in degrees: the GPU crate's
+/// `shlight_gpu::DEFAULT_FOV_Y_DEGREES`, here so that builds without the
+/// `gpu` feature parse the same arguments (a test keeps the two equal).
+const DEFAULT_FOV: f32 = 35.0;
 
 /// Arguments of `shlight render-mesh`.
 #[derive(Args, Debug)]
@@ -65,7 +68,7 @@ pub struct RenderMeshArgs {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub target: Option<Vec3>,
     /// Vertical field of view in degrees.
-    #[arg(long, default_value_t = DEFAULT_FOV_Y_DEGREES)]
+    #[arg(long, default_value_t = DEFAULT_FOV)]
     pub fov: f32,
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1024x768", value_parser = parse_size)]
@@ -108,41 +111,6 @@ pub fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
     crate::synth::parse_vec3(s).map(|v| v.as_vec3())
 }
 
-/// The camera for a mesh of `bounds`: `--camera`/`--target`, or framed.
-pub fn camera_for(
-    bounds: (Vec3, Vec3),
-    eye: Option<Vec3>,
-    target: Option<Vec3>,
-    fov_degrees: f32,
-    aspect: f32,
-) -> Result<Camera> {
-    if !(fov_degrees > 1.0 && fov_degrees < 179.0) {
-        bail!("--fov {fov_degrees}: expected degrees between 1 and 179");
-    }
-    let fov = fov_degrees.to_radians();
-    let centre = (bounds.0 + bounds.1) * 0.5;
-    let radius = (bounds.1 - bounds.0).length() * 0.5;
-    let target = target.unwrap_or(centre);
-    Ok(match eye {
-        None if target == centre => Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect),
-        None => {
-            let framed = Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect);
-            Camera::looking_at(
-                framed.eye - centre + target,
-                target,
-                radius + (target - centre).length(),
-                fov,
-            )
-        }
-        Some(eye) => {
-            if (eye - target).length() <= 0.0 {
-                bail!("--camera and --target are the same point");
-            }
-            Camera::looking_at(eye, target, radius + (target - centre).length(), fov)
-        }
-    })
-}
-
 /// Runs `shlight render-mesh`.
 pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     let out = args.output.display().to_string();
@@ -150,83 +118,19 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     if !matches!(format, Some(Format::Exr | Format::Png)) {
         bail!("{out}: render-mesh writes .exr (linear) or .png");
     }
-    crate::gpu_scene::check_lmax(args.lmax)?;
-    let mode = match (args.mode, &args.prt) {
-        (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
-        (Some(mode), _) => mode,
-        (None, Some(_)) => RenderMode::Prt,
-        (None, None) => RenderMode::Sh,
-    };
-    let mut inputs = vec![args.mesh.clone(), args.env.clone()];
-    inputs.extend(args.prt.clone());
-    crate::project::refuse_overwriting(&args.output, &inputs)?;
-    let bar = ui.spinner("reading the mesh");
-    let mesh = shlight_mesh::load(&args.mesh)?;
-    let transfer = match &args.prt {
-        Some(path) => Some(crate::prt_input::load_transfer(path, &mesh, &args.mesh)?),
-        None => None,
-    };
-    bar.set_message("reading the environment");
-    let env = Environment::load(&args.env, frame_of(&args.up))?;
-    if args.background == BackgroundArg::Map && env.map.is_none() {
-        bail!(
-            "--background map needs an environment map; {} holds coefficients (use --background sh)",
-            env.path.display()
-        );
+    #[cfg(feature = "gpu")]
+    return gpu::render(args, format, ui);
+    #[cfg(not(feature = "gpu"))]
+    {
+        let _ = ui;
+        Err(crate::gpu_feature::needs_gpu("render-mesh"))
     }
-    bar.set_message("opening the GPU");
-    let ctx = GpuContext::headless()?;
-    let renderer =
-        crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
-    let lmax = crate::gpu_scene::shading_lmax(
-        args.lmax,
-        transfer.as_ref().filter(|_| mode == RenderMode::Prt),
-    );
-    let (w, h) = args.size;
-    let camera = camera_for(
-        mesh.bounds(),
-        args.camera,
-        args.target,
-        args.fov,
-        w as f32 / h as f32,
-    )?;
-    let shading = Shading {
-        mode: match mode {
-            RenderMode::Sh => Mode::Sh,
-            RenderMode::Prt => Mode::Prt,
-            RenderMode::Normals => Mode::Normals,
-        },
-        lmax,
-        window: args.window,
-        exposure_ev: 0.0,
-        tone_map: None,
-        albedo: args.albedo.to_array(),
-        background: match args.background {
-            BackgroundArg::None => Background::None,
-            BackgroundArg::Map => Background::Map,
-            BackgroundArg::Sh => Background::Sh,
-        },
-    };
-    if env.radiance.lmax() < lmax {
-        ui.note(format!(
-            "{} holds lmax {}; shading to lmax {}",
-            env.path.display(),
-            env.radiance.lmax(),
-            env.radiance.lmax()
-        ));
+}
+
+#[cfg(all(test, feature = "gpu"))]
+mod tests {
+    #[test]
+    fn the_fov_default_is_the_renderers() {
+        assert_eq!(super::DEFAULT_FOV, shlight_gpu::DEFAULT_FOV_Y_DEGREES);
     }
-    bar.set_message(format!("rendering {w}x{h} on {}", ctx.adapter_name()));
-    let frame = render_frame(&ctx, &renderer, &camera, &shading, w, h)?;
-    bar.finish_and_clear();
-    let image = Image::new(w, h, frame.rgb()).map_err(|e| anyhow!("{e}"))?;
-    let options = match format {
-        Some(Format::Png) => WriteOptions {
-            exposure_ev: args.exposure,
-            tone_map: args.tone_map,
-            ..WriteOptions::default()
-        },
-        _ => WriteOptions::default(),
-    };
-    write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))?;
-    Ok(())
 }

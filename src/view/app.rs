@@ -1,0 +1,486 @@
+//! The window of `shlight view`: winit events, the wgpu surface, the
+//! renderer and the egui overlay, frame by frame.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow};
+use shlight_core::{ShRotation, Window};
+use shlight_gpu::wgpu;
+use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, Renderer, Shading};
+use shlight_io::ToneMap;
+use shlight_mesh::Mesh;
+use shlight_prt::ShprtFile;
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::{Key, NamedKey};
+use winit::window::WindowId;
+
+use crate::environment::Environment;
+
+use super::ViewArgs;
+use super::controls::{Controls, WINDOWS};
+use super::orbit_camera::Orbit;
+use super::panel::{PanelInfo, draw_panel};
+use super::screenshot::save_screenshot;
+
+/// Everything that exists once the window does.
+struct Running {
+    window: Arc<winit::window::Window>,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    ctx: GpuContext,
+    renderer: Renderer,
+    depth: wgpu::TextureView,
+    egui_state: egui_winit::State,
+    egui_renderer: egui_wgpu::Renderer,
+}
+
+/// The viewer's state, driven by winit's event loop.
+pub struct App<'a> {
+    args: &'a ViewArgs,
+    mesh: Mesh,
+    /// `--prt`'s transfer, checked against the mesh.
+    transfer: Option<ShprtFile>,
+    env: Environment,
+    running: Option<Running>,
+    controls: Controls,
+    orbit: Option<Orbit>,
+    dragging: Option<(MouseButton, bool)>,
+    shift: bool,
+    cursor: Option<(f64, f64)>,
+    frames: u32,
+    last_frame: Option<Instant>,
+    frame_ms: f64,
+    screenshot_requested: bool,
+    screenshots_taken: u32,
+    message: String,
+    pub error: Option<anyhow::Error>,
+}
+
+impl<'a> App<'a> {
+    pub fn new(
+        args: &'a ViewArgs,
+        mesh: Mesh,
+        transfer: Option<ShprtFile>,
+        env: Environment,
+    ) -> Self {
+        let background = if env.map.is_some() {
+            Background::Map
+        } else {
+            Background::Sh
+        };
+        let mode = if transfer.is_some() {
+            Mode::Prt
+        } else {
+            Mode::Sh
+        };
+        let lmax = crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref());
+        Self {
+            args,
+            mesh,
+            transfer,
+            env,
+            running: None,
+            controls: Controls {
+                shading: Shading {
+                    mode,
+                    lmax,
+                    window: Window::None,
+                    exposure_ev: args.exposure,
+                    tone_map: Some(args.tone_map),
+                    albedo: [0.8; 3],
+                    background,
+                },
+                env_yaw: 0.0,
+                env_pitch: 0.0,
+                window_choice: 0,
+                show_panel: !args.hide_panel,
+            },
+            orbit: None,
+            dragging: None,
+            shift: false,
+            cursor: None,
+            frames: 0,
+            last_frame: None,
+            frame_ms: 0.0,
+            screenshot_requested: false,
+            screenshots_taken: 0,
+            message: String::new(),
+            error: None,
+        }
+    }
+
+    fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let (w, h) = self.args.size;
+        let window = Arc::new(
+            event_loop
+                .create_window(
+                    winit::window::Window::default_attributes()
+                        .with_title("shlight view")
+                        .with_inner_size(winit::dpi::PhysicalSize::new(w as u32, h as u32)),
+                )
+                .context("cannot create a window")?,
+        );
+        let instance = shlight_gpu::new_instance(None);
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| anyhow!("cannot draw into the window: {e}"))?;
+        let ctx = GpuContext::with_instance(instance, Some(&surface))?;
+        let size = window.inner_size();
+        let caps = surface.get_capabilities(&ctx.adapter);
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| f.is_srgb())
+            .or_else(|| caps.formats.first().copied())
+            .ok_or_else(|| anyhow!("the window's surface offers no format"))?;
+        let mut config = surface
+            .get_default_config(&ctx.adapter, size.width.max(1), size.height.max(1))
+            .ok_or_else(|| {
+                anyhow!(
+                    "the window's surface does not work with {}",
+                    ctx.adapter_name()
+                )
+            })?;
+        config.format = format;
+        config.present_mode = wgpu::PresentMode::AutoNoVsync;
+        config.view_formats = vec![];
+        surface.configure(&ctx.device, &config);
+        let renderer = crate::gpu_scene::renderer(
+            &ctx,
+            format,
+            &self.mesh,
+            self.transfer.as_ref(),
+            &self.env,
+        )?;
+        let depth = shlight_gpu::depth_view(&ctx, config.width, config.height);
+        let egui_ctx = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui_ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(ctx.device.limits().max_texture_dimension_2d as usize),
+        );
+        let egui_renderer = egui_wgpu::Renderer::new(&ctx.device, format, Default::default());
+        self.orbit = Some(Orbit::new(
+            self.mesh.bounds(),
+            config.width as f32 / config.height as f32,
+        ));
+        self.message = ctx.adapter_name();
+        self.running = Some(Running {
+            window,
+            surface,
+            config,
+            ctx,
+            renderer,
+            depth,
+            egui_state,
+            egui_renderer,
+        });
+        Ok(())
+    }
+
+    fn resize(&mut self, width: u32, height: u32) {
+        if let Some(r) = &mut self.running
+            && width > 0
+            && height > 0
+        {
+            r.config.width = width;
+            r.config.height = height;
+            r.surface.configure(&r.ctx.device, &r.config);
+            r.depth = shlight_gpu::depth_view(&r.ctx, width, height);
+        }
+    }
+
+    /// One frame: the overlay, the light turned by the environment
+    /// rotation, the scene and the overlay drawn; a screenshot when asked.
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let now = Instant::now();
+        if let Some(last) = self.last_frame {
+            let ms = (now - last).as_secs_f64() * 1e3;
+            self.frame_ms = if self.frame_ms == 0.0 {
+                ms
+            } else {
+                0.9 * self.frame_ms + 0.1 * ms
+            };
+        }
+        self.last_frame = Some(now);
+        self.controls.shading.window = self.controls.window();
+        let rotation = self.controls.rotation();
+        let rotated =
+            ShRotation::from_mat3(self.env.radiance.lmax(), rotation).apply(&self.env.radiance);
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
+        r.renderer.set_light(&r.ctx, &rotated);
+        r.renderer.set_environment_rotation(rotation);
+
+        let raw_input = r.egui_state.take_egui_input(&r.window);
+        let egui_ctx = r.egui_state.egui_ctx().clone();
+        let panel = PanelInfo {
+            fps: if self.frame_ms > 0.0 {
+                1e3 / self.frame_ms
+            } else {
+                0.0
+            },
+            frame_ms: self.frame_ms,
+            adapter: &self.message,
+            coefficients: &rotated,
+            has_map: self.env.map.is_some(),
+            prt: self.transfer.as_ref().map(|t| t.mode.as_str()),
+        };
+        let controls = &mut self.controls;
+        let mut screenshot = false;
+        let full = egui_ctx.run_ui(raw_input, |ui| {
+            if controls.show_panel {
+                screenshot |= draw_panel(ui.ctx(), controls, &panel);
+            }
+        });
+        self.screenshot_requested |= screenshot;
+        r.egui_state
+            .handle_platform_output(&r.window, full.platform_output);
+        let jobs = egui_ctx.tessellate(full.shapes, full.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [r.config.width, r.config.height],
+            pixels_per_point: full.pixels_per_point,
+        };
+        for (id, deltas) in &full.textures_delta.set {
+            for delta in deltas {
+                r.egui_renderer
+                    .update_texture(&r.ctx.device, &r.ctx.queue, *id, delta);
+            }
+        }
+
+        let last_scripted = self
+            .args
+            .screenshot
+            .as_ref()
+            .filter(|_| self.frames + 1 >= self.args.frames);
+        let capture = last_scripted.is_some() || self.screenshot_requested;
+        let frame = match r.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            _ => {
+                // Lost, outdated or timed out: reconfigure and try next frame.
+                r.surface.configure(&r.ctx.device, &r.config);
+                return Ok(());
+            }
+        };
+        let target_view = frame.texture.create_view(&Default::default());
+        // A screenshot renders the same frame into a copyable texture too.
+        let capture_target = capture.then(|| {
+            r.ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("screenshot"),
+                size: frame.texture.size(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: r.config.format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        });
+        let camera = self.orbit.expect("set with the window").camera();
+        let aspect = r.config.width as f32 / r.config.height as f32;
+        let mut encoder = r.ctx.device.create_command_encoder(&Default::default());
+        let mut views = vec![target_view];
+        if let Some(t) = &capture_target {
+            views.push(t.create_view(&Default::default()));
+        }
+        // The overlay's buffers are the same for every target: upload once.
+        let extra = r.egui_renderer.update_buffers(
+            &r.ctx.device,
+            &r.ctx.queue,
+            &mut encoder,
+            &jobs,
+            &screen,
+        );
+        for view in &views {
+            r.renderer.draw(
+                &r.ctx,
+                &mut encoder,
+                view,
+                &r.depth,
+                &camera,
+                aspect,
+                &self.controls.shading,
+            )?;
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("overlay"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            r.egui_renderer
+                .render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        r.ctx
+            .queue
+            .submit(extra.into_iter().chain([encoder.finish()]));
+        for id in &full.textures_delta.free {
+            r.egui_renderer.free_texture(id);
+        }
+        if let Some(texture) = capture_target {
+            let path = match last_scripted {
+                Some(p) => p.clone(),
+                None => {
+                    self.screenshots_taken += 1;
+                    PathBuf::from(format!("shlight-view-{}.png", self.screenshots_taken))
+                }
+            };
+            save_screenshot(&r.ctx, &texture, r.config.format, &path)?;
+            self.screenshot_requested = false;
+            if last_scripted.is_none() {
+                eprintln!("saved {}", path.display());
+            }
+        }
+        r.window.pre_present_notify();
+        r.ctx.queue.present(frame);
+        self.frames += 1;
+        if last_scripted.is_some() {
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    fn key(&mut self, event: &KeyEvent, event_loop: &ActiveEventLoop) {
+        if event.state != ElementState::Pressed {
+            return;
+        }
+        let c = &mut self.controls;
+        match &event.logical_key {
+            Key::Named(NamedKey::Escape) => event_loop.exit(),
+            Key::Named(NamedKey::ArrowLeft) => c.env_yaw -= 0.1,
+            Key::Named(NamedKey::ArrowRight) => c.env_yaw += 0.1,
+            Key::Named(NamedKey::ArrowUp) => c.env_pitch -= 0.1,
+            Key::Named(NamedKey::ArrowDown) => c.env_pitch += 0.1,
+            Key::Character(s) => match s.as_str() {
+                "q" => event_loop.exit(),
+                "m" => {
+                    c.shading.mode = match c.shading.mode {
+                        Mode::Sh if self.transfer.is_some() => Mode::Prt,
+                        Mode::Sh | Mode::Prt => Mode::Normals,
+                        Mode::Normals => Mode::Sh,
+                    }
+                }
+                "b" => {
+                    c.shading.background = match c.shading.background {
+                        Background::None if self.env.map.is_some() => Background::Map,
+                        Background::None | Background::Map => Background::Sh,
+                        Background::Sh => Background::None,
+                    }
+                }
+                "w" => c.window_choice = (c.window_choice + 1) % WINDOWS.len(),
+                "t" => {
+                    let next = match c.shading.tone_map {
+                        Some(ToneMap::Clamp) => ToneMap::Reinhard,
+                        Some(ToneMap::Reinhard) => ToneMap::Aces,
+                        _ => ToneMap::Clamp,
+                    };
+                    c.shading.tone_map = Some(next);
+                }
+                "+" | "=" => c.shading.exposure_ev += 0.5,
+                "-" => c.shading.exposure_ev -= 0.5,
+                "p" => self.screenshot_requested = true,
+                "h" => c.show_panel = !c.show_panel,
+                digit => {
+                    if let Ok(l) = digit.parse::<usize>()
+                        && l <= MAX_LMAX
+                    {
+                        c.shading.lmax = l;
+                    }
+                }
+            },
+            _ => {}
+        }
+    }
+
+    fn drag(&mut self, x: f64, y: f64) {
+        let Some((px, py)) = self.cursor.replace((x, y)) else {
+            return;
+        };
+        let (dx, dy) = ((x - px) as f32, (y - py) as f32);
+        match self.dragging {
+            Some((MouseButton::Left, false)) => {
+                if let Some(o) = &mut self.orbit {
+                    o.yaw -= dx * 0.01;
+                    o.pitch = (o.pitch + dy * 0.01).clamp(-1.5, 1.5);
+                }
+            }
+            Some(_) => {
+                self.controls.env_yaw += f64::from(dx) * 0.01;
+                self.controls.env_pitch += f64::from(dy) * 0.01;
+            }
+            None => {}
+        }
+    }
+}
+
+impl ApplicationHandler for App<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_none()
+            && let Err(e) = self.start(event_loop)
+        {
+            self.error = Some(e);
+            event_loop.exit();
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let consumed = match &mut self.running {
+            Some(r) => r.egui_state.on_window_event(&r.window, &event).consumed,
+            None => false,
+        };
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => self.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.redraw(event_loop) {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            }
+            WindowEvent::ModifiersChanged(m) => self.shift = m.state().shift_key(),
+            WindowEvent::KeyboardInput { event, .. } if !consumed => self.key(&event, event_loop),
+            WindowEvent::MouseInput { state, button, .. } => match state {
+                ElementState::Pressed if !consumed => {
+                    self.dragging = Some((button, self.shift));
+                }
+                _ => self.dragging = None,
+            },
+            WindowEvent::CursorMoved { position, .. } => self.drag(position.x, position.y),
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+                let lines = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                if let Some(o) = &mut self.orbit {
+                    o.distance = (o.distance * 0.9f32.powf(lines)).max(o.radius * 0.2);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        if let Some(r) = &self.running {
+            r.window.request_redraw();
+        }
+    }
+}
