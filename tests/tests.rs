@@ -11,6 +11,7 @@ mod lean;
 mod montecarlo_cli;
 mod project;
 mod prt;
+mod readme;
 mod render;
 #[cfg(feature = "gpu")]
 mod shaders;

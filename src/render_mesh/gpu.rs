@@ -4,8 +4,7 @@
 use anyhow::{Context, Result, anyhow, bail};
 use glam::Vec3;
 use shlight_gpu::{
-    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT,
-    Mode, Shading, render_frame,
+    Background, Camera, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame,
 };
 use shlight_io::{Format, Image, WriteOptions, write_image};
 
