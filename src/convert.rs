@@ -40,7 +40,7 @@ pub struct ConvertArgs {
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
     if let Some(scene) = &args.into {
-        crate::project::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
+        crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
         let input = ExportInput {
             coeffs: &file.coeffs,

@@ -15,9 +15,6 @@ use shlight_io::{Image, ReadOptions, read_image};
 
 use shlight_format::CoeffFile;
 
-/// The bundled map used when no `--env` is given.
-pub const DEFAULT_ENV: &str = "envmaps/default.exr";
-
 /// A light for the GPU commands.
 pub struct Environment {
     /// The file it came from.
@@ -39,7 +36,6 @@ impl Environment {
     /// An unreadable file, a map that is not 2:1, or a coefficient file that
     /// holds irradiance (radiance cannot be recovered from it).
     pub fn load(path: &Path, up: Frame) -> Result<Self> {
-        let name = path.display().to_string();
         let is_json = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"));
@@ -58,6 +54,22 @@ impl Environment {
             });
         }
         let image = read_image(path, &ReadOptions::default())?;
+        Self::from_map(path, image, up)
+    }
+
+    /// The bundled map ([`crate::bundled::ENV_NAME`]), projected as
+    /// [`Environment::load`] projects a map.
+    ///
+    /// # Errors
+    /// The bundled map cannot be decoded (a broken build).
+    pub fn bundled(up: Frame) -> Result<Self> {
+        let image = crate::bundled::env_image()?;
+        Self::from_map(Path::new(crate::bundled::ENV_NAME), image, up)
+    }
+
+    /// An equirect map read from `path`, checked and projected to lmax 8.
+    fn from_map(path: &Path, image: Image, up: Frame) -> Result<Self> {
+        let name = path.display().to_string();
         let (w, h) = (image.width(), image.height());
         if Layout::detect(w, h) != Some(Layout::Equirect) {
             bail!(
@@ -85,9 +97,4 @@ impl Environment {
             orientation,
         })
     }
-}
-
-/// `--up y|z` as a frame.
-pub fn frame_of(up: &str) -> Frame {
-    if up == "z" { Frame::ZUp } else { Frame::YUp }
 }

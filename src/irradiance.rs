@@ -25,8 +25,9 @@ use shlight_core::montecarlo::luminance;
 use shlight_core::projection::MapOrientation;
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 
+use crate::input::{InputLayout, load, parse_input_layout};
+use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
-use crate::project::{InputLayout, load, parse_input_layout, refuse_overwriting};
 use crate::texels::{LayoutArg, TexelGrid, parse_size};
 
 /// Arguments of `shlight irradiance`.
@@ -92,7 +93,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         refuse_overwriting(out, std::slice::from_ref(&args.input))?;
     }
     let orientation = MapOrientation {
-        frame: crate::environment::frame_of(&args.up),
+        frame: crate::input::frame_of(&args.up),
         mirror: args.mirror,
     };
     let read = ReadOptions {

@@ -6,17 +6,28 @@
 //! `shlight-format`.
 
 mod accuracy;
+#[cfg(feature = "gpu")]
+mod bundled;
 mod convert;
+#[cfg(feature = "gpu")]
 mod environment;
+#[cfg(not(feature = "gpu"))]
+mod gpu_feature;
+#[cfg(feature = "gpu")]
 mod gpu_scene;
+mod input;
 mod irradiance;
+mod output_path;
 mod preview;
 mod progress;
 mod project;
 mod prt;
+#[cfg(feature = "gpu")]
 mod prt_input;
 mod render;
 mod render_mesh;
+#[cfg(feature = "gpu")]
+mod runtime_dir;
 mod synth;
 mod texels;
 mod values;
@@ -74,6 +85,13 @@ fn show(path: &std::path::Path) -> anyhow::Result<()> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let ui = progress::Ui::new(cli.quiet);
+    // Only the GPU commands load the Vulkan stack (see runtime_dir.rs).
+    #[cfg(feature = "gpu")]
+    let _runtime_dir = match &cli.command {
+        Command::RenderMesh(_) | Command::View(_) => runtime_dir::ensure_runtime_dir(),
+        Command::Project(args) if args.gpu => runtime_dir::ensure_runtime_dir(),
+        _ => None,
+    };
     let result = match cli.command {
         Command::Project(args) => project::run(&args, &ui),
         Command::Render(args) => render::run(&args, &ui),

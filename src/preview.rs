@@ -14,9 +14,10 @@
 
 use std::path::Path;
 
-use anyhow::Result;
+use anyhow::{Result, anyhow};
 use glam::DVec3;
 use indicatif::ProgressBar;
+use shlight_core::layout::{EnvMap, Layout};
 use shlight_core::projection::MapOrientation;
 use shlight_core::{ShCoeffs, irradiance};
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
@@ -66,6 +67,29 @@ pub fn write_preview(
         },
     )?;
     Ok(())
+}
+
+/// An equirect panel of `panel` size showing a map in another layout,
+/// looked up bilinearly at each texel centre, for `--preview`.
+pub fn equirect_panel(
+    image: &Image,
+    layout: Layout,
+    orientation: MapOrientation,
+    panel: (usize, usize),
+) -> Result<Image> {
+    let map = EnvMap::new(
+        layout,
+        orientation,
+        image.width(),
+        image.height(),
+        image.pixels(),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    let grid = TexelGrid::new(LayoutArg::Equirect, panel, orientation)?;
+    Ok(Image::from_fn(grid.width, grid.height, |x, y| {
+        let d = grid.direction(x, y).unwrap_or(DVec3::Y);
+        map.radiance_bilinear(d).as_vec3().to_array()
+    }))
 }
 
 /// Stops that bring the mean radiance's luminance to 0.18 (0 for a dark map).

@@ -120,7 +120,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     }
     let output_kind = args.output.as_deref().map(output_kind).transpose()?;
     for out in args.output.iter().chain(&args.preview) {
-        crate::project::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
+        crate::output_path::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
     }
     // Read the light first: a bad light file fails before a long bake.
     let light = args

@@ -52,7 +52,7 @@ pub struct RenderArgs {
 /// Runs `shlight render`.
 pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
     let name = args.input.display().to_string();
-    crate::project::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
+    crate::output_path::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
     let file = CoeffFile::read(&args.input)?;
     let coeffs = match (file.quantity, args.irradiance) {
         (Quantity::Radiance, true) => irradiance(&file.coeffs),

@@ -159,7 +159,7 @@ impl Light {
 /// Runs `shlight synth`.
 pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
     let orientation = MapOrientation {
-        frame: crate::environment::frame_of(&args.up),
+        frame: crate::input::frame_of(&args.up),
         mirror: args.mirror,
     };
     let grid = TexelGrid::new(

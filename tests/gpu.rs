@@ -492,3 +492,94 @@ fn render_mesh_shades_a_prt_bake_as_the_sh_irradiance_it_transfers() {
     ]);
     assert!(err.contains("--prt"), "{err}");
 }
+
+#[test]
+fn a_headless_render_prints_no_error_lines() {
+    let test = "a_headless_render_prints_no_error_lines";
+    if !have_gpu(test) {
+        return;
+    }
+    let dir = temp_dir("gpu_headless_quiet");
+    let (mesh, env, out) = (dir.join("s.obj"), dir.join("sky.exr"), dir.join("s.exr"));
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(1.0, 16, 8));
+    write_map(&env, 32, 16, |_, y| [1.0 + y as f32; 3]);
+    // As on a server or in CI: no session, no display.
+    let run = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_shlight"))
+            .args(extra)
+            .env_remove("XDG_RUNTIME_DIR")
+            .env_remove("WAYLAND_DISPLAY")
+            .env_remove("DISPLAY")
+            .output()
+            .unwrap()
+    };
+    let render = run(&[
+        "render-mesh",
+        s(&mesh),
+        "--env",
+        s(&env),
+        "--size",
+        "32x24",
+        "-o",
+        s(&out),
+    ]);
+    let project = run(&["project", s(&env), "--gpu"]);
+    for (what, o) in [("render-mesh", &render), ("project --gpu", &project)] {
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{what}: {stderr}");
+        let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+        assert!(errors.is_empty(), "{what} succeeded but printed {errors:?}");
+    }
+    assert!(out.exists());
+}
+
+#[test]
+fn view_defaults_are_built_in_and_work_from_any_directory() {
+    let test = "view_defaults_are_built_in_and_work_from_any_directory";
+    if !have_gpu(test) {
+        return;
+    }
+    let Some(x) = Xvfb::start() else {
+        skip_gpu(test, "Xvfb cannot be started (apt install xvfb)");
+        return;
+    };
+    // A working directory without meshes/ or envmaps/.
+    let dir = temp_dir("gpu_view_defaults");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shot = |name: &str, files: &[&str]| {
+        let path = dir.join(name);
+        let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
+            .current_dir(&dir)
+            .arg("view")
+            .args(files)
+            .args(["--size", "160x120", "--frames", "2", "--hide-panel"])
+            .args(["--screenshot", s(&path)])
+            .env("DISPLAY", &x.display)
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "view {files:?} from {}: {}",
+            dir.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        read_image(&path, &ReadOptions::default()).unwrap()
+    };
+    let built_in = shot("built_in.png", &[]);
+    let bunny = root.join("meshes/bunny.obj");
+    let env = root.join("envmaps/default.exr");
+    let named = shot("named.png", &[s(&bunny), "--env", s(&env)]);
+    drop(x);
+    // The same files, so the same picture, texel for texel.
+    assert_eq!(built_in.pixels(), named.pixels());
+    let all: Vec<f32> = built_in
+        .pixels()
+        .iter()
+        .map(|p| p[0] + p[1] + p[2])
+        .collect();
+    let (lo, hi) = all
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(a, b), v| (a.min(*v), b.max(*v)));
+    assert!(hi - lo > 0.05, "not blank: luminance {lo}..{hi}");
+}

@@ -254,3 +254,38 @@ fn synth_writes_every_layout_and_previews_read_them() {
         assert!(d[0] > 0.99, "{layout}: sun band 1 {d:?}");
     }
 }
+
+#[test]
+fn a_forced_equirect_map_that_is_not_2_to_1_is_projected_with_a_warning() {
+    let dir = temp_dir("layouts_equirect_aspect");
+    let odd = dir.join("odd.exr");
+    // A constant map: whatever its aspect, equirect geometry covers the
+    // sphere, so L_0^0 = sqrt(4π) and the rest is 0.
+    write_map(&odd, 37, 10, |_, _| [1.0; 3]);
+    let out = shlight(&["project", s(&odd), "--layout", "equirect"]);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let rows = coefficients(&json(&out));
+    // The quadrature's exact texel solid angles sum to 4π to rounding.
+    const SUM_TOL: f64 = 1e-9;
+    assert!(
+        (rows[0][0] - (4.0 * std::f64::consts::PI).sqrt()).abs() < SUM_TOL,
+        "{:?}",
+        rows[0]
+    );
+    let warning: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert!(
+        warning.len() == 1 && warning[0].contains(s(&odd)) && warning[0].contains("37x10"),
+        "{stderr}"
+    );
+    assert!(warning[0].contains("not 2:1"), "{stderr}");
+    // --quiet silences it; a 2:1 map forced to equirect gets none.
+    let quiet = shlight(&["project", s(&odd), "--layout", "equirect", "--quiet"]);
+    assert!(quiet.status.success() && quiet.stderr.is_empty());
+    let fine = dir.join("fine.exr");
+    write_map(&fine, 40, 20, |_, _| [1.0; 3]);
+    let out = shlight(&["project", s(&fine), "--layout", "equirect"]);
+    assert!(out.status.success() && out.stderr.is_empty(), "{out:?}");
+}

@@ -4,14 +4,20 @@ mod accuracy;
 mod batch;
 mod engine_frames;
 mod export;
+#[cfg(feature = "gpu")]
 mod export_shaders;
 mod gltf_asset;
+#[cfg(feature = "gpu")]
 mod gpu;
 mod layouts_cli;
+#[cfg(not(feature = "gpu"))]
+mod lean;
 mod montecarlo_cli;
 mod project;
 mod prt;
+mod readme;
 mod render;
+#[cfg(feature = "gpu")]
 mod shaders;
 mod synth;
 mod util;

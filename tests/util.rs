@@ -208,6 +208,12 @@ pub fn skip_gpu(test: &str, why: &str) {
     skip_unless(test, why, &[REQUIRE_GPU, REQUIRE_ALL]);
 }
 
+/// Prints `SKIPPED test: why` for something no machine can run unattended
+/// (an interactive window), whatever the switches say.
+pub fn skip_interactive(test: &str, why: &str) {
+    skip_unless(test, why, &[]);
+}
+
 /// Panics when one of `switches` is `1`, else prints `SKIPPED test: why`.
 ///
 /// The line is written with `write!` on the process's own stderr handle:

@@ -91,6 +91,7 @@
 pub mod analytic;
 pub mod auto_window;
 pub mod basis;
+pub mod channel_windows;
 pub mod coeffs;
 mod cpu_features;
 mod cube_faces;
@@ -115,6 +116,7 @@ mod rotation_l2;
 mod sh_l1;
 mod sh_l2;
 pub mod sphere_minimum;
+pub mod std_error_rotation;
 mod strided_image;
 mod texel_source;
 mod value;

@@ -1,201 +1,30 @@
-//! `shlight view`: a mesh lit by SH coefficients in a window (winit, wgpu,
-//! an egui overlay).
-//!
-//! Left drag orbits the camera, right drag (or shift + left drag, or the
-//! arrow keys) turns the environment: its radiance coefficients are rotated
-//! on the CPU every frame (`ShRotation`, lmax 8) and the map background
-//! turns with them. Keys: `0`-`8` lmax, `m` mode, `b` background, `w`
-//! window, `t` tone map, `+`/`-` exposure, `p` screenshot, `h` panel,
-//! `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
-//! the last (overlay included) and exits.
+//! The window of `shlight view`: winit events, the wgpu surface, the
+//! renderer and the egui overlay, frame by frame.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow, bail};
-use clap::Args;
-use glam::{DMat3, Vec3};
+use anyhow::{Context, Result, anyhow};
 use shlight_core::{ShRotation, Window};
 use shlight_gpu::wgpu;
-use shlight_gpu::{
-    Background, Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM, GpuContext, MAX_LMAX, Mode,
-    Renderer, Shading,
-};
-use shlight_io::{Image, ToneMap, WriteOptions, srgb_to_linear, write_image};
+use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, Renderer, Shading};
+use shlight_io::ToneMap;
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 use winit::window::WindowId;
 
-use crate::environment::{DEFAULT_ENV, Environment, frame_of};
+use crate::environment::Environment;
 
-/// The mesh `shlight view` shows when given none (relative to the
-/// repository root, like [`DEFAULT_ENV`]).
-pub const DEFAULT_MESH: &str = "meshes/bunny.obj";
-use crate::progress::Ui;
-use crate::texels::parse_size;
-
-/// Arguments of `shlight view`.
-#[derive(Args, Debug)]
-pub struct ViewArgs {
-    /// The mesh (OBJ, PLY, OFF, glTF/GLB).
-    #[arg(default_value = DEFAULT_MESH)]
-    pub mesh: PathBuf,
-    /// PRT transfer baked for this mesh by `shlight prt` (.shprt): starts in
-    /// PRT mode (`m` cycles SH, PRT and normals).
-    #[arg(long, value_name = "FILE.shprt")]
-    pub prt: Option<PathBuf>,
-    /// The light: an equirect map or a radiance coefficient file (.json).
-    #[arg(long, default_value = DEFAULT_ENV)]
-    pub env: PathBuf,
-    /// Which world axis a map's top row faces.
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    pub up: String,
-    /// Highest SH degree shown at start (0..=8) [default: 2; with --prt, the
-    /// transfer's lmax, at most 8].
-    #[arg(long)]
-    pub lmax: Option<usize>,
-    /// Exposure in stops at start.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    pub exposure: f32,
-    /// Tone map at start: clamp, reinhard or aces.
-    #[arg(long, default_value = "aces")]
-    pub tone_map: ToneMap,
-    /// Window size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1280x800", value_parser = parse_size)]
-    pub size: (usize, usize),
-    /// Render --frames frames, save the last to this PNG and exit.
-    #[arg(long, value_name = "FILE.png")]
-    pub screenshot: Option<PathBuf>,
-    /// Frames rendered before --screenshot saves.
-    #[arg(long, default_value_t = 3)]
-    pub frames: u32,
-    /// Start with the overlay panel hidden (`h` toggles it).
-    #[arg(long)]
-    pub hide_panel: bool,
-}
-
-/// Runs `shlight view`.
-pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    crate::gpu_scene::check_lmax(args.lmax)?;
-    if args.frames == 0 {
-        bail!("--frames must be at least 1");
-    }
-    if let Some(path) = &args.screenshot
-        && !path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
-    {
-        bail!("{}: --screenshot writes PNG files", path.display());
-    }
-    let mesh = shlight_mesh::load(&args.mesh)?;
-    let transfer = match &args.prt {
-        Some(path) => {
-            let t = crate::prt_input::load_transfer(path, &mesh, &args.mesh)?;
-            ui.note(format!(
-                "{}: {} transfer to lmax {}, {} channel(s)",
-                path.display(),
-                t.mode,
-                t.lmax,
-                t.channels
-            ));
-            Some(t)
-        }
-        None => None,
-    };
-    let env = Environment::load(&args.env, frame_of(&args.up))?;
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = App::new(args, mesh, transfer, env);
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| anyhow!("window event loop: {e}"))?;
-    match app.error {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
-}
-
-/// The camera orbiting the mesh: yaw about +Y, pitch above the horizon.
-#[derive(Clone, Copy, Debug)]
-struct Orbit {
-    target: Vec3,
-    yaw: f32,
-    pitch: f32,
-    distance: f32,
-    radius: f32,
-}
-
-impl Orbit {
-    fn new(bounds: (Vec3, Vec3), aspect: f32) -> Self {
-        let framed = Camera::framing(
-            bounds,
-            DEFAULT_VIEW_FROM,
-            DEFAULT_FOV_Y_DEGREES.to_radians(),
-            aspect,
-        );
-        let d = (framed.eye - framed.target).normalize();
-        Self {
-            target: framed.target,
-            yaw: d.x.atan2(d.z),
-            pitch: d.y.asin(),
-            distance: (framed.eye - framed.target).length(),
-            radius: (bounds.1 - bounds.0).length() * 0.5,
-        }
-    }
-
-    fn camera(&self) -> Camera {
-        let dir = Vec3::new(
-            self.pitch.cos() * self.yaw.sin(),
-            self.pitch.sin(),
-            self.pitch.cos() * self.yaw.cos(),
-        );
-        Camera::looking_at(
-            self.target + dir * self.distance,
-            self.target,
-            self.radius,
-            DEFAULT_FOV_Y_DEGREES.to_radians(),
-        )
-    }
-}
-
-/// What the panel and keys change.
-struct Controls {
-    shading: Shading,
-    /// Environment rotation: yaw about +Y, then pitch about +X (radians).
-    env_yaw: f64,
-    env_pitch: f64,
-    window_choice: usize,
-    show_panel: bool,
-}
-
-/// The windows offered by the `w` key and the panel.
-const WINDOWS: [(&str, Window); 3] = [
-    ("none", Window::None),
-    ("hanning", Window::Hanning { w: 0.0 }),
-    ("lanczos", Window::Lanczos { w: 0.0 }),
-];
-
-impl Controls {
-    /// The chosen window, of width lmax + 1 (it reaches zero past lmax).
-    fn window(&self) -> Window {
-        let width = (self.shading.lmax + 1) as f64;
-        match WINDOWS[self.window_choice].1 {
-            Window::Hanning { .. } => Window::Hanning { w: width },
-            Window::Lanczos { .. } => Window::Lanczos { w: width },
-            w => w,
-        }
-    }
-
-    fn rotation(&self) -> DMat3 {
-        DMat3::from_rotation_x(self.env_pitch) * DMat3::from_rotation_y(self.env_yaw)
-    }
-}
+use super::ViewArgs;
+use super::controls::{Controls, WINDOWS};
+use super::orbit_camera::Orbit;
+use super::panel::{PanelInfo, draw_panel};
+use super::screenshot::save_screenshot;
 
 /// Everything that exists once the window does.
 struct Running {
@@ -209,7 +38,8 @@ struct Running {
     egui_renderer: egui_wgpu::Renderer,
 }
 
-struct App<'a> {
+/// The viewer's state, driven by winit's event loop.
+pub struct App<'a> {
     args: &'a ViewArgs,
     mesh: Mesh,
     /// `--prt`'s transfer, checked against the mesh.
@@ -227,11 +57,16 @@ struct App<'a> {
     screenshot_requested: bool,
     screenshots_taken: u32,
     message: String,
-    error: Option<anyhow::Error>,
+    pub error: Option<anyhow::Error>,
 }
 
 impl<'a> App<'a> {
-    fn new(args: &'a ViewArgs, mesh: Mesh, transfer: Option<ShprtFile>, env: Environment) -> Self {
+    pub fn new(
+        args: &'a ViewArgs,
+        mesh: Mesh,
+        transfer: Option<ShprtFile>,
+        env: Environment,
+    ) -> Self {
         let background = if env.map.is_some() {
             Background::Map
         } else {
@@ -648,130 +483,4 @@ impl ApplicationHandler for App<'_> {
             r.window.request_redraw();
         }
     }
-}
-
-/// What the panel shows besides the controls.
-struct PanelInfo<'a> {
-    fps: f64,
-    frame_ms: f64,
-    adapter: &'a str,
-    coefficients: &'a shlight_core::ShCoeffs<glam::DVec3>,
-    has_map: bool,
-    /// The `--prt` file's mode (`shadowed`, ...), when there is one.
-    prt: Option<&'a str>,
-}
-
-/// The overlay panel; returns whether its screenshot button was pressed.
-fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -> bool {
-    let mut screenshot = false;
-    egui::Window::new("shlight")
-        .default_pos([10.0, 10.0])
-        .resizable(false)
-        .show(ctx, |ui| {
-            ui.label(format!("{:.0} fps ({:.2} ms)", info.fps, info.frame_ms));
-            ui.label(info.adapter);
-            ui.add(egui::Slider::new(&mut c.shading.lmax, 0..=MAX_LMAX).text("lmax"));
-            ui.horizontal(|ui| {
-                ui.label("mode");
-                ui.radio_value(&mut c.shading.mode, Mode::Sh, "SH irradiance");
-                if let Some(prt) = info.prt {
-                    ui.radio_value(&mut c.shading.mode, Mode::Prt, format!("PRT ({prt})"));
-                }
-                ui.radio_value(&mut c.shading.mode, Mode::Normals, "normals");
-            });
-            ui.horizontal(|ui| {
-                ui.label("background");
-                ui.radio_value(&mut c.shading.background, Background::None, "none");
-                if info.has_map {
-                    ui.radio_value(&mut c.shading.background, Background::Map, "map");
-                }
-                ui.radio_value(&mut c.shading.background, Background::Sh, "SH");
-            });
-            ui.horizontal(|ui| {
-                ui.label("window");
-                for (k, (name, _)) in WINDOWS.iter().enumerate() {
-                    ui.radio_value(&mut c.window_choice, k, *name);
-                }
-            });
-            ui.add(egui::Slider::new(&mut c.shading.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
-            ui.horizontal(|ui| {
-                ui.label("tone map");
-                for tm in ToneMap::ALL {
-                    ui.radio_value(&mut c.shading.tone_map, Some(tm), tm.name());
-                }
-            });
-            ui.add(egui::Slider::new(&mut c.env_yaw, -3.2..=3.2).text("environment yaw"));
-            ui.add(egui::Slider::new(&mut c.env_pitch, -1.6..=1.6).text("environment pitch"));
-            screenshot = ui.button("screenshot (p)").clicked();
-            ui.collapsing("coefficients (rotated radiance, R G B)", |ui| {
-                egui::ScrollArea::vertical()
-                    .max_height(220.0)
-                    .show(ui, |ui| {
-                        for l in 0..=c.shading.lmax.min(info.coefficients.lmax()) {
-                            for m in -(l as isize)..=l as isize {
-                                let v = info.coefficients[(l, m)];
-                                ui.monospace(format!(
-                                    "l={l} m={m:+} {:+.4} {:+.4} {:+.4}",
-                                    v.x, v.y, v.z
-                                ));
-                            }
-                        }
-                    });
-            });
-            ui.small("drag: orbit · right/shift drag, arrows: environment · 0-8 m b w t +/- p h q");
-        });
-    screenshot
-}
-
-/// Reads an 8-bit RGBA or BGRA texture back and writes it as PNG.
-fn save_screenshot(
-    ctx: &GpuContext,
-    texture: &wgpu::Texture,
-    format: wgpu::TextureFormat,
-    path: &Path,
-) -> Result<()> {
-    let size = texture.size();
-    let (w, h) = (size.width as usize, size.height as usize);
-    let padded = (size.width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("screenshot"),
-        size: u64::from(padded) * h as u64,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: None,
-            },
-        },
-        size,
-    );
-    ctx.queue.submit([encoder.finish()]);
-    let bytes = shlight_gpu::read_buffer(ctx, &buffer).context("screenshot")?;
-    let bgra = matches!(
-        format,
-        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-    );
-    let mut pixels = Vec::with_capacity(w * h);
-    for row in bytes.chunks_exact(padded as usize).take(h) {
-        for p in row[..w * 4].chunks_exact(4) {
-            let (r, g, b) = if bgra {
-                (p[2], p[1], p[0])
-            } else {
-                (p[0], p[1], p[2])
-            };
-            // The target holds sRGB-encoded values; the writer encodes linear ones.
-            pixels.push([r, g, b].map(|v| srgb_to_linear(f32::from(v) / 255.0)));
-        }
-    }
-    let image = Image::new(w, h, pixels).map_err(|e| anyhow!("{e}"))?;
-    write_image(path, &image, &WriteOptions::default())
-        .with_context(|| format!("{}: writing the screenshot", path.display()))?;
-    Ok(())
 }

@@ -1,0 +1,134 @@
+//! The GPU half of `shlight render-mesh` (the `gpu` feature): the camera,
+//! the headless context, the frame and its file.
+
+use anyhow::{Context, Result, anyhow, bail};
+use glam::Vec3;
+use shlight_gpu::{
+    Background, Camera, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame,
+};
+use shlight_io::{Format, Image, WriteOptions, write_image};
+
+use crate::environment::Environment;
+use crate::input::frame_of;
+use crate::progress::Ui;
+
+use super::{BackgroundArg, RenderMeshArgs, RenderMode};
+
+/// The camera for a mesh of `bounds`: `--camera`/`--target`, or framed.
+pub fn camera_for(
+    bounds: (Vec3, Vec3),
+    eye: Option<Vec3>,
+    target: Option<Vec3>,
+    fov_degrees: f32,
+    aspect: f32,
+) -> Result<Camera> {
+    if !(fov_degrees > 1.0 && fov_degrees < 179.0) {
+        bail!("--fov {fov_degrees}: expected degrees between 1 and 179");
+    }
+    let fov = fov_degrees.to_radians();
+    let centre = (bounds.0 + bounds.1) * 0.5;
+    let radius = (bounds.1 - bounds.0).length() * 0.5;
+    let target = target.unwrap_or(centre);
+    Ok(match eye {
+        None if target == centre => Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect),
+        None => {
+            let framed = Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect);
+            Camera::looking_at(
+                framed.eye - centre + target,
+                target,
+                radius + (target - centre).length(),
+                fov,
+            )
+        }
+        Some(eye) => {
+            if (eye - target).length() <= 0.0 {
+                bail!("--camera and --target are the same point");
+            }
+            Camera::looking_at(eye, target, radius + (target - centre).length(), fov)
+        }
+    })
+}
+
+/// Renders the checked `args` to `format` on the GPU.
+pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<()> {
+    let out = args.output.display().to_string();
+    crate::gpu_scene::check_lmax(args.lmax)?;
+    let mode = match (args.mode, &args.prt) {
+        (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
+        (Some(mode), _) => mode,
+        (None, Some(_)) => RenderMode::Prt,
+        (None, None) => RenderMode::Sh,
+    };
+    let mut inputs = vec![args.mesh.clone(), args.env.clone()];
+    inputs.extend(args.prt.clone());
+    crate::output_path::refuse_overwriting(&args.output, &inputs)?;
+    let bar = ui.spinner("reading the mesh");
+    let mesh = shlight_mesh::load(&args.mesh)?;
+    let transfer = match &args.prt {
+        Some(path) => Some(crate::prt_input::load_transfer(path, &mesh, &args.mesh)?),
+        None => None,
+    };
+    bar.set_message("reading the environment");
+    let env = Environment::load(&args.env, frame_of(&args.up))?;
+    if args.background == BackgroundArg::Map && env.map.is_none() {
+        bail!(
+            "--background map needs an environment map; {} holds coefficients (use --background sh)",
+            env.path.display()
+        );
+    }
+    bar.set_message("opening the GPU");
+    let ctx = GpuContext::headless()?;
+    let renderer =
+        crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
+    let lmax = crate::gpu_scene::shading_lmax(
+        args.lmax,
+        transfer.as_ref().filter(|_| mode == RenderMode::Prt),
+    );
+    let (w, h) = args.size;
+    let camera = camera_for(
+        mesh.bounds(),
+        args.camera,
+        args.target,
+        args.fov,
+        w as f32 / h as f32,
+    )?;
+    let shading = Shading {
+        mode: match mode {
+            RenderMode::Sh => Mode::Sh,
+            RenderMode::Prt => Mode::Prt,
+            RenderMode::Normals => Mode::Normals,
+        },
+        lmax,
+        window: args.window,
+        exposure_ev: 0.0,
+        tone_map: None,
+        albedo: args.albedo.to_array(),
+        background: match args.background {
+            BackgroundArg::None => Background::None,
+            BackgroundArg::Map => Background::Map,
+            BackgroundArg::Sh => Background::Sh,
+        },
+    };
+    if env.radiance.lmax() < lmax {
+        ui.note(format!(
+            "{} holds lmax {}; shading to lmax {}",
+            env.path.display(),
+            env.radiance.lmax(),
+            env.radiance.lmax()
+        ));
+    }
+    bar.set_message(format!("rendering {w}x{h} on {}", ctx.adapter_name()));
+    let frame = render_frame(&ctx, &renderer, &camera, &shading, w, h)?;
+    bar.finish_and_clear();
+    let image = Image::new(w, h, frame.rgb()).map_err(|e| anyhow!("{e}"))?;
+    let options = match format {
+        Some(Format::Png) => WriteOptions {
+            exposure_ev: args.exposure,
+            tone_map: args.tone_map,
+            ..WriteOptions::default()
+        },
+        _ => WriteOptions::default(),
+    };
+    write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))?;
+    Ok(())
+}

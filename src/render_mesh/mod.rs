@@ -1,0 +1,136 @@
+//! `shlight render-mesh`: a mesh lit by SH coefficients, rendered on the
+//! GPU without a window.
+//!
+//! Each fragment shows the Lambertian radiance `ρ/π Σ_l A_l w_l Σ_m L_lm
+//! Y_lm(n)` at its interpolated unit normal (`--mode sh`), the per-vertex
+//! PRT radiance `T_v · L` of a `.shprt` file, interpolated (`--mode prt`),
+//! or the world normal itself (`--mode normals`, background 0). The frame is rendered in
+//! linear `f32`: EXR output holds those values untouched (no exposure, no
+//! tone map); PNG output gets `--exposure` and `--tone-map` on the CPU, as
+//! `shlight render` does.
+
+use std::path::PathBuf;
+
+#[cfg(feature = "gpu")]
+mod gpu;
+
+use anyhow::{Result, bail};
+use clap::{Args, ValueEnum};
+use glam::Vec3;
+use shlight_core::Window;
+use shlight_io::{Format, ToneMap};
+
+use crate::progress::Ui;
+use crate::texels::parse_size;
+
+/// `--fov`'s default in degrees: the GPU crate's
+/// `shlight_gpu::DEFAULT_FOV_Y_DEGREES`, here so that builds without the
+/// `gpu` feature parse the same arguments (a test keeps the two equal).
+const DEFAULT_FOV: f32 = 35.0;
+
+/// Arguments of `shlight render-mesh`.
+#[derive(Args, Debug)]
+pub struct RenderMeshArgs {
+    /// The mesh (OBJ, PLY, OFF, glTF/GLB).
+    pub mesh: PathBuf,
+    /// The light: an equirect map (projected to lmax 8) or a radiance
+    /// coefficient file (.json).
+    #[arg(long)]
+    pub env: PathBuf,
+    /// Which world axis a map's top row faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// What the mesh shows: SH irradiance shading, PRT (needs --prt), or
+    /// world unit normals [default: prt with --prt, else sh].
+    #[arg(long, value_enum)]
+    pub mode: Option<RenderMode>,
+    /// PRT transfer baked for this mesh by `shlight prt` (.shprt): each
+    /// vertex shows transfer · light (albedo is in the transfer).
+    #[arg(long, value_name = "FILE.shprt")]
+    pub prt: Option<PathBuf>,
+    /// Highest SH degree of the light used (0..=8) [default: 2; with --prt,
+    /// the transfer's lmax, at most 8].
+    #[arg(long)]
+    pub lmax: Option<usize>,
+    /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
+    #[arg(long, default_value = "none")]
+    pub window: Window,
+    /// Lambertian albedo, R,G,B (linear).
+    #[arg(long, default_value = "0.8,0.8,0.8", value_parser = parse_vec3)]
+    pub albedo: Vec3,
+    /// Behind the mesh: none (0), map (the --env map) or sh (its SH reconstruction).
+    #[arg(long, value_enum, default_value_t = BackgroundArg::None)]
+    pub background: BackgroundArg,
+    /// Camera position X,Y,Z [default: framing the mesh from the front, +Z, a little above].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub camera: Option<Vec3>,
+    /// The point the camera looks at [default: the centre of the mesh's bounds].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<Vec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long, default_value_t = DEFAULT_FOV)]
+    pub fov: f32,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1024x768", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// PNG only: exposure in stops.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// PNG only: tone map (clamp, reinhard, aces).
+    #[arg(long, default_value = "aces")]
+    pub tone_map: ToneMap,
+    /// The image to write: .exr (linear) or .png.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// `--mode` of `render-mesh`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum RenderMode {
+    /// Per-fragment SH irradiance, times albedo / π.
+    Sh,
+    /// Per-vertex PRT transfer · light (`--prt`), interpolated.
+    Prt,
+    /// World-space unit normals (background 0).
+    Normals,
+}
+
+/// `--background`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BackgroundArg {
+    /// Nothing (0).
+    None,
+    /// The environment map (needs a map, not a coefficient file).
+    Map,
+    /// The SH reconstruction of the light to --lmax.
+    Sh,
+}
+
+/// `X,Y,Z` as a vector (`synth`'s parser, in f32).
+pub fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
+    crate::synth::parse_vec3(s).map(|v| v.as_vec3())
+}
+
+/// Runs `shlight render-mesh`.
+pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
+    let out = args.output.display().to_string();
+    let format = Format::from_extension(&args.output);
+    if !matches!(format, Some(Format::Exr | Format::Png)) {
+        bail!("{out}: render-mesh writes .exr (linear) or .png");
+    }
+    #[cfg(feature = "gpu")]
+    return gpu::render(args, format, ui);
+    #[cfg(not(feature = "gpu"))]
+    {
+        let _ = ui;
+        Err(crate::gpu_feature::needs_gpu("render-mesh"))
+    }
+}
+
+#[cfg(all(test, feature = "gpu"))]
+mod tests {
+    #[test]
+    fn the_fov_default_is_the_renderers() {
+        assert_eq!(super::DEFAULT_FOV, shlight_gpu::DEFAULT_FOV_Y_DEGREES);
+    }
+}

@@ -1,0 +1,147 @@
+//! `shlight view`: a mesh lit by SH coefficients in a window (winit, wgpu,
+//! an egui overlay).
+//!
+//! Left drag orbits the camera, right drag (or shift + left drag, or the
+//! arrow keys) turns the environment: its radiance coefficients are rotated
+//! on the CPU every frame (`ShRotation`, lmax 8) and the map background
+//! turns with them. Keys: `0`-`8` lmax, `m` mode, `b` background, `w`
+//! window, `t` tone map, `+`/`-` exposure, `p` screenshot, `h` panel,
+//! `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
+//! the last (overlay included) and exits.
+//!
+//! Files: `app.rs` (the window, the GPU surface and the event loop),
+//! `orbit_camera.rs` (the camera orbiting the mesh), `controls.rs` (what the
+//! panel and keys change), `panel.rs` (the egui overlay), `screenshot.rs`
+//! (the swapchain image read back to PNG).
+
+#[cfg(feature = "gpu")]
+mod app;
+#[cfg(feature = "gpu")]
+mod controls;
+#[cfg(feature = "gpu")]
+mod orbit_camera;
+#[cfg(feature = "gpu")]
+mod panel;
+#[cfg(feature = "gpu")]
+mod screenshot;
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use clap::Args;
+use shlight_io::ToneMap;
+
+use crate::progress::Ui;
+use crate::texels::parse_size;
+
+/// Arguments of `shlight view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// The mesh (OBJ, PLY, OFF, glTF/GLB) [default: the Stanford bunny,
+    /// meshes/bunny.obj, built into shlight].
+    pub mesh: Option<PathBuf>,
+    /// PRT transfer baked for this mesh by `shlight prt` (.shprt): starts in
+    /// PRT mode (`m` cycles SH, PRT and normals).
+    #[arg(long, value_name = "FILE.shprt")]
+    pub prt: Option<PathBuf>,
+    /// The light: an equirect map or a radiance coefficient file (.json)
+    /// [default: envmaps/default.exr, built into shlight].
+    #[arg(long)]
+    pub env: Option<PathBuf>,
+    /// Which world axis a map's top row faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Highest SH degree shown at start (0..=8) [default: 2; with --prt, the
+    /// transfer's lmax, at most 8].
+    #[arg(long)]
+    pub lmax: Option<usize>,
+    /// Exposure in stops at start.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map at start: clamp, reinhard or aces.
+    #[arg(long, default_value = "aces")]
+    pub tone_map: ToneMap,
+    /// Window size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x800", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// Render --frames frames, save the last to this PNG and exit.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<PathBuf>,
+    /// Frames rendered before --screenshot saves.
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
+    /// Start with the overlay panel hidden (`h` toggles it).
+    #[arg(long)]
+    pub hide_panel: bool,
+}
+
+/// Runs `shlight view`.
+pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    if let Some(path) = &args.screenshot
+        && !path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        bail!("{}: --screenshot writes PNG files", path.display());
+    }
+    #[cfg(feature = "gpu")]
+    return show(args, ui);
+    #[cfg(not(feature = "gpu"))]
+    {
+        let _ = ui;
+        Err(crate::gpu_feature::needs_gpu("view"))
+    }
+}
+
+/// Opens the window and runs its event loop until it closes.
+#[cfg(feature = "gpu")]
+fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
+    use anyhow::anyhow;
+    use winit::event_loop::{ControlFlow, EventLoop};
+
+    use crate::environment::Environment;
+    use crate::input::frame_of;
+
+    crate::gpu_scene::check_lmax(args.lmax)?;
+    let mesh_path = args
+        .mesh
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(crate::bundled::MESH_NAME));
+    let mesh = match &args.mesh {
+        Some(path) => shlight_mesh::load(path)?,
+        None => crate::bundled::mesh()?,
+    };
+    let transfer = match &args.prt {
+        Some(path) => {
+            let t = crate::prt_input::load_transfer(path, &mesh, &mesh_path)?;
+            ui.note(format!(
+                "{}: {} transfer to lmax {}, {} channel(s)",
+                path.display(),
+                t.mode,
+                t.lmax,
+                t.channels
+            ));
+            Some(t)
+        }
+        None => None,
+    };
+    let up = frame_of(&args.up);
+    let env = match &args.env {
+        Some(path) => Environment::load(path, up)?,
+        None => Environment::bundled(up)?,
+    };
+    let event_loop = EventLoop::new()
+        .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut app = app::App::new(args, mesh, transfer, env);
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow!("window event loop: {e}"))?;
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
