@@ -22,6 +22,7 @@ use serde_json::{Value, json};
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, analytic, irradiance};
 
+#[cfg(feature = "gpu")]
 use crate::export_shaders;
 use crate::util::{have_tool, shlight, temp_dir};
 
@@ -711,6 +712,7 @@ fn hlsl_snippet_compiled_as_cpp_gives_shlight_values() {
     }
 }
 
+#[cfg(feature = "gpu")]
 /// GLSL's array constructors `T[n](a, b)` become C++ initialisers `{a, b}`;
 /// everything else is compiled verbatim.
 fn glsl_as_cpp(text: &str) -> String {
@@ -739,6 +741,7 @@ fn glsl_as_cpp(text: &str) -> String {
     out
 }
 
+#[cfg(feature = "gpu")]
 #[test]
 fn glsl_snippet_validates_and_compiled_as_cpp_gives_shlight_values() {
     let dir = temp_dir("export_glsl");
@@ -772,6 +775,7 @@ fn glsl_snippet_validates_and_compiled_as_cpp_gives_shlight_values() {
 
 // ---------------------------------------------------------------- WGSL
 
+#[cfg(feature = "gpu")]
 /// The statements of `shlight_expand` (its signature from the name on) with
 /// declarations and types spelled out of the way, to compare two languages
 /// statement by statement. WGSL has no `?:`: its band weight
@@ -819,6 +823,7 @@ fn expand_statements(text: &str) -> Vec<String> {
     out
 }
 
+#[cfg(feature = "gpu")]
 #[test]
 fn wgsl_snippet_validates_holds_the_numbers_and_is_the_tested_evaluator() {
     let dir = temp_dir("export_wgsl");

@@ -229,6 +229,7 @@ fn skip_unless(test: &str, why: &str, switches: &[&str]) {
 
 /// The headless GPU context, or `None` after [`skip_gpu`] when there is no
 /// adapter.
+#[cfg(feature = "gpu")]
 pub fn gpu_context(test: &str) -> Option<shlight_gpu::GpuContext> {
     match shlight_gpu::GpuContext::headless() {
         Ok(ctx) => Some(ctx),
