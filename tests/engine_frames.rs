@@ -87,6 +87,34 @@ fn export(dir: &Path, spot: (usize, usize), format: &str, ext: &str) -> String {
     std::fs::read_to_string(out).unwrap()
 }
 
+/// Exports the map of each of [`SPOTS`] in `format`, reads the file with
+/// `parse`, and asserts that the engine's own irradiance (`irradiance`)
+/// peaks where the engine's own mapping (`direction`) puts the texel.
+fn assert_peaks_at_the_engines_texels<T>(
+    format: &str,
+    ext: &str,
+    engine: &str,
+    parse: impl Fn(&str) -> T,
+    irradiance: impl Fn(&T, Dir) -> f64,
+    direction: fn(usize, usize) -> Dir,
+) {
+    let dir = temp_dir(&format!("engine_{format}"));
+    for spot in SPOTS {
+        let file = parse(&export(&dir, spot, format, ext));
+        let got = peak(|n| irradiance(&file, n));
+        let want = direction(spot.0, spot.1);
+        let angle = angle_deg(got, want);
+        assert!(
+            angle < PEAK_TOLERANCE_DEG,
+            "spot {spot:?}: peak {got:?}, {engine} puts the texel at {want:?} ({angle:.2} deg)"
+        );
+    }
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap()
+}
+
 /// The red channel of Filament's `Irradiance_SphericalHarmonics` on sh.txt's
 /// nine rows (`shaders/src/light_indirect.fs`, without the clamp at 0).
 fn filament_irradiance(sh: &[[f64; 3]], n: Dir) -> f64 {
@@ -131,17 +159,14 @@ fn cmgen_direction(x: usize, y: usize) -> Dir {
 
 #[test]
 fn filament_export_peaks_where_cmgen_puts_the_texel() {
-    let dir = temp_dir("engine_filament");
-    for spot in SPOTS {
-        let sh = sh_txt_rows(&export(&dir, spot, "filament", "txt"));
-        let got = peak(|n| filament_irradiance(&sh, n));
-        let want = cmgen_direction(spot.0, spot.1);
-        let angle = angle_deg(got, want);
-        assert!(
-            angle < PEAK_TOLERANCE_DEG,
-            "spot {spot:?}: peak {got:?}, cmgen puts the texel at {want:?} ({angle:.2} deg)"
-        );
-    }
+    assert_peaks_at_the_engines_texels(
+        "filament",
+        "txt",
+        "cmgen",
+        sh_txt_rows,
+        |sh, n| filament_irradiance(sh, n),
+        cmgen_direction,
+    );
 }
 
 /// three.js `getIrradianceAt` (`src/math/SphericalHarmonics3.js`) on
@@ -177,19 +202,14 @@ fn threejs_direction(x: usize, y: usize) -> Dir {
 
 #[test]
 fn threejs_export_peaks_where_equirect_uv_puts_the_texel() {
-    let dir = temp_dir("engine_threejs");
-    for spot in SPOTS {
-        let v: serde_json::Value =
-            serde_json::from_str(&export(&dir, spot, "threejs", "json")).unwrap();
-        let sh = numbers(&v["object"]["sh"]);
-        let got = peak(|n| threejs_irradiance(&sh, n));
-        let want = threejs_direction(spot.0, spot.1);
-        let angle = angle_deg(got, want);
-        assert!(
-            angle < PEAK_TOLERANCE_DEG,
-            "spot {spot:?}: peak {got:?}, three.js puts the texel at {want:?} ({angle:.2} deg)"
-        );
-    }
+    assert_peaks_at_the_engines_texels(
+        "threejs",
+        "json",
+        "three.js",
+        |text| numbers(&json(text)["object"]["sh"]),
+        |sh, n| threejs_irradiance(sh, n),
+        threejs_direction,
+    );
 }
 
 /// Unity's `ShadeSH9` (`UnityCG.cginc`: `SHEvalLinearL0L1` +
@@ -223,18 +243,14 @@ fn unity_direction(x: usize, y: usize) -> Dir {
 
 #[test]
 fn unity_export_peaks_where_the_panoramic_skybox_puts_the_texel() {
-    let dir = temp_dir("engine_unity");
-    for spot in SPOTS {
-        let v: serde_json::Value =
-            serde_json::from_str(&export(&dir, spot, "unity", "json")).unwrap();
-        let got = peak(|n| unity_shade_sh9(&v, n));
-        let want = unity_direction(spot.0, spot.1);
-        let angle = angle_deg(got, want);
-        assert!(
-            angle < PEAK_TOLERANCE_DEG,
-            "spot {spot:?}: peak {got:?}, Unity puts the texel at {want:?} ({angle:.2} deg)"
-        );
-    }
+    assert_peaks_at_the_engines_texels(
+        "unity",
+        "json",
+        "Unity",
+        json,
+        unity_shade_sh9,
+        unity_direction,
+    );
 }
 
 /// Babylon.js's reading of `irradianceCoefficients` (the extension's
@@ -289,22 +305,20 @@ fn sample_viewer_direction(x: usize, y: usize) -> Dir {
 
 #[test]
 fn gltf_export_peaks_where_the_sample_viewer_puts_the_texel() {
-    let dir = temp_dir("engine_gltf");
-    for spot in SPOTS {
-        let v: serde_json::Value =
-            serde_json::from_str(&export(&dir, spot, "gltf", "gltf")).unwrap();
-        let scene_light = v["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"]
-            .as_u64()
-            .unwrap() as usize;
-        let light = &v["extensions"]["EXT_lights_image_based"]["lights"][scene_light];
-        let got = peak(|n| gltf_irradiance(light, n));
-        let want = sample_viewer_direction(spot.0, spot.1);
-        let angle = angle_deg(got, want);
-        assert!(
-            angle < PEAK_TOLERANCE_DEG,
-            "spot {spot:?}: peak {got:?}, the Sample Viewer puts the texel at {want:?} ({angle:.2} deg)"
-        );
-    }
+    assert_peaks_at_the_engines_texels(
+        "gltf",
+        "gltf",
+        "the Sample Viewer",
+        |text| {
+            let v = json(text);
+            let scene_light = v["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"]
+                .as_u64()
+                .unwrap() as usize;
+            v["extensions"]["EXT_lights_image_based"]["lights"][scene_light].clone()
+        },
+        gltf_irradiance,
+        sample_viewer_direction,
+    );
 }
 
 /// Runs `cmgen --sh=3 --sh-shader --sh-window=no MAP` and returns the nine

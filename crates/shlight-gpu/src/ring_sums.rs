@@ -28,7 +28,7 @@
 //! `t` adds the 32 partial sums of scalars `t, t + 32, ...` below
 //! `3 (2 lmax + 1)` and writes them: one barrier.
 //!
-//! Measured on Mesa's lavapipe (README, GPU speed), where every load from a
+//! Measured on Mesa's lavapipe (docs/benchmarks.md, "GPU"), where every load from a
 //! storage buffer or workgroup memory is a separate bounds-checked access
 //! per lane and component: the texel loads alone (lmax 0) take about half
 //! the pass at lmax 8; this reduction costs a third of the accesses of a

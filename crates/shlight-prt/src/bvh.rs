@@ -21,7 +21,7 @@
 //!   them, never slipping between. Both sides of a triangle are hit.
 //!
 //! Chosen by `benches/rays.rs`, which also measures obvhs's compressed wide
-//! BVH (README, "PRT").
+//! BVH (docs/benchmarks.md, "PRT").
 
 use glam::Vec3;
 
