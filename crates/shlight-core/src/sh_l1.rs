@@ -20,7 +20,7 @@ use crate::fixed_size::impl_fixed_sh;
 /// i = 3:  Y_1^1  = -sqrt(3/(4 pi)) x   = -0.488603 x
 /// ```
 ///
-/// The constants are computed from these formulas ([`crate::hardcoded`]),
+/// The constants are computed from these formulas (the crate's hard-coded low-degree basis),
 /// not typed as decimals. Tables without the phase (Ramamoorthi-Hanrahan,
 /// three.js) have the opposite sign on `f_1` and `f_3`.
 ///

@@ -26,7 +26,7 @@ use crate::{GlamReal, ShL1, ShL1Rgb};
 /// i = 8:  Y_2^2  =  sqrt(15/pi)/4 (x^2 - y^2)   =  0.546274 (x^2 - y^2)
 /// ```
 ///
-/// The constants are computed from these formulas ([`crate::hardcoded`]),
+/// The constants are computed from these formulas (the crate's hard-coded low-degree basis),
 /// not typed as decimals. Tables without the phase (Ramamoorthi-Hanrahan,
 /// three.js) have the opposite sign on the odd-`m` coefficients 1, 3, 5, 7.
 ///
