@@ -34,6 +34,6 @@ pub fn export_format() -> impl TypedValueParser<Value = ExportFormat> {
 pub fn quantity() -> impl TypedValueParser<Value = Quantity> {
     one_of(&Quantity::ALL, Quantity::name, |q| match q {
         Quantity::Radiance => "distant radiance L(w)",
-        _ => "irradiance E(n) = A_l L_lm (Ramamoorthi & Hanrahan 2001)",
+        Quantity::Irradiance => "irradiance E(n) = A_l L_lm (Ramamoorthi & Hanrahan 2001)",
     })
 }
