@@ -8,6 +8,10 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::process::Command;
 
+use glam::DVec3;
+use shlight_core::quadrature::fibonacci_sphere;
+
+use crate::export::{babylon_lambertian_radiance, filament_irradiance_sh, three_get_irradiance_at};
 use crate::util::{s, shlight_ok, skip, temp_dir, write_map};
 
 /// Map size of the spot maps (2:1).
@@ -38,15 +42,9 @@ fn angle_deg(a: Dir, b: Dir) -> f64 {
 
 /// The direction (on a Fibonacci set of 50,000 points) where `f` is largest.
 fn peak(f: impl Fn(Dir) -> f64) -> Dir {
-    let n = 50_000;
-    let golden = PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let p = golden * i as f64;
-            [r * p.cos(), r * p.sin(), z]
-        })
+    fibonacci_sphere(50_000)
+        .into_iter()
+        .map(|d| d.to_array())
         .max_by(|a, b| f(*a).total_cmp(&f(*b)))
         .unwrap()
 }
@@ -115,26 +113,8 @@ fn json(text: &str) -> serde_json::Value {
     serde_json::from_str(text).unwrap()
 }
 
-/// The red channel of Filament's `Irradiance_SphericalHarmonics` on sh.txt's
-/// nine rows (`shaders/src/light_indirect.fs`, without the clamp at 0).
-fn filament_irradiance(sh: &[[f64; 3]], n: Dir) -> f64 {
-    let [x, y, z] = n;
-    let p = [
-        1.0,
-        y,
-        z,
-        x,
-        y * x,
-        y * z,
-        3.0 * z * z - 1.0,
-        z * x,
-        x * x - y * y,
-    ];
-    (0..9).map(|i| sh[i][0] * p[i]).sum()
-}
-
 /// The nine `(r, g, b);` rows of an sh.txt (shlight's or cmgen's).
-fn sh_txt_rows(text: &str) -> Vec<[f64; 3]> {
+fn sh_txt_rows(text: &str) -> Vec<DVec3> {
     text.lines()
         .filter_map(|l| {
             let inner = l.trim().strip_prefix('(')?.split(')').next()?;
@@ -142,9 +122,14 @@ fn sh_txt_rows(text: &str) -> Vec<[f64; 3]> {
                 .split(',')
                 .map(|t| t.trim().parse().unwrap())
                 .collect();
-            Some([v[0], v[1], v[2]])
+            Some(DVec3::new(v[0], v[1], v[2]))
         })
         .collect()
+}
+
+/// The red channel of Filament's shader on sh.txt rows, at `n`.
+fn filament_irradiance(sh: &[DVec3], n: Dir) -> f64 {
+    filament_irradiance_sh(sh, DVec3::from(n)).x
 }
 
 /// Where cmgen shows the texel `(x, y)` in Filament's world:
@@ -169,24 +154,6 @@ fn filament_export_peaks_where_cmgen_puts_the_texel() {
     );
 }
 
-/// three.js `getIrradianceAt` (`src/math/SphericalHarmonics3.js`) on
-/// `LightProbe.sh`, red channel, with three.js's own constants.
-fn threejs_irradiance(sh: &[f64], n: Dir) -> f64 {
-    let [x, y, z] = n;
-    let w = [
-        0.886227,
-        2.0 * 0.511664 * y,
-        2.0 * 0.511664 * z,
-        2.0 * 0.511664 * x,
-        2.0 * 0.429043 * x * y,
-        2.0 * 0.429043 * y * z,
-        0.743125 * z * z - 0.247708,
-        2.0 * 0.429043 * x * z,
-        0.429043 * (x * x - y * y),
-    ];
-    (0..9).map(|i| sh[3 * i] * w[i]).sum()
-}
-
 /// Where three.js shows the texel `(x, y)`: the inverse of `equirectUv`
 /// (`u = atan(dir.z, dir.x) / 2pi + 0.5`, `v = asin(dir.y) / pi + 0.5`),
 /// `v` counted from the bottom (equirect textures are uploaded with the
@@ -206,8 +173,11 @@ fn threejs_export_peaks_where_equirect_uv_puts_the_texel() {
         "threejs",
         "json",
         "three.js",
-        |text| numbers(&json(text)["object"]["sh"]),
-        |sh, n| threejs_irradiance(sh, n),
+        |text| {
+            let sh = numbers(&json(text)["object"]["sh"]);
+            sh.chunks(3).map(DVec3::from_slice).collect::<Vec<_>>()
+        },
+        |sh, n| three_get_irradiance_at(sh, DVec3::from(n)).x,
         threejs_direction,
     );
 }
@@ -253,38 +223,6 @@ fn unity_export_peaks_where_the_panoramic_skybox_puts_the_texel() {
     );
 }
 
-/// Babylon.js's reading of `irradianceCoefficients` (the extension's
-/// reference loader): `SH3ylmBasisConstants` times
-/// `SH3ylmBasisTrigonometricTerms`, red channel, times `intensity`.
-fn gltf_irradiance(light: &serde_json::Value, n: Dir) -> f64 {
-    let k = [
-        (1.0 / (4.0 * PI)).sqrt(),
-        -(3.0 / (4.0 * PI)).sqrt(),
-        (3.0 / (4.0 * PI)).sqrt(),
-        -(3.0 / (4.0 * PI)).sqrt(),
-        (15.0 / (4.0 * PI)).sqrt(),
-        -(15.0 / (4.0 * PI)).sqrt(),
-        (5.0 / (16.0 * PI)).sqrt(),
-        -(15.0 / (4.0 * PI)).sqrt(),
-        (15.0 / (16.0 * PI)).sqrt(),
-    ];
-    let [x, y, z] = n;
-    let t = [
-        1.0,
-        y,
-        z,
-        x,
-        x * y,
-        y * z,
-        3.0 * z * z - 1.0,
-        x * z,
-        x * x - y * y,
-    ];
-    let e = numbers(&light["irradianceCoefficients"]);
-    let intensity = light["intensity"].as_f64().unwrap();
-    (0..9).map(|i| e[3 * i] * k[i] * t[i]).sum::<f64>() * intensity
-}
-
 /// Where the Khronos glTF Sample Viewer shows the texel `(x, y)` in the
 /// glTF world: `panorama_to_cubemap`'s `dirToUV`
 /// (`u = 0.5 + 0.5 atan(g.z, g.x) / pi`, `v = 1 - acos(g.y) / pi` with the
@@ -316,7 +254,7 @@ fn gltf_export_peaks_where_the_sample_viewer_puts_the_texel() {
                 .unwrap() as usize;
             v["extensions"]["EXT_lights_image_based"]["lights"][scene_light].clone()
         },
-        gltf_irradiance,
+        |light, n| babylon_lambertian_radiance(light, DVec3::from(n)).x,
         sample_viewer_direction,
     );
 }
@@ -324,7 +262,7 @@ fn gltf_export_peaks_where_the_sample_viewer_puts_the_texel() {
 /// Runs `cmgen --sh=3 --sh-shader --sh-window=no MAP` and returns the nine
 /// rows it prints, or `None` (with a SKIPPED line, a failure under
 /// `SHLIGHT_REQUIRE_ALL=1`) without cmgen.
-fn cmgen_sh(map: &Path, test: &str) -> Option<Vec<[f64; 3]>> {
+fn cmgen_sh(map: &Path, test: &str) -> Option<Vec<DVec3>> {
     let out = match Command::new("cmgen")
         .args(["--sh=3", "--sh-shader", "--sh-window=no"])
         .arg(map)
@@ -352,15 +290,9 @@ fn cmgen_sh(map: &Path, test: &str) -> Option<Vec<[f64; 3]>> {
 /// Worst difference of two functions over a Fibonacci set, relative to the
 /// largest value of `b`.
 fn max_relative_difference(a: impl Fn(Dir) -> f64, b: impl Fn(Dir) -> f64) -> f64 {
-    let n = 2000;
-    let golden = PI * (3.0 - 5f64.sqrt());
-    let dirs: Vec<Dir> = (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let p = golden * i as f64;
-            [r * p.cos(), r * p.sin(), z]
-        })
+    let dirs: Vec<Dir> = fibonacci_sphere(2000)
+        .into_iter()
+        .map(|d| d.to_array())
         .collect();
     let peak = dirs.iter().map(|d| b(*d).abs()).fold(0.0, f64::max);
     dirs.iter()

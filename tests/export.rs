@@ -304,7 +304,7 @@ fn txt_is_a_rh_table_that_eq_13_turns_into_shlight_irradiance() {
 // ---------------------------------------------------------------- three.js
 
 /// three.js `SphericalHarmonics3.getIrradianceAt` (src/math/SphericalHarmonics3.js).
-fn three_get_irradiance_at(c: &[DVec3], n: DVec3) -> DVec3 {
+pub(crate) fn three_get_irradiance_at(c: &[DVec3], n: DVec3) -> DVec3 {
     let (x, y, z) = (n.x, n.y, n.z);
     let mut t = c[0] * 0.886227;
     t += c[1] * (2.0 * 0.511664 * y);
@@ -366,10 +366,12 @@ fn threejs_light_probe_gives_shlight_irradiance_and_radiance() {
 
 // ---------------------------------------------------------------- glTF
 
-#[test]
-fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
-    let dir = temp_dir("export_gltf");
-    // Babylon.js SH3ylmBasisConstants (with the CS phase) and trigonometric terms.
+/// Babylon.js's reading of an `EXT_lights_image_based` light (the
+/// extension's reference loader): `SphericalHarmonics.FromArray`,
+/// `scaleInPlace(intensity)`, `convertIrradianceToLambertianRadiance`
+/// (1/pi), evaluated with `SH3ylmBasisConstants` (with the CS phase) times
+/// `SH3ylmBasisTrigonometricTerms`.
+pub(crate) fn babylon_lambertian_radiance(light: &Value, n: DVec3) -> DVec3 {
     let k = [
         (1.0 / (4.0 * PI)).sqrt(),
         -(3.0 / (4.0 * PI)).sqrt(),
@@ -381,6 +383,27 @@ fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
         -(15.0 / (4.0 * PI)).sqrt(),
         (15.0 / (16.0 * PI)).sqrt(),
     ];
+    let (x, y, z) = (n.x, n.y, n.z);
+    let t = [
+        1.0,
+        y,
+        z,
+        x,
+        x * y,
+        y * z,
+        3.0 * z * z - 1.0,
+        x * z,
+        x * x - y * y,
+    ];
+    let intensity = light["intensity"].as_f64().unwrap();
+    (0..9)
+        .map(|i| rgb(&floats(&light["irradianceCoefficients"][i])) * (intensity / PI * k[i] * t[i]))
+        .sum()
+}
+
+#[test]
+fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
+    let dir = temp_dir("export_gltf");
     for case in cases() {
         let path = case.write(&dir);
         let out = shlight(&[
@@ -401,31 +424,11 @@ fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
         assert_eq!(v["extensionsUsed"][0], "EXT_lights_image_based");
         let light = &v["extensions"]["EXT_lights_image_based"]["lights"][0];
         assert_eq!(floats(&light["rotation"]), [0.0, 0.0, 0.0, 1.0]);
-        let intensity = light["intensity"].as_f64().unwrap();
-        // SphericalHarmonics.FromArray, scaleInPlace(intensity), convertIrradianceToLambertianRadiance.
-        let c: Vec<DVec3> = (0..9)
-            .map(|i| rgb(&floats(&light["irradianceCoefficients"][i])) * intensity / PI)
-            .collect();
-        let babylon = |n: DVec3| {
-            let (x, y, z) = (n.x, n.y, n.z);
-            let t = [
-                1.0,
-                y,
-                z,
-                x,
-                x * y,
-                y * z,
-                3.0 * z * z - 1.0,
-                x * z,
-                x * x - y * y,
-            ];
-            (0..9).map(|i| c[i] * (k[i] * t[i])).sum::<DVec3>()
-        };
         // The glTF Sample Viewer shows the texel shlight reads at n at
         // (-n.z, n.y, n.x) of the glTF world (docs/exporters.md).
         assert_matches(
             &format!("gltf (Babylon.js), {}", case.name),
-            |n| babylon(DVec3::new(-n.z, n.y, n.x)),
+            |n| babylon_lambertian_radiance(light, DVec3::new(-n.z, n.y, n.x)),
             |n| case.irradiance_at(2, n, false) / PI,
             1e-9,
         );
@@ -435,7 +438,7 @@ fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
 // ---------------------------------------------------------------- Filament
 
 /// Filament `Irradiance_SphericalHarmonics` (shaders/src/light_indirect.fs).
-fn filament_irradiance_sh(sh: &[DVec3], n: DVec3) -> DVec3 {
+pub(crate) fn filament_irradiance_sh(sh: &[DVec3], n: DVec3) -> DVec3 {
     (sh[0]
         + sh[1] * n.y
         + sh[2] * n.z

@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use base64::Engine as _;
 use serde_json::{Value, json};
 
 use crate::util::{s, shlight_err, shlight_ok, skip, temp_dir, write_radiance_rows};
@@ -145,7 +146,7 @@ fn into_a_gltf_adds_the_light_and_changes_nothing_else() {
     let mut doc = scene_json();
     doc["buffers"][0]["uri"] = json!(format!(
         "data:application/octet-stream;base64,{}",
-        base64_encode(&positions())
+        base64::engine::general_purpose::STANDARD.encode(positions())
     ));
     std::fs::write(&scene, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
     shlight_ok(&["convert", s(&light), "--into", s(&scene)]);
@@ -231,28 +232,6 @@ fn format_gltf_is_a_valid_gltf_2_asset() {
         0
     );
     validate(&out, "gltf_asset::format_gltf_is_a_valid_gltf_2_asset");
-}
-
-/// Standard base64 (RFC 4648, with padding).
-fn base64_encode(bytes: &[u8]) -> String {
-    const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in bytes.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(ALPHABET[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 /// Where `.ci/run` installs the Khronos glTF validator (npm
