@@ -148,23 +148,7 @@ pub(crate) fn cases() -> Vec<Case> {
 
 /// Unit normals: a Fibonacci sphere plus the axes.
 fn normals() -> Vec<DVec3> {
-    let mut v: Vec<DVec3> = (0..96)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / 96.0;
-            let r = (1.0 - z * z).sqrt();
-            let phi = i as f64 * PI * (3.0 - 5f64.sqrt());
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    v.extend([
-        DVec3::X,
-        DVec3::Y,
-        DVec3::Z,
-        DVec3::NEG_X,
-        DVec3::NEG_Y,
-        DVec3::NEG_Z,
-    ]);
-    v
+    crate::util::sphere_directions(102)
 }
 
 /// Compares `got(n)` with `want(n)` at every normal, to `tol` relative to

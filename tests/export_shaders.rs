@@ -17,7 +17,6 @@
 //! `SHLIGHT_REQUIRE_ALL=1`; a missing `glslangValidator` skips the HLSL
 //! likewise, failing under `SHLIGHT_REQUIRE_ALL=1`.
 
-use std::f64::consts::PI;
 use std::path::Path;
 use std::process::Command;
 
@@ -49,24 +48,7 @@ const GPU_TOL: f64 = 1e-5;
 
 /// Unit directions: a Fibonacci sphere plus the axes.
 fn directions() -> Vec<DVec3> {
-    let k = DIRECTIONS - 6;
-    let mut v: Vec<DVec3> = (0..k)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / k as f64;
-            let r = (1.0 - z * z).sqrt();
-            let phi = i as f64 * PI * (3.0 - 5f64.sqrt());
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    v.extend([
-        DVec3::X,
-        DVec3::Y,
-        DVec3::Z,
-        DVec3::NEG_X,
-        DVec3::NEG_Y,
-        DVec3::NEG_Z,
-    ]);
-    v
+    crate::util::sphere_directions(DIRECTIONS)
 }
 
 // ---------------------------------------------------------------- shaders

@@ -251,3 +251,19 @@ pub fn have_tool(tool: &str, test: &str) -> bool {
     }
     ok
 }
+
+/// `n` unit directions: the core's Fibonacci sphere of `n - 6` points plus
+/// the six axis directions.
+pub fn sphere_directions(n: usize) -> Vec<glam::DVec3> {
+    use glam::DVec3;
+    let mut v = shlight_core::quadrature::fibonacci_sphere(n - 6);
+    v.extend([
+        DVec3::X,
+        DVec3::Y,
+        DVec3::Z,
+        DVec3::NEG_X,
+        DVec3::NEG_Y,
+        DVec3::NEG_Z,
+    ]);
+    v
+}
