@@ -22,6 +22,7 @@ use exr::prelude::f16;
 
 use super::inspect;
 use super::layers::{self, Colour};
+use super::zip_block::{self, ZipScratch};
 use crate::panic_message::panic_message;
 use crate::{Image, IoErrorKind, ReadOptions};
 
@@ -127,12 +128,14 @@ fn decompress(
     let mut seen = HashSet::new();
     let mut covered = 0;
     let (send, receive) = mpsc::channel();
+    let zip = zip_block::handles(header.compression);
     std::thread::scope(|scope| {
         for bucket in buckets {
             let send = send.clone();
             scope.spawn(move || {
+                let mut scratch = zip.then(ZipScratch::new);
                 for chunk in bucket {
-                    let block = decode_block(chunk, meta, part, colour);
+                    let block = decode_block(chunk, meta, part, colour, scratch.as_mut());
                     let failed = block.is_err();
                     if send.send(block).is_err() || failed {
                         break;
@@ -168,16 +171,21 @@ fn decompress(
     Ok(data)
 }
 
-/// Decompresses one chunk and converts its pixels to RGB; a panic in the
+/// Decompresses one chunk (ZIP and ZIPS blocks through `zip`, the others
+/// by the `exr` crate) and converts its pixels to RGB; a panic in the
 /// decoder is returned as an error.
 fn decode_block(
     chunk: Chunk,
     meta: &MetaData,
     part: usize,
     colour: Colour,
+    mut zip: Option<&mut ZipScratch>,
 ) -> Result<RgbBlock, IoErrorKind> {
     panic::catch_unwind(AssertUnwindSafe(|| {
-        let block = UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error)?;
+        let block = match zip.as_deref_mut() {
+            Some(scratch) => scratch.decompress(chunk, meta)?,
+            None => UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error)?,
+        };
         let header = &meta.headers[part];
         let index = block.index;
         let (x, y) = (index.pixel_position.x(), index.pixel_position.y());
@@ -206,6 +214,9 @@ fn decode_block(
                     pixels[first + i][c] = v;
                 }
             });
+        }
+        if let Some(scratch) = zip {
+            scratch.recycle(block);
         }
         Ok(RgbBlock {
             x,

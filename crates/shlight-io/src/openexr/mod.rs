@@ -18,6 +18,7 @@ mod decode;
 mod encode;
 mod inspect;
 mod layers;
+mod zip_block;
 
 pub(crate) use decode::decode;
 pub(crate) use encode::encode;
