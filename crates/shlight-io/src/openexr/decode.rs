@@ -10,14 +10,15 @@
 use std::collections::HashSet;
 use std::io::Cursor;
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::mpsc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, mpsc};
 
 use exr::block::UncompressedBlock;
 use exr::block::chunk::Chunk;
 use exr::block::reader::ChunksReader;
 use exr::math::Vec2;
-use exr::meta::MetaData;
 use exr::meta::attribute::SampleType;
+use exr::meta::{BlockDescription, MetaData};
 use exr::prelude::f16;
 
 use super::inspect;
@@ -104,18 +105,8 @@ struct RgbBlock {
     pixels: Vec<[f32; 3]>,
 }
 
-/// Decompresses `chunks` (all blocks of level 0 of `part`) on all cores and
-/// assembles the data window, row-major.
-fn decompress(
-    chunks: Vec<Chunk>,
-    meta: &MetaData,
-    part: usize,
-    colour: Colour,
-) -> Result<Vec<[f32; 3]>, IoErrorKind> {
-    let header = &meta.headers[part];
-    let (width, height) = (header.layer_size.x(), header.layer_size.y());
-    let mut data = vec![[0.0_f32; 3]; width * height];
-
+/// The threads that decompress, and `chunks` dealt out to them in turn.
+fn buckets(chunks: Vec<Chunk>) -> Vec<Vec<Chunk>> {
     let threads = std::thread::available_parallelism()
         .map_or(1, usize::from)
         .min(chunks.len())
@@ -124,13 +115,31 @@ fn decompress(
     for (i, chunk) in chunks.into_iter().enumerate() {
         buckets[i % threads].push(chunk);
     }
+    buckets
+}
+
+/// Decompresses `chunks` (all blocks of level 0 of `part`) on all cores and
+/// assembles the data window, row-major: scan-line blocks straight into
+/// their rows ([`decompress_scan_lines`]), tiles through [`RgbBlock`]s.
+fn decompress(
+    chunks: Vec<Chunk>,
+    meta: &MetaData,
+    part: usize,
+    colour: Colour,
+) -> Result<Vec<[f32; 3]>, IoErrorKind> {
+    let header = &meta.headers[part];
+    if header.blocks == BlockDescription::ScanLines {
+        return decompress_scan_lines(chunks, meta, part, colour);
+    }
+    let (width, height) = (header.layer_size.x(), header.layer_size.y());
+    let mut data = vec![[0.0_f32; 3]; width * height];
 
     let mut seen = HashSet::new();
     let mut covered = 0;
     let (send, receive) = mpsc::channel();
     let zip = zip_block::handles(header.compression);
     std::thread::scope(|scope| {
-        for bucket in buckets {
+        for bucket in buckets(chunks) {
             let send = send.clone();
             scope.spawn(move || {
                 let mut scratch = zip.then(ZipScratch::new);
@@ -162,13 +171,167 @@ fn decompress(
         }
         Ok(())
     })?;
-    if covered != width * height {
+    check_covered(covered, width * height)?;
+    Ok(data)
+}
+
+fn check_covered(covered: usize, pixels: usize) -> Result<(), IoErrorKind> {
+    if covered != pixels {
         return Err(IoErrorKind::Corrupt(format!(
-            "blocks cover {covered} of the {} pixels",
-            width * height
+            "blocks cover {covered} of the {pixels} pixels"
         )));
     }
+    Ok(())
+}
+
+/// [`decompress`] of a scan-line part: the data window is cut into bands of
+/// the compression's lines per block, and each thread converts its blocks
+/// straight into their band (taken once: a second block for a band is an
+/// error), so no block is copied.
+fn decompress_scan_lines(
+    chunks: Vec<Chunk>,
+    meta: &MetaData,
+    part: usize,
+    colour: Colour,
+) -> Result<Vec<[f32; 3]>, IoErrorKind> {
+    let header = &meta.headers[part];
+    let (width, height) = (header.layer_size.x(), header.layer_size.y());
+    let lines = header.compression.scan_lines_per_block();
+    let mut data = vec![[0.0_f32; 3]; width * height];
+    let zip = zip_block::handles(header.compression);
+    let failed = AtomicBool::new(false);
+    let covered = {
+        let bands: Vec<Mutex<Option<&mut [[f32; 3]]>>> = data
+            .chunks_mut((width * lines).max(1))
+            .map(|band| Mutex::new(Some(band)))
+            .collect();
+        let geometry = BandGeometry {
+            width,
+            height,
+            lines,
+            bands: &bands,
+        };
+        let results: Vec<Result<usize, IoErrorKind>> = std::thread::scope(|scope| {
+            let handles: Vec<_> = buckets(chunks)
+                .into_iter()
+                .map(|bucket| {
+                    let (failed, geometry) = (&failed, &geometry);
+                    scope.spawn(move || {
+                        let mut scratch = zip.then(ZipScratch::new);
+                        let mut covered = 0;
+                        for chunk in bucket {
+                            // Another thread's error ends the read.
+                            if failed.load(Ordering::Relaxed) {
+                                break;
+                            }
+                            let block = decode_scan_block(
+                                chunk,
+                                meta,
+                                part,
+                                colour,
+                                scratch.as_mut(),
+                                geometry,
+                            );
+                            match block {
+                                Ok(n) => covered += n,
+                                Err(e) => {
+                                    failed.store(true, Ordering::Relaxed);
+                                    return Err(e);
+                                }
+                            }
+                        }
+                        Ok(covered)
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| {
+                    h.join().unwrap_or_else(|payload| {
+                        Err(IoErrorKind::Corrupt(format!(
+                            "the OpenEXR decoder failed: {}",
+                            panic_message(payload.as_ref())
+                        )))
+                    })
+                })
+                .collect()
+        });
+        let mut covered = 0;
+        for r in results {
+            covered += r?;
+        }
+        covered
+    };
+    check_covered(covered, width * height)?;
     Ok(data)
+}
+
+/// Where the blocks of a scan-line part go: the data window's size, the
+/// lines per block, and each band of rows, until a block takes it.
+struct BandGeometry<'a, 'd> {
+    width: usize,
+    height: usize,
+    lines: usize,
+    bands: &'a [Mutex<Option<&'d mut [[f32; 3]]>>],
+}
+
+/// Decompresses one scan-line chunk (see [`decode_block`]) and converts it
+/// into its band of rows; returns the pixels it covered.
+fn decode_scan_block(
+    chunk: Chunk,
+    meta: &MetaData,
+    part: usize,
+    colour: Colour,
+    mut zip: Option<&mut ZipScratch>,
+    geometry: &BandGeometry<'_, '_>,
+) -> Result<usize, IoErrorKind> {
+    panic::catch_unwind(AssertUnwindSafe(|| {
+        let block = match zip.as_deref_mut() {
+            Some(scratch) => scratch.decompress(chunk, meta)?,
+            None => UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error)?,
+        };
+        let header = &meta.headers[part];
+        let index = block.index;
+        let (x, y) = (index.pixel_position.x(), index.pixel_position.y());
+        let (width, height) = (index.pixel_size.x(), index.pixel_size.y());
+        let BandGeometry {
+            width: full_width,
+            height: full_height,
+            lines,
+            bands,
+        } = *geometry;
+        let whole_band = x == 0
+            && width == full_width
+            && y.is_multiple_of(lines)
+            && y < full_height
+            && height == lines.min(full_height - y);
+        if index.layer != part || index.level != Vec2(0, 0) || !whole_band {
+            return Err(IoErrorKind::Corrupt(format!(
+                "a block at ({x}, {y}) of {width}x{height} pixels that is not a band of \
+                 {lines} scan lines of the layer"
+            )));
+        }
+        let mut band = bands[y / lines]
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let Some(pixels) = band.take() else {
+            return Err(IoErrorKind::Corrupt(format!(
+                "block at ({x}, {y}) appears twice"
+            )));
+        };
+        drop(band);
+        convert_block(&block, header, colour, pixels);
+        if let Some(scratch) = zip {
+            scratch.recycle(block);
+        }
+        Ok(width * height)
+    }))
+    .unwrap_or_else(|payload| {
+        Err(IoErrorKind::Corrupt(format!(
+            "the OpenEXR decoder failed: {}",
+            panic_message(payload.as_ref())
+        )))
+    })
 }
 
 /// Decompresses one chunk (ZIP and ZIPS blocks through `zip`, the others
@@ -197,24 +360,7 @@ fn decode_block(
             )));
         }
         let mut pixels = vec![[0.0_f32; 3]; width * height];
-        for line in block.lines(&header.channels) {
-            let at = line.location;
-            let components: &[usize] = match colour {
-                Colour::Rgb { r, .. } if at.channel == r => &[0],
-                Colour::Rgb { g, .. } if at.channel == g => &[1],
-                Colour::Rgb { b, .. } if at.channel == b => &[2],
-                Colour::Grey { y } if at.channel == y => &[0, 1, 2],
-                _ => continue,
-            };
-            let row = at.position.y() - y;
-            let first = row * width + (at.position.x() - x);
-            let sample_type = header.channels.list[at.channel].sample_type;
-            for_each_sample(line.value, sample_type, |i, v| {
-                for &c in components {
-                    pixels[first + i][c] = v;
-                }
-            });
-        }
+        convert_block(&block, header, colour, &mut pixels);
         if let Some(scratch) = zip {
             scratch.recycle(block);
         }
@@ -234,22 +380,59 @@ fn decode_block(
     })
 }
 
-/// Calls `f(i, value)` for each sample of a line of native-endian samples.
-fn for_each_sample(bytes: &[u8], sample_type: SampleType, mut f: impl FnMut(usize, f32)) {
+/// Converts the colour channels of a decompressed block into `pixels`, the
+/// block's rectangle row-major (channels it does not hold stay as they
+/// are).
+fn convert_block(
+    block: &UncompressedBlock,
+    header: &exr::meta::header::Header,
+    colour: Colour,
+    pixels: &mut [[f32; 3]],
+) {
+    let (x, y) = (
+        block.index.pixel_position.x(),
+        block.index.pixel_position.y(),
+    );
+    let width = block.index.pixel_size.x();
+    for line in block.lines(&header.channels) {
+        let at = line.location;
+        let components: &[usize] = match colour {
+            Colour::Rgb { r, .. } if at.channel == r => &[0],
+            Colour::Rgb { g, .. } if at.channel == g => &[1],
+            Colour::Rgb { b, .. } if at.channel == b => &[2],
+            Colour::Grey { y } if at.channel == y => &[0, 1, 2],
+            _ => continue,
+        };
+        let row = at.position.y() - y;
+        let first = row * width + (at.position.x() - x);
+        let sample_type = header.channels.list[at.channel].sample_type;
+        let bytes_per_sample = match sample_type {
+            SampleType::F16 => 2,
+            SampleType::F32 | SampleType::U32 => 4,
+        };
+        let out = &mut pixels[first..first + line.value.len() / bytes_per_sample];
+        for &c in components {
+            write_component(line.value, sample_type, out, c);
+        }
+    }
+}
+
+/// `out[i][c]` = sample `i` of a line of native-endian samples.
+fn write_component(bytes: &[u8], sample_type: SampleType, out: &mut [[f32; 3]], c: usize) {
     match sample_type {
         SampleType::F16 => {
-            for (i, b) in bytes.chunks_exact(2).enumerate() {
-                f(i, f16::from_bits(u16::from_ne_bytes([b[0], b[1]])).to_f32());
+            for (o, b) in out.iter_mut().zip(bytes.chunks_exact(2)) {
+                o[c] = f16::from_bits(u16::from_ne_bytes([b[0], b[1]])).to_f32();
             }
         }
         SampleType::F32 => {
-            for (i, b) in bytes.chunks_exact(4).enumerate() {
-                f(i, f32::from_ne_bytes([b[0], b[1], b[2], b[3]]));
+            for (o, b) in out.iter_mut().zip(bytes.chunks_exact(4)) {
+                o[c] = f32::from_ne_bytes([b[0], b[1], b[2], b[3]]);
             }
         }
         SampleType::U32 => {
-            for (i, b) in bytes.chunks_exact(4).enumerate() {
-                f(i, u32::from_ne_bytes([b[0], b[1], b[2], b[3]]) as f32);
+            for (o, b) in out.iter_mut().zip(bytes.chunks_exact(4)) {
+                o[c] = u32::from_ne_bytes([b[0], b[1], b[2], b[3]]) as f32;
             }
         }
     }

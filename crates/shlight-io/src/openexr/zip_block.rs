@@ -84,13 +84,14 @@ impl ZipScratch {
         };
         let expected = bounds.size.area() * header.channels.bytes_per_pixel;
 
-        self.data.clear();
+        // Every byte of both buffers is written below before it is read, so
+        // a buffer of the right length from the block before is used as it
+        // is, not cleared.
         self.data.resize(expected, 0);
         if compressed.len() == expected {
             // Larger compressed than raw: stored as it is.
             self.data.copy_from_slice(compressed);
         } else {
-            self.inflated.clear();
             self.inflated.resize(expected, 0);
             let n = self
                 .inflater
