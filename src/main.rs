@@ -15,6 +15,7 @@ mod environment;
 mod gpu_feature;
 #[cfg(feature = "gpu")]
 mod gpu_scene;
+mod heap;
 mod input;
 mod irradiance;
 mod output_path;
@@ -83,6 +84,7 @@ fn show(path: &std::path::Path) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
+    heap::keep_freed_memory();
     let cli = Cli::parse();
     let ui = progress::Ui::new(cli.quiet);
     // Only the GPU commands load the Vulkan stack (see runtime_dir.rs).
