@@ -68,13 +68,13 @@ fn decode_layer(bytes: &[u8], options: &ReadOptions) -> Result<Image, IoErrorKin
         })
         .map_err(map_error)?;
     let meta = reader.meta_data().clone();
-    let mut compressed = Vec::with_capacity(reader.len());
-    for chunk in reader {
+    let count = reader.len();
+    let compressed = reader.map(|chunk| {
         let chunk = chunk.map_err(map_error)?;
         inspect::check_dwa_block(&chunk, &header)?;
-        compressed.push(chunk);
-    }
-    let data = decompress(compressed, &meta, part, chosen.colour)?;
+        Ok(chunk)
+    });
+    let data = decompress(compressed, count, &meta, part, chosen.colour)?;
 
     // Place the data window in the display window.
     let origin = header.own_attributes.layer_position;
@@ -118,19 +118,22 @@ fn buckets(chunks: Vec<Chunk>) -> Vec<Vec<Chunk>> {
     buckets
 }
 
-/// Decompresses `chunks` (all blocks of level 0 of `part`) on all cores and
-/// assembles the data window, row-major: scan-line blocks straight into
-/// their rows ([`decompress_scan_lines`]), tiles through [`RgbBlock`]s.
+/// Decompresses `chunks` (all `count` blocks of level 0 of `part`, as they
+/// are read) on all cores and assembles the data window, row-major:
+/// scan-line blocks straight into their rows ([`decompress_scan_lines`]),
+/// tiles through [`RgbBlock`]s once all are read.
 fn decompress(
-    chunks: Vec<Chunk>,
+    chunks: impl Iterator<Item = Result<Chunk, IoErrorKind>>,
+    count: usize,
     meta: &MetaData,
     part: usize,
     colour: Colour,
 ) -> Result<Vec<[f32; 3]>, IoErrorKind> {
     let header = &meta.headers[part];
     if header.blocks == BlockDescription::ScanLines {
-        return decompress_scan_lines(chunks, meta, part, colour);
+        return decompress_scan_lines(chunks, count, meta, part, colour);
     }
+    let chunks = chunks.collect::<Result<Vec<_>, _>>()?;
     let (width, height) = (header.layer_size.x(), header.layer_size.y());
     let mut data = vec![[0.0_f32; 3]; width * height];
 
@@ -187,9 +190,11 @@ fn check_covered(covered: usize, pixels: usize) -> Result<(), IoErrorKind> {
 /// [`decompress`] of a scan-line part: the data window is cut into bands of
 /// the compression's lines per block, and each thread converts its blocks
 /// straight into their band (taken once: a second block for a band is an
-/// error), so no block is copied.
+/// error), so no block is copied. Blocks are dealt out to the threads in
+/// turn as they are read, so decompression starts with the first block.
 fn decompress_scan_lines(
-    chunks: Vec<Chunk>,
+    chunks: impl Iterator<Item = Result<Chunk, IoErrorKind>>,
+    count: usize,
     meta: &MetaData,
     part: usize,
     colour: Colour,
@@ -199,6 +204,10 @@ fn decompress_scan_lines(
     let lines = header.compression.scan_lines_per_block();
     let mut data = vec![[0.0_f32; 3]; width * height];
     let zip = zip_block::handles(header.compression);
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(count)
+        .max(1);
     let failed = AtomicBool::new(false);
     let covered = {
         let bands: Vec<Mutex<Option<&mut [[f32; 3]]>>> = data
@@ -211,40 +220,59 @@ fn decompress_scan_lines(
             lines,
             bands: &bands,
         };
-        let results: Vec<Result<usize, IoErrorKind>> = std::thread::scope(|scope| {
-            let handles: Vec<_> = buckets(chunks)
-                .into_iter()
-                .map(|bucket| {
-                    let (failed, geometry) = (&failed, &geometry);
-                    scope.spawn(move || {
-                        let mut scratch = zip.then(ZipScratch::new);
-                        let mut covered = 0;
-                        for chunk in bucket {
-                            // Another thread's error ends the read.
-                            if failed.load(Ordering::Relaxed) {
-                                break;
-                            }
-                            let block = decode_scan_block(
-                                chunk,
-                                meta,
-                                part,
-                                colour,
-                                scratch.as_mut(),
-                                geometry,
-                            );
-                            match block {
-                                Ok(n) => covered += n,
-                                Err(e) => {
-                                    failed.store(true, Ordering::Relaxed);
-                                    return Err(e);
-                                }
+        let (read, decoded) = std::thread::scope(|scope| {
+            let mut senders = Vec::with_capacity(threads);
+            let mut handles = Vec::with_capacity(threads);
+            for _ in 0..threads {
+                let (send, receive) = mpsc::channel::<Chunk>();
+                senders.push(send);
+                let (failed, geometry) = (&failed, &geometry);
+                handles.push(scope.spawn(move || {
+                    let mut scratch = zip.then(ZipScratch::new);
+                    let mut covered = 0;
+                    for chunk in receive {
+                        let block = decode_scan_block(
+                            chunk,
+                            meta,
+                            part,
+                            colour,
+                            scratch.as_mut(),
+                            geometry,
+                        );
+                        match block {
+                            Ok(n) => covered += n,
+                            Err(e) => {
+                                // Ends the reading, and the other threads.
+                                failed.store(true, Ordering::Relaxed);
+                                return Err(e);
                             }
                         }
-                        Ok(covered)
-                    })
-                })
-                .collect();
-            handles
+                        if failed.load(Ordering::Relaxed) {
+                            break;
+                        }
+                    }
+                    Ok(covered)
+                }));
+            }
+            let mut read = Ok(());
+            for (i, chunk) in chunks.enumerate() {
+                if failed.load(Ordering::Relaxed) {
+                    break;
+                }
+                match chunk {
+                    // A thread that stopped on an error has set `failed`.
+                    Ok(chunk) => {
+                        let _ = senders[i % threads].send(chunk);
+                    }
+                    Err(e) => {
+                        failed.store(true, Ordering::Relaxed);
+                        read = Err(e);
+                        break;
+                    }
+                }
+            }
+            drop(senders);
+            let decoded: Vec<Result<usize, IoErrorKind>> = handles
                 .into_iter()
                 .map(|h| {
                     h.join().unwrap_or_else(|payload| {
@@ -254,10 +282,13 @@ fn decompress_scan_lines(
                         )))
                     })
                 })
-                .collect()
+                .collect();
+            (read, decoded)
         });
+        // An error reading the file comes first: it explains the others.
+        read?;
         let mut covered = 0;
-        for r in results {
+        for r in decoded {
             covered += r?;
         }
         covered
