@@ -30,6 +30,11 @@ pub fn write_output(
     ui: &Ui,
 ) -> Result<()> {
     let to_terminal = || std::io::IsTerminal::is_terminal(&std::io::stdout());
+    if let (None | Some(ExportFormat::Json), Dest::File(path)) = (format, dest) {
+        // Written as it is formatted (CoeffFile::write_json).
+        return shlight_io::write_atomically(path, |w| file.write_json(w))
+            .with_context(|| format!("writing {}", path.display()));
+    }
     let out = match (format, dest) {
         (None, Dest::Stdout) if to_terminal() => Exported {
             text: file.to_table(),

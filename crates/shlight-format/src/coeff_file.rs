@@ -1,6 +1,9 @@
 //! shlight's coefficient file: self-describing JSON (docs/coefficient-file.md).
 
+use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
 
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -241,30 +244,47 @@ impl CoeffFile {
     /// [`CoeffFile::to_json`], with the same numbers.
     #[must_use]
     pub fn to_json_string(&self) -> String {
+        let mut out = Vec::with_capacity(self.coeffs.len() * 3 * 24 + 4096);
+        self.write_json_text(&mut out)
+            .expect("writing to memory cannot fail");
+        String::from_utf8(out).expect("serde_json writes UTF-8")
+    }
+
+    /// Writes [`CoeffFile::to_json_string`] and a newline to `w`. Above
+    /// [`PRETTY_MAX_LMAX`] the rows are formatted on every core while the
+    /// text before them is written, so a large file is written as it is
+    /// formatted, without the whole text in memory.
+    ///
+    /// # Errors
+    /// The first error of `w`.
+    pub fn write_json(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        self.write_json_text(w)?;
+        w.write_all(b"\n")
+    }
+
+    /// [`CoeffFile::to_json_string`]'s text to `w`.
+    fn write_json_text(&self, w: &mut dyn Write) -> std::io::Result<()> {
         if self.coeffs.lmax() <= PRETTY_MAX_LMAX {
-            return serde_json::to_string_pretty(&self.to_json()).expect("JSON values serialise");
+            return serde_json::to_writer_pretty(&mut *w, &self.to_json()).map_err(Into::into);
         }
         // The document without its rows, written member by member, with the
         // rows written straight from the coefficients in its place: no
         // value tree of (lmax+1)^2 arrays.
         let doc = self.document(false);
-        let rows = self.coeffs.as_slice();
-        let mut out = Vec::with_capacity(rows.len() * 3 * 24 + 4096);
-        out.push(b'{');
+        w.write_all(b"{")?;
         for (i, (key, value)) in doc.as_object().expect("an object").iter().enumerate() {
             if i > 0 {
-                out.push(b',');
+                w.write_all(b",")?;
             }
-            serde_json::to_writer(&mut out, key).expect("writes to memory");
-            out.push(b':');
+            serde_json::to_writer(&mut *w, key)?;
+            w.write_all(b":")?;
             if key == "coefficients" {
-                write_rows(&mut out, rows);
+                write_rows(w, self.coeffs.as_slice())?;
             } else {
-                serde_json::to_writer(&mut out, value).expect("writes to memory");
+                serde_json::to_writer(&mut *w, value)?;
             }
         }
-        out.push(b'}');
-        String::from_utf8(out).expect("serde_json writes UTF-8")
+        w.write_all(b"}")
     }
 
     /// Writes the JSON file to `path` atomically (a temporary file renamed
@@ -273,8 +293,7 @@ impl CoeffFile {
     /// # Errors
     /// [`FormatError::Write`] naming the file.
     pub fn write(&self, path: &Path) -> Result<()> {
-        let text = self.to_json_string() + "\n";
-        shlight_io::write_atomically(path, |w| w.write_all(text.as_bytes()))?;
+        shlight_io::write_atomically(path, |w| self.write_json(w))?;
         Ok(())
     }
 
@@ -564,43 +583,68 @@ pub(crate) fn read_text(path: &Path) -> Result<String> {
 /// as in a value tree).
 ///
 /// Formatting the numbers is most of the cost of a large file (263 169
-/// rows at lmax 512), so runs of rows are formatted on scoped threads, one
-/// run per core, and joined in order: the text is the same for any thread
-/// count.
-fn write_rows(out: &mut Vec<u8>, rows: &[DVec3]) {
-    out.push(b'[');
-    let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    let per_run = rows.len().div_ceil(threads).max(ROWS_PER_RUN_MIN);
-    if rows.len() <= per_run {
-        write_run(out, rows, true);
-    } else {
-        let runs: Vec<Vec<u8>> = std::thread::scope(|scope| {
-            let handles: Vec<_> = rows
-                .chunks(per_run)
-                .enumerate()
-                .map(|(i, run)| {
-                    scope.spawn(move || {
-                        let mut text = Vec::with_capacity(run.len() * 3 * 24);
-                        write_run(&mut text, run, i == 0);
-                        text
-                    })
-                })
-                .collect();
-            handles
-                .into_iter()
-                .map(|h| h.join().expect("formatting numbers does not panic"))
-                .collect()
-        });
-        for run in &runs {
-            out.extend_from_slice(run);
+/// rows at lmax 512), so runs of [`ROWS_PER_RUN`] rows are formatted on
+/// scoped threads, one per core, each taking the next run not yet taken,
+/// and written in order by the calling thread as they are done: the text
+/// is the same for any thread count, and writing overlaps formatting.
+fn write_rows(w: &mut dyn Write, rows: &[DVec3]) -> std::io::Result<()> {
+    w.write_all(b"[")?;
+    let runs: Vec<&[DVec3]> = rows.chunks(ROWS_PER_RUN).collect();
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(runs.len());
+    if threads <= 1 {
+        let mut text = Vec::new();
+        for (i, run) in runs.iter().enumerate() {
+            text.clear();
+            write_run(&mut text, run, i == 0);
+            w.write_all(&text)?;
         }
+        return w.write_all(b"]");
     }
-    out.push(b']');
+    let next = AtomicUsize::new(0);
+    // Set when writing fails: the threads stop taking runs.
+    let stop = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        let (send, receive) = mpsc::channel::<(usize, Vec<u8>)>();
+        for _ in 0..threads {
+            let (send, next, stop, runs) = (send.clone(), &next, &stop, &runs);
+            scope.spawn(move || {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= runs.len() || stop.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let mut text = Vec::with_capacity(runs[i].len() * 3 * 24);
+                    write_run(&mut text, runs[i], i == 0);
+                    if send.send((i, text)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(send);
+        // Runs arrive in any order; each is written once those before it are.
+        let mut pending = std::collections::BTreeMap::new();
+        let mut written = 0;
+        for (i, text) in receive {
+            pending.insert(i, text);
+            while let Some(text) = pending.remove(&written) {
+                if let Err(e) = w.write_all(&text) {
+                    stop.store(true, Ordering::Relaxed);
+                    return Err(e);
+                }
+                written += 1;
+            }
+        }
+        Ok(())
+    })?;
+    w.write_all(b"]")
 }
 
-/// Rows per thread below which [`write_rows`] formats on one thread (a
-/// thread's start costs about what formatting a few thousand rows does).
-const ROWS_PER_RUN_MIN: usize = 4096;
+/// Rows per run of [`write_rows`]: about 200 kB of text, so the first run
+/// is written early and the runs' buffers stay small.
+const ROWS_PER_RUN: usize = 4096;
 
 /// `[r,g,b]` of each row, separated by commas, with a comma before the
 /// first row unless `first`.
@@ -688,10 +732,10 @@ mod tests {
 
     #[test]
     fn large_compact_files_are_serde_jsons_own_text_of_the_value_tree() {
-        // Enough rows for several formatting threads (ROWS_PER_RUN_MIN):
+        // Enough rows for several formatting threads (ROWS_PER_RUN):
         // the joined runs must be exactly serde_json's compact text.
         let lmax = 200;
-        assert!((lmax + 1) * (lmax + 1) > 2 * ROWS_PER_RUN_MIN);
+        assert!((lmax + 1) * (lmax + 1) > 2 * ROWS_PER_RUN);
         let mut file = sample_file();
         file.coeffs = ShCoeffs::from_fn(lmax, |l, m| {
             let x = (l * l) as f64 + 0.37 * m as f64;
