@@ -371,8 +371,10 @@ impl Azimuth {
                         &mut s.fft_scratch,
                     )
                     .expect("buffer sizes come from the plan");
+                    // k = m mod W, stepped (a division per m cost more
+                    // than the rest of this loop).
+                    let mut k = 0;
                     for m in 0..=self.lmax {
-                        let k = m % self.w;
                         let x = if k <= half {
                             s.spectrum[k]
                         } else {
@@ -384,6 +386,7 @@ impl Azimuth {
                         }
                         ring[m][c] = z.re;
                         ring[m][c + 3] = z.im;
+                        k = if k + 1 == self.w { 0 } else { k + 1 };
                     }
                 }
             }
