@@ -3,7 +3,9 @@
 //! Works at the block level of the `exr` crate: only the chosen part's
 //! blocks of the largest level are read, each block's DWA sizes are checked
 //! ([`inspect::check_dwa_block`]), and blocks are decompressed on scoped
-//! threads, each behind `catch_unwind`, so that a decoder panic on a damaged
+//! threads (ZIP and ZIPS by `zip_block.rs`, the others by `exr`; scan-line
+//! blocks as they are read, each straight into its band of rows), each
+//! behind `catch_unwind`, so that a decoder panic on a damaged
 //! file becomes an error instead of aborting the process (a panic inside
 //! `exr`'s own rayon pool would abort).
 
