@@ -154,6 +154,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         mode,
         albedo,
         seed: args.seed,
+        emission: None,
     };
     let bars = StageBars::new(ui);
     let start = Instant::now();

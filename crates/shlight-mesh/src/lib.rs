@@ -7,12 +7,15 @@
 //! plane under a sphere); either way they
 //! pass the same validation ([`Mesh::new`]), so code downstream may assume
 //! finite positions, in-range indices, no degenerate triangles and unit
-//! normals.
+//! normals. [`Mesh::subdivided`] splits long edges (conforming) for bakes
+//! that store light per vertex; meshes may carry per-vertex emission
+//! ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
 
 mod error;
 pub mod generate;
 mod load;
 mod mesh;
+mod subdivide;
 
 pub use error::MeshError;
 pub use load::{MeshFormat, load, load_bytes};
