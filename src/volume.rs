@@ -30,6 +30,9 @@ pub enum VolumeFormat {
     Shvol,
     /// The same as one JSON document, for other tools.
     Json,
+    /// A KTX2 3D texture of ambient cubes for Bevy's `IrradianceVolume`
+    /// (docs/shvol.md, "Bevy").
+    Bevy,
 }
 
 /// Arguments of `shlight volume`.
@@ -42,7 +45,8 @@ pub struct VolumeArgs {
     /// Output file (.shvol, or .json with --format json).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Output format [default: json for a .json name, else shvol].
+    /// Output format [default: json for a .json name, bevy for .ktx2, else
+    /// shvol].
     #[arg(long, value_enum)]
     pub format: Option<VolumeFormat>,
     /// The distant light: an equirect map (projected to --lmax, its top row
@@ -92,16 +96,14 @@ pub struct VolumeArgs {
 pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     let resolution = Grid::parse_resolution(&args.resolution)?;
     let bounds = args.bounds.as_deref().map(Grid::parse_bounds).transpose()?;
-    let format = args.format.unwrap_or_else(|| {
-        if args
-            .output
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
-        {
-            VolumeFormat::Json
-        } else {
-            VolumeFormat::Shvol
-        }
+    let extension = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let format = args.format.unwrap_or(match extension.as_deref() {
+        Some("json") => VolumeFormat::Json,
+        Some("ktx2") => VolumeFormat::Bevy,
+        _ => VolumeFormat::Shvol,
     });
     crate::output_path::refuse_overwriting(&args.output, &[args.scene.clone(), args.env.clone()])?;
     let options = VolumeOptions {
@@ -181,6 +183,20 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     match format {
         VolumeFormat::Shvol => file.write(&args.output)?,
         VolumeFormat::Json => file.write_json(&args.output)?,
+        VolumeFormat::Bevy => {
+            let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &meta.generator);
+            shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
+            let (lo, hi) = (grid.min, grid.max);
+            ui.note(format!(
+                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({}, {}, {})).with_scale(Vec3::new({}, {}, {}))",
+                (lo.x + hi.x) / 2.0,
+                (lo.y + hi.y) / 2.0,
+                (lo.z + hi.z) / 2.0,
+                hi.x - lo.x,
+                hi.y - lo.y,
+                hi.z - lo.z
+            ));
+        }
     }
     Ok(())
 }

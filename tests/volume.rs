@@ -157,6 +157,14 @@ fn the_bake_is_the_same_at_any_thread_count_and_static_drops_the_transfer() {
     let full = ShvolFile::from_bytes(&files[0], Path::new("t1.shvol")).unwrap();
     assert!(fixed.transfer.is_none() && fixed.emitted.is_none());
     assert_eq!(fixed.radiance, full.radiance);
+    // The Bevy texture of the same bake is what the format crate makes of
+    // the file (its layout is tested there against Bevy's shader).
+    let ktx2 = dir.join("box.ktx2");
+    shlight_ok(&bake_args(&env, &ktx2, &[]));
+    assert_eq!(
+        std::fs::read(&ktx2).unwrap(),
+        shlight_format::bevy_volume::bevy_ktx2(&full, &full.generator)
+    );
 }
 
 #[test]

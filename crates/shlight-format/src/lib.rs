@@ -52,6 +52,7 @@
 
 #![deny(missing_docs)]
 
+pub mod bevy_volume;
 pub mod coeff_file;
 mod error;
 pub mod export;

@@ -473,7 +473,8 @@ mod tests {
     use super::*;
 
     fn sample(relightable: bool) -> ShvolFile {
-        let (probes, nc) = (2 * 1 * 3, 4);
+        // A 2 x 1 x 3 grid at lmax 1.
+        let (probes, nc) = (6, 4);
         ShvolFile {
             lmax: 1,
             resolution: [2, 1, 3],
