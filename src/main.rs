@@ -33,6 +33,7 @@ mod synth;
 mod texels;
 mod values;
 mod view;
+mod volume;
 
 use std::process::ExitCode;
 
@@ -70,6 +71,8 @@ enum Command {
     View(view::ViewArgs),
     /// Bake precomputed radiance transfer (PRT) for a mesh.
     Prt(prt::PrtArgs),
+    /// Bake an irradiance volume: relightable SH probes on a grid through a scene.
+    Volume(volume::VolumeArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -105,6 +108,7 @@ fn main() -> ExitCode {
         Command::RenderMesh(args) => render_mesh::run(&args, &ui),
         Command::View(args) => view::run(&args, &ui),
         Command::Prt(args) => prt::run(&args, &ui),
+        Command::Volume(args) => volume::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

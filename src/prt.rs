@@ -7,20 +7,17 @@
 //! coefficient file's radiance and rasterises them to a PNG.
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::{DVec3, Vec3};
-use indicatif::ProgressBar;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
-use crate::progress::Ui;
+use crate::progress::{StageBars, Ui};
 use crate::texels::parse_size;
 use shlight_format::CoeffFile;
 
@@ -77,7 +74,7 @@ pub struct PrtArgs {
     pub preview_exposure: Option<f32>,
 }
 
-fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
+pub fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
     let values: Vec<f32> = s
         .split(',')
         .map(|v| v.trim().parse::<f32>())
@@ -154,8 +151,12 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         mode,
         albedo,
         seed: args.seed,
+        emission: None,
     };
-    let bars = StageBars::new(ui);
+    let bars = StageBars::new(ui, |stage| match stage {
+        Stage::Rays => "directions".to_string(),
+        Stage::Bounce(k) => format!("bounce {k}"),
+    });
     let start = Instant::now();
     let transfer = bake(&mesh, &options, &|stage, done, total| {
         bars.update(stage, done, total)
@@ -245,47 +246,5 @@ fn auto_exposure(radiance: &[Vec3]) -> f32 {
         (0.25 / mean).log2() as f32
     } else {
         0.0
-    }
-}
-
-/// One progress bar per stage of the bake, replaced when the stage changes.
-struct StageBars<'a> {
-    ui: &'a Ui,
-    current: Mutex<Option<(Stage, ProgressBar)>>,
-    furthest: AtomicUsize,
-}
-
-impl<'a> StageBars<'a> {
-    fn new(ui: &'a Ui) -> Self {
-        Self {
-            ui,
-            current: Mutex::new(None),
-            furthest: AtomicUsize::new(0),
-        }
-    }
-
-    fn update(&self, stage: Stage, done: usize, total: usize) {
-        let mut current = self.current.lock().expect("no panics while held");
-        if current.as_ref().is_none_or(|(s, _)| *s != stage) {
-            if let Some((_, bar)) = current.take() {
-                bar.finish_and_clear();
-            }
-            let label = match stage {
-                Stage::Rays => "directions".to_string(),
-                Stage::Bounce(k) => format!("bounce {k}"),
-            };
-            self.furthest.store(0, Ordering::Relaxed);
-            *current = Some((stage, self.ui.bar(total as u64, &label)));
-        }
-        let furthest = self.furthest.fetch_max(done, Ordering::Relaxed).max(done);
-        if let Some((_, bar)) = current.as_ref() {
-            bar.set_position(furthest as u64);
-        }
-    }
-
-    fn finish(&self) {
-        if let Some((_, bar)) = self.current.lock().expect("no panics while held").take() {
-            bar.finish_and_clear();
-        }
     }
 }

@@ -59,6 +59,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
         mode: Mode::Interreflected { bounces: 6 },
         albedo: Albedo::Constant([0.5; 3]),
         seed: 4,
+        emission: None,
     };
     let library = bake(&mesh, &options, &|_, _, _| {});
     assert_eq!(file.transfer, library.coeffs);

@@ -21,3 +21,4 @@ mod render;
 mod shaders;
 mod synth;
 mod util;
+mod volume;

@@ -20,6 +20,8 @@
 //! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
 //! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
 //!   (docs/shprt.md).
+//! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
+//!   and transfer matrices, and its JSON form (docs/shvol.md).
 //!
 //! # Conventions
 //! Coefficients are in shlight's basis (real orthonormal SH with the
@@ -50,12 +52,14 @@
 
 #![deny(missing_docs)]
 
+pub mod bevy_volume;
 pub mod coeff_file;
 mod error;
 pub mod export;
 mod import;
 mod quantity;
 pub mod shprt;
+pub mod shvol;
 
 pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
 pub use error::{FormatError, Result};
@@ -63,3 +67,4 @@ pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};
 pub use shprt::ShprtFile;
+pub use shvol::ShvolFile;

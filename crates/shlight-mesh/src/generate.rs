@@ -11,6 +11,8 @@ use glam::Vec3;
 
 use crate::Mesh;
 
+pub use crate::cornell_box::cornell_box;
+
 /// A UV sphere of `radius` about the origin with `segments` slices around
 /// +Y and `rings` stacks from pole to pole (at least 3 and 2).
 ///

@@ -4,15 +4,19 @@
 //! normal per vertex (and optional per-vertex linear colours). Meshes come
 //! from files ([`load`]: OBJ, PLY, OFF, glTF/GLB, each in its file's vertex
 //! order) or from generators ([`generate`]: sphere, plane, box, torus, bowl,
-//! plane under a sphere); either way they
+//! plane under a sphere; and [`generate::cornell_box`], the standard test room); either way they
 //! pass the same validation ([`Mesh::new`]), so code downstream may assume
 //! finite positions, in-range indices, no degenerate triangles and unit
-//! normals.
+//! normals. [`Mesh::subdivided`] splits long edges (conforming) for bakes
+//! that store light per vertex; meshes may carry per-vertex emission
+//! ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
 
+pub mod cornell_box;
 mod error;
 pub mod generate;
 mod load;
 mod mesh;
+mod subdivide;
 
 pub use error::MeshError;
 pub use load::{MeshFormat, load, load_bytes};

@@ -79,6 +79,12 @@ pub fn load_bytes(path: &Path, format: MeshFormat, bytes: &[u8]) -> Result<Mesh,
 /// vertex (`single_index`), so vertices appear in the order tobj first meets
 /// each distinct (position, normal) pair; objects are concatenated in file
 /// order. Normals are used only when every object has them.
+///
+/// Materials: the `mtllib` files named by the OBJ are read from its
+/// directory; an object's material gives its vertices albedo `Kd` and
+/// emitted radiance `Ke`. Without any material (or with a missing `mtllib`,
+/// which tobj reports and shlight then ignores) the mesh has no colours, as
+/// before; objects without a material get white albedo when others have one.
 fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let options = tobj::LoadOptions {
         single_index: true,
@@ -86,18 +92,29 @@ fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) =
-        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| {
-            Ok(Default::default())
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let (models, materials) =
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |mtl| {
+            let file = dir.join(mtl);
+            match std::fs::read(&file) {
+                Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(b)),
+                Err(_) => Ok(Default::default()),
+            }
         })
         .map_err(|e| MeshError::Parse {
             path: path.to_path_buf(),
             message: format!("not a valid OBJ file: {e}"),
         })?;
+    let materials = materials.map_err(|e| MeshError::Parse {
+        path: path.to_path_buf(),
+        message: format!("not a valid MTL file: {e}"),
+    })?;
     let all_normals = models
         .iter()
         .all(|m| m.mesh.normals.len() == m.mesh.positions.len());
+    let any_material = models.iter().any(|m| m.mesh.material_id.is_some()) && !materials.is_empty();
     let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut colors, mut emission) = (Vec::new(), Vec::new());
     for model in &models {
         let base = positions.len() as u32;
         let m = &model.mesh;
@@ -118,14 +135,31 @@ fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
                 .chunks_exact(3)
                 .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
         );
+        if any_material {
+            let material = m.material_id.and_then(|i| materials.get(i));
+            let kd = material
+                .and_then(|mat| mat.diffuse)
+                .map_or(Vec3::ONE, Vec3::from_array);
+            let ke = material
+                .and_then(|mat| mat.emissive)
+                .map_or(Vec3::ZERO, Vec3::from_array);
+            let n = m.positions.len() / 3;
+            colors.extend(std::iter::repeat_n(kd, n));
+            emission.extend(std::iter::repeat_n(ke, n));
+        }
     }
-    Mesh::new(
+    let mesh = Mesh::new(
         path,
         positions,
         triangles,
         all_normals.then_some(normals),
-        None,
-    )
+        any_material.then_some(colors),
+    )?;
+    if any_material {
+        mesh.with_emission(path, emission)
+    } else {
+        Ok(mesh)
+    }
 }
 
 #[cfg(test)]
@@ -142,6 +176,44 @@ mod tests {
         let src = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\n";
         let m = load_bytes(Path::new("t.obj"), MeshFormat::Obj, src).unwrap();
         assert!(m.normals.iter().all(|n| *n == Vec3::X));
+    }
+
+    #[test]
+    fn obj_materials_give_albedo_and_emission() {
+        let dir = std::env::temp_dir().join(format!("shlight-mtl-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("m.mtl"),
+            "newmtl red\nKd 0.8 0.1 0.1\nnewmtl lamp\nKd 0 0 0\nKe 5 4 3\n",
+        )
+        .unwrap();
+        let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no a\nusemtl red\nf 1 2 3\no b\nusemtl lamp\nf 1 2 4\n";
+        let m = load_bytes(&dir.join("s.obj"), MeshFormat::Obj, obj).unwrap();
+        let colors = m.colors.as_ref().unwrap();
+        let emission = m.emission.as_ref().unwrap();
+        for tri in &m.triangles {
+            let kd = colors[tri[0] as usize];
+            let ke = emission[tri[0] as usize];
+            assert!(
+                (kd, ke) == (Vec3::new(0.8, 0.1, 0.1), Vec3::ZERO)
+                    || (kd, ke) == (Vec3::ZERO, Vec3::new(5.0, 4.0, 3.0)),
+                "{kd} {ke}"
+            );
+            assert!(
+                tri.iter()
+                    .all(|&i| colors[i as usize] == kd && emission[i as usize] == ke)
+            );
+        }
+        assert_eq!(m.triangle_count(), 2);
+        // No mtllib: no colours, no emission.
+        let m = load_bytes(
+            &dir.join("t.obj"),
+            MeshFormat::Obj,
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        )
+        .unwrap();
+        assert!(m.colors.is_none() && m.emission.is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

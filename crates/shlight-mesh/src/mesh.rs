@@ -34,8 +34,14 @@ pub struct Mesh {
     pub positions: Vec<Vec3>,
     /// Unit vertex normals, one per position.
     pub normals: Vec<Vec3>,
-    /// Linear Rec.709 vertex colours, one per position, when the source has them.
+    /// Linear Rec.709 vertex colours (diffuse albedo), one per position, when
+    /// the source has them.
     pub colors: Option<Vec<Vec3>>,
+    /// Linear Rec.709 emitted radiance per vertex (W sr^-1 m^-2 per channel,
+    /// the same units as the environment's radiance), when the source has
+    /// emitters: OBJ `Ke`, glTF `emissiveFactor` times
+    /// `KHR_materials_emissive_strength`. Emission leaves the front side only.
+    pub emission: Option<Vec<Vec3>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
     /// What validation found.
@@ -150,9 +156,48 @@ impl Mesh {
             positions,
             normals,
             colors,
+            emission: None,
             triangles: kept,
             report,
         })
+    }
+
+    /// The mesh with per-vertex emitted radiance (see [`Mesh::emission`]).
+    /// All-zero emission is stored as `None`.
+    ///
+    /// # Errors
+    /// Another count than the mesh's vertices, or a negative or non-finite
+    /// component; `source` names the mesh in the message.
+    pub fn with_emission(
+        mut self,
+        source: impl Into<PathBuf>,
+        emission: Vec<Vec3>,
+    ) -> Result<Self, MeshError> {
+        let invalid = |message: String| MeshError::Invalid {
+            path: source.into(),
+            message,
+        };
+        if emission.len() != self.positions.len() {
+            return Err(invalid(format!(
+                "{} emission values for {} vertices",
+                emission.len(),
+                self.positions.len()
+            )));
+        }
+        if let Some(v) = emission
+            .iter()
+            .position(|e| !e.is_finite() || e.min_element() < 0.0)
+        {
+            return Err(invalid(format!(
+                "vertex {v} has a negative or non-finite emission ({:?})",
+                emission[v]
+            )));
+        }
+        self.emission = emission
+            .iter()
+            .any(|e| *e != Vec3::ZERO)
+            .then_some(emission);
+        Ok(self)
     }
 
     /// Number of vertices.

@@ -29,8 +29,12 @@
 //! under constant light never gains or loses energy in the estimate, and the
 //! interreflected limit of the white furnace is exact.
 //!
-//! Rays start at `p + eps n`, `eps` = [`OFFSET`] times the mesh's bounding
-//! box diagonal, so a vertex does not shadow itself. A ray that hits the back
+//! Rays start at `p + eps (n + c)`, `eps` = [`OFFSET`] times the mesh's
+//! bounding box diagonal, so a vertex does not shadow itself; `c` is the
+//! unit tangent from the vertex towards the mean centroid of its triangles,
+//! so a vertex on a concave edge (where a wall meets a ceiling) starts off
+//! the other surface's plane instead of on it, where its rays would slip
+//! out between the two ([`ray_origins`]). A ray that hits the back
 //! of a triangle (an open mesh seen from behind) is blocked and brings no
 //! bounce light: surfaces are one-sided.
 //!
@@ -133,6 +137,10 @@ pub struct BakeOptions {
     pub albedo: Albedo,
     /// Seed of the direction set.
     pub seed: u64,
+    /// Emitted radiance per vertex (linear RGB, one per vertex, e.g.
+    /// [`Mesh::emission`]); with it the bake also gathers the light the
+    /// emitters send around the mesh ([`Transfer::emitted`]).
+    pub emission: Option<Vec<Vec3>>,
 }
 
 impl Default for BakeOptions {
@@ -143,6 +151,7 @@ impl Default for BakeOptions {
             mode: Mode::Shadowed,
             albedo: Albedo::Constant([0.8; 3]),
             seed: 0,
+            emission: None,
         }
     }
 }
@@ -172,6 +181,13 @@ pub struct Transfer {
     pub samples: usize,
     /// Rays cast (directions above each vertex's tangent plane).
     pub rays: u64,
+    /// With [`BakeOptions::emission`]: each vertex's exit radiance due to
+    /// the emitters alone (linear RGB), `E = E^0 + ... + E^B` with
+    /// `E^0 = Le` and `E^b(p) = rho/pi int max(n.s, 0) (1 - V(p, s))
+    /// E^{b-1}(q(p, s)) ds`, the transfer's own iteration with the emission
+    /// as the source, so the exit radiance of a vertex under light `L` is
+    /// `T . L + E`.
+    pub emitted: Option<Vec<Vec3>>,
 }
 
 impl Transfer {
@@ -293,17 +309,57 @@ pub fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
 #[must_use]
 pub fn cast_rays(mesh: &Mesh, dirs: &[Vec3]) -> Vec<(Vec3, Vec<Vec3>)> {
     let bounds = mesh.bounds();
-    let eps = OFFSET * (bounds.1 - bounds.0).length();
+    let start = ray_origins(mesh);
     let order = morton_order(&mesh.positions, bounds);
     dirs.iter()
         .map(|d| {
             let origins = order
                 .iter()
-                .map(|&v| (mesh.positions[v as usize], mesh.normals[v as usize]))
-                .filter(|(_, n)| n.dot(*d) > 0.0)
-                .map(|(p, n)| p + eps * n)
+                .filter(|&&v| mesh.normals[v as usize].dot(*d) > 0.0)
+                .map(|&v| start[v as usize])
                 .collect();
             (*d, origins)
+        })
+        .collect()
+}
+
+/// Where each vertex's rays start: `p + eps (n + c)`, `eps` = [`OFFSET`]
+/// times the bounding-box diagonal, `c` the unit vector in the tangent plane
+/// from `p` towards the mean centroid of the triangles that use it (zero
+/// for a vertex no triangle uses, or one whose mean lies along its normal,
+/// like a sphere's pole).
+#[must_use]
+pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
+    let bounds = mesh.bounds();
+    let eps = OFFSET * (bounds.1 - bounds.0).length();
+    let mut centroids = vec![(DVec3::ZERO, 0u32); mesh.vertex_count()];
+    for t in &mesh.triangles {
+        let c = t
+            .iter()
+            .map(|&i| mesh.positions[i as usize].as_dvec3())
+            .sum::<DVec3>()
+            / 3.0;
+        for &i in t {
+            let e = &mut centroids[i as usize];
+            e.0 += c;
+            e.1 += 1;
+        }
+    }
+    mesh.positions
+        .iter()
+        .zip(&mesh.normals)
+        .zip(&centroids)
+        .map(|((p, n), &(sum, count))| {
+            let inward = if count == 0 {
+                Vec3::ZERO
+            } else {
+                let c = sum / f64::from(count) - p.as_dvec3();
+                let n = n.as_dvec3();
+                (c - c.dot(n) * n)
+                    .try_normalize()
+                    .map_or(Vec3::ZERO, |c| c.as_vec3())
+            };
+            *p + eps * (*n + inward)
         })
         .collect()
 }
@@ -331,6 +387,9 @@ pub fn bake(
     let n_vertices = mesh.vertex_count();
     if let Albedo::PerVertex(a) = &options.albedo {
         assert_eq!(a.len(), n_vertices, "one albedo per vertex");
+    }
+    if let Some(e) = &options.emission {
+        assert_eq!(e.len(), n_vertices, "one emission per vertex");
     }
     let lmax = options.lmax;
     let nc = sh_count(lmax);
@@ -377,7 +436,7 @@ pub fn bake(
             .map(|t| t.map(|i| rank[i as usize]))
             .collect();
         let bvh = PacketBvh::new(Bvh::new(&positions, &triangles));
-        let eps = OFFSET * (bounds.1 - bounds.0).length();
+        let start = ray_origins(mesh);
         let done = AtomicUsize::new(0);
         visible
             .par_chunks_mut(words.max(1))
@@ -401,7 +460,7 @@ pub fn bake(
                     for eight in facing.chunks(LANES) {
                         let mut origins = [Vec3::ZERO; LANES];
                         for (o, &s) in origins.iter_mut().zip(eight) {
-                            *o = positions[s as usize] + eps * normals[s as usize];
+                            *o = start[order[s as usize] as usize];
                         }
                         let packet = Packet::new(&dir, &origins[..eight.len()]);
                         let escaped = if keep_hits {
@@ -532,7 +591,10 @@ pub fn bake(
     }
     drop(geometric);
 
-    // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit).
+    // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
+    // the same for the emitters' light E.
+    let mut emitted = options.emission.clone();
+    let mut previous_emitted = options.emission.clone();
     let mut previous = total.clone();
     for bounce in 1..=options.mode.bounces() {
         let done = AtomicUsize::new(0);
@@ -574,6 +636,30 @@ pub fn bake(
             *t += b;
         }
         previous = next;
+        if let (Some(sum), Some(last)) = (&mut emitted, &previous_emitted) {
+            let next: Vec<Vec3> = (0..n_vertices)
+                .into_par_iter()
+                .map(|v| {
+                    let mut acc = DVec3::ZERO;
+                    for h in &blocked[first[v]..first[v + 1]] {
+                        let [a, b, c] = mesh.triangles[h.triangle as usize];
+                        let wa = f64::from(h.w * (1.0 - h.b1 - h.b2));
+                        let (wb, wc) = (f64::from(h.w * h.b1), f64::from(h.w * h.b2));
+                        acc += wa * last[a as usize].as_dvec3()
+                            + wb * last[b as usize].as_dvec3()
+                            + wc * last[c as usize].as_dvec3();
+                    }
+                    // Every albedo has three channels (a grey one three equal).
+                    let rho =
+                        DVec3::from_array([0, 1, 2].map(|c| f64::from(options.albedo.get(v, c))));
+                    (rho * acc).as_vec3()
+                })
+                .collect();
+            for (e, b) in sum.iter_mut().zip(&next) {
+                *e += *b;
+            }
+            previous_emitted = Some(next);
+        }
     }
 
     Transfer {
@@ -583,5 +669,6 @@ pub fn bake(
         coeffs: total,
         samples: dirs.len(),
         rays: rays.into_inner(),
+        emitted,
     }
 }

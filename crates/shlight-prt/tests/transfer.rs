@@ -20,8 +20,49 @@ fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
         mode,
         albedo: Albedo::Constant([albedo; 3]),
         seed: 11,
+        emission: None,
     };
     bake(mesh, &options, &|_, _, _| {})
+}
+
+#[test]
+fn an_emitting_bowl_lights_itself_as_the_closed_form_says() {
+    // Every point of the bowl sees half bowl and half sky (the closed form
+    // of the grey-bowl test below): with emission Le everywhere and albedo
+    // rho, E = Le + rho E / 2 after enough bounces, E = Le / (1 - rho/2),
+    // and after B bounces the partial sum of (rho/2)^b.
+    let bowl = generate::bowl(1.0, 32, 8);
+    let (rho, le) = (0.5f32, Vec3::new(1.0, 2.0, 0.5));
+    let bake_with = |bounces| {
+        let options = BakeOptions {
+            lmax: 2,
+            samples: 2048,
+            mode: Mode::Interreflected { bounces },
+            albedo: Albedo::Constant([rho; 3]),
+            seed: 5,
+            emission: Some(vec![le; bowl.vertex_count()]),
+        };
+        bake(&bowl, &options, &|_, _, _| {}).emitted.unwrap()
+    };
+    for e in bake_with(0) {
+        assert_eq!(e, le, "no bounce: the emission itself");
+    }
+    for bounces in [1u32, 12] {
+        let sum: f32 = (0..=bounces).map(|b| (rho / 2.0).powi(b as i32)).sum();
+        for e in bake_with(bounces) {
+            let want = le * sum;
+            assert!(
+                (e - want).abs().max_element() < 0.012 * want.max_element(),
+                "{e} vs {want}"
+            );
+        }
+    }
+    // Without emission the bake says so.
+    assert!(
+        run(&bowl, Mode::Interreflected { bounces: 1 }, 256, rho)
+            .emitted
+            .is_none()
+    );
 }
 
 /// A cosine-distributed direction about `n` (Malley's method).

@@ -10,7 +10,9 @@
 //! a mirroring transform. `NORMAL` when every primitive has it; per-vertex
 //! albedo `COLOR_0` (linear, RGB) times the material's `baseColorFactor`, or
 //! the factor alone; none at all when no primitive has `COLOR_0` and every
-//! factor is white.
+//! factor is white. Emitted radiance per vertex: the material's
+//! `emissiveFactor` times `KHR_materials_emissive_strength` (emissive
+//! textures are not read); none when no material emits.
 //!
 //! Vertex order: scene nodes depth-first in document order (a node, then its
 //! children), each node's primitives in order, each primitive's vertices in
@@ -78,7 +80,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     }
     let colors = out.any_color.then_some(out.colors);
     let normals = out.all_normals.then_some(out.normals);
-    Mesh::new(path, out.positions, out.triangles, normals, colors)
+    let emission = out.emission;
+    let mesh = Mesh::new(path, out.positions, out.triangles, normals, colors)?;
+    if emission.iter().any(|e| *e != Vec3::ZERO) {
+        mesh.with_emission(path, emission)
+    } else {
+        Ok(mesh)
+    }
 }
 
 #[derive(Default)]
@@ -86,6 +94,7 @@ struct Gathered {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     colors: Vec<Vec3>,
+    emission: Vec<Vec3>,
     triangles: Vec<[u32; 3]>,
     any_color: bool,
     all_normals: bool,
@@ -198,6 +207,11 @@ fn add_mesh(
             )));
         }
         out.colors.extend(colors);
+        let material = prim.material();
+        let emissive = Vec3::from_array(material.emissive_factor())
+            * material.emissive_strength().unwrap_or(1.0);
+        out.emission
+            .extend(std::iter::repeat_n(emissive, positions.len()));
         out.positions.extend(positions);
         out.primitives += 1;
     }

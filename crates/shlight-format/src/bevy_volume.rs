@@ -1,0 +1,217 @@
+//! A probe volume as Bevy's `IrradianceVolume` texture: a KTX2 3D texture
+//! of ambient cubes, in the layout and units Bevy's own shader reads
+//! (bevy_pbr `light_probe/irradiance_volume.wgsl`).
+//!
+//! # What Bevy reads
+//! The texture is `nx x 2 ny x 3 nz` texels for an `nx x ny x nz` grid:
+//! probe `(x, y, z)`'s ambient cube (Valve 2006, "Shading in Valve's Source
+//! Engine", slide 28) sits at texel `(x, y + ny s, z + nz a)` for axis `a`
+//! (0 = X, 1 = Y, 2 = Z) and sign `s` (0 for `+a`, 1 for `-a`). The shader
+//! maps the fragment into the light probe's unit cube, to texel coordinates
+//! `stp = (p + 1/2) resolution` clamped to `[1/2, resolution - 1/2]` (so
+//! probes sit at cell centres, as shlight's), samples the three faces the
+//! normal `N` looks at with the linear sampler and returns
+//! `sum_a N_a^2 c_{sign(N_a) a}`, which Bevy multiplies by the material's
+//! diffuse colour (albedo, no `1/pi`) and the volume's `intensity`. So each
+//! texel holds `E(+-a) / pi`: the exit radiance of a white Lambertian
+//! surface facing that way, `E` the irradiance of the probe's radiance SH
+//! (Ramamoorthi & Hanrahan 2001), which makes the six axes exact.
+//!
+//! The light probe's `Transform` places the unit cube on the grid's bounds:
+//! translation the box's centre, scale its size (docs/shvol.md).
+//!
+//! # The file
+//! KTX2 (Khronos), `VK_FORMAT_R16G16B16A16_SFLOAT` (linear, filterable
+//! everywhere; alpha 1), one level, one layer, one face, no
+//! supercompression, a basic data format descriptor (RGBSDA, BT.709
+//! primaries, linear transfer) and a `KTXwriter` key. Invalid probes take
+//! the mean of their valid neighbours (Bevy's sampler knows no validity),
+//! or zero when none is valid.
+
+use glam::{DVec3, Vec3};
+use shlight_core::{ShCoeffs, irradiance, sh_count};
+
+use crate::ShvolFile;
+
+/// `VK_FORMAT_R16G16B16A16_SFLOAT`.
+pub const VK_FORMAT: u32 = 97;
+
+/// The six ambient-cube colours of every probe, `E(+-a) / pi` in the order
+/// +X, -X, +Y, -Y, +Z, -Z, probes in grid order (invalid ones as the file
+/// has them).
+#[must_use]
+pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {
+    let nc = sh_count(file.lmax);
+    file.radiance
+        .chunks_exact(3 * nc)
+        .map(|p| {
+            let l = ShCoeffs::from_vec(
+                p.chunks_exact(3)
+                    .map(|c| Vec3::from_slice(c).as_dvec3())
+                    .collect(),
+            )
+            .expect("(lmax+1)^2 rows");
+            let e = irradiance(&l);
+            [
+                DVec3::X,
+                DVec3::NEG_X,
+                DVec3::Y,
+                DVec3::NEG_Y,
+                DVec3::Z,
+                DVec3::NEG_Z,
+            ]
+            .map(|n| (e.eval(n) / std::f64::consts::PI).as_vec3())
+        })
+        .collect()
+}
+
+/// The KTX2 file Bevy's `IrradianceVolume` takes.
+#[must_use]
+pub fn bevy_ktx2(file: &ShvolFile, writer: &str) -> Vec<u8> {
+    let [nx, ny, nz] = file.resolution;
+    let mut cubes = ambient_cubes(file);
+    fill_invalid(file, &mut cubes);
+    let (w, h, d) = (nx, 2 * ny, 3 * nz);
+    let mut texels = vec![[0u16; 4]; w * h * d];
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let cube = &cubes[x + nx * (y + ny * z)];
+                for a in 0..3 {
+                    for s in 0..2 {
+                        let c = cube[2 * a + s];
+                        let (ty, tz) = (y + ny * s, z + nz * a);
+                        texels[x + w * (ty + h * tz)] = [
+                            half::f16::from_f32(c.x).to_bits(),
+                            half::f16::from_f32(c.y).to_bits(),
+                            half::f16::from_f32(c.z).to_bits(),
+                            half::f16::ONE.to_bits(),
+                        ];
+                    }
+                }
+            }
+        }
+    }
+    let data: Vec<u8> = texels
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    write_ktx2([w, h, d], &data, writer)
+}
+
+/// Invalid probes take the mean of their valid face neighbours (repeated
+/// outwards until every probe next to a valid one has a value).
+fn fill_invalid(file: &ShvolFile, cubes: &mut [[Vec3; 6]]) {
+    let [nx, ny, nz] = file.resolution;
+    let mut known = file.valid.clone();
+    if !known.iter().any(|k| *k) {
+        cubes.fill([Vec3::ZERO; 6]);
+        return;
+    }
+    while known.iter().any(|k| !k) {
+        let mut next = known.clone();
+        let snapshot = cubes.to_vec();
+        for z in 0..nz {
+            for y in 0..ny {
+                for x in 0..nx {
+                    let i = x + nx * (y + ny * z);
+                    if known[i] {
+                        continue;
+                    }
+                    let mut sum = [Vec3::ZERO; 6];
+                    let mut count = 0.0;
+                    let neighbours = [
+                        (x > 0).then(|| i - 1),
+                        (x + 1 < nx).then(|| i + 1),
+                        (y > 0).then(|| i - nx),
+                        (y + 1 < ny).then(|| i + nx),
+                        (z > 0).then(|| i - nx * ny),
+                        (z + 1 < nz).then(|| i + nx * ny),
+                    ];
+                    for j in neighbours.into_iter().flatten().filter(|&j| known[j]) {
+                        for (s, c) in sum.iter_mut().zip(&snapshot[j]) {
+                            *s += *c;
+                        }
+                        count += 1.0;
+                    }
+                    if count > 0.0 {
+                        cubes[i] = sum.map(|s| s / count);
+                        next[i] = true;
+                    }
+                }
+            }
+        }
+        known = next;
+    }
+}
+
+/// A KTX2 file of one level of RGBA16F texels (`size` = width, height,
+/// depth; a depth above 1 makes a 3D texture).
+fn write_ktx2(size: [usize; 3], data: &[u8], writer: &str) -> Vec<u8> {
+    const IDENTIFIER: [u8; 12] = [
+        0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A,
+    ];
+    // Data format descriptor: total size, then one basic block of 24 bytes
+    // plus 16 per sample (R, G, B, A).
+    let mut dfd = Vec::new();
+    let block_size: u16 = 24 + 16 * 4;
+    dfd.extend((4 + u32::from(block_size)).to_le_bytes());
+    dfd.extend(0u32.to_le_bytes()); // vendor 0 (Khronos), descriptor type 0 (basic)
+    dfd.extend(2u16.to_le_bytes()); // version 1.3 of the descriptor
+    dfd.extend(block_size.to_le_bytes());
+    dfd.extend([1, 1, 1, 0]); // RGBSDA model, BT.709 primaries, linear transfer, straight alpha
+    dfd.extend([0, 0, 0, 0]); // texel block 1 x 1 x 1 x 1
+    dfd.extend([8, 0, 0, 0, 0, 0, 0, 0]); // 8 bytes per texel, one plane
+    for (k, channel) in [0u8, 1, 2, 15].into_iter().enumerate() {
+        dfd.extend((16 * k as u16).to_le_bytes()); // bit offset
+        dfd.push(15); // bit length - 1
+        dfd.push(channel | 0x80 | 0x40); // float, signed
+        dfd.extend([0, 0, 0, 0]); // sample position
+        dfd.extend((-1.0f32).to_bits().to_le_bytes()); // sample lower
+        dfd.extend(1.0f32.to_bits().to_le_bytes()); // sample upper
+    }
+    let mut kvd = Vec::new();
+    let entry = [b"KTXwriter\0".as_slice(), writer.as_bytes(), b"\0"].concat();
+    kvd.extend((entry.len() as u32).to_le_bytes());
+    kvd.extend(&entry);
+    while kvd.len() % 4 != 0 {
+        kvd.push(0);
+    }
+    // Layout: identifier, header (9 u32), index (4 u32 + 2 u64), level index
+    // (3 u64), the descriptor, the key/values, then the level, 8-aligned.
+    let header_len = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 3 * 8;
+    let dfd_offset = header_len;
+    let kvd_offset = dfd_offset + dfd.len();
+    let mut level_offset = kvd_offset + kvd.len();
+    level_offset = level_offset.div_ceil(8) * 8;
+    let mut out = Vec::with_capacity(level_offset + data.len());
+    out.extend(IDENTIFIER);
+    for v in [
+        VK_FORMAT,
+        2, // typeSize: 16-bit components
+        size[0] as u32,
+        size[1] as u32,
+        if size[2] > 1 { size[2] as u32 } else { 0 },
+        0, // layers: not an array
+        1, // faces
+        1, // levels
+        0, // no supercompression
+    ] {
+        out.extend(v.to_le_bytes());
+    }
+    out.extend((dfd_offset as u32).to_le_bytes());
+    out.extend((dfd.len() as u32).to_le_bytes());
+    out.extend((kvd_offset as u32).to_le_bytes());
+    out.extend((kvd.len() as u32).to_le_bytes());
+    out.extend(0u64.to_le_bytes()); // no supercompression global data
+    out.extend(0u64.to_le_bytes());
+    out.extend((level_offset as u64).to_le_bytes());
+    out.extend((data.len() as u64).to_le_bytes());
+    out.extend((data.len() as u64).to_le_bytes());
+    out.extend(&dfd);
+    out.extend(&kvd);
+    out.resize(level_offset, 0);
+    out.extend(data);
+    out
+}

@@ -1,0 +1,607 @@
+//! The `.shvol` file: an irradiance volume's SH probes on a grid, and how
+//! they were made (docs/shvol.md).
+//!
+//! ```text
+//! {"format":"shlight-volume","format_version":1,"lmax":2,...}\n   one line of JSON
+//! f32 f32 f32 ...                                                 little-endian data
+//! ```
+//!
+//! The header is one line of JSON (no newline inside) ending in `\n`. The
+//! data that follows is little-endian `f32` in sections, each probe-major
+//! with the probes in grid order (x fastest, then y, then z):
+//!
+//! 1. `radiance`: per probe `(lmax+1)^2` rows of `[r, g, b]`, the incident
+//!    radiance SH for the bake's environment (always present);
+//! 2. `emitted` (relightable files): per probe `(lmax+1)^2` rows of
+//!    `[r, g, b]`, the incident radiance that comes from emitters;
+//! 3. `transfer` (relightable files): per probe, per channel r, g, b, a
+//!    row-major `(lmax+1)^2 x (lmax+1)^2` matrix `M` with
+//!    `L_probe = M L_env + L_emitted` (per channel, SH index order).
+//!
+//! The JSON form ([`ShvolFile::to_json`], `shlight volume --format json`)
+//! holds the same values with per-probe arrays.
+
+use std::path::Path;
+
+use serde_json::{Value, json};
+use shlight_core::sh_count;
+
+use crate::{FormatError, Result};
+
+/// The `format` key's value (both the binary and the JSON form).
+pub const FORMAT: &str = "shlight-volume";
+/// The layout version this build writes (and the newest it reads).
+pub const FORMAT_VERSION: u64 = 1;
+/// Longest header a reader accepts, in bytes.
+pub const MAX_HEADER: usize = 16 << 20;
+/// Highest lmax a volume may have.
+pub const MAX_LMAX: usize = 8;
+/// Most probes a file may hold (a 256 x 256 x 256 grid).
+pub const MAX_PROBES: usize = 1 << 24;
+
+/// A `.shvol` file's content.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShvolFile {
+    /// Highest SH degree of every probe.
+    pub lmax: usize,
+    /// Probes along x, y and z.
+    pub resolution: [usize; 3],
+    /// The grid's box, `(min, max)`, in the scene's units; probes sit at the
+    /// centres of its `resolution` cells.
+    pub bounds: ([f32; 3], [f32; 3]),
+    /// The frame of the scene and of every SH (`"y-up"` or `"z-up"`,
+    /// docs/conventions.md).
+    pub frame: String,
+    /// Per probe: whether interpolation may use it (false inside geometry).
+    pub valid: Vec<bool>,
+    /// Per probe `(lmax+1)^2 x 3` radiance coefficients for the bake's
+    /// environment.
+    pub radiance: Vec<f32>,
+    /// Per probe `(lmax+1)^2 x 3` coefficients of the emitters' light
+    /// (relightable files only).
+    pub emitted: Option<Vec<f32>>,
+    /// Per probe `3 x (lmax+1)^2 x (lmax+1)^2` transfer matrices (relightable
+    /// files only).
+    pub transfer: Option<Vec<f32>>,
+    /// Rays cast per probe.
+    pub samples: u64,
+    /// Interreflection bounces of the surfaces' light.
+    pub bounces: u32,
+    /// Seed of the ray directions.
+    pub seed: u64,
+    /// The scene file's name (informational).
+    pub scene: String,
+    /// FNV-1a 64 content hash of the scene's mesh (`Mesh::content_hash`).
+    pub scene_hash: u64,
+    /// What lit the bake: the environment's file name (informational).
+    pub environment: String,
+    /// The program that wrote the file, e.g. `shlight 0.1.0`.
+    pub generator: String,
+}
+
+impl ShvolFile {
+    /// Number of probes, `nx * ny * nz`.
+    #[must_use]
+    pub fn probe_count(&self) -> usize {
+        self.resolution.iter().product()
+    }
+
+    /// Coefficients per probe and channel, `(lmax+1)^2`.
+    #[must_use]
+    pub fn coeffs_per_channel(&self) -> usize {
+        sh_count(self.lmax)
+    }
+
+    /// Whether the file holds transfer matrices (it can be relit).
+    #[must_use]
+    pub fn relightable(&self) -> bool {
+        self.transfer.is_some()
+    }
+
+    /// The centre of probe `(x, y, z)`: `min + (i + 1/2) (max - min) / n`.
+    #[must_use]
+    pub fn position(&self, index: [usize; 3]) -> [f32; 3] {
+        let (lo, hi) = self.bounds;
+        [0, 1, 2]
+            .map(|a| lo[a] + (index[a] as f32 + 0.5) * (hi[a] - lo[a]) / self.resolution[a] as f32)
+    }
+
+    /// Every probe's centre, in grid order (x fastest).
+    #[must_use]
+    pub fn positions(&self) -> Vec<[f32; 3]> {
+        let [nx, ny, nz] = self.resolution;
+        let mut out = Vec::with_capacity(nx * ny * nz);
+        for z in 0..nz {
+            for y in 0..ny {
+                for x in 0..nx {
+                    out.push(self.position([x, y, z]));
+                }
+            }
+        }
+        out
+    }
+
+    /// The header line's JSON object.
+    #[must_use]
+    pub fn header(&self) -> Value {
+        let mut holds = vec!["radiance"];
+        if self.relightable() {
+            holds.extend(["emitted", "transfer"]);
+        }
+        let invalid: Vec<usize> = (0..self.valid.len()).filter(|&i| !self.valid[i]).collect();
+        json!({
+            "format": FORMAT,
+            "format_version": FORMAT_VERSION,
+            "lmax": self.lmax,
+            "resolution": self.resolution,
+            "bounds": {"min": shortest(self.bounds.0), "max": shortest(self.bounds.1)},
+            "probe_order": "x fastest, then y, then z; probes at cell centres",
+            "frame": self.frame,
+            "basis": "real orthonormal SH, index l(l+1)+m, Condon-Shortley phase included",
+            "quantity": "radiance",
+            "colour_space": "linear Rec.709",
+            "holds": holds,
+            "invalid": invalid,
+            "samples": self.samples,
+            "bounces": self.bounces,
+            "seed": self.seed,
+            "scene": self.scene,
+            "scene_hash": format!("fnv1a64:{:016x}", self.scene_hash),
+            "environment": self.environment,
+            "generator": self.generator,
+            "data": "f32 little-endian sections in `holds` order, probe-major: radiance and emitted (lmax+1)^2 rows of [r, g, b]; transfer 3 row-major (lmax+1)^2 x (lmax+1)^2 matrices",
+        })
+    }
+
+    /// The whole file as bytes.
+    #[must_use]
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = serde_json::to_vec(&self.header()).expect("JSON values serialise");
+        out.push(b'\n');
+        let sections = [
+            Some(&self.radiance),
+            self.emitted.as_ref(),
+            self.transfer.as_ref(),
+        ];
+        for x in sections.into_iter().flatten().flatten() {
+            out.extend(x.to_le_bytes());
+        }
+        out
+    }
+
+    /// The JSON form (`shlight volume --format json`): the header's keys
+    /// (less `data` and `invalid`), plus `positions` (probe centres, x
+    /// fastest), `valid` (booleans), `coefficients` (per probe
+    /// `(lmax+1)^2` rows of `[r, g, b]`, the radiance for the bake's
+    /// environment) and, for relightable volumes, `emitted` (the same shape)
+    /// and `transfer` (per probe three matrices of `(lmax+1)^2` rows).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        let mut v = self.header();
+        let object = v.as_object_mut().expect("the header is an object");
+        object.remove("data");
+        object.remove("invalid");
+        let nc = self.coeffs_per_channel();
+        let rows = |data: &[f32]| -> Value {
+            data.chunks_exact(3 * nc)
+                .map(|probe| {
+                    probe
+                        .chunks_exact(3)
+                        .map(|rgb| json!([f64::from(rgb[0]), f64::from(rgb[1]), f64::from(rgb[2])]))
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<_>>()
+                .into()
+        };
+        object.insert(
+            "positions".into(),
+            self.positions()
+                .into_iter()
+                .map(shortest)
+                .collect::<Vec<_>>()
+                .into(),
+        );
+        object.insert("valid".into(), json!(self.valid));
+        object.insert("coefficients".into(), rows(&self.radiance));
+        if let Some(e) = &self.emitted {
+            object.insert("emitted".into(), rows(e));
+        }
+        if let Some(t) = &self.transfer {
+            let matrices: Vec<Value> = t
+                .chunks_exact(3 * nc * nc)
+                .map(|probe| {
+                    probe
+                        .chunks_exact(nc * nc)
+                        .map(|m| {
+                            m.chunks_exact(nc)
+                                .map(|row| row.iter().map(|&x| f64::from(x)).collect::<Vec<_>>())
+                                .collect::<Vec<_>>()
+                        })
+                        .collect::<Vec<_>>()
+                        .into()
+                })
+                .collect();
+            object.insert("transfer".into(), matrices.into());
+        }
+        v
+    }
+
+    /// Writes the file atomically (a temporary file renamed into place).
+    ///
+    /// # Errors
+    /// [`FormatError::Write`] naming the file.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let bytes = self.to_bytes();
+        shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
+        Ok(())
+    }
+
+    /// Writes the JSON form atomically.
+    ///
+    /// # Errors
+    /// [`FormatError::Write`] naming the file.
+    pub fn write_json(&self, path: &Path) -> Result<()> {
+        let mut text = serde_json::to_string(&self.to_json()).expect("JSON values serialise");
+        text.push('\n');
+        shlight_io::write_atomically(path, |w| w.write_all(text.as_bytes()))?;
+        Ok(())
+    }
+
+    /// Reads a `.shvol` file.
+    ///
+    /// # Errors
+    /// [`FormatError::Read`] when it cannot be read; [`FormatError::Invalid`]
+    /// naming the file and the problem otherwise.
+    pub fn read(path: &Path) -> Result<Self> {
+        let bytes = std::fs::read(path).map_err(|source| FormatError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_bytes(&bytes, path)
+    }
+
+    /// Parses a file held in memory; `path` names it in errors.
+    ///
+    /// # Errors
+    /// As [`ShvolFile::read`]: a missing header line, a header that is not
+    /// JSON or lacks a key, another `format`, a newer `format_version`, an
+    /// lmax beyond [`MAX_LMAX`], an empty grid or one of more than
+    /// [`MAX_PROBES`] probes, bounds that are not finite with `min < max`,
+    /// an invalid probe index out of range, unknown sections, or data
+    /// shorter ("truncated") or longer ("wrong length") than the header
+    /// says, or not finite.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self> {
+        let name = path.display().to_string();
+        let bad = |message: String| FormatError::invalid(&name, message);
+        let end = bytes
+            .iter()
+            .take(MAX_HEADER)
+            .position(|&b| b == b'\n')
+            .ok_or_else(|| bad("not a .shvol file (no header line ending in a newline)".into()))?;
+        let header: Value = serde_json::from_slice(&bytes[..end])
+            .map_err(|e| bad(format!("bad header (not JSON: {e})")))?;
+        if header.get("format").and_then(Value::as_str) != Some(FORMAT) {
+            return Err(bad(format!("bad header (\"format\" is not \"{FORMAT}\")")));
+        }
+        let uint = |key: &str| {
+            header.get(key).and_then(Value::as_u64).ok_or_else(|| {
+                bad(format!(
+                    "bad header (\"{key}\" is missing or not an integer)"
+                ))
+            })
+        };
+        let text = |key: &str| {
+            header
+                .get(key)
+                .and_then(Value::as_str)
+                .map(str::to_string)
+                .ok_or_else(|| bad(format!("bad header (\"{key}\" is missing or not a string)")))
+        };
+        let version = uint("format_version")?;
+        if version == 0 || version > FORMAT_VERSION {
+            return Err(bad(format!(
+                "format_version {version} is not supported (this build reads 1..={FORMAT_VERSION})"
+            )));
+        }
+        let lmax = uint("lmax")? as usize;
+        if lmax > MAX_LMAX {
+            return Err(bad(format!(
+                "bad header (lmax {lmax} is beyond {MAX_LMAX})"
+            )));
+        }
+        let resolution = header
+            .get("resolution")
+            .and_then(Value::as_array)
+            .filter(|a| a.len() == 3)
+            .and_then(|a| {
+                let n: Vec<usize> = a
+                    .iter()
+                    .filter_map(Value::as_u64)
+                    .map(|x| x as usize)
+                    .collect();
+                <[usize; 3]>::try_from(n).ok()
+            })
+            .ok_or_else(|| bad("bad header (\"resolution\" is not [nx, ny, nz])".into()))?;
+        let probes = resolution
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+            .filter(|&p| p > 0 && p <= MAX_PROBES)
+            .ok_or_else(|| {
+                bad(format!(
+                    "bad header (resolution {resolution:?}: the grid must have 1 to {MAX_PROBES} probes)"
+                ))
+            })?;
+        let corner = |key: &str| -> Result<[f32; 3]> {
+            header
+                .get("bounds")
+                .and_then(|b| b.get(key))
+                .and_then(Value::as_array)
+                .filter(|a| a.len() == 3)
+                .and_then(|a| {
+                    let v: Vec<f32> = a
+                        .iter()
+                        .filter_map(Value::as_f64)
+                        .map(|x| x as f32)
+                        .collect();
+                    <[f32; 3]>::try_from(v).ok()
+                })
+                .filter(|v| v.iter().all(|x| x.is_finite()))
+                .ok_or_else(|| {
+                    bad(format!(
+                        "bad header (\"bounds\".\"{key}\" is not [x, y, z])"
+                    ))
+                })
+        };
+        let bounds = (corner("min")?, corner("max")?);
+        if (0..3).any(|a| bounds.0[a] >= bounds.1[a]) {
+            return Err(bad(format!(
+                "bad header (bounds min {:?} is not below max {:?} on every axis)",
+                bounds.0, bounds.1
+            )));
+        }
+        let frame = text("frame")?;
+        if frame != "y-up" && frame != "z-up" {
+            return Err(bad(format!(
+                "bad header (frame \"{frame}\", not \"y-up\" or \"z-up\")"
+            )));
+        }
+        let holds: Vec<String> = header
+            .get("holds")
+            .and_then(Value::as_array)
+            .map(|a| {
+                a.iter()
+                    .filter_map(Value::as_str)
+                    .map(str::to_string)
+                    .collect()
+            })
+            .unwrap_or_default();
+        let relightable = match holds.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+            ["radiance"] => false,
+            ["radiance", "emitted", "transfer"] => true,
+            _ => {
+                return Err(bad(format!(
+                    "bad header (\"holds\" is {holds:?}, not [\"radiance\"] or [\"radiance\", \"emitted\", \"transfer\"])"
+                )));
+            }
+        };
+        let mut valid = vec![true; probes];
+        for i in header
+            .get("invalid")
+            .and_then(Value::as_array)
+            .ok_or_else(|| bad("bad header (\"invalid\" is missing or not a list)".into()))?
+        {
+            let i = i
+                .as_u64()
+                .map(|i| i as usize)
+                .filter(|&i| i < probes)
+                .ok_or_else(|| {
+                    bad(format!(
+                        "bad header (invalid probe {i} is not below {probes})"
+                    ))
+                })?;
+            valid[i] = false;
+        }
+        let scene_hash = header
+            .get("scene_hash")
+            .and_then(Value::as_str)
+            .and_then(|s| s.strip_prefix("fnv1a64:"))
+            .and_then(|h| u64::from_str_radix(h, 16).ok())
+            .ok_or_else(|| bad("bad header (\"scene_hash\" is not fnv1a64:HEX)".into()))?;
+
+        let nc = sh_count(lmax);
+        let per_probe = 3 * nc + if relightable { 3 * nc + 3 * nc * nc } else { 0 };
+        let count = probes
+            .checked_mul(per_probe)
+            .filter(|c| c.checked_mul(4).is_some())
+            .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
+        let data = &bytes[end + 1..];
+        if data.len() < 4 * count {
+            return Err(bad(format!(
+                "truncated: {probes} probes need {} bytes of data, the file has {}",
+                4 * count,
+                data.len()
+            )));
+        }
+        if data.len() > 4 * count {
+            return Err(bad(format!(
+                "wrong length: {} bytes of data where the header says {}",
+                data.len(),
+                4 * count
+            )));
+        }
+        let values: Vec<f32> = data
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        if let Some(k) = values.iter().position(|x| !x.is_finite()) {
+            return Err(bad(format!("value {k} of the data is not finite")));
+        }
+        let (radiance, rest) = values.split_at(probes * 3 * nc);
+        let (emitted, transfer) = if relightable {
+            let (e, t) = rest.split_at(probes * 3 * nc);
+            (Some(e.to_vec()), Some(t.to_vec()))
+        } else {
+            (None, None)
+        };
+        Ok(Self {
+            lmax,
+            resolution,
+            bounds,
+            frame,
+            valid,
+            radiance: radiance.to_vec(),
+            emitted,
+            transfer,
+            samples: uint("samples")?,
+            bounces: uint("bounces")? as u32,
+            seed: uint("seed")?,
+            scene: text("scene").unwrap_or_default(),
+            scene_hash,
+            environment: text("environment").unwrap_or_default(),
+            generator: text("generator").unwrap_or_default(),
+        })
+    }
+}
+
+/// Each f32 as its shortest decimal (0.1, not 0.10000000149011612).
+fn shortest(v: [f32; 3]) -> [f64; 3] {
+    v.map(|x| x.to_string().parse::<f64>().unwrap_or(f64::NAN))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(relightable: bool) -> ShvolFile {
+        // A 2 x 1 x 3 grid at lmax 1.
+        let (probes, nc) = (6, 4);
+        ShvolFile {
+            lmax: 1,
+            resolution: [2, 1, 3],
+            bounds: ([-1.0, 0.0, -3.0], [1.0, 0.5, 3.0]),
+            frame: "y-up".into(),
+            valid: vec![true, false, true, true, true, false],
+            radiance: (0..probes * 3 * nc).map(|i| i as f32 * 0.25).collect(),
+            emitted: relightable.then(|| (0..probes * 3 * nc).map(|i| i as f32).collect()),
+            transfer: relightable.then(|| {
+                (0..probes * 3 * nc * nc)
+                    .map(|i| -(i as f32) / 8.0)
+                    .collect()
+            }),
+            samples: 1035,
+            bounces: 2,
+            seed: 7,
+            scene: "room.obj".into(),
+            scene_hash: 0xfeed_beef_0123_4567,
+            environment: "sky.exr".into(),
+            generator: "shlight test".into(),
+        }
+    }
+
+    #[test]
+    fn round_trips_with_the_documented_layout() {
+        for relightable in [false, true] {
+            let f = sample(relightable);
+            let bytes = f.to_bytes();
+            let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+            let per_probe = if relightable { 12 + 12 + 48 } else { 12 };
+            assert_eq!(bytes.len(), nl + 1 + 6 * per_probe * 4);
+            // The second value of the radiance section: probe 0, row 0, green.
+            let at = nl + 1 + 4;
+            assert_eq!(
+                f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()),
+                0.25
+            );
+            let back = ShvolFile::from_bytes(&bytes, Path::new("v.shvol")).unwrap();
+            assert_eq!(back, f);
+        }
+    }
+
+    #[test]
+    fn positions_are_cell_centres_x_fastest() {
+        let f = sample(false);
+        let p = f.positions();
+        assert_eq!(p.len(), 6);
+        assert_eq!(p[0], [-0.5, 0.25, -2.0]);
+        assert_eq!(p[1], [0.5, 0.25, -2.0]);
+        assert_eq!(p[2], [-0.5, 0.25, 0.0]);
+        assert_eq!(p[5], [0.5, 0.25, 2.0]);
+        let j = f.to_json();
+        assert_eq!(j["format"], "shlight-volume");
+        assert_eq!(j["resolution"], json!([2, 1, 3]));
+        assert_eq!(j["valid"][1], false);
+        // Probe 1 starts at value 3 x 4 = 12 of the radiance section.
+        assert_eq!(j["coefficients"][1][0], json!([3.0, 3.25, 3.5]));
+        assert_eq!(j["bounds"]["max"], json!([1.0, 0.5, 3.0]));
+    }
+
+    #[test]
+    fn bad_files_are_refused_naming_the_problem() {
+        let good = sample(true).to_bytes();
+        let nl = good.iter().position(|&b| b == b'\n').unwrap();
+        let header = std::str::from_utf8(&good[..nl]).unwrap().to_string();
+        let with = |h: String, data: &[u8]| {
+            let mut b = h.into_bytes();
+            b.push(b'\n');
+            b.extend_from_slice(data);
+            ShvolFile::from_bytes(&b, Path::new("bad.shvol"))
+                .unwrap_err()
+                .to_string()
+        };
+        let data = &good[nl + 1..];
+        let cases = [
+            (with(header.clone(), &data[4..]), "truncated"),
+            (
+                with(header.clone(), &[data, &[0; 4]].concat()),
+                "wrong length",
+            ),
+            (
+                with(header.replace("shlight-volume", "shlight-prt"), data),
+                "\"format\"",
+            ),
+            (
+                with(
+                    header.replace("\"format_version\":1", "\"format_version\":9"),
+                    data,
+                ),
+                "format_version 9",
+            ),
+            (
+                with(header.replace("\"lmax\":1", "\"lmax\":9"), data),
+                "lmax 9",
+            ),
+            (
+                with(header.replace("[2,1,3]", "[2,0,3]"), data),
+                "resolution",
+            ),
+            (
+                with(header.replace("[2,1,3]", "[70000,70000,70000]"), data),
+                "resolution",
+            ),
+            (
+                with(
+                    header.replace("\"invalid\":[1,5]", "\"invalid\":[1,6]"),
+                    data,
+                ),
+                "invalid probe 6",
+            ),
+            (with(header.replace("\"y-up\"", "\"x-up\""), data), "frame"),
+            (
+                with(header.replace("\"min\":[-1.0", "\"min\":[1.0"), data),
+                "not below max",
+            ),
+            (with(header.replace("\"emitted\",", ""), data), "holds"),
+            (with("{".into(), data), "not JSON"),
+        ];
+        for (message, want) in cases {
+            assert!(message.starts_with("bad.shvol: "), "{message}");
+            assert!(message.contains(want), "{message} lacks {want}");
+        }
+        let e = ShvolFile::from_bytes(b"no newline", Path::new("x.shvol")).unwrap_err();
+        assert!(e.to_string().contains("no header line"), "{e}");
+        let mut nan = good.clone();
+        nan[nl + 1..nl + 5].copy_from_slice(&f32::NAN.to_le_bytes());
+        let e = ShvolFile::from_bytes(&nan, Path::new("n.shvol")).unwrap_err();
+        assert!(e.to_string().contains("not finite"), "{e}");
+    }
+}

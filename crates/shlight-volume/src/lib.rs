@@ -1,0 +1,44 @@
+//! Irradiance volumes for shlight (Greger, Shirley, Hubbard & Greenberg
+//! 1998): SH probes on a grid through a scene, so that objects moving
+//! through it are lit by the light at their position, interpolated from the
+//! probes around them.
+//!
+//! # Main items
+//! - [`Grid`]: the probes' box and resolution, probes at cell centres,
+//!   x fastest; trilinear weights.
+//! - [`bake`]: each probe's incident radiance as a transfer matrix per
+//!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
+//!   through the scene's shadows and interreflections
+//!   ([`bake`](mod@bake) states the estimator).
+//! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
+//!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
+//! - [`sample`]: trilinear interpolation of the valid probes.
+//! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
+//!
+//! ```
+//! use glam::{DVec3, Vec3};
+//! use shlight_core::analytic;
+//! use shlight_volume::{Grid, VolumeOptions, bake};
+//!
+//! // No scene: every probe sees the environment itself.
+//! let grid = Grid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
+//! let volume = bake(None, &grid, &VolumeOptions::default(), &|_, _, _| {}).unwrap();
+//! let sky = analytic::constant(2, DVec3::new(1.0, 2.0, 3.0));
+//! let probes = volume.relight(&sky);
+//! // Probe 0's first row, [r, g, b] of L_00, is the sky's.
+//! assert_eq!(&probes[..3], &sky.as_slice()[0].as_vec3().to_array());
+//! assert_eq!(volume.invalid_count(), 0);
+//! ```
+//!
+//! **Architecture invariant:** no GPU and no command line; files through
+//! shlight-format.
+
+pub mod bake;
+mod error;
+mod grid;
+mod probe_volume;
+
+pub use bake::{Stage, VolumeOptions, bake};
+pub use error::VolumeError;
+pub use grid::Grid;
+pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};

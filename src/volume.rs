@@ -1,0 +1,248 @@
+//! `shlight volume`: bake an irradiance volume (SH probes on a grid) through
+//! a scene.
+//!
+//! Loads the scene (shlight-mesh, with albedo and emission from its
+//! materials), the environment (an equirect map projected to the bake's
+//! lmax, or a radiance coefficient file), bakes the probes (shlight-volume,
+//! in parallel with progress bars) and writes a `.shvol` file or its JSON
+//! form (shlight-format; docs/shvol.md).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Result, bail};
+use clap::{Args, ValueEnum};
+use glam::DVec3;
+use shlight_core::layout::Layout;
+use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::rotation::Frame;
+use shlight_core::{ShCoeffs, ShRotation};
+use shlight_format::CoeffFile;
+use shlight_io::{ReadOptions, read_image};
+use shlight_volume::{FileMeta, Grid, Stage, VolumeOptions, bake};
+
+use crate::progress::{StageBars, Ui};
+
+/// What `-o` receives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum VolumeFormat {
+    /// shlight's own binary file (header JSON + f32 data; docs/shvol.md).
+    Shvol,
+    /// The same as one JSON document, for other tools.
+    Json,
+    /// A KTX2 3D texture of ambient cubes for Bevy's `IrradianceVolume`
+    /// (docs/shvol.md, "Bevy").
+    Bevy,
+}
+
+/// Arguments of `shlight volume`.
+#[derive(Args, Debug)]
+pub struct VolumeArgs {
+    /// The scene: .obj (+ .mtl: Kd albedo, Ke emission), .ply, .off, .gltf
+    /// or .glb (baseColorFactor x COLOR_0 albedo, emissiveFactor x
+    /// KHR_materials_emissive_strength emission).
+    pub scene: PathBuf,
+    /// Output file (.shvol, or .json with --format json).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Output format [default: json for a .json name, bevy for .ktx2, else
+    /// shvol].
+    #[arg(long, value_enum)]
+    pub format: Option<VolumeFormat>,
+    /// The distant light: an equirect map (projected to --lmax, its top row
+    /// facing +Y) or a radiance coefficient file (`shlight project -o
+    /// FILE.json`).
+    #[arg(long)]
+    pub env: PathBuf,
+    /// Probes along x, y and z, NXxNYxNZ.
+    #[arg(long, default_value = "8x4x8")]
+    pub resolution: String,
+    /// The grid's box, X0,Y0,Z0:X1,Y1,Z1 [default: the scene's bounding box,
+    /// padded by 2% of its diagonal].
+    #[arg(long, allow_hyphen_values = true)]
+    pub bounds: Option<String>,
+    /// Highest SH degree of the probes (up to 8).
+    #[arg(long, default_value_t = 2)]
+    pub lmax: usize,
+    /// Rays per probe (a stratified set of about this many, shared by all
+    /// probes).
+    #[arg(long, default_value_t = 1024)]
+    pub samples: usize,
+    /// Interreflection bounces of the surfaces' light.
+    #[arg(long, default_value_t = 2)]
+    pub bounces: u32,
+    /// Directions per surface vertex for the surfaces' own light.
+    #[arg(long, default_value_t = 512)]
+    pub surface_samples: usize,
+    /// Diffuse albedo of surfaces without colours, linear: one value or
+    /// R,G,B.
+    #[arg(long, default_value = "0.8", value_parser = crate::prt::parse_albedo)]
+    pub albedo: [f32; 3],
+    /// A probe is invalid (kept out of interpolation) when more than this
+    /// fraction of its rays hit back faces.
+    #[arg(long, default_value_t = 0.5)]
+    pub invalid_backfaces: f32,
+    /// Seed of the ray directions (the same seed gives the same file at any
+    /// thread count).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Keep only the probes' SH for --env (no transfer matrices: smaller,
+    /// but the volume cannot be relit).
+    #[arg(long = "static")]
+    pub static_only: bool,
+}
+
+/// Runs `shlight volume`.
+pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
+    let resolution = Grid::parse_resolution(&args.resolution)?;
+    let bounds = args.bounds.as_deref().map(Grid::parse_bounds).transpose()?;
+    let extension = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let format = args.format.unwrap_or(match extension.as_deref() {
+        Some("json") => VolumeFormat::Json,
+        Some("ktx2") => VolumeFormat::Bevy,
+        _ => VolumeFormat::Shvol,
+    });
+    crate::output_path::refuse_overwriting(&args.output, &[args.scene.clone(), args.env.clone()])?;
+    let options = VolumeOptions {
+        lmax: args.lmax,
+        samples: args.samples,
+        bounces: args.bounces,
+        surface_samples: args.surface_samples,
+        max_edge: None,
+        albedo: args.albedo,
+        invalid_backfaces: args.invalid_backfaces,
+        seed: args.seed,
+    };
+    if args.lmax > shlight_volume::bake::MAX_LMAX {
+        bail!(
+            "--lmax {} is beyond {}, the most a volume holds",
+            args.lmax,
+            shlight_volume::bake::MAX_LMAX
+        );
+    }
+    // The light first: a bad file fails before a long bake.
+    let env = environment(&args.env, args.lmax)?;
+    let scene = shlight_mesh::load(&args.scene)?;
+    let name = args.scene.display().to_string();
+    if scene.report.degenerate_triangles > 0 {
+        ui.warn(format!(
+            "{name}: skipped {} degenerate triangles",
+            scene.report.degenerate_triangles
+        ));
+    }
+    let grid = match bounds {
+        Some((min, max)) => Grid::new(resolution, min, max)?,
+        None => Grid::around(resolution, scene.bounds())?,
+    };
+    ui.note(format!(
+        "{name}: {} triangles, {}; grid {}x{}x{} over {}:{}",
+        scene.triangle_count(),
+        match (&scene.colors, &scene.emission) {
+            (Some(_), Some(_)) => "albedo and emission from its materials",
+            (Some(_), None) => "albedo from its colours",
+            (None, Some(_)) => "emission from its materials",
+            (None, None) => "constant albedo",
+        },
+        resolution[0],
+        resolution[1],
+        resolution[2],
+        grid.min,
+        grid.max
+    ));
+
+    let bars = StageBars::new(ui, |stage| match stage {
+        Stage::Surface(shlight_prt::transfer::Stage::Rays) => "surface rays".to_string(),
+        Stage::Surface(shlight_prt::transfer::Stage::Bounce(k)) => format!("bounce {k}"),
+        Stage::Probes => "probes".to_string(),
+    });
+    let start = Instant::now();
+    let volume = bake(Some(&scene), &grid, &options, &|stage, done, total| {
+        bars.update(stage, done, total);
+    })?;
+    bars.finish();
+    let seconds = start.elapsed().as_secs_f64();
+    let radiance = volume.relight(&env);
+    let invalid = volume.invalid_count();
+    ui.note(format!(
+        "{} probes ({} invalid: inside geometry), {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        volume.probe_count(),
+        invalid,
+        volume.rays,
+        volume.rays as f64 / seconds.max(1e-9) / 1e6
+    ));
+    let meta = FileMeta {
+        frame: "y-up".into(),
+        scene: file_name(&args.scene),
+        environment: file_name(&args.env),
+        generator: format!("shlight {}", env!("CARGO_PKG_VERSION")),
+    };
+    let file = volume.to_shvol(radiance, !args.static_only, &meta);
+    match format {
+        VolumeFormat::Shvol => file.write(&args.output)?,
+        VolumeFormat::Json => file.write_json(&args.output)?,
+        VolumeFormat::Bevy => {
+            let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &meta.generator);
+            shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
+            let (lo, hi) = (grid.min, grid.max);
+            ui.note(format!(
+                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({}, {}, {})).with_scale(Vec3::new({}, {}, {}))",
+                (lo.x + hi.x) / 2.0,
+                (lo.y + hi.y) / 2.0,
+                (lo.z + hi.z) / 2.0,
+                hi.x - lo.x,
+                hi.y - lo.y,
+                hi.z - lo.z
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The environment's radiance coefficients to `lmax`, in the y-up frame.
+fn environment(path: &Path, lmax: usize) -> Result<ShCoeffs<DVec3>> {
+    let name = path.display().to_string();
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
+        let file = CoeffFile::read_radiance(path, "--env", "shlight project --quantity radiance")?;
+        if file.coeffs.lmax() < lmax {
+            bail!(
+                "{name}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
+                file.coeffs.lmax()
+            );
+        }
+        let coeffs = file.coeffs.resized(lmax);
+        return Ok(match file.frame {
+            Frame::YUp => coeffs,
+            Frame::ZUp => ShRotation::between_frames(lmax, Frame::ZUp, Frame::YUp).apply(&coeffs),
+        });
+    }
+    let image = read_image(path, &ReadOptions::default())?;
+    let (w, h) = (image.width(), image.height());
+    if Layout::detect(w, h) != Some(Layout::Equirect) {
+        bail!(
+            "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
+             (shlight project {name} --lmax {lmax} -o light.json) and pass the JSON file"
+        );
+    }
+    if let Some((x, y)) = image.stats().first_non_finite {
+        bail!("{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it");
+    }
+    let view = EquirectView {
+        width: w,
+        height: h,
+        pixels: image.pixels(),
+    };
+    Ok(project_equirect(view, lmax, MapOrientation::default()))
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}

@@ -1,0 +1,210 @@
+//! `shlight volume`: the bundled Cornell box is the published scene, the
+//! files hold the library's bake in the documented layout (binary and JSON
+//! agree), the bake is the same at any thread count, `--static` drops the
+//! transfer, and bad input is an error naming the problem with nothing
+//! written.
+
+use std::path::Path;
+use std::process::Command;
+
+use glam::{DVec3, Vec3};
+use shlight_core::ShCoeffs;
+use shlight_format::ShvolFile;
+use shlight_mesh::generate;
+use shlight_volume::{Grid, VolumeOptions, bake};
+
+use crate::util::{read_json, s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows};
+
+const SCENE: &str = "meshes/cornell_box.obj";
+
+/// A sky of lmax 2: brighter above, with some colour.
+fn sky_rows() -> Vec<[f64; 3]> {
+    let mut rows = vec![[0.0; 3]; 9];
+    rows[0] = [2.0, 2.2, 2.6];
+    rows[2] = [0.8, 0.9, 1.1];
+    rows[6] = [0.1, 0.05, 0.0];
+    rows
+}
+
+fn sky() -> ShCoeffs<DVec3> {
+    ShCoeffs::from_vec(sky_rows().into_iter().map(DVec3::from_array).collect()).unwrap()
+}
+
+#[test]
+fn the_bundled_cornell_box_is_the_generated_one() {
+    // The OBJ and its MTL go through tobj and shlight's material reading;
+    // the generator builds the same quads from the published numbers.
+    let file = shlight_mesh::load(Path::new(SCENE)).unwrap();
+    let made = generate::cornell_box();
+    assert_eq!(file.triangles, made.triangles);
+    let close = |a: &[Vec3], b: &[Vec3]| a.iter().zip(b).all(|(x, y)| x.distance(*y) < 1e-6);
+    assert!(close(&file.positions, &made.positions));
+    assert!(close(&file.normals, &made.normals));
+    assert!(close(
+        file.colors.as_ref().unwrap(),
+        made.colors.as_ref().unwrap()
+    ));
+    assert!(close(
+        file.emission.as_ref().unwrap(),
+        made.emission.as_ref().unwrap()
+    ));
+}
+
+fn bake_args<'a>(env: &'a Path, out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "volume",
+        SCENE,
+        "--env",
+        s(env),
+        "--resolution",
+        "3x2x3",
+        "--samples",
+        "256",
+        "--surface-samples",
+        "128",
+        "--seed",
+        "5",
+        "-o",
+        s(out),
+    ];
+    args.extend_from_slice(extra);
+    args
+}
+
+#[test]
+fn the_file_holds_the_library_bake_and_the_json_agrees() {
+    let dir = temp_dir("volume_file");
+    let env = dir.join("sky.json");
+    write_coefficient_rows(&env, &sky_rows(), "radiance");
+    let out = dir.join("box.shvol");
+    let run = shlight_ok(&bake_args(&env, &out, &[]));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("18 probes (0 invalid"), "{stderr}");
+    let file = ShvolFile::read(&out).unwrap();
+    assert_eq!((file.lmax, file.resolution), (2, [3, 2, 3]));
+    assert!(file.relightable());
+    assert_eq!(
+        (file.scene.as_str(), file.environment.as_str()),
+        ("cornell_box.obj", "sky.json")
+    );
+
+    // The library, given the same options and the scene's padded box.
+    let scene = shlight_mesh::load(Path::new(SCENE)).unwrap();
+    assert_eq!(file.scene_hash, scene.content_hash());
+    let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+    assert_eq!(file.bounds, (grid.min.to_array(), grid.max.to_array()));
+    let options = VolumeOptions {
+        samples: 256,
+        surface_samples: 128,
+        seed: 5,
+        ..VolumeOptions::default()
+    };
+    let volume = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+    assert_eq!(file.radiance, volume.relight(&sky()));
+    assert_eq!(file.transfer.as_ref(), Some(&volume.transfer));
+    // Light reaches every probe: the ceiling lamp and the sky through the
+    // open front.
+    assert!(file.radiance.chunks_exact(27).all(|p| p[0] > 0.1));
+
+    // JSON: the same numbers in the documented keys.
+    let json_out = dir.join("box.json");
+    shlight_ok(&bake_args(&env, &json_out, &[]));
+    let j = read_json(&json_out);
+    assert_eq!(j["format"], "shlight-volume");
+    assert_eq!(j["resolution"], serde_json::json!([3, 2, 3]));
+    let positions = j["positions"].as_array().unwrap();
+    assert_eq!(positions.len(), 18);
+    for (i, p) in grid.positions().iter().enumerate() {
+        let got = Vec3::new(
+            positions[i][0].as_f64().unwrap() as f32,
+            positions[i][1].as_f64().unwrap() as f32,
+            positions[i][2].as_f64().unwrap() as f32,
+        );
+        assert!(got.distance(*p) < 1e-6, "probe {i}: {got} vs {p}");
+    }
+    let coefficients = j["coefficients"].as_array().unwrap();
+    for (p, probe) in coefficients.iter().enumerate() {
+        for (i, row) in probe.as_array().unwrap().iter().enumerate() {
+            for c in 0..3 {
+                let want = file.radiance[(p * 9 + i) * 3 + c];
+                assert_eq!(row[c].as_f64().unwrap() as f32, want);
+            }
+        }
+    }
+    assert!(j["valid"].as_array().unwrap().iter().all(|v| v == true));
+}
+
+#[test]
+fn the_bake_is_the_same_at_any_thread_count_and_static_drops_the_transfer() {
+    let dir = temp_dir("volume_threads");
+    let env = dir.join("sky.json");
+    write_coefficient_rows(&env, &sky_rows(), "radiance");
+    let mut files = Vec::new();
+    for threads in ["1", "2"] {
+        let out = dir.join(format!("t{threads}.shvol"));
+        let status = Command::new(env!("CARGO_BIN_EXE_shlight"))
+            .args(bake_args(&env, &out, &[]))
+            .env("RAYON_NUM_THREADS", threads)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        files.push(std::fs::read(&out).unwrap());
+    }
+    assert_eq!(files[0], files[1]);
+    let out = dir.join("static.shvol");
+    shlight_ok(&bake_args(&env, &out, &["--static"]));
+    let fixed = ShvolFile::read(&out).unwrap();
+    let full = ShvolFile::from_bytes(&files[0], Path::new("t1.shvol")).unwrap();
+    assert!(fixed.transfer.is_none() && fixed.emitted.is_none());
+    assert_eq!(fixed.radiance, full.radiance);
+    // The Bevy texture of the same bake is what the format crate makes of
+    // the file (its layout is tested there against Bevy's shader).
+    let ktx2 = dir.join("box.ktx2");
+    shlight_ok(&bake_args(&env, &ktx2, &[]));
+    assert_eq!(
+        std::fs::read(&ktx2).unwrap(),
+        shlight_format::bevy_volume::bevy_ktx2(&full, &full.generator)
+    );
+}
+
+#[test]
+fn bad_input_is_an_error_naming_the_problem_and_nothing_is_written() {
+    let dir = temp_dir("volume_errors");
+    let env = dir.join("sky.json");
+    write_coefficient_rows(&env, &sky_rows(), "radiance");
+    let irradiance = dir.join("irr.json");
+    write_coefficient_rows(&irradiance, &sky_rows(), "irradiance");
+    let out = dir.join("v.shvol");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["--resolution", "4x4"], "resolution \"4x4\""),
+        (vec!["--bounds", "1,0,0:0,1,1"], "bounds \"1,0,0:0,1,1\""),
+        (vec!["--lmax", "9"], "lmax 9"),
+        (vec!["--lmax", "3"], "lmax 2, the bake needs 3"),
+        (vec!["--samples", "0"], "samples must be at least 1"),
+    ];
+    for (extra, want) in cases {
+        let mut args = vec![
+            "volume",
+            SCENE,
+            "--env",
+            s(&env),
+            "--surface-samples",
+            "32",
+            "-o",
+            s(&out),
+        ];
+        args.extend_from_slice(&extra);
+        let e = shlight_err(&args);
+        assert!(e.contains(want), "{extra:?}: {e}");
+    }
+    let e = shlight_err(&bake_args(&irradiance, &out, &[]));
+    assert!(e.contains("irr.json") && e.contains("irradiance"), "{e}");
+    let missing = dir.join("missing.obj");
+    let e = shlight_err(&["volume", s(&missing), "--env", s(&env), "-o", s(&out)]);
+    assert!(e.contains("missing.obj"), "{e}");
+    assert!(!out.exists(), "nothing written on error");
+    // A corrupt file is refused by the reader, naming it.
+    std::fs::write(&out, b"{\"format\":\"shlight-volume\"}\n").unwrap();
+    let e = ShvolFile::read(&out).unwrap_err().to_string();
+    assert!(e.starts_with(&format!("{}: ", out.display())), "{e}");
+}
