@@ -127,10 +127,22 @@ impl<C: ShValue> Zh3<C> {
         f
     }
 
-    /// Floats stored: 4 + 1 per channel and the axis (3).
+    /// Floats stored: 4 + 1 per channel (the axis follows from the
+    /// stored lmax-1 coefficients).
     #[must_use]
     pub fn floats(&self) -> usize {
-        5 * C::CHANNELS + 3
+        5 * C::CHANNELS
+    }
+
+    /// The zonal coefficient's kind is not kept: this rebuilds a ZH3 from
+    /// its stored parts, the axis recomputed from `l1`.
+    #[must_use]
+    pub fn from_parts(l1: [C; 4], zonal: C) -> Self {
+        Self {
+            axis: luminance_axis(&l1),
+            l1,
+            zonal,
+        }
     }
 }
 

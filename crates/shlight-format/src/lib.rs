@@ -51,6 +51,7 @@
 #![deny(missing_docs)]
 
 pub mod coeff_file;
+pub mod encoding_record;
 mod error;
 pub mod export;
 mod import;
@@ -58,6 +59,7 @@ mod quantity;
 pub mod shprt;
 
 pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
+pub use encoding_record::FileEncoding;
 pub use error::{FormatError, Result};
 pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
