@@ -322,6 +322,15 @@ impl CoeffFile {
     pub fn read_radiance(path: &Path, user: &str, fix: &str) -> Result<Self> {
         let name = path.display().to_string();
         let file = Self::read(path)?;
+        if file.encoding != FileEncoding::Sh {
+            return Err(FormatError::invalid(
+                &name,
+                format!(
+                    "holds the {} encoding, whose coefficients are not the whole light; {user} needs plain SH ({fix}, without --encoding)",
+                    file.encoding.encoding()
+                ),
+            ));
+        }
         if file.quantity != Quantity::Radiance {
             return Err(FormatError::invalid(
                 &name,
@@ -722,6 +731,18 @@ mod tests {
                 "{err}"
             );
         }
+        // Engine formats refuse an encoding rather than export part of it.
+        let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
+        file.provenance.input = "enc.exr".into();
+        file.encoding = FileEncoding::L1NonLinear;
+        let err = crate::export(&file, crate::ExportFormat::Glsl)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("enc.exr") && err.contains("l1-nonlinear"),
+            "{err}"
+        );
+        assert!(crate::export(&file, crate::ExportFormat::Json).is_ok());
         // A broken light names itself.
         let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
         file.encoding = FileEncoding::DominantSh { lights: Vec::new() };
