@@ -282,7 +282,7 @@ mod tests {
 
     /// A blue gradient sky (brighter up) plus `suns`, as texel means.
     fn map_with(suns: &[Sun]) -> Vec<[f32; 3]> {
-        equirect_texel_means(W, H, MapOrientation::default(), 16, |w| {
+        equirect_texel_means(W, H, MapOrientation::default(), 8, |w| {
             let sky = DVec3::new(0.2, 0.3, 0.5) * (1.0 + 0.5 * w.y);
             sky + suns.iter().map(|s| s.radiance(w)).sum::<DVec3>()
         })
