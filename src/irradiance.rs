@@ -10,7 +10,10 @@
 //! `OUT-sh.EXT` and the difference SH minus exact as `OUT-diff.EXT`, and
 //! prints the relative error of the SH irradiance's luminance over the
 //! sphere (area-weighted mean, and maximum): pointwise `|ΔE| / E(n)` and,
-//! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`.
+//! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`. `--encoding E`
+//! does the same for any encoding of `shlight_core::encoding` (dominant
+//! lights + SH, ZH3, non-linear L1, the ambient cube), writing
+//! `OUT-E.EXT` and `OUT-diff.EXT`; its SH part is `--sh LMAX` (default 2).
 
 use std::path::{Path, PathBuf};
 
@@ -18,7 +21,6 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
 use shlight_accuracy::error::{self, ErrorStats};
-use shlight_core::irradiance;
 use shlight_core::irradiance_map::irradiance_brute_force;
 use shlight_core::layout::EnvMap;
 use shlight_core::montecarlo::luminance;
@@ -46,6 +48,13 @@ pub struct IrradianceArgs {
     /// exact (OUT-diff.EXT), and print the relative error.
     #[arg(long, value_name = "LMAX")]
     pub sh: Option<usize>,
+    /// Compare this encoding instead of plain SH (sh, dominant+sh,
+    /// sloan+sh, zh3, zh3-hallucinated, l1-nonlinear, ambient-cube): writes
+    /// OUT-ENCODING.EXT and OUT-diff.EXT and prints its error. `--sh` is
+    /// then the lmax of its SH part (default 2; the dominant lights'
+    /// residual for dominant+sh).
+    #[arg(long, value_parser = crate::values::encoding())]
+    pub encoding: Option<shlight_core::Encoding>,
     /// Layout of the input (as for `shlight project`): auto, equirect,
     /// cross-h, cross-v, strip, angular, mirror-ball, faces.
     #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
@@ -81,11 +90,21 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     LayoutArg::Equirect
         .check_size(w, h)
         .map_err(|e| anyhow!("--size: {e}"))?;
-    let outputs: Vec<PathBuf> = match args.sh {
-        None => vec![args.output.clone()],
-        Some(_) => vec![
+    let encoding = match (args.encoding, args.sh) {
+        (Some(e), lmax) => Some((e, lmax.unwrap_or(2))),
+        (None, Some(lmax)) => Some((shlight_core::Encoding::Sh, lmax)),
+        (None, None) => None,
+    };
+    let outputs: Vec<PathBuf> = match (args.encoding, encoding) {
+        (_, None) => vec![args.output.clone()],
+        (None, Some(_)) => vec![
             args.output.clone(),
             beside(&args.output, "-sh"),
+            beside(&args.output, "-diff"),
+        ],
+        (Some(e), Some(_)) => vec![
+            args.output.clone(),
+            beside(&args.output, &format!("-{e}")),
             beside(&args.output, "-diff"),
         ],
     };
@@ -134,11 +153,16 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     };
     write(&args.output, &exact)?;
 
-    let Some(lmax) = args.sh else {
+    let Some((encoding, lmax)) = encoding else {
         return Ok(());
     };
-    let e_sh = irradiance(&shlight_core::projection::project_map(&map, lmax));
-    let sh: Vec<DVec3> = normals.iter().map(|n| e_sh.eval(*n)).collect();
+    let encoded = shlight_core::encode_map(
+        &map,
+        encoding,
+        lmax,
+        &shlight_core::DominantLightOptions::default(),
+    );
+    let sh: Vec<DVec3> = encoded.irradiance_at(&normals);
     let diff: Vec<DVec3> = sh.iter().zip(&exact).map(|(s, e)| *s - *e).collect();
     write(&outputs[1], &sh)?;
     write(&outputs[2], &diff)?;
@@ -158,12 +182,32 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         &error::peak_relative_errors(&estimate, &reference),
         &weights,
     );
+    let what = match (args.encoding, encoding.takes_lmax()) {
+        (None, _) => format!("SH irradiance (lmax {lmax})"),
+        (Some(_), true) => format!("{encoding} irradiance (SH lmax {lmax})"),
+        (Some(_), false) => format!("{encoding} irradiance"),
+    };
     println!(
-        "{name}: SH irradiance (lmax {lmax}) against brute force over {} normals ({}x{} texels of input):",
+        "{name}: {what} against brute force over {} normals ({}x{} texels of input):",
         normals.len(),
         image.width(),
         image.height()
     );
+    if args.encoding.is_some() {
+        println!("  floats stored:      {}", encoded.floats(encoding));
+        for (i, l) in encoded.lights().iter().enumerate() {
+            println!(
+                "  light {i}: direction {:.4},{:.4},{:.4}  half-angle {:.3}°  power {:.4},{:.4},{:.4}",
+                l.direction.x,
+                l.direction.y,
+                l.direction.z,
+                l.half_angle.to_degrees(),
+                l.power.x,
+                l.power.y,
+                l.power.z
+            );
+        }
+    }
     println!(
         "  relative to E(n):   mean {:.3}%  max {:.3}%",
         100.0 * p.mean,

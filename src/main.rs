@@ -8,6 +8,7 @@
 mod accuracy;
 #[cfg(feature = "gpu")]
 mod bundled;
+mod compare;
 mod convert;
 #[cfg(feature = "gpu")]
 mod environment;
@@ -63,6 +64,9 @@ enum Command {
     /// Irradiance of an environment map by brute force (every texel), and
     /// its SH version with --sh.
     Irradiance(irradiance::IrradianceArgs),
+    /// Every encoding (SH, dominant lights + SH, ZH3, non-linear L1, ambient
+    /// cube) of maps against their exact irradiance: table, JSON, plots.
+    Compare(compare::CompareArgs),
     /// Accuracy of SH irradiance against analytic lights: table, JSON, pictures.
     Accuracy(accuracy::AccuracyArgs),
     /// Render a mesh lit by SH coefficients on the GPU, without a window.
@@ -105,6 +109,7 @@ fn main() -> ExitCode {
         Command::Convert(args) => convert::run(&args),
         Command::Irradiance(args) => irradiance::run(&args, &ui),
         Command::Accuracy(args) => accuracy::run(&args, &ui),
+        Command::Compare(args) => compare::run(&args, &ui),
         Command::RenderMesh(args) => render_mesh::run(&args, &ui),
         Command::View(args) => view::run(&args, &ui),
         Command::Prt(args) => prt::run(&args, &ui),

@@ -54,6 +54,12 @@ pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
     let name = args.input.display().to_string();
     crate::output_path::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
     let file = CoeffFile::read(&args.input)?;
+    if file.encoding != shlight_format::FileEncoding::Sh {
+        anyhow::bail!(
+            "{name}: holds the {} encoding, whose coefficients are not the whole light; render draws plain SH (shlight irradiance --encoding draws an encoding's irradiance)",
+            file.encoding.encoding()
+        );
+    }
     let coeffs = match (file.quantity, args.irradiance) {
         (Quantity::Radiance, true) => irradiance(&file.coeffs),
         (Quantity::Irradiance, false) => {

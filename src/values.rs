@@ -2,6 +2,7 @@
 //! each lists its names (and their help) and maps a name back to its value.
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use shlight_core::Encoding;
 use shlight_format::{ExportFormat, Quantity};
 
 /// A parser accepting exactly the names of `all`, with their help lines.
@@ -28,6 +29,21 @@ pub fn export_format() -> impl TypedValueParser<Value = ExportFormat> {
         ExportFormat::name,
         ExportFormat::description,
     )
+}
+
+/// `--encoding NAME`.
+pub fn encoding() -> impl TypedValueParser<Value = Encoding> {
+    one_of(&Encoding::ALL, Encoding::name, |e| match e {
+        Encoding::Sh => "plain radiance SH to --lmax",
+        Encoding::DominantSh => {
+            "the map's compact bright lights kept exactly, the rest as SH to --lmax"
+        }
+        Encoding::SloanSh => "SH to --lmax; Sloan 2008's light taken out of it when shading",
+        Encoding::Zh3 => "ZH3: lmax 1 plus a stored zonal coefficient (Roughton et al. 2024)",
+        Encoding::Zh3Hallucinated => "ZH3 with the zonal coefficient hallucinated from lmax 1",
+        Encoding::L1NonLinear => "lmax 1 with the non-linear (Geomerics) reconstruction",
+        Encoding::AmbientCube => "six colours: the exact irradiance at the axes (Valve 2006)",
+    })
 }
 
 /// `--quantity NAME`.

@@ -2,6 +2,7 @@
 
 mod accuracy;
 mod batch;
+mod encodings_cli;
 mod engine_frames;
 mod export;
 #[cfg(feature = "gpu")]

@@ -64,6 +64,13 @@ pub struct ProjectArgs {
     /// then Y, then Z). A light from a comes from R a afterwards.
     #[arg(long, allow_hyphen_values = true)]
     pub rotate: Option<String>,
+    /// How to keep the lighting (docs/coefficient-file.md, `encoding`):
+    /// sh, dominant+sh (SH to --lmax of the map without its lights),
+    /// sloan+sh, zh3, zh3-hallucinated, l1-nonlinear, ambient-cube. The
+    /// encodings other than sh take radiance by quadrature, without
+    /// --window, --rotate or --gpu, into the JSON file.
+    #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
+    pub encoding: shlight_core::Encoding,
     /// Project on the GPU (equirect maps, quadrature, lmax up to 8): the
     /// same sums in f32 by a compute shader, within 1e-4 of the CPU.
     #[arg(long)]

@@ -170,6 +170,27 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     file.input_min_value = f64::from(stats.min_value);
     file.sanitized = sanitized;
     file.std_error = std_error;
+    if args.encoding != shlight_core::Encoding::Sh {
+        bar.set_message(format!("encoding {name} as {}", args.encoding));
+        let map = shlight_core::layout::EnvMap::new(
+            layout,
+            s.orientation,
+            image.width(),
+            image.height(),
+            image.pixels(),
+        )
+        .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+        let encoded = shlight_core::encode_map(
+            &map,
+            args.encoding,
+            args.lmax,
+            &shlight_core::DominantLightOptions::default(),
+        );
+        let (encoding, coeffs) =
+            shlight_format::FileEncoding::from_encoded(args.encoding, &encoded, &file.coeffs);
+        file.coeffs = coeffs;
+        file.encoding = encoding;
+    }
     if job.output == Dest::Stdout {
         // Nothing may draw on the terminal while the result is printed.
         bar.finish_and_clear();

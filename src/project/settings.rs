@@ -35,6 +35,29 @@ pub struct Settings<'a> {
 impl<'a> Settings<'a> {
     pub fn new(args: &'a ProjectArgs) -> Result<Self> {
         let frame = crate::input::frame_of(&args.up);
+        if args.encoding != shlight_core::Encoding::Sh {
+            let e = args.encoding;
+            let clash = [
+                (
+                    args.quantity != shlight_format::Quantity::Radiance,
+                    "--quantity irradiance",
+                ),
+                (args.rotate.is_some(), "--rotate"),
+                (args.gpu, "--gpu"),
+                (args.method != Method::Quadrature, "--method montecarlo"),
+                (args.window.trim() != "none", "--window"),
+                (
+                    args.format
+                        .is_some_and(|f| f != shlight_format::ExportFormat::Json),
+                    "--format other than json",
+                ),
+            ];
+            if let Some((_, what)) = clash.iter().find(|(c, _)| *c) {
+                bail!(
+                    "--encoding {e} keeps radiance projected by quadrature in shlight's JSON file; it cannot be combined with {what}"
+                );
+            }
+        }
         let window = match args.window.trim() {
             "auto" => None,
             spec => Some(

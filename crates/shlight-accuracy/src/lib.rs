@@ -16,6 +16,9 @@
 //!   quadrature at several resolutions, and Monte Carlo with each sampler
 //!   at several sample counts, as [`suite::Row`]s with bounds and fitted
 //!   convergence rates.
+//! - [`compare`]: every encoding of a map (dominant lights + SH, ZH3,
+//!   non-linear L1, the ambient cube, plain SH) against its exact
+//!   irradiance: a table, JSON and a plot of error against floats stored.
 //! - [`error`]: the relative error (to the peak irradiance, as Ramamoorthi
 //!   & Hanrahan 2001) and log-log slopes.
 //! - [`plot`]: error-vs-samples and error-vs-lmax plots (SVG) and error
@@ -41,6 +44,7 @@
 
 #![deny(missing_docs)]
 
+pub mod compare;
 pub mod error;
 pub mod lambert;
 pub mod oracle;

@@ -46,14 +46,14 @@ fn decades(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
 }
 
 /// One line of a log-log plot.
-struct Series {
-    label: String,
-    points: Vec<(f64, f64)>,
-    dashed: bool,
+pub(crate) struct Series {
+    pub(crate) label: String,
+    pub(crate) points: Vec<(f64, f64)>,
+    pub(crate) dashed: bool,
 }
 
 /// A log-log plot of `series` as an SVG document.
-fn log_log_svg(
+pub(crate) fn log_log_svg(
     title: &str,
     x_desc: &str,
     y_desc: &str,

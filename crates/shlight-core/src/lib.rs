@@ -38,6 +38,13 @@
 //!   luminance importance sampling) with standard errors.
 //! - [`irradiance_map`]: brute-force irradiance of a map (every texel,
 //!   cosine-weighted), the ground truth for SH irradiance.
+//! - Encodings beyond plain SH, each against the exact irradiance:
+//!   [`dominant_lights`] (bright compact sources taken out as [`CapLight`]s
+//!   with Snyder's exact irradiance, the rest left as SH) and
+//!   [`sloan_light`] (Sloan 2008's light from coefficients alone),
+//!   [`zh3`] (Roughton et al. 2024, stored and hallucinated),
+//!   [`l1_nonlinear`] (the Geomerics reconstruction), [`ambient_cube`]
+//!   (Valve 2006, Bevy's irradiance volumes).
 //! - [`analytic`]: closed-form projections of lights (directional, cosine
 //!   lobe, cap, constant, linear gradient), the test oracles.
 //!
@@ -88,19 +95,26 @@
 
 #![deny(missing_docs)]
 
+pub mod ambient_cube;
 pub mod analytic;
 pub mod auto_window;
 pub mod basis;
+pub mod cap_light;
 pub mod channel_windows;
+mod channels;
 pub mod coeffs;
 mod cpu_features;
 mod cube_faces;
+pub mod dominant_lights;
+pub mod encoding;
 pub mod equirect;
+pub mod equirect_means;
 mod fixed_size;
 mod glam_real;
 mod hardcoded;
 pub mod index;
 pub mod irradiance_map;
+pub mod l1_nonlinear;
 pub mod layout;
 pub mod legendre;
 pub mod montecarlo;
@@ -115,21 +129,28 @@ pub mod rotation;
 mod rotation_l2;
 mod sh_l1;
 mod sh_l2;
+pub mod sloan_light;
 pub mod sphere_minimum;
 pub mod std_error_rotation;
 mod strided_image;
 mod texel_source;
 mod value;
 pub mod window;
+pub mod zh3;
 pub mod zonal;
 
+pub use ambient_cube::AmbientCube;
 pub use auto_window::{AutoWindow, AutoWindowError, WindowTarget, auto_window};
 pub use basis::{ShBasis, sh_eval};
+pub use cap_light::CapLight;
 pub use coeffs::ShCoeffs;
 pub use cube_faces::CubeFaces;
+pub use dominant_lights::{DominantLightOptions, DominantLights, extract_dominant_lights};
+pub use encoding::{Encoded, Encoding, encode_coefficients, encode_map};
 pub use equirect::EquirectView;
 pub use glam_real::GlamReal;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
+pub use l1_nonlinear::L1NonLinear;
 pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError};
 pub use montecarlo::{
     ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
@@ -142,11 +163,13 @@ pub use rotation::{Frame, ShRotation};
 pub use rotation_l2::ShRotationL2;
 pub use sh_l1::{ShL1, ShL1Rgb};
 pub use sh_l2::{ShL2, ShL2Rgb};
+pub use sloan_light::sloan_directional;
 pub use sphere_minimum::sphere_minimum;
 pub use strided_image::StridedImage;
 pub use texel_source::TexelSource;
 pub use value::ShValue;
 pub use window::{Window, WindowFamily};
+pub use zh3::{Zh3, Zh3Kind};
 pub use zonal::{ZonalKernel, irradiance};
 
 /// The README's example, compiled and run as a doctest.

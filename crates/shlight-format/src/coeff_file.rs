@@ -11,6 +11,7 @@ use shlight_core::rotation::Frame;
 use shlight_core::window::sphere_minimum;
 use shlight_core::{ShCoeffs, lm_from_index};
 
+use crate::encoding_record::FileEncoding;
 use crate::{FormatError, Quantity, Result};
 
 /// Highest lmax whose file gets `statistics.minimum` (the search costs
@@ -24,8 +25,13 @@ pub const MINIMUM_MAX_LMAX: usize = 16;
 /// pretty file at lmax 512 is 26 MB of mostly indentation.
 pub const PRETTY_MAX_LMAX: usize = 32;
 
-/// Version of the JSON layout written by this build.
+/// Version of the JSON layout written by this build for plain SH.
 pub const FORMAT_VERSION: u64 = 1;
+
+/// Version written for a file with an `encoding` other than plain SH: its
+/// `coefficients` alone are not the light, so readers of version 1 must
+/// refuse it rather than read them as the whole light.
+pub const ENCODED_FORMAT_VERSION: u64 = 2;
 
 /// The `format` field of a coefficient file.
 pub const FORMAT: &str = "shlight-sh";
@@ -130,6 +136,9 @@ pub struct CoeffFile {
     /// index and quantity as `coeffs` (Monte Carlo projection); `None` for
     /// quadrature.
     pub std_error: Option<ShCoeffs<DVec3>>,
+    /// Which encoding `coeffs` belong to and what else it keeps
+    /// ([`FileEncoding::Sh`] for plain SH).
+    pub encoding: FileEncoding,
 }
 
 impl Provenance {
@@ -156,7 +165,19 @@ impl CoeffFile {
             input_min_value: 0.0,
             sanitized: None,
             std_error: None,
+            encoding: FileEncoding::Sh,
         }
+    }
+
+    /// The file's light as the core's [`shlight_core::Encoded`], ready to
+    /// evaluate; `None` for irradiance files or coefficients too short for
+    /// the encoding.
+    #[must_use]
+    pub fn encoded(&self) -> Option<shlight_core::Encoded> {
+        if self.quantity != Quantity::Radiance {
+            return None;
+        }
+        self.encoding.to_encoded(&self.coeffs)
     }
 
     /// The JSON document (docs/coefficient-file.md).
@@ -235,6 +256,10 @@ impl CoeffFile {
         });
         if let Some(se) = &self.std_error {
             doc["statistics"]["std_error"] = se.as_slice().iter().map(|v| rgb(*v)).collect();
+        }
+        if let Some(e) = self.encoding.to_json(&self.coeffs) {
+            doc["encoding"] = e;
+            doc["format_version"] = json!(ENCODED_FORMAT_VERSION);
         }
         doc
     }
@@ -316,6 +341,15 @@ impl CoeffFile {
     pub fn read_radiance(path: &Path, user: &str, fix: &str) -> Result<Self> {
         let name = path.display().to_string();
         let file = Self::read(path)?;
+        if file.encoding != FileEncoding::Sh {
+            return Err(FormatError::invalid(
+                &name,
+                format!(
+                    "holds the {} encoding, whose coefficients are not the whole light; {user} needs plain SH ({fix}, without --encoding)",
+                    file.encoding.encoding()
+                ),
+            ));
+        }
         if file.quantity != Quantity::Radiance {
             return Err(FormatError::invalid(
                 &name,
@@ -343,9 +377,9 @@ impl CoeffFile {
             )));
         }
         let version = field("format_version")?.as_u64().unwrap_or(0);
-        if version == 0 || version > FORMAT_VERSION {
+        if version == 0 || version > ENCODED_FORMAT_VERSION {
             return Err(bad(format!(
-                "format_version {version} is not supported (this build reads 1..={FORMAT_VERSION})"
+                "format_version {version} is not supported (this build reads 1..={ENCODED_FORMAT_VERSION})"
             )));
         }
         let lmax = field("lmax")?
@@ -464,7 +498,17 @@ impl CoeffFile {
                 Some(ShCoeffs::from_vec(se).expect("length checked"))
             }
         };
+        let encoding = match v.get("encoding") {
+            None | Some(Value::Null) => FileEncoding::Sh,
+            Some(e) => FileEncoding::from_json(e, lmax).map_err(bad)?,
+        };
+        if encoding != FileEncoding::Sh && version < ENCODED_FORMAT_VERSION {
+            return Err(bad(format!(
+                "an \"encoding\" needs format_version {ENCODED_FORMAT_VERSION}, the file says {version}"
+            )));
+        }
         Ok(Self {
+            encoding,
             coeffs: ShCoeffs::from_vec(coeffs).expect("length checked"),
             frame,
             mirror: v.get("mirror").and_then(Value::as_bool).unwrap_or(false),
@@ -673,6 +717,7 @@ mod tests {
             DVec3::new(l as f64, m as f64 * 0.5, 0.125 + l as f64)
         });
         CoeffFile {
+            encoding: FileEncoding::Sh,
             std_error: Some(coeffs.map(|c| c * 0.01)),
             coeffs,
             frame: Frame::ZUp,
@@ -745,6 +790,74 @@ mod tests {
         assert_eq!(
             file.to_json_string(),
             serde_json::to_string(&file.to_json()).unwrap()
+        );
+    }
+
+    #[test]
+    fn every_encoding_round_trips_and_old_versions_refuse_it() {
+        use shlight_core::{CapLight, ShCoeffs};
+        let l1 = ShCoeffs::from_fn(1, |l, m| DVec3::new(1.0 + l as f64, 0.5 * m as f64, 0.25));
+        let light = CapLight {
+            direction: DVec3::new(0.0, 0.6, 0.8),
+            half_angle: 0.01,
+            power: DVec3::new(10.0, 9.0, 7.5),
+        };
+        let cube = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0].map(|c| DVec3::new(c, c * 0.5, 0.1));
+        for encoding in [
+            FileEncoding::DominantSh {
+                lights: vec![light.clone(), light],
+            },
+            FileEncoding::Zh3 {
+                zonal: DVec3::new(0.1, -0.2, 0.3),
+            },
+            FileEncoding::Zh3Hallucinated,
+            FileEncoding::SloanSh,
+            FileEncoding::L1NonLinear,
+            FileEncoding::AmbientCube { colours: cube },
+        ] {
+            let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
+            file.encoding = encoding.clone();
+            let text = file.to_json_string();
+            let back = CoeffFile::from_json_str(&text, "e.json").unwrap();
+            assert_eq!(back.encoding, encoding);
+            assert_eq!(back.coeffs, l1);
+            assert!(back.encoded().is_some());
+            let json: Value = serde_json::from_str(&text).unwrap();
+            assert_eq!(json["format_version"], ENCODED_FORMAT_VERSION);
+            let old = text.replacen("\"format_version\": 2", "\"format_version\": 1", 1);
+            let err = CoeffFile::from_json_str(&old, "old.json")
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.contains("old.json") && err.contains("format_version"),
+                "{err}"
+            );
+        }
+        // Engine formats refuse an encoding rather than export part of it.
+        let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
+        file.provenance.input = "enc.exr".into();
+        file.encoding = FileEncoding::L1NonLinear;
+        let err = crate::export(&file, crate::ExportFormat::Glsl)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("enc.exr") && err.contains("l1-nonlinear"),
+            "{err}"
+        );
+        assert!(crate::export(&file, crate::ExportFormat::Json).is_ok());
+        // A broken light names itself.
+        let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
+        file.encoding = FileEncoding::DominantSh { lights: Vec::new() };
+        let text = file.to_json_string().replace(
+            "\"lights\": []",
+            "\"lights\": [{\"direction\": [0, 0, 0], \"half_angle\": 0, \"power\": [1, 1, 1]}]",
+        );
+        let err = CoeffFile::from_json_str(&text, "z.json")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("z.json") && err.contains("light 0 direction"),
+            "{err}"
         );
     }
 

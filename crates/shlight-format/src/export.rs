@@ -242,6 +242,15 @@ pub fn export(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
             notes: Vec::new(),
         });
     }
+    if file.encoding != crate::FileEncoding::Sh {
+        return Err(FormatError::Export(format!(
+            "{}: {} cannot take the {} encoding (its coefficients are not the whole light); \
+             only shlight's JSON keeps encodings",
+            file.provenance.input,
+            format.name(),
+            file.encoding.encoding()
+        )));
+    }
     let input = ExportInput {
         coeffs: &file.coeffs,
         quantity: file.quantity,

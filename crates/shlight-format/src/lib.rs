@@ -54,6 +54,7 @@
 
 pub mod bevy_volume;
 pub mod coeff_file;
+pub mod encoding_record;
 mod error;
 pub mod export;
 mod import;
@@ -62,6 +63,7 @@ pub mod shprt;
 pub mod shvol;
 
 pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
+pub use encoding_record::FileEncoding;
 pub use error::{FormatError, Result};
 pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};

@@ -1,0 +1,98 @@
+//! `shlight compare`: every encoding on every map against the map's exact
+//! irradiance (`shlight_accuracy::compare`): the table on stdout; with
+//! `-o DIR`, `compare.json` and one plot of error against floats stored
+//! per map (`compare-MAP.svg`).
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
+use shlight_accuracy::compare::{self, CompareRow};
+use shlight_core::dominant_lights::DominantLightOptions;
+use shlight_core::layout::EnvMap;
+use shlight_core::projection::MapOrientation;
+use shlight_io::ReadOptions;
+
+use crate::input::{InputLayout, load, parse_input_layout};
+use crate::progress::Ui;
+use crate::texels::parse_size;
+
+/// Arguments of `shlight compare`.
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// The environment maps (any layout `shlight project` reads).
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Directory (created) for compare.json and the plots.
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Normals the errors are measured at: an equirect grid WIDTHxHEIGHT.
+    #[arg(long, default_value = "128x64", value_parser = parse_size)]
+    pub normals: (usize, usize),
+    /// Layout of the inputs: auto, equirect, cross-h, cross-v, strip,
+    /// angular, mirror-ball, faces.
+    #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
+    pub layout: InputLayout,
+    /// Which world axis the top row of the maps faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Replace NaN/inf and negative texels (as `shlight project --sanitize`).
+    #[arg(long)]
+    pub sanitize: bool,
+}
+
+/// Runs `shlight compare`.
+pub fn run(args: &CompareArgs, ui: &Ui) -> Result<()> {
+    if let Some(dir) = &args.output {
+        if dir.exists() && !dir.is_dir() {
+            bail!("{}: exists and is not a directory", dir.display());
+        }
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+    }
+    let orientation = MapOrientation {
+        frame: crate::input::frame_of(&args.up),
+        mirror: false,
+    };
+    let read = ReadOptions::default();
+    let mut rows: Vec<CompareRow> = Vec::new();
+    let mut names = Vec::new();
+    for input in &args.inputs {
+        let name = input.file_stem().map_or_else(
+            || input.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        let bar = ui.spinner(&format!("comparing {name}"));
+        let (image, layout, _, _) = load(input, args.layout, &read, args.sanitize, ui)?;
+        let map = EnvMap::new(
+            layout,
+            orientation,
+            image.width(),
+            image.height(),
+            image.pixels(),
+        )
+        .map_err(|e| anyhow!("{}: {e}", input.display()))?;
+        rows.extend(compare::compare_map(
+            &name,
+            &map,
+            args.normals,
+            &DominantLightOptions::default(),
+        ));
+        bar.finish_and_clear();
+        names.push(name);
+    }
+    print!("{}", compare::table(&rows));
+    if let Some(dir) = &args.output {
+        let json = dir.join("compare.json");
+        let text = serde_json::to_string_pretty(&compare::rows_json(&rows))? + "\n";
+        shlight_io::write_atomically(&json, |w| w.write_all(text.as_bytes()))?;
+        ui.note(format!("wrote {}", json.display()));
+        for name in &names {
+            let svg = compare::floats_plot(name, &rows)?;
+            let path = dir.join(format!("compare-{name}.svg"));
+            shlight_accuracy::plot::write_svg(&path, &svg)?;
+            ui.note(format!("wrote {}", path.display()));
+        }
+    }
+    Ok(())
+}
