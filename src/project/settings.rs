@@ -4,29 +4,30 @@
 use anyhow::{Result, anyhow, bail};
 use glam::{DMat3, DQuat};
 use shlight_core::Window;
-use shlight_core::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
+use shlight_core::montecarlo::{DEFAULT_SEED, McOptions};
 use shlight_core::projection::MapOrientation;
 use shlight_core::rotation::Frame;
 use shlight_format::RotationRecord;
 use shlight_io::ReadOptions;
+use shlight_pipeline::ProjectSettings;
 
 use crate::preview::PreviewOptions;
 use crate::texels::LayoutArg;
 
 use super::args::{DEFAULT_SAMPLES, Method, ProjectArgs};
 
+/// The library's method for `--method`.
+type LibMethod = shlight_pipeline::Method;
+
 /// Everything decided from the arguments before any input is read.
 pub struct Settings<'a> {
     pub args: &'a ProjectArgs,
     pub orientation: MapOrientation,
-    pub window: Option<Window>,
-    /// The record for the file and the matrix.
-    pub rotation: Option<(RotationRecord, DMat3)>,
+    /// lmax, orientation, method, window, rotation and quantity, as the
+    /// library's pipeline takes them.
+    pub project: ProjectSettings,
     pub read: ReadOptions,
     pub preview: PreviewOptions,
-    /// Monte Carlo options (`--method montecarlo`) and the sampler's kind;
-    /// the sampler itself is built per map (`project_map`).
-    pub montecarlo: Option<(McOptions, SamplerKind)>,
     /// The device and pipelines of `--gpu`.
     #[cfg(feature = "gpu")]
     pub gpu: Option<(shlight_gpu::GpuContext, shlight_gpu::GpuProjector)>,
@@ -53,16 +54,16 @@ impl<'a> Settings<'a> {
                 Some((record, matrix))
             }
         };
-        let montecarlo = match args.method {
-            Method::MonteCarlo => Some((
-                McOptions {
+        let method = match args.method {
+            Method::MonteCarlo => LibMethod::MonteCarlo {
+                options: McOptions {
                     lmax: args.lmax,
                     samples: args.samples.unwrap_or(DEFAULT_SAMPLES),
                     seed: args.seed.unwrap_or(DEFAULT_SEED),
                     ..McOptions::default()
                 },
-                args.sampler.unwrap_or_default(),
-            )),
+                sampler: args.sampler.unwrap_or_default(),
+            },
             Method::Quadrature => {
                 let given: Vec<&str> = [
                     ("--samples", args.samples.is_some()),
@@ -78,7 +79,7 @@ impl<'a> Settings<'a> {
                         given.join(", ")
                     );
                 }
-                None
+                LibMethod::Quadrature
             }
         };
         #[cfg(not(feature = "gpu"))]
@@ -87,7 +88,7 @@ impl<'a> Settings<'a> {
         }
         #[cfg(feature = "gpu")]
         let gpu = if args.gpu {
-            if montecarlo.is_some() {
+            if method != LibMethod::Quadrature {
                 bail!("--gpu computes the quadrature; it does not apply to --method montecarlo");
             }
             if args.lmax > shlight_gpu::MAX_LMAX {
@@ -108,14 +109,21 @@ impl<'a> Settings<'a> {
                 .check_size(args.preview_size.0, args.preview_size.1)
                 .map_err(|e| anyhow!("--preview-size: {e}"))?;
         }
+        let orientation = MapOrientation {
+            frame,
+            mirror: args.mirror,
+        };
         Ok(Self {
             args,
-            orientation: MapOrientation {
-                frame,
-                mirror: args.mirror,
+            orientation,
+            project: ProjectSettings {
+                lmax: args.lmax,
+                orientation,
+                method,
+                window,
+                rotation,
+                quantity: args.quantity,
             },
-            window,
-            rotation,
             read: ReadOptions {
                 layer: args.layer.clone(),
                 max_pixels: args.max_pixels,
@@ -125,7 +133,6 @@ impl<'a> Settings<'a> {
                 exposure: args.preview_exposure,
                 tone_map: args.preview_tone_map,
             },
-            montecarlo,
             #[cfg(feature = "gpu")]
             gpu,
         })
