@@ -20,7 +20,8 @@
 //!    weakest Hanning window that keeps the result non-negative.
 //! 4. [`coefficient_file`]: windows, rotation, quantity, provenance.
 //!
-//! [`project_path`] runs all four on one file. [`render_map`] evaluates
+//! [`project_path`] runs all four on one file, [`project_source`] on texels
+//! in memory ([`layout_for_size`] settles their layout). [`render_map`] evaluates
 //! coefficients at every texel centre of a map in any layout.
 //!
 //! # Conventions
@@ -56,15 +57,17 @@ mod load;
 mod project_path;
 mod projection;
 mod render;
+mod rotation_spec;
 mod settings;
 mod source_stats;
 
 pub use coefficient_file::{MapInfo, choose_windows, coefficient_file};
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
-pub use load::{LoadedMap, check_values, load_map, sanitize_image};
-pub use project_path::{ReadSettings, project_path};
+pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use project_path::{ReadSettings, project_path, project_source};
 pub use projection::{Projection, project_radiance, project_radiance_texels};
 pub use render::render_map;
+pub use rotation_spec::parse_rotation;
 pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings};
 pub use source_stats::source_stats;

@@ -109,20 +109,15 @@ pub fn load_map(
                 "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
             )));
         }
-        (false, InputLayout::Auto) => {
+        (false, layout) => {
             let image = read_image(path, read)?;
-            let (w, h) = (image.width(), image.height());
-            let Some(layout) = Layout::detect(w, h) else {
-                return Err(PipelineError::new(format!(
-                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with --layout"
-                )));
-            };
-            (image, layout)
-        }
-        (false, InputLayout::Image(layout)) => {
-            let image = read_image(path, read)?;
-            let (w, h) = (image.width(), image.height());
-            check_named_layout(&name.to_string(), layout, w, h, &mut warnings)?;
+            let layout = layout_for_size(
+                &name.to_string(),
+                layout,
+                image.width(),
+                image.height(),
+                &mut warnings,
+            )?;
             (image, layout)
         }
     };
@@ -142,18 +137,36 @@ pub fn load_map(
     })
 }
 
-/// Checks that a `w x h` map named `name` fits `layout`, warning when an
-/// equirect map is not 2:1 (see [`load_map`]).
+/// The layout of a single `w x h` image named `name`: by aspect ratio for
+/// [`InputLayout::Auto`] ([`Layout::detect`]), or the one named, checked
+/// against the size, with a warning pushed when an equirect map is not 2:1
+/// (see [`load_map`]).
 ///
 /// # Errors
-/// The size does not fit the layout ([`Layout::check_size`]).
-pub(crate) fn check_named_layout(
+/// No layout fits the aspect ratio, the size does not fit the layout named,
+/// or the layout is [`InputLayout::Faces`] (six files, not one image).
+pub fn layout_for_size(
     name: &str,
-    layout: Layout,
+    layout: InputLayout,
     w: usize,
     h: usize,
     warnings: &mut Vec<String>,
-) -> Result<()> {
+) -> Result<Layout> {
+    let layout = match layout {
+        InputLayout::Faces => {
+            return Err(PipelineError::new(format!(
+                "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
+            )));
+        }
+        InputLayout::Auto => {
+            return Layout::detect(w, h).ok_or_else(|| {
+                PipelineError::new(format!(
+                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with --layout"
+                ))
+            });
+        }
+        InputLayout::Image(layout) => layout,
+    };
     if let Err(e) = layout.check_size(w, h) {
         return Err(PipelineError::new(format!("{name}: {e}")));
     }
@@ -164,7 +177,7 @@ pub(crate) fn check_named_layout(
             180.0 / h as f64
         ));
     }
-    Ok(())
+    Ok(layout)
 }
 
 /// The value check of [`load_map`] without sanitizing: NaN or infinite

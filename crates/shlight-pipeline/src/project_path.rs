@@ -1,16 +1,19 @@
-//! [`project_path`]: every step of `shlight project` on one file.
+//! [`project_path`] and [`project_source`]: every step of `shlight project`
+//! on one file, or on texels already in memory.
 
 use std::path::Path;
 
+use shlight_core::TexelSource;
 use shlight_core::layout::EnvMap;
 use shlight_format::CoeffFile;
-use shlight_io::ReadOptions;
+use shlight_io::{Image, ReadOptions};
 
 use crate::coefficient_file::{MapInfo, choose_windows, coefficient_file};
 use crate::input_layout::{InputLayout, is_faces};
-use crate::load::load_map;
-use crate::projection::project_radiance;
+use crate::load::{check_values, load_map, sanitize_image};
+use crate::projection::{project_radiance, project_radiance_texels};
 use crate::settings::ProjectSettings;
+use crate::source_stats::source_stats;
 use crate::{PipelineError, Result};
 
 /// How input files are read: their layout, the reader's options, and
@@ -66,4 +69,55 @@ pub fn project_path(
         coefficient_file(&projection, windows, s, &info),
         loaded.warnings,
     ))
+}
+
+/// Checks and projects texels already in memory (a numpy array, a GPU
+/// readback), read in place through [`TexelSource`], and returns their
+/// coefficient file (provenance `input` is `name`, `layout` is
+/// `layout_name`) with the warnings for the user: the steps of
+/// [`project_path`] after reading. With `sanitize` the texels are copied
+/// and sanitized ([`sanitize_image`]) first; without it NaN and infinities
+/// are refused ([`check_values`]). The coefficients equal those of a file
+/// holding the same texels, bit for bit.
+///
+/// # Errors
+/// Non-finite texels without `sanitize`, a size that does not fit the
+/// source's layout, no window found for `auto`; messages name `name`.
+pub fn project_source<S: TexelSource + ?Sized>(
+    source: &S,
+    name: &str,
+    layout_name: &str,
+    sanitize: bool,
+    s: &ProjectSettings,
+) -> Result<(CoeffFile, Vec<String>)> {
+    let (w, h) = source.size();
+    let layout = source.layout();
+    layout
+        .check_size(w, h)
+        .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
+    let mut warnings = Vec::new();
+    let stats = source_stats(source);
+    let (projection, sanitized) = if sanitize {
+        let mut image = Image::from_fn(w, h, |x, y| source.texel(x, y));
+        let counts = sanitize_image(name, &mut image, &mut warnings);
+        let map = EnvMap::new(layout, s.orientation, w, h, image.pixels()).map_err(|e| {
+            PipelineError::new(e.to_string()).context(format!("{name}: projecting"))
+        })?;
+        (project_radiance(&map, s), Some(counts))
+    } else {
+        check_values(name, &stats, &mut warnings)?;
+        let projection = project_radiance_texels(source, s)
+            .map_err(|e| e.context(format!("{name}: projecting")))?;
+        (projection, None)
+    };
+    let windows = choose_windows(&projection.coeffs, s, name)?;
+    let info = MapInfo {
+        name: name.to_string(),
+        width: w,
+        height: h,
+        layout: layout_name.to_string(),
+        stats,
+        sanitized,
+    };
+    Ok((coefficient_file(&projection, windows, s, &info), warnings))
 }
