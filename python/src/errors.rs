@@ -30,12 +30,13 @@ pub fn chained(e: &(dyn std::error::Error + 'static)) -> PyErr {
     shlight_error(shlight_pipeline::error_chain(e))
 }
 
-/// Issues each message as a `UserWarning`.
-pub fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+/// Issues each message as a `UserWarning`, attributed `stacklevel` frames
+/// up (2 from the package's Python wrappers: the user's call).
+pub fn warn_all(py: Python<'_>, messages: &[String], stacklevel: i32) -> PyResult<()> {
     let category = py.get_type::<PyUserWarning>();
     for m in messages {
         let text = CString::new(m.replace('\0', " ")).expect("NUL bytes replaced");
-        PyErr::warn(py, &category, &text, 1)?;
+        PyErr::warn(py, &category, &text, stacklevel)?;
     }
     Ok(())
 }
