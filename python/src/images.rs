@@ -41,9 +41,8 @@ pub fn read_image<'py>(
         layer,
         max_pixels: max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
     };
-    let image = py.detach(|| {
-        guard(|| shlight_io::read_image(&path, &options).map_err(|e| chained(&e)))
-    })?;
+    let image =
+        py.detach(|| guard(|| shlight_io::read_image(&path, &options).map_err(|e| chained(&e))))?;
     Ok(to_array(py, image))
 }
 
@@ -72,7 +71,7 @@ pub fn write_image(
         Data::F32(p) => p.to_vec(),
         Data::F64(p) => p.iter().map(|t| t.map(|v| v as f32)).collect(),
     };
-    let image = Image::new(map.width, map.height, pixels).map_err(|e| shlight_error(e))?;
+    let image = Image::new(map.width, map.height, pixels).map_err(shlight_error)?;
     let options = WriteOptions {
         exposure_ev: exposure,
         tone_map,
@@ -109,7 +108,9 @@ pub fn render<'py>(
                 layout.dimensions(n)
             } else {
                 s.extract::<(usize, usize)>().map_err(|_| {
-                    PyTypeError::new_err("size is (width, height) or one number (see help(shlight.render))")
+                    PyTypeError::new_err(
+                        "size is (width, height) or one number (see help(shlight.render))",
+                    )
                 })?
             }
         }
@@ -144,4 +145,3 @@ pub fn render<'py>(
     })?;
     Ok(to_array(py, image))
 }
-

@@ -120,7 +120,8 @@ impl RawOptions {
         let rotation = match &self.rotate {
             None => None,
             Some(spec) => {
-                let matrix = shlight_pipeline::parse_rotation(spec, frame).map_err(pipeline_error)?;
+                let matrix =
+                    shlight_pipeline::parse_rotation(spec, frame).map_err(pipeline_error)?;
                 let record = RotationRecord {
                     spec: spec.trim().to_string(),
                     matrix: matrix.transpose().to_cols_array_2d(),

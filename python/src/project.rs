@@ -102,8 +102,14 @@ fn project_array(
     let view = array.view(layout);
     let (file, more) = py.detach(|| {
         guard(|| {
-            project_source(&view, ARRAY_NAME, layout.name(), o.read.sanitize, &o.settings)
-                .map_err(pipeline_error)
+            project_source(
+                &view,
+                ARRAY_NAME,
+                layout.name(),
+                o.read.sanitize,
+                &o.settings,
+            )
+            .map_err(pipeline_error)
         })
     })?;
     warnings.extend(more);
@@ -139,7 +145,10 @@ fn project_faces(
     let views: Vec<_> = faces.iter().map(|f| f.view(Layout::Strip)).collect();
     let owned: Vec<Vec<[f32; 3]>>;
     let slices: Vec<&[[f32; 3]]> = if views.iter().all(|v| v.contiguous().is_some()) {
-        views.iter().map(|v| v.contiguous().expect("checked")).collect()
+        views
+            .iter()
+            .map(|v| v.contiguous().expect("checked"))
+            .collect()
     } else {
         owned = views
             .iter()

@@ -174,11 +174,7 @@ impl Sh {
 
     /// The expansion at unit directions: dirs (N, 3) (or (3,)) float64 in
     /// the SH's frame, normalised here; returns (N, 3) (or (3,)) float64 RGB.
-    fn eval<'py>(
-        &self,
-        py: Python<'py>,
-        dirs: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyAny>> {
+    fn eval<'py>(&self, py: Python<'py>, dirs: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let single = dirs.extract::<PyArrayLike1<'py, f64, AllowTypeChange>>();
         let (rows, one): (Vec<[f64; 3]>, bool) = match single {
             Ok(d) if d.shape() == [3] => {
@@ -198,7 +194,12 @@ impl Sh {
                     )));
                 }
                 let a = m.as_array();
-                ((0..a.nrows()).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]]).collect(), false)
+                (
+                    (0..a.nrows())
+                        .map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]])
+                        .collect(),
+                    false,
+                )
             }
         };
         if let Some(i) = rows.iter().position(|d| {
@@ -263,11 +264,14 @@ impl Sh {
     fn window(&self, window: &str) -> PyResult<Sh> {
         let spec = window.trim();
         let windows = if spec == "auto" {
-            auto_windows(&self.file.coeffs, WindowFamily::Hanning, WindowTarget::Function)
-                .map_err(|e| shlight_error(format!("--window auto: {e}")))?
+            auto_windows(
+                &self.file.coeffs,
+                WindowFamily::Hanning,
+                WindowTarget::Function,
+            )
+            .map_err(|e| shlight_error(format!("--window auto: {e}")))?
         } else {
-            [spec
-                .parse::<Window>()
+            [spec.parse::<Window>()
                 .map_err(|e| shlight_error(format!("--window {spec}: {e}")))?; 3]
         };
         let coeffs = apply_channel_windows(&windows, &self.file.coeffs);

@@ -51,9 +51,9 @@ impl<'py> Source<'py> {
             let mut faces = Vec::with_capacity(6);
             for (k, item) in items.iter().enumerate() {
                 let name = format!("face {} ({})", k, shlight_pipeline::FACE_NAMES[k]);
-                let array = item.cast::<PyUntypedArray>().map_err(|_| {
-                    PyTypeError::new_err(format!("{name} is not a numpy array"))
-                })?;
+                let array = item
+                    .cast::<PyUntypedArray>()
+                    .map_err(|_| PyTypeError::new_err(format!("{name} is not a numpy array")))?;
                 faces.push(ArrayMap::from_array(array, &name)?);
             }
             return Ok(Source::Faces(faces));
