@@ -54,6 +54,9 @@ class SH:
         """The coefficients in an engine or shader format (EXPORT_FORMATS)."""
     def to_json(self) -> str:
         """The coefficient file as JSON text."""
+    @staticmethod
+    def from_json(text: str) -> "SH":
+        """An SH from a coefficient file's JSON text (pickling uses it)."""
 
 Source = Union[PathLike, Image, Sequence[Image]]
 

@@ -321,6 +321,21 @@ impl Sh {
         Ok(out.text)
     }
 
+    /// An SH from the JSON text of a coefficient file (what to_json gives).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Sh> {
+        CoeffFile::from_json_str(text, "<json>")
+            .map(Sh::new)
+            .map_err(|e| chained(&e))
+    }
+
+    /// Pickling (Dask, multiprocessing) through the coefficient file's JSON,
+    /// which keeps every float64 bit.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let from_json = slf.get_type().getattr("from_json")?;
+        Ok((from_json, (slf.get().file.to_json_string(),)))
+    }
+
     fn __repr__(&self) -> String {
         let input = &self.file.provenance.input;
         format!(

@@ -18,3 +18,15 @@ def test_project_many_equals_project_per_path():
     assert len(many) == len(paths)
     for a, b in zip(many, one):
         assert a.to_json() == b.to_json()
+
+
+def test_sh_pickles_bit_for_bit():
+    import pickle
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sh = shlight.project(str(MAPS[0]), 3, method="montecarlo", samples=1024)
+    back = pickle.loads(pickle.dumps(sh))
+    assert np.array_equal(back.coefficients, sh.coefficients)
+    assert np.array_equal(back.std_error, sh.std_error)
+    assert back.to_json() == sh.to_json()

@@ -36,7 +36,5 @@ pub fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Pr
             sampler: None,
         });
     }
-    #[cfg(not(feature = "gpu"))]
-    let _ = Layout::Equirect;
     Ok(project_radiance(&map, &s.project))
 }

@@ -121,3 +121,58 @@ pub fn project_source<S: TexelSource + ?Sized>(
     };
     Ok((coefficient_file(&projection, windows, s, &info), warnings))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::Method;
+    use shlight_core::StridedImage;
+    use shlight_core::layout::Layout;
+    use shlight_core::montecarlo::{McOptions, SamplerKind};
+    use shlight_core::projection::MapOrientation;
+    use shlight_core::rotation::Frame;
+    use shlight_format::Quantity;
+    use shlight_io::read_image;
+
+    /// A bundled map read from its file and the same texels in memory with
+    /// a row pitch give the same coefficient file but for the input's name
+    /// and layout wording, bit for bit, for both methods.
+    #[test]
+    fn texels_in_memory_project_as_their_file() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../envmaps/sky.exr");
+        let image = read_image(&path, &ReadOptions::default()).unwrap();
+        let (w, h, stride) = (image.width(), image.height(), image.width() + 3);
+        let mut padded = vec![[f32::NAN; 3]; stride * h];
+        for y in 0..h {
+            padded[y * stride..y * stride + w].copy_from_slice(image.row(y));
+        }
+        let source = StridedImage::new(Layout::Equirect, w, h, stride, &padded).unwrap();
+        let orientation = MapOrientation {
+            frame: Frame::ZUp,
+            mirror: false,
+        };
+        for method in [
+            Method::Quadrature,
+            Method::MonteCarlo {
+                options: McOptions {
+                    samples: 4096,
+                    ..McOptions::default()
+                },
+                sampler: SamplerKind::Importance,
+            },
+        ] {
+            let mut s = ProjectSettings::new(4, orientation, method, Quantity::Irradiance);
+            s.window = None;
+            let (from_file, _) = project_path(&path, &ReadSettings::default(), &s).unwrap();
+            let name = path.display().to_string();
+            let (in_memory, _) = project_source(&source, &name, "equirect", false, &s).unwrap();
+            assert_eq!(in_memory.to_json_string(), from_file.to_json_string());
+        }
+        // A NaN inside the image is refused, naming the input.
+        padded[5 * stride + 7][1] = f32::NAN;
+        let source = StridedImage::new(Layout::Equirect, w, h, stride, &padded).unwrap();
+        let s = ProjectSettings::new(2, orientation, Method::Quadrature, Quantity::Radiance);
+        let e = project_source(&source, "mem", "equirect", false, &s).unwrap_err();
+        assert!(e.message().starts_with("mem: 1 texels are NaN"), "{e}");
+    }
+}
