@@ -3,7 +3,7 @@
 # `pip install ./python` (maturin builds the extension with cargo, sharing
 # the workspace's target/ so the libraries are not compiled twice), then
 # pytest on python/tests against the `shlight` CLI built from the same
-# sources (built here when missing). Budgets: 15 min to install, 5 min of
+# sources (built here when missing). Budgets: 30 min to install, 5 min of
 # tests (about 30 s on 2 cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,7 @@ if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
 echo "== pip install ./python pytest dask[distributed]"
-timeout 900 "$venv/bin/pip" install --quiet --disable-pip-version-check ./python pytest "dask[distributed]"
+timeout 1800 "$venv/bin/pip" install --quiet --disable-pip-version-check ./python pytest "dask[distributed]"
 if [ ! -x "$CARGO_TARGET_DIR/release/shlight" ]; then
     cargo build --release --bin shlight
 fi
