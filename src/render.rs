@@ -3,8 +3,7 @@
 //! Each texel gets `sum c_l^m Y_l^m(d)` at its centre direction `d`, in the
 //! coefficient file's frame (and mirroring), so that rendering a file made by
 //! `shlight project` from an equirect map gives that map's band-limited
-//! version texel for texel. Rows are evaluated in parallel, each in batches
-//! through `ShBasis::eval_batch`.
+//! version texel for texel (`shlight_pipeline::render_map`).
 
 use std::path::PathBuf;
 
@@ -12,9 +11,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use glam::DVec3;
 use indicatif::ProgressBar;
-use rayon::prelude::*;
 use shlight_core::projection::MapOrientation;
-use shlight_core::{ShBasis, ShCoeffs, irradiance};
+use shlight_core::{ShCoeffs, irradiance};
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
 use crate::progress::Ui;
@@ -94,78 +92,18 @@ pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
     Ok(())
 }
 
-/// The image of `coeffs` on `grid`: each texel the expansion at its centre
-/// direction, 0 for texels the layout does not use. Advances `bar` by one
-/// per row.
+/// The image of `coeffs` on `grid` ([`shlight_pipeline::render_map`]):
+/// each texel the expansion at its centre direction, 0 for texels the
+/// layout does not use. Advances `bar` by one per row.
 pub fn render(coeffs: &ShCoeffs<DVec3>, grid: &TexelGrid, bar: &ProgressBar) -> Image {
-    let (w, h) = (grid.width, grid.height);
-    let basis = ShBasis::<f64>::new(coeffs.lmax());
-    let count = basis.count();
-    let channels: [Vec<f64>; 3] = std::array::from_fn(|c| coeffs.channel(c).as_slice().to_vec());
-    // Directions per batch: a multiple of 16 (the basis's lanes), keeping
-    // the basis values near 512 KiB, at most 1024.
-    let batch = ((65_536 / count) / 16).clamp(1, 64) * 16;
-    let mut pixels = vec![[0.0f32; 3]; w * h];
-    pixels.par_chunks_mut(w).enumerate().for_each_init(
-        || Scratch::new(count, batch),
-        |s, (y, row)| {
-            s.texels.clear();
-            for x in 0..w {
-                if let Some(d) = grid.direction(x, y) {
-                    s.texels.push((x, d));
-                }
-            }
-            for chunk in s.texels.chunks(batch) {
-                let n = chunk.len();
-                for (k, (_, d)) in chunk.iter().enumerate() {
-                    (s.x[k], s.y[k], s.z[k]) = (d.x, d.y, d.z);
-                }
-                for acc in &mut s.acc {
-                    acc[..n].fill(0.0);
-                }
-                let values = &mut s.values[..count * n];
-                basis.eval_batch(&s.x[..n], &s.y[..n], &s.z[..n], values);
-                // Coefficient-major: each basis function's values over the
-                // batch are contiguous, so the sums vectorise.
-                for (i, column) in values.chunks_exact(n).enumerate() {
-                    for (acc, ch) in s.acc.iter_mut().zip(&channels) {
-                        let c = ch[i];
-                        for (a, y) in acc[..n].iter_mut().zip(column) {
-                            *a += c * y;
-                        }
-                    }
-                }
-                for (k, (x, _)) in chunk.iter().enumerate() {
-                    row[*x] = [s.acc[0][k] as f32, s.acc[1][k] as f32, s.acc[2][k] as f32];
-                }
-            }
-            bar.inc(1);
-        },
-    );
-    Image::new(w, h, pixels).expect("w * h pixels")
-}
-
-/// Per-thread buffers of [`render`].
-struct Scratch {
-    texels: Vec<(usize, DVec3)>,
-    x: Vec<f64>,
-    y: Vec<f64>,
-    z: Vec<f64>,
-    values: Vec<f64>,
-    acc: [Vec<f64>; 3],
-}
-
-impl Scratch {
-    fn new(count: usize, batch: usize) -> Self {
-        Self {
-            texels: Vec::new(),
-            x: vec![0.0; batch],
-            y: vec![0.0; batch],
-            z: vec![0.0; batch],
-            values: vec![0.0; count * batch],
-            acc: std::array::from_fn(|_| vec![0.0; batch]),
-        }
-    }
+    shlight_pipeline::render_map(
+        coeffs,
+        grid.layout.layout(),
+        (grid.width, grid.height),
+        grid.orientation,
+        &|| bar.inc(1),
+    )
+    .expect("a TexelGrid's size fits its layout")
 }
 
 #[cfg(test)]

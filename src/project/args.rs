@@ -122,15 +122,6 @@ pub enum Method {
     MonteCarlo,
 }
 
-impl Method {
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Quadrature => "quadrature",
-            Method::MonteCarlo => "montecarlo",
-        }
-    }
-}
-
 /// Monte Carlo directions drawn when `--samples` is not given.
 pub const DEFAULT_SAMPLES: usize = 1 << 16;
 

@@ -3,8 +3,8 @@
 //! One input goes to `-o FILE` (or stdout); several go to `-o DIR`, one
 //! file per input, processed in parallel. Each input runs the same steps:
 //! [`load`] (read, check, `--sanitize`), [`project_map`] (layout and method),
-//! the window (per channel), `--preview`, `--rotate`, the quantity, and
-//! [`write_output`] (the one place that knows output formats: shlight's
+//! the window (per channel), `--preview`, then `--rotate` and the quantity
+//! ([`shlight_pipeline::coefficient_file`]), and [`write_output`] (the one place that knows output formats: shlight's
 //! JSON, or any exporter of `shlight_format`).
 //!
 //! Files: `args.rs` (the arguments), `settings.rs` (what the arguments
@@ -21,15 +21,9 @@ mod write;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
-use shlight_core::auto_window::WindowTarget;
-use shlight_core::channel_windows::{apply_channel_windows, auto_windows};
+use shlight_core::channel_windows::apply_channel_windows;
 use shlight_core::layout::Layout;
-use shlight_core::rotation::rotate_once;
-use shlight_core::std_error_rotation::rotate_std_error;
-use shlight_core::window::WindowFamily;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShRotation, irradiance};
-use shlight_format::{CoeffFile, Provenance, Quantity};
+use shlight_pipeline::{MapInfo, choose_windows, coefficient_file};
 
 use crate::input::{is_faces, load};
 use crate::preview::{equirect_panel, write_preview};
@@ -96,22 +90,14 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     let projection =
         project_map(&image, layout, s).with_context(|| format!("{name}: projecting"))?;
 
-    let target = match args.quantity {
-        Quantity::Radiance => WindowTarget::Function,
-        Quantity::Irradiance => WindowTarget::Irradiance,
-    };
-    if s.window.is_none() {
+    if s.project.window.is_none() {
         bar.set_message(format!("choosing windows for {name}"));
     }
-    let windows = match s.window {
-        Some(w) => [w; 3],
-        None => auto_windows(&projection.coeffs, WindowFamily::Hanning, target)
-            .with_context(|| format!("{name}: --window auto"))?,
-    };
-    let mut radiance = apply_channel_windows(&windows, &projection.coeffs);
+    let windows = choose_windows(&projection.coeffs, &s.project, &name)?;
 
     if let Some(path) = &job.preview {
         bar.set_message(format!("preview of {name}"));
+        let radiance = apply_channel_windows(&windows, &projection.coeffs);
         let equirect = match layout {
             Layout::Equirect => None,
             other => Some(equirect_panel(
@@ -126,28 +112,8 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
             .with_context(|| format!("{name}: preview"))?;
     }
 
-    // Window factors lie in [0, 1], so errors scale by them as they are.
-    let mut std_error = projection
-        .std_error
-        .map(|se| apply_channel_windows(&windows, &se));
-    if let Some((_, matrix)) = &s.rotation {
-        radiance = rotate_once(&radiance, *matrix);
-        std_error =
-            std_error.map(|se| rotate_std_error(&ShRotation::from_mat3(se.lmax(), *matrix), &se));
-    }
-    let coeffs = match args.quantity {
-        Quantity::Radiance => radiance,
-        Quantity::Irradiance => {
-            std_error =
-                std_error.map(|se| se.scaled_per_band(|l| clamped_cosine_eigenvalue(l).abs()));
-            irradiance(&radiance)
-        }
-    };
-
-    let mut file = CoeffFile::new(coeffs, s.orientation.frame, args.quantity);
-    file.mirror = s.orientation.mirror;
-    file.provenance = Provenance {
-        input: name.clone(),
+    let info = MapInfo {
+        name: name.clone(),
         width: image.width(),
         height: image.height(),
         layout: if is_faces(&job.input) {
@@ -155,21 +121,10 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
         } else {
             layout.name().into()
         },
-        method: args.method.name().into(),
-        window: match s.window {
-            Some(w) => w.to_string(),
-            None => "auto".into(),
-        },
-        windows: windows.map(|w| w.to_string()),
-        samples: projection.samples,
-        seed: projection.seed,
-        sampler: projection.sampler,
-        rotate: s.rotation.as_ref().map(|(r, _)| r.clone()),
+        stats,
+        sanitized,
     };
-    file.input_negative_texels = stats.negative;
-    file.input_min_value = f64::from(stats.min_value);
-    file.sanitized = sanitized;
-    file.std_error = std_error;
+    let mut file = coefficient_file(&projection, windows, &s.project, &info);
     if args.encoding != shlight_core::Encoding::Sh {
         bar.set_message(format!("encoding {name} as {}", args.encoding));
         let map = shlight_core::layout::EnvMap::new(

@@ -56,14 +56,26 @@ impl SanitizeReport {
 
 impl Image {
     /// Counts of non-finite and negative channel values, and the range of the
-    /// finite ones. See [`PixelStats`].
+    /// finite ones: [`PixelStats::of_pixels`] of this image's pixels.
+    #[must_use]
+    pub fn stats(&self) -> PixelStats {
+        PixelStats::of_pixels(self.pixels(), self.width())
+    }
+}
+
+impl PixelStats {
+    /// [`Image::stats`] of pixels stored row-major, `width` to a row, as
+    /// they lie (an image borrowed from elsewhere, e.g. a numpy array):
+    /// counts of non-finite and negative channel values and the range of
+    /// the finite ones, `first_non_finite` as a column and row.
     ///
     /// One pass over the values, in blocks of 12 288 values with
     /// branch-free lanes (they vectorise); only a block that holds a
     /// non-finite value is scanned again, for the first one's position.
     #[must_use]
-    pub fn stats(&self) -> PixelStats {
-        let values = self.pixels().as_flattened();
+    pub fn of_pixels(pixels: &[[f32; 3]], width: usize) -> PixelStats {
+        let width = width.max(1);
+        let values = pixels.as_flattened();
         let mut stats = PixelStats {
             non_finite: 0,
             first_non_finite: None,
@@ -81,7 +93,7 @@ impl Image {
                 if stats.first_non_finite.is_none() {
                     let at = block.iter().position(|v| !v.is_finite()).expect("counted");
                     let i = (b * STATS_BLOCK + at) / 3;
-                    stats.first_non_finite = Some((i % self.width(), i / self.width()));
+                    stats.first_non_finite = Some((i % width, i / width));
                 }
             }
         }
@@ -92,7 +104,9 @@ impl Image {
         }
         stats
     }
+}
 
+impl Image {
     /// Makes every channel value finite and not negative, in place: NaN
     /// becomes 0, `+inf` the largest finite value of the image (computed
     /// before any replacement; 0 if negative or absent), `-inf` and finite

@@ -1,0 +1,73 @@
+//! The steps of `shlight project` as a library, for every front end (the
+//! `shlight` command line, the Python package) to run the same way.
+//!
+//! One job: an environment map (a file, six face files, or texels already
+//! in memory) in, shlight's coefficient file ([`shlight_format::CoeffFile`])
+//! out, through the same steps and with the same messages whoever calls
+//! them; and the way back, coefficients rendered to a map in any layout.
+//! No command-line, GPU or error-erasing dependency.
+//!
+//! # Steps
+//! 1. [`load_map`]: read a map (or six `{face}` files laid out as a strip),
+//!    settle its [`InputLayout`], and check its values ([`check_values`]:
+//!    NaN and infinity refused, negatives kept with a warning) or
+//!    [`sanitize_image`] them. Texels already in memory are checked by
+//!    [`source_stats`] and [`check_values`].
+//! 2. [`project_radiance`] (or [`project_radiance_texels`] for any
+//!    [`shlight_core::TexelSource`]): quadrature or Monte Carlo
+//!    ([`Method`]).
+//! 3. [`choose_windows`]: the window asked for, or per colour channel the
+//!    weakest Hanning window that keeps the result non-negative.
+//! 4. [`coefficient_file`]: windows, rotation, quantity, provenance.
+//!
+//! [`project_path`] runs all four on one file, [`project_source`] on texels
+//! in memory ([`layout_for_size`] settles their layout). [`render_map`] evaluates
+//! coefficients at every texel centre of a map in any layout.
+//!
+//! # Conventions
+//! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
+//! phase, index `l(l+1)+m`, `lmax` the highest degree; `shlight_core`'s
+//! crate documentation and docs/conventions.md); maps are read in a
+//! [`shlight_core::MapOrientation`] (y-up or z-up frame, mirrored or not).
+//!
+//! # Example
+//! ```
+//! use shlight_core::layout::Layout;
+//! use shlight_core::projection::MapOrientation;
+//! use shlight_core::layout::EnvMap;
+//! use shlight_format::Quantity;
+//! use shlight_pipeline::{MapInfo, Method, ProjectSettings, choose_windows, coefficient_file, project_radiance};
+//!
+//! // A grey 64x32 equirect map: only L_0^0 = 2 sqrt(pi) * 0.5 is non-zero.
+//! let pixels = vec![[0.5_f32; 3]; 64 * 32];
+//! let s = ProjectSettings::new(2, MapOrientation::default(), Method::Quadrature, Quantity::Radiance);
+//! let map = EnvMap::new(Layout::Equirect, s.orientation, 64, 32, &pixels).unwrap();
+//! let projection = project_radiance(&map, &s);
+//! let windows = choose_windows(&projection.coeffs, &s, "grey").unwrap();
+//! let file = coefficient_file(&projection, windows, &s, &MapInfo::of_pixels("grey", Layout::Equirect, 64, 32, &pixels));
+//! assert!((file.coeffs[0].x - std::f64::consts::PI.sqrt()).abs() < 1e-12);
+//! ```
+
+#![deny(missing_docs)]
+
+mod coefficient_file;
+mod error;
+mod input_layout;
+mod load;
+mod project_path;
+mod projection;
+mod render;
+mod rotation_spec;
+mod settings;
+mod source_stats;
+
+pub use coefficient_file::{MapInfo, choose_windows, coefficient_file};
+pub use error::{PipelineError, Result, error_chain};
+pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
+pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use project_path::{ReadSettings, project_path, project_source};
+pub use projection::{Projection, project_radiance, project_radiance_texels};
+pub use render::render_map;
+pub use rotation_spec::parse_rotation;
+pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings};
+pub use source_stats::source_stats;

@@ -1,0 +1,223 @@
+//! Reading an input map and checking its values: the first step of
+//! `shlight project` ([`load_map`]).
+
+use std::path::Path;
+
+use shlight_core::layout::Layout;
+use shlight_format::SanitizeCounts;
+use shlight_io::{Image, PixelStats, ReadOptions, read_image};
+
+use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
+use crate::{PipelineError, Result};
+
+/// A map read and checked by [`load_map`].
+#[derive(Debug)]
+pub struct LoadedMap {
+    /// The texels (six faces as a [`Layout::Strip`]); sanitized when asked.
+    pub image: Image,
+    /// Its layout.
+    pub layout: Layout,
+    /// Statistics of the values as read (before any sanitizing).
+    pub stats: PixelStats,
+    /// What sanitizing replaced, when it was asked for.
+    pub sanitized: Option<SanitizeCounts>,
+    /// Warnings for the user (a stretched equirect map, negative texels,
+    /// replaced values), each naming the input.
+    pub warnings: Vec<String>,
+}
+
+/// Reads the six face files of `path` (all must exist, be square and of
+/// one size) and lays them side by side as a strip, +X -X +Y -Y +Z -Z.
+fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
+    let mut faces: Vec<(std::path::PathBuf, Image)> = Vec::with_capacity(6);
+    for p in face_paths(path) {
+        if !p.exists() {
+            return Err(PipelineError::new(format!(
+                "{}: face file {} does not exist (a {FACE_PLACEHOLDER} input needs all six: {})",
+                path.display(),
+                p.display(),
+                FACE_NAMES.join(" ")
+            )));
+        }
+        let image = read_image(&p, read)
+            .map_err(|e| PipelineError::from(e).context(format!("reading {}", p.display())))?;
+        if image.width() != image.height() {
+            return Err(PipelineError::new(format!(
+                "{}: a cube face must be square, not {}x{}",
+                p.display(),
+                image.width(),
+                image.height()
+            )));
+        }
+        if let Some((first, f)) = faces.first()
+            && f.width() != image.width()
+        {
+            return Err(PipelineError::new(format!(
+                "{}: {}x{} faces, but {} is {}x{}; all six must be the same size",
+                p.display(),
+                image.width(),
+                image.height(),
+                first.display(),
+                f.width(),
+                f.height()
+            )));
+        }
+        faces.push((p, image));
+    }
+    let n = faces[0].1.width();
+    let (w, h) = Layout::Strip.dimensions(n);
+    let max = read.max_pixels;
+    if w.checked_mul(h).is_none_or(|p| p > max) {
+        return Err(PipelineError::new(format!(
+            "{}: six faces of {n}x{n} make more than --max-pixels {max}",
+            path.display()
+        )));
+    }
+    Ok(Image::from_fn(w, h, |x, y| faces[x / n].1.get(x % n, y)))
+}
+
+/// Reads an input (or, for `{face}`, six faces as a strip), settles its
+/// layout (warning when a map forced to [`Layout::Equirect`] is not 2:1:
+/// equirect geometry holds for any size, so it is projected, but such a map
+/// is more often a crop or another layout than a stretched panorama), and
+/// checks its values: NaN/inf are refused (or with `sanitize` replaced, see
+/// [`Image::sanitize`]), negatives are kept with a warning (or replaced).
+///
+/// # Errors
+/// An unreadable file, a size that fits no layout (or not the one named),
+/// a `{face}` input with a single-image layout (or the reverse), missing or
+/// mismatched faces, NaN or infinite texels without `sanitize`. Every
+/// message names the input.
+pub fn load_map(
+    path: &Path,
+    input_layout: InputLayout,
+    read: &ReadOptions,
+    sanitize: bool,
+) -> Result<LoadedMap> {
+    let name = path.display();
+    let mut warnings = Vec::new();
+    let faces = is_faces(path);
+    let (mut image, layout) = match (faces, input_layout) {
+        (true, InputLayout::Auto | InputLayout::Faces) => (read_faces(path, read)?, Layout::Strip),
+        (true, InputLayout::Image(l)) => {
+            return Err(PipelineError::new(format!(
+                "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
+            )));
+        }
+        (false, InputLayout::Faces) => {
+            return Err(PipelineError::new(format!(
+                "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
+            )));
+        }
+        (false, layout) => {
+            let image = read_image(path, read)?;
+            let layout = layout_for_size(
+                &name.to_string(),
+                layout,
+                image.width(),
+                image.height(),
+                &mut warnings,
+            )?;
+            (image, layout)
+        }
+    };
+    let stats = image.stats();
+    let sanitized = if sanitize {
+        Some(sanitize_image(&name.to_string(), &mut image, &mut warnings))
+    } else {
+        check_values(&name.to_string(), &stats, &mut warnings)?;
+        None
+    };
+    Ok(LoadedMap {
+        image,
+        layout,
+        stats,
+        sanitized,
+        warnings,
+    })
+}
+
+/// The layout of a single `w x h` image named `name`: by aspect ratio for
+/// [`InputLayout::Auto`] ([`Layout::detect`]), or the one named, checked
+/// against the size, with a warning pushed when an equirect map is not 2:1
+/// (see [`load_map`]).
+///
+/// # Errors
+/// No layout fits the aspect ratio, the size does not fit the layout named,
+/// or the layout is [`InputLayout::Faces`] (six files, not one image).
+pub fn layout_for_size(
+    name: &str,
+    layout: InputLayout,
+    w: usize,
+    h: usize,
+    warnings: &mut Vec<String>,
+) -> Result<Layout> {
+    let layout = match layout {
+        InputLayout::Faces => {
+            return Err(PipelineError::new(format!(
+                "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
+            )));
+        }
+        InputLayout::Auto => {
+            return Layout::detect(w, h).ok_or_else(|| {
+                PipelineError::new(format!(
+                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with --layout"
+                ))
+            });
+        }
+        InputLayout::Image(layout) => layout,
+    };
+    if let Err(e) = layout.check_size(w, h) {
+        return Err(PipelineError::new(format!("{name}: {e}")));
+    }
+    if layout == Layout::Equirect && w != 2 * h {
+        warnings.push(format!(
+            "{name}: {w}x{h} is not 2:1; projected as an equirect map stretched over the whole sphere ({:.3}° of longitude by {:.3}° of latitude per texel); a crop or another layout gives wrong coefficients",
+            360.0 / w as f64,
+            180.0 / h as f64
+        ));
+    }
+    Ok(layout)
+}
+
+/// The value check of [`load_map`] without sanitizing: NaN or infinite
+/// texels are refused, negative ones kept with a warning pushed to
+/// `warnings`.
+///
+/// # Errors
+/// `stats` counts non-finite values; the message names `name`, the count
+/// and the first such texel.
+pub fn check_values(name: &str, stats: &PixelStats, warnings: &mut Vec<String>) -> Result<()> {
+    if stats.non_finite > 0 {
+        let (x, y) = stats.first_non_finite.unwrap_or((0, 0));
+        return Err(PipelineError::new(format!(
+            "{name}: {} texels are NaN or infinite (the first at x={x}, y={y}); --sanitize replaces them",
+            stats.non_finite
+        )));
+    }
+    if stats.negative > 0 {
+        warnings.push(format!(
+            "{name}: {} negative texels (minimum {}), kept as data",
+            stats.negative, stats.min_value
+        ));
+    }
+    Ok(())
+}
+
+/// Sanitizes `image` in place ([`Image::sanitize`]), pushing a warning that
+/// names `name` and counts what was replaced, if anything was.
+pub fn sanitize_image(name: &str, image: &mut Image, warnings: &mut Vec<String>) -> SanitizeCounts {
+    let counts = SanitizeCounts::from(image.sanitize());
+    if counts.total() > 0 {
+        warnings.push(format!(
+            "{name}: --sanitize replaced {} values: {} NaN and {} -inf by 0, {} +inf by {}, {} negative by 0",
+            counts.total(),
+            counts.nan,
+            counts.negative_infinite,
+            counts.positive_infinite,
+            counts.infinity_replacement,
+            counts.negative
+        ));
+    }
+    counts
+}

@@ -1,0 +1,115 @@
+//! The projection step: the place where layouts and methods meet.
+
+use glam::DVec3;
+use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
+use shlight_core::{ShCoeffs, TexelSource};
+
+use crate::settings::{Method, ProjectSettings};
+use crate::{PipelineError, Result};
+
+/// Radiance coefficients of a map, and what the method reports about them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Projection {
+    /// Radiance coefficients to the settings' lmax, in the map's frame.
+    pub coeffs: ShCoeffs<DVec3>,
+    /// Standard error per coefficient (Monte Carlo).
+    pub std_error: Option<ShCoeffs<DVec3>>,
+    /// Monte Carlo directions used.
+    pub samples: Option<u64>,
+    /// Monte Carlo seed.
+    pub seed: Option<u64>,
+    /// Monte Carlo sampler name.
+    pub sampler: Option<String>,
+}
+
+/// Projects `map` by the settings' method to radiance coefficients.
+///
+/// Quadrature sums texel × basis × exact texel solid angle
+/// ([`shlight_core::projection::project_map`]). Monte Carlo looks the map
+/// up bilinearly ([`EnvMap::radiance_bilinear`]) and, for importance
+/// sampling, draws from [`ImportanceGrid::from_equirect`] over an equirect
+/// map's texels, or from [`ImportanceGrid::from_map`] on a grid of about as
+/// many cells as texels (2:1, like the grid's `φ x θ`) otherwise.
+#[must_use]
+pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
+    match &s.method {
+        Method::Quadrature => Projection {
+            coeffs: shlight_core::projection::project_map(map, s.lmax),
+            std_error: None,
+            samples: None,
+            seed: None,
+            sampler: None,
+        },
+        Method::MonteCarlo { options, sampler } => {
+            let (width, height) = (map.width, map.height);
+            let sampler = sampler.sampler(|| match map.layout {
+                Layout::Equirect => {
+                    ImportanceGrid::from_equirect(width, height, map.pixels, map.orientation)
+                }
+                _ => {
+                    let rows = ((width * height) as f64 / 2.0).sqrt().ceil().max(1.0) as usize;
+                    ImportanceGrid::from_map(map, 2 * rows, rows, map.orientation)
+                }
+            });
+            let options = McOptions {
+                lmax: s.lmax,
+                sampler,
+                ..options.clone()
+            };
+            let estimate = project_montecarlo(map, &options);
+            Projection {
+                coeffs: estimate.coeffs,
+                std_error: Some(estimate.std_error),
+                samples: Some(estimate.samples as u64),
+                seed: Some(options.seed),
+                sampler: Some(options.sampler.name().to_string()),
+            }
+        }
+    }
+}
+
+/// [`project_radiance`] of any [`TexelSource`] (read in place, whatever
+/// stores it), read in the settings' orientation. Quadrature reads the
+/// source through [`shlight_core::projection::project`], which gives the
+/// same coefficients bit for bit as a contiguous map of the same texels;
+/// Monte Carlo looks texels up bilinearly and needs them contiguous, so it
+/// copies them first.
+///
+/// # Errors
+/// The source's size does not fit its layout.
+pub fn project_radiance_texels<S: TexelSource + ?Sized>(
+    source: &S,
+    s: &ProjectSettings,
+) -> Result<Projection> {
+    let (w, h) = source.size();
+    match &s.method {
+        Method::Quadrature => {
+            let coeffs = shlight_core::projection::project(source, s.lmax, s.orientation)
+                .map_err(|e| PipelineError::new(e.to_string()))?;
+            Ok(Projection {
+                coeffs,
+                std_error: None,
+                samples: None,
+                seed: None,
+                sampler: None,
+            })
+        }
+        Method::MonteCarlo { .. } => {
+            source
+                .layout()
+                .check_size(w, h)
+                .map_err(|e| PipelineError::new(e.to_string()))?;
+            let mut pixels = Vec::with_capacity(w * h);
+            for y in 0..h {
+                match source.row(y) {
+                    Some(row) if row.len() == w => pixels.extend_from_slice(row),
+                    _ => pixels.extend((0..w).map(|x| source.texel(x, y))),
+                }
+            }
+            let map = EnvMap::new(source.layout(), s.orientation, w, h, &pixels)
+                .map_err(|e| PipelineError::new(e.to_string()))?;
+            Ok(project_radiance(&map, s))
+        }
+    }
+}

@@ -1,0 +1,184 @@
+"""shlight: spherical-harmonics (SH) lighting from HDR environment maps.
+
+Conventions (docs/conventions.md in the shlight repository):
+
+- Basis: real orthonormal SH, the integral of Y_i Y_j over the sphere is
+  delta_ij, with the Condon-Shortley phase (Y_1^-1 = -sqrt(3/4pi) y,
+  Y_1^0 = sqrt(3/4pi) z, Y_1^1 = -sqrt(3/4pi) x).
+- Index: coefficient row ``l*(l+1)+m``; an expansion to degree ``lmax`` has
+  ``(lmax+1)**2`` rows ("lmax 2" is 9 coefficients; shlight never says
+  "order").
+- Frames: a map's top row faces +Y (``up="y"``, the y-up frame of glTF,
+  three.js, Unity) or +Z (``up="z"``, Blender); the equirect map's centre
+  column looks down -Z (y-up) or +X (z-up) (docs/conventions.md, "Frames").
+  Coefficients live in that frame; ``SH.frame`` names it.
+- Arrays: images are ``(H, W, 3)`` linear RGB, rows from the top, float32
+  (float64 accepted and read in place); coefficients and directions are
+  float64, ``(N, 3)``.
+- Quantities: radiance L, or irradiance E(n) = sum A_l L_l^m Y_l^m(n)
+  (Ramamoorthi & Hanrahan 2001); a Lambertian surface of albedo a reflects
+  a E / pi.
+
+Every function is the shlight command line's code (the same numbers bit for
+bit, the same error messages), run in Rust with the GIL released. Errors
+are ``shlight.ShlightError`` (a ``ValueError``) naming the input and the
+problem; wrong array shapes are ``ValueError``, wrong dtypes ``TypeError``;
+warnings (negative texels, a stretched map) are ``UserWarning``.
+"""
+
+from ._shlight import (
+    EXPORT_FORMATS,
+    SH,
+    ShlightError,
+    load,
+    read_image,
+    render,
+    write_image,
+)
+from ._shlight import project as _project
+from ._shlight import project_many as _project_many
+
+__all__ = [
+    "EXPORT_FORMATS",
+    "SH",
+    "ShlightError",
+    "load",
+    "project",
+    "project_many",
+    "read_image",
+    "render",
+    "write_image",
+]
+
+__version__ = "0.1.0"
+
+
+def project(
+    source,
+    lmax=2,
+    *,
+    up="y",
+    layout="auto",
+    method="quadrature",
+    samples=None,
+    sampler=None,
+    seed=None,
+    window=None,
+    quantity="radiance",
+    mirror=False,
+    sanitize=False,
+    rotate=None,
+    layer=None,
+    max_pixels=None,
+):
+    """Project an environment map to SH coefficients (``shlight project``).
+
+    Parameters
+    ----------
+    source : str | os.PathLike | numpy.ndarray | sequence of 6 ndarrays
+        A map file (OpenEXR, Radiance .hdr, PNG, JPEG; ``NAME_{face}.exr``
+        reads six face files px nx py ny pz nz), an ``(H, W, 3)`` float32 or
+        float64 array of linear RGB (rows from the top; read in place when
+        C-contiguous), or six ``(N, N, 3)`` face arrays in the order
+        +X -X +Y -Y +Z -Z.
+    lmax : int
+        Highest SH degree kept: ``(lmax+1)**2`` coefficients.
+    up : "y" | "z"
+        The world axis the map's top row faces.
+    layout : str
+        ``auto`` (by aspect ratio: 2:1 equirect, 4:3 cross-h, 3:4 cross-v,
+        6:1 strip, 1:1 angular), ``equirect``, ``cross-h``, ``cross-v``,
+        ``strip``, ``angular``, ``mirror-ball``, or ``faces``.
+    method : "quadrature" | "montecarlo"
+        Exact texel-solid-angle quadrature, or Monte Carlo integration of
+        the bilinearly interpolated map with a standard error per
+        coefficient (``SH.std_error``).
+    samples, sampler, seed :
+        Monte Carlo only: directions drawn (default 65536), ``uniform``,
+        ``stratified``, ``sobol`` (default) or ``importance``, and the seed
+        (default 6001130381083431937); equal seeds give identical results.
+    window : None | str
+        Ringing window: None (``none``), ``hanning:W``, ``lanczos:W``,
+        ``laplacian:LAMBDA``, or ``auto`` (per colour channel the weakest
+        Hanning window that keeps the result non-negative).
+    quantity : "radiance" | "irradiance"
+        What the coefficients hold.
+    mirror : bool
+        Read a map made for the mirrored pbrt / google mapping.
+    sanitize : bool
+        Replace NaN and -inf by 0, +inf by the largest finite value and
+        negatives by 0, instead of refusing NaN/inf.
+    rotate : None | str
+        ``yaw:DEG``, ``quat:X,Y,Z,W`` or ``euler:X,Y,Z`` as ``--rotate``: a
+        light from a comes from R a afterwards.
+    layer, max_pixels :
+        EXR layer to read; refuse inputs with more pixels.
+
+    Returns
+    -------
+    SH
+        Coefficients ``((lmax+1)**2, 3)`` float64 with their frame,
+        quantity and provenance; the same numbers as ``shlight project`` with
+        the same options, bit for bit.
+
+    Raises
+    ------
+    ShlightError
+        An unreadable file, a size that fits no layout, NaN or infinite
+        texels (without ``sanitize``), a bad option; the message names the
+        input.
+    ValueError, TypeError
+        An array of the wrong shape or dtype.
+    """
+    return _project(
+        source,
+        lmax,
+        up=up,
+        layout=layout,
+        method=method,
+        samples=samples,
+        sampler=sampler,
+        seed=seed,
+        window=window,
+        quantity=quantity,
+        mirror=mirror,
+        sanitize=sanitize,
+        rotate=rotate,
+        layer=layer,
+        max_pixels=max_pixels,
+    )
+
+
+def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
+    """Project many map files in parallel (``shlight project a b c -o DIR``).
+
+    The maps are projected on every core by Rust threads with the GIL
+    released; each result equals ``project(path, lmax, **options)`` bit
+    for bit.
+
+    Parameters
+    ----------
+    paths : sequence of str | os.PathLike
+        Map files (any ``project`` source that is a path).
+    lmax : int
+        Highest SH degree kept.
+    errors : "raise" | "none"
+        ``raise``: one ``ShlightError`` listing every failed path with its
+        message, after all maps are done. ``none``: a failed map gives None
+        in its place and a ``UserWarning`` with its message.
+    progress : bool
+        Draw a progress bar on stderr (when it is a terminal).
+    **options :
+        The keyword options of ``project`` (up, layout, method, samples,
+        sampler, seed, window, quantity, mirror, sanitize, rotate, layer,
+        max_pixels).
+
+    Returns
+    -------
+    list[SH | None]
+        One SH per path, in order (None for failed paths with
+        ``errors="none"``).
+    """
+    return _project_many(
+        [str(p) for p in paths], lmax, errors=errors, progress=progress, **options
+    )

@@ -1,0 +1,118 @@
+"""Type stubs of shlight (conventions: see the package docstring)."""
+
+import os
+from typing import Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+PathLike = Union[str, "os.PathLike[str]"]
+Image = npt.NDArray[np.floating]
+"""(H, W, 3) linear RGB, float32 or float64."""
+
+EXPORT_FORMATS: list[str]
+__version__: str
+
+class ShlightError(ValueError):
+    """A map, file or option shlight cannot use; the message names it."""
+
+class SH:
+    """SH lighting: real orthonormal coefficients (Condon-Shortley phase,
+    row l*(l+1)+m) of RGB radiance or irradiance in a y-up or z-up frame."""
+
+    @property
+    def coefficients(self) -> npt.NDArray[np.float64]:
+        """((lmax+1)**2, 3) float64; row l*(l+1)+m, columns R, G, B."""
+    @property
+    def lmax(self) -> int:
+        """Highest SH degree."""
+    @property
+    def frame(self) -> Literal["y-up", "z-up"]:
+        """The frame of the coefficients (docs/conventions.md)."""
+    @property
+    def mirror(self) -> bool:
+        """Whether the map was read mirrored."""
+    @property
+    def quantity(self) -> Literal["radiance", "irradiance"]:
+        """What the coefficients hold."""
+    @property
+    def std_error(self) -> Optional[npt.NDArray[np.float64]]:
+        """((lmax+1)**2, 3) float64 standard errors (Monte Carlo), else None."""
+    def irradiance(self) -> "SH":
+        """E_l^m = A_l L_l^m (Ramamoorthi & Hanrahan 2001)."""
+    def eval(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The expansion at directions (N, 3) -> (N, 3) (or (3,) -> (3,)),
+        in the SH's frame; directions are normalised."""
+    def rotate(self, r: npt.ArrayLike) -> "SH":
+        """Rotated by a 3x3 matrix or a quaternion (x, y, z, w): a light
+        from a comes from R a afterwards."""
+    def window(self, window: str) -> "SH":
+        """none, hanning:W, lanczos:W, laplacian:LAMBDA or auto."""
+    def save(self, path: PathLike) -> None:
+        """Writes shlight's JSON coefficient file (as the CLI's -o FILE.json)."""
+    def export(self, format: str) -> str:
+        """The coefficients in an engine or shader format (EXPORT_FORMATS)."""
+    def to_json(self) -> str:
+        """The coefficient file as JSON text."""
+    @staticmethod
+    def from_json(text: str) -> "SH":
+        """An SH from a coefficient file's JSON text (pickling uses it)."""
+
+Source = Union[PathLike, Image, Sequence[Image]]
+
+def project(
+    source: Source,
+    lmax: int = 2,
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    method: Literal["quadrature", "montecarlo"] = "quadrature",
+    samples: Optional[int] = None,
+    sampler: Optional[Literal["uniform", "stratified", "sobol", "importance"]] = None,
+    seed: Optional[int] = None,
+    window: Optional[str] = None,
+    quantity: Literal["radiance", "irradiance"] = "radiance",
+    mirror: bool = False,
+    sanitize: bool = False,
+    rotate: Optional[str] = None,
+    layer: Optional[str] = None,
+    max_pixels: Optional[int] = None,
+) -> SH: ...
+def project_many(
+    paths: Sequence[PathLike],
+    lmax: int = 2,
+    *,
+    errors: Literal["raise", "none"] = "raise",
+    progress: bool = False,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    method: Literal["quadrature", "montecarlo"] = "quadrature",
+    samples: Optional[int] = None,
+    sampler: Optional[str] = None,
+    seed: Optional[int] = None,
+    window: Optional[str] = None,
+    quantity: Literal["radiance", "irradiance"] = "radiance",
+    mirror: bool = False,
+    sanitize: bool = False,
+    rotate: Optional[str] = None,
+    layer: Optional[str] = None,
+    max_pixels: Optional[int] = None,
+) -> list[Optional[SH]]: ...
+def load(path: PathLike) -> SH:
+    """A coefficient file, or any engine file `shlight convert` reads."""
+def read_image(
+    path: PathLike, *, layer: Optional[str] = None, max_pixels: Optional[int] = None
+) -> npt.NDArray[np.float32]:
+    """(H, W, 3) float32 linear RGB."""
+def write_image(
+    path: PathLike, array: Image, *, exposure: float = 0.0, tone_map: str = "clamp"
+) -> None:
+    """.exr, .hdr or .png (tone mapped: clamp, reinhard, aces)."""
+def render(
+    sh: SH,
+    size: Union[None, int, tuple[int, int]] = None,
+    *,
+    layout: str = "equirect",
+    irradiance: bool = False,
+) -> npt.NDArray[np.float32]:
+    """(H, W, 3) float32: the expansion at every texel centre."""

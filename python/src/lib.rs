@@ -1,0 +1,44 @@
+//! Python bindings of shlight: the `shlight._shlight` extension module
+//! behind the `shlight` package (`python/shlight/__init__.py`).
+//!
+//! One job: translating between Python (numpy arrays, keyword options,
+//! exceptions, warnings) and shlight's libraries. Every step of a
+//! projection, render or export is a library call
+//! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`);
+//! nothing here computes lighting. Work runs with the GIL released, and no
+//! Rust panic reaches Python ([`guard::guard`] turns one into a
+//! `shlight.ShlightError`).
+
+mod errors;
+mod guard;
+mod images;
+mod options;
+mod project;
+mod sh;
+mod source;
+
+use pyo3::prelude::*;
+
+/// The extension module.
+#[pymodule]
+fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("ShlightError", py.get_type::<errors::ShlightError>())?;
+    m.add_class::<sh::Sh>()?;
+    m.add_function(wrap_pyfunction!(project::project, m)?)?;
+    m.add_function(wrap_pyfunction!(project::project_many, m)?)?;
+    m.add_function(wrap_pyfunction!(sh::load, m)?)?;
+    m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
+    m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
+    m.add_function(wrap_pyfunction!(images::render, m)?)?;
+    m.add("EXPORT_FORMATS", export_formats())?;
+    Ok(())
+}
+
+/// The names `SH.export` takes, as `shlight project --format` spells them.
+fn export_formats() -> Vec<&'static str> {
+    shlight_format::ExportFormat::ALL
+        .iter()
+        .map(|f| f.name())
+        .collect()
+}

@@ -1,0 +1,368 @@
+//! `shlight.SH`: a coefficient file (coefficients, frame, quantity,
+//! provenance, standard errors) with the operations of the command line.
+
+use std::path::PathBuf;
+
+use glam::{DMat3, DQuat, DVec3};
+use numpy::ndarray::Array2;
+use numpy::{
+    AllowTypeChange, IntoPyArray, PyArray2, PyArrayLike1, PyArrayLike2, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use shlight_core::auto_window::WindowTarget;
+use shlight_core::channel_windows::{apply_channel_windows, auto_windows};
+use shlight_core::rotation::rotate_once;
+use shlight_core::std_error_rotation::rotate_std_error;
+use shlight_core::window::WindowFamily;
+use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_core::{ShCoeffs, ShRotation, Window};
+use shlight_format::{CoeffFile, ExportFormat, Quantity, RotationRecord, convert_quantity};
+
+use crate::errors::{chained, shlight_error, warn_all};
+use crate::guard::guard;
+
+/// How far `R^T R` may be from the identity, and `det R` from 1, for `R`
+/// to count as a rotation: a matrix typed or computed in float64 is within
+/// 1e-12; one kept in float32 (a camera pose) within about 1e-6.
+const ROTATION_TOLERANCE: f64 = 1e-5;
+
+/// SH lighting: real orthonormal SH coefficients (Condon-Shortley phase,
+/// index l*(l+1)+m) of RGB radiance or irradiance in a y-up or z-up frame,
+/// as shlight's coefficient file holds them. See help(shlight.SH).
+#[pyclass(name = "SH", module = "shlight", frozen)]
+pub struct Sh {
+    file: CoeffFile,
+}
+
+impl Sh {
+    /// The SH of a coefficient file.
+    pub fn new(file: CoeffFile) -> Self {
+        Self { file }
+    }
+
+    /// The coefficient file.
+    pub fn file(&self) -> &CoeffFile {
+        &self.file
+    }
+
+    /// A copy with other coefficients and standard errors.
+    fn with(&self, coeffs: ShCoeffs<DVec3>, std_error: Option<ShCoeffs<DVec3>>) -> Self {
+        let mut file = self.file.clone();
+        file.coeffs = coeffs;
+        file.std_error = std_error;
+        Self { file }
+    }
+}
+
+/// `((lmax+1)^2, 3)` float64 array of an RGB expansion.
+fn to_array<'py>(py: Python<'py>, c: &ShCoeffs<DVec3>) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = c.as_slice().iter().flat_map(|v| v.to_array()).collect();
+    Array2::from_shape_vec((c.as_slice().len(), 3), flat)
+        .expect("n x 3 values")
+        .into_pyarray(py)
+}
+
+/// A rotation given as a 3x3 matrix or a quaternion `(x, y, z, w)`, and its
+/// record for the file.
+fn rotation_of(r: &Bound<'_, PyAny>) -> PyResult<(DMat3, String)> {
+    if let Ok(m) = r.extract::<PyArrayLike2<'_, f64, AllowTypeChange>>()
+        && m.shape() == [3, 3]
+    {
+        let a = m.as_array();
+        let rows: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[[i, j]]));
+        if !rows.iter().flatten().all(|v| v.is_finite()) {
+            return Err(PyValueError::new_err("the rotation matrix is not finite"));
+        }
+        let m = DMat3::from_cols_array_2d(&rows).transpose();
+        let off = (m.transpose() * m - DMat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .fold(0.0_f64, |a, v| a.max(v.abs()));
+        if off > ROTATION_TOLERANCE || (m.determinant() - 1.0).abs() > ROTATION_TOLERANCE {
+            return Err(PyValueError::new_err(format!(
+                "{rows:?} is not a rotation (R^T R differs from I by {off:.2e}, det R = {:.6}); a mirror or a scale cannot rotate SH lighting",
+                m.determinant()
+            )));
+        }
+        return Ok((m, format!("matrix:{rows:?}")));
+    }
+    if let Ok(q) = r.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>()
+        && q.shape() == [4]
+    {
+        let v: Vec<f64> = q.as_array().to_vec();
+        let q = DQuat::from_xyzw(v[0], v[1], v[2], v[3]);
+        if !q.is_finite() || q.length_squared() == 0.0 {
+            return Err(PyValueError::new_err(format!(
+                "quaternion {v:?} is no rotation (zero or not finite)"
+            )));
+        }
+        return Ok((
+            DMat3::from_quat(q.normalize()),
+            format!("quat:{},{},{},{}", v[0], v[1], v[2], v[3]),
+        ));
+    }
+    Err(PyValueError::new_err(
+        "a rotation is a 3x3 matrix or a quaternion (x, y, z, w)",
+    ))
+}
+
+#[pymethods]
+impl Sh {
+    /// Coefficients as a ((lmax+1)**2, 3) float64 array: row l*(l+1)+m is
+    /// the coefficient of Y_l^m, columns linear R, G, B.
+    #[getter]
+    fn coefficients<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        to_array(py, &self.file.coeffs)
+    }
+
+    /// Highest SH degree (lmax 2 = 9 coefficients).
+    #[getter]
+    fn lmax(&self) -> usize {
+        self.file.coeffs.lmax()
+    }
+
+    /// The frame the coefficients live in: "y-up" or "z-up" (docs/conventions.md).
+    #[getter]
+    fn frame(&self) -> String {
+        self.file.frame.to_string()
+    }
+
+    /// Whether the map was read mirrored (the pbrt / google mapping).
+    #[getter]
+    fn mirror(&self) -> bool {
+        self.file.mirror
+    }
+
+    /// "radiance" (L) or "irradiance" (E = A_l L_l^m).
+    #[getter]
+    fn quantity(&self) -> &'static str {
+        self.file.quantity.name()
+    }
+
+    /// One standard error per coefficient, ((lmax+1)**2, 3) float64
+    /// (Monte Carlo projections), else None.
+    #[getter]
+    fn std_error<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.file.std_error.as_ref().map(|se| to_array(py, se))
+    }
+
+    /// The coefficient file as JSON text (what save writes).
+    fn to_json(&self) -> String {
+        self.file.to_json_string()
+    }
+
+    /// Irradiance E_l^m = A_l L_l^m (Ramamoorthi & Hanrahan 2001; A_0 = pi,
+    /// A_1 = 2 pi / 3, A_2 = pi / 4): what a white Lambertian surface facing
+    /// each direction receives. An SH that holds irradiance is returned as
+    /// it is.
+    fn irradiance(&self) -> PyResult<Sh> {
+        if self.file.quantity == Quantity::Irradiance {
+            return Ok(Sh::new(self.file.clone()));
+        }
+        let coeffs = convert_quantity(&self.file.coeffs, Quantity::Radiance, Quantity::Irradiance)
+            .map_err(|e| chained(&e))?;
+        let se = self
+            .file
+            .std_error
+            .as_ref()
+            .map(|se| se.scaled_per_band(|l| clamped_cosine_eigenvalue(l).abs()));
+        let mut out = self.with(coeffs, se);
+        out.file.quantity = Quantity::Irradiance;
+        Ok(out)
+    }
+
+    /// The expansion at unit directions: dirs (N, 3) (or (3,)) float64 in
+    /// the SH's frame, normalised here; returns (N, 3) (or (3,)) float64 RGB.
+    fn eval<'py>(&self, py: Python<'py>, dirs: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let single = dirs.extract::<PyArrayLike1<'py, f64, AllowTypeChange>>();
+        let (rows, one): (Vec<[f64; 3]>, bool) = match single {
+            Ok(d) if d.shape() == [3] => {
+                let a = d.as_array();
+                (vec![[a[0], a[1], a[2]]], true)
+            }
+            _ => {
+                let m = dirs
+                    .extract::<PyArrayLike2<'py, f64, AllowTypeChange>>()
+                    .map_err(|_| {
+                        PyValueError::new_err("dirs must be an (N, 3) array of directions")
+                    })?;
+                if m.shape()[1] != 3 {
+                    return Err(PyValueError::new_err(format!(
+                        "dirs must have shape (N, 3), not {:?}",
+                        m.shape()
+                    )));
+                }
+                let a = m.as_array();
+                (
+                    (0..a.nrows())
+                        .map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]])
+                        .collect(),
+                    false,
+                )
+            }
+        };
+        if let Some(i) = rows.iter().position(|d| {
+            let v = DVec3::from(*d);
+            !v.is_finite() || v.length_squared() == 0.0
+        }) {
+            return Err(PyValueError::new_err(format!(
+                "dirs[{i}] = {:?} is not a direction (zero or not finite)",
+                rows[i]
+            )));
+        }
+        let coeffs = &self.file.coeffs;
+        let values: Vec<f64> = py.detach(|| {
+            rows.iter()
+                .flat_map(|d| coeffs.eval(DVec3::from(*d).normalize()).to_array())
+                .collect()
+        });
+        let n = rows.len();
+        let out = Array2::from_shape_vec((n, 3), values)
+            .expect("n x 3")
+            .into_pyarray(py);
+        if one {
+            Ok(out.call_method1("reshape", (3,))?)
+        } else {
+            Ok(out.into_any())
+        }
+    }
+
+    /// The same light rotated by R: a 3x3 rotation matrix (acting on column
+    /// vectors) or a unit quaternion (x, y, z, w). A light from a comes from
+    /// R a afterwards, as `shlight project --rotate`; standard errors are
+    /// rotated too.
+    fn rotate(&self, r: &Bound<'_, PyAny>) -> PyResult<Sh> {
+        let (m, spec) = rotation_of(r)?;
+        guard(|| {
+            let coeffs = rotate_once(&self.file.coeffs, m);
+            let se = self
+                .file
+                .std_error
+                .as_ref()
+                .map(|se| rotate_std_error(&ShRotation::from_mat3(se.lmax(), m), se));
+            let mut out = self.with(coeffs, se);
+            let (spec, total) = match &self.file.provenance.rotate {
+                None => (spec, m),
+                Some(old) => {
+                    let before = DMat3::from_cols_array_2d(&old.matrix).transpose();
+                    (format!("{}, then {spec}", old.spec), m * before)
+                }
+            };
+            out.file.provenance.rotate = Some(RotationRecord {
+                spec,
+                matrix: total.transpose().to_cols_array_2d(),
+            });
+            Ok(out)
+        })
+    }
+
+    /// The same light with ringing suppressed: window is "none",
+    /// "hanning:W", "lanczos:W", "laplacian:LAMBDA", or "auto" (per colour
+    /// channel the weakest Hanning window that makes these coefficients'
+    /// function non-negative), as `shlight project --window`.
+    fn window(&self, window: &str) -> PyResult<Sh> {
+        let spec = window.trim();
+        let windows = if spec == "auto" {
+            auto_windows(
+                &self.file.coeffs,
+                WindowFamily::Hanning,
+                WindowTarget::Function,
+            )
+            .map_err(|e| shlight_error(format!("--window auto: {e}")))?
+        } else {
+            [spec.parse::<Window>()
+                .map_err(|e| shlight_error(format!("--window {spec}: {e}")))?; 3]
+        };
+        let coeffs = apply_channel_windows(&windows, &self.file.coeffs);
+        let se = self
+            .file
+            .std_error
+            .as_ref()
+            .map(|se| apply_channel_windows(&windows, se));
+        let mut out = self.with(coeffs, se);
+        let p = &mut out.file.provenance;
+        let first = p.window == "none" || p.window.is_empty();
+        p.window = if first {
+            spec.to_string()
+        } else {
+            format!("{}, then {spec}", p.window)
+        };
+        for (old, new) in p.windows.iter_mut().zip(windows) {
+            *old = if first || old == "none" {
+                new.to_string()
+            } else {
+                format!("{old}, then {new}")
+            };
+        }
+        Ok(out)
+    }
+
+    /// Writes shlight's JSON coefficient file (the same as `shlight project
+    /// -o FILE.json`), atomically.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        py.detach(|| guard(|| self.file.write(&path).map_err(|e| chained(&e))))
+    }
+
+    /// The coefficients in an engine or shader format, as `shlight project
+    /// --format NAME` writes them (shlight.EXPORT_FORMATS lists the names).
+    /// The exporter's notes come as warnings.
+    fn export(&self, py: Python<'_>, format: &str) -> PyResult<String> {
+        let f: ExportFormat = format
+            .parse()
+            .map_err(|e: String| shlight_error(format!("format={format:?}: {e}")))?;
+        let out = guard(|| shlight_format::export(&self.file, f).map_err(|e| chained(&e)))?;
+        let notes: Vec<String> = out
+            .notes
+            .iter()
+            .map(|n| format!("{}: {n}", self.file.provenance.input))
+            .collect();
+        warn_all(py, &notes, 1)?;
+        Ok(out.text)
+    }
+
+    /// An SH from the JSON text of a coefficient file (what to_json gives).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Sh> {
+        CoeffFile::from_json_str(text, "<json>")
+            .map(Sh::new)
+            .map_err(|e| chained(&e))
+    }
+
+    /// Pickling (Dask, multiprocessing) through the coefficient file's JSON,
+    /// which keeps every float64 bit.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let from_json = slf.get_type().getattr("from_json")?;
+        Ok((from_json, (slf.get().file.to_json_string(),)))
+    }
+
+    fn __repr__(&self) -> String {
+        let input = &self.file.provenance.input;
+        format!(
+            "SH(lmax={}, quantity={:?}, frame={:?}{})",
+            self.file.coeffs.lmax(),
+            self.file.quantity.name(),
+            self.file.frame.to_string(),
+            if input.is_empty() {
+                String::new()
+            } else {
+                format!(", input={input:?}")
+            }
+        )
+    }
+}
+
+/// load(path) -> SH
+/// --
+///
+/// Reads a coefficient file, or any engine file `shlight convert` reads.
+#[pyfunction]
+pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<Sh> {
+    py.detach(|| {
+        guard(|| {
+            shlight_format::read_coefficients(&path)
+                .map(Sh::new)
+                .map_err(|e| chained(&e))
+        })
+    })
+}
