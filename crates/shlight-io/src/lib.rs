@@ -12,7 +12,8 @@
 //!   exact geometric operations ([`Image::crop`], flips, quarter turns) and
 //!   value checks ([`Image::stats`], [`Image::sanitize`]).
 //! - [`read_image`] with [`ReadOptions`] (OpenEXR layer, pixel-count limit):
-//!   the format is recognised by the file's first bytes.
+//!   the format is recognised by the file's first bytes;
+//!   [`read_image_bytes`] reads the same from bytes in memory.
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
 //!   the format is named by the extension.
 //! - [`write_atomically`]: every file is written to a temporary file and
@@ -86,7 +87,7 @@ pub use crate::error::{IoError, IoErrorKind};
 pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
-pub use crate::read::read_image;
+pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};
 pub use crate::stats::{PixelStats, SanitizeReport};

@@ -1,0 +1,13 @@
+//! `shlight_mesh::load_bytes` on an OBJ file (with any `mtllib` it names
+//! answered by an empty material library): any input gives a mesh or a
+//! `MeshError`, within the limits docs/limits.md states.
+#![no_main]
+
+use std::path::Path;
+
+use libfuzzer_sys::fuzz_target;
+use shlight_mesh::{MeshFormat, load_bytes};
+
+fuzz_target!(|bytes: &[u8]| {
+    let _ = load_bytes(Path::new("fuzz.obj"), MeshFormat::Obj, bytes);
+});

@@ -1,0 +1,12 @@
+//! `shlight_mesh::load_bytes` on a `.off` file: any input gives a mesh or a
+//! `MeshError`, within the limits docs/limits.md states.
+#![no_main]
+
+use std::path::Path;
+
+use libfuzzer_sys::fuzz_target;
+use shlight_mesh::{MeshFormat, load_bytes};
+
+fuzz_target!(|bytes: &[u8]| {
+    let _ = load_bytes(Path::new("fuzz.off"), MeshFormat::Off, bytes);
+});
