@@ -1,12 +1,17 @@
-//! `shlight_mesh::load_bytes` on a `.off` file: any input gives a mesh or a
+//! `shlight_mesh::load_bytes_with` on a `.off` file: any input gives a mesh or a
 //! `MeshError`, within the limits docs/limits.md states.
 #![no_main]
 
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use shlight_mesh::{MeshFormat, load_bytes};
+use shlight_mesh::{MeshFormat, load_bytes_with};
 
 fuzz_target!(|bytes: &[u8]| {
-    let _ = load_bytes(Path::new("fuzz.off"), MeshFormat::Off, bytes);
+    let _ = load_bytes_with(
+        Path::new("fuzz.off"),
+        MeshFormat::Off,
+        bytes,
+        &shlight_fuzz::MESH_LIMITS,
+    );
 });

@@ -27,8 +27,8 @@ use crate::{Format, Image, IoError, IoErrorKind, ReadOptions, image_codecs, open
 /// [`IoErrorKind::Unsupported`] (for example an OpenEXR layer without colour
 /// channels).
 pub fn read_image(path: &Path, options: &ReadOptions) -> Result<Image, IoError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| IoError::new(path, IoErrorKind::from_read_error(e)))?;
+    let bytes =
+        std::fs::read(path).map_err(|e| IoError::new(path, IoErrorKind::from_read_error(e)))?;
     read_image_bytes(&bytes, path, options)
 }
 
@@ -62,7 +62,11 @@ pub fn read_image(path: &Path, options: &ReadOptions) -> Result<Image, IoError> 
 /// assert!(e.to_string().starts_with("x.png: "));
 /// # Ok::<(), shlight_io::IoError>(())
 /// ```
-pub fn read_image_bytes(bytes: &[u8], name: &Path, options: &ReadOptions) -> Result<Image, IoError> {
+pub fn read_image_bytes(
+    bytes: &[u8],
+    name: &Path,
+    options: &ReadOptions,
+) -> Result<Image, IoError> {
     let path = name;
     let error = |kind| IoError::new(path, kind);
     if bytes.is_empty() {

@@ -7,13 +7,18 @@
 //! plane under a sphere); either way they
 //! pass the same validation ([`Mesh::new`]), so code downstream may assume
 //! finite positions, in-range indices, no degenerate triangles and unit
-//! normals.
+//! normals. Files are read under [`LoadOptions`] limits on the vertex and
+//! triangle counts, checked before the memory is allocated, so that no
+//! file makes the loader hang or allocate without bound
+//! (docs/limits.md).
 
 mod error;
 pub mod generate;
 mod load;
+mod load_options;
 mod mesh;
 
 pub use error::MeshError;
-pub use load::{MeshFormat, load, load_bytes};
+pub use load::{MeshFormat, load, load_bytes, load_bytes_with, load_with};
+pub use load_options::LoadOptions;
 pub use mesh::{Mesh, MeshReport};
