@@ -8,6 +8,6 @@
 use libfuzzer_sys::fuzz_target;
 use shlight_format::read_coefficients_from_bytes;
 
-fuzz_target!(|bytes: &[u8]| {
+fuzz_target!(init: shlight_fuzz::abort_on_shlight_panics(), |bytes: &[u8]| {
     let _ = read_coefficients_from_bytes(bytes, "fuzz.json");
 });

@@ -7,7 +7,7 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 use shlight_io::{ReadOptions, read_image_bytes};
 
-fuzz_target!(|bytes: &[u8]| {
+fuzz_target!(init: shlight_fuzz::abort_on_shlight_panics(), |bytes: &[u8]| {
     let options = ReadOptions {
         max_pixels: shlight_fuzz::MAX_PIXELS,
         ..ReadOptions::default()

@@ -10,7 +10,7 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 use shlight_mesh::{MeshFormat, load_bytes_with};
 
-fuzz_target!(|bytes: &[u8]| {
+fuzz_target!(init: shlight_fuzz::abort_on_shlight_panics(), |bytes: &[u8]| {
     let _ = load_bytes_with(
         Path::new("/nonexistent-shlight-fuzz/fuzz.gltf"),
         MeshFormat::Gltf,

@@ -7,6 +7,6 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 use shlight_format::ShprtFile;
 
-fuzz_target!(|bytes: &[u8]| {
+fuzz_target!(init: shlight_fuzz::abort_on_shlight_panics(), |bytes: &[u8]| {
     let _ = ShprtFile::from_bytes(bytes, Path::new("fuzz.shprt"));
 });

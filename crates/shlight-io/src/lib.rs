@@ -34,7 +34,10 @@
 //! after each DWA block's stated sizes are checked (a damaged one could
 //! otherwise make `exr` request terabytes and abort). The other formats go
 //! through the `image` crate with only the Radiance, PNG and JPEG codecs
-//! built. A malformed file gives an error, never a panic.
+//! built. A malformed file gives an error, never a panic, and no file makes
+//! a read hang or allocate beyond what [`ReadOptions::max_pixels`] allows
+//! (docs/limits.md states the bounds; the fuzz targets in `fuzz/` check
+//! them).
 //!
 //! OpenEXR layers: a layer is a group of channels with a common name prefix
 //! (`diffuse.R`, `diffuse.G`, `diffuse.B` form layer `diffuse`), within one

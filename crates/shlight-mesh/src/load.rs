@@ -8,6 +8,7 @@ mod gltf_file;
 mod off;
 mod ply;
 
+use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
 use glam::Vec3;
@@ -83,6 +84,9 @@ pub fn load_bytes(path: &Path, format: MeshFormat, bytes: &[u8]) -> Result<Mesh,
 
 /// [`load_bytes`] under the given limits.
 ///
+/// A parser that panics on a malformed file is caught and reported as
+/// [`MeshError::Parse`].
+///
 /// # Errors
 /// As [`load_bytes`].
 pub fn load_bytes_with(
@@ -91,12 +95,25 @@ pub fn load_bytes_with(
     bytes: &[u8],
     options: &LoadOptions,
 ) -> Result<Mesh, MeshError> {
-    match format {
+    let read = || match format {
         MeshFormat::Obj => obj(path, bytes, options),
         MeshFormat::Ply => ply::read(path, bytes, options),
         MeshFormat::Off => off::read(path, bytes, options),
         MeshFormat::Gltf => gltf_file::read(path, bytes, options),
-    }
+    };
+    // A parser that panics on a malformed file (tobj and gltf do on some,
+    // where overflow checks are on) gives an error, not a crash.
+    panic::catch_unwind(AssertUnwindSafe(read)).unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".into());
+        Err(MeshError::Parse {
+            path: path.to_path_buf(),
+            message: format!("the {format:?} reader failed: {message}"),
+        })
+    })
 }
 
 /// OBJ through `tobj`: positions and normals are unified to one index per
