@@ -53,6 +53,30 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "sparse-huge-count.gltf",
         "the mesh has 4000000000 vertices, more than the limit of 67108864",
     ),
+    // With overflow checks (the fuzz build), tobj's `vt * 2 + 1` on a
+    // relative texture index before the first one overflowed and panicked
+    // (a release build wraps and refuses it); either way an error now.
+    ("obj", "negative-texcoord-index.obj", "not a valid OBJ file"),
+    // A GLB header whose length is below the header's own 12 bytes: the
+    // gltf crate's `length - 12` overflowed (with overflow checks).
+    (
+        "gltf",
+        "glb-length-below-header.glb",
+        "not a valid glTF file",
+    ),
+    // POSITION names an accessor that does not exist: the gltf crate's
+    // validation indexed past its accessor list and panicked (in any build).
+    (
+        "gltf",
+        "position-accessor-missing.gltf",
+        "reader failed: index out of bounds",
+    ),
+    // Float indices: the gltf crate's index reader hit `unreachable!()`.
+    (
+        "gltf",
+        "float-indices.gltf",
+        "reader failed: internal error: entered unreachable code",
+    ),
 ];
 
 /// Longer than any of these files takes (each is refused from its
