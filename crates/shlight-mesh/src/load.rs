@@ -31,6 +31,17 @@ pub enum MeshFormat {
 const EXPECTED: &str = ".obj, .ply, .off, .gltf or .glb";
 
 impl MeshFormat {
+    /// The format's usual name: `OBJ`, `PLY`, `OFF` or `glTF`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Obj => "OBJ",
+            Self::Ply => "PLY",
+            Self::Off => "OFF",
+            Self::Gltf => "glTF",
+        }
+    }
+
     /// The format a file name's extension names (case-insensitive).
     #[must_use]
     pub fn from_path(path: &Path) -> Option<Self> {
@@ -111,7 +122,7 @@ pub fn load_bytes_with(
             .unwrap_or_else(|| "unknown panic".into());
         Err(MeshError::Parse {
             path: path.to_path_buf(),
-            message: format!("the {format:?} reader failed: {message}"),
+            message: format!("the {} reader failed: {message}", format.name()),
         })
     })
 }

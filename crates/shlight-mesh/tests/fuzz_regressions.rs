@@ -69,20 +69,20 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "gltf",
         "position-accessor-missing.gltf",
-        "reader failed: index out of bounds",
+        "the glTF reader failed: index out of bounds",
     ),
     // Float indices: the gltf crate's index reader hit `unreachable!()`.
     (
         "gltf",
         "float-indices.gltf",
-        "reader failed: internal error: entered unreachable code",
+        "the glTF reader failed: internal error: entered unreachable code",
     ),
     // COLOR_0 of signed bytes: the gltf crate's colour reader hit
     // `unreachable!()`.
     (
         "gltf",
         "signed-byte-colours.gltf",
-        "reader failed: internal error: entered unreachable code",
+        "the glTF reader failed: internal error: entered unreachable code",
     ),
 ];
 
