@@ -12,7 +12,8 @@
 //!   exact geometric operations ([`Image::crop`], flips, quarter turns) and
 //!   value checks ([`Image::stats`], [`Image::sanitize`]).
 //! - [`read_image`] with [`ReadOptions`] (OpenEXR layer, pixel-count limit):
-//!   the format is recognised by the file's first bytes.
+//!   the format is recognised by the file's first bytes;
+//!   [`read_image_bytes`] reads the same from bytes in memory.
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
 //!   the format is named by the extension.
 //! - [`write_atomically`]: every file is written to a temporary file and
@@ -33,7 +34,10 @@
 //! after each DWA block's stated sizes are checked (a damaged one could
 //! otherwise make `exr` request terabytes and abort). The other formats go
 //! through the `image` crate with only the Radiance, PNG and JPEG codecs
-//! built. A malformed file gives an error, never a panic.
+//! built. A malformed file gives an error, never a panic, and no file makes
+//! a read hang or allocate beyond what [`ReadOptions::max_pixels`] allows
+//! (docs/limits.md states the bounds; the fuzz targets in `fuzz/` check
+//! them).
 //!
 //! OpenEXR layers: a layer is a group of channels with a common name prefix
 //! (`diffuse.R`, `diffuse.G`, `diffuse.B` form layer `diffuse`), within one
@@ -86,7 +90,7 @@ pub use crate::error::{IoError, IoErrorKind};
 pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
-pub use crate::read::read_image;
+pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};
 pub use crate::stats::{PixelStats, SanitizeReport};

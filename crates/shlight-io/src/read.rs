@@ -27,12 +27,52 @@ use crate::{Format, Image, IoError, IoErrorKind, ReadOptions, image_codecs, open
 /// [`IoErrorKind::Unsupported`] (for example an OpenEXR layer without colour
 /// channels).
 pub fn read_image(path: &Path, options: &ReadOptions) -> Result<Image, IoError> {
+    let bytes =
+        std::fs::read(path).map_err(|e| IoError::new(path, IoErrorKind::from_read_error(e)))?;
+    read_image_bytes(&bytes, path, options)
+}
+
+/// Reads an image file held in memory as linear RGB, exactly as
+/// [`read_image`] reads a file with these bytes at `name`.
+///
+/// `name` only names the file in errors and gives the extension that
+/// [`read_image`] falls back on (for old Radiance files without a
+/// signature); nothing is read from disk. Useful for files that come from
+/// a network, an archive or an embedded asset, and for fuzzing.
+///
+/// # Errors
+/// As [`read_image`], less [`IoErrorKind::NotFound`] and
+/// [`IoErrorKind::Unreadable`].
+///
+/// # Example
+/// ```
+/// use std::path::Path;
+/// use shlight_io::{IoErrorKind, ReadOptions, read_image_bytes};
+///
+/// // A 2x1 Radiance file: header, resolution line, two flat RGBE pixels.
+/// let mut bytes = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n".to_vec();
+/// bytes.extend_from_slice(&[128, 64, 32, 129, 0, 0, 0, 0]);
+/// let image = read_image_bytes(&bytes, Path::new("tiny.hdr"), &ReadOptions::default())?;
+/// assert_eq!((image.width(), image.height()), (2, 1));
+/// assert_eq!(image.get(0, 0), [1.0, 0.5, 0.25]);
+///
+/// let e = read_image_bytes(b"not an image", Path::new("x.png"), &ReadOptions::default())
+///     .unwrap_err();
+/// assert!(matches!(e.kind(), IoErrorKind::Corrupt(_)));
+/// assert!(e.to_string().starts_with("x.png: "));
+/// # Ok::<(), shlight_io::IoError>(())
+/// ```
+pub fn read_image_bytes(
+    bytes: &[u8],
+    name: &Path,
+    options: &ReadOptions,
+) -> Result<Image, IoError> {
+    let path = name;
     let error = |kind| IoError::new(path, kind);
-    let bytes = std::fs::read(path).map_err(|e| error(IoErrorKind::from_read_error(e)))?;
     if bytes.is_empty() {
         return Err(error(IoErrorKind::Empty));
     }
-    let format = match (Format::from_magic(&bytes), Format::from_extension(path)) {
+    let format = match (Format::from_magic(bytes), Format::from_extension(path)) {
         (Some(format), _) => format,
         // Old Radiance files may lack the signature; the others never do.
         (None, Some(Format::Radiance)) => Format::Radiance,
@@ -43,7 +83,7 @@ pub fn read_image(path: &Path, options: &ReadOptions) -> Result<Image, IoError> 
         }
         (None, None) => return Err(error(IoErrorKind::UnknownFormat)),
     };
-    decode(&bytes, format, options).map_err(error)
+    decode(bytes, format, options).map_err(error)
 }
 
 /// Decodes `bytes` as `format`, turning a decoder panic into an error.

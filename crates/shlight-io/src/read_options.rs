@@ -13,6 +13,10 @@ pub struct ReadOptions {
     /// refused with [`crate::IoErrorKind::TooLarge`], judged from the file's header
     /// before any pixel memory is allocated. Default: 2^28 (e.g. 16384 x
     /// 16384).
+    ///
+    /// This also bounds a read's memory: at most about 64 bytes a pixel of
+    /// this limit plus a few times the file's size (docs/limits.md), so a
+    /// program reading untrusted files should lower it to what it needs.
     pub max_pixels: usize,
 }
 

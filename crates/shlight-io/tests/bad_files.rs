@@ -397,3 +397,31 @@ fn find_single_chunk(bytes: &[u8]) -> usize {
         .unwrap();
     table + 8
 }
+
+/// A 256x32 PIZ file with 67 half channels (R, G, B and 64 others) has one
+/// block of 256 x 32 pixels x 134 bytes, which `exr` allocates whole before
+/// decompressing. Refused when that exceeds 16 bytes a pixel of the limit
+/// (here the image's own pixel count), read at the default limit.
+#[test]
+fn openexr_blocks_beyond_the_pixel_limit_are_refused_before_decompressing() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/many-channels-piz.exr");
+    let pixels = 256 * 32;
+    let options = ReadOptions {
+        max_pixels: pixels,
+        ..ReadOptions::default()
+    };
+    let e = read_image(&path, &options).unwrap_err();
+    assert!(matches!(e.kind(), IoErrorKind::Unsupported(_)), "{e}");
+    let message = e.to_string();
+    assert!(
+        message.contains(&format!(
+            "OpenEXR blocks of {} bytes decompressed (67 channels), more than the {} bytes",
+            pixels * 67 * 2,
+            16 * pixels
+        )),
+        "{message}"
+    );
+    let image = read_image(&path, &ReadOptions::default()).unwrap();
+    assert_eq!((image.width(), image.height()), (256, 32));
+    assert_eq!(image.get(100, 10), [0.5; 3]);
+}

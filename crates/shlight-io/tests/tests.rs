@@ -19,6 +19,8 @@ mod radiance;
 mod png_jpeg;
 // Broken inputs: truncated, corrupted, empty, not images, missing, too large.
 mod bad_files;
+// Inputs that once stopped a fuzz target (fuzz/).
+mod fuzz_regressions;
 // Atomic writes: failures leave the destination and no temporary file.
 mod atomic;
 // The environment maps bundled in envmaps/.

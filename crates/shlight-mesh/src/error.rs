@@ -37,4 +37,17 @@ pub enum MeshError {
         /// What is wrong.
         message: String,
     },
+    /// The mesh is larger than the [`crate::LoadOptions`] limit, judged
+    /// from the file's counts before the memory is allocated.
+    #[error("{path}: the mesh has {count} {what}, more than the limit of {max}")]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// `"vertices"` or `"triangles"`.
+        what: &'static str,
+        /// How many the file holds (or at least, when counting stopped).
+        count: usize,
+        /// The limit.
+        max: usize,
+    },
 }

@@ -7,17 +7,22 @@
 //! plane under a sphere; and [`generate::cornell_box`], the standard test room); either way they
 //! pass the same validation ([`Mesh::new`]), so code downstream may assume
 //! finite positions, in-range indices, no degenerate triangles and unit
-//! normals. [`Mesh::subdivided`] splits long edges (conforming) for bakes
-//! that store light per vertex; meshes may carry per-vertex emission
-//! ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
+//! normals. Files are read under [`LoadOptions`] limits on the vertex and
+//! triangle counts, checked before the memory is allocated, so that no
+//! file makes the loader hang or allocate without bound
+//! (docs/limits.md). [`Mesh::subdivided`] splits long edges (conforming)
+//! for bakes that store light per vertex; meshes may carry per-vertex
+//! emission ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
 
 pub mod cornell_box;
 mod error;
 pub mod generate;
 mod load;
+mod load_options;
 mod mesh;
 mod subdivide;
 
 pub use error::MeshError;
-pub use load::{MeshFormat, load, load_bytes};
+pub use load::{MeshFormat, load, load_bytes, load_bytes_with, load_with};
+pub use load_options::LoadOptions;
 pub use mesh::{Mesh, MeshReport};

@@ -8,11 +8,12 @@ mod gltf_file;
 mod off;
 mod ply;
 
+use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
 
 use glam::Vec3;
 
-use crate::{Mesh, MeshError};
+use crate::{LoadOptions, Mesh, MeshError};
 
 /// The mesh file formats shlight reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,6 +31,17 @@ pub enum MeshFormat {
 const EXPECTED: &str = ".obj, .ply, .off, .gltf or .glb";
 
 impl MeshFormat {
+    /// The format's usual name: `OBJ`, `PLY`, `OFF` or `glTF`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Obj => "OBJ",
+            Self::Ply => "PLY",
+            Self::Off => "OFF",
+            Self::Gltf => "glTF",
+        }
+    }
+
     /// The format a file name's extension names (case-insensitive).
     #[must_use]
     pub fn from_path(path: &Path) -> Option<Self> {
@@ -44,12 +56,22 @@ impl MeshFormat {
     }
 }
 
-/// Loads and validates a mesh file, choosing the format by extension.
+/// Loads and validates a mesh file, choosing the format by extension,
+/// under the default [`LoadOptions`].
 ///
 /// # Errors
-/// An unreadable file, an unknown extension, a parse error, or a mesh
-/// [`Mesh::new`] rejects; every message starts with the path.
+/// An unreadable file, an unknown extension, a parse error, a mesh
+/// [`Mesh::new`] rejects, or one beyond the limits
+/// ([`MeshError::TooLarge`]); every message starts with the path.
 pub fn load(path: &Path) -> Result<Mesh, MeshError> {
+    load_with(path, &LoadOptions::default())
+}
+
+/// [`load`] under the given limits.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh, MeshError> {
     let format = MeshFormat::from_path(path).ok_or_else(|| MeshError::UnknownFormat {
         path: path.to_path_buf(),
         expected: EXPECTED,
@@ -58,34 +80,66 @@ pub fn load(path: &Path) -> Result<Mesh, MeshError> {
         path: path.to_path_buf(),
         source,
     })?;
-    load_bytes(path, format, &bytes)
+    load_bytes_with(path, format, &bytes, options)
 }
 
-/// Parses and validates a mesh held in memory; `path` names it in errors
-/// (and, for glTF, locates external buffer files).
+/// Parses and validates a mesh held in memory, under the default
+/// [`LoadOptions`]; `path` names it in errors (and, for glTF, locates
+/// external buffer files).
 ///
 /// # Errors
 /// As [`load`], less the file reading.
 pub fn load_bytes(path: &Path, format: MeshFormat, bytes: &[u8]) -> Result<Mesh, MeshError> {
-    match format {
-        MeshFormat::Obj => obj(path, bytes),
-        MeshFormat::Ply => ply::read(path, bytes),
-        MeshFormat::Off => off::read(path, bytes),
-        MeshFormat::Gltf => gltf_file::read(path, bytes),
-    }
+    load_bytes_with(path, format, bytes, &LoadOptions::default())
+}
+
+/// [`load_bytes`] under the given limits.
+///
+/// A parser that panics on a malformed file is caught and reported as
+/// [`MeshError::Parse`].
+///
+/// # Errors
+/// As [`load_bytes`].
+pub fn load_bytes_with(
+    path: &Path,
+    format: MeshFormat,
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<Mesh, MeshError> {
+    let read = || match format {
+        MeshFormat::Obj => obj(path, bytes, options),
+        MeshFormat::Ply => ply::read(path, bytes, options),
+        MeshFormat::Off => off::read(path, bytes, options),
+        MeshFormat::Gltf => gltf_file::read(path, bytes, options),
+    };
+    // A parser that panics on a malformed file (tobj and gltf do on some,
+    // where overflow checks are on) gives an error, not a crash.
+    panic::catch_unwind(AssertUnwindSafe(read)).unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".into());
+        Err(MeshError::Parse {
+            path: path.to_path_buf(),
+            message: format!("the {} reader failed: {message}", format.name()),
+        })
+    })
 }
 
 /// OBJ through `tobj`: positions and normals are unified to one index per
 /// vertex (`single_index`), so vertices appear in the order tobj first meets
 /// each distinct (position, normal) pair; objects are concatenated in file
-/// order. Normals are used only when every object has them.
+/// order. Normals are used only when every object has them. tobj reads
+/// the whole file first (its memory grows with the file's size); the
+/// limits are checked on what it found.
 ///
 /// Materials: the `mtllib` files named by the OBJ are read from its
 /// directory; an object's material gives its vertices albedo `Kd` and
 /// emitted radiance `Ke`. Without any material (or with a missing `mtllib`,
 /// which tobj reports and shlight then ignores) the mesh has no colours, as
 /// before; objects without a material get white albedo when others have one.
-fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+fn obj(path: &Path, bytes: &[u8], limits: &LoadOptions) -> Result<Mesh, MeshError> {
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: true,
@@ -109,6 +163,11 @@ fn obj(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         path: path.to_path_buf(),
         message: format!("not a valid MTL file: {e}"),
     })?;
+    limits.check_vertices(
+        path,
+        models.iter().map(|m| m.mesh.positions.len() / 3).sum(),
+    )?;
+    limits.check_triangles(path, models.iter().map(|m| m.mesh.indices.len() / 3).sum())?;
     let all_normals = models
         .iter()
         .all(|m| m.mesh.normals.len() == m.mesh.positions.len());

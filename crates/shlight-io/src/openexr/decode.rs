@@ -62,6 +62,7 @@ fn decode_layer(bytes: &[u8], options: &ReadOptions) -> Result<Image, IoErrorKin
     check_size(display.size.x(), display.size.y(), options.max_pixels)?;
     let (data_width, data_height) = (header.layer_size.x(), header.layer_size.y());
     check_size(data_width, data_height, options.max_pixels)?;
+    inspect::check_block_size(&header, options.max_pixels)?;
 
     let part = chosen.part;
     let reader = reader

@@ -1,7 +1,8 @@
 //! Looks at the raw structure of an OpenEXR file around the `exr` crate's
 //! decoder: whether the file ends before its data (to report truncation as
 //! such), whether a DWA block's sizes are possible before that block is
-//! decompressed, and which compression a file uses that `exr` cannot name.
+//! decompressed, how large a decompressed block can be, and which
+//! compression a file uses that `exr` cannot name.
 
 use std::io::Cursor;
 
@@ -10,6 +11,39 @@ use exr::compression::Compression;
 use exr::meta::header::Header;
 
 use crate::IoErrorKind;
+
+/// The most bytes one decompressed block may take, per pixel of
+/// `max_pixels`: `exr` allocates a block's full size (every channel of the
+/// part, not only the ones read) before decompressing some compressions
+/// (PIZ, B44), whatever the compressed data holds.
+const MAX_BLOCK_BYTES_PER_PIXEL: usize = 16;
+
+/// Refuses a part whose largest decompressed block (its tile, or its scan
+/// lines per block, clipped to the data window, times the bytes of all
+/// its channels) exceeds [`MAX_BLOCK_BYTES_PER_PIXEL`] bytes a pixel of
+/// `max_pixels`, judged from the header before any block is read.
+pub(super) fn check_block_size(header: &Header, max_pixels: usize) -> Result<(), IoErrorKind> {
+    let (width, height) = (header.layer_size.x(), header.layer_size.y());
+    let (block_width, block_height) = match header.blocks {
+        exr::meta::BlockDescription::Tiles(tiles) => (tiles.tile_size.x(), tiles.tile_size.y()),
+        exr::meta::BlockDescription::ScanLines => {
+            (width, header.compression.scan_lines_per_block())
+        }
+    };
+    let pixels = block_width
+        .min(width)
+        .saturating_mul(block_height.min(height));
+    let bytes = pixels.saturating_mul(header.channels.bytes_per_pixel);
+    let limit = max_pixels.saturating_mul(MAX_BLOCK_BYTES_PER_PIXEL);
+    if bytes <= limit {
+        return Ok(());
+    }
+    Err(IoErrorKind::Unsupported(format!(
+        "OpenEXR blocks of {bytes} bytes decompressed ({} channels), more than the {limit} \
+         bytes the pixel limit allows ({MAX_BLOCK_BYTES_PER_PIXEL} bytes a pixel of {max_pixels})",
+        header.channels.list.len()
+    )))
+}
 
 /// Whether the file ends before the data it describes: inside its headers
 /// or offset tables, or before the end of a chunk that the offset tables

@@ -17,6 +17,10 @@
 //! Vertex order: scene nodes depth-first in document order (a node, then its
 //! children), each node's primitives in order, each primitive's vertices in
 //! accessor order; a mesh used by two nodes appears twice.
+//!
+//! Refused: a node that appears twice in the scene's hierarchy (a cycle, or
+//! a node with two parents: glTF nodes form trees), and accessor counts
+//! beyond the [`LoadOptions`] limits, checked before an accessor is read.
 
 use std::path::Path;
 
@@ -24,11 +28,11 @@ use base64::Engine as _;
 use glam::{Mat3, Mat4, Vec3};
 use gltf::mesh::Mode;
 
-use crate::{Mesh, MeshError};
+use crate::{LoadOptions, Mesh, MeshError};
 
 /// Reads `bytes` as glTF or GLB; `path` names it in errors and locates
 /// external buffers (relative to its directory).
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Mesh, MeshError> {
     let parse = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -61,7 +65,11 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
             })
             .collect::<Result<Vec<_>, _>>()?;
 
-    let mut out = Gathered::default();
+    let mut out = Gathered {
+        options: *options,
+        visited: vec![false; gltf.document.nodes().len()],
+        ..Gathered::default()
+    };
     let scene = gltf
         .document
         .default_scene()
@@ -99,6 +107,9 @@ struct Gathered {
     any_color: bool,
     all_normals: bool,
     primitives: usize,
+    options: LoadOptions,
+    /// The nodes met so far, by index.
+    visited: Vec<bool>,
 }
 
 fn visit(
@@ -108,6 +119,20 @@ fn visit(
     buffers: &[Vec<u8>],
     out: &mut Gathered,
 ) -> Result<(), MeshError> {
+    // glTF nodes form trees; a node met twice (a cycle, or two parents)
+    // would recurse forever or multiply the mesh without bound.
+    match out.visited.get_mut(node.index()) {
+        Some(seen @ false) => *seen = true,
+        _ => {
+            return Err(MeshError::Parse {
+                path: path.to_path_buf(),
+                message: format!(
+                    "node {} appears twice in the scene's hierarchy (glTF nodes form trees)",
+                    node.index()
+                ),
+            });
+        }
+    }
     let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
     if let Some(mesh) = node.mesh() {
         add_mesh(path, &mesh, world, buffers, out)?;
@@ -140,6 +165,32 @@ fn add_mesh(
             continue;
         }
         let what = format!("mesh {} primitive {}", mesh.index(), prim.index());
+        // The counts, before anything is read: a sparse accessor needs no
+        // buffer, so a small file may claim any count.
+        let vertices = prim
+            .get(&gltf::Semantic::Positions)
+            .map_or(0, |a| a.count());
+        out.options
+            .check_vertices(path, out.positions.len().saturating_add(vertices))?;
+        let corners = prim.indices().map_or(vertices, |a| a.count());
+        let triangles = match mode {
+            Mode::Triangles => corners / 3,
+            _ => corners.saturating_sub(2),
+        };
+        out.options
+            .check_triangles(path, out.triangles.len().saturating_add(triangles))?;
+        for (semantic, accessor) in prim.attributes() {
+            if matches!(
+                semantic,
+                gltf::Semantic::Normals | gltf::Semantic::Colors(0)
+            ) && accessor.count() != vertices
+            {
+                return Err(parse(format!(
+                    "{what}: {} {semantic:?} for {vertices} positions",
+                    accessor.count()
+                )));
+            }
+        }
         let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
         let positions: Vec<Vec3> = reader
             .read_positions()

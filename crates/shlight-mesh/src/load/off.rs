@@ -14,10 +14,10 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use crate::{Mesh, MeshError};
+use crate::{LoadOptions, Mesh, MeshError};
 
 /// Reads `bytes` as an OFF file; `path` names it in errors.
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Mesh, MeshError> {
     let parse = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -64,10 +64,17 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     };
     let nv = count(counts_line.0, counts_line.1.first())?;
     let nf = count(counts_line.0, counts_line.1.get(1))?;
+    options.check_vertices(path, nv)?;
+    options.check_triangles(path, nf)?;
 
     let need = 3 + if normals_given { 3 } else { 0 } + if colors_given { 3 } else { 0 };
-    let (mut positions, mut normals, mut raw_colors) =
-        (Vec::with_capacity(nv), Vec::new(), Vec::new());
+    // A vertex line takes at least 6 bytes ("0 0 0\n"): reserve no more
+    // than the file can hold, whatever its counts say.
+    let (mut positions, mut normals, mut raw_colors) = (
+        Vec::with_capacity(nv.min(text.len() / 6)),
+        Vec::new(),
+        Vec::new(),
+    );
     for v in 0..nv {
         let (line, words) = lines
             .next()
@@ -101,9 +108,9 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
             .next()
             .ok_or_else(|| parse(format!("the file ends at face {f} of {nf}")))?;
         let n = count(line, words.first())?;
-        if n < 3 || words.len() < 1 + n {
+        if n < 3 || words.len() - 1 < n {
             return Err(parse(format!(
-                "line {line}: face {f} needs at least 3 corners and lists {}",
+                "line {line}: face {f} has {n} corners and lists {} (a face needs at least 3)",
                 words.len() - 1
             )));
         }
@@ -117,6 +124,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         for w in corners[1..].windows(2) {
             triangles.push([corners[0], w[0], w[1]]);
         }
+        options.check_triangles(path, triangles.len())?;
     }
     let colors = colors_given.then(|| {
         let integer = raw_colors.iter().any(|c| c.max_element() > 1.0);

@@ -14,7 +14,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use crate::{Mesh, MeshError};
+use crate::{LoadOptions, Mesh, MeshError};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Scalar {
@@ -107,7 +107,7 @@ enum Value {
 }
 
 /// Reads `bytes` as a PLY file; `path` names it in errors.
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Mesh, MeshError> {
     let parse = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -217,7 +217,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         let nxyz = [index("nx"), index("ny"), index("nz")];
         let rgb = [index("red"), index("green"), index("blue")];
         let list = index("vertex_indices").or_else(|| index("vertex_index"));
+        if element.properties.is_empty() {
+            // Its rows hold nothing: there is nothing to read, whatever
+            // the count says.
+            continue;
+        }
         if is_vertex {
+            options.check_vertices(path, element.count)?;
             if xyz.iter().any(Option::is_none) {
                 return Err(parse("the vertex element lacks x, y or z".into()));
             }
@@ -227,6 +233,10 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         }
         if is_face && list.is_none() {
             return Err(parse("the face element has no vertex_indices list".into()));
+        }
+        if is_face {
+            // Every face makes at least one triangle.
+            options.check_triangles(path, element.count)?;
         }
         let color_scale = rgb[0]
             .and_then(|i| match element.properties[i] {
@@ -293,6 +303,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
                 for w in corners[1..].windows(2) {
                     triangles.push([first, idx(w[0])?, idx(w[1])?]);
                 }
+                options.check_triangles(path, triangles.len())?;
             }
         }
     }
