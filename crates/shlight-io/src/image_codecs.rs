@@ -16,7 +16,7 @@ use image::{
     Rgb,
 };
 
-use crate::srgb::{linear_to_srgb8, srgb8_table, srgb16_to_linear};
+use crate::srgb::{linear_to_srgb8, srgb8_table, srgb16_table};
 use crate::{Format, Image, IoErrorKind, ReadOptions, ToneMap};
 
 /// Decodes a Radiance, PNG or JPEG file held in `bytes`.
@@ -83,7 +83,7 @@ fn decode_with(
                 .collect()
         }
         16 => {
-            let table: Vec<f32> = (0..=u16::MAX).map(srgb16_to_linear).collect();
+            let table = srgb16_table();
             let rgb = decoded.into_rgb16();
             rgb.pixels()
                 .map(|p| p.0.map(|c| table[usize::from(c)]))

@@ -54,6 +54,14 @@ pub(crate) fn srgb16_to_linear(code: u16) -> f32 {
     eotf(f64::from(code) / 65535.0) as f32
 }
 
+/// [`srgb16_to_linear`] of every 16-bit code, computed once per process
+/// (65,536 evaluations of the transfer function: milliseconds, more than
+/// decoding a small PNG takes).
+pub(crate) fn srgb16_table() -> &'static [f32] {
+    static TABLE: std::sync::OnceLock<Vec<f32>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| (0..=u16::MAX).map(srgb16_to_linear).collect())
+}
+
 /// The 8-bit sRGB code of a linear value: [`linear_to_srgb`], scaled to 255
 /// and rounded to nearest.
 pub(crate) fn linear_to_srgb8(linear: f32) -> u8 {
