@@ -6,7 +6,7 @@
 //! # Main items
 //! - [`Grid`]: the probes' box and resolution, probes at cell centres,
 //!   x fastest; trilinear weights.
-//! - [`bake`]: each probe's incident radiance as a transfer matrix per
+//! - [`bake()`]: each probe's incident radiance as a transfer matrix per
 //!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
 //!   through the scene's shadows and interreflections
 //!   ([`bake`](mod@bake) states the estimator).
@@ -35,7 +35,7 @@
 
 pub mod bake;
 mod error;
-mod grid;
+pub mod grid;
 mod probe_volume;
 
 pub use bake::{Stage, VolumeOptions, bake};

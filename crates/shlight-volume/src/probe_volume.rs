@@ -7,7 +7,7 @@ use shlight_format::ShvolFile;
 
 use crate::{Grid, VolumeError};
 
-/// A baked, relightable probe volume ([`crate::bake`]).
+/// A baked, relightable probe volume ([`crate::bake()`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProbeVolume {
     /// Where the probes are.
