@@ -29,7 +29,8 @@
 //! or zero when none is valid.
 
 use glam::{DVec3, Vec3};
-use shlight_core::{ShCoeffs, irradiance, sh_count};
+use shlight_core::ambient_cube::AmbientCube;
+use shlight_core::{ShCoeffs, sh_count};
 
 use crate::ShvolFile;
 
@@ -37,8 +38,8 @@ use crate::ShvolFile;
 pub const VK_FORMAT: u32 = 97;
 
 /// The six ambient-cube colours of every probe, `E(+-a) / pi` in the order
-/// +X, -X, +Y, -Y, +Z, -Z, probes in grid order (invalid ones as the file
-/// has them).
+/// of [`shlight_core::ambient_cube::AXES`] (+X, -X, +Y, -Y, +Z, -Z), probes
+/// in grid order (invalid ones as the file has them).
 #[must_use]
 pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {
     let nc = sh_count(file.lmax);
@@ -51,16 +52,9 @@ pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {
                     .collect(),
             )
             .expect("(lmax+1)^2 rows");
-            let e = irradiance(&l);
-            [
-                DVec3::X,
-                DVec3::NEG_X,
-                DVec3::Y,
-                DVec3::NEG_Y,
-                DVec3::Z,
-                DVec3::NEG_Z,
-            ]
-            .map(|n| (e.eval(n) / std::f64::consts::PI).as_vec3())
+            AmbientCube::from_sh(&l)
+                .colours
+                .map(|e: DVec3| (e / std::f64::consts::PI).as_vec3())
         })
         .collect()
 }

@@ -57,6 +57,7 @@ pub mod coeff_file;
 pub mod encoding_record;
 mod error;
 pub mod export;
+mod header_line;
 mod import;
 mod quantity;
 pub mod shprt;

@@ -17,7 +17,7 @@ use std::path::Path;
 use serde_json::{Value, json};
 use shlight_core::sh_count;
 
-use crate::{FormatError, Result};
+use crate::{FormatError, Result, header_line};
 
 /// The `format` key's value.
 pub const FORMAT: &str = "shlight-prt";
@@ -86,7 +86,7 @@ impl ShprtFile {
             "albedo": self.albedo.map_or(json!("vertex"), |a| {
                 json!(a.map(|x| x.to_string().parse::<f64>().unwrap_or(f64::NAN)))
             }),
-            "mesh_hash": format!("fnv1a64:{:016x}", self.mesh_hash),
+            "mesh_hash": header_line::hash_text(self.mesh_hash),
             "mesh": self.mesh,
             "data": "f32 little-endian, vertex-major, then channel, then SH index l(l+1)+m",
         })
@@ -95,13 +95,7 @@ impl ShprtFile {
     /// The whole file as bytes.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = serde_json::to_vec(&self.header()).expect("JSON values serialise");
-        out.push(b'\n');
-        out.reserve(4 * self.transfer.len());
-        for x in &self.transfer {
-            out.extend(x.to_le_bytes());
-        }
-        out
+        header_line::to_bytes(&self.header(), &self.transfer)
     }
 
     /// Writes the file atomically (a temporary file renamed into place).
@@ -120,10 +114,7 @@ impl ShprtFile {
     /// [`FormatError::Read`] when it cannot be read; [`FormatError::Invalid`]
     /// naming the file for a bad header or data of the wrong length.
     pub fn read(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|source| FormatError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes = header_line::read_file(path)?;
         Self::from_bytes(&bytes, path)
     }
 
@@ -134,16 +125,7 @@ impl ShprtFile {
     pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self> {
         let name = path.display().to_string();
         let bad = |message: String| FormatError::invalid(&name, message);
-        let end = bytes
-            .iter()
-            .take(MAX_HEADER)
-            .position(|&b| b == b'\n')
-            .ok_or_else(|| bad("not a .shprt file (no header line ending in a newline)".into()))?;
-        let header: Value = serde_json::from_slice(&bytes[..end])
-            .map_err(|e| bad(format!("bad header (not JSON: {e})")))?;
-        if header.get("format").and_then(Value::as_str) != Some(FORMAT) {
-            return Err(bad(format!("bad header (\"format\" is not \"{FORMAT}\")")));
-        }
+        let (header, data) = header_line::split(bytes, &name, FORMAT, ".shprt", MAX_HEADER)?;
         let uint = |key: &str| {
             header.get(key).and_then(Value::as_u64).ok_or_else(|| {
                 bad(format!(
@@ -182,17 +164,11 @@ impl ShprtFile {
                 ));
             }
         };
-        let mesh_hash = header
-            .get("mesh_hash")
-            .and_then(Value::as_str)
-            .and_then(|s| s.strip_prefix("fnv1a64:"))
-            .and_then(|h| u64::from_str_radix(h, 16).ok())
-            .ok_or_else(|| bad("bad header (\"mesh_hash\" is not fnv1a64:HEX)".into()))?;
+        let mesh_hash = header_line::hash(&header, "mesh_hash", &name)?;
         let count = vertex_count
             .checked_mul(channels * sh_count(lmax))
             .filter(|c| c.checked_mul(4).is_some())
             .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
-        let data = &bytes[end + 1..];
         if data.len() < 4 * count {
             return Err(bad(format!(
                 "truncated: {vertex_count} vertices x {channels} channels x {} coefficients need {} bytes of data, the file has {}",
@@ -208,10 +184,7 @@ impl ShprtFile {
                 4 * count
             )));
         }
-        let transfer = data
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect();
+        let transfer = header_line::f32s(data);
         Ok(Self {
             lmax,
             channels,

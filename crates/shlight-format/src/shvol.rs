@@ -26,7 +26,7 @@ use std::path::Path;
 use serde_json::{Value, json};
 use shlight_core::sh_count;
 
-use crate::{FormatError, Result};
+use crate::{FormatError, Result, header_line};
 
 /// The `format` key's value (both the binary and the JSON form).
 pub const FORMAT: &str = "shlight-volume";
@@ -146,7 +146,7 @@ impl ShvolFile {
             "bounces": self.bounces,
             "seed": self.seed,
             "scene": self.scene,
-            "scene_hash": format!("fnv1a64:{:016x}", self.scene_hash),
+            "scene_hash": header_line::hash_text(self.scene_hash),
             "environment": self.environment,
             "generator": self.generator,
             "data": "f32 little-endian sections in `holds` order, probe-major: radiance and emitted (lmax+1)^2 rows of [r, g, b]; transfer 3 row-major (lmax+1)^2 x (lmax+1)^2 matrices",
@@ -156,17 +156,12 @@ impl ShvolFile {
     /// The whole file as bytes.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = serde_json::to_vec(&self.header()).expect("JSON values serialise");
-        out.push(b'\n');
         let sections = [
             Some(&self.radiance),
             self.emitted.as_ref(),
             self.transfer.as_ref(),
         ];
-        for x in sections.into_iter().flatten().flatten() {
-            out.extend(x.to_le_bytes());
-        }
-        out
+        header_line::to_bytes(&self.header(), sections.into_iter().flatten().flatten())
     }
 
     /// The JSON form (`shlight volume --format json`): the header's keys
@@ -253,10 +248,7 @@ impl ShvolFile {
     /// [`FormatError::Read`] when it cannot be read; [`FormatError::Invalid`]
     /// naming the file and the problem otherwise.
     pub fn read(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|source| FormatError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes = header_line::read_file(path)?;
         Self::from_bytes(&bytes, path)
     }
 
@@ -273,16 +265,7 @@ impl ShvolFile {
     pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self> {
         let name = path.display().to_string();
         let bad = |message: String| FormatError::invalid(&name, message);
-        let end = bytes
-            .iter()
-            .take(MAX_HEADER)
-            .position(|&b| b == b'\n')
-            .ok_or_else(|| bad("not a .shvol file (no header line ending in a newline)".into()))?;
-        let header: Value = serde_json::from_slice(&bytes[..end])
-            .map_err(|e| bad(format!("bad header (not JSON: {e})")))?;
-        if header.get("format").and_then(Value::as_str) != Some(FORMAT) {
-            return Err(bad(format!("bad header (\"format\" is not \"{FORMAT}\")")));
-        }
+        let (header, data) = header_line::split(bytes, &name, FORMAT, ".shvol", MAX_HEADER)?;
         let uint = |key: &str| {
             header.get(key).and_then(Value::as_u64).ok_or_else(|| {
                 bad(format!(
@@ -401,12 +384,7 @@ impl ShvolFile {
                 })?;
             valid[i] = false;
         }
-        let scene_hash = header
-            .get("scene_hash")
-            .and_then(Value::as_str)
-            .and_then(|s| s.strip_prefix("fnv1a64:"))
-            .and_then(|h| u64::from_str_radix(h, 16).ok())
-            .ok_or_else(|| bad("bad header (\"scene_hash\" is not fnv1a64:HEX)".into()))?;
+        let scene_hash = header_line::hash(&header, "scene_hash", &name)?;
 
         let nc = sh_count(lmax);
         let per_probe = 3 * nc + if relightable { 3 * nc + 3 * nc * nc } else { 0 };
@@ -414,7 +392,6 @@ impl ShvolFile {
             .checked_mul(per_probe)
             .filter(|c| c.checked_mul(4).is_some())
             .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
-        let data = &bytes[end + 1..];
         if data.len() < 4 * count {
             return Err(bad(format!(
                 "truncated: {probes} probes need {} bytes of data, the file has {}",
@@ -429,10 +406,7 @@ impl ShvolFile {
                 4 * count
             )));
         }
-        let values: Vec<f32> = data
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect();
+        let values = header_line::f32s(data);
         if let Some(k) = values.iter().position(|x| !x.is_finite()) {
             return Err(bad(format!("value {k} of the data is not finite")));
         }
