@@ -239,7 +239,8 @@ fn write_preview(
 }
 
 /// Stops that bring the mean vertex luminance to 0.25 (0 for a black mesh).
-fn auto_exposure(radiance: &[Vec3]) -> f32 {
+/// The exposure in stops that puts the mean luminance of `radiance` at 0.25.
+pub(crate) fn auto_exposure(radiance: &[Vec3]) -> f32 {
     let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
     let mean = radiance.iter().map(luminance).sum::<f64>() / radiance.len().max(1) as f64;
     if mean > 0.0 && mean.is_finite() {

@@ -90,6 +90,14 @@ pub struct VolumeArgs {
     /// but the volume cannot be relit).
     #[arg(long = "static")]
     pub static_only: bool,
+    /// Also write a picture of the probes (PNG, EXR or HDR): each a white
+    /// diffuse ball lit by its light, z layers side by side, invalid probes
+    /// grey.
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
+    /// Diameter of each probe's ball in the preview, in pixels.
+    #[arg(long, default_value_t = 32)]
+    pub preview_ball: usize,
 }
 
 /// Runs `shlight volume`.
@@ -105,7 +113,9 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         Some("ktx2") => VolumeFormat::Bevy,
         _ => VolumeFormat::Shvol,
     });
-    crate::output_path::refuse_overwriting(&args.output, &[args.scene.clone(), args.env.clone()])?;
+    for out in std::iter::once(&args.output).chain(&args.preview) {
+        crate::output_path::refuse_overwriting(out, &[args.scene.clone(), args.env.clone()])?;
+    }
     let options = VolumeOptions {
         lmax: args.lmax,
         samples: args.samples,
@@ -179,6 +189,27 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         environment: file_name(&args.env),
         generator: format!("shlight {}", env!("CARGO_PKG_VERSION")),
     };
+    if let Some(path) = &args.preview {
+        let (w, h, pixels) = shlight_volume::probe_sheet(
+            &grid,
+            &volume.valid,
+            &radiance,
+            args.lmax,
+            args.preview_ball,
+        );
+        let lit: Vec<glam::Vec3> = pixels
+            .iter()
+            .map(|p| glam::Vec3::from_array(*p))
+            .filter(|p| *p != glam::Vec3::ZERO)
+            .collect();
+        let image = shlight_io::Image::new(w, h, pixels)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let options = shlight_io::WriteOptions {
+            exposure_ev: crate::prt::auto_exposure(&lit),
+            ..shlight_io::WriteOptions::default()
+        };
+        shlight_io::write_image(path, &image, &options)?;
+    }
     let file = volume.to_shvol(radiance, !args.static_only, &meta);
     match format {
         VolumeFormat::Shvol => file.write(&args.output)?,

@@ -13,6 +13,8 @@
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes.
+//! - [`probe_sheet`]: a picture of the probes, each a white ball lit by its
+//!   light.
 //! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
 //!
 //! ```
@@ -36,9 +38,11 @@
 pub mod bake;
 mod error;
 pub mod grid;
+mod probe_sheet;
 mod probe_volume;
 
 pub use bake::{Stage, VolumeOptions, bake};
 pub use error::VolumeError;
 pub use grid::Grid;
+pub use probe_sheet::probe_sheet;
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};
