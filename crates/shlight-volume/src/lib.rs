@@ -13,7 +13,7 @@
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes.
-//! - [`probe_sheet`]: a picture of the probes, each a white ball lit by its
+//! - [`probe_sheet()`]: a picture of the probes, each a white ball lit by its
 //!   light.
 //! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
 //!
@@ -38,7 +38,7 @@
 pub mod bake;
 mod error;
 pub mod grid;
-mod probe_sheet;
+pub mod probe_sheet;
 mod probe_volume;
 
 pub use bake::{Stage, VolumeOptions, bake};
