@@ -159,6 +159,7 @@ pub fn bake(
     let weight = 4.0 * std::f64::consts::PI / dirs.len() as f64;
 
     let surface = scene.map(|mesh| Surface::bake(mesh, options, progress));
+    let eye = identity(nc);
     let mut transfer = vec![0.0f32; probes.len() * 3 * nc * nc];
     let mut emitted = vec![0.0f32; probes.len() * 3 * nc];
     let mut backfaces = vec![0.0f32; probes.len()];
@@ -221,12 +222,11 @@ pub fn bake(
             }
             // The sky's part from the smaller of the two sets of rays.
             let sky: Vec<f64> = if surface.is_none() {
-                identity(nc)
+                eye.clone()
             } else if escaped_count <= dirs.len() - escaped_count {
                 escaped.iter().map(|e| weight * e).collect()
             } else {
-                identity(nc)
-                    .iter()
+                eye.iter()
                     .zip(&blocked)
                     .map(|(i, b)| i - weight * b)
                     .collect()

@@ -309,6 +309,19 @@ struct BandGeometry<'a, 'd> {
     bands: &'a [Mutex<Option<&'d mut [[f32; 3]]>>],
 }
 
+/// A chunk's pixels: ZIP and ZIPS blocks through libdeflate into `zip`'s
+/// buffers, every other compression through the exr crate.
+fn decompress_chunk(
+    chunk: Chunk,
+    meta: &MetaData,
+    zip: Option<&mut ZipScratch>,
+) -> Result<UncompressedBlock, IoErrorKind> {
+    match zip {
+        Some(scratch) => scratch.decompress(chunk, meta),
+        None => UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error),
+    }
+}
+
 /// Decompresses one scan-line chunk (see [`decode_block`]) and converts it
 /// into its band of rows; returns the pixels it covered.
 fn decode_scan_block(
@@ -320,10 +333,7 @@ fn decode_scan_block(
     geometry: &BandGeometry<'_, '_>,
 ) -> Result<usize, IoErrorKind> {
     panic::catch_unwind(AssertUnwindSafe(|| {
-        let block = match zip.as_deref_mut() {
-            Some(scratch) => scratch.decompress(chunk, meta)?,
-            None => UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error)?,
-        };
+        let block = decompress_chunk(chunk, meta, zip.as_deref_mut())?;
         let header = &meta.headers[part];
         let index = block.index;
         let (x, y) = (index.pixel_position.x(), index.pixel_position.y());
@@ -379,10 +389,7 @@ fn decode_block(
     mut zip: Option<&mut ZipScratch>,
 ) -> Result<RgbBlock, IoErrorKind> {
     panic::catch_unwind(AssertUnwindSafe(|| {
-        let block = match zip.as_deref_mut() {
-            Some(scratch) => scratch.decompress(chunk, meta)?,
-            None => UncompressedBlock::decompress_chunk(chunk, meta, false).map_err(map_error)?,
-        };
+        let block = decompress_chunk(chunk, meta, zip.as_deref_mut())?;
         let header = &meta.headers[part];
         let index = block.index;
         let (x, y) = (index.pixel_position.x(), index.pixel_position.y());
