@@ -23,3 +23,5 @@ mod shaders;
 mod synth;
 mod util;
 mod volume;
+#[cfg(feature = "gpu")]
+mod volume_gpu;

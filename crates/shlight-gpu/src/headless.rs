@@ -151,7 +151,43 @@ impl Offscreen {
                 "headless frames need a renderer for {HEADLESS_FORMAT:?}"
             )));
         }
-        let mut encoder = self.encode_draw(ctx, renderer, camera, shading)?;
+        let encoder = self.encode_draw(ctx, renderer, camera, shading)?;
+        self.read_back(ctx, encoder)
+    }
+
+    /// Draws one frame recorded by `record` (given the encoder, the colour
+    /// view and the depth view, e.g. a [`Renderer::draw`] then a
+    /// [`VolumeRenderer::draw`](crate::VolumeRenderer::draw)) and waits for
+    /// it; with `read_back`, returns the frame.
+    ///
+    /// # Errors
+    /// What `record` returns, GPU errors while drawing, a failed read-back.
+    pub fn render_with(
+        &self,
+        ctx: &GpuContext,
+        read_back: bool,
+        record: impl FnOnce(
+            &mut wgpu::CommandEncoder,
+            &wgpu::TextureView,
+            &wgpu::TextureView,
+        ) -> Result<(), GpuError>,
+    ) -> Result<Option<Frame>, GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        record(&mut encoder, &self.color_view, &self.depth_view)?;
+        if read_back {
+            return self.read_back(ctx, encoder).map(Some);
+        }
+        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
+        ctx.wait()?;
+        Ok(None)
+    }
+
+    /// Submits `encoder` with a copy of the colour target and reads it back.
+    fn read_back(
+        &self,
+        ctx: &GpuContext,
+        mut encoder: wgpu::CommandEncoder,
+    ) -> Result<Frame, GpuError> {
         encoder.copy_texture_to_buffer(
             self.color.as_image_copy(),
             wgpu::TexelCopyBufferInfo {

@@ -7,6 +7,9 @@
 //!   `w_l` a run-time window, any lmax up to 8), or by PRT transfer vectors
 //!   `Σ_i T_vi L_i` per vertex ([`Transfer`]), or as world normals; with the
 //!   environment map or its SH reconstruction behind;
+//! - [`VolumeRenderer`]: a scene and a dynamic object lit per fragment by
+//!   trilinear interpolation of an irradiance volume's valid probes (any
+//!   lmax up to [`VOLUME_MAX_LMAX`]), and the probes as spheres;
 //! - [`Offscreen`] / [`render_frame`]: frames read back as linear `f32` RGBA;
 //! - [`GpuProjector`]: equirect maps to SH by exact texel-solid-angle
 //!   quadrature, the GPU twin of shlight-core's `project_equirect`.
@@ -27,6 +30,8 @@ mod sh_expansion;
 pub mod shaders;
 mod shading;
 mod transfer;
+mod volume;
+mod volume_expansion;
 
 pub use camera::{Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM};
 pub use context::{GpuContext, new_instance};
@@ -37,5 +42,9 @@ pub use readback::read_buffer;
 pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use transfer::Transfer;
+pub use volume::{
+    PROBE_SPHERE_RADIUS, VOLUME_MAX_LMAX, VolumeInstance, VolumeProbes, VolumeRenderer,
+    pack_probes, place, probe_sphere_instances,
+};
 /// wgpu, as this crate uses it (for windows and surfaces).
 pub use wgpu;

@@ -14,17 +14,19 @@
 use crate::MAX_LMAX;
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
+use crate::volume_expansion::volume_wgsl;
 
 /// A shader file: its name in `shaders/` and its text.
 pub type ShaderFile = (&'static str, &'static str);
 
 /// Every WGSL file in `shaders/`, by name.
-pub const FILES: [ShaderFile; 5] = [
+pub const FILES: [ShaderFile; 6] = [
     ("sh.wgsl", SH),
     ("scene.wgsl", SCENE),
     ("mesh.wgsl", MESH),
     ("background.wgsl", BACKGROUND),
     ("project.wgsl", PROJECT),
+    ("volume.wgsl", VOLUME),
 ];
 
 const SH: &str = include_str!("../shaders/sh.wgsl");
@@ -32,6 +34,7 @@ const SCENE: &str = include_str!("../shaders/scene.wgsl");
 const MESH: &str = include_str!("../shaders/mesh.wgsl");
 const BACKGROUND: &str = include_str!("../shaders/background.wgsl");
 const PROJECT: &str = include_str!("../shaders/project.wgsl");
+const VOLUME: &str = include_str!("../shaders/volume.wgsl");
 
 /// A compiled unit: a name and its files in order.
 #[derive(Clone, Copy, Debug)]
@@ -94,6 +97,15 @@ pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
     files: &["sh.wgsl", "project.wgsl"],
     generated: Some(ring_sums_wgsl),
 };
+/// Irradiance-volume shading (meshes lit by interpolated probes, probe
+/// spheres, and the interpolation as a compute pass); its generated
+/// `sh_basis` and `probe_dot` stop at lmax
+/// [`VOLUME_MAX_LMAX`](crate::volume::VOLUME_MAX_LMAX).
+pub const VOLUME_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume",
+    files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],
+    generated: Some(volume_wgsl),
+};
 /// The SH basis alone (a module of functions, validated on its own).
 pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "sh",
@@ -102,8 +114,13 @@ pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
-pub const MODULES: [ShaderModuleSource; 4] =
-    [SH_MODULE, MESH_MODULE, BACKGROUND_MODULE, PROJECT_MODULE];
+pub const MODULES: [ShaderModuleSource; 5] = [
+    SH_MODULE,
+    MESH_MODULE,
+    BACKGROUND_MODULE,
+    PROJECT_MODULE,
+    VOLUME_MODULE,
+];
 
 /// Compiles a module on `device`, at `lmax` if it has generated code.
 pub(crate) fn create(

@@ -1,0 +1,762 @@
+//! Irradiance-volume shading: a scene and a dynamic object lit per fragment
+//! by trilinear interpolation of a volume's valid probes
+//! (`shaders/volume.wgsl`), and the probes themselves as small spheres.
+//!
+//! [`VolumeRenderer::draw`] adds its meshes to a frame that a [`Renderer`]
+//! has begun (cleared, background drawn), loading colour and depth, so the
+//! plain renderer is unchanged. The probes go to the GPU as a storage
+//! buffer, probe-major: probe `k`'s coefficient `i` in `vec4` slot
+//! `k (lmax_v+1)^2 + i`, radiance `L_k,i` in rgb, and in the `w` of slot 0
+//! the probe's validity (1 valid, 0 invalid); `lmax_v` is the volume's lmax
+//! clipped to [`VOLUME_MAX_LMAX`]. The grid (lower corner, cells per unit
+//! length, resolution and stride) is a uniform block.
+//!
+//! [`Renderer`]: crate::Renderer
+
+use std::sync::OnceLock;
+
+use glam::{DMat3, Vec3};
+use shlight_mesh::Mesh;
+use wgpu::util::DeviceExt;
+
+use crate::renderer::DEPTH_FORMAT;
+use crate::shaders::{self, VOLUME_MODULE};
+use crate::shading::{FrameInputs, FrameUniform, Shading};
+use crate::{Camera, GpuContext, GpuError};
+
+/// Highest degree the volume pass shades: a volume of higher lmax is
+/// clipped to it (eight probes of `(lmax+1)^2` coefficients are read per
+/// fragment: 200 `vec4` loads at lmax 4).
+pub const VOLUME_MAX_LMAX: usize = 4;
+
+/// The instance value of a mesh lit by interpolation (no probe of its own).
+const NO_PROBE: u32 = u32::MAX;
+
+/// A volume's probes as the GPU takes them (the fields of a `.shvol`
+/// file: docs/shvol.md).
+#[derive(Clone, Copy, Debug)]
+pub struct VolumeProbes<'a> {
+    /// Probes along x, y and z (each at least 1).
+    pub resolution: [usize; 3],
+    /// The grid box's lower corner.
+    pub min: Vec3,
+    /// The grid box's upper corner (above `min` on every axis).
+    pub max: Vec3,
+    /// Highest SH degree of `radiance`.
+    pub lmax: usize,
+    /// Per probe: whether interpolation may use it.
+    pub valid: &'a [bool],
+    /// Per probe `(lmax+1)^2` rows of `[r, g, b]` radiance coefficients,
+    /// probes x fastest, then y, then z.
+    pub radiance: &'a [f32],
+}
+
+impl VolumeProbes<'_> {
+    fn probe_count(&self) -> usize {
+        self.resolution.iter().product()
+    }
+
+    fn check(&self) -> Result<(), GpuError> {
+        let n = self.probe_count();
+        let nc = (self.lmax + 1) * (self.lmax + 1);
+        if self.resolution.contains(&0) || n > u32::MAX as usize / 32 {
+            return Err(GpuError::Invalid(format!(
+                "volume resolution {:?}: each count must be at least 1",
+                self.resolution
+            )));
+        }
+        if !(self.min.is_finite() && self.max.is_finite()) || self.min.cmpge(self.max).any() {
+            return Err(GpuError::Invalid(format!(
+                "volume bounds {}:{}: min must be below max on every axis",
+                self.min, self.max
+            )));
+        }
+        if self.valid.len() != n || self.radiance.len() != n * nc * 3 {
+            return Err(GpuError::Invalid(format!(
+                "a volume of {n} probes at lmax {} needs {n} validity flags and {} values, not {} and {}",
+                self.lmax,
+                n * nc * 3,
+                self.valid.len(),
+                self.radiance.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// The centre of probe `k`: `min + (i + 1/2) (max - min) / n` per axis.
+    fn centre(&self, k: usize) -> Vec3 {
+        let [nx, ny, _] = self.resolution;
+        let index = Vec3::new(
+            (k % nx) as f32,
+            (k / nx % ny) as f32,
+            (k / (nx * ny)) as f32,
+        );
+        let cell = (self.max - self.min) / Vec3::from_array(self.resolution.map(|n| n as f32));
+        self.min + (index + 0.5) * cell
+    }
+}
+
+/// The probes packed for the storage buffer: per probe
+/// `(min(lmax, VOLUME_MAX_LMAX)+1)^2` `vec4` slots, rgb the radiance, the
+/// `w` of slot 0 the validity (1 or 0).
+#[must_use]
+pub fn pack_probes(probes: &VolumeProbes<'_>) -> Vec<[f32; 4]> {
+    let nc = (probes.lmax + 1) * (probes.lmax + 1);
+    let lv = probes.lmax.min(VOLUME_MAX_LMAX);
+    let slots = (lv + 1) * (lv + 1);
+    let mut out = Vec::with_capacity(probes.valid.len() * slots);
+    for (k, &valid) in probes.valid.iter().enumerate() {
+        let rows = &probes.radiance[k * nc * 3..][..slots * 3];
+        for (i, rgb) in rows.chunks_exact(3).enumerate() {
+            let w = if i == 0 && valid { 1.0 } else { 0.0 };
+            out.push([rgb[0], rgb[1], rgb[2], w]);
+        }
+    }
+    out
+}
+
+/// One instance of the volume pass: `world = position * scale + offset`,
+/// lit by interpolation (`probe` = none) or by probe `probe` alone.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeInstance {
+    /// Offset (xyz) and uniform scale (w).
+    pub offset_scale: [f32; 4],
+    /// The probe a probe sphere shows, or `u32::MAX` (interpolated).
+    pub probe: u32,
+    pad: [u32; 3],
+}
+
+impl VolumeInstance {
+    /// A mesh placed by `offset` and `scale`, lit by interpolation.
+    #[must_use]
+    pub fn interpolated(offset: Vec3, scale: f32) -> Self {
+        Self {
+            offset_scale: offset.extend(scale).to_array(),
+            probe: NO_PROBE,
+            pad: [0; 3],
+        }
+    }
+
+    /// Whether the instance shows one probe (a probe sphere).
+    #[must_use]
+    pub fn probe(&self) -> Option<u32> {
+        (self.probe != NO_PROBE).then_some(self.probe)
+    }
+}
+
+/// The probe spheres: per probe, in probe order, a unit sphere scaled to
+/// [`PROBE_SPHERE_RADIUS`] times the grid's smallest cell extent and moved
+/// to the probe's centre, shaded by that probe's own SH (black when it is
+/// invalid).
+#[must_use]
+pub fn probe_sphere_instances(probes: &VolumeProbes<'_>) -> Vec<VolumeInstance> {
+    let cell = (probes.max - probes.min) / Vec3::from_array(probes.resolution.map(|n| n as f32));
+    let radius = PROBE_SPHERE_RADIUS * cell.min_element();
+    (0..probes.probe_count())
+        .map(|k| VolumeInstance {
+            offset_scale: probes.centre(k).extend(radius).to_array(),
+            probe: k as u32,
+            pad: [0; 3],
+        })
+        .collect()
+}
+
+/// Radius of a probe sphere as a fraction of the smallest cell extent.
+pub const PROBE_SPHERE_RADIUS: f32 = 0.15;
+
+/// The offset and scale that put a mesh of `bounds` with its bounding-box
+/// centre at `at` and its bounding-box diagonal `size` long.
+#[must_use]
+pub fn place(bounds: (Vec3, Vec3), at: Vec3, size: f32) -> VolumeInstance {
+    let diagonal = (bounds.1 - bounds.0).length().max(f32::MIN_POSITIVE);
+    let scale = size / diagonal;
+    let centre = (bounds.0 + bounds.1) * 0.5;
+    VolumeInstance::interpolated(at - centre * scale, scale)
+}
+
+/// `Volume` of `shaders/volume.wgsl`, byte for byte.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct VolumeUniform {
+    min: [f32; 4],
+    inv_cell: [f32; 4],
+    resolution: [u32; 4],
+}
+
+/// A mesh of the volume pass: position, normal, albedo, emission per vertex.
+struct VolumeMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    instances: wgpu::Buffer,
+    instance_count: u32,
+}
+
+impl VolumeMesh {
+    fn new(ctx: &GpuContext, mesh: &Mesh, albedo: [f32; 3], instances: &[VolumeInstance]) -> Self {
+        let albedo = Vec3::from_array(albedo);
+        let vertices: Vec<[f32; 12]> = (0..mesh.vertex_count())
+            .map(|v| {
+                let (p, n) = (mesh.positions[v], mesh.normals[v]);
+                let a = mesh.colors.as_ref().map_or(albedo, |c| c[v]);
+                let e = mesh.emission.as_ref().map_or(Vec3::ZERO, |e| e[v]);
+                [p.x, p.y, p.z, n.x, n.y, n.z, a.x, a.y, a.z, e.x, e.y, e.z]
+            })
+            .collect();
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let init = |label, contents: &[u8], usage| {
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage,
+                })
+        };
+        Self {
+            vertices: init(
+                "volume vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: init(
+                "volume indices",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            index_count: indices.len() as u32,
+            instances: init(
+                "volume instances",
+                bytemuck::cast_slice(instances),
+                wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            ),
+            instance_count: instances.len() as u32,
+        }
+    }
+}
+
+/// Draws meshes lit by an irradiance volume into targets of one colour
+/// format, after a [`Renderer`](crate::Renderer) has begun the frame.
+pub struct VolumeRenderer {
+    color_format: wgpu::TextureFormat,
+    /// Per shading lmax, built on first use.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
+    computes: [OnceLock<wgpu::ComputePipeline>; VOLUME_MAX_LMAX + 1],
+    pipeline_layout: wgpu::PipelineLayout,
+    compute_layout: wgpu::BindGroupLayout,
+    compute_pipeline_layout: wgpu::PipelineLayout,
+    frame: wgpu::Buffer,
+    volume: wgpu::Buffer,
+    probes: wgpu::Buffer,
+    bind: wgpu::BindGroup,
+    resolution: [usize; 3],
+    lmax: usize,
+    probe_count: usize,
+    valid: Vec<bool>,
+    scene: Option<VolumeMesh>,
+    object: Option<VolumeMesh>,
+    spheres: VolumeMesh,
+}
+
+impl std::fmt::Debug for VolumeRenderer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VolumeRenderer")
+            .field("color_format", &self.color_format)
+            .field("resolution", &self.resolution)
+            .field("lmax", &self.lmax)
+            .finish_non_exhaustive()
+    }
+}
+
+fn entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
+const READ: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: true };
+const WRITE: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: false };
+
+impl VolumeRenderer {
+    /// A volume pass for colour targets of `color_format` over `probes`
+    /// (clipped to lmax [`VOLUME_MAX_LMAX`]), with no scene and no object
+    /// yet.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] for an empty grid, bad bounds or arrays of the
+    /// wrong length.
+    pub fn new(
+        ctx: &GpuContext,
+        color_format: wgpu::TextureFormat,
+        probes: &VolumeProbes<'_>,
+    ) -> Result<Self, GpuError> {
+        probes.check()?;
+        let device = &ctx.device;
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("volume"),
+            entries: &[
+                entry(0, vf, UNIFORM),
+                entry(2, fragment, READ),
+                entry(3, fragment, UNIFORM),
+            ],
+        });
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("volume compute"),
+            entries: &[
+                entry(0, compute, UNIFORM),
+                entry(2, compute, READ),
+                entry(3, compute, UNIFORM),
+                entry(4, compute, READ),
+                entry(5, compute, WRITE),
+            ],
+        });
+        let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: None,
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            })
+        };
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("volume frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let lmax = probes.lmax.min(VOLUME_MAX_LMAX);
+        let slots = (lmax + 1) * (lmax + 1);
+        let inv_cell =
+            Vec3::from_array(probes.resolution.map(|n| n as f32)) / (probes.max - probes.min);
+        let [nx, ny, nz] = probes.resolution.map(|n| n as u32);
+        let uniform = VolumeUniform {
+            min: probes.min.extend(0.0).to_array(),
+            inv_cell: inv_cell.extend(0.0).to_array(),
+            resolution: [nx, ny, nz, slots as u32],
+        };
+        let volume = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("volume grid"),
+            contents: bytemuck::bytes_of(&uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let probe_data = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("volume probes"),
+            contents: bytemuck::cast_slice(&pack_probes(probes)),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        });
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("volume"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: probe_data.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: volume.as_entire_binding(),
+                },
+            ],
+        });
+        let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
+        let spheres = VolumeMesh::new(ctx, &sphere, [1.0; 3], &probe_sphere_instances(probes));
+        Ok(Self {
+            color_format,
+            pipelines: Default::default(),
+            computes: Default::default(),
+            pipeline_layout: pipeline_layout(&layout),
+            compute_pipeline_layout: pipeline_layout(&compute_layout),
+            compute_layout,
+            frame,
+            volume,
+            probes: probe_data,
+            bind,
+            resolution: probes.resolution,
+            lmax,
+            probe_count: probes.probe_count(),
+            valid: probes.valid.to_vec(),
+            scene: None,
+            object: None,
+            spheres,
+        })
+    }
+
+    /// The lmax the probes are shaded at (the volume's, at most
+    /// [`VOLUME_MAX_LMAX`]).
+    #[must_use]
+    pub fn lmax(&self) -> usize {
+        self.lmax
+    }
+
+    /// Uploads new radiance for the same probes (e.g. relit after the
+    /// environment turned): per probe `(lmax+1)^2` rows of `[r, g, b]` at
+    /// the volume's own lmax `lmax` (clipped here as in [`VolumeRenderer::new`]).
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] when `radiance` has another length.
+    pub fn set_radiance(
+        &mut self,
+        ctx: &GpuContext,
+        lmax: usize,
+        radiance: &[f32],
+    ) -> Result<(), GpuError> {
+        let (min, max) = (Vec3::ZERO, Vec3::ONE);
+        let probes = VolumeProbes {
+            resolution: self.resolution,
+            min,
+            max,
+            lmax,
+            valid: &self.valid,
+            radiance,
+        };
+        probes.check()?;
+        if lmax.min(VOLUME_MAX_LMAX) != self.lmax {
+            return Err(GpuError::Invalid(format!(
+                "radiance of lmax {lmax} for a volume shaded at lmax {}",
+                self.lmax
+            )));
+        }
+        ctx.queue
+            .write_buffer(&self.probes, 0, bytemuck::cast_slice(&pack_probes(&probes)));
+        Ok(())
+    }
+
+    /// The scene the volume was baked in: its vertex colours as albedo
+    /// (else `albedo`), its emission added, in place.
+    pub fn set_scene(&mut self, ctx: &GpuContext, mesh: &Mesh, albedo: [f32; 3]) {
+        let instance = VolumeInstance::interpolated(Vec3::ZERO, 1.0);
+        self.scene = Some(VolumeMesh::new(ctx, mesh, albedo, &[instance]));
+    }
+
+    /// The dynamic object (its vertex colours as albedo, else `albedo`),
+    /// placed by `placement` ([`place`]).
+    pub fn set_object(
+        &mut self,
+        ctx: &GpuContext,
+        mesh: &Mesh,
+        albedo: [f32; 3],
+        placement: VolumeInstance,
+    ) {
+        self.object = Some(VolumeMesh::new(ctx, mesh, albedo, &[placement]));
+    }
+
+    /// Moves the object ([`place`]); nothing without one.
+    pub fn set_object_placement(&mut self, ctx: &GpuContext, placement: VolumeInstance) {
+        if let Some(object) = &self.object {
+            ctx.queue
+                .write_buffer(&object.instances, 0, bytemuck::bytes_of(&placement));
+        }
+    }
+
+    /// The frame uniform of `shading` (SH at the clipped lmax).
+    fn write_frame(
+        &self,
+        ctx: &GpuContext,
+        camera: &Camera,
+        aspect: f32,
+        shading: &Shading,
+    ) -> usize {
+        let lmax = shading.lmax.min(self.lmax);
+        let encode_srgb = matches!(
+            self.color_format,
+            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+        );
+        let uniform = FrameUniform::new(&FrameInputs {
+            shading,
+            view_proj: camera.view_proj(aspect),
+            env_from_world: DMat3::IDENTITY,
+            lmax,
+            prt: None,
+            encode_srgb,
+        });
+        ctx.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&uniform));
+        lmax
+    }
+
+    /// Records the volume pass into `encoder`, loading `color` and `depth`
+    /// as a [`Renderer::draw`](crate::Renderer::draw) before it left them:
+    /// the scene and the object lit by interpolation, and with
+    /// `show_probes` every probe as a sphere lit by its own SH. Shades to
+    /// `shading.lmax` (at most [`VolumeRenderer::lmax`]) with its window,
+    /// exposure and tone map.
+    pub fn draw(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        camera: &Camera,
+        aspect: f32,
+        shading: &Shading,
+        show_probes: bool,
+    ) {
+        let lmax = self.write_frame(ctx, camera, aspect, shading);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("volume"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(self.pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax)));
+        pass.set_bind_group(0, &self.bind, &[]);
+        let meshes = [self.scene.as_ref(), self.object.as_ref()]
+            .into_iter()
+            .flatten()
+            .chain(show_probes.then_some(&self.spheres));
+        for mesh in meshes {
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_vertex_buffer(1, mesh.instances.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..mesh.instance_count);
+        }
+    }
+
+    fn pipeline(&self, ctx: &GpuContext, lmax: usize) -> wgpu::RenderPipeline {
+        let module = shaders::create(&ctx.device, VOLUME_MODULE, lmax);
+        let targets = [Some(wgpu::ColorTargetState {
+            format: self.color_format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let buffers = [
+            Some(wgpu::VertexBufferLayout {
+                array_stride: 48,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![
+                    0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Float32x3
+                ],
+            }),
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<VolumeInstance>() as u64,
+                step_mode: wgpu::VertexStepMode::Instance,
+                attributes: &wgpu::vertex_attr_array![4 => Float32x4, 5 => Uint32],
+            }),
+        ];
+        ctx.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("volume"),
+                layout: Some(&self.pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_volume"),
+                    compilation_options: Default::default(),
+                    buffers: &buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_volume"),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+
+    /// The interpolated irradiance the fragments see, evaluated by the same
+    /// WGSL function in a compute pass: for each `(point, unit normal)`,
+    /// `[E_r, E_g, E_b, W]` with `E` the renormalised interpolation of the
+    /// valid probes' irradiance (windowed by `shading.window`, to
+    /// `shading.lmax` at most [`VolumeRenderer::lmax`]) and `W` the summed
+    /// trilinear weight of the valid probes (`E = 0` where `W = 0`).
+    ///
+    /// # Errors
+    /// GPU errors while running or reading back.
+    pub fn irradiance_at(
+        &self,
+        ctx: &GpuContext,
+        shading: &Shading,
+        queries: &[(Vec3, Vec3)],
+    ) -> Result<Vec<[f32; 4]>, GpuError> {
+        if queries.is_empty() {
+            return Ok(Vec::new());
+        }
+        let camera = Camera::looking_at(Vec3::Z, Vec3::ZERO, 1.0, 1.0);
+        let lmax = self.write_frame(ctx, &camera, 1.0, shading);
+        let device = &ctx.device;
+        let pipeline = self.computes[lmax].get_or_init(|| {
+            let module = shaders::create(device, VOLUME_MODULE, lmax);
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("volume compute"),
+                layout: Some(&self.compute_pipeline_layout),
+                module: &module,
+                entry_point: Some("cs_volume"),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        });
+        let input: Vec<[f32; 4]> = queries
+            .iter()
+            .flat_map(|(p, n)| [p.extend(1.0).to_array(), n.extend(0.0).to_array()])
+            .collect();
+        let size = (queries.len() * 16) as u64;
+        let query_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("volume queries"),
+            contents: bytemuck::cast_slice(&input),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let answers = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("volume answers"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("volume answers readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        fn binding(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            }
+        }
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("volume compute"),
+            layout: &self.compute_layout,
+            entries: &[
+                binding(0, &self.frame),
+                binding(2, &self.probes),
+                binding(3, &self.volume),
+                binding(4, &query_buffer),
+                binding(5, &answers),
+            ],
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.dispatch_workgroups(queries.len().div_ceil(64) as u32, 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, None);
+        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
+        let bytes = crate::readback::read_buffer(ctx, &readback)?;
+        Ok(bytemuck::cast_slice::<u8, [f32; 4]>(&bytes).to_vec())
+    }
+
+    /// Number of probes and of valid ones.
+    #[must_use]
+    pub fn probe_counts(&self) -> (usize, usize) {
+        (self.probe_count, self.valid.iter().filter(|v| **v).count())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniform_block_has_the_wgsl_size() {
+        // Volume in volume.wgsl: two vec4<f32> and one vec4<u32>.
+        assert_eq!(std::mem::size_of::<VolumeUniform>(), 48);
+        // Instances: vec4 then u32, padded to 32 bytes.
+        assert_eq!(std::mem::size_of::<VolumeInstance>(), 32);
+    }
+
+    #[test]
+    fn probes_pack_clipped_with_validity_in_slot_0() {
+        // lmax 5 volume of 2 probes: 36 rows each, packed to 25 slots.
+        let nc = 36;
+        let radiance: Vec<f32> = (0..2 * nc * 3).map(|x| x as f32).collect();
+        let valid = [true, false];
+        let probes = VolumeProbes {
+            resolution: [2, 1, 1],
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+            lmax: 5,
+            valid: &valid,
+            radiance: &radiance,
+        };
+        let packed = pack_probes(&probes);
+        assert_eq!(packed.len(), 2 * 25);
+        assert_eq!(packed[0], [0.0, 1.0, 2.0, 1.0]);
+        assert_eq!(packed[24], [72.0, 73.0, 74.0, 0.0]);
+        // Probe 1 starts at its own row 0 (value 108), invalid.
+        assert_eq!(packed[25], [108.0, 109.0, 110.0, 0.0]);
+    }
+
+    #[test]
+    fn probe_spheres_sit_at_cell_centres_and_placement_centres_the_object() {
+        let valid = [true; 12];
+        let radiance = [0.0; 12 * 3];
+        let probes = VolumeProbes {
+            resolution: [2, 3, 2],
+            min: Vec3::new(-1.0, 0.0, 0.0),
+            max: Vec3::new(1.0, 3.0, 4.0),
+            lmax: 0,
+            valid: &valid,
+            radiance: &radiance,
+        };
+        let spheres = probe_sphere_instances(&probes);
+        assert_eq!(spheres.len(), 12);
+        // Cells 1 x 1 x 2: probe (1, 2, 1) = 1 + 2 (2 + 3 * 1) = 11.
+        assert_eq!(spheres[11].offset_scale, [0.5, 2.5, 3.0, 0.15]);
+        assert_eq!(spheres[0].offset_scale, [-0.5, 0.5, 1.0, 0.15]);
+        assert_eq!(spheres[1].offset_scale[0], 0.5);
+        assert_eq!(spheres[2].offset_scale[1], 1.5);
+        assert_eq!(spheres[6].offset_scale[2], 3.0);
+        assert_eq!(spheres[11].probe(), Some(11));
+        // A box of diagonal 2 centred at (1, 1, 1), put at (5, 0, 0) 4 long.
+        let p = place(
+            (Vec3::ZERO, Vec3::splat(2.0)),
+            Vec3::new(5.0, 0.0, 0.0),
+            4.0,
+        );
+        let s = p.offset_scale[3];
+        assert!((s - 4.0 / 12f32.sqrt()).abs() < 1e-6);
+        let moved = Vec3::ONE * s + Vec3::from_slice(&p.offset_scale[..3]);
+        assert!(moved.distance(Vec3::new(5.0, 0.0, 0.0)) < 1e-6);
+        assert_eq!(p.probe(), None);
+    }
+}
