@@ -35,6 +35,7 @@ mod texels;
 mod values;
 mod view;
 mod volume;
+mod volume_shading;
 
 use std::process::ExitCode;
 

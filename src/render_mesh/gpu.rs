@@ -2,7 +2,8 @@
 //! the headless context, the frame and its file.
 
 use anyhow::{Context, Result, anyhow, bail};
-use glam::Vec3;
+use glam::{DMat3, Vec3};
+use shlight_core::ShRotation;
 use shlight_gpu::{
     Background, Camera, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame,
 };
@@ -51,6 +52,9 @@ pub fn camera_for(
 
 /// Renders the checked `args` to `format` on the GPU.
 pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<()> {
+    if args.volume.volume.is_some() {
+        return super::volume::render(args, format, ui);
+    }
     let out = args.output.display().to_string();
     crate::gpu_scene::check_lmax(args.lmax)?;
     let mode = match (args.mode, &args.prt) {
@@ -69,7 +73,9 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         None => None,
     };
     bar.set_message("reading the environment");
-    let env = Environment::load(&args.env, frame_of(&args.up))?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up))?;
+    let rotation = rotation(args)?;
+    env.radiance = ShRotation::from_mat3(env.radiance.lmax(), rotation).apply(&env.radiance);
     if args.background == BackgroundArg::Map && env.map.is_none() {
         bail!(
             "--background map needs an environment map; {} holds coefficients (use --background sh)",
@@ -78,8 +84,9 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     }
     bar.set_message("opening the GPU");
     let ctx = GpuContext::headless()?;
-    let renderer =
+    let mut renderer =
         crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
+    renderer.set_environment_rotation(rotation);
     let lmax = crate::gpu_scene::shading_lmax(
         args.lmax,
         transfer.as_ref().filter(|_| mode == RenderMode::Prt),
@@ -131,4 +138,13 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     };
     write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))?;
     Ok(())
+}
+
+/// `--rotate` as a matrix (identity without it): a light from `a` then
+/// comes from `R a`.
+pub fn rotation(args: &RenderMeshArgs) -> Result<DMat3> {
+    Ok(match &args.rotate {
+        Some(spec) => shlight_pipeline::parse_rotation(spec, frame_of(&args.up))?,
+        None => DMat3::IDENTITY,
+    })
 }

@@ -13,6 +13,8 @@ use std::path::PathBuf;
 
 #[cfg(feature = "gpu")]
 mod gpu;
+#[cfg(feature = "gpu")]
+mod volume;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
@@ -79,6 +81,13 @@ pub struct RenderMeshArgs {
     /// PNG only: tone map (clamp, reinhard, aces).
     #[arg(long, default_value = "aces")]
     pub tone_map: ToneMap,
+    /// Turn the environment: yaw:DEG (about the --up axis), quat:X,Y,Z,W or
+    /// euler:X,Y,Z (degrees); with --volume, a relightable volume is relit
+    /// under the turned light (a --static one refuses).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rotate: Option<String>,
+    #[command(flatten)]
+    pub volume: crate::volume_shading::VolumeShadingArgs,
     /// The image to write: .exr (linear) or .png.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -118,6 +127,7 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     if !matches!(format, Some(Format::Exr | Format::Png)) {
         bail!("{out}: render-mesh writes .exr (linear) or .png");
     }
+    args.volume.check(args.lmax)?;
     #[cfg(feature = "gpu")]
     return gpu::render(args, format, ui);
     #[cfg(not(feature = "gpu"))]
