@@ -23,6 +23,27 @@ pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize 
     requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
 }
 
+/// A renderer for colour targets of `format` with no mesh: the light of
+/// `env` and its map, for the background behind a volume pass.
+pub fn background_renderer(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    env: &Environment,
+) -> Renderer {
+    let mut renderer = Renderer::new(ctx, format);
+    renderer.set_light(ctx, &env.radiance);
+    if let Some(map) = &env.map {
+        renderer.set_environment(
+            ctx,
+            map.width(),
+            map.height(),
+            map.pixels(),
+            env.orientation,
+        );
+    }
+    renderer
+}
+
 /// A renderer for colour targets of `format` holding `mesh`, its
 /// `transfer` (if any), the light of `env` and its map (if any).
 ///

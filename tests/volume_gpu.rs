@@ -232,3 +232,283 @@ fn a_volume_above_lmax_4_is_shaded_to_lmax_4() {
         assert!(err < 1e-3, "at {p}: GPU {g:?}, CPU to lmax 4 {want}");
     }
 }
+
+/// `render-mesh --volume` pixels against CPU shading: each pixel within
+/// this fraction of its own value (plus [`PIXEL_FLOOR`]). The GPU
+/// interpolates the world position and normal per fragment in f32 and
+/// evaluates the basis in f32; the CPU casts the pixel's ray in f32
+/// through the same triangles. A wrong lookup point
+/// (a tenth of a cell) or a missing relight is off by percents. Measured:
+/// at most 1e-3 (scene pixels at steep angles).
+const PIXEL_TOL: f64 = 2e-3;
+/// Smallest `|n . view|` of the pixels compared (see the test).
+const GRAZING: f32 = 0.35;
+/// Absolute allowance for pixels near black.
+const PIXEL_FLOOR: f64 = 1e-4;
+
+/// The mesh under `ray`: (which mesh, triangle, hit point, barycentrics).
+fn cast(
+    meshes: &[(&shlight_mesh::Mesh, &shlight_prt::bvh::Bvh)],
+    origin: Vec3,
+    dir: Vec3,
+) -> Option<(usize, u32, Vec3, [f32; 3])> {
+    let ray = shlight_prt::bvh::Ray::new(origin, dir, f32::INFINITY);
+    meshes
+        .iter()
+        .enumerate()
+        .filter_map(|(k, (_, bvh))| bvh.closest_hit(&ray).map(|h| (k, h)))
+        .min_by(|a, b| a.1.t.total_cmp(&b.1.t))
+        .map(|(k, h)| (k, h.triangle, origin + dir * h.t, h.barycentrics))
+}
+
+#[test]
+fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
+    use crate::util::{s, shlight_ok, temp_dir, write_obj, write_radiance_rows};
+    use shlight_core::ShRotation;
+    use shlight_format::ShvolFile;
+
+    if gpu_context("render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box").is_none() {
+        return;
+    }
+    let dir = temp_dir("volume-render");
+    let env = dir.join("sky.json");
+    let sky_rows = [
+        [2.0, 2.2, 2.6],
+        [0.0, 0.0, 0.0],
+        [0.8, 0.9, 1.1],
+        [0.3, 0.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.1, 0.05, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 0.2, 0.0],
+    ];
+    write_radiance_rows(&env, &sky_rows);
+    let volume = dir.join("room.shvol");
+    shlight_ok(&[
+        "volume",
+        "meshes/cornell_box.obj",
+        "--env",
+        s(&env),
+        "--resolution",
+        "4x4x4",
+        "--samples",
+        "128",
+        "--surface-samples",
+        "32",
+        "-o",
+        s(&volume),
+    ]);
+    // The object: a box of flat faces, half extent 1, put at `at` with a
+    // diagonal of 0.15 (scale 0.15 / (2 sqrt 3), centre at `at`).
+    let object = dir.join("box.obj");
+    write_obj(&object, &shlight_mesh::generate::cuboid(Vec3::ONE));
+    let at = Vec3::new(0.3, 0.3, 0.25);
+    let size = 0.15f32;
+    let image = dir.join("frame.exr");
+    let (w, h) = (96usize, 72usize);
+    let (eye, target) = (Vec3::new(0.278, 0.273, -0.8), Vec3::new(0.278, 0.273, 0.28));
+    shlight_ok(&[
+        "render-mesh",
+        "meshes/cornell_box.obj",
+        "--volume",
+        s(&volume),
+        "--object",
+        s(&object),
+        "--at",
+        "0.3,0.3,0.25",
+        "--object-size",
+        "0.15",
+        "--env",
+        s(&env),
+        "--rotate",
+        "yaw:60",
+        "--albedo",
+        "0.6,0.5,0.4",
+        "--camera",
+        "0.278,0.273,-0.8",
+        "--target",
+        "0.278,0.273,0.28",
+        "--size",
+        "96x72",
+        "-o",
+        s(&image),
+    ]);
+    let frame = shlight_io::read_image(&image, &Default::default()).unwrap();
+
+    // The CPU side: the volume relit under the sky turned 60 degrees about +Y.
+    let mut file = ShvolFile::read(&volume).unwrap();
+    let sky =
+        shlight_core::ShCoeffs::from_vec(sky_rows.iter().map(|r| DVec3::from_array(*r)).collect())
+            .unwrap();
+    let turned =
+        ShRotation::from_mat3(2, glam::DMat3::from_rotation_y(60f64.to_radians())).apply(&sky);
+    shlight_volume::relight_file(&mut file, &turned).unwrap();
+    let grid = Grid::new(
+        file.resolution,
+        Vec3::from_array(file.bounds.0),
+        Vec3::from_array(file.bounds.1),
+    )
+    .unwrap();
+    let scene = shlight_mesh::load(std::path::Path::new("meshes/cornell_box.obj")).unwrap();
+    let mut boxed = shlight_mesh::generate::cuboid(Vec3::ONE);
+    let scale = size / (2.0 * 3f32.sqrt());
+    for p in &mut boxed.positions {
+        *p = *p * scale + at;
+    }
+    let bvhs = [
+        shlight_prt::bvh::Bvh::new(&scene.positions, &scene.triangles),
+        shlight_prt::bvh::Bvh::new(&boxed.positions, &boxed.triangles),
+    ];
+    let meshes = [(&scene, &bvhs[0]), (&boxed, &bvhs[1])];
+    let camera = shlight_gpu::Camera::looking_at(eye, target, 1.0, 35f32.to_radians());
+    let inverse = camera.view_proj(w as f32 / h as f32).inverse();
+    let ray = |x: f32, y: f32| {
+        let ndc = glam::Vec2::new(x / w as f32 * 2.0 - 1.0, 1.0 - y / h as f32 * 2.0);
+        let far = inverse.project_point3(ndc.extend(1.0));
+        (eye, (far - eye).normalize())
+    };
+    let (mut object_pixels, mut scene_pixels, mut worst) = (0, 0, 0.0f64);
+    for j in 1..h - 1 {
+        for i in 1..w - 1 {
+            let (o, d) = ray(i as f32 + 0.5, j as f32 + 0.5);
+            let Some((k, tri, p, bary)) = cast(&meshes, o, d) else {
+                continue;
+            };
+            let mesh = meshes[k].0;
+            let corners = mesh.triangles[tri as usize].map(|v| v as usize);
+            // The interpolated unit normal, as the fragments have it.
+            let normal: Vec3 = (0..3).map(|t| mesh.normals[corners[t]] * bary[t]).sum();
+            let normal = normal.normalize();
+            // Only pixels well inside one triangle: the rays a third of a
+            // pixel away hit the same one.
+            let inside = [(-0.34, 0.0), (0.34, 0.0), (0.0, -0.34), (0.0, 0.34)]
+                .iter()
+                .all(|(dx, dy)| {
+                    let (o, d) = ray(i as f32 + 0.5 + dx, j as f32 + 0.5 + dy);
+                    cast(&meshes, o, d).is_some_and(|(k2, t2, _, _)| k2 == k && t2 == tri)
+                });
+            let emission = mesh.emission.as_ref().map_or(Vec3::ZERO, |e| e[corners[0]]);
+            // Surfaces seen at a grazing angle are skipped: there a pixel
+            // spans a long stretch of the surface, and the f32 rounding of
+            // the rasteriser's interpolation moves the point along it.
+            if !inside || emission != Vec3::ZERO || normal.dot(d).abs() < GRAZING {
+                continue;
+            }
+            let albedo: Vec3 = match &mesh.colors {
+                Some(c) => (0..3).map(|t| c[corners[t]] * bary[t]).sum(),
+                None => Vec3::new(0.6, 0.5, 0.4),
+            };
+            let l = sample(&grid, &file.valid, &file.radiance, 2, p).expect("a lit point");
+            let e = shlight_core::irradiance(&l).eval(normal.as_dvec3());
+            let want = albedo.as_dvec3() * e / std::f64::consts::PI;
+            let got = Vec3::from_array(frame.pixels()[j * w + i]).as_dvec3();
+            let err = ((got - want).abs() / (want.abs() + PIXEL_FLOOR)).max_element();
+            worst = worst.max(err);
+            assert!(
+                err < PIXEL_TOL,
+                "pixel ({i}, {j}) on {} at {p}: GPU {got}, CPU {want}",
+                if k == 1 { "the object" } else { "the scene" }
+            );
+            if k == 1 {
+                object_pixels += 1;
+            } else {
+                scene_pixels += 1;
+            }
+        }
+    }
+    eprintln!("{object_pixels} object and {scene_pixels} scene pixels, worst {worst:.2e}");
+    assert!(
+        object_pixels >= 20,
+        "only {object_pixels} object pixels checked"
+    );
+    assert!(
+        scene_pixels >= 500,
+        "only {scene_pixels} scene pixels checked"
+    );
+}
+
+#[test]
+fn bad_volume_options_are_clear_errors() {
+    use crate::util::{s, shlight_err, shlight_ok, temp_dir, write_radiance_rows};
+
+    let dir = temp_dir("volume-render-errors");
+    let env = dir.join("sky.json");
+    let mut rows = vec![[0.0; 3]; 36];
+    rows[0] = [1.0, 1.0, 1.0];
+    rows[2] = [0.5, 0.4, 0.3];
+    write_radiance_rows(&env, &rows);
+    let out = dir.join("out.exr");
+    let base = [
+        "render-mesh",
+        "meshes/cornell_box.obj",
+        "--env",
+        s(&env),
+        "--size",
+        "32x24",
+        "-o",
+        s(&out),
+    ];
+    macro_rules! render {
+        ($extra:expr) => {
+            [&base[..], &$extra[..]].concat()
+        };
+    }
+    let e = shlight_err(&render!(["--volume", s(&dir.join("none.shvol"))]));
+    assert!(
+        e.contains("none.shvol") && e.contains("no such volume file"),
+        "{e}"
+    );
+    let e = shlight_err(&render!(["--volume", s(&env)]));
+    assert!(e.contains("sky.json") && e.contains(".shvol"), "{e}");
+    let e = shlight_err(&render!(["--object", "meshes/bunny.obj"]));
+    assert!(e.contains("--object") && e.contains("--volume"), "{e}");
+    let e = shlight_err(&render!(["--at", "0,0,0"]));
+    assert!(e.contains("--at") && e.contains("--volume"), "{e}");
+    // Not a volume inside: the reader names the file.
+    let fake = dir.join("fake.shvol");
+    std::fs::write(&fake, "not a volume\n").unwrap();
+    let e = shlight_err(&render!(["--volume", s(&fake)]));
+    assert!(e.contains("fake.shvol"), "{e}");
+    // A static volume refuses --rotate; a volume of lmax 5 is shaded to 4
+    // and --lmax 5 with it is refused.
+    let bake = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        let mut args = vec![
+            "volume",
+            "meshes/cornell_box.obj",
+            "--env",
+            s(&env),
+            "--resolution",
+            "2x2x2",
+            "--samples",
+            "64",
+            "--surface-samples",
+            "16",
+            "-o",
+            s(&path),
+        ];
+        args.extend_from_slice(extra);
+        shlight_ok(&args);
+        path
+    };
+    let fixed = bake("static.shvol", &["--static"]);
+    let e = shlight_err(&render!(["--volume", s(&fixed), "--rotate", "yaw:30"]));
+    assert!(
+        e.contains("static.shvol") && e.contains("--static") && e.contains("--rotate"),
+        "{e}"
+    );
+    let high = bake("high.shvol", &["--lmax", "5"]);
+    let e = shlight_err(&render!(["--volume", s(&high), "--lmax", "5"]));
+    assert!(e.contains("--lmax 5") && e.contains("lmax 4"), "{e}");
+    if gpu_context("bad_volume_options_are_clear_errors").is_none() {
+        return;
+    }
+    let done = shlight_ok(&render!(["--volume", s(&high)]));
+    let note = String::from_utf8_lossy(&done.stderr);
+    assert!(
+        note.contains("lmax 5") && note.contains("to lmax 4"),
+        "{note}"
+    );
+    assert!(out.exists());
+}

@@ -25,6 +25,8 @@ use super::controls::{Controls, WINDOWS};
 use super::orbit_camera::Orbit;
 use super::panel::{PanelInfo, draw_panel};
 use super::screenshot::save_screenshot;
+use super::volume::ViewVolume;
+use crate::volume_shading::VolumeInput;
 
 /// Everything that exists once the window does.
 struct Running {
@@ -45,6 +47,8 @@ pub struct App<'a> {
     /// `--prt`'s transfer, checked against the mesh.
     transfer: Option<ShprtFile>,
     env: Environment,
+    /// `--volume`: the scene lit by it, the object moving through it.
+    volume: Option<ViewVolume>,
     running: Option<Running>,
     controls: Controls,
     orbit: Option<Orbit>,
@@ -66,6 +70,7 @@ impl<'a> App<'a> {
         mesh: Mesh,
         transfer: Option<ShprtFile>,
         env: Environment,
+        volume: Option<VolumeInput>,
     ) -> Self {
         let background = if env.map.is_some() {
             Background::Map
@@ -77,12 +82,18 @@ impl<'a> App<'a> {
         } else {
             Mode::Sh
         };
-        let lmax = crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref());
+        let lmax = match &volume {
+            Some(v) => args
+                .lmax
+                .unwrap_or(v.file.lmax.min(shlight_gpu::VOLUME_MAX_LMAX)),
+            None => crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref()),
+        };
         Self {
             args,
             mesh,
             transfer,
             env,
+            volume: volume.map(ViewVolume::new),
             running: None,
             controls: Controls {
                 shading: Shading {
@@ -150,13 +161,20 @@ impl<'a> App<'a> {
         config.present_mode = wgpu::PresentMode::AutoNoVsync;
         config.view_formats = vec![];
         surface.configure(&ctx.device, &config);
-        let renderer = crate::gpu_scene::renderer(
-            &ctx,
-            format,
-            &self.mesh,
-            self.transfer.as_ref(),
-            &self.env,
-        )?;
+        let renderer = match &mut self.volume {
+            // The scene is drawn by the volume pass, lit by its probes.
+            Some(v) => {
+                v.start(&ctx, format, &self.mesh, [0.8; 3])?;
+                crate::gpu_scene::background_renderer(&ctx, format, &self.env)
+            }
+            None => crate::gpu_scene::renderer(
+                &ctx,
+                format,
+                &self.mesh,
+                self.transfer.as_ref(),
+                &self.env,
+            )?,
+        };
         let depth = shlight_gpu::depth_view(&ctx, config.width, config.height);
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
@@ -220,6 +238,13 @@ impl<'a> App<'a> {
         };
         r.renderer.set_light(&r.ctx, &rotated);
         r.renderer.set_environment_rotation(rotation);
+        if let Some(v) = &mut self.volume {
+            v.relight(&r.ctx, &rotated)?;
+        }
+        let volume_lines = self
+            .volume
+            .as_ref()
+            .map_or_else(Vec::new, ViewVolume::panel_lines);
 
         let raw_input = r.egui_state.take_egui_input(&r.window);
         let egui_ctx = r.egui_state.egui_ctx().clone();
@@ -234,6 +259,7 @@ impl<'a> App<'a> {
             coefficients: &rotated,
             has_map: self.env.map.is_some(),
             prt: self.transfer.as_ref().map(|t| t.mode.as_str()),
+            volume: &volume_lines,
         };
         let controls = &mut self.controls;
         let mut screenshot = false;
@@ -311,6 +337,17 @@ impl<'a> App<'a> {
                 aspect,
                 &self.controls.shading,
             )?;
+            if let Some(v) = &self.volume {
+                v.draw(
+                    &r.ctx,
+                    &mut encoder,
+                    view,
+                    &r.depth,
+                    &camera,
+                    aspect,
+                    &self.controls.shading,
+                );
+            }
             let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("overlay"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -361,6 +398,12 @@ impl<'a> App<'a> {
 
     fn key(&mut self, event: &KeyEvent, event_loop: &ActiveEventLoop) {
         if event.state != ElementState::Pressed {
+            return;
+        }
+        if let Key::Character(s) = &event.logical_key
+            && let (Some(v), Some(r)) = (&mut self.volume, &self.running)
+            && v.key(&r.ctx, s.as_str())
+        {
             return;
         }
         let c = &mut self.controls;

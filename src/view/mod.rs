@@ -12,7 +12,9 @@
 //! Files: `app.rs` (the window, the GPU surface and the event loop),
 //! `orbit_camera.rs` (the camera orbiting the mesh), `controls.rs` (what the
 //! panel and keys change), `panel.rs` (the egui overlay), `screenshot.rs`
-//! (the swapchain image read back to PNG).
+//! (the swapchain image read back to PNG), `volume.rs` (`--volume`: the
+//! object moved by `j`/`l`, `u`/`o`, `i`/`k`, the probes shown by `g`, the
+//! volume relit every frame).
 
 #[cfg(feature = "gpu")]
 mod app;
@@ -24,6 +26,8 @@ mod orbit_camera;
 mod panel;
 #[cfg(feature = "gpu")]
 mod screenshot;
+#[cfg(feature = "gpu")]
+mod volume;
 
 use std::path::PathBuf;
 
@@ -73,6 +77,8 @@ pub struct ViewArgs {
     /// Start with the overlay panel hidden (`h` toggles it).
     #[arg(long)]
     pub hide_panel: bool,
+    #[command(flatten)]
+    pub volume: crate::volume_shading::VolumeShadingArgs,
 }
 
 /// Runs `shlight view`.
@@ -86,6 +92,13 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
             .is_some_and(|e| e.eq_ignore_ascii_case("png"))
     {
         bail!("{}: --screenshot writes PNG files", path.display());
+    }
+    args.volume.check(args.lmax)?;
+    if args.volume.volume.is_some() && args.mesh.is_none() {
+        bail!("--volume lights the scene it was baked in: give that scene as MESH");
+    }
+    if args.volume.volume.is_some() && args.prt.is_some() {
+        bail!("--volume shades by the volume's SH: it takes no --prt");
     }
     #[cfg(feature = "gpu")]
     return show(args, ui);
@@ -133,10 +146,19 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         Some(path) => Environment::load(path, up)?,
         None => Environment::bundled(up)?,
     };
+    let volume = match &args.volume.volume {
+        Some(_) => Some(crate::volume_shading::VolumeInput::load(
+            &args.volume,
+            &mesh,
+            &mesh_path,
+            ui,
+        )?),
+        None => None,
+    };
     let event_loop = EventLoop::new()
         .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
     event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = app::App::new(args, mesh, transfer, env);
+    let mut app = app::App::new(args, mesh, transfer, env, volume);
     event_loop
         .run_app(&mut app)
         .map_err(|e| anyhow!("window event loop: {e}"))?;

@@ -14,6 +14,8 @@ pub struct PanelInfo<'a> {
     pub has_map: bool,
     /// The `--prt` file's mode (`shadowed`, ...), when there is one.
     pub prt: Option<&'a str>,
+    /// Lines about `--volume` (probes, relight time, object, keys).
+    pub volume: &'a [String],
 }
 
 /// The overlay panel; returns whether its screenshot button was pressed.
@@ -57,6 +59,9 @@ pub fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -
             });
             ui.add(egui::Slider::new(&mut c.env_yaw, -3.2..=3.2).text("environment yaw"));
             ui.add(egui::Slider::new(&mut c.env_pitch, -1.6..=1.6).text("environment pitch"));
+            for line in info.volume {
+                ui.label(line);
+            }
             screenshot = ui.button("screenshot (p)").clicked();
             ui.collapsing("coefficients (rotated radiance, R G B)", |ui| {
                 egui::ScrollArea::vertical()
