@@ -101,6 +101,7 @@ impl ViewVolume {
     }
 
     /// Records the volume pass after the renderer's.
+    #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &self,
         ctx: &GpuContext,

@@ -12,6 +12,12 @@
 //! - `frame_bunny_prt`: PRT of the bunny, 3-channel transfer vectors of
 //!   lmax 2 and 8 (pseudo-random values: the frame time does not depend on
 //!   them), the light's lmax the same;
+//! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
+//!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
+//!   probes, pseudo-random radiance, every tenth probe invalid) over the
+//!   bunny's bounding box, eight probes interpolated per fragment; the same
+//!   mesh, camera and size as `frame_bunny_sh` at the same lmax, which is
+//!   its baseline (the target: within 1.5x);
 //! - `frame_sphere_normals`: the sphere in normals mode, the floor every
 //!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);
 //! - `frame_sphere_readback`: `frame_sphere_sh` at lmax 2 with the frame
@@ -32,7 +38,8 @@ use glam::Vec3;
 use shlight_core::analytic;
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_gpu::{
-    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading, Transfer,
+    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
+    Transfer, VolumeInstance, VolumeProbes, VolumeRenderer,
 };
 use shlight_mesh::Mesh;
 
@@ -126,7 +133,7 @@ fn frame_sphere_sh(bencher: divan::Bencher, lmax: usize) {
     bench_frame(bencher, &sphere(), sh(lmax), None, false);
 }
 
-#[divan::bench(args = [2, 8], sample_count = 10, sample_size = 1)]
+#[divan::bench(args = [2, 4, 8], sample_count = 10, sample_size = 1)]
 fn frame_bunny_sh(bencher: divan::Bencher, lmax: usize) {
     bench_frame(bencher, &bunny(), sh(lmax), None, false);
 }
@@ -138,6 +145,54 @@ fn frame_bunny_prt(bencher: divan::Bencher, lmax: usize) {
         ..sh(lmax)
     };
     bench_frame(bencher, &bunny(), shading, Some(lmax), false);
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_bunny_volume(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    let mesh = bunny();
+    let resolution = [16, 8, 16];
+    let count = 16 * 8 * 16;
+    let radiance: Vec<f32> = pseudo_random(count * (lmax + 1) * (lmax + 1) * 3)
+        .into_iter()
+        .map(|x| 1.0 + 0.5 * x)
+        .collect();
+    let valid: Vec<bool> = (0..count).map(|k| k % 10 != 0).collect();
+    let (min, max) = mesh.bounds();
+    let probes = VolumeProbes {
+        resolution,
+        min: min - 0.01,
+        max: max + 0.01,
+        lmax,
+        valid: &valid,
+        radiance: &radiance,
+    };
+    // The plain renderer only clears (no mesh, no background); the volume
+    // pass draws the bunny in place.
+    let background = Renderer::new(ctx, HEADLESS_FORMAT);
+    let mut volume = VolumeRenderer::new(ctx, HEADLESS_FORMAT, &probes).unwrap();
+    volume.set_object(
+        ctx,
+        &mesh,
+        [0.8; 3],
+        VolumeInstance::interpolated(Vec3::ZERO, 1.0),
+    );
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
+    let shading = sh(lmax);
+    let aspect = target.aspect();
+    let frame = || {
+        target
+            .render_with(ctx, false, |encoder, color, depth| {
+                background.draw(ctx, encoder, color, depth, &camera, aspect, &shading)?;
+                volume.draw(ctx, encoder, color, depth, &camera, aspect, &shading, false);
+                Ok(())
+            })
+            .unwrap()
+    };
+    // The first frame builds the pipelines (shader compilation).
+    frame();
+    bencher.bench_local(frame);
 }
 
 #[divan::bench(sample_count = 10, sample_size = 1)]
