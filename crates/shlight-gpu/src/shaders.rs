@@ -3,7 +3,8 @@
 //!
 //! WGSL has no `#include`, so a module is its prelude files followed by its
 //! own file: `sh.wgsl` (the SH basis) for all, `scene.wgsl` (frame uniform,
-//! light coefficients, tone maps) for the two render passes. The render
+//! light coefficients, tone maps) for the render passes (mesh, background,
+//! volume). The render
 //! passes' modules also get `sh_reconstruct`, written out for one lmax
 //! (`sh_expansion.rs`), and the projection's module its `ring_sums`
 //! (`ring_sums.rs`), so each is compiled once per lmax. [`MODULES`]
