@@ -90,6 +90,11 @@ fn show(path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Large buffers on huge pages (see heap.rs).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[global_allocator]
+static HEAP: heap::Heap = heap::Heap;
+
 fn main() -> ExitCode {
     heap::keep_freed_memory();
     let cli = Cli::parse();
