@@ -50,7 +50,8 @@ mod big_blocks {
 
     /// `size` rounded up to whole huge pages (what a big block maps).
     fn mapped_len(size: usize) -> Option<usize> {
-        size.checked_add(HUGE_PAGE - 1).map(|s| s & !(HUGE_PAGE - 1))
+        size.checked_add(HUGE_PAGE - 1)
+            .map(|s| s & !(HUGE_PAGE - 1))
     }
 
     /// Most freed big blocks kept for reuse.
