@@ -258,6 +258,14 @@ for lmax in (1, 2):
     sh("project", crop_exr, "--lmax", str(lmax), "-o", j)
     with open(j, "rb") as f:
         out("coefficients", f"shlight-l{lmax}.json", f.read())
+# The binary form of `coefficients` (written from lmax 129 on; read at any
+# lmax): the lmax 1 file with its rows as base64 of little-endian f64.
+with open(os.path.join(tmpdir, "l1.json")) as f:
+    doc = json.load(f)
+rows = doc["coefficients"]
+doc["coefficients"] = {"base64": base64.b64encode(struct.pack(f"<{3 * len(rows)}d", *[x for r in rows for x in r])).decode(),
+                       "dtype": "<f8", "shape": [len(rows), 3]}
+out("coefficients", "shlight-l1-binary.json", json.dumps(doc, separators=(",", ":")).encode())
 j = os.path.join(tmpdir, "l2.json")
 for fmt, ext in [("threejs", "json"), ("gltf", "gltf"), ("unity", "json"), ("filament", "txt")]:
     o = os.path.join(tmpdir, f"{fmt}.{ext}")

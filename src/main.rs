@@ -91,7 +91,26 @@ fn show(path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Large buffers on huge pages (see heap.rs).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[global_allocator]
+static HEAP: heap::Heap = heap::Heap;
+
+/// Output piped into a reader that stops early (`shlight show F | head`)
+/// ends the process quietly, as other command-line tools do, instead of a
+/// panic in `print!`: the default action of `SIGPIPE`, which Rust's runtime
+/// sets to ignored.
+fn default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: sets a signal's disposition to its default before any thread
+    // exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    default_sigpipe();
     heap::keep_freed_memory();
     let cli = Cli::parse();
     let ui = progress::Ui::new(cli.quiet);

@@ -683,3 +683,106 @@ fn formats_go_to_stdout_name_their_notes_and_batches_get_their_extension() {
         assert_eq!(names, [format!("a.{ext}"), format!("b.{ext}")], "{format}");
     }
 }
+
+/// From lmax 129 on, the file's `coefficients` are base64 of little-endian
+/// f64 (docs/coefficient-file.md): decoded here by hand, their first rows
+/// equal the decimal rows of the same map projected to lmax 3, and the
+/// whole file reads back through `shlight show`.
+#[test]
+fn high_lmax_files_hold_binary_coefficients_equal_to_the_decimal_rows() {
+    use base64::Engine;
+    let dir = temp_dir("binary_coefficients");
+    let map = dir.join("map.exr");
+    write_map(&map, 512, 256, |x, y| {
+        [1.0 + (x % 7) as f32 * 0.1, 0.5 + (y % 5) as f32 * 0.2, 0.25]
+    });
+    let low = json(&shlight(&["project", map.to_str().unwrap(), "--lmax", "3"]));
+    let high = json(&shlight(&[
+        "project",
+        map.to_str().unwrap(),
+        "--lmax",
+        "130",
+    ]));
+    let c = &high["coefficients"];
+    assert_eq!(c["dtype"], "<f8");
+    assert_eq!(c["shape"], serde_json::json!([131 * 131, 3]));
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(c["base64"].as_str().unwrap())
+        .unwrap();
+    assert_eq!(bytes.len(), 131 * 131 * 24);
+    let f = |i: usize| f64::from_le_bytes(bytes[i * 8..i * 8 + 8].try_into().unwrap());
+    for (i, row) in coefficients(&low).iter().enumerate() {
+        for (k, want) in row.iter().enumerate() {
+            let got = f(i * 3 + k);
+            // The two lmax take different ring-transform paths (direct sums
+            // against FFTs): rounding apart only.
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1e-3),
+                "row {i}: {got} vs {want}"
+            );
+        }
+    }
+    let path = dir.join("high.json");
+    let out = shlight(&[
+        "project",
+        map.to_str().unwrap(),
+        "--lmax",
+        "130",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let table = shlight(&["show", path.to_str().unwrap()]);
+    assert!(
+        table.status.success(),
+        "{}",
+        String::from_utf8_lossy(&table.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&table.stdout)
+            .lines()
+            .filter(|l| l.starts_with(" 130 "))
+            .count(),
+        261
+    );
+}
+
+/// Output piped into a reader that stops early ends the process quietly,
+/// never with a panic about a broken pipe.
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_the_output_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let dir = temp_dir("closed_pipe");
+    let map = dir.join("map.exr");
+    write_map(&map, 256, 128, |x, _| [x as f32 * 0.01, 1.0, 0.5]);
+    let path = dir.join("c.json");
+    let out = shlight(&[
+        "project",
+        map.to_str().unwrap(),
+        "--lmax",
+        "60",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shlight"))
+        .args(["show", path.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(first.starts_with("# shlight"), "{first}");
+    // The reader is gone; the table (3721 rows) is far longer than a pipe's buffer.
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("Broken pipe"),
+        "{stderr}"
+    );
+}
