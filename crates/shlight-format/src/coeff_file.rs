@@ -846,7 +846,9 @@ mod tests {
         );
         assert!(crate::export(&file, crate::ExportFormat::Json).is_ok());
         // The snippets take it, with the encoding's own evaluator.
-        let glsl = crate::export(&file, crate::ExportFormat::Glsl).unwrap().text;
+        let glsl = crate::export(&file, crate::ExportFormat::Glsl)
+            .unwrap()
+            .text;
         assert!(glsl.contains("shlight_l1_channel"), "{glsl}");
         // A broken light names itself.
         let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);

@@ -813,3 +813,65 @@ impl Lang {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use shlight_core::rotation::Frame;
+
+    use super::*;
+    use crate::FileEncoding;
+
+    fn file(encoding: FileEncoding, quantity: Quantity) -> CoeffFile {
+        let l1 = ShCoeffs::from_vec(vec![
+            DVec3::ONE,
+            DVec3::ZERO,
+            DVec3::splat(0.3),
+            DVec3::ZERO,
+        ])
+        .unwrap();
+        let mut f = CoeffFile::new(l1, Frame::YUp, quantity);
+        f.provenance.input = "enc.exr".into();
+        f.encoding = encoding;
+        f
+    }
+
+    #[test]
+    fn an_irradiance_file_or_a_colour_beyond_f32_is_refused_naming_the_file() {
+        let f = file(FileEncoding::L1NonLinear, Quantity::Irradiance);
+        let err = crate::export(&f, ExportFormat::Wgsl)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("enc.exr") && err.contains("irradiance"),
+            "{err}"
+        );
+        let mut colours = [DVec3::ONE; 6];
+        colours[3] = DVec3::splat(1e39);
+        let f = file(FileEncoding::AmbientCube { colours }, Quantity::Radiance);
+        let err = crate::export(&f, ExportFormat::Hlsl)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("-y") && err.contains("32-bit"), "{err}");
+        // C keeps doubles.
+        let c = crate::export(&f, ExportFormat::C).unwrap().text;
+        assert!(c.contains("1e39"), "{c}");
+    }
+
+    #[test]
+    fn no_light_is_one_zero_light_and_a_count_of_zero() {
+        let f = file(
+            FileEncoding::DominantSh { lights: Vec::new() },
+            Quantity::Radiance,
+        );
+        let glsl = crate::export(&f, ExportFormat::Glsl).unwrap().text;
+        assert!(
+            glsl.contains("const int SHLIGHT_LIGHT_COUNT = 0;"),
+            "{glsl}"
+        );
+        assert!(glsl.contains("SHLIGHT_LIGHT_POWER[1]"), "{glsl}");
+        assert!(
+            glsl.contains("vec3 shlight_sh_irradiance(vec3 n)"),
+            "{glsl}"
+        );
+    }
+}
