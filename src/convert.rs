@@ -42,6 +42,14 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
     if let Some(scene) = &args.into {
         crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
+        if file.encoding != shlight_format::FileEncoding::Sh {
+            bail!(
+                "{}: holds the {} encoding, whose coefficients are not the whole light; \
+                 a glTF light keeps plain SH only",
+                args.input.display(),
+                file.encoding.encoding()
+            );
+        }
         let input = ExportInput {
             coeffs: &file.coeffs,
             quantity: file.quantity,

@@ -47,7 +47,7 @@ const WORKGROUP: usize = 64;
 const GPU_TOL: f64 = 1e-5;
 
 /// Unit directions: a Fibonacci sphere plus the axes.
-fn directions() -> Vec<DVec3> {
+pub fn directions() -> Vec<DVec3> {
     crate::util::sphere_directions(DIRECTIONS)
 }
 
@@ -173,7 +173,7 @@ pub fn hlsl_via_glslang(dir: &Path, source: &str) -> Result<naga::Module, String
 
 /// Runs `module`'s `main` over [`directions`] and returns, per direction,
 /// `(E, L)` as the shader computed them.
-fn run(ctx: &GpuContext, module: naga::Module, what: &str) -> Vec<(DVec3, DVec3)> {
+pub fn run(ctx: &GpuContext, module: naga::Module, what: &str) -> Vec<(DVec3, DVec3)> {
     let device = &ctx.device;
     let dirs = directions();
     let input: Vec<u8> = dirs

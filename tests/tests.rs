@@ -2,6 +2,7 @@
 
 mod accuracy;
 mod batch;
+mod encoding_snippets;
 mod encodings_cli;
 mod engine_frames;
 mod export;

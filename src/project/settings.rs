@@ -46,9 +46,8 @@ impl<'a> Settings<'a> {
                 (args.method != Method::Quadrature, "--method montecarlo"),
                 (args.window.trim() != "none", "--window"),
                 (
-                    args.format
-                        .is_some_and(|f| f != shlight_format::ExportFormat::Json),
-                    "--format other than json",
+                    args.format.is_some_and(|f| !f.takes_encodings()),
+                    "--format other than json, wgsl, glsl, hlsl or c",
                 ),
             ];
             if let Some((_, what)) = clash.iter().find(|(c, _)| *c) {

@@ -1081,7 +1081,7 @@ mod tests {
         let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
         file.provenance.input = "enc.exr".into();
         file.encoding = FileEncoding::L1NonLinear;
-        let err = crate::export(&file, crate::ExportFormat::Glsl)
+        let err = crate::export(&file, crate::ExportFormat::Threejs)
             .unwrap_err()
             .to_string();
         assert!(
@@ -1089,6 +1089,11 @@ mod tests {
             "{err}"
         );
         assert!(crate::export(&file, crate::ExportFormat::Json).is_ok());
+        // The snippets take it, with the encoding's own evaluator.
+        let glsl = crate::export(&file, crate::ExportFormat::Glsl)
+            .unwrap()
+            .text;
+        assert!(glsl.contains("shlight_l1_channel"), "{glsl}");
         // A broken light names itself.
         let mut file = CoeffFile::new(l1.clone(), Frame::YUp, Quantity::Radiance);
         file.encoding = FileEncoding::DominantSh { lights: Vec::new() };

@@ -21,6 +21,7 @@
 //! expansion is the same function as the degree-2 one with zero band 2.
 
 pub mod c;
+mod encoded_snippet;
 mod engine;
 pub mod filament;
 pub mod glsl;
@@ -136,6 +137,21 @@ impl ExportFormat {
         }
     }
 
+    /// Whether the format keeps every encoding (`shlight project
+    /// --encoding`): shlight's JSON and the four code snippets, which get an
+    /// evaluator of their own for each (docs/exporters.md).
+    #[must_use]
+    pub fn takes_encodings(self) -> bool {
+        matches!(
+            self,
+            ExportFormat::Json
+                | ExportFormat::Wgsl
+                | ExportFormat::Glsl
+                | ExportFormat::Hlsl
+                | ExportFormat::C
+        )
+    }
+
     /// The file extension of this format's files (`-o DIR` batches name
     /// their outputs `NAME.ext`).
     #[must_use]
@@ -243,13 +259,22 @@ pub fn export(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
         });
     }
     if file.encoding != crate::FileEncoding::Sh {
-        return Err(FormatError::Export(format!(
-            "{}: {} cannot take the {} encoding (its coefficients are not the whole light); \
-             only shlight's JSON keeps encodings",
-            file.provenance.input,
-            format.name(),
-            file.encoding.encoding()
-        )));
+        if !format.takes_encodings() {
+            return Err(FormatError::Export(format!(
+                "{}: {} cannot take the {} encoding (its coefficients are not the whole light); \
+                 only shlight's JSON and the wgsl, glsl, hlsl and c snippets keep encodings",
+                file.provenance.input,
+                format.name(),
+                file.encoding.encoding()
+            )));
+        }
+        return encoded_snippet::render(file, format).map_err(|e| {
+            FormatError::Export(format!(
+                "{}: exporting as {}: {e}",
+                file.provenance.input,
+                format.name()
+            ))
+        });
     }
     let input = ExportInput {
         coeffs: &file.coeffs,

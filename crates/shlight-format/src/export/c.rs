@@ -25,9 +25,15 @@ use crate::Quantity;
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Exported {
+    render_named(input, "shlight_")
+}
+
+/// The snippet with its public functions named `{prefix}irradiance` and
+/// `{prefix}radiance`.
+pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Exported {
     let c = input.coeffs;
     let (lmax, n) = (c.lmax(), c.len());
-    let mut s = code_header(input, "//", "shlight_coeffs", "shlight_");
+    let mut s = code_header(input, "//", "shlight_coeffs", prefix);
     s.push_str("// C99; link with -lm where needed.\n\n#include <math.h>\n\n");
     s.push_str(&format!(
         "#define SHLIGHT_LMAX {lmax}\n#define SHLIGHT_COUNT {n}\n\n"
@@ -86,16 +92,16 @@ static inline void shlight_expand(const double n[3], const double *band_weight, 
 "#,
     );
     if radiance {
-        s.push_str(
-            "\n// Radiance L(w) arriving from direction w.\nstatic inline void shlight_radiance(const double w[3], double out[3]) {\n    shlight_expand(w, 0, out);\n}\n",
-        );
-        s.push_str(
-            "\n// Irradiance E(n) at a surface with normal n.\nstatic inline void shlight_irradiance(const double n[3], double out[3]) {\n    shlight_expand(n, shlight_a, out);\n}\n",
-        );
+        s.push_str(&format!(
+            "\n// Radiance L(w) arriving from direction w.\nstatic inline void {prefix}radiance(const double w[3], double out[3]) {{\n    shlight_expand(w, 0, out);\n}}\n",
+        ));
+        s.push_str(&format!(
+            "\n// Irradiance E(n) at a surface with normal n.\nstatic inline void {prefix}irradiance(const double n[3], double out[3]) {{\n    shlight_expand(n, shlight_a, out);\n}}\n",
+        ));
     } else {
-        s.push_str(
-            "\n// Irradiance E(n) at a surface with normal n.\nstatic inline void shlight_irradiance(const double n[3], double out[3]) {\n    shlight_expand(n, 0, out);\n}\n",
-        );
+        s.push_str(&format!(
+            "\n// Irradiance E(n) at a surface with normal n.\nstatic inline void {prefix}irradiance(const double n[3], double out[3]) {{\n    shlight_expand(n, 0, out);\n}}\n",
+        ));
     }
     Exported {
         text: s,

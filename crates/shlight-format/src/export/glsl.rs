@@ -32,10 +32,16 @@ const GLSL: CLikeShader = CLikeShader {
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
+    render_named(input, "shlight_")
+}
+
+/// The snippet with its public functions named `{prefix}irradiance` and
+/// `{prefix}radiance`.
+pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Result<Exported> {
     check_f32_range(input.coeffs, "GLSL")?;
-    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", "shlight_");
+    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", prefix);
     text.push_str("// GLSL 3.30 / GLSL ES 3.00 or later.\n\n");
-    text.push_str(&GLSL.body(input));
+    text.push_str(&GLSL.body(input, prefix));
     Ok(Exported {
         text,
         notes: Vec::new(),

@@ -33,10 +33,16 @@ const HLSL: CLikeShader = CLikeShader {
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
+    render_named(input, "shlight_")
+}
+
+/// The snippet with its public functions named `{prefix}irradiance` and
+/// `{prefix}radiance`.
+pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Result<Exported> {
     check_f32_range(input.coeffs, "HLSL")?;
-    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", "shlight_");
+    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", prefix);
     text.push('\n');
-    text.push_str(&HLSL.body(input));
+    text.push_str(&HLSL.body(input, prefix));
     Ok(Exported {
         text,
         notes: Vec::new(),

@@ -138,7 +138,7 @@ pub(crate) struct CLikeShader {
 
 impl CLikeShader {
     /// The snippet below the header: arrays, evaluator, public functions.
-    pub(crate) fn body(&self, input: &ExportInput<'_>) -> String {
+    pub(crate) fn body(&self, input: &ExportInput<'_>, prefix: &str) -> String {
         let c = input.coeffs;
         let (lmax, n, v3) = (c.lmax(), c.len(), self.vec3);
         let mut s = format!("{} int SHLIGHT_LMAX = {lmax};\n", self.konst);
@@ -215,14 +215,14 @@ impl CLikeShader {
         ));
         if radiance {
             s.push_str(&format!(
-                "\n// Radiance L(w) arriving from direction w.\n{v3} shlight_radiance({v3} w) {{\n    return shlight_expand(w, false);\n}}\n"
+                "\n// Radiance L(w) arriving from direction w.\n{v3} {prefix}radiance({v3} w) {{\n    return shlight_expand(w, false);\n}}\n"
             ));
             s.push_str(&format!(
-                "\n// Irradiance E(n) at a surface with normal n.\n{v3} shlight_irradiance({v3} n) {{\n    return shlight_expand(n, true);\n}}\n"
+                "\n// Irradiance E(n) at a surface with normal n.\n{v3} {prefix}irradiance({v3} n) {{\n    return shlight_expand(n, true);\n}}\n"
             ));
         } else {
             s.push_str(&format!(
-                "\n// Irradiance E(n) at a surface with normal n.\n{v3} shlight_irradiance({v3} n) {{\n    return shlight_expand(n);\n}}\n"
+                "\n// Irradiance E(n) at a surface with normal n.\n{v3} {prefix}irradiance({v3} n) {{\n    return shlight_expand(n);\n}}\n"
             ));
         }
         s

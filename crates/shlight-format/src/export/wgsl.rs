@@ -30,10 +30,16 @@ use crate::Quantity;
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
+    render_named(input, "shlight_")
+}
+
+/// The snippet with its public functions named `{prefix}irradiance` and
+/// `{prefix}radiance`.
+pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Result<Exported> {
     check_f32_range(input.coeffs, "WGSL")?;
     let c = input.coeffs;
     let (lmax, n) = (c.lmax(), c.len());
-    let mut s = code_header(input, "//", "SHLIGHT_COEFFS", "shlight_");
+    let mut s = code_header(input, "//", "SHLIGHT_COEFFS", prefix);
     s.push('\n');
     s.push_str(&format!("const SHLIGHT_LMAX: i32 = {lmax};\n"));
     s.push_str(&format!(
@@ -103,16 +109,16 @@ fn shlight_expand(n: vec3<f32>{param}) -> vec3<f32> {{
 "#
     ));
     if radiance {
-        s.push_str(
-            "\n// Radiance L(w) arriving from direction w.\nfn shlight_radiance(w: vec3<f32>) -> vec3<f32> {\n    return shlight_expand(w, false);\n}\n",
-        );
-        s.push_str(
-            "\n// Irradiance E(n) at a surface with normal n.\nfn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {\n    return shlight_expand(n, true);\n}\n",
-        );
+        s.push_str(&format!(
+            "\n// Radiance L(w) arriving from direction w.\nfn {prefix}radiance(w: vec3<f32>) -> vec3<f32> {{\n    return shlight_expand(w, false);\n}}\n",
+        ));
+        s.push_str(&format!(
+            "\n// Irradiance E(n) at a surface with normal n.\nfn {prefix}irradiance(n: vec3<f32>) -> vec3<f32> {{\n    return shlight_expand(n, true);\n}}\n",
+        ));
     } else {
-        s.push_str(
-            "\n// Irradiance E(n) at a surface with normal n.\nfn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {\n    return shlight_expand(n);\n}\n",
-        );
+        s.push_str(&format!(
+            "\n// Irradiance E(n) at a surface with normal n.\nfn {prefix}irradiance(n: vec3<f32>) -> vec3<f32> {{\n    return shlight_expand(n);\n}}\n",
+        ));
     }
     Ok(Exported {
         text: s,
