@@ -17,14 +17,13 @@
 //!   adapter (lavapipe in CI) against the core.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use glam::DVec3;
 use shlight_core::Encoding;
 use shlight_format::CoeffFile;
 
 use crate::export::convert;
-use crate::util::{have_tool, s, shlight_ok, sphere_directions, temp_dir};
+use crate::util::{compile_and_run, have_tool, s, shlight_ok, sphere_directions, temp_dir};
 
 /// C in double against the core in f64, relative to the largest `|E|`: the
 /// same formulas in the same order but for the SH sums (the snippet's
@@ -149,37 +148,9 @@ fn worst(dirs: &[DVec3], got: &[DVec3], want: impl Fn(DVec3) -> DVec3) -> f64 {
 /// Compiles `main` with `compiler` and returns the irradiance it printed,
 /// one line per direction.
 fn run_c(dir: &Path, compiler: &str, lang: &str, source: &str) -> Vec<DVec3> {
-    let src = dir.join(format!("enc.{lang}"));
-    let exe = dir.join("enc");
-    std::fs::write(&src, source).unwrap();
-    let mut cmd = Command::new(compiler);
-    if lang == "c" {
-        cmd.args(["-std=c99", "-pedantic"]);
-    } else {
-        cmd.arg("-std=c++17");
-    }
-    let out = cmd
-        .args(["-O1", "-Wall", "-Wextra", "-Werror", "-o"])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{compiler} failed on {}:\n{}",
-        src.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let run = Command::new(&exe).output().unwrap();
-    assert!(run.status.success());
-    String::from_utf8(run.stdout)
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let v: Vec<f64> = l.split_whitespace().map(|s| s.parse().unwrap()).collect();
-            DVec3::new(v[0], v[1], v[2])
-        })
+    compile_and_run(dir, "enc", compiler, lang, source)
+        .iter()
+        .map(|v| DVec3::new(v[0], v[1], v[2]))
         .collect()
 }
 

@@ -15,7 +15,6 @@
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use glam::{DMat3, DVec3};
 use serde_json::{Value, json};
@@ -24,7 +23,7 @@ use shlight_core::{ShCoeffs, analytic, irradiance};
 
 #[cfg(feature = "gpu")]
 use crate::export_shaders;
-use crate::util::{have_tool, shlight, temp_dir};
+use crate::util::{compile_and_run, have_tool, shlight, temp_dir};
 
 // ---------------------------------------------------------------- helpers
 
@@ -533,37 +532,9 @@ fn unity_shade_sh9_gives_irradiance_over_pi_in_unity_axes() {
 /// normal of [`normals`] and prints them; returns, per normal, the values
 /// of each call.
 fn run_native(dir: &Path, compiler: &str, source: &str, lang: &str) -> Vec<Vec<DVec3>> {
-    let src = dir.join(format!("main.{lang}"));
-    let exe = dir.join("main");
-    std::fs::write(&src, source).unwrap();
-    let mut cmd = Command::new(compiler);
-    if lang == "c" {
-        cmd.args(["-std=c99", "-pedantic"]);
-    } else {
-        cmd.arg("-std=c++17");
-    }
-    let out = cmd
-        .args(["-O1", "-Wall", "-Wextra", "-Werror", "-o"])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{compiler} failed on {}:\n{}",
-        src.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let run = Command::new(&exe).output().unwrap();
-    assert!(run.status.success());
-    String::from_utf8(run.stdout)
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let v: Vec<f64> = l.split_whitespace().map(|s| s.parse().unwrap()).collect();
-            v.chunks(3).map(rgb).collect()
-        })
+    compile_and_run(dir, "main", compiler, lang, source)
+        .iter()
+        .map(|v| v.chunks(3).map(rgb).collect())
         .collect()
 }
 

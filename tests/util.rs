@@ -267,3 +267,45 @@ pub fn sphere_directions(n: usize) -> Vec<glam::DVec3> {
     ]);
     v
 }
+
+/// Compiles `source` as C99 (`lang` "c") or C++17 (anything else) with
+/// `compiler`, warnings as errors, into `dir/NAME` (the source as
+/// `dir/NAME.LANG`), runs it and returns the numbers of each line it
+/// prints; a compiler error fails the test with its message.
+pub fn compile_and_run(
+    dir: &Path,
+    name: &str,
+    compiler: &str,
+    lang: &str,
+    source: &str,
+) -> Vec<Vec<f64>> {
+    let src = dir.join(format!("{name}.{lang}"));
+    let exe = dir.join(name);
+    std::fs::write(&src, source).unwrap();
+    let mut cmd = Command::new(compiler);
+    if lang == "c" {
+        cmd.args(["-std=c99", "-pedantic"]);
+    } else {
+        cmd.arg("-std=c++17");
+    }
+    let out = cmd
+        .args(["-O1", "-Wall", "-Wextra", "-Werror", "-o"])
+        .arg(&exe)
+        .arg(&src)
+        .arg("-lm")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{compiler} failed on {}:\n{}",
+        src.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run = Command::new(&exe).output().unwrap();
+    assert!(run.status.success());
+    String::from_utf8(run.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.split_whitespace().map(|s| s.parse().unwrap()).collect())
+        .collect()
+}
