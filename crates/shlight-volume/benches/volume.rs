@@ -23,7 +23,7 @@ fn options() -> VolumeOptions {
         samples: 4096,
         bounces: 2,
         surface_samples: 256,
-        max_edge: Some(0.0062),
+        max_edge: Some(0.0088),
         ..VolumeOptions::default()
     }
 }
@@ -31,7 +31,7 @@ fn options() -> VolumeOptions {
 #[divan::bench(sample_count = 1, sample_size = 1)]
 fn cornell_100k_16x8x16_4096_rays(bencher: Bencher) {
     let room = generate::cornell_box();
-    let fine = room.subdivided(0.0062);
+    let fine = room.subdivided(0.0088);
     eprintln!("{} triangles after subdivision", fine.triangle_count());
     let grid = Grid::around([16, 8, 16], room.bounds()).unwrap();
     let rays = bake(Some(&room), &grid, &options(), &|_, _, _| {})
