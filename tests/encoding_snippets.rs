@@ -23,7 +23,9 @@ use shlight_core::Encoding;
 use shlight_format::CoeffFile;
 
 use crate::export::convert;
-use crate::util::{compile_and_run, have_tool, s, shlight_ok, sphere_directions, temp_dir};
+use crate::util::{
+    compile_and_run, have_tool, s, shlight_ok, sphere_directions, synth_sun_map, temp_dir,
+};
 
 /// C in double against the core in f64, relative to the largest `|E|`: the
 /// same formulas in the same order but for the SH sums (the snippet's
@@ -40,33 +42,11 @@ struct Fixture {
     file: CoeffFile,
 }
 
-/// A 2-degree sun of known direction over a dim sky.
-fn sun_map(dir: &Path) -> PathBuf {
-    let map = dir.join("sun.exr");
-    shlight_ok(&[
-        "synth",
-        "directional",
-        "-o",
-        s(&map),
-        "--direction",
-        "1,1,0.5",
-        "--half-angle",
-        "2",
-        "--value",
-        "5",
-        "--color",
-        "1,0.8,0.6",
-        "--size",
-        "256x128",
-    ]);
-    map
-}
-
 /// Every encoding of the sun and two bundled maps, as coefficient files.
 fn fixtures(dir: &Path) -> Vec<Fixture> {
     let envmaps = Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps");
     let maps = [
-        ("sun", sun_map(dir)),
+        ("sun", synth_sun_map(dir)),
         ("park", envmaps.join("park.exr")),
         ("studio", envmaps.join("studio.exr")),
     ];
@@ -217,7 +197,7 @@ fn the_lights_are_in_the_snippet_not_only_in_the_residual() {
     // Without its light the sun's snippet would be far off: the light's
     // irradiance is most of E, so the C test above can tell a lost light.
     let dir = temp_dir("encoding_snippets_lights");
-    let map = sun_map(&dir);
+    let map = synth_sun_map(&dir);
     let json = dir.join("sun.json");
     shlight_ok(&[
         "project",
@@ -246,7 +226,7 @@ fn the_lights_are_in_the_snippet_not_only_in_the_residual() {
 #[test]
 fn project_writes_encoded_snippets_and_other_formats_refuse_them() {
     let dir = temp_dir("encoding_snippets_project");
-    let map = sun_map(&dir);
+    let map = synth_sun_map(&dir);
     let json = dir.join("zh3.json");
     shlight_ok(&["project", s(&map), "--encoding", "zh3", "-o", s(&json)]);
     let via_convert = convert(&json, &dir.join("a.glsl"), "glsl");

@@ -2,8 +2,6 @@
 //! file round-trips every encoding, a synthetic sun comes back as one light,
 //! and the comparison covers every encoding.
 
-use std::path::Path;
-
 use glam::DVec3;
 use shlight_core::dominant_lights::DominantLightOptions;
 use shlight_core::layout::{EnvMap, Layout};
@@ -12,37 +10,18 @@ use shlight_core::{Encoding, encode_map};
 use shlight_format::CoeffFile;
 use shlight_io::{ReadOptions, read_image};
 
-use crate::util::{read_json, s, shlight_err, shlight_ok, sphere_directions, temp_dir};
+use crate::util::{
+    read_json, s, shlight_err, shlight_ok, sphere_directions, synth_sun_map, temp_dir,
+};
 
 /// The bounds for an extracted sun: half a degree, 1% of the power.
 const ANGLE_DEG: f64 = 0.5;
 const POWER: f64 = 0.01;
 
-fn sun_map(dir: &Path) -> std::path::PathBuf {
-    let map = dir.join("sun.exr");
-    shlight_ok(&[
-        "synth",
-        "directional",
-        "-o",
-        s(&map),
-        "--direction",
-        "1,1,0.5",
-        "--half-angle",
-        "2",
-        "--value",
-        "5",
-        "--color",
-        "1,0.8,0.6",
-        "--size",
-        "256x128",
-    ]);
-    map
-}
-
 #[test]
 fn a_synthetic_sun_is_one_light_in_the_file() {
     let dir = temp_dir("encoding_sun");
-    let map = sun_map(&dir);
+    let map = synth_sun_map(&dir);
     let out = dir.join("sun.json");
     shlight_ok(&[
         "project",
@@ -120,7 +99,7 @@ fn a_synthetic_sun_is_one_light_in_the_file() {
 #[test]
 fn every_encoding_round_trips_through_the_file() {
     let dir = temp_dir("encoding_files");
-    let map = sun_map(&dir);
+    let map = synth_sun_map(&dir);
     let image = read_image(&map, &ReadOptions::default()).unwrap();
     let env = EnvMap::new(
         Layout::Equirect,
@@ -161,7 +140,7 @@ fn every_encoding_round_trips_through_the_file() {
 #[test]
 fn compare_lists_every_encoding_and_writes_json_and_plots() {
     let dir = temp_dir("encoding_compare");
-    let map = sun_map(&dir);
+    let map = synth_sun_map(&dir);
     let out = dir.join("cmp");
     let o = shlight_ok(&["compare", s(&map), "--normals", "32x16", "-o", s(&out)]);
     let table = String::from_utf8_lossy(&o.stdout);

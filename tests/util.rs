@@ -309,3 +309,26 @@ pub fn compile_and_run(
         .map(|l| l.split_whitespace().map(|s| s.parse().unwrap()).collect())
         .collect()
 }
+
+/// `dir/sun.exr`: a 256x128 map of a 2-degree sun from (1, 1, 0.5), value
+/// 5 and colour (1, 0.8, 0.6), over a dim sky (`shlight synth directional`).
+pub fn synth_sun_map(dir: &Path) -> PathBuf {
+    let map = dir.join("sun.exr");
+    shlight_ok(&[
+        "synth",
+        "directional",
+        "-o",
+        s(&map),
+        "--direction",
+        "1,1,0.5",
+        "--half-angle",
+        "2",
+        "--value",
+        "5",
+        "--color",
+        "1,0.8,0.6",
+        "--size",
+        "256x128",
+    ]);
+    map
+}

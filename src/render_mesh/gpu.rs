@@ -55,7 +55,6 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     if args.volume.volume.is_some() {
         return super::volume::render(args, format, ui);
     }
-    let out = args.output.display().to_string();
     crate::gpu_scene::check_lmax(args.lmax)?;
     let mode = match (args.mode, &args.prt) {
         (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
@@ -127,7 +126,19 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     bar.set_message(format!("rendering {w}x{h} on {}", ctx.adapter_name()));
     let frame = render_frame(&ctx, &renderer, &camera, &shading, w, h)?;
     bar.finish_and_clear();
-    let image = Image::new(w, h, frame.rgb()).map_err(|e| anyhow!("{e}"))?;
+    write_frame(args, format, frame.rgb(), (w, h))
+}
+
+/// Writes a rendered frame to `--output`: linear for EXR, with
+/// `--exposure` and `--tone-map` for PNG.
+pub fn write_frame(
+    args: &RenderMeshArgs,
+    format: Option<Format>,
+    rgb: Vec<[f32; 3]>,
+    (w, h): (usize, usize),
+) -> Result<()> {
+    let out = args.output.display().to_string();
+    let image = Image::new(w, h, rgb).map_err(|e| anyhow!("{e}"))?;
     let options = match format {
         Some(Format::Png) => WriteOptions {
             exposure_ev: args.exposure,
@@ -136,8 +147,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         },
         _ => WriteOptions::default(),
     };
-    write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))?;
-    Ok(())
+    write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))
 }
 
 /// `--rotate` as a matrix (identity without it): a light from `a` then

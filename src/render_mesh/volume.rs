@@ -1,22 +1,21 @@
 //! `render-mesh --volume`: the scene (MESH) and the object lit per fragment
 //! by the irradiance volume, over the environment's background.
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, bail};
 use shlight_core::ShRotation;
 use shlight_gpu::{Background, GpuContext, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading};
-use shlight_io::{Format, Image, WriteOptions, write_image};
+use shlight_io::Format;
 
 use crate::environment::Environment;
 use crate::input::frame_of;
 use crate::progress::Ui;
 use crate::volume_shading::{VolumeInput, VolumeLight};
 
-use super::gpu::{camera_for, rotation};
+use super::gpu::{camera_for, rotation, write_frame};
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
 
 /// Renders the checked `args` (with `--volume`) to `format`.
 pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<()> {
-    let out = args.output.display().to_string();
     if args.prt.is_some() || args.mode.is_some_and(|m| m != RenderMode::Sh) {
         bail!("--volume shades by the volume's SH: it takes neither --prt nor --mode prt/normals");
     }
@@ -109,15 +108,5 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         })?
         .expect("read back");
     bar.finish_and_clear();
-    let image = Image::new(w, h, frame.rgb()).map_err(|e| anyhow!("{e}"))?;
-    let options = match format {
-        Some(Format::Png) => WriteOptions {
-            exposure_ev: args.exposure,
-            tone_map: args.tone_map,
-            ..WriteOptions::default()
-        },
-        _ => WriteOptions::default(),
-    };
-    write_image(&args.output, &image, &options).with_context(|| format!("{out}: writing"))?;
-    Ok(())
+    write_frame(args, format, frame.rgb(), (w, h))
 }
