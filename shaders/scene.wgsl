@@ -10,6 +10,9 @@ struct Frame {
     // The environment map's own y-up frame from world: map frame, mirror and
     // the inverse of the environment's rotation (background lookups).
     env_from_world: mat4x4<f32>,
+    // The unturned light's frame from world: R^T for a light turned by R
+    // (MODE_ENCODED evaluates the unturned encoding at R^T n).
+    light_from_world: mat4x4<f32>,
     // Per band l (element l/4, lane l%4): A_l w_l, irradiance from radiance
     // with the window w_l (A_l: Ramamoorthi & Hanrahan's clamped cosine).
     irradiance_band: array<vec4<f32>, 3>,
@@ -38,6 +41,7 @@ struct Frame {
 const MODE_SH: u32 = 0u;
 const MODE_PRT: u32 = 1u;
 const MODE_NORMALS: u32 = 2u;
+const MODE_ENCODED: u32 = 3u;
 
 const TONE_LINEAR: u32 = 0u;
 const TONE_CLAMP: u32 = 1u;

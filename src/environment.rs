@@ -4,12 +4,14 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Result, bail};
+use anyhow::{Result, anyhow, bail};
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::layout::Layout;
+use shlight_core::layout::{EnvMap, Layout};
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::rotation::Frame;
+use shlight_core::{
+    DominantLightOptions, Encoded, Encoding, ShCoeffs, encode_coefficients, encode_map,
+};
 use shlight_gpu::MAX_LMAX;
 use shlight_io::{Image, ReadOptions, read_image};
 
@@ -96,5 +98,52 @@ impl Environment {
             map: Some(image),
             orientation,
         })
+    }
+
+    /// The light kept as `encoding`, its SH part (`sh`, `dominant+sh`,
+    /// `sloan+sh`) to `lmax`: from the map's texels when the light came from
+    /// a map (as `shlight project MAP --encoding E` encodes it), else from
+    /// the coefficients (to lmax [`MAX_LMAX`]).
+    ///
+    /// # Errors
+    /// `dominant+sh` without a map (its lights are found among the texels),
+    /// or coefficients too short for the encoding.
+    pub fn encode(&self, encoding: Encoding, lmax: usize) -> Result<Encoded> {
+        let name = self.path.display();
+        match &self.map {
+            Some(image) => {
+                let map = EnvMap::new(
+                    Layout::Equirect,
+                    self.orientation,
+                    image.width(),
+                    image.height(),
+                    image.pixels(),
+                )
+                .map_err(|e| anyhow!("{name}: {e}"))?;
+                Ok(encode_map(
+                    &map,
+                    encoding,
+                    lmax,
+                    &DominantLightOptions::default(),
+                ))
+            }
+            None if encoding == Encoding::DominantSh => bail!(
+                "--encoding dominant+sh finds its lights among a map's texels; {name} holds coefficients (pass the map, or use --encoding sloan+sh)"
+            ),
+            None => {
+                // The SH part to lmax; the others take what they need (the
+                // ambient cube every band, for the irradiance at the axes).
+                let coeffs = match encoding {
+                    Encoding::Sh | Encoding::SloanSh => self.radiance.resized(lmax),
+                    _ => self.radiance.clone(),
+                };
+                encode_coefficients(&coeffs, encoding).ok_or_else(|| {
+                    anyhow!(
+                        "{name}: lmax {} is too low for --encoding {encoding}",
+                        self.radiance.lmax()
+                    )
+                })
+            }
+        }
     }
 }

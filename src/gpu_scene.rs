@@ -3,6 +3,8 @@
 //! shade at.
 
 use anyhow::{Result, bail};
+use shlight_core::{Encoded, Encoding};
+use shlight_format::{CoeffFile, ExportFormat, FileEncoding, Quantity};
 use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, Transfer, wgpu};
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
@@ -21,6 +23,30 @@ pub fn check_lmax(lmax: Option<usize>) -> Result<()> {
 /// when shading by PRT, else 2.
 pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize {
     requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
+}
+
+/// The WGSL snippet of `encoding`'s `encoded` light (as `shlight project
+/// MAP --encoding E --format wgsl` writes it), for
+/// [`Renderer::set_encoding`]: `env`'s plain SH to `lmax` is kept beside it
+/// as a coefficient file keeps it (`sloan+sh` finds its light again from
+/// them).
+///
+/// # Errors
+/// Values a 32-bit float cannot hold.
+pub fn encoding_snippet(
+    encoding: Encoding,
+    encoded: &Encoded,
+    env: &Environment,
+    lmax: usize,
+) -> Result<String> {
+    let sh = env.radiance.resized(lmax);
+    let (record, coeffs) = FileEncoding::from_encoded(encoding, encoded, &sh);
+    let mut file = CoeffFile::new(coeffs, env.orientation.frame, Quantity::Radiance);
+    file.mirror = env.orientation.mirror;
+    file.encoding = record;
+    let exported = shlight_format::export(&file, ExportFormat::Wgsl)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", env.path.display()))?;
+    Ok(exported.text)
 }
 
 /// A renderer for colour targets of `format` with no mesh: the light of

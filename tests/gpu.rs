@@ -96,6 +96,122 @@ fn render_mesh_shades_each_pixel_as_the_cpu_irradiance_at_its_normal() {
     eprintln!("render-mesh vs CPU irradiance over {covered} pixels: worst {worst:.2e}");
 }
 
+/// Every encoding shaded by `render-mesh --encoding` against the core's
+/// evaluation of the same encoding ([`shlight_core::Encoded::irradiance`])
+/// at each pixel's normal, under the light as it is and turned by a
+/// rotation `R` (the shader evaluates the unturned encoding at `R^T n`).
+/// Errors are relative to the frame's largest value; lavapipe measures
+/// about 1e-6 (printed).
+#[test]
+fn render_mesh_shades_every_encoding_as_the_cpu_evaluates_it() {
+    let test = "render_mesh_shades_every_encoding_as_the_cpu_evaluates_it";
+    if !have_gpu(test) {
+        return;
+    }
+    use glam::{DMat3, DQuat};
+    use shlight_core::layout::{EnvMap, Layout};
+    use shlight_core::{DominantLightOptions, Encoding, MapOrientation, encode_map};
+
+    let dir = temp_dir("gpu_render_encodings");
+    let mesh = dir.join("sphere.obj");
+    write_obj(&mesh, &shlight_mesh::generate::uv_sphere(1.0, 64, 32));
+    // The sun, and a blue lamp below the horizon on the other side: a
+    // light far from zonal (ZH3 is exact for zonal ones, so it would be
+    // plain SH's twin).
+    let sun = read_image(&crate::util::synth_sun_map(&dir), &ReadOptions::default()).unwrap();
+    let map_path = dir.join("sun-and-lamp.exr");
+    write_map(&map_path, sun.width(), sun.height(), |x, y| {
+        let p = sun.get(x, y);
+        let lamp = if (80..92).contains(&y) && (150..180).contains(&x) {
+            2.0
+        } else {
+            0.0
+        };
+        [p[0], p[1], p[2] + lamp]
+    });
+    let map = read_image(&map_path, &ReadOptions::default()).unwrap();
+    let env = EnvMap::new(
+        Layout::Equirect,
+        MapOrientation::default(),
+        map.width(),
+        map.height(),
+        map.pixels(),
+    )
+    .unwrap();
+    let albedo = [0.5, 0.75, 1.0];
+    let common = ["--size", "72x54", "--albedo", "0.5,0.75,1"];
+    let render = |name: &str, more: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "render-mesh",
+            s(&mesh),
+            "--env",
+            s(&map_path),
+            "-o",
+            s(&out),
+        ];
+        args.extend(common);
+        args.extend_from_slice(more);
+        shlight_ok(&args);
+        read_image(&out, &ReadOptions::default()).unwrap()
+    };
+    let normals = render("n.exr", &["--mode", "normals"]);
+    // 60 degrees about +Y: a light from a comes from R a.
+    let q = DQuat::from_xyzw(0.0, 0.5, 0.0, 0.75f64.sqrt());
+    let turns: [(&str, DMat3); 2] = [
+        ("", DMat3::IDENTITY),
+        ("quat:0,0.5,0,0.8660254037844386", DMat3::from_quat(q)),
+    ];
+    let plain = encode_map(&env, Encoding::Sh, 2, &DominantLightOptions::default());
+    for encoding in Encoding::ALL.into_iter().filter(|&e| e != Encoding::Sh) {
+        let encoded = encode_map(&env, encoding, 2, &DominantLightOptions::default());
+        let (mut covered, mut worst, mut apart) = (0, 0.0f64, 0.0f64);
+        for (spec, r) in turns {
+            let name = format!(
+                "{encoding}{}.exr",
+                if spec.is_empty() { "" } else { "-turned" }
+            );
+            let mut more = vec!["--encoding", encoding.name()];
+            if !spec.is_empty() {
+                more.extend(["--rotate", spec]);
+            }
+            let shaded = render(&name, &more);
+            let mut pixels = Vec::new();
+            for (normal, colour) in normals.pixels().iter().zip(shaded.pixels()) {
+                let n = DVec3::from_array(normal.map(f64::from));
+                if n.length() == 0.0 {
+                    assert_eq!(*colour, [0.0; 3], "{encoding}: no mesh, no background: 0");
+                    continue;
+                }
+                let unturned = r.transpose() * n.normalize();
+                let e = encoded.irradiance(unturned);
+                let want = DVec3::from_array(albedo) / std::f64::consts::PI * e;
+                let sh =
+                    DVec3::from_array(albedo) / std::f64::consts::PI * plain.irradiance(unturned);
+                pixels.push((DVec3::from_array(colour.map(f64::from)), want, sh));
+            }
+            let top = pixels.iter().map(|p| p.1.max_element()).fold(0.0, f64::max);
+            assert!(top > 0.0, "{encoding}: lit");
+            for (got, want, sh) in &pixels {
+                let err = (*got - *want).abs().max_element() / top;
+                assert!(err < 1e-4, "{encoding} {spec}: {got} vs {want}");
+                worst = worst.max(err);
+                apart = apart.max((*want - *sh).abs().max_element() / top);
+            }
+            covered += pixels.len();
+        }
+        assert!(
+            covered > 72 * 54 / 4,
+            "{encoding}: the sphere is framed ({covered})"
+        );
+        // The test can tell the encoding from plain lmax 2 SH.
+        assert!(apart > 1e-2, "{encoding} is within {apart:.1e} of plain SH");
+        eprintln!(
+            "render-mesh --encoding {encoding} vs the CPU over {covered} pixels: worst {worst:.2e} (of max); {apart:.2e} from plain SH"
+        );
+    }
+}
+
 #[test]
 fn render_mesh_writes_a_png_with_the_map_behind() {
     if !have_gpu("render_mesh_writes_a_png_with_the_map_behind") {
@@ -212,7 +328,7 @@ fn gpu_commands_refuse_bad_input_by_name() {
     let (none, jpg) = (dir.join("none.exr"), dir.join("o.jpg"));
     // Mesh, environment, output, more arguments, what the error names.
     type Case<'a> = (&'a Path, &'a Path, &'a Path, &'a [&'a str], &'a [&'a str]);
-    let cases: [Case; 7] = [
+    let cases: [Case; 9] = [
         (&broken, &env, &out, &[], &["broken.obj"]),
         (&missing, &env, &out, &[], &["missing.obj"]),
         (
@@ -227,6 +343,21 @@ fn gpu_commands_refuse_bad_input_by_name() {
         // Options the GPU path cannot honour.
         (&mesh, &env, &out, &["--lmax", "9"], &["--lmax 9"]),
         (&mesh, &env, &jpg, &[], &["o.jpg"]),
+        // Encodings: dominant+sh needs a map; encodings shade irradiance.
+        (
+            &mesh,
+            &env,
+            &out,
+            &["--encoding", "dominant+sh"],
+            &["light.json", "dominant+sh", "sloan+sh"],
+        ),
+        (
+            &mesh,
+            &env,
+            &out,
+            &["--encoding", "zh3", "--mode", "normals"],
+            &["--encoding zh3", "--mode normals"],
+        ),
     ];
     for (mesh, env, out, more, names) in cases {
         let mut args = vec!["render-mesh", s(mesh), "--env", s(env), "-o", s(out)];
@@ -358,6 +489,10 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     };
     let bare = screenshot("bare.png", &["--hide-panel"]);
     let with_panel = screenshot("panel.png", &[]);
+    // The same frame shaded by the light's ambient cube: the sphere changes
+    // (a cube blends six colours; lmax 2 SH carries nine per channel), the
+    // background does not.
+    let cube = screenshot("cube.png", &["--hide-panel", "--encoding", "ambient-cube"]);
     drop(x);
     let lum = |img: &shlight_io::Image, x: usize, y: usize| {
         let p = img.get(x, y);
@@ -372,6 +507,18 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
         }
         sum / (n * n) as f32
     };
+    let sphere_change = (mean(&cube, 230, 150, 20) - mean(&bare, 230, 150, 20)).abs()
+        + (mean(&cube, 200, 120, 10) - mean(&bare, 200, 120, 10)).abs()
+        + (mean(&cube, 260, 180, 10) - mean(&bare, 260, 180, 10)).abs();
+    assert!(
+        sphere_change > 0.005,
+        "--encoding ambient-cube shades the sphere ({sphere_change})"
+    );
+    let corner_change = (mean(&cube, 0, 0, 20) - mean(&bare, 0, 0, 20)).abs();
+    assert!(
+        corner_change < 1e-6,
+        "the background stays ({corner_change})"
+    );
     let all: Vec<f32> = bare.pixels().iter().map(|p| p[0] + p[1] + p[2]).collect();
     let (lo, hi) = all
         .iter()

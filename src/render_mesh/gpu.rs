@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result, anyhow, bail};
 use glam::{DMat3, Vec3};
-use shlight_core::ShRotation;
+use shlight_core::{Encoding, ShRotation};
 use shlight_gpu::{
     Background, Camera, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame,
 };
@@ -73,6 +73,30 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     };
     bar.set_message("reading the environment");
     let mut env = Environment::load(&args.env, frame_of(&args.up))?;
+    // Encoded before the light is turned: the renderer turns the normal back.
+    let snippet = match args.encoding {
+        Encoding::Sh => None,
+        encoding => {
+            if mode != RenderMode::Sh {
+                bail!(
+                    "--encoding {encoding} shades the mesh by the light's irradiance: it does not take --mode {}",
+                    mode.name()
+                );
+            }
+            bar.set_message(format!("encoding the light as {encoding}"));
+            let lmax = args.lmax.unwrap_or(2);
+            let encoded = env.encode(encoding, lmax)?;
+            if matches!(encoding, Encoding::DominantSh | Encoding::SloanSh) {
+                ui.note(format!(
+                    "{encoding}: {} light(s) kept apart from the SH",
+                    encoded.lights().len()
+                ));
+            }
+            Some(crate::gpu_scene::encoding_snippet(
+                encoding, &encoded, &env, lmax,
+            )?)
+        }
+    };
     let rotation = rotation(args)?;
     env.radiance = ShRotation::from_mat3(env.radiance.lmax(), rotation).apply(&env.radiance);
     if args.background == BackgroundArg::Map && env.map.is_none() {
@@ -86,6 +110,9 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     let mut renderer =
         crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
     renderer.set_environment_rotation(rotation);
+    if let Some(snippet) = &snippet {
+        renderer.set_encoding(&ctx, snippet)?;
+    }
     let lmax = crate::gpu_scene::shading_lmax(
         args.lmax,
         transfer.as_ref().filter(|_| mode == RenderMode::Prt),
@@ -100,6 +127,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     )?;
     let shading = Shading {
         mode: match mode {
+            RenderMode::Sh if snippet.is_some() => Mode::Encoded,
             RenderMode::Sh => Mode::Sh,
             RenderMode::Prt => Mode::Prt,
             RenderMode::Normals => Mode::Normals,

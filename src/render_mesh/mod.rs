@@ -2,7 +2,9 @@
 //! GPU without a window.
 //!
 //! Each fragment shows the Lambertian radiance `ρ/π Σ_l A_l w_l Σ_m L_lm
-//! Y_lm(n)` at its interpolated unit normal (`--mode sh`), the per-vertex
+//! Y_lm(n)` at its interpolated unit normal (`--mode sh`), or `ρ/π E(n)`
+//! with `E` the irradiance of another encoding of the light
+//! (`--encoding`), the per-vertex
 //! PRT radiance `T_v · L` of a `.shprt` file, interpolated (`--mode prt`),
 //! or the world normal itself (`--mode normals`, background 0). The frame is rendered in
 //! linear `f32`: EXR output holds those values untouched (no exposure, no
@@ -54,6 +56,12 @@ pub struct RenderMeshArgs {
     /// the transfer's lmax, at most 8].
     #[arg(long)]
     pub lmax: Option<usize>,
+    /// Shade with this encoding of the light (docs/coefficient-file.md,
+    /// `encoding`), its SH part to --lmax; from the map's texels when --env
+    /// is a map (dominant+sh needs one). Not with --prt, --mode
+    /// prt/normals or --volume.
+    #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
+    pub encoding: shlight_core::Encoding,
     /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
     #[arg(long, default_value = "none")]
     pub window: Window,
@@ -102,6 +110,17 @@ pub enum RenderMode {
     Prt,
     /// World-space unit normals (background 0).
     Normals,
+}
+
+impl RenderMode {
+    /// The mode's name as `--mode` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sh => "sh",
+            Self::Prt => "prt",
+            Self::Normals => "normals",
+        }
+    }
 }
 
 /// `--background`.

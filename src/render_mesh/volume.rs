@@ -19,6 +19,12 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     if args.prt.is_some() || args.mode.is_some_and(|m| m != RenderMode::Sh) {
         bail!("--volume shades by the volume's SH: it takes neither --prt nor --mode prt/normals");
     }
+    if args.encoding != shlight_core::Encoding::Sh {
+        bail!(
+            "--volume shades by the volume's SH probes: it does not take --encoding {}",
+            args.encoding
+        );
+    }
     let mut inputs = vec![args.mesh.clone(), args.env.clone()];
     inputs.extend(args.volume.volume.clone());
     inputs.extend(args.volume.object.clone());

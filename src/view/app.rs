@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
-use shlight_core::{ShRotation, Window};
+use shlight_core::{Encoding, ShRotation, Window};
 use shlight_gpu::wgpu;
 use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, Renderer, Shading};
 use shlight_io::ToneMap;
@@ -58,6 +58,10 @@ pub struct App<'a> {
     frames: u32,
     last_frame: Option<Instant>,
     frame_ms: f64,
+    /// The encoding (with its SH part's lmax) whose snippet the renderer
+    /// holds, and what the panel says of it.
+    encoded_for: Option<(Encoding, usize)>,
+    encoding_line: String,
     screenshot_requested: bool,
     screenshots_taken: u32,
     message: String,
@@ -108,6 +112,7 @@ impl<'a> App<'a> {
                 env_yaw: 0.0,
                 env_pitch: 0.0,
                 window_choice: 0,
+                encoding: args.encoding,
                 show_panel: !args.hide_panel,
             },
             orbit: None,
@@ -117,6 +122,8 @@ impl<'a> App<'a> {
             frames: 0,
             last_frame: None,
             frame_ms: 0.0,
+            encoded_for: None,
+            encoding_line: String::new(),
             screenshot_requested: false,
             screenshots_taken: 0,
             message: String::new(),
@@ -241,6 +248,10 @@ impl<'a> App<'a> {
         if let Some(v) = &mut self.volume {
             v.relight(&r.ctx, &rotated)?;
         }
+        let shading = self.shading_to_draw()?;
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
         let volume_lines = self
             .volume
             .as_ref()
@@ -260,6 +271,7 @@ impl<'a> App<'a> {
             has_map: self.env.map.is_some(),
             prt: self.transfer.as_ref().map(|t| t.mode.as_str()),
             volume: &volume_lines,
+            encoding: &self.encoding_line,
         };
         let controls = &mut self.controls;
         let mut screenshot = false;
@@ -335,7 +347,7 @@ impl<'a> App<'a> {
                 &r.depth,
                 &camera,
                 aspect,
-                &self.controls.shading,
+                &shading,
             )?;
             if let Some(v) = &self.volume {
                 v.draw(
@@ -419,7 +431,7 @@ impl<'a> App<'a> {
                     c.shading.mode = match c.shading.mode {
                         Mode::Sh if self.transfer.is_some() => Mode::Prt,
                         Mode::Sh | Mode::Prt => Mode::Normals,
-                        Mode::Normals => Mode::Sh,
+                        Mode::Normals | Mode::Encoded => Mode::Sh,
                     }
                 }
                 "b" => {
@@ -430,6 +442,7 @@ impl<'a> App<'a> {
                     }
                 }
                 "w" => c.window_choice = (c.window_choice + 1) % WINDOWS.len(),
+                "e" => c.encoding = Controls::next_encoding(c.encoding, self.env.map.is_some()),
                 "t" => {
                     let next = match c.shading.tone_map {
                         Some(ToneMap::Clamp) => ToneMap::Reinhard,
@@ -452,6 +465,46 @@ impl<'a> App<'a> {
             },
             _ => {}
         }
+    }
+
+    /// The shading the renderer draws: the controls', in encoded mode when
+    /// SH mode shows an encoding other than plain SH, whose snippet is
+    /// built (and its pipeline compiled) when the encoding or, for those
+    /// with an SH part, the lmax changed.
+    fn shading_to_draw(&mut self) -> Result<Shading> {
+        let mut shading = self.controls.shading;
+        let encoding = self.controls.encoding;
+        if shading.mode != Mode::Sh || encoding == Encoding::Sh || self.volume.is_some() {
+            return Ok(shading);
+        }
+        let Some(r) = self.running.as_mut() else {
+            return Ok(shading);
+        };
+        let lmax = if encoding.takes_lmax() {
+            shading.lmax
+        } else {
+            0
+        };
+        if self.encoded_for != Some((encoding, lmax)) {
+            let started = Instant::now();
+            let encoded = self.env.encode(encoding, lmax)?;
+            let snippet = crate::gpu_scene::encoding_snippet(encoding, &encoded, &self.env, lmax)?;
+            r.renderer.set_encoding(&r.ctx, &snippet)?;
+            let lights = match encoding {
+                Encoding::DominantSh | Encoding::SloanSh => {
+                    format!(", {} light(s)", encoded.lights().len())
+                }
+                _ => String::new(),
+            };
+            self.encoding_line = format!(
+                "{encoding}: {} floats{lights}; encoded and compiled in {:.0} ms",
+                encoded.floats(encoding),
+                started.elapsed().as_secs_f64() * 1e3
+            );
+            self.encoded_for = Some((encoding, lmax));
+        }
+        shading.mode = Mode::Encoded;
+        Ok(shading)
     }
 
     fn drag(&mut self, x: f64, y: f64) {

@@ -1,7 +1,7 @@
 //! What the panel and keys of `shlight view` change.
 
 use glam::DMat3;
-use shlight_core::Window;
+use shlight_core::{Encoding, Window};
 use shlight_gpu::Shading;
 
 /// What the panel and keys change.
@@ -11,6 +11,8 @@ pub struct Controls {
     pub env_yaw: f64,
     pub env_pitch: f64,
     pub window_choice: usize,
+    /// The light's encoding in SH mode (`e`); plain SH draws by `Mode::Sh`.
+    pub encoding: Encoding,
     pub show_panel: bool,
 }
 
@@ -32,7 +34,51 @@ impl Controls {
         }
     }
 
+    /// The next encoding `e` offers after `current` (`dominant+sh` only
+    /// with a map: its lights are found among the texels).
+    pub fn next_encoding(current: Encoding, has_map: bool) -> Encoding {
+        let all = Encoding::ALL;
+        let at = all.iter().position(|&e| e == current).unwrap_or(0);
+        (1..=all.len())
+            .map(|k| all[(at + k) % all.len()])
+            .find(|&e| has_map || e != Encoding::DominantSh)
+            .unwrap_or(Encoding::Sh)
+    }
+
     pub fn rotation(&self) -> DMat3 {
         DMat3::from_rotation_x(self.env_pitch) * DMat3::from_rotation_y(self.env_yaw)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn e_cycles_every_encoding_and_skips_dominant_lights_without_a_map() {
+        for has_map in [true, false] {
+            let mut seen = Vec::new();
+            let mut e = Encoding::Sh;
+            for _ in 0..Encoding::ALL.len() {
+                e = Controls::next_encoding(e, has_map);
+                seen.push(e);
+            }
+            let want: Vec<Encoding> = Encoding::ALL
+                .into_iter()
+                .filter(|&x| has_map || x != Encoding::DominantSh)
+                .collect();
+            let mut sorted = seen.clone();
+            sorted.sort_by_key(|x| Encoding::ALL.iter().position(|y| y == x));
+            sorted.dedup();
+            assert_eq!(sorted, want, "has_map {has_map}: {seen:?}");
+            assert_eq!(
+                seen[0],
+                if has_map {
+                    Encoding::DominantSh
+                } else {
+                    Encoding::SloanSh
+                }
+            );
+        }
     }
 }

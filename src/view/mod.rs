@@ -4,9 +4,11 @@
 //! Left drag orbits the camera, right drag (or shift + left drag, or the
 //! arrow keys) turns the environment: its radiance coefficients are rotated
 //! on the CPU every frame (`ShRotation`, lmax 8) and the map background
-//! turns with them. Keys: `0`-`8` lmax, `m` mode, `b` background, `w`
-//! window, `t` tone map, `+`/`-` exposure, `p` screenshot, `h` panel,
-//! `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
+//! turns with them. Keys: `0`-`8` lmax, `m` mode, `e` the light's encoding
+//! (plain SH, dominant lights + SH, ZH3, non-linear L1, ambient cube: each
+//! compiled into the fragment shader as its WGSL snippet, the normal turned
+//! back by the environment's rotation), `b` background, `w` window, `t`
+//! tone map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
 //! the last (overlay included) and exits.
 //!
 //! Files: `app.rs` (the window, the GPU surface and the event loop),
@@ -59,6 +61,11 @@ pub struct ViewArgs {
     /// transfer's lmax, at most 8].
     #[arg(long)]
     pub lmax: Option<usize>,
+    /// The light's encoding at start (`e` cycles them): sh, dominant+sh
+    /// (needs a map), sloan+sh, zh3, zh3-hallucinated, l1-nonlinear,
+    /// ambient-cube; the SH part to the lmax shown.
+    #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
+    pub encoding: shlight_core::Encoding,
     /// Exposure in stops at start.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -99,6 +106,12 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
     }
     if args.volume.volume.is_some() && args.prt.is_some() {
         bail!("--volume shades by the volume's SH: it takes no --prt");
+    }
+    if args.volume.volume.is_some() && args.encoding != shlight_core::Encoding::Sh {
+        bail!(
+            "--volume shades by the volume's SH probes: it does not take --encoding {}",
+            args.encoding
+        );
     }
     #[cfg(feature = "gpu")]
     return show(args, ui);
@@ -146,6 +159,10 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         Some(path) => Environment::load(path, up)?,
         None => Environment::bundled(up)?,
     };
+    if args.encoding == shlight_core::Encoding::DominantSh && env.map.is_none() {
+        // The same message as render-mesh's.
+        env.encode(args.encoding, 2)?;
+    }
     let volume = match &args.volume.volume {
         Some(_) => Some(crate::volume_shading::VolumeInput::load(
             &args.volume,

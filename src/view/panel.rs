@@ -1,5 +1,6 @@
 //! The egui overlay panel of `shlight view`.
 
+use shlight_core::Encoding;
 use shlight_gpu::{Background, MAX_LMAX, Mode};
 use shlight_io::ToneMap;
 
@@ -16,6 +17,8 @@ pub struct PanelInfo<'a> {
     pub prt: Option<&'a str>,
     /// Lines about `--volume` (probes, relight time, object, keys).
     pub volume: &'a [String],
+    /// What the encoding shown holds (empty for plain SH).
+    pub encoding: &'a str,
 }
 
 /// The overlay panel; returns whether its screenshot button was pressed.
@@ -36,6 +39,19 @@ pub fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -
                 }
                 ui.radio_value(&mut c.shading.mode, Mode::Normals, "normals");
             });
+            if c.shading.mode == Mode::Sh && info.volume.is_empty() {
+                ui.horizontal_wrapped(|ui| {
+                    ui.label("encoding (e)");
+                    for e in Encoding::ALL {
+                        if e != Encoding::DominantSh || info.has_map {
+                            ui.radio_value(&mut c.encoding, e, e.name());
+                        }
+                    }
+                });
+                if c.encoding != Encoding::Sh && !info.encoding.is_empty() {
+                    ui.label(info.encoding);
+                }
+            }
             ui.horizontal(|ui| {
                 ui.label("background");
                 ui.radio_value(&mut c.shading.background, Background::None, "none");
@@ -78,7 +94,9 @@ pub fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -
                         }
                     });
             });
-            ui.small("drag: orbit · right/shift drag, arrows: environment · 0-8 m b w t +/- p h q");
+            ui.small(
+                "drag: orbit · right/shift drag, arrows: environment · 0-8 m e b w t +/- p h q",
+            );
         });
     screenshot
 }

@@ -11,7 +11,7 @@ use shlight_io::Image;
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
-use crate::shaders::{self, BACKGROUND_MODULE, MESH_MODULE, ShaderModuleSource};
+use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE, ShaderModuleSource};
 use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading};
 use crate::{Camera, GpuContext, GpuError, Transfer};
 
@@ -49,6 +49,8 @@ pub struct Renderer {
     /// The light's lmax as uploaded (at most [`MAX_LMAX`]).
     light_lmax: usize,
     prt: Option<(usize, usize)>,
+    /// [`Mode::Encoded`]'s pipeline, compiled with the encoding's snippet.
+    encoded_pipeline: Option<wgpu::RenderPipeline>,
     map_orientation: MapOrientation,
     environment_rotation: DMat3,
 }
@@ -183,6 +185,7 @@ impl Renderer {
             mesh: None,
             light_lmax: 0,
             prt: None,
+            encoded_pipeline: None,
             map_orientation: MapOrientation::default(),
             environment_rotation: DMat3::IDENTITY,
         }
@@ -281,6 +284,48 @@ impl Renderer {
         self.environment_rotation = r;
     }
 
+    /// Sets the light of [`Mode::Encoded`]: `snippet` is the WGSL that
+    /// shlight-format writes for an encoding (`shlight project MAP
+    /// --encoding E --format wgsl`), which defines `shlight_irradiance(n:
+    /// vec3<f32>) -> vec3<f32>`, the encoding's irradiance at a unit normal
+    /// in world axes, its constants baked in. The snippet holds the
+    /// unturned light: the renderer evaluates it at `R^T n` for the
+    /// rotation `R` of [`Renderer::set_environment_rotation`] (the SH
+    /// coefficients of [`Renderer::set_light`], by contrast, are turned by
+    /// the caller). Compiles the pipeline now.
+    ///
+    /// # Errors
+    /// [`GpuError::Runtime`] when the snippet does not compile with the
+    /// module (a snippet of another shading language, or without
+    /// `shlight_irradiance`).
+    pub fn set_encoding(&mut self, ctx: &GpuContext, snippet: &str) -> Result<(), GpuError> {
+        let source = shaders::encoded_source(snippet);
+        let pipeline = ctx
+            .checked(|| {
+                let module = ctx
+                    .device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(ENCODED_MODULE.name),
+                        source: wgpu::ShaderSource::Wgsl(source.into()),
+                    });
+                pipeline_of(
+                    &ctx.device,
+                    &self.mesh_pipeline_layout,
+                    self.color_format,
+                    &ENCODED_PASS,
+                    &module,
+                )
+            })
+            .map_err(|e| match e {
+                GpuError::Runtime(why) => GpuError::Runtime(format!(
+                    "the encoding's WGSL snippet does not compile: {why}"
+                )),
+                other => other,
+            })?;
+        self.encoded_pipeline = Some(pipeline);
+        Ok(())
+    }
+
     /// Uploads PRT transfer vectors for the current mesh.
     ///
     /// # Errors
@@ -330,7 +375,8 @@ impl Renderer {
     /// draws the background (unless none, or normals mode), then the mesh.
     ///
     /// # Errors
-    /// [`GpuError::Invalid`] for PRT mode without transfer vectors.
+    /// [`GpuError::Invalid`] for PRT mode without transfer vectors, or
+    /// encoded mode without [`Renderer::set_encoding`].
     pub fn draw(
         &self,
         ctx: &GpuContext,
@@ -346,6 +392,11 @@ impl Renderer {
                 "PRT mode needs transfer vectors (none are loaded)".into(),
             ));
         }
+        if shading.mode == Mode::Encoded && self.encoded_pipeline.is_none() {
+            return Err(GpuError::Invalid(
+                "encoded mode needs an encoding's snippet (none is set)".into(),
+            ));
+        }
         let env_from_world =
             orientation_matrix(self.map_orientation) * self.environment_rotation.transpose();
         // 8-bit targets without hardware sRGB encoding get it in the shader.
@@ -358,6 +409,7 @@ impl Renderer {
             shading,
             view_proj: camera.view_proj(aspect),
             env_from_world,
+            light_from_world: self.environment_rotation.transpose(),
             lmax,
             prt: self.prt,
             encode_srgb,
@@ -410,15 +462,18 @@ impl Renderer {
         if let Some(mesh) = &self.mesh {
             // Only SH mode evaluates sh_reconstruct.
             let l = if shading.mode == Mode::Sh { lmax } else { 0 };
-            pass.set_pipeline(self.mesh_pipelines[l].get_or_init(|| {
-                pipeline(
-                    device,
-                    &self.mesh_pipeline_layout,
-                    self.color_format,
-                    &MESH_PASS,
-                    l,
-                )
-            }));
+            pass.set_pipeline(match (&self.encoded_pipeline, shading.mode) {
+                (Some(encoded), Mode::Encoded) => encoded,
+                _ => self.mesh_pipelines[l].get_or_init(|| {
+                    pipeline(
+                        device,
+                        &self.mesh_pipeline_layout,
+                        self.color_format,
+                        &MESH_PASS,
+                        l,
+                    )
+                }),
+            });
             pass.set_bind_group(0, &self.mesh_bind, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -455,6 +510,15 @@ const MESH_PASS: Pass = Pass {
     depth_compare: wgpu::CompareFunction::Less,
 };
 
+/// The mesh shaded with an encoding: [`MESH_PASS`] with `encoded.wgsl`'s
+/// fragment stage.
+const ENCODED_PASS: Pass = Pass {
+    label: "encoded",
+    module: &ENCODED_MODULE,
+    fragment_entry: "fs_encoded",
+    ..MESH_PASS
+};
+
 /// The background: one full-screen triangle behind everything.
 const BACKGROUND_PASS: Pass = Pass {
     label: "background",
@@ -476,6 +540,17 @@ fn pipeline(
     lmax: usize,
 ) -> wgpu::RenderPipeline {
     let module = shaders::create(device, *pass.module, lmax);
+    pipeline_of(device, layout, color_format, pass, &module)
+}
+
+/// The render pipeline of `pass` over a compiled `module`.
+fn pipeline_of(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    color_format: wgpu::TextureFormat,
+    pass: &Pass,
+    module: &wgpu::ShaderModule,
+) -> wgpu::RenderPipeline {
     let targets = [Some(wgpu::ColorTargetState {
         format: color_format,
         blend: None,
@@ -485,7 +560,7 @@ fn pipeline(
         label: Some(pass.label),
         layout: Some(layout),
         vertex: wgpu::VertexState {
-            module: &module,
+            module,
             entry_point: Some(pass.vertex_entry),
             compilation_options: Default::default(),
             buffers: pass.vertex_buffers,
@@ -503,7 +578,7 @@ fn pipeline(
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
-            module: &module,
+            module,
             entry_point: Some(pass.fragment_entry),
             compilation_options: Default::default(),
             targets: &targets,

@@ -21,13 +21,14 @@ use crate::volume_expansion::volume_wgsl;
 pub type ShaderFile = (&'static str, &'static str);
 
 /// Every WGSL file in `shaders/`, by name.
-pub const FILES: [ShaderFile; 6] = [
+pub const FILES: [ShaderFile; 7] = [
     ("sh.wgsl", SH),
     ("scene.wgsl", SCENE),
     ("mesh.wgsl", MESH),
     ("background.wgsl", BACKGROUND),
     ("project.wgsl", PROJECT),
     ("volume.wgsl", VOLUME),
+    ("encoded.wgsl", ENCODED),
 ];
 
 const SH: &str = include_str!("../shaders/sh.wgsl");
@@ -36,6 +37,7 @@ const MESH: &str = include_str!("../shaders/mesh.wgsl");
 const BACKGROUND: &str = include_str!("../shaders/background.wgsl");
 const PROJECT: &str = include_str!("../shaders/project.wgsl");
 const VOLUME: &str = include_str!("../shaders/volume.wgsl");
+const ENCODED: &str = include_str!("../shaders/encoded.wgsl");
 
 /// A compiled unit: a name and its files in order.
 #[derive(Clone, Copy, Debug)]
@@ -60,8 +62,17 @@ impl ShaderModuleSource {
     /// out for `lmax` (at most [`MAX_LMAX`]) when it has some.
     #[must_use]
     pub fn source_at(&self, lmax: usize) -> String {
-        let mut text = self
-            .files
+        let mut text = self.files_text();
+        if let Some(generate) = self.generated {
+            text.push('\n');
+            text.push_str(&generate(lmax.min(MAX_LMAX)));
+        }
+        text
+    }
+
+    /// The module's files concatenated, without generated code.
+    fn files_text(&self) -> String {
+        self.files
             .iter()
             .map(|name| {
                 FILES
@@ -71,12 +82,7 @@ impl ShaderModuleSource {
                     .expect("module files are in FILES")
             })
             .collect::<Vec<_>>()
-            .join("\n");
-        if let Some(generate) = self.generated {
-            text.push('\n');
-            text.push_str(&generate(lmax.min(MAX_LMAX)));
-        }
-        text
+            .join("\n")
     }
 }
 
@@ -107,6 +113,46 @@ pub const VOLUME_MODULE: ShaderModuleSource = ShaderModuleSource {
     files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],
     generated: Some(volume_wgsl),
 };
+/// Shading with an encoding other than plain SH: `mesh.wgsl`'s vertex
+/// stage, `encoded.wgsl`'s fragment stage, and the encoding's WGSL snippet
+/// (`shlight_irradiance`) appended by the caller ([`encoded_source`]).
+/// Its `generated` code, used when the module is validated on its own, is
+/// `sh_reconstruct` at lmax 0 (the mesh stages' own) and [`SAMPLE_ENCODING`].
+pub const ENCODED_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "encoded",
+    files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl", "encoded.wgsl"],
+    generated: Some(sample_encoded),
+};
+
+/// A stand-in for an encoding's snippet when [`ENCODED_MODULE`] is
+/// validated without one: a `shlight_irradiance` of the signature the
+/// snippets have (a clamped cosine about +Y).
+pub const SAMPLE_ENCODING: &str =
+    "fn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {\n    return vec3<f32>(max(n.y, 0.0));\n}\n";
+
+fn sample_encoded(_lmax: usize) -> String {
+    encoded_generated(SAMPLE_ENCODING)
+}
+
+/// What follows [`ENCODED_MODULE`]'s files: `sh_reconstruct` at lmax 0,
+/// then `snippet`.
+fn encoded_generated(snippet: &str) -> String {
+    let mut text = sh_reconstruct_wgsl(0);
+    text.push('\n');
+    text.push_str(snippet);
+    text
+}
+
+/// [`ENCODED_MODULE`]'s source with an encoding's WGSL `snippet` (which
+/// defines `shlight_irradiance(n: vec3<f32>) -> vec3<f32>`) appended.
+#[must_use]
+pub fn encoded_source(snippet: &str) -> String {
+    let mut text = ENCODED_MODULE.files_text();
+    text.push('\n');
+    text.push_str(&encoded_generated(snippet));
+    text
+}
+
 /// The SH basis alone (a module of functions, validated on its own).
 pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "sh",
@@ -115,12 +161,13 @@ pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
-pub const MODULES: [ShaderModuleSource; 5] = [
+pub const MODULES: [ShaderModuleSource; 6] = [
     SH_MODULE,
     MESH_MODULE,
     BACKGROUND_MODULE,
     PROJECT_MODULE,
     VOLUME_MODULE,
+    ENCODED_MODULE,
 ];
 
 /// Compiles a module on `device`, at `lmax` if it has generated code.

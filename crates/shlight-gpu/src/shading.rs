@@ -19,16 +19,22 @@ pub enum Mode {
     Prt,
     /// World-space unit normals as colours (exposure and tone map not applied).
     Normals,
+    /// Per-fragment irradiance of the light's encoding (dominant lights
+    /// plus SH, ZH3, non-linear L1, an ambient cube:
+    /// [`Renderer::set_encoding`](crate::Renderer::set_encoding)) at the
+    /// normal, times albedo / π.
+    Encoded,
 }
 
 impl Mode {
-    /// The mode's name: `sh`, `prt`, `normals`.
+    /// The mode's name: `sh`, `prt`, `normals`, `encoded`.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::Sh => "sh",
             Self::Prt => "prt",
             Self::Normals => "normals",
+            Self::Encoded => "encoded",
         }
     }
 
@@ -37,6 +43,7 @@ impl Mode {
             Self::Sh => 0,
             Self::Prt => 1,
             Self::Normals => 2,
+            Self::Encoded => 3,
         }
     }
 }
@@ -113,6 +120,7 @@ pub(crate) struct FrameUniform {
     view_proj: [[f32; 4]; 4],
     inv_view_proj: [[f32; 4]; 4],
     env_from_world: [[f32; 4]; 4],
+    light_from_world: [[f32; 4]; 4],
     irradiance_band: [[f32; 4]; 3],
     radiance_band: [[f32; 4]; 3],
     albedo: [f32; 4],
@@ -131,6 +139,9 @@ pub(crate) struct FrameInputs<'a> {
     pub shading: &'a Shading,
     pub view_proj: Mat4,
     pub env_from_world: DMat3,
+    /// The unturned light's frame from world: `R^T` for a light turned by
+    /// `R` (encoded shading evaluates the unturned encoding at `R^T n`).
+    pub light_from_world: DMat3,
     /// The light's lmax after clamping.
     pub lmax: usize,
     pub prt: Option<(usize, usize)>,
@@ -159,6 +170,7 @@ impl FrameUniform {
             view_proj: f.view_proj.to_cols_array_2d(),
             inv_view_proj: f.view_proj.inverse().to_cols_array_2d(),
             env_from_world: env.to_cols_array_2d(),
+            light_from_world: Mat4::from_mat3(f.light_from_world.as_mat3()).to_cols_array_2d(),
             irradiance_band,
             radiance_band,
             albedo: [r, g, b, 1.0],
@@ -185,8 +197,8 @@ mod tests {
 
     #[test]
     fn the_uniform_block_has_the_wgsl_size() {
-        // Frame in scene.wgsl: three mat4x4 (192), two array<vec4, 3> (96),
+        // Frame in scene.wgsl: four mat4x4 (256), two array<vec4, 3> (96),
         // one vec4 (16), eight 4-byte scalars (32).
-        assert_eq!(std::mem::size_of::<FrameUniform>(), 336);
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 400);
     }
 }

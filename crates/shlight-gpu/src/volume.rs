@@ -483,6 +483,7 @@ impl VolumeRenderer {
             shading,
             view_proj: camera.view_proj(aspect),
             env_from_world: DMat3::IDENTITY,
+            light_from_world: DMat3::IDENTITY,
             lmax,
             prt: None,
             encode_srgb,
