@@ -39,7 +39,7 @@ use shlight_core::analytic;
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_gpu::{
     Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
-    Transfer, VolumeInstance, VolumeProbes, VolumeRenderer,
+    Transfer, VolumeFetch, VolumeInstance, VolumeProbes, VolumeRenderer,
 };
 use shlight_mesh::Mesh;
 
@@ -150,6 +150,17 @@ fn frame_bunny_prt(bencher: divan::Bencher, lmax: usize) {
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
 fn frame_bunny_volume(bencher: divan::Bencher, lmax: usize) {
     let Some(ctx) = context() else { return };
+    bench_volume(bencher, ctx, lmax, VolumeFetch::best(ctx));
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_bunny_volume_loads(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    bench_volume(bencher, ctx, lmax, VolumeFetch::Loads);
+}
+
+/// `frame_bunny_volume` with the probes interpolated by `fetch`.
+fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: VolumeFetch) {
     let mesh = bunny();
     let resolution = [16, 8, 16];
     let count = 16 * 8 * 16;
@@ -170,7 +181,7 @@ fn frame_bunny_volume(bencher: divan::Bencher, lmax: usize) {
     // The plain renderer only clears (no mesh, no background); the volume
     // pass draws the bunny in place.
     let background = Renderer::new(ctx, HEADLESS_FORMAT);
-    let mut volume = VolumeRenderer::new(ctx, HEADLESS_FORMAT, &probes).unwrap();
+    let mut volume = VolumeRenderer::with_fetch(ctx, HEADLESS_FORMAT, &probes, fetch).unwrap();
     volume.set_object(
         ctx,
         &mesh,
