@@ -11,7 +11,7 @@
 use glam::{DVec3, Vec3};
 use shlight_core::sh_count;
 use shlight_gpu::{
-    GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeProbes, VolumeRenderer,
+    GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeProbes, VolumeRenderer, wgpu,
 };
 use shlight_volume::{Grid, sample};
 
@@ -23,6 +23,13 @@ use crate::util::gpu_context;
 /// 1e-6 of the largest; a wrong weight, index or basis function is off by
 /// tenths.
 const VOLUME_TOL: f64 = 2e-5;
+/// The same for `VolumeFetch::Filtered` on a hardware GPU, whose sampler
+/// rounds each axis's weight to its sub-texel precision (8 bits on most:
+/// steps of 1/256, so off by up to 1/512 per axis): three axes times 1/512
+/// of the difference between neighbouring probes' irradiance, at most
+/// twice the largest. CPU adapters (lavapipe) weigh in f32 and meet
+/// [`VOLUME_TOL`] (measured: at most 2e-6 filtered, 5e-7 by loads).
+const FILTERED_GPU_TOL: f64 = 1.2e-2;
 
 /// A fixed linear congruential sequence (Knuth's MMIX constants).
 struct Lcg(u64);
@@ -234,6 +241,12 @@ fn gpu_interpolation_equals_the_cpu_at_random_points() {
     for fetch in fetches(&ctx) {
         // The test grid, and one with a single probe along y.
         for resolution in [[4, 3, 2], [3, 1, 2]] {
+            let cpu_adapter = ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+            let tol = if fetch == VolumeFetch::Filtered && !cpu_adapter {
+                FILTERED_GPU_TOL
+            } else {
+                VOLUME_TOL
+            };
             for lmax in 0..=4 {
                 let seed = 3 + lmax as u64 + 10 * resolution[1] as u64;
                 let volume = TestVolume::random_on(resolution, lmax, seed);
@@ -265,7 +278,7 @@ fn gpu_interpolation_equals_the_cpu_at_random_points() {
                         / scale;
                     worst = worst.max(err);
                     assert!(
-                        err < VOLUME_TOL,
+                        err < tol,
                         "{fetch:?} {resolution:?} lmax {lmax} at {p} facing {n}: GPU {g:?}, \
                          CPU {w} ({err:.2e} of {scale})"
                     );

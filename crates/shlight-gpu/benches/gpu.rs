@@ -15,9 +15,14 @@
 //! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
 //!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
-//!   bunny's bounding box, eight probes interpolated per fragment; the same
-//!   mesh, camera and size as `frame_bunny_sh` at the same lmax, which is
-//!   its baseline (the target: within 1.5x);
+//!   bunny's bounding box, the eight probes around each fragment
+//!   interpolated the adapter's best way (`VolumeFetch::best`: on lavapipe
+//!   the sampler's trilinear filter, 7 samples at lmax 2 and 19 at lmax 4);
+//!   the same mesh, camera and size as `frame_bunny_sh` at the same lmax,
+//!   which is its baseline (the target: within 1.5x);
+//! - `frame_bunny_volume_loads`: the same with `VolumeFetch::Loads`, the
+//!   path of adapters that cannot filter `Rgba32Float` (eight
+//!   `textureLoad`s per texel, weighted in the shader);
 //! - `frame_sphere_normals`: the sphere in normals mode, the floor every
 //!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);
 //! - `frame_sphere_readback`: `frame_sphere_sh` at lmax 2 with the frame
