@@ -311,7 +311,10 @@ fn an_invalid_probe_takes_no_weight_on_the_gpu() {
     for fetch in fetches(&ctx) {
         let a = gpu(&ctx, &plain, 2, &points, fetch);
         let b = gpu(&ctx, &huge, 2, &points, fetch);
-        assert_eq!(a, b, "{fetch:?}: an invalid probe's values reached the result");
+        assert_eq!(
+            a, b,
+            "{fetch:?}: an invalid probe's values reached the result"
+        );
         // The same probe made valid does change the points around it (so
         // the comparison above can fail).
         huge.valid[5] = true;

@@ -32,8 +32,8 @@ use wgpu::util::DeviceExt;
 
 use crate::renderer::DEPTH_FORMAT;
 use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
-use crate::volume_expansion::volume_texels;
 use crate::shading::{FrameInputs, FrameUniform, Shading};
+use crate::volume_expansion::volume_texels;
 use crate::{Camera, GpuContext, GpuError};
 
 /// Highest degree the volume pass shades: a volume of higher lmax is
@@ -168,10 +168,7 @@ pub struct ProbeTexels {
 /// # Errors
 /// [`GpuError::Invalid`] when the grid does not fit in a 3D texture of
 /// side `max_dimension`, or for the faults [`VolumeRenderer::new`] names.
-pub fn pack_texels(
-    probes: &VolumeProbes<'_>,
-    max_dimension: u32,
-) -> Result<ProbeTexels, GpuError> {
+pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<ProbeTexels, GpuError> {
     probes.check()?;
     let lv = probes.lmax.min(VOLUME_MAX_LMAX);
     let per_probe = volume_texels(lv);
