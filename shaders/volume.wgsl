@@ -14,26 +14,56 @@
 // probe sphere (instance with a probe number) shows its own probe's E_k(n),
 // or 0 when the probe is invalid.
 //
-// The weighted basis ShBasis / sh_basis and probe_dot are written out per
-// lmax and appended (crates/shlight-gpu/src/volume_expansion.rs).
+// The probes are a 3D texture of premultiplied texels: per probe the floats
+// (v, v L_0, v L_1, ...) (v the validity, L_i the rgb radiance of
+// coefficient i), four to a texel, so a probe's T = ceil((3 (lmax_v+1)^2 +
+// 1) / 4) texels hold its float f at texel f / 4, lane f % 4. Texel j of
+// every probe lies in block j of the texture, the grid itself (probe
+// (x, y, z) at texel (x, y, z) of the block) with one layer more on each
+// side in y and z that repeats the edge; the blocks tile the texture's y and
+// z. Interpolating the texels with the trilinear weights gives
+// (sum_k w_k v_k, sum_k w_k v_k L_k,i) at once, so
+//
+//   E(p, n) = sum_i y_i (sum_k w_k v_k L_k,i) / sum_k w_k v_k
+//
+// with y_i = A_l w_l Y_i(n): the coefficients are interpolated first and
+// dotted with the basis once. Two ways to interpolate, one per pipeline:
+//
+// - filtered (the adapter filters Rgba32Float): one trilinear sample per
+//   texel, the point clamped to the grid's first and last probe centres on
+//   every axis (clamp-to-edge within the block; probes sit at cell centres,
+//   which are texel centres);
+// - loads: eight textureLoads per texel, weighted in the shader exactly as
+//   shlight-volume's Grid::trilinear weighs them.
+//
+// ShBasis / sh_basis, volume_sum and probe_sum (the texel dot products) are
+// written out per lmax and variant and appended
+// (crates/shlight-gpu/src/volume_expansion.rs).
 
-// The grid, written by shlight-gpu's `VolumeUniform`. Probes sit at cell
-// centres, numbered x fastest: probe (x, y, z) is x + nx (y + ny z).
+// Texels per probe at lmax 4: ceil((3 * 25 + 1) / 4).
+const VOLUME_MAX_TEXELS: u32 = 19u;
+
+// The grid and the texture's layout, written by shlight-gpu's
+// `VolumeUniform`. Probes sit at cell centres, numbered x fastest: probe
+// (x, y, z) is x + nx (y + ny z).
 struct Volume {
     // The grid box's lower corner (xyz).
     min: vec4<f32>,
     // Cells per unit length along each axis: resolution / (max - min).
     inv_cell: vec4<f32>,
-    // Probes along x, y, z; w: vec4 slots per probe, (lmax_v + 1)^2 with
-    // lmax_v the uploaded lmax (at most 4).
+    // Probes along x, y, z; w: texels per probe T.
     resolution: vec4<u32>,
+    // 1 / the texture's width, height and depth (in texels).
+    inv_size: vec4<f32>,
+    // Per texel j < T, where block j starts: x, y its first probe layer in
+    // y and z as normalised texture coordinates; z, w the same in texels.
+    blocks: array<vec4<f32>, VOLUME_MAX_TEXELS>,
 }
 
-// Probe-major: probe k's coefficient i (i < (lmax_v+1)^2) at
-// probes[k * resolution.w + i], radiance L_k,i in rgb; the w of slot 0 is
-// 1 for a valid probe and 0 for an invalid one (every other w is 0).
-@group(0) @binding(2) var<storage, read> probes: array<vec4<f32>>;
+@group(0) @binding(2) var probe_texels: texture_3d<f32>;
 @group(0) @binding(3) var<uniform> volume: Volume;
+// Linear filtering, clamp to edge (the filtered variant only).
+@group(0) @binding(6) var probe_sampler: sampler;
 
 // No probe: the instance is lit by interpolation.
 const NO_PROBE: u32 = 0xffffffffu;
@@ -58,54 +88,91 @@ struct VolumeVertexOut {
     @location(4) @interpolate(flat) probe: u32,
 }
 
-// The trilinear cell of p, clamped to the grid as shlight-volume's
-// Grid::trilinear is: lower corner per axis and the fraction t towards the
-// upper one (t = 0 on an axis of one probe, so its upper corners weigh 0).
-struct Cell {
-    lower: vec3<u32>,
-    t: vec3<f32>,
+// Filtered: the point in texture coordinates of block 0, clamped on each
+// axis to the first and last probe centres (texel centres 0.5 and n - 0.5):
+// the clamp of Grid::trilinear, where an axis of one probe has weight 1 on
+// it. Block j adds its offset in y and z; the layers beyond a block's edge
+// repeat it, so rounding at a clamped coordinate reads the same values.
+fn volume_filtered_at(p: vec3<f32>) -> vec3<f32> {
+    let n = vec3<f32>(volume.resolution.xyz);
+    let u = (p - volume.min.xyz) * volume.inv_cell.xyz;
+    return clamp(u, vec3<f32>(0.5), n - vec3<f32>(0.5)) * volume.inv_size.xyz;
 }
 
-fn volume_cell(p: vec3<f32>) -> Cell {
+// Texel j of the eight probes around the point at, filtered.
+fn volume_filtered(at: vec3<f32>, j: u32) -> vec4<f32> {
+    let b = volume.blocks[j];
+    let c = vec3<f32>(at.x, at.y + b.x, at.z + b.y);
+    return textureSampleLevel(probe_texels, probe_sampler, c, 0.0);
+}
+
+// Loads: the trilinear cell of p, clamped to the grid as shlight-volume's
+// Grid::trilinear is: its lower and upper corners per axis (the same on an
+// axis of one probe) and the weights of its eight corners, corner k the
+// upper one along x, y, z where bit 0, 1, 2 of k is set (w03: corners 0..3,
+// w47: 4..7).
+struct VolumeCell {
+    lower: vec3<u32>,
+    upper: vec3<u32>,
+    w03: vec4<f32>,
+    w47: vec4<f32>,
+}
+
+fn volume_loads_at(p: vec3<f32>) -> VolumeCell {
     let n = vec3<f32>(volume.resolution.xyz);
     let u = (p - volume.min.xyz) * volume.inv_cell.xyz - vec3<f32>(0.5);
     let f = clamp(u, vec3<f32>(0.0), max(n - vec3<f32>(1.0), vec3<f32>(0.0)));
     let i = min(floor(f), max(n - vec3<f32>(2.0), vec3<f32>(0.0)));
-    return Cell(vec3<u32>(i), f - i);
+    let t = f - i;
+    let s = vec3<f32>(1.0) - t;
+    let lower = vec3<u32>(i);
+    let upper = min(lower + vec3<u32>(1u), volume.resolution.xyz - vec3<u32>(1u));
+    let xy = vec4<f32>(s.x * s.y, t.x * s.y, s.x * t.y, t.x * t.y);
+    return VolumeCell(lower, upper, xy * s.z, xy * t.z);
+}
+
+// Texel j of the eight probes around the cell c, weighted.
+fn volume_loads(c: VolumeCell, j: u32) -> vec4<f32> {
+    let b = volume.blocks[j];
+    let o = vec3<u32>(0u, u32(b.z), u32(b.w));
+    let lo = c.lower + o;
+    let hi = c.upper + o;
+    return c.w03.x * textureLoad(probe_texels, lo, 0)
+        + c.w03.y * textureLoad(probe_texels, vec3<u32>(hi.x, lo.y, lo.z), 0)
+        + c.w03.z * textureLoad(probe_texels, vec3<u32>(lo.x, hi.y, lo.z), 0)
+        + c.w03.w * textureLoad(probe_texels, vec3<u32>(hi.x, hi.y, lo.z), 0)
+        + c.w47.x * textureLoad(probe_texels, vec3<u32>(lo.x, lo.y, hi.z), 0)
+        + c.w47.y * textureLoad(probe_texels, vec3<u32>(hi.x, lo.y, hi.z), 0)
+        + c.w47.z * textureLoad(probe_texels, vec3<u32>(lo.x, hi.y, hi.z), 0)
+        + c.w47.w * textureLoad(probe_texels, hi, 0);
+}
+
+// Probe k's texel coordinates in block 0.
+fn probe_at(k: u32) -> vec3<u32> {
+    let r = volume.resolution;
+    return vec3<u32>(k % r.x, (k / r.x) % r.y, k / (r.x * r.y));
+}
+
+// Texel j of the probe at a.
+fn probe_load(a: vec3<u32>, j: u32) -> vec4<f32> {
+    let b = volume.blocks[j];
+    return textureLoad(probe_texels, a + vec3<u32>(0u, u32(b.z), u32(b.w)), 0);
 }
 
 // sum_k w_k v_k E_k(n) / sum_k w_k v_k in rgb, sum_k w_k v_k in a (rgb 0
-// when the sum is 0).
+// when the sum is 0). volume_sum(p, y) returns
+// (sum_i y_i sum_k w_k v_k L_k,i, sum_k w_k v_k).
 fn volume_irradiance(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    let y = sh_basis(n, frame.irradiance_band);
-    let cell = volume_cell(p);
-    let res = volume.resolution;
-    var sum = vec3<f32>(0.0);
-    var total = 0.0;
-    for (var k = 0u; k < 8u; k = k + 1u) {
-        let up = vec3<u32>(k & 1u, (k >> 1u) & 1u, (k >> 2u) & 1u);
-        let wv = select(vec3<f32>(1.0) - cell.t, cell.t, up == vec3<u32>(1u));
-        let w = wv.x * wv.y * wv.z;
-        let c = cell.lower + up;
-        let b = (c.x + res.x * (c.y + res.y * c.z)) * res.w;
-        if w > 0.0 && probes[b].w > 0.5 {
-            sum = sum + w * probe_dot(b, y);
-            total = total + w;
-        }
-    }
-    if total > 0.0 {
-        return vec4<f32>(sum / total, total);
+    let s = volume_sum(p, sh_basis(n, frame.irradiance_band));
+    if s.w > 0.0 {
+        return vec4<f32>(s.xyz / s.w, s.w);
     }
     return vec4<f32>(0.0);
 }
 
-// E_k(n) of one probe, 0 when it is invalid.
+// E_k(n) of one probe, 0 when it is invalid (its texels are 0).
 fn probe_irradiance(k: u32, n: vec3<f32>) -> vec3<f32> {
-    let b = k * volume.resolution.w;
-    if probes[b].w < 0.5 {
-        return vec3<f32>(0.0);
-    }
-    return probe_dot(b, sh_basis(n, frame.irradiance_band));
+    return probe_sum(probe_at(k), sh_basis(n, frame.irradiance_band));
 }
 
 @vertex

@@ -15,9 +15,14 @@
 //! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
 //!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
-//!   bunny's bounding box, eight probes interpolated per fragment; the same
-//!   mesh, camera and size as `frame_bunny_sh` at the same lmax, which is
-//!   its baseline (the target: within 1.5x);
+//!   bunny's bounding box, the eight probes around each fragment
+//!   interpolated the adapter's best way (`VolumeFetch::best`: on lavapipe
+//!   the sampler's trilinear filter, 7 samples at lmax 2 and 19 at lmax 4);
+//!   the same mesh, camera and size as `frame_bunny_sh` at the same lmax,
+//!   which is its baseline (the target: within 1.5x);
+//! - `frame_bunny_volume_loads`: the same with `VolumeFetch::Loads`, the
+//!   path of adapters that cannot filter `Rgba32Float` (eight
+//!   `textureLoad`s per texel, weighted in the shader);
 //! - `frame_sphere_normals`: the sphere in normals mode, the floor every
 //!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);
 //! - `frame_sphere_readback`: `frame_sphere_sh` at lmax 2 with the frame
@@ -39,7 +44,7 @@ use shlight_core::analytic;
 use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_gpu::{
     Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
-    Transfer, VolumeInstance, VolumeProbes, VolumeRenderer,
+    Transfer, VolumeFetch, VolumeInstance, VolumeProbes, VolumeRenderer,
 };
 use shlight_mesh::Mesh;
 
@@ -150,6 +155,17 @@ fn frame_bunny_prt(bencher: divan::Bencher, lmax: usize) {
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
 fn frame_bunny_volume(bencher: divan::Bencher, lmax: usize) {
     let Some(ctx) = context() else { return };
+    bench_volume(bencher, ctx, lmax, VolumeFetch::best(ctx));
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_bunny_volume_loads(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    bench_volume(bencher, ctx, lmax, VolumeFetch::Loads);
+}
+
+/// `frame_bunny_volume` with the probes interpolated by `fetch`.
+fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: VolumeFetch) {
     let mesh = bunny();
     let resolution = [16, 8, 16];
     let count = 16 * 8 * 16;
@@ -170,7 +186,7 @@ fn frame_bunny_volume(bencher: divan::Bencher, lmax: usize) {
     // The plain renderer only clears (no mesh, no background); the volume
     // pass draws the bunny in place.
     let background = Renderer::new(ctx, HEADLESS_FORMAT);
-    let mut volume = VolumeRenderer::new(ctx, HEADLESS_FORMAT, &probes).unwrap();
+    let mut volume = VolumeRenderer::with_fetch(ctx, HEADLESS_FORMAT, &probes, fetch).unwrap();
     volume.set_object(
         ctx,
         &mesh,

@@ -27,7 +27,9 @@ impl GpuContext {
         Self::with_instance(instance, None)
     }
 
-    /// Opens an adapter on `instance` able to present to `surface` (when given).
+    /// Opens an adapter on `instance` able to present to `surface` (when
+    /// given), with the adapter's limits and, when it has it,
+    /// `FLOAT32_FILTERABLE` (the volume pass's filtered interpolation).
     ///
     /// # Errors
     /// As [`GpuContext::headless`].
@@ -42,9 +44,13 @@ impl GpuContext {
             apply_limit_buckets: false,
         }))
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        // Linear filtering of Rgba32Float textures, where the adapter has
+        // it: the volume pass then interpolates its probes with the sampler
+        // (VolumeFetch).
+        let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("shlight"),
-            required_features: wgpu::Features::empty(),
+            required_features: features,
             // The adapter's own limits: large storage buffers for projection.
             required_limits: adapter.limits(),
             ..Default::default()

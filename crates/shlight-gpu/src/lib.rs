@@ -43,8 +43,8 @@ pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use transfer::Transfer;
 pub use volume::{
-    PROBE_SPHERE_RADIUS, VOLUME_MAX_LMAX, VolumeInstance, VolumeProbes, VolumeRenderer,
-    pack_probes, place, probe_sphere_instances,
+    PROBE_SPHERE_RADIUS, ProbeTexels, VOLUME_MAX_LMAX, VolumeFetch, VolumeInstance, VolumeProbes,
+    VolumeRenderer, pack_texels, place, probe_sphere_instances,
 };
 /// wgpu, as this crate uses it (for windows and surfaces).
 pub use wgpu;

@@ -15,7 +15,7 @@
 use crate::MAX_LMAX;
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
-use crate::volume_expansion::volume_wgsl;
+use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads};
 
 /// A shader file: its name in `shaders/` and its text.
 pub type ShaderFile = (&'static str, &'static str);
@@ -42,7 +42,8 @@ const ENCODED: &str = include_str!("../shaders/encoded.wgsl");
 /// A compiled unit: a name and its files in order.
 #[derive(Clone, Copy, Debug)]
 pub struct ShaderModuleSource {
-    /// The module's name (its own file's stem).
+    /// The module's name (its own file's stem, and the variant when one file
+    /// makes two).
     pub name: &'static str,
     /// Files concatenated in this order.
     pub files: &'static [&'static str],
@@ -105,13 +106,22 @@ pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
     generated: Some(ring_sums_wgsl),
 };
 /// Irradiance-volume shading (meshes lit by interpolated probes, probe
-/// spheres, and the interpolation as a compute pass); its generated
-/// `sh_basis` and `probe_dot` stop at lmax
+/// spheres, and the interpolation as a compute pass), the probes' texels
+/// interpolated by the sampler (`VolumeFetch::Filtered`); its generated
+/// `sh_basis`, `volume_sum` and `probe_sum` stop at lmax
 /// [`VOLUME_MAX_LMAX`](crate::volume::VOLUME_MAX_LMAX).
 pub const VOLUME_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "volume",
     files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],
-    generated: Some(volume_wgsl),
+    generated: Some(volume_wgsl_filtered),
+};
+/// [`VOLUME_MODULE`] with the texels read by eight loads each and weighted
+/// in the shader (`VolumeFetch::Loads`, adapters that cannot filter
+/// `Rgba32Float`).
+pub const VOLUME_LOADS_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume loads",
+    files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],
+    generated: Some(volume_wgsl_loads),
 };
 /// Shading with an encoding other than plain SH: `mesh.wgsl`'s vertex
 /// stage, `encoded.wgsl`'s fragment stage, and the encoding's WGSL snippet
@@ -161,12 +171,13 @@ pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
-pub const MODULES: [ShaderModuleSource; 6] = [
+pub const MODULES: [ShaderModuleSource; 7] = [
     SH_MODULE,
     MESH_MODULE,
     BACKGROUND_MODULE,
     PROJECT_MODULE,
     VOLUME_MODULE,
+    VOLUME_LOADS_MODULE,
     ENCODED_MODULE,
 ];
 

@@ -4,12 +4,23 @@
 //!
 //! [`VolumeRenderer::draw`] adds its meshes to a frame that a [`Renderer`]
 //! has begun (cleared, background drawn), loading colour and depth, so the
-//! plain renderer is unchanged. The probes go to the GPU as a storage
-//! buffer, probe-major: probe `k`'s coefficient `i` in `vec4` slot
-//! `k (lmax_v+1)^2 + i`, radiance `L_k,i` in rgb, and in the `w` of slot 0
-//! the probe's validity (1 valid, 0 invalid); `lmax_v` is the volume's lmax
-//! clipped to [`VOLUME_MAX_LMAX`]. The grid (lower corner, cells per unit
-//! length, resolution and stride) is a uniform block.
+//! plain renderer is unchanged. The probes go to the GPU as one
+//! `Rgba32Float` 3D texture of premultiplied texels ([`pack_texels`]): per
+//! probe the floats `v, v L_0, v L_1, ...` (`v` the validity 1 or 0, `L_i`
+//! the rgb radiance of coefficient `i` to `lmax_v`, the volume's lmax
+//! clipped to [`VOLUME_MAX_LMAX`]), four to a texel; texel `j` of every
+//! probe in block `j`, a copy of the grid with one more layer on each side
+//! in y and z, the blocks tiling the texture's y and z. Interpolating the
+//! texels gives the valid weight and the weighted coefficients at once,
+//! divided and dotted with the basis once per fragment. The grid (lower
+//! corner, cells per unit length, resolution, the blocks' places) is a
+//! uniform block.
+//!
+//! The texels are interpolated one of two ways ([`VolumeFetch`]): by the
+//! sampler's trilinear filter where the adapter filters `Rgba32Float`
+//! (wgpu's `FLOAT32_FILTERABLE`, which [`GpuContext`] requests when the
+//! adapter has it; lavapipe has it), one sample per texel; else by eight
+//! `textureLoad`s per texel weighted in the shader.
 //!
 //! [`Renderer`]: crate::Renderer
 
@@ -20,14 +31,54 @@ use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
 use crate::renderer::DEPTH_FORMAT;
-use crate::shaders::{self, VOLUME_MODULE};
+use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, Shading};
+use crate::volume_expansion::volume_texels;
 use crate::{Camera, GpuContext, GpuError};
 
 /// Highest degree the volume pass shades: a volume of higher lmax is
-/// clipped to it (eight probes of `(lmax+1)^2` coefficients are read per
-/// fragment: 200 `vec4` loads at lmax 4).
+/// clipped to it (`ceil((3 (lmax+1)^2 + 1) / 4)` texels are interpolated
+/// per fragment: 19 at lmax 4).
 pub const VOLUME_MAX_LMAX: usize = 4;
+
+/// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 25 + 1) / 4)`.
+const MAX_TEXELS: usize = 19;
+
+/// How the volume pass interpolates the probes' texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VolumeFetch {
+    /// One trilinear sample per texel by the sampler (needs
+    /// `wgpu::Features::FLOAT32_FILTERABLE`). The sampler computes the
+    /// weights: in f32 on lavapipe (within rounding of the CPU's); GPUs
+    /// round them to their sub-texel precision (8 bits on most: weights
+    /// in steps of 1/256).
+    Filtered,
+    /// Eight `textureLoad`s per texel, weighted in the shader exactly as
+    /// `shlight_volume::Grid::trilinear` weighs them (any adapter).
+    Loads,
+}
+
+impl VolumeFetch {
+    /// What `ctx` runs best without losing exactness: [`VolumeFetch::Filtered`]
+    /// on a CPU adapter (lavapipe) whose device filters `Rgba32Float`, where
+    /// the sampler weighs in f32 and is the faster path by far; else
+    /// [`VolumeFetch::Loads`]: hardware GPUs round the sampler's weights to
+    /// 8 bits, and serve the eight loads per texel cheaply.
+    #[must_use]
+    pub fn best(ctx: &GpuContext) -> Self {
+        let cpu = ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        if cpu
+            && ctx
+                .device
+                .features()
+                .contains(wgpu::Features::FLOAT32_FILTERABLE)
+        {
+            Self::Filtered
+        } else {
+            Self::Loads
+        }
+    }
+}
 
 /// The instance value of a mesh lit by interpolation (no probe of its own).
 const NO_PROBE: u32 = u32::MAX;
@@ -96,23 +147,90 @@ impl VolumeProbes<'_> {
     }
 }
 
-/// The probes packed for the storage buffer: per probe
-/// `(min(lmax, VOLUME_MAX_LMAX)+1)^2` `vec4` slots, rgb the radiance, the
-/// `w` of slot 0 the validity (1 or 0).
-#[must_use]
-pub fn pack_probes(probes: &VolumeProbes<'_>) -> Vec<[f32; 4]> {
-    let nc = (probes.lmax + 1) * (probes.lmax + 1);
+/// The probes as the volume pass's 3D texture (`Rgba32Float`, texels x
+/// fastest, then y, then z).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeTexels {
+    /// Width, height and depth in texels: `nx`, `by (ny + 2)`, `bz (nz + 2)`.
+    pub size: [u32; 3],
+    /// Texels per probe `T = ceil((3 (lmax_v+1)^2 + 1) / 4)`.
+    pub per_probe: usize,
+    /// Per texel `j < T`: where block `j`'s first probe layer lies in y and
+    /// z (block `j` is column `j % by`, row `j / by` of the tiling; its
+    /// probe `(x, y, z)` at texel `(x, oy + y, oz + z)`).
+    pub blocks: Vec<[u32; 2]>,
+    /// The texels.
+    pub data: Vec<[f32; 4]>,
+}
+
+/// The probes packed as the volume pass's texture: probe `k`'s floats
+/// `v, v L_0 (rgb), v L_1, ...` to lmax `min(lmax, VOLUME_MAX_LMAX)`, four
+/// to a texel (the last padded with 0; an invalid probe all 0), texel `j`
+/// in block `j`, each block with its first and last y and z layers
+/// repeated once beyond them; the blocks tiled in y and z as near a square
+/// as `max_dimension` (the device's largest 3D texture side) allows.
+///
+/// # Errors
+/// [`GpuError::Invalid`] when the grid does not fit in a 3D texture of
+/// side `max_dimension`, or for the faults [`VolumeRenderer::new`] names.
+pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<ProbeTexels, GpuError> {
+    probes.check()?;
     let lv = probes.lmax.min(VOLUME_MAX_LMAX);
+    let per_probe = volume_texels(lv);
+    let [nx, ny, nz] = probes.resolution;
+    let (hy, hz) = (ny + 2, nz + 2);
+    let max = max_dimension as usize;
+    // Columns by and rows bz of blocks: the smallest larger side, then the
+    // smallest area.
+    let tiling = (1..=per_probe)
+        .map(|by| (by, per_probe.div_ceil(by)))
+        .filter(|&(by, bz)| nx <= max && by * hy <= max && bz * hz <= max)
+        .min_by_key(|&(by, bz)| ((by * hy).max(bz * hz), by * hy * bz * hz));
+    let Some((by, bz)) = tiling else {
+        return Err(GpuError::Invalid(format!(
+            "volume resolution {:?} at lmax {lv}: {per_probe} copies of the grid do not fit in \
+             a 3D texture of side {max_dimension}",
+            probes.resolution
+        )));
+    };
+    let (width, height, depth) = (nx, by * hy, bz * hz);
+    let nc = (probes.lmax + 1) * (probes.lmax + 1);
     let slots = (lv + 1) * (lv + 1);
-    let mut out = Vec::with_capacity(probes.valid.len() * slots);
+    // Per probe its T texels.
+    let mut floats = vec![0.0f32; 4 * per_probe];
+    let mut probe_texels = Vec::with_capacity(probes.valid.len() * per_probe);
     for (k, &valid) in probes.valid.iter().enumerate() {
-        let rows = &probes.radiance[k * nc * 3..][..slots * 3];
-        for (i, rgb) in rows.chunks_exact(3).enumerate() {
-            let w = if i == 0 && valid { 1.0 } else { 0.0 };
-            out.push([rgb[0], rgb[1], rgb[2], w]);
+        floats.fill(0.0);
+        if valid {
+            floats[0] = 1.0;
+            floats[1..=3 * slots].copy_from_slice(&probes.radiance[k * nc * 3..][..slots * 3]);
+        }
+        probe_texels.extend(floats.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]]));
+    }
+    let blocks: Vec<[u32; 2]> = (0..per_probe)
+        .map(|j| [(j % by * hy + 1) as u32, (j / by * hz + 1) as u32])
+        .collect();
+    let mut data = vec![[0.0f32; 4]; width * height * depth];
+    for (j, &[oy, oz]) in blocks.iter().enumerate() {
+        let (oy, oz) = (oy as usize - 1, oz as usize - 1);
+        for z in 0..hz {
+            let pz = z.saturating_sub(1).min(nz - 1);
+            for y in 0..hy {
+                let py = y.saturating_sub(1).min(ny - 1);
+                let row = width * (oy + y + height * (oz + z));
+                for x in 0..nx {
+                    let k = x + nx * (py + ny * pz);
+                    data[row + x] = probe_texels[k * per_probe + j];
+                }
+            }
         }
     }
-    out
+    Ok(ProbeTexels {
+        size: [width as u32, height as u32, depth as u32],
+        per_probe,
+        blocks,
+        data,
+    })
 }
 
 /// One instance of the volume pass: `world = position * scale + offset`,
@@ -182,6 +300,29 @@ struct VolumeUniform {
     min: [f32; 4],
     inv_cell: [f32; 4],
     resolution: [u32; 4],
+    inv_size: [f32; 4],
+    blocks: [[f32; 4]; MAX_TEXELS],
+}
+
+impl VolumeUniform {
+    fn new(probes: &VolumeProbes<'_>, texels: &ProbeTexels) -> Self {
+        let inv_cell =
+            Vec3::from_array(probes.resolution.map(|n| n as f32)) / (probes.max - probes.min);
+        let [nx, ny, nz] = probes.resolution.map(|n| n as u32);
+        let [w, h, d] = texels.size.map(|n| n as f32);
+        let mut blocks = [[0.0; 4]; MAX_TEXELS];
+        for (b, &[oy, oz]) in blocks.iter_mut().zip(&texels.blocks) {
+            let (oy, oz) = (oy as f32, oz as f32);
+            *b = [oy / h, oz / d, oy, oz];
+        }
+        Self {
+            min: probes.min.extend(0.0).to_array(),
+            inv_cell: inv_cell.extend(0.0).to_array(),
+            resolution: [nx, ny, nz, texels.per_probe as u32],
+            inv_size: [1.0 / w, 1.0 / h, 1.0 / d, 0.0],
+            blocks,
+        }
+    }
 }
 
 /// A mesh of the volume pass: position, normal, albedo, emission per vertex.
@@ -239,6 +380,7 @@ impl VolumeMesh {
 /// format, after a [`Renderer`](crate::Renderer) has begun the frame.
 pub struct VolumeRenderer {
     color_format: wgpu::TextureFormat,
+    fetch: VolumeFetch,
     /// Per shading lmax, built on first use.
     pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
     computes: [OnceLock<wgpu::ComputePipeline>; VOLUME_MAX_LMAX + 1],
@@ -247,7 +389,9 @@ pub struct VolumeRenderer {
     compute_pipeline_layout: wgpu::PipelineLayout,
     frame: wgpu::Buffer,
     volume: wgpu::Buffer,
-    probes: wgpu::Buffer,
+    texture: wgpu::Texture,
+    texture_view: wgpu::TextureView,
+    sampler: wgpu::Sampler,
     bind: wgpu::BindGroup,
     resolution: [usize; 3],
     lmax: usize,
@@ -262,6 +406,7 @@ impl std::fmt::Debug for VolumeRenderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("VolumeRenderer")
             .field("color_format", &self.color_format)
+            .field("fetch", &self.fetch)
             .field("resolution", &self.resolution)
             .field("lmax", &self.lmax)
             .finish_non_exhaustive()
@@ -285,6 +430,33 @@ fn entry(
     }
 }
 
+/// The probes' texture (binding 2) and, filtered, its sampler (binding 6).
+fn texture_entries(
+    visibility: wgpu::ShaderStages,
+    fetch: VolumeFetch,
+) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let filterable = fetch == VolumeFetch::Filtered;
+    let mut out = vec![wgpu::BindGroupLayoutEntry {
+        binding: 2,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D3,
+            multisampled: false,
+        },
+        count: None,
+    }];
+    if filterable {
+        out.push(wgpu::BindGroupLayoutEntry {
+            binding: 6,
+            visibility,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        });
+    }
+    out
+}
+
 const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
 const READ: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: true };
 const WRITE: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: false };
@@ -292,38 +464,60 @@ const WRITE: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_o
 impl VolumeRenderer {
     /// A volume pass for colour targets of `color_format` over `probes`
     /// (clipped to lmax [`VOLUME_MAX_LMAX`]), with no scene and no object
-    /// yet.
+    /// yet, interpolating as [`VolumeFetch::best`] says.
     ///
     /// # Errors
-    /// [`GpuError::Invalid`] for an empty grid, bad bounds or arrays of the
-    /// wrong length.
+    /// [`GpuError::Invalid`] for an empty grid, bad bounds, arrays of the
+    /// wrong length, or a grid too large for the device's 3D textures
+    /// ([`pack_texels`]).
     pub fn new(
         ctx: &GpuContext,
         color_format: wgpu::TextureFormat,
         probes: &VolumeProbes<'_>,
     ) -> Result<Self, GpuError> {
-        probes.check()?;
+        Self::with_fetch(ctx, color_format, probes, VolumeFetch::best(ctx))
+    }
+
+    /// [`VolumeRenderer::new`] interpolating by `fetch`.
+    ///
+    /// # Errors
+    /// As [`VolumeRenderer::new`], and [`GpuError::Invalid`] for
+    /// [`VolumeFetch::Filtered`] on a device that does not filter
+    /// `Rgba32Float`.
+    pub fn with_fetch(
+        ctx: &GpuContext,
+        color_format: wgpu::TextureFormat,
+        probes: &VolumeProbes<'_>,
+        fetch: VolumeFetch,
+    ) -> Result<Self, GpuError> {
+        if fetch == VolumeFetch::Filtered && VolumeFetch::best(ctx) != fetch {
+            return Err(GpuError::Invalid(format!(
+                "filtered volume interpolation on {}: the device does not filter Rgba32Float \
+                 textures (FLOAT32_FILTERABLE); use VolumeFetch::Loads",
+                ctx.adapter_name()
+            )));
+        }
         let device = &ctx.device;
+        let texels = pack_texels(probes, device.limits().max_texture_dimension_3d)?;
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
+        let mut entries = vec![entry(0, vf, UNIFORM), entry(3, fragment, UNIFORM)];
+        entries.extend(texture_entries(fragment, fetch));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume"),
-            entries: &[
-                entry(0, vf, UNIFORM),
-                entry(2, fragment, READ),
-                entry(3, fragment, UNIFORM),
-            ],
+            entries: &entries,
         });
         let compute = wgpu::ShaderStages::COMPUTE;
+        let mut entries = vec![
+            entry(0, compute, UNIFORM),
+            entry(3, compute, UNIFORM),
+            entry(4, compute, READ),
+            entry(5, compute, WRITE),
+        ];
+        entries.extend(texture_entries(compute, fetch));
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume compute"),
-            entries: &[
-                entry(0, compute, UNIFORM),
-                entry(2, compute, READ),
-                entry(3, compute, UNIFORM),
-                entry(4, compute, READ),
-                entry(5, compute, WRITE),
-            ],
+            entries: &entries,
         });
         let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -339,47 +533,72 @@ impl VolumeRenderer {
             mapped_at_creation: false,
         });
         let lmax = probes.lmax.min(VOLUME_MAX_LMAX);
-        let slots = (lmax + 1) * (lmax + 1);
-        let inv_cell =
-            Vec3::from_array(probes.resolution.map(|n| n as f32)) / (probes.max - probes.min);
-        let [nx, ny, nz] = probes.resolution.map(|n| n as u32);
-        let uniform = VolumeUniform {
-            min: probes.min.extend(0.0).to_array(),
-            inv_cell: inv_cell.extend(0.0).to_array(),
-            resolution: [nx, ny, nz, slots as u32],
-        };
         let volume = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("volume grid"),
-            contents: bytemuck::bytes_of(&uniform),
+            contents: bytemuck::bytes_of(&VolumeUniform::new(probes, &texels)),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let probe_data = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let [width, height, depth] = texels.size;
+        let texture = device.create_texture_with_data(
+            &ctx.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("volume probes"),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: depth,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D3,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&texels.data),
+        );
+        let texture_view = texture.create_view(&Default::default());
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("volume probes"),
-            contents: bytemuck::cast_slice(&pack_probes(probes)),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            address_mode_w: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+            ..Default::default()
         });
+        let mut bind_entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&texture_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: volume.as_entire_binding(),
+            },
+        ];
+        if fetch == VolumeFetch::Filtered {
+            bind_entries.push(wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            });
+        }
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("volume"),
             layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: probe_data.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: volume.as_entire_binding(),
-                },
-            ],
+            entries: &bind_entries,
         });
         let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
         let spheres = VolumeMesh::new(ctx, &sphere, [1.0; 3], &probe_sphere_instances(probes));
         Ok(Self {
             color_format,
+            fetch,
             pipelines: Default::default(),
             computes: Default::default(),
             pipeline_layout: pipeline_layout(&layout),
@@ -387,7 +606,9 @@ impl VolumeRenderer {
             compute_layout,
             frame,
             volume,
-            probes: probe_data,
+            texture,
+            texture_view,
+            sampler,
             bind,
             resolution: probes.resolution,
             lmax,
@@ -404,6 +625,12 @@ impl VolumeRenderer {
     #[must_use]
     pub fn lmax(&self) -> usize {
         self.lmax
+    }
+
+    /// How this pass interpolates the probes.
+    #[must_use]
+    pub fn fetch(&self) -> VolumeFetch {
+        self.fetch
     }
 
     /// Uploads new radiance for the same probes (e.g. relit after the
@@ -434,8 +661,22 @@ impl VolumeRenderer {
                 self.lmax
             )));
         }
-        ctx.queue
-            .write_buffer(&self.probes, 0, bytemuck::cast_slice(&pack_probes(&probes)));
+        let texels = pack_texels(&probes, ctx.device.limits().max_texture_dimension_3d)?;
+        let [width, height, depth] = texels.size;
+        ctx.queue.write_texture(
+            self.texture.as_image_copy(),
+            bytemuck::cast_slice(&texels.data),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 16),
+                rows_per_image: Some(height),
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: depth,
+            },
+        );
         Ok(())
     }
 
@@ -548,8 +789,15 @@ impl VolumeRenderer {
         }
     }
 
+    fn module(&self) -> shaders::ShaderModuleSource {
+        match self.fetch {
+            VolumeFetch::Filtered => VOLUME_MODULE,
+            VolumeFetch::Loads => VOLUME_LOADS_MODULE,
+        }
+    }
+
     fn pipeline(&self, ctx: &GpuContext, lmax: usize) -> wgpu::RenderPipeline {
-        let module = shaders::create(&ctx.device, VOLUME_MODULE, lmax);
+        let module = shaders::create(&ctx.device, self.module(), lmax);
         let targets = [Some(wgpu::ColorTargetState {
             format: self.color_format,
             blend: None,
@@ -624,7 +872,7 @@ impl VolumeRenderer {
         let lmax = self.write_frame(ctx, &camera, 1.0, shading);
         let device = &ctx.device;
         let pipeline = self.computes[lmax].get_or_init(|| {
-            let module = shaders::create(device, VOLUME_MODULE, lmax);
+            let module = shaders::create(device, self.module(), lmax);
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some("volume compute"),
                 layout: Some(&self.compute_pipeline_layout),
@@ -662,16 +910,26 @@ impl VolumeRenderer {
                 resource: buffer.as_entire_binding(),
             }
         }
+        let mut entries = vec![
+            binding(0, &self.frame),
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&self.texture_view),
+            },
+            binding(3, &self.volume),
+            binding(4, &query_buffer),
+            binding(5, &answers),
+        ];
+        if self.fetch == VolumeFetch::Filtered {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            });
+        }
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("volume compute"),
             layout: &self.compute_layout,
-            entries: &[
-                binding(0, &self.frame),
-                binding(2, &self.probes),
-                binding(3, &self.volume),
-                binding(4, &query_buffer),
-                binding(5, &answers),
-            ],
+            entries: &entries,
         });
         let mut encoder = device.create_command_encoder(&Default::default());
         {
@@ -699,17 +957,20 @@ mod tests {
 
     #[test]
     fn the_uniform_block_has_the_wgsl_size() {
-        // Volume in volume.wgsl: two vec4<f32> and one vec4<u32>.
-        assert_eq!(std::mem::size_of::<VolumeUniform>(), 48);
+        // Volume in volume.wgsl: vec4<f32> x 2, vec4<u32>, vec4<f32>, then
+        // array<vec4<f32>, 19>.
+        assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 19 * 16);
+        assert_eq!(MAX_TEXELS, volume_texels(VOLUME_MAX_LMAX));
         // Instances: vec4 then u32, padded to 32 bytes.
         assert_eq!(std::mem::size_of::<VolumeInstance>(), 32);
     }
 
     #[test]
-    fn probes_pack_clipped_with_validity_in_slot_0() {
-        // lmax 5 volume of 2 probes: 36 rows each, packed to 25 slots.
+    fn texels_pack_premultiplied_clipped_and_padded() {
+        // lmax 5 volume of 2 x 1 x 1 probes: 36 rows each, clipped to 25
+        // (19 texels); probe 1 invalid.
         let nc = 36;
-        let radiance: Vec<f32> = (0..2 * nc * 3).map(|x| x as f32).collect();
+        let radiance: Vec<f32> = (0..2 * nc * 3).map(|x| x as f32 + 1.0).collect();
         let valid = [true, false];
         let probes = VolumeProbes {
             resolution: [2, 1, 1],
@@ -719,12 +980,42 @@ mod tests {
             valid: &valid,
             radiance: &radiance,
         };
-        let packed = pack_probes(&probes);
-        assert_eq!(packed.len(), 2 * 25);
-        assert_eq!(packed[0], [0.0, 1.0, 2.0, 1.0]);
-        assert_eq!(packed[24], [72.0, 73.0, 74.0, 0.0]);
-        // Probe 1 starts at its own row 0 (value 108), invalid.
-        assert_eq!(packed[25], [108.0, 109.0, 110.0, 0.0]);
+        let t = pack_texels(&probes, 2048).unwrap();
+        assert_eq!(t.per_probe, 19);
+        // Blocks of 3 x 3 layers (one probe in y and z, a layer each side),
+        // 19 of them: 4 x 5 or 5 x 4 blocks, 12 x 15 texels, the squarest.
+        let [w, h, d] = t.size;
+        assert_eq!(w, 2);
+        assert_eq!(h.max(d), 15, "{:?}", t.size);
+        assert_eq!(t.data.len(), (w * h * d) as usize);
+        let at = |x: u32, y: u32, z: u32| t.data[(x + w * (y + h * z)) as usize];
+        for (j, &[oy, oz]) in t.blocks.iter().enumerate() {
+            // Probe 0: floats 1, 1, 2, 3, ..., 75 (its rows 0..24), then 0.
+            let f = |i: usize| match i {
+                0 => 1.0,
+                1..=75 => i as f32,
+                _ => 0.0,
+            };
+            let want = [f(4 * j), f(4 * j + 1), f(4 * j + 2), f(4 * j + 3)];
+            // The probe layer and its repeats above and below in y and z.
+            for dy in [0, 1, 2] {
+                for dz in [0, 1, 2] {
+                    assert_eq!(at(0, oy - 1 + dy, oz - 1 + dz), want, "block {j}");
+                    // The invalid probe is 0 whatever its radiance.
+                    assert_eq!(at(1, oy - 1 + dy, oz - 1 + dz), [0.0; 4], "block {j}");
+                }
+            }
+        }
+        // The blocks tile without overlap.
+        let mut seen = std::collections::BTreeSet::new();
+        for &[oy, oz] in &t.blocks {
+            assert!(oy >= 1 && oz >= 1 && oy + 1 < h && oz + 1 < d);
+            assert!(oy % 3 == 1 && oz % 3 == 1);
+            assert!(seen.insert((oy, oz)));
+        }
+        // Too large for the device: an error naming the resolution.
+        let e = pack_texels(&probes, 8).unwrap_err().to_string();
+        assert!(e.contains("[2, 1, 1]") && e.contains("side 8"), "{e}");
     }
 
     #[test]

@@ -1,15 +1,22 @@
 //! The WGSL of the volume pass that depends on lmax, written out as
-//! straight-line code: the weighted basis `ShBasis` and `probe_dot`.
+//! straight-line code: the weighted basis `ShBasis`, and `volume_sum` and
+//! `probe_sum`, which dot it with the probes' texels.
 //!
 //! ```text
 //! sh_basis(d, factors).y{i} = f_l Y_i(d),   f_l = factors[l / 4][l % 4]  (A_l w_l)
-//! probe_dot(b, y)           = sum_i y{i} probes[b + i].rgb
+//! volume_sum(p, y)          = (sum_i y{i} S_i, S_v)   S = the texels interpolated at p
+//! probe_sum(a, y)           = sum_i y{i} v L_i         the texels of the probe at a
 //! ```
 //!
-//! so that `probe_dot(b, sh_basis(n, irradiance_band))` is the irradiance
-//! `E(n) = sum_l A_l w_l sum_m L_lm Y_lm(n)` of the probe whose coefficients
-//! start at `probes[b]` (`shaders/volume.wgsl` sums it over the eight probes
-//! around a point). The basis is `sh_expansion.rs`'s: the recurrences of
+//! with `S_v = sum_k w_k v_k` and `S_i = sum_k w_k v_k L_k,i` over the eight
+//! probes around `p` (`shaders/volume.wgsl`: texel `j` holds floats
+//! `4j..4j+3` of `v, v L_0 (rgb), v L_1, ...`), so that
+//! `volume_sum(p, sh_basis(n, irradiance_band))` divided by its `w` is the
+//! renormalised interpolation of the probes' irradiance
+//! `E(n) = sum_l A_l w_l sum_m L_lm Y_lm(n)`. `volume_sum` reads its texels
+//! filtered (`volume_filtered`, one trilinear sample each) or by eight
+//! loads each (`volume_loads`), one text per [`VolumeFetch`]. The basis is
+//! `sh_expansion.rs`'s: the recurrences of
 //! shlight-core's [`Legendre`] with `sin(theta)^m` carried by
 //! `C_m + i S_m = (x + i y)^m`, every factor an f32 literal, no loops and no
 //! local array (a struct of named scalars stays in registers; an array
@@ -21,12 +28,22 @@ use std::fmt::Write;
 use shlight_core::legendre::Legendre;
 
 use crate::sh_expansion::{azimuth_power, literal};
-use crate::volume::VOLUME_MAX_LMAX;
+use crate::volume::{VOLUME_MAX_LMAX, VolumeFetch};
 
-/// The WGSL text of `ShBasis`, `sh_basis` and `probe_dot` for `lmax`
-/// (clamped to [`VOLUME_MAX_LMAX`]).
+/// The volume module's generated WGSL for `lmax`, texels filtered.
+pub(crate) fn volume_wgsl_filtered(lmax: usize) -> String {
+    volume_wgsl(lmax, VolumeFetch::Filtered)
+}
+
+/// The volume module's generated WGSL for `lmax`, texels by eight loads.
+pub(crate) fn volume_wgsl_loads(lmax: usize) -> String {
+    volume_wgsl(lmax, VolumeFetch::Loads)
+}
+
+/// The WGSL text of `ShBasis`, `sh_basis`, `volume_sum` and `probe_sum`
+/// for `lmax` (clamped to [`VOLUME_MAX_LMAX`]) and `fetch`.
 #[must_use]
-pub(crate) fn volume_wgsl(lmax: usize) -> String {
+pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
     let lmax = lmax.min(VOLUME_MAX_LMAX);
     let count = (lmax + 1) * (lmax + 1);
     let legendre = Legendre::<f64>::new(lmax);
@@ -96,36 +113,130 @@ pub(crate) fn volume_wgsl(lmax: usize) -> String {
     }
     let _ = writeln!(out, "    return ShBasis({});", fields.join(", "));
     out.push_str("}\n\n");
-    out.push_str("// sum_i y{i} probes[b + i].rgb.\n");
-    out.push_str("fn probe_dot(b: u32, y: ShBasis) -> vec3<f32> {\n");
-    let terms: Vec<String> = (0..count)
-        .map(|i| format!("y.y{i} * probes[b + {i}u].rgb"))
-        .collect();
-    let _ = writeln!(out, "    return {};", terms.join("\n        + "));
+    let texels = volume_texels(lmax);
+    let dot = texel_dot(lmax);
+    let (at, fetch) = match fetch {
+        VolumeFetch::Filtered => ("volume_filtered_at(p)", "volume_filtered"),
+        VolumeFetch::Loads => ("volume_loads_at(p)", "volume_loads"),
+    };
+    out.push_str(
+        "// (sum_i y{i} S_i, S_v) with S the texels interpolated at p: S_v = sum_k w_k v_k,\n\
+         // S_i = sum_k w_k v_k L_k,i.\n",
+    );
+    out.push_str("fn volume_sum(p: vec3<f32>, y: ShBasis) -> vec4<f32> {\n");
+    let _ = writeln!(out, "    let at = {at};");
+    for j in 0..texels {
+        let _ = writeln!(out, "    let t{j} = {fetch}(at, {j}u);");
+    }
+    let _ = writeln!(out, "    return vec4<f32>({dot}, t0.x);");
+    out.push_str("}\n\n");
+    out.push_str("// sum_i y{i} v L_i of the probe whose texels start at a.\n");
+    out.push_str("fn probe_sum(a: vec3<u32>, y: ShBasis) -> vec3<f32> {\n");
+    for j in 0..texels {
+        let _ = writeln!(out, "    let t{j} = probe_load(a, {j}u);");
+    }
+    let _ = writeln!(out, "    return {dot};");
     out.push_str("}\n");
     out
+}
+
+/// Texels per probe at `lmax` (clamped to [`VOLUME_MAX_LMAX`]): the floats
+/// `v, v L_0 (rgb), v L_1, ...`, four to a texel.
+#[must_use]
+pub(crate) fn volume_texels(lmax: usize) -> usize {
+    let lmax = lmax.min(VOLUME_MAX_LMAX);
+    (3 * (lmax + 1) * (lmax + 1) + 1).div_ceil(4)
+}
+
+/// `sum_i y.y{i} * vec3(rgb of coefficient i)` over texels `t{j}`, the
+/// float `1 + 3 i + c` (channel `c`) at texel `f / 4`, lane `f % 4`.
+fn texel_dot(lmax: usize) -> String {
+    const LANES: [char; 4] = ['x', 'y', 'z', 'w'];
+    let count = (lmax + 1) * (lmax + 1);
+    let terms: Vec<String> = (0..count)
+        .map(|i| {
+            let f = 1 + 3 * i;
+            let rgb = if f / 4 == (f + 2) / 4 {
+                let lanes: String = (0..3).map(|c| LANES[(f + c) % 4]).collect();
+                format!("t{}.{lanes}", f / 4)
+            } else {
+                let parts: Vec<String> = (0..3)
+                    .map(|c| format!("t{}.{}", (f + c) / 4, LANES[(f + c) % 4]))
+                    .collect();
+                format!("vec3<f32>({})", parts.join(", "))
+            };
+            format!("y.y{i} * {rgb}")
+        })
+        .collect();
+    terms.join("\n        + ")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn every_coefficient_is_read_once_and_none_beyond() {
-        for lmax in 0..=VOLUME_MAX_LMAX {
-            let text = volume_wgsl(lmax);
-            let count = (lmax + 1) * (lmax + 1);
-            for i in 0..count {
-                assert_eq!(
-                    text.matches(&format!("probes[b + {i}u]")).count(),
-                    1,
-                    "lmax {lmax}: coefficient {i}\n{text}"
-                );
-                assert!(text.contains(&format!("    y{i}: f32,")), "{text}");
-            }
-            assert!(!text.contains(&format!("probes[b + {count}u]")), "{text}");
+    /// The float each `t{j}.{lane}` of `text` names, in order of appearance
+    /// within the dot product of coefficient `i` (`y.y{i} * ...`).
+    fn floats_of(text: &str, i: usize) -> Vec<usize> {
+        let start = text
+            .find(&format!("y.y{i} * "))
+            .unwrap_or_else(|| panic!("coefficient {i} missing:\n{text}"));
+        let term = text[start..].split('+').next().unwrap();
+        let term = term.split_once(" * ").unwrap().1.trim();
+        let lane = |c: char| "xyzw".find(c).unwrap();
+        if let Some(inner) = term.strip_prefix("vec3<f32>(") {
+            inner
+                .split(')')
+                .next()
+                .unwrap()
+                .split(", ")
+                .map(|p| {
+                    let (t, l) = p.trim_start_matches('t').split_once('.').unwrap();
+                    4 * t.parse::<usize>().unwrap() + lane(l.chars().next().unwrap())
+                })
+                .collect()
+        } else {
+            let (t, lanes) = term.trim_start_matches('t').split_once('.').unwrap();
+            let t: usize = t.parse().unwrap();
+            lanes
+                .chars()
+                .take_while(|c| c.is_ascii_lowercase())
+                .map(|c| 4 * t + lane(c))
+                .collect()
         }
-        // Beyond the volume's highest degree the text is the clamped one's.
-        assert_eq!(volume_wgsl(8), volume_wgsl(VOLUME_MAX_LMAX));
+    }
+
+    #[test]
+    fn every_coefficient_reads_its_own_three_floats_once() {
+        for fetch in [VolumeFetch::Filtered, VolumeFetch::Loads] {
+            for lmax in 0..=VOLUME_MAX_LMAX {
+                let text = volume_wgsl(lmax, fetch);
+                let count = (lmax + 1) * (lmax + 1);
+                let texels = volume_texels(lmax);
+                // Counted by hand: 1, 4, 9, 16, 25 coefficients, 3 floats
+                // each, plus the validity.
+                assert_eq!(texels, [1, 4, 7, 13, 19][lmax]);
+                for i in 0..count {
+                    // Float 0 is the validity; coefficient i's rgb follow.
+                    let want = vec![1 + 3 * i, 2 + 3 * i, 3 + 3 * i];
+                    // Twice: volume_sum and probe_sum.
+                    assert_eq!(text.matches(&format!("y.y{i} * ")).count(), 2, "{text}");
+                    assert_eq!(floats_of(&text, i), want, "lmax {lmax} coefficient {i}");
+                    assert!(text.contains(&format!("    y{i}: f32,")), "{text}");
+                }
+                assert!(!text.contains(&format!("y.y{count} ")), "{text}");
+                for j in 0..texels {
+                    assert!(text.contains(&format!("let t{j} = probe_load(a, {j}u);")));
+                }
+                assert!(!text.contains(&format!("let t{texels} ")), "{text}");
+                let other = match fetch {
+                    VolumeFetch::Filtered => "volume_loads",
+                    VolumeFetch::Loads => "volume_filtered",
+                };
+                assert!(!text.contains(other), "{text}");
+            }
+            // Beyond the volume's highest degree the text is the clamped one's.
+            assert_eq!(volume_wgsl(8, fetch), volume_wgsl(VOLUME_MAX_LMAX, fetch));
+        }
     }
 }
