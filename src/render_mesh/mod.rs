@@ -112,6 +112,7 @@ pub enum RenderMode {
     Normals,
 }
 
+#[cfg(feature = "gpu")]
 impl RenderMode {
     /// The mode's name as `--mode` takes it.
     pub fn name(self) -> &'static str {
