@@ -26,3 +26,4 @@ pub use error::MeshError;
 pub use load::{MeshFormat, load, load_bytes, load_bytes_with, load_with};
 pub use load_options::LoadOptions;
 pub use mesh::{Mesh, MeshReport};
+pub use subdivide::Subdivision;

@@ -47,7 +47,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, sh_count};
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Subdivision};
 use shlight_prt::bvh::Bvh;
 use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
 use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode};
@@ -266,9 +266,14 @@ fn probe_order(grid: &Grid) -> Vec<u32> {
 /// per vertex.
 struct Surface {
     mesh: Mesh,
-    /// The mesh's hierarchy, over its vertices in Morton order (`ranked`).
+    /// The scene's hierarchy before subdivision, over its vertices in
+    /// Morton order (`ranked`).
     bvh: PacketBvh,
     ranked: Vec<Vec3>,
+    /// The scene's face normals (unnormalised) before subdivision.
+    faces: Vec<Vec3>,
+    /// Where the scene's triangles went in `mesh`.
+    map: Subdivision,
     /// Per vertex `channels x nc` transfer.
     transfer: Vec<f32>,
     channels: usize,
@@ -288,7 +293,8 @@ impl Surface {
         let max_edge = options
             .max_edge
             .unwrap_or((hi - lo).length() / SURFACE_DIVISIONS);
-        let mesh = mesh.subdivided(max_edge);
+        let coarse = mesh;
+        let (mesh, map) = mesh.subdivided_with_map(max_edge);
         let albedo = match &mesh.colors {
             Some(c) => {
                 Albedo::PerVertex(c.iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect())
@@ -313,24 +319,39 @@ impl Surface {
         let t = transfer::bake(&mesh, &bake_options, &|stage, done, total| {
             progress(Stage::Surface(stage), done, total);
         });
-        // The probes' rays go through the packet layout, over the vertices
+        // The probes' rays are cast against the scene's own triangles (the
+        // same surface as the subdivided ones, and far fewer of them when
+        // it was subdivided) through the packet layout, over the vertices
         // in Morton order so that a direction's ray-space vertices are read
-        // near one another.
-        let order = transfer::morton_order(&mesh.positions, mesh.bounds());
+        // near one another; the hits are then found in the subdivided mesh.
+        let order = transfer::morton_order(&coarse.positions, coarse.bounds());
         let mut rank = vec![0u32; order.len()];
         for (r, &v) in order.iter().enumerate() {
             rank[v as usize] = r as u32;
         }
-        let ranked: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
-        let triangles: Vec<[u32; 3]> = mesh
+        let ranked: Vec<Vec3> = order
+            .iter()
+            .map(|&v| coarse.positions[v as usize])
+            .collect();
+        let triangles: Vec<[u32; 3]> = coarse
             .triangles
             .iter()
             .map(|t| t.map(|i| rank[i as usize]))
             .collect();
         let bvh = PacketBvh::new(Bvh::new(&ranked, &triangles));
+        let faces = coarse
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| coarse.positions[i as usize]);
+                (b - a).cross(c - a)
+            })
+            .collect();
         Self {
             bvh,
             ranked,
+            faces,
+            map,
             channels: t.channels,
             nc: sh_count(t.lmax),
             transfer: t.coeffs,
@@ -374,15 +395,15 @@ impl Surface {
                             if found.mask >> k & 1 == 0 {
                                 continue;
                             }
-                            let triangle = found.triangle[k];
-                            let [a, b, c] = self.mesh.triangles[triangle as usize]
-                                .map(|i| self.mesh.positions[i as usize]);
+                            let coarse = found.triangle[k];
                             out[p as usize * len + jj] =
-                                if (b - a).cross(c - a).dot(dir.dir()) >= 0.0 {
+                                if self.faces[coarse as usize].dot(dir.dir()) >= 0.0 {
                                     Hit::BACK
                                 } else {
-                                    let [_, b1, b2] = found.barycentrics[k];
-                                    Hit { triangle, b1, b2 }
+                                    match self.map.locate(coarse, found.barycentrics[k]) {
+                                        Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
+                                        None => Hit::BACK,
+                                    }
                                 };
                         }
                     }
