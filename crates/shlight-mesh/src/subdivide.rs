@@ -154,7 +154,11 @@ pub struct Subdivision {
     grids: Vec<(u32, u32)>,
     /// Per cell, its first entry in `entries` (one more at each grid's end).
     cells: Vec<u32>,
-    entries: Vec<Piece>,
+    /// The pieces meeting each cell: indices into `pieces`.
+    entries: Vec<u32>,
+    /// Each original triangle's pieces in the order of its bisection tree
+    /// (depth first: neighbours in space are near in memory).
+    pieces: Vec<Piece>,
 }
 
 /// A subdivided triangle and its corners in its original triangle's
@@ -176,6 +180,12 @@ enum Node {
     Split { edge: u8, children: u32 },
 }
 
+/// The cell of `x` (in 0..=1) in a grid of `r` cells per axis.
+fn cell_of(x: f32, r: usize) -> usize {
+    // Truncation is the floor for x >= 0 (and NaN goes to cell 0).
+    ((f64::from(x) * r as f64).max(0.0) as usize).min(r - 1)
+}
+
 /// `(a - o) x (b - o)`.
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
@@ -188,6 +198,7 @@ impl Subdivision {
             grids: (0..n as u32).map(|t| (0, t)).collect(),
             cells: Vec::new(),
             entries: Vec::new(),
+            pieces: Vec::new(),
         }
     }
 
@@ -198,20 +209,20 @@ impl Subdivision {
             grids: Vec::with_capacity(roots),
             cells: Vec::new(),
             entries: Vec::new(),
+            pieces: Vec::new(),
         };
-        let mut pieces = Vec::new();
         let mut stack = Vec::new();
-        let mut bucketed: Vec<(u32, Piece)> = Vec::new();
+        let mut bucketed: Vec<(u32, u32)> = Vec::new();
         for root in 0..roots {
             if let Node::Leaf(t) = nodes[root] {
                 out.grids.push((0, t));
                 continue;
             }
-            pieces.clear();
+            let base = out.pieces.len();
             stack.push((root, [[0.0f64, 0.0], [1.0, 0.0], [0.0, 1.0]]));
             while let Some((n, p)) = stack.pop() {
                 match nodes[n] {
-                    Node::Leaf(triangle) => pieces.push(Piece {
+                    Node::Leaf(triangle) => out.pieces.push(Piece {
                         triangle,
                         corners: p.map(|c| c.map(|x| x as f32)),
                     }),
@@ -224,19 +235,22 @@ impl Subdivision {
                     }
                 }
             }
-            let r = (pieces.len() as f64).sqrt().ceil().max(1.0) as usize;
-            let cell = |x: f32| ((f64::from(x) * r as f64).floor().max(0.0) as usize).min(r - 1);
+            // About one cell per piece over the half of the square the
+            // triangle covers.
+            let count = out.pieces.len() - base;
+            let r = (1.42 * (count as f64).sqrt()).ceil() as usize;
+            let cell = |x: f32| cell_of(x, r);
             bucketed.clear();
-            for piece in &pieces {
+            for (k, piece) in out.pieces[base..].iter().enumerate() {
                 let lo = [0, 1].map(|a| piece.corners.iter().map(|c| c[a]).fold(1.0, f32::min));
                 let hi = [0, 1].map(|a| piece.corners.iter().map(|c| c[a]).fold(0.0, f32::max));
                 for y in cell(lo[1])..=cell(hi[1]) {
                     for x in cell(lo[0])..=cell(hi[0]) {
-                        bucketed.push(((y * r + x) as u32, *piece));
+                        bucketed.push(((y * r + x) as u32, (base + k) as u32));
                     }
                 }
             }
-            bucketed.sort_by_key(|(c, _)| *c);
+            bucketed.sort_unstable();
             out.grids.push((r as u32, out.cells.len() as u32));
             let mut next = 0;
             for c in 0..=r * r {
@@ -269,23 +283,25 @@ impl Subdivision {
             return Some((first, w));
         }
         let r = r as usize;
-        let cell = |x: f32| ((f64::from(x) * r as f64).floor().max(0.0) as usize).min(r - 1);
-        let c = first as usize + cell(w[2]) * r + cell(w[1]);
+        let c = first as usize + cell_of(w[2], r) * r + cell_of(w[1], r);
         let q = [f64::from(w[1]), f64::from(w[2])];
         // The candidate the point is most inside of (all weights >= 0 but
         // for rounding on a cut).
         let mut best = None;
         let mut best_min = f64::NEG_INFINITY;
-        for piece in &self.entries[self.cells[c] as usize..self.cells[c + 1] as usize] {
+        for &k in &self.entries[self.cells[c] as usize..self.cells[c + 1] as usize] {
+            let piece = &self.pieces[k as usize];
             let p = piece.corners.map(|c| c.map(f64::from));
+            // Every piece keeps the original winding: d > 0, and the point
+            // is inside when the three unnormalised weights are >= 0.
             let d = cross(p[0], p[1], p[2]);
-            let w1 = cross(p[0], q, p[2]) / d;
-            let w2 = cross(p[0], p[1], q) / d;
-            let w0 = 1.0 - w1 - w2;
-            let min = w0.min(w1).min(w2);
+            let w1 = cross(p[0], q, p[2]);
+            let w2 = cross(p[0], p[1], q);
+            let w0 = d - w1 - w2;
+            let min = w0.min(w1).min(w2) / d;
             if min > best_min {
                 best_min = min;
-                best = Some((piece.triangle, [w0 as f32, w1 as f32, w2 as f32]));
+                best = Some((piece.triangle, [w0, w1, w2].map(|x| (x / d) as f32)));
                 if min >= 0.0 {
                     break;
                 }

@@ -316,9 +316,14 @@ impl Surface {
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
         };
-        let t = transfer::bake(&mesh, &bake_options, &|stage, done, total| {
-            progress(Stage::Surface(stage), done, total);
-        });
+        let t = transfer::bake_with_occluder(
+            &mesh,
+            Some((coarse, &map)),
+            &bake_options,
+            &|stage, done, total| {
+                progress(Stage::Surface(stage), done, total);
+            },
+        );
         // The probes' rays are cast against the scene's own triangles (the
         // same surface as the subdivided ones, and far fewer of them when
         // it was subdivided) through the packet layout, over the vertices
