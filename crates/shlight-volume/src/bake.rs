@@ -36,10 +36,26 @@
 //! [`VolumeOptions::invalid_backfaces`] of the rays do so is inside
 //! geometry and marked invalid. `T(q)` and `E(q)` are the barycentric
 //! interpolation of the surface's vertex values; long edges are first split
-//! ([`shlight_mesh::Mesh::subdivided`]) so that vertices hold shadows.
+//! ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
+//! shadows.
 //!
-//! Probes are baked in parallel, each summing its directions in order, so
-//! the result is the same bit for bit at any thread count for a seed.
+//! # Casting and summing
+//! The probes' rays along one direction are parallel: per direction the
+//! probes are taken eight at a time in Morton order of their grid cells
+//! and traced as one [`Packet`] ([`PacketBvh::closest`]) against the
+//! scene's own triangles, not the subdivided ones (the same surface; a
+//! room of large quads has a few dozen instead of a hundred thousand), and
+//! each hit is found in the subdivided mesh by
+//! [`Subdivision::locate`]; the surfaces' transfer is cast the same way
+//! ([`transfer::bake_with_occluder`]). Directions are cast in parallel in
+//! blocks of 64; then each probe sums its rays block by block, in `f32`
+//! within a block and `f64` across blocks, one outer product `Y(s) (Y(s),
+//! T(q), E(q))` per blocked ray giving the blocked `sum Y Y^T`, `sum Y T^T`
+//! and `sum Y E` together (a grey surface's transfer summed once for the
+//! three channels). `sum_escaped Y Y^T` is `sum_all Y Y^T`, summed once the
+//! same way for every probe, less the blocked sum, so a probe that sees no
+//! sky gets exactly none. Every sum runs in a fixed order, so the result is
+//! the same bit for bit at any thread count for a seed.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -105,7 +121,7 @@ impl Default for VolumeOptions {
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
     Surface(transfer::Stage),
-    /// Casting the probes' rays.
+    /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
 }
 
