@@ -180,6 +180,20 @@ enum Node {
     Split { edge: u8, children: u32 },
 }
 
+/// Asks for the cache line holding `x`.
+#[inline]
+fn prefetch<T>(x: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE is part of every x86-64 processor, and a prefetch
+        // only hints the cache (it reads nothing and cannot fault).
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(x).cast::<i8>()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
+}
+
 /// The cell of `x` (in 0..=1) in a grid of `r` cells per axis.
 fn cell_of(x: f32, r: usize) -> usize {
     // Truncation is the floor for x >= 0 (and NaN goes to cell 0).
@@ -268,6 +282,29 @@ impl Subdivision {
     #[must_use]
     pub fn original_triangles(&self) -> usize {
         self.grids.len()
+    }
+
+    /// [`locate`](Self::locate) for each of `points` (`(triangle, w)`),
+    /// into `out` (cleared first). The points' memory reads are started
+    /// together, so that their cache misses overlap.
+    pub fn locate_each(&self, points: &[(u32, [f32; 3])], out: &mut Vec<Option<(u32, [f32; 3])>>) {
+        out.clear();
+        let cell = |&(t, w): &(u32, [f32; 3])| match self.grids.get(t as usize) {
+            Some(&(r, first)) if r > 0 => {
+                let r = r as usize;
+                Some(first as usize + cell_of(w[2], r) * r + cell_of(w[1], r))
+            }
+            _ => None,
+        };
+        for c in points.iter().filter_map(cell) {
+            prefetch(&self.cells[c]);
+        }
+        for c in points.iter().filter_map(cell) {
+            if let Some(&k) = self.entries.get(self.cells[c] as usize) {
+                prefetch(&self.pieces[k as usize]);
+            }
+        }
+        out.extend(points.iter().map(|&(t, w)| self.locate(t, w)));
     }
 
     /// The subdivided triangle holding the point of original triangle

@@ -399,42 +399,52 @@ impl Surface {
         let done = AtomicUsize::new(0);
         hits.par_chunks_mut(n * BLOCK)
             .zip(dirs.par_chunks(BLOCK))
-            .for_each_init(Vec::new, |local, (out, block)| {
-                let len = block.len();
-                for (jj, d) in block.iter().enumerate() {
-                    let dir = Direction::new(*d);
-                    local.clear();
-                    local.extend(self.ranked.iter().map(|p| dir.to_ray_space(*p)));
-                    for eight in order.chunks(LANES) {
-                        let mut origins = [Vec3::ZERO; LANES];
-                        for (o, &p) in origins.iter_mut().zip(eight) {
-                            *o = probes[p as usize];
-                        }
-                        let packet = Packet::new(&dir, &origins[..eight.len()]);
-                        let found = self.bvh.closest(&dir, local, &packet);
-                        for (k, &p) in eight.iter().enumerate() {
-                            if found.mask >> k & 1 == 0 {
-                                continue;
+            .for_each_init(
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(local, front, located, lanes), (out, block)| {
+                    let len = block.len();
+                    for (jj, d) in block.iter().enumerate() {
+                        let dir = Direction::new(*d);
+                        local.clear();
+                        local.extend(self.ranked.iter().map(|p| dir.to_ray_space(*p)));
+                        for eight in order.chunks(LANES) {
+                            let mut origins = [Vec3::ZERO; LANES];
+                            for (o, &p) in origins.iter_mut().zip(eight) {
+                                *o = probes[p as usize];
                             }
-                            let coarse = found.triangle[k];
-                            out[p as usize * len + jj] =
+                            let packet = Packet::new(&dir, &origins[..eight.len()]);
+                            let found = self.bvh.closest(&dir, local, &packet);
+                            // Front hits, found in the subdivided mesh together.
+                            front.clear();
+                            for (k, &p) in eight.iter().enumerate() {
+                                if found.mask >> k & 1 == 0 {
+                                    continue;
+                                }
+                                let coarse = found.triangle[k];
                                 if self.faces[coarse as usize].dot(dir.dir()) >= 0.0 {
-                                    Hit::BACK
+                                    out[p as usize * len + jj] = Hit::BACK;
                                 } else {
-                                    match self.map.locate(coarse, found.barycentrics[k]) {
-                                        Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
-                                        None => Hit::BACK,
-                                    }
+                                    front.push((coarse, found.barycentrics[k]));
+                                    lanes.push(p);
+                                }
+                            }
+                            self.map.locate_each(front, located);
+                            for (&p, found) in lanes.iter().zip(located.iter()) {
+                                out[p as usize * len + jj] = match *found {
+                                    Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
+                                    None => Hit::BACK,
                                 };
+                            }
+                            lanes.clear();
                         }
                     }
-                }
-                progress(
-                    Stage::Probes,
-                    done.fetch_add(len, Ordering::Relaxed) + len,
-                    dirs.len(),
-                );
-            });
+                    progress(
+                        Stage::Probes,
+                        done.fetch_add(len, Ordering::Relaxed) + len,
+                        dirs.len(),
+                    );
+                },
+            );
         hits
     }
 
