@@ -48,7 +48,8 @@
 //! each hit is found in the subdivided mesh by
 //! [`Subdivision::locate`]; the surfaces' transfer is cast the same way
 //! ([`transfer::bake_with_occluder`]). Directions are cast in parallel in
-//! blocks of 64; then each probe sums its rays block by block, in `f32`
+//! blocks of 64, for as many probes at a time as keep their hits within
+//! 256 MB (12 bytes a ray); then each probe sums its rays block by block, in `f32`
 //! within a block and `f64` across blocks, one outer product `Y(s) (Y(s),
 //! T(q), E(q))` per blocked ray giving the blocked `sum Y Y^T`, `sum Y T^T`
 //! and `sum Y E` together (a grey surface's transfer summed once for the
@@ -141,6 +142,17 @@ pub fn bake(
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<ProbeVolume, VolumeError> {
+    bake_in_chunks(scene, grid, options, progress, HITS_MEMORY)
+}
+
+/// [`bake`], keeping at most `hits_memory` bytes of probe hits at a time.
+fn bake_in_chunks(
+    scene: Option<&Mesh>,
+    grid: &Grid,
+    options: &VolumeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    hits_memory: usize,
+) -> Result<ProbeVolume, VolumeError> {
     let lmax = options.lmax;
     if lmax > MAX_LMAX {
         return Err(VolumeError::Options(format!(
@@ -191,15 +203,41 @@ pub fn bake(
             progress(Stage::Probes, dirs.len(), dirs.len());
         }
         Some(s) => {
-            let hits = s.cast(grid, &probes, &dirs, progress);
             rays = (dirs.len() * probes.len()) as u64;
             let ylm32: Vec<f32> = ylm.iter().map(|&y| y as f32).collect();
-            s.gather(
-                &hits,
-                &ylm32,
-                weight,
-                (&mut transfer, &mut emitted, &mut backfaces),
-            );
+            let all = s.sum_all(&ylm32);
+            // Probes in Morton order, as many at a time as keep the hits
+            // within HITS_MEMORY (whole packets).
+            let order = probe_order(grid);
+            let per_chunk = (hits_memory / (std::mem::size_of::<Hit>() * dirs.len())).max(LANES)
+                / LANES
+                * LANES;
+            let chunks = order.len().div_ceil(per_chunk);
+            let done = AtomicUsize::new(0);
+            let total = chunks * dirs.len();
+            let mut m = Vec::new();
+            let mut e = Vec::new();
+            let mut back = Vec::new();
+            for chunk in order.chunks(per_chunk) {
+                let hits = s.cast(chunk, &probes, &dirs, &|len| {
+                    progress(
+                        Stage::Probes,
+                        done.fetch_add(len, Ordering::Relaxed) + len,
+                        total,
+                    );
+                });
+                m.resize(chunk.len() * 3 * nc * nc, 0.0);
+                e.resize(chunk.len() * 3 * nc, 0.0);
+                back.resize(chunk.len(), 0.0);
+                s.gather(&hits, &ylm32, &all, weight, (&mut m, &mut e, &mut back));
+                for (i, &p) in chunk.iter().enumerate() {
+                    let p = p as usize;
+                    transfer[p * 3 * nc * nc..][..3 * nc * nc]
+                        .copy_from_slice(&m[i * 3 * nc * nc..][..3 * nc * nc]);
+                    emitted[p * 3 * nc..][..3 * nc].copy_from_slice(&e[i * 3 * nc..][..3 * nc]);
+                    backfaces[p] = back[i];
+                }
+            }
         }
     }
     let valid = backfaces
@@ -230,6 +268,10 @@ fn identity(n: usize) -> Vec<f64> {
 
 /// Directions per casting task and per `f32` partial sum of a probe.
 const BLOCK: usize = 64;
+
+/// Bytes of probe hits kept at a time: the probes are cast and summed in
+/// chunks of this many bytes of [`Hit`]s (12 a ray).
+const HITS_MEMORY: usize = 256 << 20;
 
 /// What one probe ray met: a triangle's front (its index and the
 /// barycentric weights of corners 1 and 2), a back face, or nothing.
@@ -382,21 +424,20 @@ impl Surface {
         }
     }
 
-    /// Casts every probe's rays: per block of [`BLOCK`] directions, for
-    /// each direction, the probes eight at a time in Morton order as one
-    /// packet. The hits of block `b` are `probes x len_b` records, the
-    /// probes in grid order, each probe's directions in order.
+    /// Casts the rays of the probes `chunk` (indices into `probes`, in
+    /// Morton order): per block of [`BLOCK`] directions, for each direction,
+    /// the probes eight at a time as one packet. The hits of block `b` are
+    /// `chunk.len() x len_b` records, the probes in the chunk's order, each
+    /// probe's directions in order. `progress(directions)` as blocks finish.
     fn cast(
         &self,
-        grid: &Grid,
+        chunk: &[u32],
         probes: &[Vec3],
         dirs: &[Vec3],
-        progress: &(dyn Fn(Stage, usize, usize) + Sync),
+        progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Hit> {
-        let order = probe_order(grid);
-        let n = probes.len();
+        let n = chunk.len();
         let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
-        let done = AtomicUsize::new(0);
         hits.par_chunks_mut(n * BLOCK)
             .zip(dirs.par_chunks(BLOCK))
             .for_each_init(
@@ -407,7 +448,7 @@ impl Surface {
                         let dir = Direction::new(*d);
                         local.clear();
                         local.extend(self.ranked.iter().map(|p| dir.to_ray_space(*p)));
-                        for eight in order.chunks(LANES) {
+                        for (g, eight) in chunk.chunks(LANES).enumerate() {
                             let mut origins = [Vec3::ZERO; LANES];
                             for (o, &p) in origins.iter_mut().zip(eight) {
                                 *o = probes[p as usize];
@@ -416,21 +457,21 @@ impl Surface {
                             let found = self.bvh.closest(&dir, local, &packet);
                             // Front hits, found in the subdivided mesh together.
                             front.clear();
-                            for (k, &p) in eight.iter().enumerate() {
+                            for k in 0..eight.len() {
                                 if found.mask >> k & 1 == 0 {
                                     continue;
                                 }
                                 let coarse = found.triangle[k];
                                 if self.faces[coarse as usize].dot(dir.dir()) >= 0.0 {
-                                    out[p as usize * len + jj] = Hit::BACK;
+                                    out[(g * LANES + k) * len + jj] = Hit::BACK;
                                 } else {
                                     front.push((coarse, found.barycentrics[k]));
-                                    lanes.push(p);
+                                    lanes.push(g * LANES + k);
                                 }
                             }
                             self.map.locate_each(front, located);
-                            for (&p, found) in lanes.iter().zip(located.iter()) {
-                                out[p as usize * len + jj] = match *found {
+                            for (&i, found) in lanes.iter().zip(located.iter()) {
+                                out[i * len + jj] = match *found {
                                     Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
                                     None => Hit::BACK,
                                 };
@@ -438,18 +479,41 @@ impl Surface {
                             lanes.clear();
                         }
                     }
-                    progress(
-                        Stage::Probes,
-                        done.fetch_add(len, Ordering::Relaxed) + len,
-                        dirs.len(),
-                    );
+                    progress(len);
                 },
             );
         hits
     }
 
-    /// Sums each probe's rays into its transfer, emitted light and
-    /// back-face fraction (`out`, in grid order).
+    /// Entries per row of a probe's sums: `v = (Y, T, E)`, `Y` in
+    /// `[0, nc)`, `T` in `[nc, nc + channels nc)`, `E` after when the scene
+    /// emits.
+    fn width(&self) -> usize {
+        self.nc * (1 + self.channels) + if self.emitted.is_some() { 3 } else { 0 }
+    }
+
+    /// `sum_all Y Y^T` (rows [`width`](Self::width) apart), summed as a
+    /// probe whose rays are all blocked sums its blocked rays, so that a
+    /// probe that sees no sky gets exactly none.
+    fn sum_all(&self, ylm: &[f32]) -> Vec<f64> {
+        let (nc, width) = (self.nc, self.width());
+        let mut total = vec![0.0f64; nc * width];
+        let mut acc = vec![0.0f32; nc * width];
+        for block in ylm.chunks(BLOCK * nc) {
+            acc.fill(0.0);
+            for y in block.chunks_exact(nc) {
+                add_outer(&mut acc, width, y, y);
+            }
+            for (t, a) in total.iter_mut().zip(&acc) {
+                *t += f64::from(*a);
+            }
+        }
+        total
+    }
+
+    /// Sums the rays of each probe of a chunk ([`cast`](Self::cast)'s
+    /// `hits`) into its transfer, emitted light and back-face fraction
+    /// (`out`, in the chunk's order); `all` is [`sum_all`](Self::sum_all).
     ///
     /// Per block of [`BLOCK`] directions a probe sums, in `f32`, the
     /// products `Y_i(s) v(s)` with `v = (Y(s), T(q), E(q))` over its blocked
@@ -460,6 +524,7 @@ impl Surface {
         &self,
         hits: &[Hit],
         ylm: &[f32],
+        all: &[f64],
         weight: f64,
         (transfer, emitted, backfaces): (&mut [f32], &mut [f32], &mut [f32]),
     ) {
@@ -467,25 +532,7 @@ impl Surface {
         let ndirs = ylm.len() / nc;
         let n = backfaces.len();
         let stride = self.channels * nc;
-        // v = (Y, T, E): Y in [0, nc), T in [nc, nc + stride), E after.
-        let width = nc + stride + if self.emitted.is_some() { 3 } else { 0 };
-        // sum_all Y Y^T, summed as a probe whose rays are all blocked sums
-        // its blocked rays, so that a probe that sees no sky gets exactly
-        // none.
-        let all = {
-            let mut total = vec![0.0f64; nc * width];
-            let mut acc = vec![0.0f32; nc * width];
-            for block in ylm.chunks(BLOCK * nc) {
-                acc.fill(0.0);
-                for y in block.chunks_exact(nc) {
-                    add_outer(&mut acc, width, y, y);
-                }
-                for (t, a) in total.iter_mut().zip(&acc) {
-                    *t += f64::from(*a);
-                }
-            }
-            total
-        };
+        let width = self.width();
         let eye = identity(nc);
         let m_size = 3 * nc * nc;
         transfer
@@ -586,5 +633,46 @@ fn add_outer(acc: &mut [f32], width: usize, y: &[f32], v: &[f32]) {
         for (a, x) in row.iter_mut().zip(v) {
             *a += yi * x;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn probes_cast_in_chunks_give_the_same_bake() {
+        // 3x2x3 probes, about 1024 rays: 12 KB of hits each, so 16 KB holds
+        // one packet of probes at a time and the 18 go in three chunks.
+        let scene = shlight_mesh::generate::plane_under_sphere(0.5, 16, 8, 3.0, 4);
+        let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+        let options = VolumeOptions {
+            samples: 1024,
+            surface_samples: 64,
+            ..VolumeOptions::default()
+        };
+        let whole = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+        let n = whole.samples;
+        let per_chunk = (16384 / (12 * n)).max(8) / 8 * 8;
+        let chunks = 18usize.div_ceil(per_chunk);
+        assert!(chunks >= 2, "{n} rays, {per_chunk} probes a chunk");
+        let calls = AtomicUsize::new(0);
+        let chunked = bake_in_chunks(
+            Some(&scene),
+            &grid,
+            &options,
+            &|stage, done, total| {
+                if stage == Stage::Probes {
+                    assert!(done <= total && total == chunks * n, "{done} {total}");
+                    calls.fetch_add(1, Ordering::Relaxed);
+                }
+            },
+            16 << 10,
+        )
+        .unwrap();
+        assert_eq!(whole, chunked);
+        assert_eq!(calls.into_inner(), chunks * n.div_ceil(BLOCK));
+        // And the scene was in the way.
+        assert!(whole.transfer.iter().any(|&x| x != 0.0 && x != 1.0));
     }
 }
