@@ -11,7 +11,9 @@
 //! triangle counts, checked before the memory is allocated, so that no
 //! file makes the loader hang or allocate without bound
 //! (docs/limits.md). [`Mesh::subdivided`] splits long edges (conforming)
-//! for bakes that store light per vertex; meshes may carry per-vertex
+//! for bakes that store light per vertex ([`Mesh::subdivided_with_map`]
+//! also finds points of the original triangles in the subdivided ones, so
+//! rays can be cast against the fewer original triangles); meshes may carry per-vertex
 //! emission ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
 
 pub mod cornell_box;
@@ -26,3 +28,4 @@ pub use error::MeshError;
 pub use load::{MeshFormat, load, load_bytes, load_bytes_with, load_with};
 pub use load_options::LoadOptions;
 pub use mesh::{Mesh, MeshReport};
+pub use subdivide::Subdivision;

@@ -50,7 +50,7 @@ use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, ShCoeffs, sh_count};
 use shlight_format::ShprtFile;
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Subdivision};
 
 use crate::bvh::Bvh;
 use crate::packet::{Direction, LANES, Packet, PacketBvh};
@@ -364,6 +364,17 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
         .collect()
 }
 
+/// `(b - a) x (c - a)` of each triangle `(a, b, c)`: its front side.
+fn face_normals(mesh: &Mesh) -> Vec<Vec3> {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            (b - a).cross(c - a)
+        })
+        .collect()
+}
+
 /// Bakes the transfer of every vertex of `mesh`.
 ///
 /// Rays are cast direction by direction: for each shared direction, the
@@ -381,6 +392,23 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
 #[must_use]
 pub fn bake(
     mesh: &Mesh,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with_occluder(mesh, None, options, progress)
+}
+
+/// [`bake`] for a `mesh` made by [`Mesh::subdivided_with_map`] from
+/// `occluder.0` (`occluder.1` its map): the rays are cast against the
+/// original triangles (the same surface, fewer triangles) and their hits
+/// found in `mesh` by [`Subdivision::locate`]. `None`: cast against `mesh`.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_with_occluder(
+    mesh: &Mesh,
+    occluder: Option<(&Mesh, &Subdivision)>,
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Transfer {
@@ -430,12 +458,40 @@ pub fn bake(
     let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
     let rays = AtomicU64::new(0);
     if shadowed {
-        let triangles: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .map(|t| t.map(|i| rank[i as usize]))
-            .collect();
-        let bvh = PacketBvh::new(Bvh::new(&positions, &triangles));
+        // What the rays are cast against: `mesh` (its vertices in rank
+        // order), or the occluder (in its own Morton order), with its face
+        // normals for the one-sided test.
+        let (cast_positions, cast_triangles, faces) = match occluder {
+            None => (
+                positions.clone(),
+                mesh.triangles
+                    .iter()
+                    .map(|t| t.map(|i| rank[i as usize]))
+                    .collect::<Vec<[u32; 3]>>(),
+                face_normals(mesh),
+            ),
+            Some((coarse, _)) => {
+                let order = morton_order(&coarse.positions, coarse.bounds());
+                let mut rank = vec![0u32; order.len()];
+                for (s, &v) in order.iter().enumerate() {
+                    rank[v as usize] = s as u32;
+                }
+                (
+                    order
+                        .iter()
+                        .map(|&v| coarse.positions[v as usize])
+                        .collect(),
+                    coarse
+                        .triangles
+                        .iter()
+                        .map(|t| t.map(|i| rank[i as usize]))
+                        .collect(),
+                    face_normals(coarse),
+                )
+            }
+        };
+        let map = occluder.map(|(_, m)| m);
+        let bvh = PacketBvh::new(Bvh::new(&cast_positions, &cast_triangles));
         let start = ray_origins(mesh);
         let done = AtomicUsize::new(0);
         visible
@@ -448,7 +504,7 @@ pub fn bake(
                     let d = dirs[j];
                     let dir = Direction::new(d);
                     local.clear();
-                    local.extend(positions.iter().map(|p| dir.to_ray_space(*p)));
+                    local.extend(cast_positions.iter().map(|p| dir.to_ray_space(*p)));
                     facing.clear();
                     facing.extend(
                         normals
@@ -470,11 +526,14 @@ pub fn bake(
                                     continue;
                                 }
                                 let triangle = found.triangle[k];
-                                let tri = mesh.triangles[triangle as usize]
-                                    .map(|i| mesh.positions[i as usize]);
-                                let face = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-                                if face.dot(d) < 0.0 {
-                                    let [_, b1, b2] = found.barycentrics[k];
+                                if faces[triangle as usize].dot(d) >= 0.0 {
+                                    continue;
+                                }
+                                let located = match map {
+                                    None => Some((triangle, found.barycentrics[k])),
+                                    Some(m) => m.locate(triangle, found.barycentrics[k]),
+                                };
+                                if let Some((triangle, [_, b1, b2])) = located {
                                     hits.push(FrontHit {
                                         vertex: order[s as usize],
                                         triangle,

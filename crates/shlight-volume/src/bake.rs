@@ -36,19 +36,37 @@
 //! [`VolumeOptions::invalid_backfaces`] of the rays do so is inside
 //! geometry and marked invalid. `T(q)` and `E(q)` are the barycentric
 //! interpolation of the surface's vertex values; long edges are first split
-//! ([`shlight_mesh::Mesh::subdivided`]) so that vertices hold shadows.
+//! ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
+//! shadows.
 //!
-//! Probes are baked in parallel, each summing its directions in order, so
-//! the result is the same bit for bit at any thread count for a seed.
+//! # Casting and summing
+//! The probes' rays along one direction are parallel: per direction the
+//! probes are taken eight at a time in Morton order of their grid cells
+//! and traced as one [`Packet`] ([`PacketBvh::closest`]) against the
+//! scene's own triangles, not the subdivided ones (the same surface; a
+//! room of large quads has a few dozen instead of a hundred thousand), and
+//! each hit is found in the subdivided mesh by
+//! [`Subdivision::locate`]; the surfaces' transfer is cast the same way
+//! ([`transfer::bake_with_occluder`]). Directions are cast in parallel in
+//! blocks of 64, for as many probes at a time as keep their hits within
+//! 256 MB (12 bytes a ray); then each probe sums its rays block by block, in `f32`
+//! within a block and `f64` across blocks, one outer product `Y(s) (Y(s),
+//! T(q), E(q))` per blocked ray giving the blocked `sum Y Y^T`, `sum Y T^T`
+//! and `sum Y E` together (a grey surface's transfer summed once for the
+//! three channels). `sum_escaped Y Y^T` is `sum_all Y Y^T`, summed once the
+//! same way for every probe, less the blocked sum, so a probe that sees no
+//! sky gets exactly none. Every sum runs in a fixed order, so the result is
+//! the same bit for bit at any thread count for a seed.
 
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, sh_count};
-use shlight_mesh::Mesh;
-use shlight_prt::bvh::{Bvh, Ray};
+use shlight_mesh::{Mesh, Subdivision};
+use shlight_prt::bvh::Bvh;
+use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
 use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode};
 
 use crate::{Grid, ProbeVolume, VolumeError};
@@ -104,7 +122,7 @@ impl Default for VolumeOptions {
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
     Surface(transfer::Stage),
-    /// Casting the probes' rays.
+    /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
 }
 
@@ -123,6 +141,17 @@ pub fn bake(
     grid: &Grid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Result<ProbeVolume, VolumeError> {
+    bake_in_chunks(scene, grid, options, progress, HITS_MEMORY)
+}
+
+/// [`bake`], keeping at most `hits_memory` bytes of probe hits at a time.
+fn bake_in_chunks(
+    scene: Option<&Mesh>,
+    grid: &Grid,
+    options: &VolumeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    hits_memory: usize,
 ) -> Result<ProbeVolume, VolumeError> {
     let lmax = options.lmax;
     if lmax > MAX_LMAX {
@@ -159,94 +188,58 @@ pub fn bake(
     let weight = 4.0 * std::f64::consts::PI / dirs.len() as f64;
 
     let surface = scene.map(|mesh| Surface::bake(mesh, options, progress));
-    let eye = identity(nc);
     let mut transfer = vec![0.0f32; probes.len() * 3 * nc * nc];
     let mut emitted = vec![0.0f32; probes.len() * 3 * nc];
     let mut backfaces = vec![0.0f32; probes.len()];
-    let done = AtomicUsize::new(0);
-    let rays = AtomicU64::new(0);
-    transfer
-        .par_chunks_mut(3 * nc * nc)
-        .zip(emitted.par_chunks_mut(3 * nc))
-        .zip(backfaces.par_iter_mut())
-        .zip(probes.par_iter())
-        .for_each(|(((m, e), back), &x)| {
-            let mut blocked = vec![0.0f64; nc * nc];
-            let mut escaped = vec![0.0f64; nc * nc];
-            let mut escaped_count = 0usize;
-            let mut front = vec![0.0f64; 3 * nc * nc];
-            let mut light = vec![0.0f64; 3 * nc];
-            let mut t = vec![0.0f64; 3 * nc];
-            let mut back_count = 0usize;
-            if let Some(s) = &surface {
-                for (j, d) in dirs.iter().enumerate() {
-                    let y = &ylm[j * nc..][..nc];
-                    let hit = s.bvh.closest_hit(&Ray::new(x, *d, f32::INFINITY));
-                    let sum = if hit.is_some() {
-                        &mut blocked
-                    } else {
-                        escaped_count += 1;
-                        &mut escaped
-                    };
-                    for (row, yi) in sum.chunks_exact_mut(nc).zip(y) {
-                        for (b, yk) in row.iter_mut().zip(y) {
-                            *b += yi * yk;
-                        }
-                    }
-                    let Some(hit) = hit else {
-                        continue;
-                    };
-                    let tri = s.mesh.triangles[hit.triangle as usize];
-                    let [a, b, c] = tri.map(|i| s.mesh.positions[i as usize]);
-                    if (b - a).cross(c - a).dot(*d) >= 0.0 {
-                        back_count += 1;
-                        continue;
-                    }
-                    let exit = s.interpolate(tri, hit.barycentrics, &mut t);
-                    for ch in 0..3 {
-                        let tc = &t[ch * nc..][..nc];
-                        let fc = &mut front[ch * nc * nc..][..nc * nc];
-                        for (row, yi) in fc.chunks_exact_mut(nc).zip(y) {
-                            for (f, tk) in row.iter_mut().zip(tc) {
-                                *f += yi * tk;
-                            }
-                        }
-                    }
-                    for (l, yi) in light.chunks_exact_mut(3).zip(y) {
-                        for ch in 0..3 {
-                            l[ch] += yi * exit[ch];
-                        }
-                    }
-                }
-                rays.fetch_add(dirs.len() as u64, Ordering::Relaxed);
-            }
-            // The sky's part from the smaller of the two sets of rays.
-            let sky: Vec<f64> = if surface.is_none() {
-                eye.clone()
-            } else if escaped_count <= dirs.len() - escaped_count {
-                escaped.iter().map(|e| weight * e).collect()
-            } else {
-                eye.iter()
-                    .zip(&blocked)
-                    .map(|(i, b)| i - weight * b)
-                    .collect()
-            };
-            for ch in 0..3 {
-                let mc = &mut m[ch * nc * nc..][..nc * nc];
-                for (k, o) in mc.iter_mut().enumerate() {
-                    *o = (sky[k] + weight * front[ch * nc * nc + k]) as f32;
+    let mut rays = 0;
+    match &surface {
+        None => {
+            let eye = identity(nc);
+            for m in transfer.chunks_exact_mut(3 * nc * nc) {
+                for (o, i) in m.iter_mut().zip(eye.iter().cycle()) {
+                    *o = *i as f32;
                 }
             }
-            for (o, l) in e.iter_mut().zip(&light) {
-                *o = (weight * l) as f32;
+            progress(Stage::Probes, dirs.len(), dirs.len());
+        }
+        Some(s) => {
+            rays = (dirs.len() * probes.len()) as u64;
+            let ylm32: Vec<f32> = ylm.iter().map(|&y| y as f32).collect();
+            let all = s.sum_all(&ylm32);
+            // Probes in Morton order, as many at a time as keep the hits
+            // within HITS_MEMORY (whole packets).
+            let order = probe_order(grid);
+            let per_chunk = (hits_memory / (std::mem::size_of::<Hit>() * dirs.len())).max(LANES)
+                / LANES
+                * LANES;
+            let chunks = order.len().div_ceil(per_chunk);
+            let done = AtomicUsize::new(0);
+            let total = chunks * dirs.len();
+            let mut m = Vec::new();
+            let mut e = Vec::new();
+            let mut back = Vec::new();
+            for chunk in order.chunks(per_chunk) {
+                let hits = s.cast(chunk, &probes, &dirs, &|len| {
+                    progress(
+                        Stage::Probes,
+                        done.fetch_add(len, Ordering::Relaxed) + len,
+                        total,
+                    );
+                });
+                m.resize(chunk.len() * 3 * nc * nc, 0.0);
+                e.resize(chunk.len() * 3 * nc, 0.0);
+                back.resize(chunk.len(), 0.0);
+                s.gather(&hits, &ylm32, &all, weight, (&mut m, &mut e, &mut back));
+                for (i, &p) in chunk.iter().enumerate() {
+                    let p = p as usize;
+                    transfer[p * 3 * nc * nc..][..3 * nc * nc]
+                        .copy_from_slice(&m[i * 3 * nc * nc..][..3 * nc * nc]);
+                    emitted[p * 3 * nc..][..3 * nc].copy_from_slice(&e[i * 3 * nc..][..3 * nc]);
+                    backfaces[p] = back[i];
+                }
             }
-            *back = back_count as f32 / dirs.len() as f32;
-            progress(
-                Stage::Probes,
-                done.fetch_add(1, Ordering::Relaxed) + 1,
-                probes.len(),
-            );
-        });
+        }
+    }
     let valid = backfaces
         .iter()
         .map(|&f| f <= options.invalid_backfaces)
@@ -261,7 +254,7 @@ pub fn bake(
         samples: dirs.len(),
         bounces: options.bounces,
         seed: options.seed,
-        rays: rays.into_inner() + surface.as_ref().map_or(0, |s| s.rays),
+        rays: rays + surface.as_ref().map_or(0, |s| s.rays),
         scene_hash: scene.map_or(0, Mesh::content_hash),
     })
 }
@@ -273,11 +266,72 @@ fn identity(n: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Directions per casting task and per `f32` partial sum of a probe.
+const BLOCK: usize = 64;
+
+/// Bytes of probe hits kept at a time: the probes are cast and summed in
+/// chunks of this many bytes of [`Hit`]s (12 a ray).
+const HITS_MEMORY: usize = 256 << 20;
+
+/// What one probe ray met: a triangle's front (its index and the
+/// barycentric weights of corners 1 and 2), a back face, or nothing.
+#[derive(Clone, Copy, Debug)]
+struct Hit {
+    triangle: u32,
+    b1: f32,
+    b2: f32,
+}
+
+impl Hit {
+    const ESCAPED: Hit = Hit {
+        triangle: u32::MAX,
+        b1: 0.0,
+        b2: 0.0,
+    };
+    const BACK: Hit = Hit {
+        triangle: u32::MAX - 1,
+        b1: 0.0,
+        b2: 0.0,
+    };
+}
+
+/// Morton (Z-order) ranks of the probes of `grid`: `order[r]` is the probe
+/// of rank `r`, so that eight consecutive ranks are a 2x2x2 block of
+/// neighbours (where the resolution allows) and their rays stay together.
+fn probe_order(grid: &Grid) -> Vec<u32> {
+    let spread = |x: usize| {
+        let mut code = 0u64;
+        for bit in 0..21 {
+            code |= ((x as u64 >> bit) & 1) << (3 * bit);
+        }
+        code
+    };
+    let [nx, ny, nz] = grid.resolution;
+    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(nx * ny * nz);
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let code = spread(x) | spread(y) << 1 | spread(z) << 2;
+                keyed.push((code, grid.index([x, y, z]) as u32));
+            }
+        }
+    }
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
 /// The scene's surfaces, subdivided, with their transfer and emitted light
 /// per vertex.
 struct Surface {
     mesh: Mesh,
-    bvh: Bvh,
+    /// The scene's hierarchy before subdivision, over its vertices in
+    /// Morton order (`ranked`).
+    bvh: PacketBvh,
+    ranked: Vec<Vec3>,
+    /// The scene's face normals (unnormalised) before subdivision.
+    faces: Vec<Vec3>,
+    /// Where the scene's triangles went in `mesh`.
+    map: Subdivision,
     /// Per vertex `channels x nc` transfer.
     transfer: Vec<f32>,
     channels: usize,
@@ -297,7 +351,8 @@ impl Surface {
         let max_edge = options
             .max_edge
             .unwrap_or((hi - lo).length() / SURFACE_DIVISIONS);
-        let mesh = mesh.subdivided(max_edge);
+        let coarse = mesh;
+        let (mesh, map) = mesh.subdivided_with_map(max_edge);
         let albedo = match &mesh.colors {
             Some(c) => {
                 Albedo::PerVertex(c.iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect())
@@ -319,12 +374,47 @@ impl Surface {
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
         };
-        let t = transfer::bake(&mesh, &bake_options, &|stage, done, total| {
-            progress(Stage::Surface(stage), done, total);
-        });
-        let bvh = Bvh::new(&mesh.positions, &mesh.triangles);
+        let t = transfer::bake_with_occluder(
+            &mesh,
+            Some((coarse, &map)),
+            &bake_options,
+            &|stage, done, total| {
+                progress(Stage::Surface(stage), done, total);
+            },
+        );
+        // The probes' rays are cast against the scene's own triangles (the
+        // same surface as the subdivided ones, and far fewer of them when
+        // it was subdivided) through the packet layout, over the vertices
+        // in Morton order so that a direction's ray-space vertices are read
+        // near one another; the hits are then found in the subdivided mesh.
+        let order = transfer::morton_order(&coarse.positions, coarse.bounds());
+        let mut rank = vec![0u32; order.len()];
+        for (r, &v) in order.iter().enumerate() {
+            rank[v as usize] = r as u32;
+        }
+        let ranked: Vec<Vec3> = order
+            .iter()
+            .map(|&v| coarse.positions[v as usize])
+            .collect();
+        let triangles: Vec<[u32; 3]> = coarse
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| rank[i as usize]))
+            .collect();
+        let bvh = PacketBvh::new(Bvh::new(&ranked, &triangles));
+        let faces = coarse
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| coarse.positions[i as usize]);
+                (b - a).cross(c - a)
+            })
+            .collect();
         Self {
             bvh,
+            ranked,
+            faces,
+            map,
             channels: t.channels,
             nc: sh_count(t.lmax),
             transfer: t.coeffs,
@@ -334,25 +424,255 @@ impl Surface {
         }
     }
 
-    /// The transfer at a hit (into `out`, 3 channels x nc, a grey transfer
-    /// repeated) and its emitted light.
-    fn interpolate(&self, tri: [u32; 3], w: [f32; 3], out: &mut [f64]) -> DVec3 {
-        out.fill(0.0);
-        let mut exit = DVec3::ZERO;
-        for (&v, &wv) in tri.iter().zip(&w) {
-            let wv = f64::from(wv);
-            let t =
-                &self.transfer[v as usize * self.channels * self.nc..][..self.channels * self.nc];
-            for ch in 0..3 {
-                let src = &t[ch.min(self.channels - 1) * self.nc..][..self.nc];
-                for (o, s) in out[ch * self.nc..][..self.nc].iter_mut().zip(src) {
-                    *o += wv * f64::from(*s);
-                }
+    /// Casts the rays of the probes `chunk` (indices into `probes`, in
+    /// Morton order): per block of [`BLOCK`] directions, for each direction,
+    /// the probes eight at a time as one packet. The hits of block `b` are
+    /// `chunk.len() x len_b` records, the probes in the chunk's order, each
+    /// probe's directions in order. `progress(directions)` as blocks finish.
+    fn cast(
+        &self,
+        chunk: &[u32],
+        probes: &[Vec3],
+        dirs: &[Vec3],
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Vec<Hit> {
+        let n = chunk.len();
+        let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
+        hits.par_chunks_mut(n * BLOCK)
+            .zip(dirs.par_chunks(BLOCK))
+            .for_each_init(
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(local, front, located, lanes), (out, block)| {
+                    let len = block.len();
+                    for (jj, d) in block.iter().enumerate() {
+                        let dir = Direction::new(*d);
+                        local.clear();
+                        local.extend(self.ranked.iter().map(|p| dir.to_ray_space(*p)));
+                        for (g, eight) in chunk.chunks(LANES).enumerate() {
+                            let mut origins = [Vec3::ZERO; LANES];
+                            for (o, &p) in origins.iter_mut().zip(eight) {
+                                *o = probes[p as usize];
+                            }
+                            let packet = Packet::new(&dir, &origins[..eight.len()]);
+                            let found = self.bvh.closest(&dir, local, &packet);
+                            // Front hits, found in the subdivided mesh together.
+                            front.clear();
+                            for k in 0..eight.len() {
+                                if found.mask >> k & 1 == 0 {
+                                    continue;
+                                }
+                                let coarse = found.triangle[k];
+                                if self.faces[coarse as usize].dot(dir.dir()) >= 0.0 {
+                                    out[(g * LANES + k) * len + jj] = Hit::BACK;
+                                } else {
+                                    front.push((coarse, found.barycentrics[k]));
+                                    lanes.push(g * LANES + k);
+                                }
+                            }
+                            self.map.locate_each(front, located);
+                            for (&i, found) in lanes.iter().zip(located.iter()) {
+                                out[i * len + jj] = match *found {
+                                    Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
+                                    None => Hit::BACK,
+                                };
+                            }
+                            lanes.clear();
+                        }
+                    }
+                    progress(len);
+                },
+            );
+        hits
+    }
+
+    /// Entries per row of a probe's sums: `v = (Y, T, E)`, `Y` in
+    /// `[0, nc)`, `T` in `[nc, nc + channels nc)`, `E` after when the scene
+    /// emits.
+    fn width(&self) -> usize {
+        self.nc * (1 + self.channels) + if self.emitted.is_some() { 3 } else { 0 }
+    }
+
+    /// `sum_all Y Y^T` (rows [`width`](Self::width) apart), summed as a
+    /// probe whose rays are all blocked sums its blocked rays, so that a
+    /// probe that sees no sky gets exactly none.
+    fn sum_all(&self, ylm: &[f32]) -> Vec<f64> {
+        let (nc, width) = (self.nc, self.width());
+        let mut total = vec![0.0f64; nc * width];
+        let mut acc = vec![0.0f32; nc * width];
+        for block in ylm.chunks(BLOCK * nc) {
+            acc.fill(0.0);
+            for y in block.chunks_exact(nc) {
+                add_outer(&mut acc, width, y, y);
             }
-            if let Some(e) = &self.emitted {
-                exit += wv * e[v as usize].as_dvec3();
+            for (t, a) in total.iter_mut().zip(&acc) {
+                *t += f64::from(*a);
             }
         }
-        exit
+        total
+    }
+
+    /// Sums the rays of each probe of a chunk ([`cast`](Self::cast)'s
+    /// `hits`) into its transfer, emitted light and back-face fraction
+    /// (`out`, in the chunk's order); `all` is [`sum_all`](Self::sum_all).
+    ///
+    /// Per block of [`BLOCK`] directions a probe sums, in `f32`, the
+    /// products `Y_i(s) v(s)` with `v = (Y(s), T(q), E(q))` over its blocked
+    /// rays (`T` and `E` zero at back faces), and adds the block into `f64`:
+    /// the blocked rays' `sum Y Y^T` and the front hits' `sum Y T^T` and
+    /// `sum Y E` in one pass, the transfer once for a grey surface.
+    fn gather(
+        &self,
+        hits: &[Hit],
+        ylm: &[f32],
+        all: &[f64],
+        weight: f64,
+        (transfer, emitted, backfaces): (&mut [f32], &mut [f32], &mut [f32]),
+    ) {
+        let nc = self.nc;
+        let ndirs = ylm.len() / nc;
+        let n = backfaces.len();
+        let stride = self.channels * nc;
+        let width = self.width();
+        let eye = identity(nc);
+        let m_size = 3 * nc * nc;
+        transfer
+            .par_chunks_mut(m_size)
+            .zip(emitted.par_chunks_mut(3 * nc))
+            .zip(backfaces.par_iter_mut())
+            .enumerate()
+            .for_each_init(
+                || {
+                    (
+                        vec![0.0f64; nc * width],
+                        vec![0.0f32; nc * width],
+                        vec![0.0f32; width],
+                    )
+                },
+                |(total, acc, v), (p, ((m, e), back))| {
+                    total.fill(0.0);
+                    let (mut escaped, mut back_count) = (0usize, 0usize);
+                    for (b, ys) in ylm.chunks(BLOCK * nc).enumerate() {
+                        let len = ys.len() / nc;
+                        let rays = &hits[b * BLOCK * n + p * len..][..len];
+                        acc.fill(0.0);
+                        for (hit, y) in rays.iter().zip(ys.chunks_exact(nc)) {
+                            match hit.triangle {
+                                u32::MAX => escaped += 1,
+                                t if t == u32::MAX - 1 => {
+                                    back_count += 1;
+                                    add_outer(acc, width, y, y);
+                                }
+                                _ => {
+                                    v[..nc].copy_from_slice(y);
+                                    self.interpolate(hit, &mut v[nc..]);
+                                    add_outer(acc, width, y, v);
+                                }
+                            }
+                        }
+                        for (t, a) in total.iter_mut().zip(acc.iter()) {
+                            *t += f64::from(*a);
+                        }
+                    }
+                    // The sky's part from the smaller of the two sets of
+                    // rays: w sum_escaped = w (sum_all - sum_blocked), or
+                    // delta - w sum_blocked.
+                    let blocked_count = ndirs - escaped;
+                    for i in 0..nc {
+                        let row = &total[i * width..][..width];
+                        for k in 0..nc {
+                            let sky = if escaped <= blocked_count {
+                                weight * (all[i * width + k] - row[k])
+                            } else {
+                                eye[i * nc + k] - weight * row[k]
+                            };
+                            for ch in 0..3 {
+                                let src = nc + ch.min(self.channels - 1) * nc + k;
+                                m[ch * nc * nc + i * nc + k] = (sky + weight * row[src]) as f32;
+                            }
+                        }
+                        if self.emitted.is_some() {
+                            for ch in 0..3 {
+                                e[i * 3 + ch] = (weight * row[nc + stride + ch]) as f32;
+                            }
+                        }
+                    }
+                    *back = back_count as f32 / ndirs as f32;
+                },
+            );
+    }
+
+    /// The transfer at a front hit and its emitted light, into `out`
+    /// (`channels x nc` transfer, then the emitted RGB when there is any).
+    fn interpolate(&self, hit: &Hit, out: &mut [f32]) {
+        let tri = self.mesh.triangles[hit.triangle as usize];
+        let w = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
+        let stride = self.channels * self.nc;
+        let (t_out, e_out) = out.split_at_mut(stride);
+        t_out.fill(0.0);
+        for (&v, &wv) in tri.iter().zip(&w) {
+            let t = &self.transfer[v as usize * stride..][..stride];
+            for (o, s) in t_out.iter_mut().zip(t) {
+                *o += wv * s;
+            }
+        }
+        if let Some(e) = &self.emitted {
+            let exit = tri
+                .iter()
+                .zip(&w)
+                .fold(Vec3::ZERO, |acc, (&v, &wv)| acc + wv * e[v as usize]);
+            e_out[..3].copy_from_slice(&exit.to_array());
+        }
+    }
+}
+
+/// `acc[i][k] += y[i] * v[k]` for the rows `i` of `y` and the entries `k`
+/// of `v` (rows `width` apart, `v` no longer than `width`).
+#[inline]
+fn add_outer(acc: &mut [f32], width: usize, y: &[f32], v: &[f32]) {
+    for (row, &yi) in acc.chunks_exact_mut(width).zip(y) {
+        for (a, x) in row.iter_mut().zip(v) {
+            *a += yi * x;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn probes_cast_in_chunks_give_the_same_bake() {
+        // 3x2x3 probes, about 1024 rays: 12 KB of hits each, so 16 KB holds
+        // one packet of probes at a time and the 18 go in three chunks.
+        let scene = shlight_mesh::generate::plane_under_sphere(0.5, 16, 8, 3.0, 4);
+        let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+        let options = VolumeOptions {
+            samples: 1024,
+            surface_samples: 64,
+            ..VolumeOptions::default()
+        };
+        let whole = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+        let n = whole.samples;
+        let per_chunk = (16384 / (12 * n)).max(8) / 8 * 8;
+        let chunks = 18usize.div_ceil(per_chunk);
+        assert!(chunks >= 2, "{n} rays, {per_chunk} probes a chunk");
+        let calls = AtomicUsize::new(0);
+        let chunked = bake_in_chunks(
+            Some(&scene),
+            &grid,
+            &options,
+            &|stage, done, total| {
+                if stage == Stage::Probes {
+                    assert!(done <= total && total == chunks * n, "{done} {total}");
+                    calls.fetch_add(1, Ordering::Relaxed);
+                }
+            },
+            16 << 10,
+        )
+        .unwrap();
+        assert_eq!(whole, chunked);
+        assert_eq!(calls.into_inner(), chunks * n.div_ceil(BLOCK));
+        // And the scene was in the way.
+        assert!(whole.transfer.iter().any(|&x| x != 0.0 && x != 1.0));
     }
 }
