@@ -2,7 +2,10 @@
 //! per probe, 2 bounces, in the Cornell box subdivided to about 100k
 //! triangles) and relighting every probe after a rotation of the
 //! environment. divan's "items/s" is rays per second for the bake (the
-//! surfaces' and the probes'), probes per second for the relight.
+//! surfaces' and the probes'), probes per second for the relight. The bake
+//! runs twice: the 32-triangle room subdivided by the bake itself
+//! (`max_edge`, so rays can be cast against the 32 triangles), and the
+//! subdivided room given as the scene (dense from the start).
 //!
 //! `cargo bench -p shlight-volume --bench volume`
 
@@ -40,6 +43,22 @@ fn cornell_100k_16x8x16_4096_rays(bencher: Bencher) {
     bencher
         .counter(ItemsCount::new(rays))
         .bench(|| bake(Some(&room), &grid, &options(), &|_, _, _| {}).unwrap());
+}
+
+/// The same bake with the scene dense to begin with: the 119,808
+/// triangles given as the scene (no coarser surface to cast against), as a
+/// scanned or modelled scene of that size would be.
+#[divan::bench(sample_count = 1, sample_size = 1)]
+fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher) {
+    let room = generate::cornell_box();
+    let fine = room.subdivided(0.0088);
+    let grid = Grid::around([16, 8, 16], room.bounds()).unwrap();
+    let rays = bake(Some(&fine), &grid, &options(), &|_, _, _| {})
+        .unwrap()
+        .rays;
+    bencher
+        .counter(ItemsCount::new(rays))
+        .bench(|| bake(Some(&fine), &grid, &options(), &|_, _, _| {}).unwrap());
 }
 
 #[divan::bench]
