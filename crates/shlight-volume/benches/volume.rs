@@ -31,18 +31,25 @@ fn options() -> VolumeOptions {
     }
 }
 
+/// Bakes the 16x8x16 grid around the Cornell box in `scene`, counting rays.
+fn bench_bake(bencher: Bencher, scene: &shlight_mesh::Mesh) {
+    let grid = Grid::around([16, 8, 16], generate::cornell_box().bounds()).unwrap();
+    let rays = bake(Some(scene), &grid, &options(), &|_, _, _| {})
+        .unwrap()
+        .rays;
+    bencher
+        .counter(ItemsCount::new(rays))
+        .bench(|| bake(Some(scene), &grid, &options(), &|_, _, _| {}).unwrap());
+}
+
+/// The room's 32 triangles, subdivided by the bake itself (`max_edge`) to
+/// 119,808.
 #[divan::bench(sample_count = 1, sample_size = 1)]
 fn cornell_100k_16x8x16_4096_rays(bencher: Bencher) {
     let room = generate::cornell_box();
     let fine = room.subdivided(0.0088);
     eprintln!("{} triangles after subdivision", fine.triangle_count());
-    let grid = Grid::around([16, 8, 16], room.bounds()).unwrap();
-    let rays = bake(Some(&room), &grid, &options(), &|_, _, _| {})
-        .unwrap()
-        .rays;
-    bencher
-        .counter(ItemsCount::new(rays))
-        .bench(|| bake(Some(&room), &grid, &options(), &|_, _, _| {}).unwrap());
+    bench_bake(bencher, &room);
 }
 
 /// The same bake with the scene dense to begin with: the 119,808
@@ -50,15 +57,7 @@ fn cornell_100k_16x8x16_4096_rays(bencher: Bencher) {
 /// scanned or modelled scene of that size would be.
 #[divan::bench(sample_count = 1, sample_size = 1)]
 fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher) {
-    let room = generate::cornell_box();
-    let fine = room.subdivided(0.0088);
-    let grid = Grid::around([16, 8, 16], room.bounds()).unwrap();
-    let rays = bake(Some(&fine), &grid, &options(), &|_, _, _| {})
-        .unwrap()
-        .rays;
-    bencher
-        .counter(ItemsCount::new(rays))
-        .bench(|| bake(Some(&fine), &grid, &options(), &|_, _, _| {}).unwrap());
+    bench_bake(bencher, &generate::cornell_box().subdivided(0.0088));
 }
 
 #[divan::bench]
