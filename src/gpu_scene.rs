@@ -25,28 +25,28 @@ pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize 
     requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
 }
 
-/// The WGSL snippet of `encoding`'s `encoded` light (as `shlight project
-/// MAP --encoding E --format wgsl` writes it), for
-/// [`Renderer::set_encoding`]: `env`'s plain SH to `lmax` is kept beside it
-/// as a coefficient file keeps it (`sloan+sh` finds its light again from
-/// them).
+/// `env`'s light kept as `encoding` ([`Environment::encode`], the SH part
+/// to `lmax`) and its WGSL snippet (as `shlight project MAP --encoding E
+/// --format wgsl` writes it), for [`Renderer::set_encoding`]. `env`'s plain
+/// SH to `lmax` is kept beside it as a coefficient file keeps it
+/// (`sloan+sh` finds its light again from them).
 ///
 /// # Errors
-/// Values a 32-bit float cannot hold.
-pub fn encoding_snippet(
-    encoding: Encoding,
-    encoded: &Encoded,
+/// As [`Environment::encode`], and values a 32-bit float cannot hold.
+pub fn encoded_light(
     env: &Environment,
+    encoding: Encoding,
     lmax: usize,
-) -> Result<String> {
+) -> Result<(Encoded, String)> {
+    let encoded = env.encode(encoding, lmax)?;
     let sh = env.radiance.resized(lmax);
-    let (record, coeffs) = FileEncoding::from_encoded(encoding, encoded, &sh);
+    let (record, coeffs) = FileEncoding::from_encoded(encoding, &encoded, &sh);
     let mut file = CoeffFile::new(coeffs, env.orientation.frame, Quantity::Radiance);
     file.mirror = env.orientation.mirror;
     file.encoding = record;
     let exported = shlight_format::export(&file, ExportFormat::Wgsl)
         .map_err(|e| anyhow::anyhow!("{}: {e}", env.path.display()))?;
-    Ok(exported.text)
+    Ok((encoded, exported.text))
 }
 
 /// A renderer for colour targets of `format` with no mesh: the light of

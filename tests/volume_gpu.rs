@@ -122,8 +122,8 @@ fn fetches(ctx: &GpuContext) -> Vec<VolumeFetch> {
         assert_eq!(best, VolumeFetch::Filtered, "{}", ctx.adapter_name());
     }
     let mut out = vec![VolumeFetch::Loads];
-    if best == VolumeFetch::Filtered {
-        out.push(best);
+    if VolumeFetch::can_filter(ctx) {
+        out.push(VolumeFetch::Filtered);
     }
     out
 }

@@ -85,16 +85,14 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
             }
             bar.set_message(format!("encoding the light as {encoding}"));
             let lmax = args.lmax.unwrap_or(2);
-            let encoded = env.encode(encoding, lmax)?;
+            let (encoded, snippet) = crate::gpu_scene::encoded_light(&env, encoding, lmax)?;
             if matches!(encoding, Encoding::DominantSh | Encoding::SloanSh) {
                 ui.note(format!(
                     "{encoding}: {} light(s) kept apart from the SH",
                     encoded.lights().len()
                 ));
             }
-            Some(crate::gpu_scene::encoding_snippet(
-                encoding, &encoded, &env, lmax,
-            )?)
+            Some(snippet)
         }
     };
     let rotation = rotation(args)?;

@@ -487,8 +487,7 @@ impl<'a> App<'a> {
         };
         if self.encoded_for != Some((encoding, lmax)) {
             let started = Instant::now();
-            let encoded = self.env.encode(encoding, lmax)?;
-            let snippet = crate::gpu_scene::encoding_snippet(encoding, &encoded, &self.env, lmax)?;
+            let (encoded, snippet) = crate::gpu_scene::encoded_light(&self.env, encoding, lmax)?;
             r.renderer.set_encoding(&r.ctx, &snippet)?;
             let lights = match encoding {
                 Encoding::DominantSh | Encoding::SloanSh => {

@@ -21,7 +21,7 @@
 //!   the same mesh, camera and size as `frame_bunny_sh` at the same lmax,
 //!   which is its baseline (the target: within 1.5x);
 //! - `frame_bunny_volume_loads`: the same with `VolumeFetch::Loads`, the
-//!   path of adapters that cannot filter `Rgba32Float` (eight
+//!   path of hardware GPUs and of adapters that cannot filter `Rgba32Float` (eight
 //!   `textureLoad`s per texel, weighted in the shader);
 //! - `frame_sphere_normals`: the sphere in normals mode, the floor every
 //!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);

@@ -45,8 +45,8 @@ impl GpuContext {
         }))
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         // Linear filtering of Rgba32Float textures, where the adapter has
-        // it: the volume pass then interpolates its probes with the sampler
-        // (VolumeFetch).
+        // it: on a CPU adapter the volume pass then interpolates its probes
+        // with the sampler (VolumeFetch::best).
         let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("shlight"),

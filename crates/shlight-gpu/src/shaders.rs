@@ -116,8 +116,8 @@ pub const VOLUME_MODULE: ShaderModuleSource = ShaderModuleSource {
     generated: Some(volume_wgsl_filtered),
 };
 /// [`VOLUME_MODULE`] with the texels read by eight loads each and weighted
-/// in the shader (`VolumeFetch::Loads`, adapters that cannot filter
-/// `Rgba32Float`).
+/// in the shader (`VolumeFetch::Loads`: hardware GPUs, and adapters that
+/// cannot filter `Rgba32Float`).
 pub const VOLUME_LOADS_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "volume loads",
     files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],

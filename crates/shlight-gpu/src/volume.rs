@@ -17,10 +17,11 @@
 //! uniform block.
 //!
 //! The texels are interpolated one of two ways ([`VolumeFetch`]): by the
-//! sampler's trilinear filter where the adapter filters `Rgba32Float`
-//! (wgpu's `FLOAT32_FILTERABLE`, which [`GpuContext`] requests when the
-//! adapter has it; lavapipe has it), one sample per texel; else by eight
-//! `textureLoad`s per texel weighted in the shader.
+//! sampler's trilinear filter, one sample per texel, on a CPU adapter that
+//! filters `Rgba32Float` (wgpu's `FLOAT32_FILTERABLE`, which [`GpuContext`]
+//! requests when the adapter has it; lavapipe has it and weighs in f32);
+//! else by eight `textureLoad`s per texel weighted in the shader (hardware
+//! GPUs round the sampler's weights to 8 bits).
 //!
 //! [`Renderer`]: crate::Renderer
 
@@ -59,20 +60,24 @@ pub enum VolumeFetch {
 }
 
 impl VolumeFetch {
+    /// Whether `ctx`'s device filters `Rgba32Float` (wgpu's
+    /// `FLOAT32_FILTERABLE`), which [`VolumeFetch::Filtered`] needs.
+    #[must_use]
+    pub fn can_filter(ctx: &GpuContext) -> bool {
+        ctx.device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE)
+    }
+
     /// What `ctx` runs best without losing exactness: [`VolumeFetch::Filtered`]
-    /// on a CPU adapter (lavapipe) whose device filters `Rgba32Float`, where
-    /// the sampler weighs in f32 and is the faster path by far; else
+    /// on a CPU adapter (lavapipe) that can filter ([`VolumeFetch::can_filter`]),
+    /// where the sampler weighs in f32 and is the faster path by far; else
     /// [`VolumeFetch::Loads`]: hardware GPUs round the sampler's weights to
     /// 8 bits, and serve the eight loads per texel cheaply.
     #[must_use]
     pub fn best(ctx: &GpuContext) -> Self {
         let cpu = ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
-        if cpu
-            && ctx
-                .device
-                .features()
-                .contains(wgpu::Features::FLOAT32_FILTERABLE)
-        {
+        if cpu && Self::can_filter(ctx) {
             Self::Filtered
         } else {
             Self::Loads
@@ -490,7 +495,7 @@ impl VolumeRenderer {
         probes: &VolumeProbes<'_>,
         fetch: VolumeFetch,
     ) -> Result<Self, GpuError> {
-        if fetch == VolumeFetch::Filtered && VolumeFetch::best(ctx) != fetch {
+        if fetch == VolumeFetch::Filtered && !VolumeFetch::can_filter(ctx) {
             return Err(GpuError::Invalid(format!(
                 "filtered volume interpolation on {}: the device does not filter Rgba32Float \
                  textures (FLOAT32_FILTERABLE); use VolumeFetch::Loads",
