@@ -224,24 +224,52 @@ impl<C: ShValue> ShCoeffs<C> {
         out
     }
 
-    /// Projects `f` onto the basis up to `lmax` by the product quadrature
-    /// [`SphereQuadrature::exact_to_degree`]`(degree)`. When `f` is a spherical
-    /// polynomial of degree `<= degree - lmax` the result is exact; otherwise
-    /// larger `degree` gives better accuracy.
+    /// Projects `f` onto the basis up to `lmax`:
+    /// `f_l^m = sum_k w_k f(d_k) Y_l^m(d_k)`, the integral
+    /// `int f(d) Y_l^m(d) dd` by the product quadrature
+    /// [`SphereQuadrature::exact_to_degree`]`(max(degree, lmax))`
+    /// (Gauss-Legendre in `cos theta` times the uniform rule in `phi`). When
+    /// `f` is a spherical polynomial of degree `<= degree - lmax` the result
+    /// is exact up to rounding; otherwise larger `degree` gives better
+    /// accuracy. Cost: `(degree/2 + 1) (degree + 1)` calls of `f`, each with
+    /// one basis evaluation and `(lmax+1)^2` multiply-adds per channel.
+    ///
+    /// Works for every value type (`f32`, `f64`, `Vec3`, `DVec3`); `f`
+    /// takes the direction as the glam vector of the scalar (`Vec3` for
+    /// `f32`, `DVec3` for `f64`). The nodes, weights, basis and sums are in
+    /// `f64` whatever the scalar: for `f32` each node is rounded to a `Vec3`
+    /// to call `f`, its values are widened to `f64`, and each sum is rounded
+    /// once to `f32` at the end, so the result is the projection of what `f`
+    /// returns to within `f32` rounding of the result and of the nodes.
+    /// For `f64` nothing is converted.
+    ///
+    /// # Panics
+    /// Not by itself; a panic in `f` propagates. (Memory is `(lmax+1)^2`
+    /// sums per channel plus the rule's `O(degree^2)` nodes.)
     #[must_use]
-    pub fn project_fn(lmax: usize, degree: usize, f: impl Fn(DVec3) -> C) -> Self
-    where
-        C: ShValue<Scalar = f64>,
-    {
+    pub fn project_fn(lmax: usize, degree: usize, f: impl Fn(<S<C> as Real>::Vec3) -> C) -> Self {
         let q = SphereQuadrature::exact_to_degree(degree.max(lmax));
         let basis = ShBasis::<f64>::new(lmax);
-        let mut y = vec![0.0; basis.count()];
-        let mut out = Self::zeros(lmax);
+        let count = basis.count();
+        let mut y = vec![0.0; count];
+        // Channel-major sums: `sums[c * count + i]` for coefficient `i`.
+        let mut sums = vec![0.0f64; C::CHANNELS * count];
         for (d, &w) in q.directions.iter().zip(&q.weights) {
-            let v = f(*d).scale(w);
+            let v = f(<S<C> as Real>::Vec3::from(
+                d.to_array().map(S::<C>::from_f64),
+            ));
             basis.eval(*d, &mut y);
-            for (o, &yi) in out.coeffs.iter_mut().zip(&y) {
-                *o += v.scale(yi);
+            for (c, sums) in sums.chunks_exact_mut(count).enumerate() {
+                let vw = v.channel(c).to_f64() * w;
+                for (o, &yi) in sums.iter_mut().zip(&y) {
+                    *o += vw * yi;
+                }
+            }
+        }
+        let mut out = Self::zeros(lmax);
+        for (c, sums) in sums.chunks_exact(count).enumerate() {
+            for (o, &s) in out.coeffs.iter_mut().zip(sums) {
+                o.set_channel(c, S::<C>::from_f64(s));
             }
         }
         out
@@ -434,6 +462,117 @@ mod tests {
         for (x, y) in p.as_slice().iter().zip(a.as_slice()) {
             assert!((x - y).abs() < 1e-13);
         }
+    }
+
+    /// Unit roundoff of `f32`, `2^-24`.
+    const U32: f64 = f32::EPSILON as f64 / 2.0;
+
+    /// Bound on `|f32 value - exact value|` of the test polynomials below at
+    /// an `f32`-rounded node, in units of [`U32`]: rounding the node moves
+    /// each polynomial by at most `U32 sum_j |d_j df/dd_j| <= 4 U32`, and
+    /// its handful of `f32` operations round terms whose magnitudes sum to
+    /// at most 3.5 (at most `4 * 3.5 U32`): 18, and 24 leaves room.
+    const F32_POLY_ULPS: f64 = 24.0;
+
+    /// Tolerance of an `f32` projection coefficient `c` against exact, in
+    /// units of [`U32`]: a value error `e` at every node moves a coefficient
+    /// by at most `e sum_k w_k |Y(d_k)| <= e sqrt(4 pi)` (Cauchy-Schwarz,
+    /// with `sum_k w_k = 4 pi` and `sum_k w_k Y(d_k)^2 = 1` for an exact
+    /// rule), and the `f64` sum is rounded once to `f32` (`U32 |c|`).
+    fn f32_projection_ulps(c: f64) -> f64 {
+        F32_POLY_ULPS * (4.0 * core::f64::consts::PI).sqrt() + c.abs()
+    }
+
+    /// Three spherical polynomials of degree 2 evaluated in `f32`, and their
+    /// exact coefficients (closed forms of `Y_1^m`, `Y_2^m` with the
+    /// Condon-Shortley phase): red `0.5 + 2x - yz`, green `xy + (3z^2 - 1)/4`,
+    /// blue `z - 3y`.
+    fn poly_f32(d: Vec3) -> Vec3 {
+        let (x, y, z) = (d.x, d.y, d.z);
+        Vec3::new(
+            0.5 + 2.0 * x - y * z,
+            x * y + 0.25 * (3.0 * z * z - 1.0),
+            z - 3.0 * y,
+        )
+    }
+
+    fn poly_exact(lmax: usize) -> ShCoeffs<DVec3> {
+        use core::f64::consts::PI;
+        let (c0, c1, c2) = (
+            2.0 * PI.sqrt(),
+            (4.0 * PI / 3.0).sqrt(),
+            2.0 * (PI / 15.0).sqrt(),
+        );
+        let mut f = ShCoeffs::<DVec3>::zeros(lmax);
+        f[(0, 0)] = DVec3::new(0.5 * c0, 0.0, 0.0);
+        f[(1, 1)] = DVec3::new(-2.0 * c1, 0.0, 0.0); // x = -sqrt(4pi/3) Y_1^1
+        f[(1, -1)] = DVec3::new(0.0, 0.0, 3.0 * c1); // y = -sqrt(4pi/3) Y_1^-1
+        f[(1, 0)] = DVec3::new(0.0, 0.0, c1); // z = sqrt(4pi/3) Y_1^0
+        f[(2, -1)] = DVec3::new(c2, 0.0, 0.0); // yz = -2 sqrt(pi/15) Y_2^-1
+        f[(2, -2)] = DVec3::new(0.0, c2, 0.0); // xy = 2 sqrt(pi/15) Y_2^-2
+        f[(2, 0)] = DVec3::new(0.0, (PI / 5.0).sqrt(), 0.0); // 3z^2-1 = 4 sqrt(pi/5) Y_2^0
+        f
+    }
+
+    /// The largest `|a - b|` over [`f32_projection_ulps`], asserted `<= 1`.
+    fn check_projection(got: &ShCoeffs<DVec3>, want: &ShCoeffs<DVec3>, what: &str) -> f64 {
+        let mut worst = 0.0f64;
+        for (i, (a, b)) in got.as_slice().iter().zip(want.as_slice()).enumerate() {
+            for c in 0..3 {
+                let units = (a[c] - b[c]).abs() / U32;
+                let allowed = f32_projection_ulps(b[c]);
+                assert!(
+                    units <= allowed,
+                    "{what}: coefficient {i} channel {c}: {units} > {allowed} ulps"
+                );
+                worst = worst.max(units / allowed);
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn f32_projection_of_band_limited_polynomials_is_exact_to_f32_rounding() {
+        // Any rule exact to degree >= 2 + lmax reproduces the coefficients;
+        // a large one (20301 nodes at degree 200) sums many terms, which
+        // `f64` sums keep from accumulating `f32` rounding.
+        let mut worst = 0.0f64;
+        for (lmax, degree) in [(2, 4), (3, 5), (4, 200)] {
+            let got = ShCoeffs::<Vec3>::project_fn(lmax, degree, poly_f32).to_f64();
+            let what = format!("lmax {lmax} degree {degree}");
+            worst = worst.max(check_projection(&got, &poly_exact(lmax), &what));
+            // One channel on its own projects like the RGB's green.
+            let green = ShCoeffs::<f32>::project_fn(lmax, degree, |d| poly_f32(d).y);
+            let green = green.map(|v| DVec3::splat(f64::from(v)));
+            let want = poly_exact(lmax).map(|v| DVec3::splat(v.y));
+            worst = worst.max(check_projection(&green, &want, &what));
+        }
+        eprintln!("f32 projection vs closed form: worst {worst:.4} of the allowed");
+    }
+
+    #[test]
+    fn f32_projection_is_the_f64_one_to_f32_rounding() {
+        // A function that is not band-limited (so the rule's own error is
+        // the same in both and cancels): |x| + the polynomials, in f32 and
+        // in f64. At a rounded node the f32 values differ from the f64 ones
+        // by the polynomials' 18 U32 (see F32_POLY_ULPS) plus U32 from |x|
+        // and U32 from the sum, within F32_POLY_ULPS: the same bound.
+        let f64_fn = |d: DVec3| {
+            let (x, y, z) = (d.x, d.y, d.z);
+            DVec3::new(
+                0.5 + 2.0 * x - y * z,
+                x * y + 0.25 * (3.0 * z * z - 1.0),
+                z - 3.0 * y,
+            ) + DVec3::splat(x.abs())
+        };
+        let f32_fn = |d: Vec3| poly_f32(d) + Vec3::splat(d.x.abs());
+        let mut worst = 0.0f64;
+        for (lmax, degree) in [(2, 9), (6, 40)] {
+            let want = ShCoeffs::<DVec3>::project_fn(lmax, degree, f64_fn);
+            let got = ShCoeffs::<Vec3>::project_fn(lmax, degree, f32_fn).to_f64();
+            worst = worst.max(check_projection(&got, &want, &format!("lmax {lmax}")));
+        }
+        eprintln!("f32 vs f64 projection: worst {worst:.4} of the allowed");
     }
 
     #[test]

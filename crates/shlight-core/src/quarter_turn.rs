@@ -45,10 +45,14 @@
 //! vector lanes, matching the checkerboard.
 //! A quarter turn about X is `Rz(-π/2) Ry(π/2) Rz(π/2)`, and the `Rz` are
 //! exact signed swaps within each `(m, -m)` pair, done per band.
+//!
+//! Coefficients of any value type (`f32`, `f64`, `Vec3`, `DVec3`) are turned
+//! in `f64`; `f32` ones are widened on the way in and rounded once on the
+//! way out.
 
 use core::f64::consts::SQRT_2;
 
-use crate::{ShCoeffs, ShValue};
+use crate::{Real, ShCoeffs, ShValue};
 
 /// The rows of `d^l(π/2)` from `m = l` down to `0`, by the recurrence (see
 /// the module docs), columns `m' = 0..=m` only, split by the parity of `m'`
@@ -150,7 +154,7 @@ type Split = [[Vec<f64>; 2]; 3];
 
 /// Applies the band-`l` block of the quarter turn about Y, `Ry(π/2)`, to
 /// `x` (the `2l + 1` coefficients of band `l`) into `out`.
-fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
+fn turn_y_band<C: ShValue>(l: usize, x: &[C], out: &mut [C]) {
     #[cfg(target_arch = "x86_64")]
     if crate::cpu_features::avx_fma() {
         // SAFETY: the CPU has the features the function is compiled for.
@@ -162,7 +166,7 @@ fn turn_y_band<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx,fma")]
-unsafe fn turn_y_band_avx<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut [C]) {
+unsafe fn turn_y_band_avx<C: ShValue>(l: usize, x: &[C], out: &mut [C]) {
     turn_y_band_body::<C, true>(l, x, out);
 }
 
@@ -171,12 +175,12 @@ unsafe fn turn_y_band_avx<C: ShValue<Scalar = f64>>(l: usize, x: &[C], out: &mut
 /// `s_b`): inputs are scaled by `S` on the way in, outputs by `S` (even)
 /// or 2 (odd) on the way out.
 #[inline(always)]
-fn turn_y_band_body<C: ShValue<Scalar = f64>, const FMA: bool>(l: usize, x: &[C], out: &mut [C]) {
+fn turn_y_band_body<C: ShValue, const FMA: bool>(l: usize, x: &[C], out: &mut [C]) {
     debug_assert!(C::CHANNELS <= 3);
     let scale = |b: usize| if b == 0 { 1.0 } else { SQRT_2 };
     let channel = |c: usize, i: usize| {
         if c < C::CHANNELS {
-            x[i].channel(c)
+            x[i].channel(c).to_f64()
         } else {
             0.0
         }
@@ -215,9 +219,9 @@ fn turn_y_band_body<C: ShValue<Scalar = f64>, const FMA: bool>(l: usize, x: &[C]
     for c in 0..C::CHANNELS {
         for b in 0..=l {
             let (p, k) = (b % 2, b / 2);
-            out[l + b].set_channel(c, scale(b) * even_out[c][p][k]);
+            out[l + b].set_channel(c, C::Scalar::from_f64(scale(b) * even_out[c][p][k]));
             if b > 0 {
-                out[l - b].set_channel(c, 2.0 * odd_out[c][p][k]);
+                out[l - b].set_channel(c, C::Scalar::from_f64(2.0 * odd_out[c][p][k]));
             }
         }
     }
@@ -360,7 +364,7 @@ unsafe fn row_kernel_avx(
 /// `g^m = c f^m - s f^-m`, `g^-m = c f^-m + s f^m` with
 /// `(c, s) = (cos, sin)(m turns π/2)`, each 0 or ±1 (see
 /// [`crate::rotation::rotate_z`]).
-fn quarter_turn_z_band<C: ShValue<Scalar = f64>>(l: usize, band: &mut [C], turns: i32) {
+fn quarter_turn_z_band<C: ShValue>(l: usize, band: &mut [C], turns: i32) {
     for m in 1..=l {
         let (ip, im) = (l + m, l - m);
         let (fp, fm) = (band[ip], band[im]);
@@ -379,14 +383,24 @@ fn quarter_turn_z_band<C: ShValue<Scalar = f64>>(l: usize, band: &mut [C], turns
 /// `Rx(+π/2)` (`(x, y, z) -> (x, -z, y)`), `turns = -1` for `Rx(-π/2)`;
 /// `g(d) = f(R^-1 d)`, the same convention as [`crate::rotation::ShRotation`].
 ///
-/// Equals `rotate_once(f, R)` to rounding, at a fraction of the cost: about
+/// Band by band, `g_l = Rz(∓π/2) Ry(π/2) Rz(±π/2) f_l`: the `Rz` are exact
+/// signed swaps of `f_l^m` and `f_l^-m`, and `Ry(π/2)` is the checkerboard
+/// block of Wigner's `d^l(π/2)` from the module docs. Equals
+/// `rotate_once(f, R)` to rounding, at a fraction of the cost: about
 /// `(l+1)^2` multiply-adds per band and channel, and no rotation blocks built
 /// by recurrence. Bands run in parallel with the `rayon` feature.
+///
+/// `C` is any value type (`f32`, `f64`, `Vec3`, `DVec3`). The arithmetic is
+/// in `f64` whatever the scalar: `f32` channels are widened (exactly), turned
+/// by the same `f64` kernels (AVX/FMA when the CPU has them) and each result
+/// is rounded once to `f32`, so an `f32` result is the `f64` turn of the same
+/// input to within half an `f32` ulp. `f64` channels go through no
+/// conversion.
 ///
 /// # Panics
 /// If `turns` is not `1` or `-1`.
 #[must_use]
-pub fn quarter_turn_x<C: ShValue<Scalar = f64>>(f: &ShCoeffs<C>, turns: i32) -> ShCoeffs<C> {
+pub fn quarter_turn_x<C: ShValue>(f: &ShCoeffs<C>, turns: i32) -> ShCoeffs<C> {
     assert!(
         turns == 1 || turns == -1,
         "quarter_turn_x takes turns = 1 or -1"
@@ -669,6 +683,102 @@ mod tests {
             let d = max_diff(x, &y);
             assert!(d < 1e-10, "band {l}: {d:e}");
         }
+    }
+
+    /// Unit roundoff of `f32`, `2^-24`.
+    const U32: f64 = f32::EPSILON as f64 / 2.0;
+
+    /// `f32` quarter turn against the `f64` one, per output channel, in
+    /// units of `U32 |f_l|` (`|f_l|` the band's 2-norm in that channel):
+    /// rounding the input to `f32` moves each coefficient by at most
+    /// `U32 |f_l^m|`, which the orthogonal band block carries to any output
+    /// with at most its 2-norm, `U32 |f_l|`; the output is rounded once
+    /// more, by at most `U32 |g_l^m| <= U32 |f_l|`. So 2, plus the `f64`
+    /// route's own rounding ([`TOL`], absolute).
+    const F32_VS_F64_ULPS: f64 = 2.0;
+
+    /// `f32` quarter turn against `rotate_once` in `f32` on the same `f32`
+    /// coefficients, in units of `U32 |f_l|` for band `l`: `rotate_once`
+    /// rounds each block entry to `f32` (`U32 |f_l|` in all, the block rows
+    /// being unit vectors) and sums `2l + 1` products in `f32` (at most
+    /// `(2l + 1) U32` times `sum_j |M_ij f_j| <= |f_l|`); the quarter turn
+    /// rounds its `f64` result once (`U32 |f_l|`). So `2l + 3`, plus [`TOL`].
+    fn f32_vs_rotate_once_ulps(l: usize) -> f64 {
+        (2 * l + 3) as f64
+    }
+
+    /// The largest `|a - b|` per band and channel over `U32 |x_l|` (the
+    /// band's norm in that channel of the input `x`), after subtracting the
+    /// absolute `TOL`; asserts it is at most `ulps(l)`.
+    fn check_band_ulps(
+        x: &ShCoeffs<DVec3>,
+        a: &ShCoeffs<DVec3>,
+        b: &ShCoeffs<DVec3>,
+        ulps: impl Fn(usize) -> f64,
+        what: &str,
+    ) -> f64 {
+        let mut worst = 0.0f64;
+        for l in 0..=x.lmax() {
+            let norm = x.band(l).iter().fold(DVec3::ZERO, |s, v| s + *v * *v);
+            for (p, q) in a.band(l).iter().zip(b.band(l)) {
+                for c in 0..3 {
+                    let err = ((p[c] - q[c]).abs() - TOL).max(0.0);
+                    let units = err / (U32 * norm[c].sqrt());
+                    assert!(
+                        units <= ulps(l),
+                        "{what}: band {l} channel {c}: {units} ulps"
+                    );
+                    worst = worst.max(units);
+                }
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn f32_quarter_turns_are_the_f64_ones_to_f32_rounding() {
+        let mut worst = 0.0f64;
+        for lmax in [0, 1, 2, 5, 16, 40] {
+            let f = random(lmax, 31 + lmax as u64);
+            let f32_rgb = f.to_f32();
+            let f32_scalar = f32_rgb.map(|v| v.y);
+            for turns in [1, -1] {
+                let want = quarter_turn_x(&f, turns);
+                let got = quarter_turn_x(&f32_rgb, turns).to_f64();
+                let what = format!("lmax {lmax} turns {turns} rgb");
+                worst = worst.max(check_band_ulps(&f, &got, &want, |_| F32_VS_F64_ULPS, &what));
+                // One channel on its own turns like the RGB's green.
+                let got = quarter_turn_x(&f32_scalar, turns).map(|v| DVec3::splat(f64::from(v)));
+                let want = want.map(|v| DVec3::splat(v.y));
+                let x = f.map(|v| DVec3::splat(v.y));
+                let what = format!("lmax {lmax} turns {turns} scalar");
+                worst = worst.max(check_band_ulps(&x, &got, &want, |_| F32_VS_F64_ULPS, &what));
+            }
+        }
+        eprintln!("f32 vs f64 quarter turn: worst {worst:.3} U32 |f_l|");
+    }
+
+    #[test]
+    fn f32_quarter_turns_match_f32_rotate_once() {
+        let rx = DMat3::from_cols(DVec3::X, DVec3::Z, DVec3::NEG_Y); // (x,y,z)->(x,-z,y)
+        let mut worst = 0.0f64;
+        for lmax in [1, 2, 5, 16, 40] {
+            let f = random(lmax, 17 + lmax as u64).to_f32();
+            let x = f.to_f64();
+            for (turns, r) in [(1, rx), (-1, rx.transpose())] {
+                let got = quarter_turn_x(&f, turns).to_f64();
+                let want = rotate_once(&f, r).to_f64();
+                let what = format!("lmax {lmax} turns {turns}");
+                worst = worst.max(check_band_ulps(
+                    &x,
+                    &got,
+                    &want,
+                    f32_vs_rotate_once_ulps,
+                    &what,
+                ));
+            }
+        }
+        eprintln!("f32 quarter turn vs f32 rotate_once: worst {worst:.3} U32 |f_l|");
     }
 
     #[test]

@@ -36,6 +36,9 @@ pub trait Real:
     const BIG: Self;
     /// `1 / BIG`.
     const SMALL: Self;
+    /// Machine epsilon, the gap between 1 and the next value: `2^-52` for
+    /// `f64`, `2^-23` for `f32` (twice the unit roundoff).
+    const EPSILON: Self;
     /// The glam vector of three of these: `glam::Vec3` for `f32`,
     /// `glam::DVec3` for `f64`, the type of directions in the public API.
     type Vec3: Copy + Debug + PartialEq + Send + Sync + From<[Self; 3]> + Into<[Self; 3]>;
@@ -59,6 +62,7 @@ macro_rules! impl_real {
             const ONE: Self = 1.0;
             const BIG: Self = $big;
             const SMALL: Self = $small;
+            const EPSILON: Self = <$t>::EPSILON;
             #[inline(always)]
             fn from_f64(x: f64) -> Self {
                 x as $t
@@ -103,5 +107,7 @@ mod tests {
         assert_eq!(<f64 as Real>::SMALL, 2f64.powi(-600));
         assert_eq!(<f32 as Real>::BIG, 2f32.powi(60));
         assert_eq!(<f32 as Real>::SMALL, 2f32.powi(-60));
+        assert_eq!(<f64 as Real>::EPSILON, 2f64.powi(-52));
+        assert_eq!(<f32 as Real>::EPSILON, 2f32.powi(-23));
     }
 }

@@ -1,14 +1,14 @@
-//! [`sphere_minimum`]: the global minimum of an SH expansion over the unit
-//! sphere by a dense Fibonacci search refined by Newton's method, and the
-//! minimiser that [`crate::auto_window()`] reuses for many windows of one
-//! expansion.
+//! [`sphere_minimum`]: the global minimum of an SH expansion (`f32` or
+//! `f64`, searched in `f64`) over the unit sphere by a dense Fibonacci
+//! search refined by Newton's method, and the minimiser that
+//! [`crate::auto_window()`] reuses for many windows of one expansion.
 
 use core::f64::consts::PI;
 
 use glam::DVec3;
 
 use crate::quadrature::fibonacci_sphere;
-use crate::{ShBasis, ShCoeffs};
+use crate::{Real, ShBasis, ShCoeffs, ShValue};
 
 /// Points of the dense Fibonacci set used by [`sphere_minimum`] at `lmax`:
 /// `max(4000, 40 (lmax+1)^2)`, about 11 points per wavelength `2 pi / (lmax+1)`
@@ -20,7 +20,9 @@ pub fn dense_point_count(lmax: usize) -> usize {
 }
 
 /// The minimum of `f(d) = sum f_l^m Y_l^m(d)` over the unit sphere and a unit
-/// vector where it is taken: `(min, argmin)`.
+/// vector where it is taken: `(min, argmin)`, for scalar coefficients of
+/// either precision (`T` is `f32` or `f64`; the direction is a `T::Vec3`,
+/// `Vec3` or `DVec3`).
 ///
 /// 1. Evaluates `f` on [`dense_point_count`]`(lmax)` points of the
 ///    spherical Fibonacci set ([`crate::quadrature::fibonacci_sphere`]),
@@ -48,6 +50,14 @@ pub fn dense_point_count(lmax: usize) -> usize {
 /// sampled values come within the sampling error of the lowest (of order
 /// `|f''| spacing^2`) could crowd it out.
 ///
+/// Scalars: the search is in `f64` whatever `T` is. `f32` coefficients are
+/// widened exactly, so the search minimises exactly the function they
+/// define; the value and the point found are then rounded to `f32` (the
+/// value to nearest, so it can sit up to half an `f32` ulp below the true
+/// minimum, and `f` evaluated in `f32` at the rounded point differs from it
+/// by `f32` evaluation rounding). For `f64` nothing is converted and the
+/// result is as described above.
+///
 /// ```
 /// use shlight_core::{ShCoeffs, sphere_minimum::sphere_minimum};
 /// let mut f = ShCoeffs::<f64>::zeros(1);
@@ -55,11 +65,25 @@ pub fn dense_point_count(lmax: usize) -> usize {
 /// let (min, at) = sphere_minimum(&f);
 /// assert!((min + (3.0 / (4.0 * std::f64::consts::PI)).sqrt()).abs() < 1e-12);
 /// assert!((at.z + 1.0).abs() < 1e-9);
+///
+/// // In f32: an f32 value and a glam::Vec3.
+/// let (min32, at32): (f32, glam::Vec3) = sphere_minimum(&f.map(|c| c as f32));
+/// assert!((f64::from(min32) - min).abs() < 1e-7 && (at32.z + 1.0).abs() < 1e-6);
 /// ```
+///
+/// # Panics
+/// None of its own. Time grows as [`dense_point_count`]`(lmax) (lmax+1)^2`,
+/// memory as `dense_point_count(lmax) (lmax+1)`.
 #[must_use]
-pub fn sphere_minimum(f: &ShCoeffs<f64>) -> (f64, DVec3) {
-    let m = Minimiser::new(f, dense_point_count(f.lmax()));
-    m.minimum(&vec![1.0; f.lmax() + 1])
+pub fn sphere_minimum<T: Real + ShValue<Scalar = T>>(f: &ShCoeffs<T>) -> (T, T::Vec3) {
+    let m = Minimiser::new(f.map(T::to_f64), dense_point_count(f.lmax()));
+    let (min, at) = m.minimum(&vec![1.0; f.lmax() + 1]);
+    (T::from_f64(min), vec3_from_f64::<T>(at))
+}
+
+/// `d` in the glam vector of `T` (each component rounded for `f32`).
+pub(crate) fn vec3_from_f64<T: Real>(d: DVec3) -> T::Vec3 {
+    T::Vec3::from(d.to_array().map(T::from_f64))
 }
 
 /// Candidates refined per minimum search.
@@ -95,7 +119,7 @@ pub(crate) struct Minimiser {
 }
 
 impl Minimiser {
-    pub(crate) fn new(target: &ShCoeffs<f64>, n: usize) -> Self {
+    pub(crate) fn new(target: ShCoeffs<f64>, n: usize) -> Self {
         let lmax = target.lmax();
         let basis = ShBasis::<f64>::new(lmax);
         let points: Vec<[f64; 3]> = fibonacci_sphere(n).iter().map(DVec3::to_array).collect();
@@ -141,7 +165,7 @@ impl Minimiser {
                 .for_each(|item| fill(&mut y, item));
         }
         Self {
-            target: target.clone(),
+            target,
             points,
             band_sums,
             spacing: (4.0 * PI / n as f64).sqrt(),
@@ -384,7 +408,154 @@ fn tangent_frame(p: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 
 #[cfg(test)]
 mod tests {
+    use glam::Vec3;
+
     use super::*;
+
+    /// Unit roundoff of `f32`, `2^-24`.
+    const U32: f64 = f32::EPSILON as f64 / 2.0;
+
+    /// Accuracy of the `f64` search, relative to [`bound`] (the doc's
+    /// `1e-15`-level refinement, with room).
+    const SEARCH_TOL: f64 = 1e-12;
+
+    /// Rounding of evaluating a degree-`lmax` expansion in `f32`, in units of
+    /// `U32` times [`bound`]: summing `(lmax+1)^2` terms rounds by at most
+    /// that many `U32` times the sum of their magnitudes (`<= bound`), and
+    /// each term's basis value, coefficient product and rounded direction
+    /// add a few more, growing with the degree (`4 (lmax+1) + 8`).
+    fn f32_eval_ulps(lmax: usize) -> f64 {
+        ((lmax + 1) * (lmax + 1) + 4 * (lmax + 1) + 8) as f64
+    }
+
+    /// `sum_l k_l sqrt((2l+1)/(4 pi)) |f_l|`: with `k_l = 1` a bound on
+    /// `sum_i |f_i Y_i(d)|` at every `d` (addition theorem and
+    /// Cauchy-Schwarz), hence on `|f|`; with `k_l = sqrt(l(l+1))` on the
+    /// gradient's size, with `k_l = l(l+1)` on second derivatives along
+    /// great circles.
+    fn bound(f: &ShCoeffs<f64>, k: impl Fn(f64) -> f64) -> f64 {
+        (0..=f.lmax())
+            .map(|l| {
+                let norm = f.band(l).iter().map(|c| c * c).sum::<f64>().sqrt();
+                let lf = l as f64;
+                k(lf) * ((2.0 * lf + 1.0) / (4.0 * PI)).sqrt() * norm
+            })
+            .sum()
+    }
+
+    /// Scalar coefficients in `[-0.5, 0.5)` plus `offset` on the constant.
+    fn random(lmax: usize, seed: u64, offset: f64) -> ShCoeffs<f64> {
+        let mut s = seed;
+        let mut f = ShCoeffs::from_fn(lmax, |_, _| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        });
+        f[0] += offset;
+        f
+    }
+
+    /// Test functions: random ones and a rotated lmax-2 irradiance ring
+    /// (a directional light's, minimum on a circle).
+    fn cases() -> Vec<ShCoeffs<f64>> {
+        let d = DVec3::new(0.3, -0.5, 0.8).normalize();
+        let light: ShCoeffs<f64> = crate::analytic::directional(2, d, 1.0);
+        vec![
+            random(1, 1, 0.0),
+            random(2, 2, 0.3),
+            random(6, 3, 1.0),
+            random(9, 4, -0.5),
+            crate::irradiance(&light),
+        ]
+    }
+
+    #[test]
+    fn f32_minimum_is_the_f64_one_to_f32_rounding() {
+        // The f32 coefficients' function differs from the f64 one by at most
+        // U32 bound(f) everywhere, so the minima differ by at most that; the
+        // f32 result is rounded once more (U32 |min|). The f32 argmin is
+        // rounded too (each component by U32 |d_j|, moving f by at most
+        // sqrt(3) U32 times the gradient bound).
+        let mut worst = (0.0f64, 0.0f64);
+        for f in cases() {
+            let lmax = f.lmax();
+            let b = bound(&f, |_| 1.0);
+            let b1 = bound(&f, |l| (l * (l + 1.0)).sqrt());
+            let (min64, _) = sphere_minimum(&f);
+            let (min32, at32) = sphere_minimum(&f.map(|c| c as f32));
+            let err = (f64::from(min32) - min64).abs();
+            let allowed = U32 * (b + min64.abs()) + SEARCH_TOL * b;
+            assert!(
+                err <= allowed,
+                "lmax {lmax}: f32 min {min32} vs f64 {min64}"
+            );
+            // The f32 argmin is a minimiser of the f64 function too.
+            let at = at32.as_dvec3().normalize();
+            let excess = f.eval(at) - min64;
+            let allowed_at = U32 * (2.0 * b + 3f64.sqrt() * b1) + SEARCH_TOL * b;
+            assert!(
+                excess <= allowed_at,
+                "lmax {lmax}: f at the f32 argmin {at} is {excess:e} above the minimum"
+            );
+            worst = (
+                worst.0.max(err / (U32 * b)),
+                worst.1.max(excess / (U32 * b)),
+            );
+        }
+        eprintln!(
+            "f32 vs f64 sphere_minimum: value {:.3}, at the f32 argmin {:.3} U32 bound(f)",
+            worst.0, worst.1
+        );
+    }
+
+    #[test]
+    fn f32_minimum_matches_a_dense_f32_scan() {
+        // A latitude-longitude grid of 600 x 1200 points, each evaluated in
+        // f32: no point may be lower than the result (beyond f32 evaluation
+        // rounding), the result must be attained at its argmin, and the
+        // grid's lowest point must be within its resolution of the result
+        // (every direction is within h = pi/600 of a grid point, where f is
+        // at most h^2/2 times the second-derivative bound above its value).
+        let (rows, cols) = (600, 1200);
+        let h = PI / rows as f64;
+        let mut worst = 0.0f64;
+        for f in cases() {
+            let lmax = f.lmax();
+            let f32c = f.map(|c| c as f32);
+            let basis = ShBasis::<f32>::new(lmax);
+            let mut y = vec![0.0f32; basis.count()];
+            let mut scan = f32::INFINITY;
+            for i in 0..rows {
+                let t = (i as f64 + 0.5) * h;
+                for j in 0..cols {
+                    let p = (j as f64 + 0.5) * 2.0 * PI / cols as f64;
+                    let d = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+                    scan = scan.min(f32c.eval_with(&basis, d.as_vec3(), &mut y));
+                }
+            }
+            let (min, at): (f32, Vec3) = sphere_minimum(&f32c);
+            let b = bound(&f, |_| 1.0);
+            let rounding = U32 * f32_eval_ulps(lmax) * b;
+            let resolution = 0.5 * h * h * bound(&f, |l| l * (l + 1.0));
+            let (min, scan) = (f64::from(min), f64::from(scan));
+            assert!(
+                min <= scan + rounding,
+                "lmax {lmax}: {min} above the scan's {scan}"
+            );
+            assert!(
+                scan <= min + resolution + rounding,
+                "lmax {lmax}: scan {scan} vs {min}"
+            );
+            let attained = f64::from(f32c.eval_with(&basis, at, &mut y));
+            assert!(
+                (attained - min).abs() <= rounding,
+                "lmax {lmax}: f(argmin) {attained} vs {min}"
+            );
+            worst = worst.max((min - scan).max(0.0) / (U32 * b));
+        }
+        eprintln!("f32 sphere_minimum above the f32 scan by at most {worst:.3} U32 bound(f)");
+    }
 
     #[test]
     fn tangent_frame_is_orthonormal() {

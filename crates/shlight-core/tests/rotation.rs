@@ -142,7 +142,7 @@ fn rotating_the_projection_equals_projecting_the_rotated_function() {
             let rotated = ShRotation::from_mat3(lmax, r).apply(&f);
             // g(d) = f(R^T d), projected exactly (degree 2 lmax).
             let basis = ShBasis::<f64>::new(lmax);
-            let projected = ShCoeffs::project_fn(lmax, 2 * lmax, |d| {
+            let projected = ShCoeffs::<f64>::project_fn(lmax, 2 * lmax, |d| {
                 let e = r.transpose() * DVec3::from_array(d.to_array());
                 f.eval_with(&basis, e, &mut vec![0.0; sh_count(lmax)])
             });
