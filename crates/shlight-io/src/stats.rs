@@ -72,31 +72,40 @@ impl PixelStats {
     /// One pass over the values, in blocks of 12 288 values with
     /// branch-free lanes (they vectorise); only a block that holds a
     /// non-finite value is scanned again, for the first one's position.
+    /// Large images are split into as many runs of whole blocks as there
+    /// are cores, each on a scoped thread, and the runs' results combined
+    /// in order (the result does not depend on the split).
     #[must_use]
     pub fn of_pixels(pixels: &[[f32; 3]], width: usize) -> PixelStats {
         let width = width.max(1);
         let values = pixels.as_flattened();
-        let mut stats = PixelStats {
-            non_finite: 0,
-            first_non_finite: None,
-            negative: 0,
-            min_value: f32::INFINITY,
-            max_value: f32::NEG_INFINITY,
-        };
-        for (b, block) in values.chunks(STATS_BLOCK).enumerate() {
-            let part = block_stats(block);
-            stats.negative += part.negative;
-            stats.min_value = stats.min_value.min(part.min_value);
-            stats.max_value = stats.max_value.max(part.max_value);
-            if part.non_finite > 0 {
-                stats.non_finite += part.non_finite;
-                if stats.first_non_finite.is_none() {
-                    let at = block.iter().position(|v| !v.is_finite()).expect("counted");
-                    let i = (b * STATS_BLOCK + at) / 3;
-                    stats.first_non_finite = Some((i % width, i / width));
-                }
+        let blocks = values.len().div_ceil(STATS_BLOCK);
+        let threads = std::thread::available_parallelism()
+            .map_or(1, usize::from)
+            .min(blocks / PARALLEL_BLOCKS)
+            .max(1);
+        let (mut stats, first) = if threads == 1 {
+            run_stats(values)
+        } else {
+            let per_run = blocks.div_ceil(threads) * STATS_BLOCK;
+            let runs: Vec<(PixelStats, Option<usize>)> = std::thread::scope(|scope| {
+                let handles: Vec<_> = values
+                    .chunks(per_run)
+                    .map(|run| scope.spawn(move || run_stats(run)))
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                    .collect()
+            });
+            let mut total = (empty_stats(), None);
+            for (r, (part, first)) in runs.into_iter().enumerate() {
+                total.0 = merge(total.0, part);
+                total.1 = total.1.or(first.map(|i| r * per_run + i));
             }
-        }
+            total
+        };
+        stats.first_non_finite = first.map(|i| ((i / 3) % width, (i / 3) / width));
         if stats.min_value > stats.max_value {
             // No finite value at all.
             stats.min_value = 0.0;
@@ -104,6 +113,49 @@ impl PixelStats {
         }
         stats
     }
+}
+
+/// Blocks per scoped thread at the least: below `2 x` this many blocks
+/// (about 200 000 values), [`PixelStats::of_pixels`] stays on the calling
+/// thread, where starting threads would cost more than it saves.
+const PARALLEL_BLOCKS: usize = 8;
+
+/// Nothing counted yet: the identity of [`merge`].
+fn empty_stats() -> PixelStats {
+    PixelStats {
+        non_finite: 0,
+        first_non_finite: None,
+        negative: 0,
+        min_value: f32::INFINITY,
+        max_value: f32::NEG_INFINITY,
+    }
+}
+
+/// Counts added, ranges joined (`first_non_finite` left to the caller).
+fn merge(a: PixelStats, b: PixelStats) -> PixelStats {
+    PixelStats {
+        non_finite: a.non_finite + b.non_finite,
+        first_non_finite: None,
+        negative: a.negative + b.negative,
+        min_value: a.min_value.min(b.min_value),
+        max_value: a.max_value.max(b.max_value),
+    }
+}
+
+/// The counts and range of `values` (a whole number of blocks, but for the
+/// last run), and the index in `values` of the first non-finite one.
+fn run_stats(values: &[f32]) -> (PixelStats, Option<usize>) {
+    let mut stats = empty_stats();
+    let mut first = None;
+    for (b, block) in values.chunks(STATS_BLOCK).enumerate() {
+        let part = block_stats(block);
+        if part.non_finite > 0 && first.is_none() {
+            let at = block.iter().position(|v| !v.is_finite()).expect("counted");
+            first = Some(b * STATS_BLOCK + at);
+        }
+        stats = merge(stats, part);
+    }
+    (stats, first)
 }
 
 impl Image {
@@ -146,7 +198,9 @@ const STATS_BLOCK: usize = 3 << 12;
 /// Lanes of the branch-free loop of [`block_stats`].
 const LANES: usize = 8;
 
-/// The counts and range of one block (`first_non_finite` not set).
+/// The counts and range of one block (`first_non_finite` not set). Kept
+/// out of line: inlined into its callers it lost its vectorised form.
+#[inline(never)]
 fn block_stats(values: &[f32]) -> PixelStats {
     let mut non_finite = [0_u32; LANES];
     let mut negative = [0_u32; LANES];

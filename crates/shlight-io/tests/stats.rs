@@ -62,6 +62,63 @@ fn first_non_finite_is_in_row_major_order() {
     assert_eq!(image.stats().first_non_finite, Some((3, 1)));
 }
 
+/// A pixel-by-pixel scan in row-major order: the reference for the
+/// blocked, vectorised and (for large images) multi-threaded statistics.
+fn scan(image: &Image) -> PixelStats {
+    let mut s = PixelStats {
+        non_finite: 0,
+        first_non_finite: None,
+        negative: 0,
+        min_value: f32::INFINITY,
+        max_value: f32::NEG_INFINITY,
+    };
+    for y in 0..image.height() {
+        for x in 0..image.width() {
+            for v in image.get(x, y) {
+                if !v.is_finite() {
+                    s.non_finite += 1;
+                    s.first_non_finite.get_or_insert((x, y));
+                } else {
+                    s.negative += usize::from(v < 0.0);
+                    s.min_value = s.min_value.min(v);
+                    s.max_value = s.max_value.max(v);
+                }
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn large_images_split_across_threads_count_as_one_scan() {
+    // 1537x811 (3.7 M values: several threads' runs, a ragged last block),
+    // with special values placed in different runs: the first non-finite
+    // one far from the start, extremes in the last rows.
+    let (w, h) = (1537, 811);
+    let mut image = Image::from_fn(w, h, |x, y| {
+        let t = ((x * 7 + y * 13) % 101) as f32 / 100.0;
+        [t, 1.0 - t, 0.5 * t]
+    });
+    image.set(1000, 500, [0.0, f32::NAN, 0.0]);
+    image.set(3, 700, [f32::INFINITY, -1.5, 0.0]);
+    image.set(1536, 810, [f32::NEG_INFINITY, 42.0, -7.0]);
+    image.set(12, 20, [-0.25, 0.0, 0.0]);
+    let stats = image.stats();
+    assert_eq!(stats, scan(&image));
+    assert_eq!(stats.first_non_finite, Some((1000, 500)));
+    assert_eq!(
+        (stats.min_value, stats.max_value, stats.negative),
+        (-7.0, 42.0, 3)
+    );
+
+    // Clean, and one non-finite value in the very last channel.
+    let mut image = Image::from_fn(w, h, |x, _| [x as f32, 1.0, 2.0]);
+    assert_eq!(image.stats(), scan(&image));
+    image.set(w - 1, h - 1, [1.0, 1.0, f32::NAN]);
+    assert_eq!(image.stats(), scan(&image));
+    assert_eq!(image.stats().first_non_finite, Some((w - 1, h - 1)));
+}
+
 #[test]
 fn sanitize_replaces_and_counts() {
     let mut image = dirty();
