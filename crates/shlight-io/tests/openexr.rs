@@ -574,3 +574,33 @@ fn compressions_newer_than_the_decoder_are_named() {
         );
     }
 }
+
+#[test]
+fn large_files_are_mapped_and_read_as_their_bytes() {
+    // Files of 1 MiB and more are mapped rather than copied (read.rs): a
+    // 640x480 float file without compression (3.7 MB) reads exactly as
+    // the same bytes through `read_image_bytes`, and as the image written;
+    // cut short, it reports a truncated file, not a crash.
+    let dir = TempDir::new("exr-mapped");
+    let path = dir.join("big.exr");
+    let image = hdr_image(640, 480);
+    write_image(
+        &path,
+        &image,
+        &WriteOptions {
+            exr_compression: ExrCompression::None,
+            ..WriteOptions::default()
+        },
+    )
+    .unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    assert!(bytes.len() >= 1 << 20, "{} bytes", bytes.len());
+    let mapped = read(&path).unwrap();
+    let copied = shlight_io::read_image_bytes(&bytes, &path, &ReadOptions::default()).unwrap();
+    assert_eq!(mapped, copied);
+    assert_eq!(mapped, image);
+
+    let cut = dir.join("cut.exr");
+    std::fs::write(&cut, &bytes[..bytes.len() * 3 / 4]).unwrap();
+    assert_kind!(read(&cut), IoErrorKind::Truncated);
+}
