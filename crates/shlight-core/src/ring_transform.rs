@@ -183,6 +183,9 @@ pub(crate) fn project_rings<S: TexelSource + ?Sized>(
         .map(|i| (order(i), column(&input, order(i))))
         .collect();
 
+    // The phases' buffers (tens of MB at high lmax) go back before the
+    // coefficients are allocated, which can then reuse their memory.
+    drop((weights, starts, xs));
     let mut out = ShCoeffs::<DVec3>::zeros(lmax);
     for (m, col) in sums {
         for (i, v) in col.iter().enumerate() {
