@@ -30,7 +30,9 @@ use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 use crate::input::{InputLayout, load, parse_input_layout};
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, TexelGrid, parse_size};
+use crate::values::parse_size;
+use shlight_core::layout::Layout;
+use shlight_pipeline::output_grid;
 
 /// Arguments of `shlight irradiance`.
 #[derive(Args, Debug)]
@@ -87,8 +89,7 @@ fn beside(out: &Path, suffix: &str) -> PathBuf {
 pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let name = args.input.display().to_string();
     let (w, h) = args.size;
-    LayoutArg::Equirect
-        .check_size(w, h)
+    output_grid(Layout::Equirect, (w, h), MapOrientation::default())
         .map_err(|e| anyhow!("--size: {e}"))?;
     let encoding = match (args.encoding, args.sh) {
         (Some(e), lmax) => Some((e, lmax.unwrap_or(2))),
@@ -128,7 +129,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         image.pixels(),
     )
     .map_err(|e| anyhow!("{name}: {e}"))?;
-    let grid = TexelGrid::new(LayoutArg::Equirect, (w, h), orientation)?;
+    let grid = output_grid(Layout::Equirect, (w, h), orientation)?;
     let normals: Vec<DVec3> = (0..w * h)
         .map(|k| {
             grid.direction(k % w, k / w)

@@ -20,7 +20,6 @@ mod heap;
 mod input;
 mod irradiance;
 mod output_path;
-mod preview;
 mod progress;
 mod project;
 mod prt;
@@ -31,7 +30,6 @@ mod render_mesh;
 #[cfg(feature = "gpu")]
 mod runtime_dir;
 mod synth;
-mod texels;
 mod values;
 mod view;
 mod volume;

@@ -18,7 +18,7 @@ use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
 use crate::progress::{StageBars, Ui};
-use crate::texels::parse_size;
+use crate::values::{parse_albedo, parse_size};
 use shlight_format::CoeffFile;
 
 /// Light transport to bake.
@@ -72,23 +72,6 @@ pub struct PrtArgs {
     /// Preview exposure in stops [default: the mean vertex radiance at 0.25].
     #[arg(long, allow_negative_numbers = true)]
     pub preview_exposure: Option<f32>,
-}
-
-pub fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
-    let values: Vec<f32> = s
-        .split(',')
-        .map(|v| v.trim().parse::<f32>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| format!("{s:?} is not a number or R,G,B"))?;
-    let rgb = match values.as_slice() {
-        [v] => [*v; 3],
-        [r, g, b] => [*r, *g, *b],
-        _ => return Err(format!("{s:?}: give one value or three (R,G,B)")),
-    };
-    if rgb.iter().any(|v| !(0.0..=1.0).contains(v)) {
-        return Err(format!("{s:?}: albedo values must lie in [0, 1]"));
-    }
-    Ok(rgb)
 }
 
 /// Runs `shlight prt`.

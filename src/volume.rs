@@ -76,7 +76,7 @@ pub struct VolumeArgs {
     pub surface_samples: usize,
     /// Diffuse albedo of surfaces without colours, linear: one value or
     /// R,G,B.
-    #[arg(long, default_value = "0.8", value_parser = crate::prt::parse_albedo)]
+    #[arg(long, default_value = "0.8", value_parser = crate::values::parse_albedo)]
     pub albedo: [f32; 3],
     /// A probe is invalid (kept out of interpolation) when more than this
     /// fraction of its rays hit back faces.

@@ -38,7 +38,7 @@ use clap::Args;
 use shlight_io::ToneMap;
 
 use crate::progress::Ui;
-use crate::texels::parse_size;
+use crate::values::parse_size;
 
 /// Arguments of `shlight view`.
 #[derive(Args, Debug)]

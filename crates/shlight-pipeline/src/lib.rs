@@ -22,7 +22,9 @@
 //!
 //! [`project_path`] runs all four on one file, [`project_source`] on texels
 //! in memory ([`layout_for_size`] settles their layout). [`render_map`] evaluates
-//! coefficients at every texel centre of a map in any layout.
+//! coefficients at every texel centre of a map in any layout, on the
+//! [`output_grid`] of a map shlight writes; [`write_preview`] draws
+//! `--preview`'s three panels.
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -54,6 +56,8 @@ mod coefficient_file;
 mod error;
 mod input_layout;
 mod load;
+mod output_grid;
+mod preview;
 mod project_path;
 mod projection;
 mod render;
@@ -65,6 +69,8 @@ pub use coefficient_file::{MapInfo, choose_windows, coefficient_file};
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use output_grid::{default_output_size, output_grid};
+pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
 pub use project_path::{ReadSettings, project_path, project_source};
 pub use projection::{Projection, project_radiance, project_radiance_texels};
 pub use render::render_map;
