@@ -10,8 +10,6 @@ mod accuracy;
 mod bundled;
 mod compare;
 mod convert;
-#[cfg(feature = "gpu")]
-mod environment;
 #[cfg(not(feature = "gpu"))]
 mod gpu_feature;
 #[cfg(feature = "gpu")]

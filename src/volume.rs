@@ -13,12 +13,9 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shlight_core::layout::Layout;
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, ShRotation};
-use shlight_format::CoeffFile;
-use shlight_io::{ReadOptions, read_image};
+use shlight_pipeline::Environment;
 use shlight_volume::{FileMeta, Grid, Stage, VolumeOptions, bake};
 
 use crate::progress::{StageBars, Ui};
@@ -232,43 +229,19 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     Ok(())
 }
 
-/// The environment's radiance coefficients to `lmax`, in the y-up frame.
+/// The environment's radiance coefficients to `lmax`, in the y-up frame
+/// (`shlight_pipeline::Environment`), refusing a coefficient file that
+/// stops below `lmax`.
 fn environment(path: &Path, lmax: usize) -> Result<ShCoeffs<DVec3>> {
-    let name = path.display().to_string();
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
-    {
-        let file = CoeffFile::read_radiance(path, "--env", "shlight project --quantity radiance")?;
-        if file.coeffs.lmax() < lmax {
-            bail!(
-                "{name}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
-                file.coeffs.lmax()
-            );
-        }
-        let coeffs = file.coeffs.resized(lmax);
-        return Ok(match file.frame {
-            Frame::YUp => coeffs,
-            Frame::ZUp => ShRotation::between_frames(lmax, Frame::ZUp, Frame::YUp).apply(&coeffs),
-        });
-    }
-    let image = read_image(path, &ReadOptions::default())?;
-    let (w, h) = (image.width(), image.height());
-    if Layout::detect(w, h) != Some(Layout::Equirect) {
+    let env = Environment::load(path, Frame::YUp, lmax)?;
+    if env.radiance.lmax() < lmax {
         bail!(
-            "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
-             (shlight project {name} --lmax {lmax} -o light.json) and pass the JSON file"
+            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
+            path.display(),
+            env.radiance.lmax()
         );
     }
-    if let Some((x, y)) = image.stats().first_non_finite {
-        bail!("{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it");
-    }
-    let view = EquirectView {
-        width: w,
-        height: h,
-        pixels: image.pixels(),
-    };
-    Ok(project_equirect(view, lmax, MapOrientation::default()))
+    Ok(env.radiance_in(Frame::YUp))
 }
 
 fn file_name(path: &Path) -> String {

@@ -123,16 +123,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
             image.pixels(),
         )
         .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-        let encoded = shlight_core::encode_map(
-            &map,
-            args.encoding,
-            args.lmax,
-            &shlight_core::DominantLightOptions::default(),
-        );
-        let (encoding, coeffs) =
-            shlight_format::FileEncoding::from_encoded(args.encoding, &encoded, &file.coeffs);
-        file.coeffs = coeffs;
-        file.encoding = encoding;
+        shlight_pipeline::encode_file(&mut file, &map, args.encoding, args.lmax);
     }
     if job.output == Dest::Stdout {
         // Nothing may draw on the terminal while the result is printed.

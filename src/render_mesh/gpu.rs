@@ -9,9 +9,10 @@ use shlight_gpu::{
 };
 use shlight_io::{Format, Image, WriteOptions, write_image};
 
-use crate::environment::Environment;
 use crate::input::frame_of;
 use crate::progress::Ui;
+use shlight_gpu::MAX_LMAX;
+use shlight_pipeline::Environment;
 
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
 
@@ -72,7 +73,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         None => None,
     };
     bar.set_message("reading the environment");
-    let mut env = Environment::load(&args.env, frame_of(&args.up))?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up), MAX_LMAX)?;
     // Encoded before the light is turned: the renderer turns the normal back.
     let snippet = match args.encoding {
         Encoding::Sh => None,
@@ -85,7 +86,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
             }
             bar.set_message(format!("encoding the light as {encoding}"));
             let lmax = args.lmax.unwrap_or(2);
-            let (encoded, snippet) = crate::gpu_scene::encoded_light(&env, encoding, lmax)?;
+            let (encoded, snippet) = env.encoded_light(encoding, lmax)?;
             if matches!(encoding, Encoding::DominantSh | Encoding::SloanSh) {
                 ui.note(format!(
                     "{encoding}: {} light(s) kept apart from the SH",

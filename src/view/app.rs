@@ -18,7 +18,7 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 use winit::window::WindowId;
 
-use crate::environment::Environment;
+use shlight_pipeline::Environment;
 
 use super::ViewArgs;
 use super::controls::{Controls, WINDOWS};
@@ -487,7 +487,7 @@ impl<'a> App<'a> {
         };
         if self.encoded_for != Some((encoding, lmax)) {
             let started = Instant::now();
-            let (encoded, snippet) = crate::gpu_scene::encoded_light(&self.env, encoding, lmax)?;
+            let (encoded, snippet) = self.env.encoded_light(encoding, lmax)?;
             r.renderer.set_encoding(&r.ctx, &snippet)?;
             let lights = match encoding {
                 Encoding::DominantSh | Encoding::SloanSh => {

@@ -128,8 +128,8 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
     use anyhow::anyhow;
     use winit::event_loop::{ControlFlow, EventLoop};
 
-    use crate::environment::Environment;
     use crate::input::frame_of;
+    use shlight_pipeline::Environment;
 
     crate::gpu_scene::check_lmax(args.lmax)?;
     let mesh_path = args
@@ -156,8 +156,8 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
     };
     let up = frame_of(&args.up);
     let env = match &args.env {
-        Some(path) => Environment::load(path, up)?,
-        None => Environment::bundled(up)?,
+        Some(path) => Environment::load(path, up, shlight_gpu::MAX_LMAX)?,
+        None => crate::bundled::environment(up)?,
     };
     if args.encoding == shlight_core::Encoding::DominantSh && env.map.is_none() {
         // The same message as render-mesh's.
