@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
@@ -208,7 +208,7 @@ fn write_preview(
     let image = shlight_prt::preview::render(mesh, &radiance, w, h);
     let exposure = args
         .preview_exposure
-        .unwrap_or_else(|| auto_exposure(&radiance));
+        .unwrap_or_else(|| shlight_prt::preview::auto_exposure(&radiance));
     write_image(
         path,
         &image,
@@ -219,16 +219,4 @@ fn write_preview(
         },
     )?;
     Ok(())
-}
-
-/// Stops that bring the mean vertex luminance to 0.25 (0 for a black mesh).
-/// The exposure in stops that puts the mean luminance of `radiance` at 0.25.
-pub(crate) fn auto_exposure(radiance: &[Vec3]) -> f32 {
-    let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
-    let mean = radiance.iter().map(luminance).sum::<f64>() / radiance.len().max(1) as f64;
-    if mean > 0.0 && mean.is_finite() {
-        (0.25 / mean).log2() as f32
-    } else {
-        0.0
-    }
 }

@@ -194,15 +194,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
             args.lmax,
             args.preview_ball,
         );
-        let lit: Vec<glam::Vec3> = pixels
-            .iter()
-            .map(|p| glam::Vec3::from_array(*p))
-            .filter(|p| *p != glam::Vec3::ZERO)
-            .collect();
+        let exposure = shlight_volume::probe_sheet_exposure(&pixels);
         let image = shlight_io::Image::new(w, h, pixels)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let options = shlight_io::WriteOptions {
-            exposure_ev: crate::prt::auto_exposure(&lit),
+            exposure_ev: exposure,
             ..shlight_io::WriteOptions::default()
         };
         shlight_io::write_image(path, &image, &options)?;
