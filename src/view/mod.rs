@@ -11,8 +11,8 @@
 //! tone map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
 //! the last (overlay included) and exits.
 //!
-//! Files: `app.rs` (the window, the GPU surface and the event loop),
-//! `orbit_camera.rs` (the camera orbiting the mesh), `controls.rs` (what the
+//! Files: `app.rs` (the window, the GPU surface and the event loop; the
+//! camera is shlight-gpu's `OrbitCamera`), `controls.rs` (what the
 //! panel and keys change), `panel.rs` (the egui overlay), `screenshot.rs`
 //! (the swapchain image read back to PNG), `volume.rs` (`--volume`: the
 //! object moved by `j`/`l`, `u`/`o`, `i`/`k`, the probes shown by `g`, the
@@ -22,8 +22,6 @@
 mod app;
 #[cfg(feature = "gpu")]
 mod controls;
-#[cfg(feature = "gpu")]
-mod orbit_camera;
 #[cfg(feature = "gpu")]
 mod panel;
 #[cfg(feature = "gpu")]
