@@ -210,15 +210,10 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         VolumeFormat::Bevy => {
             let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &meta.generator);
             shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
-            let (lo, hi) = (grid.min, grid.max);
+            let ([tx, ty, tz], [sx, sy, sz]) =
+                shlight_format::bevy_volume::light_probe_transform(file.bounds);
             ui.note(format!(
-                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({}, {}, {})).with_scale(Vec3::new({}, {}, {}))",
-                (lo.x + hi.x) / 2.0,
-                (lo.y + hi.y) / 2.0,
-                (lo.z + hi.z) / 2.0,
-                hi.x - lo.x,
-                hi.y - lo.y,
-                hi.z - lo.z
+                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({tx}, {ty}, {tz})).with_scale(Vec3::new({sx}, {sy}, {sz}))"
             ));
         }
     }
