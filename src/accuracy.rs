@@ -5,12 +5,12 @@
 //! table, or with `--json` as a JSON array; `-o DIR` also writes the
 //! pictures. The exit status is non-zero when any row fails.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use shlight_accuracy::suite::{self, Report, Row, SuiteOptions};
+use shlight_accuracy::report_table::report_table;
+use shlight_accuracy::suite::{self, Row, SuiteOptions};
 
 use crate::progress::Ui;
 
@@ -54,57 +54,11 @@ pub fn run(args: &AccuracyArgs, ui: &Ui) -> Result<()> {
         let rows: Vec<serde_json::Value> = report.rows.iter().map(Row::to_json).collect();
         println!("{}", serde_json::to_string_pretty(&rows)?);
     } else {
-        print!("{}", table(&report));
+        print!("{}", report_table(&report));
     }
     let failed = report.rows.iter().filter(|r| !r.pass).count();
     if failed > 0 {
         bail!("{failed} of {} accuracy rows failed", report.rows.len());
     }
     Ok(())
-}
-
-/// A number in a short scientific form, or `-`.
-fn sci(v: Option<f64>) -> String {
-    v.map_or_else(|| "-".into(), |v| format!("{v:.2e}"))
-}
-
-/// The report as a plain-text table with a legend.
-pub fn table(report: &Report) -> String {
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "{:<13} {:<20} {:>10} {:>4} {:>9} {:>9} {:>9} {:>6}  pass",
-        "case", "method", "res/N", "lmax", "mean", "max", "bound", "slope"
-    );
-    for r in &report.rows {
-        let _ = writeln!(
-            out,
-            "{:<13} {:<20} {:>10} {:>4} {:>9} {:>9} {:>9} {:>6}  {}",
-            r.case,
-            r.method,
-            r.setting(),
-            r.lmax,
-            sci(Some(r.mean_rel_err)),
-            sci(Some(r.max_rel_err)),
-            sci(r.bound),
-            r.slope.map_or_else(|| "-".into(), |s| format!("{s:.2}")),
-            if r.pass { "pass" } else { "FAIL" }
-        );
-    }
-    let passed = report.rows.iter().filter(|r| r.pass).count();
-    let _ = writeln!(
-        out,
-        "\n{passed} of {} rows pass. Errors are |E_est(n) - E_ref(n)| / max E over {} \
-         Fibonacci normals:\ntruncation against the closed-form E; quadrature and mc-* \
-         against the SH irradiance truncated at the same lmax.\nslope: fitted to the RMS \
-         error against map width or samples (accepted: smooth / edges {:?} / {:?}, \
-         mc uniform, importance {:?}, stratified, sobol {:?}).",
-        report.rows.len(),
-        suite::NORMALS,
-        suite::SMOOTH_RATE,
-        suite::EDGE_RATE,
-        suite::IID_RATE,
-        suite::QMC_RATE,
-    );
-    out
 }

@@ -1,12 +1,13 @@
 //! The files `shlight view` uses when given none, built into the binary so
 //! that they work from any working directory (and after `cargo install`).
 
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{Context, Result};
-use shlight_io::{Image, ReadOptions, read_image};
+use shlight_core::rotation::Frame;
+use shlight_io::{Image, ReadOptions, read_image_bytes};
 use shlight_mesh::{Mesh, MeshFormat};
+use shlight_pipeline::Environment;
 
 /// The name the bundled mesh goes by (its path in the repository).
 pub const MESH_NAME: &str = "meshes/bunny.obj";
@@ -27,32 +28,27 @@ pub fn mesh() -> Result<Mesh> {
     )?)
 }
 
-/// The bundled map, decoded. The image reader takes files, so the bytes go
-/// through a private temporary file, removed afterwards.
+/// The bundled map, decoded from the bytes built into the binary.
 pub fn env_image() -> Result<Image> {
-    let path = temporary_path("default.exr");
-    let mut file = std::fs::File::create_new(&path)
-        .with_context(|| format!("{}: cannot write the bundled map", path.display()))?;
-    let written = file.write_all(ENV).and_then(|()| file.flush());
-    drop(file);
-    let image = written
-        .with_context(|| format!("{}: cannot write the bundled map", path.display()))
-        .and_then(|()| Ok(read_image(&path, &ReadOptions::default())?));
-    let _ = std::fs::remove_file(&path);
-    image.with_context(|| format!("reading the bundled {ENV_NAME}"))
+    read_image_bytes(ENV, Path::new(ENV_NAME), &ReadOptions::default())
+        .with_context(|| format!("reading the bundled {ENV_NAME}"))
 }
 
-/// A path in the system's temporary directory no other process uses.
-fn temporary_path(name: &str) -> PathBuf {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    std::env::temp_dir().join(format!("shlight-{}-{nanos}-{name}", std::process::id()))
+/// The bundled map as the light of the GPU commands
+/// ([`Environment::from_map`], projected to the GPU's lmax).
+pub fn environment(up: Frame) -> Result<Environment> {
+    Ok(Environment::from_map(
+        Path::new(ENV_NAME),
+        env_image()?,
+        up,
+        shlight_gpu::MAX_LMAX,
+    )?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shlight_io::read_image;
 
     #[test]
     fn the_bundled_files_are_the_repository_files() {

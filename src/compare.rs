@@ -15,7 +15,7 @@ use shlight_io::ReadOptions;
 
 use crate::input::{InputLayout, load, parse_input_layout};
 use crate::progress::Ui;
-use crate::texels::parse_size;
+use crate::values::parse_size;
 
 /// Arguments of `shlight compare`.
 #[derive(Args, Debug)]

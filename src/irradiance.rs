@@ -10,7 +10,8 @@
 //! `OUT-sh.EXT` and the difference SH minus exact as `OUT-diff.EXT`, and
 //! prints the relative error of the SH irradiance's luminance over the
 //! sphere (area-weighted mean, and maximum): pointwise `|ΔE| / E(n)` and,
-//! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`. `--encoding E`
+//! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`
+//! (`shlight_accuracy::map_irradiance`). `--encoding E`
 //! does the same for any encoding of `shlight_core::encoding` (dominant
 //! lights + SH, ZH3, non-linear L1, the ambient cube), writing
 //! `OUT-E.EXT` and `OUT-diff.EXT`; its SH part is `--sh LMAX` (default 2).
@@ -20,17 +21,16 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
-use shlight_accuracy::error::{self, ErrorStats};
-use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::EnvMap;
-use shlight_core::montecarlo::luminance;
+use shlight_accuracy::map_irradiance::MapIrradiance;
+use shlight_core::layout::{EnvMap, Layout};
 use shlight_core::projection::MapOrientation;
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
+use shlight_pipeline::output_grid;
 
 use crate::input::{InputLayout, load, parse_input_layout};
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, TexelGrid, parse_size};
+use crate::values::parse_size;
 
 /// Arguments of `shlight irradiance`.
 #[derive(Args, Debug)]
@@ -87,8 +87,7 @@ fn beside(out: &Path, suffix: &str) -> PathBuf {
 pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let name = args.input.display().to_string();
     let (w, h) = args.size;
-    LayoutArg::Equirect
-        .check_size(w, h)
+    output_grid(Layout::Equirect, (w, h), MapOrientation::default())
         .map_err(|e| anyhow!("--size: {e}"))?;
     let encoding = match (args.encoding, args.sh) {
         (Some(e), lmax) => Some((e, lmax.unwrap_or(2))),
@@ -128,16 +127,8 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         image.pixels(),
     )
     .map_err(|e| anyhow!("{name}: {e}"))?;
-    let grid = TexelGrid::new(LayoutArg::Equirect, (w, h), orientation)?;
-    let normals: Vec<DVec3> = (0..w * h)
-        .map(|k| {
-            grid.direction(k % w, k / w)
-                .expect("equirect texels all look somewhere")
-        })
-        .collect();
-
-    let bar = ui.bar(normals.len() as u64, "irradiance");
-    let exact = irradiance_brute_force(&map, &normals, &|n| bar.inc(n as u64));
+    let bar = ui.bar((w * h) as u64, "irradiance");
+    let irradiance = MapIrradiance::on_equirect(&map, (w, h), orientation, &|n| bar.inc(n as u64))?;
     bar.finish_and_clear();
     let to_image = |values: &[DVec3]| {
         Image::new(
@@ -151,7 +142,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         write_image(path, &to_image(values), &WriteOptions::default())
             .with_context(|| format!("{name}: writing"))
     };
-    write(&args.output, &exact)?;
+    write(&args.output, &irradiance.exact)?;
 
     let Some((encoding, lmax)) = encoding else {
         return Ok(());
@@ -162,26 +153,13 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         lmax,
         &shlight_core::DominantLightOptions::default(),
     );
-    let sh: Vec<DVec3> = encoded.irradiance_at(&normals);
-    let diff: Vec<DVec3> = sh.iter().zip(&exact).map(|(s, e)| *s - *e).collect();
+    let sh = irradiance.estimate(&encoded);
     write(&outputs[1], &sh)?;
-    write(&outputs[2], &diff)?;
-
-    let reference: Vec<f64> = exact.iter().map(|e| luminance(*e)).collect();
-    let estimate: Vec<f64> = sh.iter().map(|e| luminance(*e)).collect();
-    let weights: Vec<f64> = (0..w * h).map(|k| grid.solid_angle(k % w, k / w)).collect();
-    if error::peak(&reference) <= 0.0 {
+    write(&outputs[2], &irradiance.difference(&sh))?;
+    let Some(errors) = irradiance.errors(&sh) else {
         bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
-    }
-    // Pointwise, with E below 1e-3 of its peak counted as 1e-3 of the peak.
-    let p = ErrorStats::weighted(
-        &error::pointwise_errors(&estimate, &reference, 1e-3),
-        &weights,
-    );
-    let q = ErrorStats::weighted(
-        &error::peak_relative_errors(&estimate, &reference),
-        &weights,
-    );
+    };
+    let (p, q) = (errors.pointwise, errors.peak_relative);
     let what = match (args.encoding, encoding.takes_lmax()) {
         (None, _) => format!("SH irradiance (lmax {lmax})"),
         (Some(_), true) => format!("{encoding} irradiance (SH lmax {lmax})"),
@@ -189,7 +167,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     };
     println!(
         "{name}: {what} against brute force over {} normals ({}x{} texels of input):",
-        normals.len(),
+        irradiance.normals.len(),
         image.width(),
         image.height()
     );

@@ -10,8 +10,6 @@ mod accuracy;
 mod bundled;
 mod compare;
 mod convert;
-#[cfg(feature = "gpu")]
-mod environment;
 #[cfg(not(feature = "gpu"))]
 mod gpu_feature;
 #[cfg(feature = "gpu")]
@@ -20,7 +18,6 @@ mod heap;
 mod input;
 mod irradiance;
 mod output_path;
-mod preview;
 mod progress;
 mod project;
 mod prt;
@@ -31,7 +28,6 @@ mod render_mesh;
 #[cfg(feature = "gpu")]
 mod runtime_dir;
 mod synth;
-mod texels;
 mod values;
 mod view;
 mod volume;

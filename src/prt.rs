@@ -11,14 +11,14 @@ use std::time::Instant;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
 use crate::progress::{StageBars, Ui};
-use crate::texels::parse_size;
+use crate::values::{parse_albedo, parse_size};
 use shlight_format::CoeffFile;
 
 /// Light transport to bake.
@@ -72,23 +72,6 @@ pub struct PrtArgs {
     /// Preview exposure in stops [default: the mean vertex radiance at 0.25].
     #[arg(long, allow_negative_numbers = true)]
     pub preview_exposure: Option<f32>,
-}
-
-pub fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
-    let values: Vec<f32> = s
-        .split(',')
-        .map(|v| v.trim().parse::<f32>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| format!("{s:?} is not a number or R,G,B"))?;
-    let rgb = match values.as_slice() {
-        [v] => [*v; 3],
-        [r, g, b] => [*r, *g, *b],
-        _ => return Err(format!("{s:?}: give one value or three (R,G,B)")),
-    };
-    if rgb.iter().any(|v| !(0.0..=1.0).contains(v)) {
-        return Err(format!("{s:?}: albedo values must lie in [0, 1]"));
-    }
-    Ok(rgb)
 }
 
 /// Runs `shlight prt`.
@@ -225,7 +208,7 @@ fn write_preview(
     let image = shlight_prt::preview::render(mesh, &radiance, w, h);
     let exposure = args
         .preview_exposure
-        .unwrap_or_else(|| auto_exposure(&radiance));
+        .unwrap_or_else(|| shlight_prt::preview::auto_exposure(&radiance));
     write_image(
         path,
         &image,
@@ -236,16 +219,4 @@ fn write_preview(
         },
     )?;
     Ok(())
-}
-
-/// Stops that bring the mean vertex luminance to 0.25 (0 for a black mesh).
-/// The exposure in stops that puts the mean luminance of `radiance` at 0.25.
-pub(crate) fn auto_exposure(radiance: &[Vec3]) -> f32 {
-    let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
-    let mean = radiance.iter().map(luminance).sum::<f64>() / radiance.len().max(1) as f64;
-    if mean > 0.0 && mean.is_finite() {
-        (0.25 / mean).log2() as f32
-    } else {
-        0.0
-    }
 }

@@ -9,14 +9,14 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use glam::DVec3;
-use indicatif::ProgressBar;
+use shlight_core::irradiance;
+use shlight_core::layout::Layout;
 use shlight_core::projection::MapOrientation;
-use shlight_core::{ShCoeffs, irradiance};
-use shlight_io::{Image, ToneMap, WriteOptions, write_image};
+use shlight_io::{ToneMap, WriteOptions, write_image};
+use shlight_pipeline::{default_output_size, output_grid, render_map};
 
 use crate::progress::Ui;
-use crate::texels::{LayoutArg, TexelGrid, default_size, parse_size};
+use crate::values::parse_size;
 use shlight_format::{CoeffFile, Quantity};
 
 /// Arguments of `shlight render`.
@@ -37,8 +37,8 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_size)]
     pub size: Option<(usize, usize)>,
     /// Layout of the image (equirect, cross-h, cross-v, strip, angular, mirror-ball; docs/conventions.md).
-    #[arg(long, value_enum, default_value_t)]
-    pub layout: LayoutArg,
+    #[arg(long, value_parser = crate::values::layout(), default_value = "equirect")]
+    pub layout: Layout,
     /// Exposure in stops: values are multiplied by 2^EV before writing.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -68,17 +68,16 @@ pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
         }
         _ => file.coeffs.clone(),
     };
-    let grid = TexelGrid::new(
-        args.layout,
-        args.size.unwrap_or_else(|| default_size(args.layout, 256)),
-        MapOrientation {
-            frame: file.frame,
-            mirror: file.mirror,
-        },
-    )
-    .context("--size")?;
-    let bar = ui.bar(grid.height as u64, "rendering");
-    let image = render(&coeffs, &grid, &bar);
+    let size = args
+        .size
+        .unwrap_or_else(|| default_output_size(args.layout, 256));
+    let orientation = MapOrientation {
+        frame: file.frame,
+        mirror: file.mirror,
+    };
+    output_grid(args.layout, size, orientation).context("--size")?;
+    let bar = ui.bar(size.1 as u64, "rendering");
+    let image = render_map(&coeffs, args.layout, size, orientation, &|| bar.inc(1))?;
     bar.finish_and_clear();
     write_image(
         &args.output,
@@ -90,50 +89,4 @@ pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
         },
     )?;
     Ok(())
-}
-
-/// The image of `coeffs` on `grid` ([`shlight_pipeline::render_map`]):
-/// each texel the expansion at its centre direction, 0 for texels the
-/// layout does not use. Advances `bar` by one per row.
-pub fn render(coeffs: &ShCoeffs<DVec3>, grid: &TexelGrid, bar: &ProgressBar) -> Image {
-    shlight_pipeline::render_map(
-        coeffs,
-        grid.layout.layout(),
-        (grid.width, grid.height),
-        grid.orientation,
-        &|| bar.inc(1),
-    )
-    .expect("a TexelGrid's size fits its layout")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use shlight_core::rotation::Frame;
-
-    #[test]
-    fn render_matches_scalar_evaluation() {
-        let coeffs = ShCoeffs::<DVec3>::from_fn(7, |l, m| {
-            DVec3::new(1.0 / (1 + l) as f64, m as f64 * 0.1, 0.5 - 0.01 * l as f64)
-        });
-        for frame in [Frame::YUp, Frame::ZUp] {
-            let grid = TexelGrid::new(
-                LayoutArg::Equirect,
-                (36, 18),
-                MapOrientation {
-                    frame,
-                    mirror: true,
-                },
-            )
-            .unwrap();
-            let image = render(&coeffs, &grid, &ProgressBar::hidden());
-            for y in 0..18 {
-                for x in 0..36 {
-                    let want = coeffs.eval(grid.direction(x, y).unwrap());
-                    let got = DVec3::from(image.get(x, y).map(f64::from));
-                    assert!((got - want).abs().max_element() < 1e-5, "{x} {y}");
-                }
-            }
-        }
-    }
 }

@@ -1,8 +1,12 @@
-//! clap value parsers for the libraries' enums, which know nothing of clap:
-//! each lists its names (and their help) and maps a name back to its value.
+//! clap value parsers: the libraries' enums, which know nothing of clap
+//! (each lists its names and their help and maps a name back to its
+//! value), and the numbers and lists the commands take (`--size`,
+//! `X,Y,Z`, an albedo).
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use glam::DVec3;
 use shlight_core::Encoding;
+use shlight_core::layout::Layout;
 use shlight_format::{ExportFormat, Quantity};
 
 /// A parser accepting exactly the names of `all`, with their help lines.
@@ -52,4 +56,89 @@ pub fn quantity() -> impl TypedValueParser<Value = Quantity> {
         Quantity::Radiance => "distant radiance L(w)",
         Quantity::Irradiance => "irradiance E(n) = A_l L_lm (Ramamoorthi & Hanrahan 2001)",
     })
+}
+
+/// `--layout NAME` of the maps shlight writes (docs/conventions.md,
+/// "Layouts").
+pub fn layout() -> impl TypedValueParser<Value = Layout> {
+    one_of(&Layout::ALL, Layout::name, |l| match l {
+        Layout::Equirect => "Equirectangular (latitude-longitude), 2:1",
+        Layout::CrossHorizontal => "Horizontal cube cross, 4f x 3f",
+        Layout::CrossVertical => "Vertical cube cross, 3f x 4f",
+        Layout::Strip => "Six cube faces in a row, +X -X +Y -Y +Z -Z, 6f x f",
+        Layout::Angular => "Angular map (Debevec light probe), N x N",
+        Layout::MirrorBall => "Mirror ball, N x N",
+    })
+}
+
+/// `--size WxH`, e.g. `1024x512`: two positive whole numbers, at most
+/// the reader's default pixel limit in all.
+pub fn parse_size(s: &str) -> std::result::Result<(usize, usize), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("{s:?} is not WIDTHxHEIGHT (e.g. 1024x512)"))?;
+    let parse = |t: &str| {
+        t.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| n > 0)
+            .ok_or_else(|| format!("{s:?}: {t:?} is not a positive whole number"))
+    };
+    let (w, h) = (parse(w)?, parse(h)?);
+    if w.checked_mul(h)
+        .is_none_or(|n| n > shlight_io::ReadOptions::DEFAULT_MAX_PIXELS)
+    {
+        return Err(format!(
+            "{s:?}: more than {} pixels",
+            shlight_io::ReadOptions::DEFAULT_MAX_PIXELS
+        ));
+    }
+    Ok((w, h))
+}
+
+/// `X,Y,Z` (or `R,G,B`): three finite numbers.
+pub fn parse_vec3(s: &str) -> std::result::Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e}"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(*x, *y, *z)),
+        _ => Err(format!("{s:?} is not three finite numbers X,Y,Z")),
+    }
+}
+
+/// `X,Y,Z` in `f32` ([`parse_vec3`]).
+pub fn parse_vec3_f32(s: &str) -> std::result::Result<glam::Vec3, String> {
+    parse_vec3(s).map(|v| v.as_vec3())
+}
+
+/// A diffuse albedo: one value or `R,G,B`, each in `[0, 1]`.
+pub fn parse_albedo(s: &str) -> std::result::Result<[f32; 3], String> {
+    let values: Vec<f32> = s
+        .split(',')
+        .map(|v| v.trim().parse::<f32>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("{s:?} is not a number or R,G,B"))?;
+    let rgb = match values.as_slice() {
+        [v] => [*v; 3],
+        [r, g, b] => [*r, *g, *b],
+        _ => return Err(format!("{s:?}: give one value or three (R,G,B)")),
+    };
+    if rgb.iter().any(|v| !(0.0..=1.0).contains(v)) {
+        return Err(format!("{s:?}: albedo values must lie in [0, 1]"));
+    }
+    Ok(rgb)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse() {
+        assert_eq!(parse_size("64x32"), Ok((64, 32)));
+        assert!(parse_size("64").is_err() && parse_size("0x0").is_err());
+    }
 }

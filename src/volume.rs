@@ -13,12 +13,9 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shlight_core::layout::Layout;
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::ShCoeffs;
 use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, ShRotation};
-use shlight_format::CoeffFile;
-use shlight_io::{ReadOptions, read_image};
+use shlight_pipeline::Environment;
 use shlight_volume::{FileMeta, Grid, Stage, VolumeOptions, bake};
 
 use crate::progress::{StageBars, Ui};
@@ -76,7 +73,7 @@ pub struct VolumeArgs {
     pub surface_samples: usize,
     /// Diffuse albedo of surfaces without colours, linear: one value or
     /// R,G,B.
-    #[arg(long, default_value = "0.8", value_parser = crate::prt::parse_albedo)]
+    #[arg(long, default_value = "0.8", value_parser = crate::values::parse_albedo)]
     pub albedo: [f32; 3],
     /// A probe is invalid (kept out of interpolation) when more than this
     /// fraction of its rays hit back faces.
@@ -197,15 +194,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
             args.lmax,
             args.preview_ball,
         );
-        let lit: Vec<glam::Vec3> = pixels
-            .iter()
-            .map(|p| glam::Vec3::from_array(*p))
-            .filter(|p| *p != glam::Vec3::ZERO)
-            .collect();
+        let exposure = shlight_volume::probe_sheet_exposure(&pixels);
         let image = shlight_io::Image::new(w, h, pixels)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let options = shlight_io::WriteOptions {
-            exposure_ev: crate::prt::auto_exposure(&lit),
+            exposure_ev: exposure,
             ..shlight_io::WriteOptions::default()
         };
         shlight_io::write_image(path, &image, &options)?;
@@ -217,58 +210,29 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         VolumeFormat::Bevy => {
             let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &meta.generator);
             shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
-            let (lo, hi) = (grid.min, grid.max);
+            let ([tx, ty, tz], [sx, sy, sz]) =
+                shlight_format::bevy_volume::light_probe_transform(file.bounds);
             ui.note(format!(
-                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({}, {}, {})).with_scale(Vec3::new({}, {}, {}))",
-                (lo.x + hi.x) / 2.0,
-                (lo.y + hi.y) / 2.0,
-                (lo.z + hi.z) / 2.0,
-                hi.x - lo.x,
-                hi.y - lo.y,
-                hi.z - lo.z
+                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({tx}, {ty}, {tz})).with_scale(Vec3::new({sx}, {sy}, {sz}))"
             ));
         }
     }
     Ok(())
 }
 
-/// The environment's radiance coefficients to `lmax`, in the y-up frame.
+/// The environment's radiance coefficients to `lmax`, in the y-up frame
+/// (`shlight_pipeline::Environment`), refusing a coefficient file that
+/// stops below `lmax`.
 fn environment(path: &Path, lmax: usize) -> Result<ShCoeffs<DVec3>> {
-    let name = path.display().to_string();
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
-    {
-        let file = CoeffFile::read_radiance(path, "--env", "shlight project --quantity radiance")?;
-        if file.coeffs.lmax() < lmax {
-            bail!(
-                "{name}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
-                file.coeffs.lmax()
-            );
-        }
-        let coeffs = file.coeffs.resized(lmax);
-        return Ok(match file.frame {
-            Frame::YUp => coeffs,
-            Frame::ZUp => ShRotation::between_frames(lmax, Frame::ZUp, Frame::YUp).apply(&coeffs),
-        });
-    }
-    let image = read_image(path, &ReadOptions::default())?;
-    let (w, h) = (image.width(), image.height());
-    if Layout::detect(w, h) != Some(Layout::Equirect) {
+    let env = Environment::load(path, Frame::YUp, lmax)?;
+    if env.radiance.lmax() < lmax {
         bail!(
-            "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
-             (shlight project {name} --lmax {lmax} -o light.json) and pass the JSON file"
+            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
+            path.display(),
+            env.radiance.lmax()
         );
     }
-    if let Some((x, y)) = image.stats().first_non_finite {
-        bail!("{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it");
-    }
-    let view = EquirectView {
-        width: w,
-        height: h,
-        pixels: image.pixels(),
-    };
-    Ok(project_equirect(view, lmax, MapOrientation::default()))
+    Ok(env.radiance_in(Frame::YUp))
 }
 
 fn file_name(path: &Path) -> String {

@@ -30,7 +30,7 @@ pub struct VolumeShadingArgs {
     pub object: Option<PathBuf>,
     /// With --volume: where the object's bounding-box centre goes, X,Y,Z
     /// [default: the volume's centre].
-    #[arg(long, value_parser = crate::render_mesh::parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::values::parse_vec3_f32, allow_hyphen_values = true)]
     pub at: Option<Vec3>,
     /// With --volume: the object's bounding-box diagonal, in scene units
     /// [default: a third of the volume box's shortest side].

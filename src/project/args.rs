@@ -9,7 +9,7 @@ use shlight_format::{ExportFormat, Quantity};
 use shlight_io::{ReadOptions, ToneMap};
 
 use crate::input::{InputLayout, parse_input_layout};
-use crate::texels::parse_size;
+use crate::values::parse_size;
 
 /// Arguments of `shlight project`.
 #[derive(Args, Debug)]

@@ -22,11 +22,9 @@ use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 use shlight_core::channel_windows::apply_channel_windows;
-use shlight_core::layout::Layout;
-use shlight_pipeline::{MapInfo, choose_windows, coefficient_file};
+use shlight_pipeline::{MapInfo, choose_windows, coefficient_file, write_preview};
 
 use crate::input::{is_faces, load};
-use crate::preview::{equirect_panel, write_preview};
 use crate::progress::Ui;
 
 pub use args::ProjectArgs;
@@ -98,17 +96,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     if let Some(path) = &job.preview {
         bar.set_message(format!("preview of {name}"));
         let radiance = apply_channel_windows(&windows, &projection.coeffs);
-        let equirect = match layout {
-            Layout::Equirect => None,
-            other => Some(equirect_panel(
-                &image,
-                other,
-                s.orientation,
-                s.preview.panel,
-            )?),
-        };
-        let shown = equirect.as_ref().unwrap_or(&image);
-        write_preview(path, shown, &radiance, s.orientation, &s.preview)
+        write_preview(path, &image, layout, &radiance, s.orientation, &s.preview)
             .with_context(|| format!("{name}: preview"))?;
     }
 
@@ -135,16 +123,7 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
             image.pixels(),
         )
         .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-        let encoded = shlight_core::encode_map(
-            &map,
-            args.encoding,
-            args.lmax,
-            &shlight_core::DominantLightOptions::default(),
-        );
-        let (encoding, coeffs) =
-            shlight_format::FileEncoding::from_encoded(args.encoding, &encoded, &file.coeffs);
-        file.coeffs = coeffs;
-        file.encoding = encoding;
+        shlight_pipeline::encode_file(&mut file, &map, args.encoding, args.lmax);
     }
     if job.output == Dest::Stdout {
         // Nothing may draw on the terminal while the result is printed.

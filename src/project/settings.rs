@@ -3,14 +3,12 @@
 
 use anyhow::{Result, anyhow, bail};
 use shlight_core::Window;
+use shlight_core::layout::Layout;
 use shlight_core::montecarlo::{DEFAULT_SEED, McOptions};
 use shlight_core::projection::MapOrientation;
 use shlight_format::RotationRecord;
 use shlight_io::ReadOptions;
-use shlight_pipeline::ProjectSettings;
-
-use crate::preview::PreviewOptions;
-use crate::texels::LayoutArg;
+use shlight_pipeline::{PreviewOptions, ProjectSettings, output_grid};
 
 use super::args::{DEFAULT_SAMPLES, Method, ProjectArgs};
 
@@ -125,9 +123,12 @@ impl<'a> Settings<'a> {
             None
         };
         if args.preview.is_some() {
-            LayoutArg::Equirect
-                .check_size(args.preview_size.0, args.preview_size.1)
-                .map_err(|e| anyhow!("--preview-size: {e}"))?;
+            output_grid(
+                Layout::Equirect,
+                args.preview_size,
+                MapOrientation::default(),
+            )
+            .map_err(|e| anyhow!("--preview-size: {e}"))?;
         }
         let orientation = MapOrientation {
             frame,

@@ -4,18 +4,18 @@
 use anyhow::{Context, Result, anyhow, bail};
 use glam::{DMat3, Vec3};
 use shlight_core::{Encoding, ShRotation};
-use shlight_gpu::{
-    Background, Camera, DEFAULT_VIEW_FROM, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame,
-};
+use shlight_gpu::{Background, Camera, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame};
 use shlight_io::{Format, Image, WriteOptions, write_image};
 
-use crate::environment::Environment;
 use crate::input::frame_of;
 use crate::progress::Ui;
+use shlight_gpu::MAX_LMAX;
+use shlight_pipeline::Environment;
 
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
 
-/// The camera for a mesh of `bounds`: `--camera`/`--target`, or framed.
+/// The camera for a mesh of `bounds`: `--camera`/`--target`, or framed
+/// (`Camera::aimed`).
 pub fn camera_for(
     bounds: (Vec3, Vec3),
     eye: Option<Vec3>,
@@ -26,28 +26,8 @@ pub fn camera_for(
     if !(fov_degrees > 1.0 && fov_degrees < 179.0) {
         bail!("--fov {fov_degrees}: expected degrees between 1 and 179");
     }
-    let fov = fov_degrees.to_radians();
-    let centre = (bounds.0 + bounds.1) * 0.5;
-    let radius = (bounds.1 - bounds.0).length() * 0.5;
-    let target = target.unwrap_or(centre);
-    Ok(match eye {
-        None if target == centre => Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect),
-        None => {
-            let framed = Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect);
-            Camera::looking_at(
-                framed.eye - centre + target,
-                target,
-                radius + (target - centre).length(),
-                fov,
-            )
-        }
-        Some(eye) => {
-            if (eye - target).length() <= 0.0 {
-                bail!("--camera and --target are the same point");
-            }
-            Camera::looking_at(eye, target, radius + (target - centre).length(), fov)
-        }
-    })
+    Camera::aimed(bounds, eye, target, fov_degrees.to_radians(), aspect)
+        .ok_or_else(|| anyhow!("--camera and --target are the same point"))
 }
 
 /// Renders the checked `args` to `format` on the GPU.
@@ -72,7 +52,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         None => None,
     };
     bar.set_message("reading the environment");
-    let mut env = Environment::load(&args.env, frame_of(&args.up))?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up), MAX_LMAX)?;
     // Encoded before the light is turned: the renderer turns the normal back.
     let snippet = match args.encoding {
         Encoding::Sh => None,
@@ -85,7 +65,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
             }
             bar.set_message(format!("encoding the light as {encoding}"));
             let lmax = args.lmax.unwrap_or(2);
-            let (encoded, snippet) = crate::gpu_scene::encoded_light(&env, encoding, lmax)?;
+            let (encoded, snippet) = env.encoded_light(encoding, lmax)?;
             if matches!(encoding, Encoding::DominantSh | Encoding::SloanSh) {
                 ui.note(format!(
                     "{encoding}: {} light(s) kept apart from the SH",

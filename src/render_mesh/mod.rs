@@ -25,7 +25,7 @@ use shlight_core::Window;
 use shlight_io::{Format, ToneMap};
 
 use crate::progress::Ui;
-use crate::texels::parse_size;
+use crate::values::{parse_size, parse_vec3_f32 as parse_vec3};
 
 /// `--fov`'s default in degrees: the GPU crate's
 /// `shlight_gpu::DEFAULT_FOV_Y_DEGREES`, here so that builds without the
@@ -133,11 +133,6 @@ pub enum BackgroundArg {
     Map,
     /// The SH reconstruction of the light to --lmax.
     Sh,
-}
-
-/// `X,Y,Z` as a vector (`synth`'s parser, in f32).
-pub fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
-    crate::synth::parse_vec3(s).map(|v| v.as_vec3())
 }
 
 /// Runs `shlight render-mesh`.

@@ -6,10 +6,10 @@ use shlight_core::ShRotation;
 use shlight_gpu::{Background, GpuContext, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading};
 use shlight_io::Format;
 
-use crate::environment::Environment;
 use crate::input::frame_of;
 use crate::progress::Ui;
 use crate::volume_shading::{VolumeInput, VolumeLight};
+use shlight_pipeline::Environment;
 
 use super::gpu::{camera_for, rotation, write_frame};
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
@@ -33,7 +33,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     let mesh = shlight_mesh::load(&args.mesh)?;
     let mut volume = VolumeInput::load(&args.volume, &mesh, &args.mesh, ui)?;
     bar.set_message("reading the environment");
-    let mut env = Environment::load(&args.env, frame_of(&args.up))?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up), shlight_gpu::MAX_LMAX)?;
     if args.background == BackgroundArg::Map && env.map.is_none() {
         bail!(
             "--background map needs an environment map; {} holds coefficients (use --background sh)",

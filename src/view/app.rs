@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow};
 use shlight_core::{Encoding, ShRotation, Window};
 use shlight_gpu::wgpu;
-use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, Renderer, Shading};
+use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, OrbitCamera, Renderer, Shading};
 use shlight_io::ToneMap;
 use shlight_mesh::Mesh;
 use shlight_prt::ShprtFile;
@@ -18,11 +18,10 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 use winit::window::WindowId;
 
-use crate::environment::Environment;
+use shlight_pipeline::Environment;
 
 use super::ViewArgs;
 use super::controls::{Controls, WINDOWS};
-use super::orbit_camera::Orbit;
 use super::panel::{PanelInfo, draw_panel};
 use super::screenshot::save_screenshot;
 use super::volume::ViewVolume;
@@ -51,7 +50,7 @@ pub struct App<'a> {
     volume: Option<ViewVolume>,
     running: Option<Running>,
     controls: Controls,
-    orbit: Option<Orbit>,
+    orbit: Option<OrbitCamera>,
     dragging: Option<(MouseButton, bool)>,
     shift: bool,
     cursor: Option<(f64, f64)>,
@@ -193,7 +192,7 @@ impl<'a> App<'a> {
             Some(ctx.device.limits().max_texture_dimension_2d as usize),
         );
         let egui_renderer = egui_wgpu::Renderer::new(&ctx.device, format, Default::default());
-        self.orbit = Some(Orbit::new(
+        self.orbit = Some(OrbitCamera::new(
             self.mesh.bounds(),
             config.width as f32 / config.height as f32,
         ));
@@ -487,7 +486,7 @@ impl<'a> App<'a> {
         };
         if self.encoded_for != Some((encoding, lmax)) {
             let started = Instant::now();
-            let (encoded, snippet) = crate::gpu_scene::encoded_light(&self.env, encoding, lmax)?;
+            let (encoded, snippet) = self.env.encoded_light(encoding, lmax)?;
             r.renderer.set_encoding(&r.ctx, &snippet)?;
             let lights = match encoding {
                 Encoding::DominantSh | Encoding::SloanSh => {

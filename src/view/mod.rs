@@ -11,8 +11,8 @@
 //! tone map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
 //! the last (overlay included) and exits.
 //!
-//! Files: `app.rs` (the window, the GPU surface and the event loop),
-//! `orbit_camera.rs` (the camera orbiting the mesh), `controls.rs` (what the
+//! Files: `app.rs` (the window, the GPU surface and the event loop; the
+//! camera is shlight-gpu's `OrbitCamera`), `controls.rs` (what the
 //! panel and keys change), `panel.rs` (the egui overlay), `screenshot.rs`
 //! (the swapchain image read back to PNG), `volume.rs` (`--volume`: the
 //! object moved by `j`/`l`, `u`/`o`, `i`/`k`, the probes shown by `g`, the
@@ -22,8 +22,6 @@
 mod app;
 #[cfg(feature = "gpu")]
 mod controls;
-#[cfg(feature = "gpu")]
-mod orbit_camera;
 #[cfg(feature = "gpu")]
 mod panel;
 #[cfg(feature = "gpu")]
@@ -38,7 +36,7 @@ use clap::Args;
 use shlight_io::ToneMap;
 
 use crate::progress::Ui;
-use crate::texels::parse_size;
+use crate::values::parse_size;
 
 /// Arguments of `shlight view`.
 #[derive(Args, Debug)]
@@ -128,8 +126,8 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
     use anyhow::anyhow;
     use winit::event_loop::{ControlFlow, EventLoop};
 
-    use crate::environment::Environment;
     use crate::input::frame_of;
+    use shlight_pipeline::Environment;
 
     crate::gpu_scene::check_lmax(args.lmax)?;
     let mesh_path = args
@@ -156,8 +154,8 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
     };
     let up = frame_of(&args.up);
     let env = match &args.env {
-        Some(path) => Environment::load(path, up)?,
-        None => Environment::bundled(up)?,
+        Some(path) => Environment::load(path, up, shlight_gpu::MAX_LMAX)?,
+        None => crate::bundled::environment(up)?,
     };
     if args.encoding == shlight_core::Encoding::DominantSh && env.map.is_none() {
         // The same message as render-mesh's.

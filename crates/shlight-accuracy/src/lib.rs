@@ -15,10 +15,13 @@
 //! - [`suite::run`]: every oracle by truncation, equirect and cube-cross
 //!   quadrature at several resolutions, and Monte Carlo with each sampler
 //!   at several sample counts, as [`suite::Row`]s with bounds and fitted
-//!   convergence rates.
+//!   convergence rates; [`report_table::report_table`] prints them.
 //! - [`compare`]: every encoding of a map (dominant lights + SH, ZH3,
 //!   non-linear L1, the ambient cube, plain SH) against its exact
 //!   irradiance: a table, JSON and a plot of error against floats stored.
+//! - [`map_irradiance`]: a map's brute-force irradiance on a grid of
+//!   normals and an encoding's pointwise and peak-relative errors against
+//!   it (`shlight irradiance`).
 //! - [`error`]: the relative error (to the peak irradiance, as Ramamoorthi
 //!   & Hanrahan 2001) and log-log slopes.
 //! - [`plot`]: error-vs-samples and error-vs-lmax plots (SVG) and error
@@ -47,7 +50,9 @@
 pub mod compare;
 pub mod error;
 pub mod lambert;
+pub mod map_irradiance;
 pub mod oracle;
 pub mod plot;
 pub mod render;
+pub mod report_table;
 pub mod suite;

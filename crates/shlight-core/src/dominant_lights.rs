@@ -252,9 +252,9 @@ fn connected_components(texels: &[Texel], bright: &[usize], link: f64) -> Vec<Ve
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::equirect_means::equirect_texel_means;
-    use crate::layout::Layout;
+    use crate::layout::{Layout, TexelGrid};
     use crate::orientation::MapOrientation;
+    use crate::texel_means::texel_means;
 
     /// The bounds: direction within half a degree, power within 1%.
     const ANGLE: f64 = 0.5;
@@ -280,12 +280,22 @@ mod tests {
         }
     }
 
+    /// The maps' texels.
+    fn grid() -> TexelGrid {
+        TexelGrid::new(Layout::Equirect, (W, H), MapOrientation::default()).unwrap()
+    }
+
     /// A blue gradient sky (brighter up) plus `suns`, as texel means.
     fn map_with(suns: &[Sun]) -> Vec<[f32; 3]> {
-        equirect_texel_means(W, H, MapOrientation::default(), 8, |w| {
-            let sky = DVec3::new(0.2, 0.3, 0.5) * (1.0 + 0.5 * w.y);
-            sky + suns.iter().map(|s| s.radiance(w)).sum::<DVec3>()
-        })
+        texel_means(
+            &grid(),
+            8,
+            |w| {
+                let sky = DVec3::new(0.2, 0.3, 0.5) * (1.0 + 0.5 * w.y);
+                sky + suns.iter().map(|s| s.radiance(w)).sum::<DVec3>()
+            },
+            &|_| {},
+        )
     }
 
     fn extract(px: &[[f32; 3]]) -> DominantLights {
@@ -363,16 +373,24 @@ mod tests {
     fn no_compact_source_extracts_none() {
         // A sky alone; a broad bright cap (40°); a thin bright band all
         // round the horizon (candidates, but not compact).
-        let broad = equirect_texel_means(W, H, MapOrientation::default(), 4, |w| {
-            DVec3::splat(if w.y > 40f64.to_radians().cos() {
-                10.0
-            } else {
-                0.1
-            })
-        });
-        let band = equirect_texel_means(W, H, MapOrientation::default(), 4, |w| {
-            DVec3::splat(if w.y.abs() < 0.01 { 100.0 } else { 0.1 })
-        });
+        let broad = texel_means(
+            &grid(),
+            4,
+            |w| {
+                DVec3::splat(if w.y > 40f64.to_radians().cos() {
+                    10.0
+                } else {
+                    0.1
+                })
+            },
+            &|_| {},
+        );
+        let band = texel_means(
+            &grid(),
+            4,
+            |w| DVec3::splat(if w.y.abs() < 0.01 { 100.0 } else { 0.1 }),
+            &|_| {},
+        );
         for px in [map_with(&[]), broad, band] {
             let found = extract(&px);
             assert!(found.lights.is_empty(), "{:?}", found.lights);

@@ -8,7 +8,9 @@
 //! centre) and the exact solid angle it covers
 //! ([`EnvMap::texel_solid_angle`]); [`crate::projection::project`] sums
 //! `f(texel) Y(centre) Ω(texel)` in `f64` and [`render_map`] draws a function
-//! into any layout.
+//! into any layout. A [`TexelGrid`] is the same geometry without pixels:
+//! texel directions, points inside texels, solid angles and the texel a
+//! direction falls in, for drawing maps.
 //!
 //! # Map frame
 //!
@@ -87,8 +89,10 @@ mod env_map;
 pub(crate) mod geometry;
 mod kind;
 mod render;
+mod texel_grid;
 
 pub use cube::{CubeFace, FaceCell, cube_texel_solid_angle};
 pub use env_map::EnvMap;
 pub use kind::{Layout, LayoutSizeError, LayoutSizeErrorKind, ParseLayoutError};
 pub use render::render_map;
+pub use texel_grid::TexelGrid;

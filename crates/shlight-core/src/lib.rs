@@ -27,8 +27,14 @@
 //!   [`sphere_minimum()`]: the global minimum of an expansion.
 //! - [`layout`] and [`equirect`]: the geometry of environment maps of every
 //!   layout (equirect, cube cross, strip, angular map, mirror ball): texel
-//!   directions, exact texel solid angles, lookups; [`MapOrientation`]: how
-//!   a map's frame meets world directions.
+//!   directions, exact texel solid angles, lookups; [`TexelGrid`]: the same
+//!   without pixels, for drawing maps; [`MapOrientation`]: how a map's
+//!   frame meets world directions.
+//! - Drawing lights into maps: [`texel_means()`] (each texel a function's
+//!   mean over equal-area points of it), [`AnalyticLight`] (constant, cap,
+//!   gradient: radiance and closed-form coefficients) and
+//!   [`directional_texels()`] (a delta as one texel, or a cap of exact
+//!   power).
 //! - [`projection`]: environment maps to SH by exact texel-solid-angle
 //!   quadrature, one entry point ([`projection::project`]) over any
 //!   [`TexelSource`] (a contiguous image, a [`StridedImage`], six
@@ -97,6 +103,7 @@
 
 pub mod ambient_cube;
 pub mod analytic;
+pub mod analytic_light;
 pub mod auto_window;
 pub mod basis;
 pub mod cap_light;
@@ -105,10 +112,10 @@ mod channels;
 pub mod coeffs;
 mod cpu_features;
 mod cube_faces;
+pub mod directional_texels;
 pub mod dominant_lights;
 pub mod encoding;
 pub mod equirect;
-pub mod equirect_means;
 mod fixed_size;
 mod glam_real;
 mod hardcoded;
@@ -133,6 +140,7 @@ pub mod sloan_light;
 pub mod sphere_minimum;
 pub mod std_error_rotation;
 mod strided_image;
+pub mod texel_means;
 mod texel_source;
 mod value;
 pub mod window;
@@ -140,18 +148,20 @@ pub mod zh3;
 pub mod zonal;
 
 pub use ambient_cube::AmbientCube;
+pub use analytic_light::AnalyticLight;
 pub use auto_window::{AutoWindow, AutoWindowError, WindowTarget, auto_window};
 pub use basis::{ShBasis, sh_eval};
 pub use cap_light::CapLight;
 pub use coeffs::ShCoeffs;
 pub use cube_faces::CubeFaces;
+pub use directional_texels::{DirectionalDrawing, DirectionalTexels, directional_texels};
 pub use dominant_lights::{DominantLightOptions, DominantLights, extract_dominant_lights};
 pub use encoding::{Encoded, Encoding, encode_coefficients, encode_map};
 pub use equirect::EquirectView;
 pub use glam_real::GlamReal;
 pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
 pub use l1_nonlinear::L1NonLinear;
-pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError};
+pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError, TexelGrid};
 pub use montecarlo::{
     ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
 };
@@ -166,6 +176,7 @@ pub use sh_l2::{ShL2, ShL2Rgb};
 pub use sloan_light::sloan_directional;
 pub use sphere_minimum::sphere_minimum;
 pub use strided_image::StridedImage;
+pub use texel_means::texel_means;
 pub use texel_source::TexelSource;
 pub use value::ShValue;
 pub use window::{Window, WindowFamily};

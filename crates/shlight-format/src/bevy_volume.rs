@@ -18,7 +18,8 @@
 //! (Ramamoorthi & Hanrahan 2001), which makes the six axes exact.
 //!
 //! The light probe's `Transform` places the unit cube on the grid's bounds:
-//! translation the box's centre, scale its size (docs/shvol.md).
+//! translation the box's centre, scale its size (docs/shvol.md;
+//! [`light_probe_transform`]).
 //!
 //! # The file
 //! KTX2 (Khronos), `VK_FORMAT_R16G16B16A16_SFLOAT` (linear, filterable
@@ -57,6 +58,18 @@ pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {
                 .map(|e: DVec3| (e / std::f64::consts::PI).as_vec3())
         })
         .collect()
+}
+
+/// The translation and scale of the `Transform` of the `LightProbe` that
+/// carries a volume of `bounds` (min, max): Bevy's light probe is the unit
+/// cube `[-1/2, 1/2]^3` under its transform, so the translation is the
+/// box's centre `(min + max) / 2` and the scale its size `max - min`.
+#[must_use]
+pub fn light_probe_transform((lo, hi): ([f32; 3], [f32; 3])) -> ([f32; 3], [f32; 3]) {
+    (
+        std::array::from_fn(|a| (lo[a] + hi[a]) / 2.0),
+        std::array::from_fn(|a| hi[a] - lo[a]),
+    )
 }
 
 /// The KTX2 file Bevy's `IrradianceVolume` takes.
@@ -208,4 +221,21 @@ fn write_ktx2(size: [usize; 3], data: &[u8], writer: &str) -> Vec<u8> {
     out.resize(level_offset, 0);
     out.extend(data);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit cube's corners under the transform are the bounds.
+    #[test]
+    fn the_light_probe_transform_puts_the_unit_cube_on_the_bounds() {
+        let bounds = ([-1.0, 0.0, 2.5], [3.0, 0.5, 4.0]);
+        let (t, s) = light_probe_transform(bounds);
+        assert_eq!((t, s), ([1.0, 0.25, 3.25], [4.0, 0.5, 1.5]));
+        for a in 0..3 {
+            assert_eq!(t[a] - 0.5 * s[a], bounds.0[a]);
+            assert_eq!(t[a] + 0.5 * s[a], bounds.1[a]);
+        }
+    }
 }

@@ -48,6 +48,48 @@ impl Camera {
         Self::looking_at(centre + dir * distance, centre, radius, fov_y)
     }
 
+    /// The camera for a mesh of `bounds` from an optional `eye` towards an
+    /// optional `target` (default: the bounds' centre `c`):
+    ///
+    /// - neither: [`Camera::framing`] from [`DEFAULT_VIEW_FROM`];
+    /// - a target only: the framed camera moved by `target - c` (the same
+    ///   view, aimed at the target);
+    /// - an eye: from it towards the target.
+    ///
+    /// The near and far planes hold the bounds' sphere (radius `r`) seen
+    /// about the target: a sphere of `r + |target - c|`. `None` when the
+    /// eye is the target (no direction to look in).
+    #[must_use]
+    pub fn aimed(
+        bounds: (Vec3, Vec3),
+        eye: Option<Vec3>,
+        target: Option<Vec3>,
+        fov_y: f32,
+        aspect: f32,
+    ) -> Option<Self> {
+        let centre = (bounds.0 + bounds.1) * 0.5;
+        let radius = (bounds.1 - bounds.0).length() * 0.5;
+        let target = target.unwrap_or(centre);
+        Some(match eye {
+            None if target == centre => Self::framing(bounds, DEFAULT_VIEW_FROM, fov_y, aspect),
+            None => {
+                let framed = Self::framing(bounds, DEFAULT_VIEW_FROM, fov_y, aspect);
+                Self::looking_at(
+                    framed.eye - centre + target,
+                    target,
+                    radius + (target - centre).length(),
+                    fov_y,
+                )
+            }
+            Some(eye) => {
+                if (eye - target).length() <= 0.0 {
+                    return None;
+                }
+                Self::looking_at(eye, target, radius + (target - centre).length(), fov_y)
+            }
+        })
+    }
+
     /// A camera at `eye` looking at `target`, with near and far planes that
     /// hold a sphere of `radius` about `target`.
     #[must_use]
@@ -131,5 +173,42 @@ mod tests {
         let c = Camera::looking_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 1.0, 0.7);
         let right = c.view_proj(1.0) * Vec3::new(0.1, 0.0, 0.0).extend(1.0);
         assert!(right.x / right.w > 0.0);
+    }
+
+    /// `aimed` frames by default, keeps the framed view when only the
+    /// target moves, looks from a given eye, holds the bounds between its
+    /// planes in every case, and refuses an eye on the target.
+    #[test]
+    fn an_aimed_camera_frames_moves_and_holds_the_bounds() {
+        let bounds = (Vec3::new(-1.0, 0.0, -2.0), Vec3::new(3.0, 1.0, 0.0));
+        let (fov, aspect) = (0.6, 1.5);
+        let framed = Camera::framing(bounds, DEFAULT_VIEW_FROM, fov, aspect);
+        assert_eq!(Camera::aimed(bounds, None, None, fov, aspect), Some(framed));
+        let target = Vec3::new(2.0, 0.5, -1.0);
+        let moved = Camera::aimed(bounds, None, Some(target), fov, aspect).unwrap();
+        assert_eq!(moved.target, target);
+        assert!((moved.eye - moved.target - (framed.eye - framed.target)).length() < 1e-5);
+        let eye = Vec3::new(0.0, 4.0, 6.0);
+        let given = Camera::aimed(bounds, Some(eye), Some(target), fov, aspect).unwrap();
+        assert_eq!((given.eye, given.target), (eye, target));
+        for c in [framed, moved, given] {
+            for k in 0..8 {
+                let corner = Vec3::new(
+                    if k & 1 == 0 { bounds.0.x } else { bounds.1.x },
+                    if k & 2 == 0 { bounds.0.y } else { bounds.1.y },
+                    if k & 4 == 0 { bounds.0.z } else { bounds.1.z },
+                );
+                let d = (corner - c.eye).length();
+                assert!(c.near <= d && d <= c.far, "{c:?} {corner}");
+            }
+        }
+        assert_eq!(
+            Camera::aimed(bounds, Some(target), Some(target), fov, aspect),
+            None
+        );
+        assert_eq!(
+            Camera::aimed(bounds, Some(Vec3::new(1.0, 0.5, -1.0)), None, fov, aspect),
+            None
+        );
     }
 }

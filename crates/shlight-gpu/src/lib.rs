@@ -11,6 +11,10 @@
 //!   trilinear interpolation of an irradiance volume's valid probes (any
 //!   lmax up to [`VOLUME_MAX_LMAX`]), and the probes as spheres;
 //! - [`Offscreen`] / [`render_frame`]: frames read back as linear `f32` RGBA;
+//!   [`read_srgb8_texture`]: a window's 8-bit sRGB texture as linear RGB;
+//! - [`Camera`] (a look-at perspective camera; [`Camera::framing`] and
+//!   [`Camera::aimed`] place it for a mesh's bounds) and [`OrbitCamera`]
+//!   (yaw, pitch and distance about a target);
 //! - [`GpuProjector`]: equirect maps to SH by exact texel-solid-angle
 //!   quadrature, the GPU twin of shlight-core's `project_equirect`.
 //!
@@ -22,6 +26,7 @@ mod camera;
 mod context;
 mod error;
 mod headless;
+mod orbit_camera;
 mod projection;
 mod readback;
 mod renderer;
@@ -37,8 +42,9 @@ pub use camera::{Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM};
 pub use context::{GpuContext, new_instance};
 pub use error::GpuError;
 pub use headless::{Frame, HEADLESS_FORMAT, Offscreen, depth_view, render_frame};
+pub use orbit_camera::OrbitCamera;
 pub use projection::{GpuProjector, project_equirect};
-pub use readback::read_buffer;
+pub use readback::{read_buffer, read_srgb8_texture, srgb8_to_linear};
 pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use transfer::Transfer;

@@ -1,4 +1,8 @@
-//! Reading a mappable buffer back to the CPU.
+//! Reading GPU memory back to the CPU: a mappable buffer
+//! ([`read_buffer`]), and an 8-bit sRGB colour texture as linear RGB
+//! ([`read_srgb8_texture`], a window's screenshot).
+
+use shlight_io::{Image, srgb_to_linear};
 
 use crate::{GpuContext, GpuError};
 
@@ -22,4 +26,107 @@ pub fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<u8>, G
         .to_vec();
     buffer.unmap();
     Ok(bytes)
+}
+
+/// Reads a `Rgba8`/`Bgra8` texture (`COPY_SRC`; unorm or unorm-sRGB) back
+/// as linear RGB: copied to a buffer with rows padded to
+/// [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], mapped, and decoded by
+/// [`srgb8_to_linear`] (a window's surface holds sRGB-encoded values,
+/// which the image writers encode again from linear ones). Alpha is
+/// dropped.
+///
+/// # Errors
+/// A lost device or a failed mapping.
+pub fn read_srgb8_texture(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    format: wgpu::TextureFormat,
+) -> Result<Image, GpuError> {
+    let size = texture.size();
+    let (w, h) = (size.width as usize, size.height as usize);
+    let padded = (size.width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("texture readback"),
+        size: u64::from(padded) * h as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: None,
+            },
+        },
+        size,
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let bytes = read_buffer(ctx, &buffer)?;
+    let bgra = matches!(
+        format,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+    );
+    let pixels = srgb8_to_linear(&bytes, w, h, padded as usize, bgra);
+    Image::new(w, h, pixels).map_err(|e| GpuError::Runtime(e.to_string()))
+}
+
+/// `width x height` texels of 8-bit sRGB-encoded RGBA (or BGRA when
+/// `bgra`), rows `bytes_per_row` apart, as linear RGB: each channel
+/// `srgb_to_linear(v / 255)`, alpha dropped.
+///
+/// # Panics
+/// If `bytes` holds fewer than `height` rows or a row fewer than
+/// `4 width` bytes.
+#[must_use]
+pub fn srgb8_to_linear(
+    bytes: &[u8],
+    width: usize,
+    height: usize,
+    bytes_per_row: usize,
+    bgra: bool,
+) -> Vec<[f32; 3]> {
+    let mut pixels = Vec::with_capacity(width * height);
+    for row in bytes.chunks_exact(bytes_per_row).take(height) {
+        for p in row[..width * 4].chunks_exact(4) {
+            let (r, g, b) = if bgra {
+                (p[2], p[1], p[0])
+            } else {
+                (p[0], p[1], p[2])
+            };
+            pixels.push([r, g, b].map(|v| srgb_to_linear(f32::from(v) / 255.0)));
+        }
+    }
+    pixels
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two rows of two texels, padded to 12 bytes: channels swizzled for
+    /// BGRA, the padding and alpha skipped, sRGB decoded (0 and 255 exact,
+    /// 188 about half).
+    #[test]
+    fn srgb_bytes_decode_to_linear_texels() {
+        #[rustfmt::skip]
+        let bytes = [
+            255, 0, 188, 7,   0, 0, 0, 255,   9, 9, 9, 9,
+            0, 255, 0, 0,     1, 2, 3, 4,     9, 9, 9, 9,
+        ];
+        let rgba = srgb8_to_linear(&bytes, 2, 2, 12, false);
+        assert_eq!(rgba.len(), 4);
+        assert_eq!(rgba[0][0], 1.0);
+        assert_eq!(rgba[0][1], 0.0);
+        assert!((rgba[0][2] - 0.5).abs() < 0.01, "{:?}", rgba[0]);
+        assert_eq!(rgba[1], [0.0; 3]);
+        assert_eq!(rgba[2], [0.0, 1.0, 0.0]);
+        assert_eq!(rgba[3], [1, 2, 3].map(|v| srgb_to_linear(v as f32 / 255.0)));
+        let bgra = srgb8_to_linear(&bytes, 2, 2, 12, true);
+        assert_eq!(bgra[0], [rgba[0][2], rgba[0][1], rgba[0][0]]);
+        assert_eq!(bgra[3], [3, 2, 1].map(|v| srgb_to_linear(v as f32 / 255.0)));
+    }
 }

@@ -9,13 +9,15 @@
 //!
 //! # Main items
 //! - [`Image`]: width, height and row-major pixels (row 0 at the top), with
-//!   exact geometric operations ([`Image::crop`], flips, quarter turns) and
+//!   exact geometric operations ([`Image::crop`], flips, quarter turns),
+//!   box-filtered resizing ([`Image::resample`], [`Image::halve`]) and
 //!   value checks ([`Image::stats`], [`Image::sanitize`]).
 //! - [`read_image`] with [`ReadOptions`] (OpenEXR layer, pixel-count limit):
 //!   the format is recognised by the file's first bytes;
 //!   [`read_image_bytes`] reads the same from bytes in memory.
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
-//!   the format is named by the extension.
+//!   the format is named by the extension; [`auto_exposure`] picks the
+//!   exposure that brings a mean luminance to a grey.
 //! - [`write_atomically`]: every file is written to a temporary file and
 //!   renamed into place, so a failed write never leaves a half-written
 //!   file or damages an existing one.
@@ -71,6 +73,7 @@
 
 mod atomic;
 mod error;
+mod exposure;
 mod exr_compression;
 mod format;
 mod image;
@@ -79,6 +82,7 @@ mod openexr;
 mod panic_message;
 mod read;
 mod read_options;
+mod resample;
 mod srgb;
 mod stats;
 mod tone_map;
@@ -87,6 +91,7 @@ mod write;
 
 pub use crate::atomic::write_atomically;
 pub use crate::error::{IoError, IoErrorKind};
+pub use crate::exposure::auto_exposure;
 pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};

@@ -18,11 +18,16 @@
 //!    ([`Method`]).
 //! 3. [`choose_windows`]: the window asked for, or per colour channel the
 //!    weakest Hanning window that keeps the result non-negative.
-//! 4. [`coefficient_file`]: windows, rotation, quantity, provenance.
+//! 4. [`coefficient_file`]: windows, rotation, quantity, provenance; with
+//!    [`encode_file`], an encoding other than plain SH.
 //!
 //! [`project_path`] runs all four on one file, [`project_source`] on texels
 //! in memory ([`layout_for_size`] settles their layout). [`render_map`] evaluates
-//! coefficients at every texel centre of a map in any layout.
+//! coefficients at every texel centre of a map in any layout, on the
+//! [`output_grid`] of a map shlight writes; [`write_preview`] draws
+//! `--preview`'s three panels. [`Environment`] is the distant light of the
+//! commands that shade a scene (a map projected, or a coefficient file),
+//! with its encodings and their WGSL snippets.
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -51,9 +56,13 @@
 #![deny(missing_docs)]
 
 mod coefficient_file;
+mod environment;
 mod error;
+mod file_encoding;
 mod input_layout;
 mod load;
+mod output_grid;
+mod preview;
 mod project_path;
 mod projection;
 mod render;
@@ -62,9 +71,13 @@ mod settings;
 mod source_stats;
 
 pub use coefficient_file::{MapInfo, choose_windows, coefficient_file};
+pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
+pub use file_encoding::encode_file;
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use output_grid::{default_output_size, output_grid};
+pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
 pub use project_path::{ReadSettings, project_path, project_source};
 pub use projection::{Projection, project_radiance, project_radiance_texels};
 pub use render::render_map;

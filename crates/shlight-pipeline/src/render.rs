@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
-use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::layout::{Layout, TexelGrid};
 use shlight_core::projection::MapOrientation;
 use shlight_core::{ShBasis, ShCoeffs};
 use shlight_io::Image;
@@ -11,7 +11,7 @@ use crate::{PipelineError, Result};
 
 /// The image of `coeffs` on a `width x height` map in `layout` and
 /// `orientation`: each texel the expansion `sum c_l^m Y_l^m(d)` at its
-/// centre direction `d` ([`EnvMap::texel_direction`]), 0 for texels the
+/// centre direction `d` ([`TexelGrid::direction`]), 0 for texels the
 /// layout does not use. Rows are evaluated in parallel, each in batches
 /// through [`ShBasis::eval_batch`] and summed in `f64`; `on_row` is called
 /// once per finished row (a progress bar).
@@ -28,13 +28,7 @@ pub fn render_map(
     orientation: MapOrientation,
     on_row: &(dyn Fn() + Sync),
 ) -> Result<Image> {
-    layout
-        .check_size(w, h)
-        .map_err(|e| PipelineError::new(e.to_string()))?;
-    // Black texels, only so that an EnvMap (whose geometry ignores them)
-    // can be formed.
-    let black = vec![[0.0f32; 3]; w * h];
-    let grid = EnvMap::new(layout, orientation, w, h, &black)
+    let grid = TexelGrid::new(layout, (w, h), orientation)
         .map_err(|e| PipelineError::new(e.to_string()))?;
     let basis = ShBasis::<f64>::new(coeffs.lmax());
     let count = basis.count();
@@ -42,13 +36,13 @@ pub fn render_map(
     // Directions per batch: a multiple of 16 (the basis's lanes), keeping
     // the basis values near 512 KiB, at most 1024.
     let batch = ((65_536 / count) / 16).clamp(1, 64) * 16;
-    let mut pixels = black.clone();
+    let mut pixels = vec![[0.0f32; 3]; w * h];
     pixels.par_chunks_mut(w).enumerate().for_each_init(
         || Scratch::new(count, batch),
         |s, (y, row)| {
             s.texels.clear();
             for x in 0..w {
-                if let Some(d) = grid.texel_direction(x, y) {
+                if let Some(d) = grid.direction(x, y) {
                     s.texels.push((x, d));
                 }
             }
@@ -108,6 +102,7 @@ impl Scratch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shlight_core::layout::EnvMap;
     use shlight_core::rotation::Frame;
 
     /// Tolerance of a rendered texel against scalar evaluation: the image
@@ -121,13 +116,23 @@ mod tests {
         let coeffs = ShCoeffs::<DVec3>::from_fn(7, |l, m| {
             DVec3::new(1.0 / (1 + l) as f64, m as f64 * 0.1, 0.5 - 0.01 * l as f64)
         });
-        for layout in [Layout::Equirect, Layout::CrossHorizontal, Layout::Angular] {
+        // The layouts at faces (discs, rows) of 12, and the 36x18 equirect
+        // map the command line's test drew.
+        let sizes = [
+            (Layout::Equirect, Layout::Equirect.dimensions(12)),
+            (Layout::Equirect, (36, 18)),
+            (
+                Layout::CrossHorizontal,
+                Layout::CrossHorizontal.dimensions(12),
+            ),
+            (Layout::Angular, Layout::Angular.dimensions(12)),
+        ];
+        for (layout, (w, h)) in sizes {
             for frame in [Frame::YUp, Frame::ZUp] {
                 let o = MapOrientation {
                     frame,
                     mirror: true,
                 };
-                let (w, h) = layout.dimensions(12);
                 let image = render_map(&coeffs, layout, (w, h), o, &|| {}).unwrap();
                 let black = vec![[0.0f32; 3]; w * h];
                 let grid = EnvMap::new(layout, o, w, h, &black).unwrap();

@@ -7,6 +7,8 @@
 //! meshes), far enough that the bounding sphere fills the vertical field of
 //! view [`FOV_Y_DEGREES`]. Pixels are rendered 2 x 2 supersampled and box
 //! filtered. Both sides of every triangle are drawn; the background is 0.
+//! [`auto_exposure`] picks the exposure that shows the colours at a
+//! quarter of white.
 
 use glam::Vec3;
 use shlight_io::Image;
@@ -17,6 +19,16 @@ pub const VIEW_FROM: Vec3 = Vec3::new(0.6, 0.45, 1.0);
 /// Vertical field of view.
 pub const FOV_Y_DEGREES: f32 = 35.0;
 const SUPERSAMPLE: usize = 2;
+
+/// The exposure in stops that puts the mean Rec.709 luminance
+/// `0.2126 r + 0.7152 g + 0.0722 b` of `colors` at 0.25
+/// ([`shlight_io::auto_exposure`]); 0 for black (or no) colours.
+#[must_use]
+pub fn auto_exposure(colors: &[Vec3]) -> f32 {
+    let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
+    let mean = colors.iter().map(luminance).sum::<f64>() / colors.len().max(1) as f64;
+    shlight_io::auto_exposure(mean, 0.25)
+}
 
 /// Renders `mesh` with one linear RGB value per vertex to a `width x height`
 /// image (linear values, for [`shlight_io::write_image`]).
@@ -145,6 +157,19 @@ impl Camera {
 mod tests {
     use super::*;
     use shlight_mesh::generate;
+
+    #[test]
+    fn the_exposure_puts_the_mean_luminance_at_a_quarter() {
+        // Mean luminance 0.5 (one grey 1, one black): one stop down.
+        assert_eq!(auto_exposure(&[Vec3::ONE, Vec3::ZERO]), -1.0);
+        let green = auto_exposure(&[Vec3::new(0.0, 1.0, 0.0)]);
+        assert!(
+            (f64::from(green).exp2() * 0.7152 - 0.25).abs() < 1e-6,
+            "{green}"
+        );
+        assert_eq!(auto_exposure(&[]), 0.0);
+        assert_eq!(auto_exposure(&[Vec3::ZERO; 3]), 0.0);
+    }
 
     #[test]
     fn a_framed_sphere_fills_its_circle_and_colours_interpolate() {

@@ -14,7 +14,7 @@
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes.
 //! - [`probe_sheet()`]: a picture of the probes, each a white ball lit by its
-//!   light.
+//!   light, and [`probe_sheet_exposure`] to show it at.
 //! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
 //!
 //! ```
@@ -44,5 +44,5 @@ mod probe_volume;
 pub use bake::{Stage, VolumeOptions, bake};
 pub use error::VolumeError;
 pub use grid::Grid;
-pub use probe_sheet::probe_sheet;
+pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};

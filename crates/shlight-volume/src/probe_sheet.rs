@@ -1,5 +1,6 @@
 //! A picture of a volume's probes: each probe drawn as a diffuse white ball
-//! lit by its light, the grid laid out one z layer after another.
+//! lit by its light, the grid laid out one z layer after another, and the
+//! exposure to show it at ([`probe_sheet_exposure`]).
 
 use glam::{DVec3, Vec3};
 use shlight_core::{ShCoeffs, irradiance, sh_count};
@@ -8,6 +9,20 @@ use crate::Grid;
 
 /// Shaded colour of invalid probes (a flat mid grey).
 pub const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
+
+/// The exposure in stops for a [`probe_sheet`]'s pixels: the mean
+/// luminance of the pixels that are not black (the balls, not the
+/// background) at 0.25, as the PRT preview
+/// ([`shlight_prt::preview::auto_exposure`]).
+#[must_use]
+pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
+    let lit: Vec<Vec3> = pixels
+        .iter()
+        .map(|p| Vec3::from_array(*p))
+        .filter(|p| *p != Vec3::ZERO)
+        .collect();
+    shlight_prt::preview::auto_exposure(&lit)
+}
 
 /// The probes of `radiance` (per probe `(lmax+1)^2` rows of `[r, g, b]`)
 /// as an image of `(width, height, pixels)`, row-major from the top.
@@ -80,6 +95,17 @@ pub fn probe_sheet(
 mod tests {
     use super::*;
     use shlight_core::analytic;
+
+    /// The background does not darken the picture: a sheet of balls of
+    /// luminance 1 on black is shown at 0.25 whatever the black around.
+    #[test]
+    fn the_exposure_ignores_the_background() {
+        let ball = [1.0f32; 3];
+        let few = [ball, [0.0; 3], [0.0; 3], [0.0; 3]];
+        assert_eq!(probe_sheet_exposure(&few), -2.0);
+        assert_eq!(probe_sheet_exposure(&[ball; 2]), -2.0);
+        assert_eq!(probe_sheet_exposure(&[[0.0; 3]; 4]), 0.0);
+    }
 
     #[test]
     fn each_ball_shows_its_probes_light_where_the_layout_says() {

@@ -95,12 +95,7 @@ impl<'a> EnvMap<'a> {
     /// (`width * height` values), with the quadrature rules built once.
     #[must_use]
     pub fn texel_solid_angles(&self) -> Vec<f64> {
-        let geo = self.geometry();
-        let rule = geo.disc_rule();
-        (0..self.height)
-            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
-            .map(|(x, y)| geo.solid_angle(x, y, rule.as_ref()))
-            .collect()
+        self.geometry().solid_angles()
     }
 
     /// Continuous image coordinates `(x, y)` in pixels (texel centres at

@@ -155,6 +155,16 @@ impl Geometry {
         }
     }
 
+    /// [`Geometry::solid_angle`] of every texel, row-major, with the disc
+    /// rule built once.
+    pub(crate) fn solid_angles(&self) -> Vec<f64> {
+        let rule = self.disc_rule();
+        (0..self.h)
+            .flat_map(|y| (0..self.w).map(move |x| (x, y)))
+            .map(|(x, y)| self.solid_angle(x, y, rule.as_ref()))
+            .collect()
+    }
+
     pub(crate) fn image_point(&self, d: DVec3) -> (f64, f64) {
         let d = self.orientation.map_from_world(d);
         match self.layout {
