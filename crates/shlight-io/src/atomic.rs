@@ -2,7 +2,8 @@
 //!
 //! The contents go to a temporary file in the destination's directory,
 //! named `.NAME.tmp-PID-N`, which is flushed to disk and then renamed over
-//! the destination. A rename within one directory is atomic, so a reader
+//! the destination (on Linux the kernel is asked to start writing it back
+//! after every MiB, so the flush waits for the tail only). A rename within one directory is atomic, so a reader
 //! sees either the old file or the complete new one, and a failed write
 //! leaves the old file untouched and no temporary file behind.
 
