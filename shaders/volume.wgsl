@@ -15,9 +15,11 @@
 // or 0 when the probe is invalid.
 //
 // The probes are a 3D texture of premultiplied texels: per probe the floats
-// (v, v L_0, v L_1, ...) (v the validity, L_i the rgb radiance of
-// coefficient i), four to a texel, so a probe's T = ceil((3 (lmax_v+1)^2 +
-// 1) / 4) texels hold its float f at texel f / 4, lane f % 4. Texel j of
+// (v, v L_i, ...) (v the validity, L_i the rgb radiance of coefficient i,
+// for every i to lmax_v but those of degree 3: A_3 = 0, so they add nothing
+// to E), four to a texel, so a probe's T = ceil((3 c + 1) / 4) texels (c
+// the coefficients kept: T = 7 at lmax 2, 14 at lmax 4) hold its float f
+// at texel f / 4, lane f % 4. Texel j of
 // every probe lies in block j of the texture, the grid itself (probe
 // (x, y, z) at texel (x, y, z) of the block) with one layer more on each
 // side in y and z that repeats the edge; the blocks tile the texture's y and
@@ -39,9 +41,15 @@
 // ShBasis / sh_basis, volume_sum and probe_sum (the texel dot products) are
 // written out per lmax and variant and appended
 // (crates/shlight-gpu/src/volume_expansion.rs).
+//
+// Two fragment entry points, one pipeline each: fs_volume for meshes lit by
+// interpolation, fs_probe for the probe spheres. One shader that chose
+// between the two per instance would cost every fragment both on a CPU
+// rasteriser: llvmpipe runs both sides of a branch, masked, whatever the
+// condition (shaders/README.md).
 
-// Texels per probe at lmax 4: ceil((3 * 25 + 1) / 4).
-const VOLUME_MAX_TEXELS: u32 = 19u;
+// Texels per probe at lmax 4: ceil((3 * 18 + 1) / 4) (degree 3 left out).
+const VOLUME_MAX_TEXELS: u32 = 14u;
 
 // The grid and the texture's layout, written by shlight-gpu's
 // `VolumeUniform`. Probes sit at cell centres, numbered x fastest: probe
@@ -188,15 +196,17 @@ fn vs_volume(in: VolumeVertexIn) -> VolumeVertexOut {
     return out;
 }
 
+// Meshes lit by interpolation (instances without a probe).
 @fragment
 fn fs_volume(in: VolumeVertexOut) -> @location(0) vec4<f32> {
-    let n = normalize(in.normal);
-    var e: vec3<f32>;
-    if in.probe == NO_PROBE {
-        e = volume_irradiance(in.world, n).rgb;
-    } else {
-        e = probe_irradiance(in.probe, n);
-    }
+    let e = volume_irradiance(in.world, normalize(in.normal)).rgb;
+    return finish(in.albedo / SH_PI * e + in.emission);
+}
+
+// Probe spheres: each lit by its own probe in.probe alone.
+@fragment
+fn fs_probe(in: VolumeVertexOut) -> @location(0) vec4<f32> {
+    let e = probe_irradiance(in.probe, normalize(in.normal));
     return finish(in.albedo / SH_PI * e + in.emission);
 }
 

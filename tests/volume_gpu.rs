@@ -6,7 +6,8 @@
 //! along an axis, for lmax 0..4, both ways of interpolating
 //! (`VolumeFetch::Filtered` where the adapter filters `Rgba32Float`,
 //! `VolumeFetch::Loads` always); an invalid probe takes no weight; a volume
-//! of higher lmax is shaded to lmax 4.
+//! of higher lmax is shaded to lmax 4; probe spheres (their own pipeline)
+//! show their own probe beside an interpolated object in one frame.
 
 use glam::{DVec3, Vec3};
 use shlight_core::sh_count;
@@ -359,6 +360,14 @@ const PIXEL_TOL: f64 = 2e-3;
 const GRAZING: f32 = 0.35;
 /// Absolute allowance for pixels near black.
 const PIXEL_FLOOR: f64 = 1e-4;
+/// Probe-sphere pixels against their probe's irradiance, as a fraction of
+/// the largest value in the frame. The spheres are coarse (16 x 8
+/// segments, 22.5 degrees of normal per triangle) and the random lmax 4
+/// light changes fast with the normal, so the rasteriser's interpolation
+/// of the normal, not quite the ray's barycentrics, moves a pixel by up to
+/// 6e-3 of the largest value (measured); a wrong probe or coefficient is
+/// off by tenths.
+const SPHERE_TOL: f64 = 1.5e-2;
 
 /// The mesh under `ray`: (which mesh, triangle, hit point, barycentrics).
 fn cast(
@@ -540,6 +549,196 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
         scene_pixels >= 500,
         "only {scene_pixels} scene pixels checked"
     );
+}
+
+/// A frame of [`VolumeRenderer::draw`] with the probes shown: each probe
+/// sphere (pipeline `fs_probe`) shows its own probe's irradiance (black
+/// for the invalid one), an object beside them (pipeline `fs_volume`) the
+/// interpolation, both against the CPU at the point and interpolated
+/// normal a ray through the pixel finds. A volume of lmax 4, so that
+/// degree 3, which the texels leave out (`A_3 = 0`), holds values that
+/// must not show. Without the probes shown, no sphere is drawn.
+#[test]
+fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
+    use shlight_gpu::{Camera, Offscreen, Renderer, place, probe_sphere_instances};
+
+    let Some(ctx) = gpu_context("probe_spheres_show_their_own_probe_beside_an_interpolated_object")
+    else {
+        return;
+    };
+    // Cells 4/3 x 0.75 x 1 (spheres of radius 0.1125), probe 1 at
+    // (1, 0.375, 2.5) invalid; the object between probes 1, 2, 4 and 5.
+    let volume = TestVolume::random_on([3, 2, 1], 4, 31);
+    assert_eq!(volume.valid, [true, false, true, true, true, true]);
+    let probes = volume.probes();
+    let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
+    let object = shlight_mesh::generate::uv_sphere(1.0, 32, 16);
+    let albedo = [0.7f32, 0.5, 0.3];
+    let placement = place(object.bounds(), Vec3::new(1.7, 0.9, 2.5), 0.8);
+    // The meshes as drawn, in world space.
+    let moved = |mesh: &shlight_mesh::Mesh, offset_scale: [f32; 4]| {
+        let mut m = mesh.clone();
+        let (o, s) = (Vec3::from_slice(&offset_scale[..3]), offset_scale[3]);
+        m.positions.iter_mut().for_each(|p| *p = *p * s + o);
+        m
+    };
+    let mut world = vec![moved(&object, placement.offset_scale)];
+    for instance in probe_sphere_instances(&probes) {
+        world.push(moved(&sphere, instance.offset_scale));
+    }
+    let bvhs: Vec<_> = world
+        .iter()
+        .map(|m| shlight_prt::bvh::Bvh::new(&m.positions, &m.triangles))
+        .collect();
+    let meshes: Vec<_> = world.iter().zip(&bvhs).collect();
+    let (w, h) = (512usize, 256usize);
+    let (eye, target) = (Vec3::new(1.0, 0.75, 6.5), Vec3::new(1.0, 0.75, 2.5));
+    let camera = Camera::looking_at(eye, target, 2.0, 22f32.to_radians());
+    let aspect = w as f32 / h as f32;
+    let inverse = camera.view_proj(aspect).inverse();
+    let ray = |x: f32, y: f32| {
+        let ndc = glam::Vec2::new(x / w as f32 * 2.0 - 1.0, 1.0 - y / h as f32 * 2.0);
+        (
+            eye,
+            (inverse.project_point3(ndc.extend(1.0)) - eye).normalize(),
+        )
+    };
+    let shading = Shading {
+        lmax: 4,
+        ..Shading::default()
+    };
+    let target = Offscreen::new(&ctx, w, h).unwrap();
+    let background = Renderer::new(&ctx, HEADLESS_FORMAT);
+    let cpu_adapter = ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+    for fetch in fetches(&ctx) {
+        let mut renderer =
+            VolumeRenderer::with_fetch(&ctx, HEADLESS_FORMAT, &probes, fetch).unwrap();
+        renderer.set_object(&ctx, &object, albedo, placement);
+        let frame = |show_probes: bool| {
+            target
+                .render_with(&ctx, true, |encoder, color, depth| {
+                    background.draw(&ctx, encoder, color, depth, &camera, aspect, &shading)?;
+                    renderer.draw(
+                        &ctx,
+                        encoder,
+                        color,
+                        depth,
+                        &camera,
+                        aspect,
+                        &shading,
+                        show_probes,
+                    );
+                    Ok(())
+                })
+                .unwrap()
+                .unwrap()
+        };
+        let (shown, hidden) = (frame(true), frame(false));
+        // Pixels checked on the object, the valid probes' spheres and the
+        // invalid one's; per pixel checked (GPU, CPU, where).
+        let mut counts = [0usize; 3];
+        let mut checked = Vec::new();
+        for j in 1..h - 1 {
+            for i in 1..w - 1 {
+                let (o, d) = ray(i as f32 + 0.5, j as f32 + 0.5);
+                let got = Vec3::from_slice(&shown.pixels[j * w + i][..3]).as_dvec3();
+                let hidden_got = Vec3::from_slice(&hidden.pixels[j * w + i][..3]).as_dvec3();
+                let Some((k, tri, p, bary)) = cast(&meshes, o, d) else {
+                    continue;
+                };
+                if k > 0 {
+                    // Without the probes the sphere is not drawn (the
+                    // object is not behind it: cleared to 0).
+                    assert_eq!(hidden_got, DVec3::ZERO, "{fetch:?} pixel ({i}, {j})");
+                } else {
+                    assert_eq!(hidden_got, got, "{fetch:?} pixel ({i}, {j})");
+                }
+                let mesh = meshes[k].0;
+                let corners = mesh.triangles[tri as usize].map(|v| v as usize);
+                let normal: Vec3 = (0..3).map(|t| mesh.normals[corners[t]] * bary[t]).sum();
+                let normal = normal.normalize();
+                // Only pixels well inside one triangle, not at a grazing
+                // angle (as in the Cornell box test above).
+                let inside = [(-0.34, 0.0), (0.34, 0.0), (0.0, -0.34), (0.0, 0.34)]
+                    .iter()
+                    .all(|(dx, dy)| {
+                        let (o, d) = ray(i as f32 + 0.5 + dx, j as f32 + 0.5 + dy);
+                        cast(&meshes, o, d).is_some_and(|(k2, t2, _, _)| k2 == k && t2 == tri)
+                    });
+                if !inside || normal.dot(d).abs() < GRAZING {
+                    continue;
+                }
+                let want = match k {
+                    // The object: albedo / pi times the interpolation at p.
+                    0 => {
+                        let e = volume.cpu(p, normal, 4).expect("a lit point");
+                        Vec3::from_array(albedo).as_dvec3() * e / std::f64::consts::PI
+                    }
+                    // A sphere: its own probe alone (albedo 1), at its
+                    // centre, where the probe has weight 1; none if invalid.
+                    _ => {
+                        let centre = Vec3::from_slice(
+                            &probe_sphere_instances(&probes)[k - 1].offset_scale[..3],
+                        );
+                        if volume.valid[k - 1] {
+                            volume.cpu(centre, normal, 4).unwrap() / std::f64::consts::PI
+                        } else {
+                            DVec3::ZERO
+                        }
+                    }
+                };
+                if want == DVec3::ZERO {
+                    // The invalid probe's sphere: black, exactly.
+                    assert_eq!(got, want, "{fetch:?} pixel ({i}, {j}) on mesh {k}");
+                }
+                checked.push((
+                    got,
+                    want,
+                    k > 0,
+                    format!("pixel ({i}, {j}) on mesh {k} at {p}"),
+                ));
+                counts[match k {
+                    0 => 0,
+                    k if volume.valid[k - 1] => 1,
+                    _ => 2,
+                }] += 1;
+            }
+        }
+        // As fractions of the largest value: the random light's
+        // irradiance crosses 0, where a fraction of the pixel's own value
+        // would ask for more than f32 interpolation gives. The object's
+        // pixels within PIXEL_TOL (FILTERED_GPU_TOL filtered on a hardware
+        // GPU), the spheres' (their own probe's texels, loaded) within
+        // SPHERE_TOL.
+        let scale = checked
+            .iter()
+            .map(|(_, want, _, _)| want.abs().max_element())
+            .fold(0.0, f64::max);
+        let mut worst = [0.0f64; 2];
+        for (got, want, on_sphere, at) in &checked {
+            let err = (*got - *want).abs().max_element() / scale;
+            let s = usize::from(*on_sphere);
+            worst[s] = worst[s].max(err);
+            let tol = if *on_sphere {
+                SPHERE_TOL
+            } else if fetch == VolumeFetch::Filtered && !cpu_adapter {
+                // A GPU's sampler rounds the weights (see FILTERED_GPU_TOL).
+                FILTERED_GPU_TOL
+            } else {
+                PIXEL_TOL
+            };
+            assert!(
+                err < tol,
+                "{fetch:?} {at}: GPU {got}, CPU {want} ({err:.2e} of {scale})"
+            );
+        }
+        eprintln!(
+            "{fetch:?}: pixels checked {counts:?}, worst {:.2e} (object), {:.2e} (spheres) \
+             of {scale:.3}",
+            worst[0], worst[1]
+        );
+        assert!(counts.iter().all(|&c| c >= 100), "{fetch:?}: {counts:?}");
+    }
 }
 
 #[test]

@@ -17,7 +17,8 @@
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
 //!   bunny's bounding box, the eight probes around each fragment
 //!   interpolated the adapter's best way (`VolumeFetch::best`: on lavapipe
-//!   the sampler's trilinear filter, 7 samples at lmax 2 and 19 at lmax 4);
+//!   the sampler's trilinear filter, 7 samples at lmax 2 and 14 at lmax 4,
+//!   degree 3 left out);
 //!   the same mesh, camera and size as `frame_bunny_sh` at the same lmax,
 //!   which is its baseline (the target: within 1.5x);
 //! - `frame_bunny_volume_loads`: the same with `VolumeFetch::Loads`, the

@@ -6,9 +6,11 @@
 //! has begun (cleared, background drawn), loading colour and depth, so the
 //! plain renderer is unchanged. The probes go to the GPU as one
 //! `Rgba32Float` 3D texture of premultiplied texels ([`pack_texels`]): per
-//! probe the floats `v, v L_0, v L_1, ...` (`v` the validity 1 or 0, `L_i`
-//! the rgb radiance of coefficient `i` to `lmax_v`, the volume's lmax
-//! clipped to [`VOLUME_MAX_LMAX`]), four to a texel; texel `j` of every
+//! probe the floats `v, v L_i, ...` (`v` the validity 1 or 0, `L_i` the rgb
+//! radiance of coefficient `i` to `lmax_v`, the volume's lmax clipped to
+//! [`VOLUME_MAX_LMAX`], leaving out degree 3, whose clamped cosine
+//! eigenvalue `A_3` is 0 so that it adds nothing to the irradiance), four
+//! to a texel; texel `j` of every
 //! probe in block `j`, a copy of the grid with one more layer on each side
 //! in y and z, the blocks tiling the texture's y and z. Interpolating the
 //! texels gives the valid weight and the weighted coefficients at once,
@@ -34,16 +36,17 @@ use wgpu::util::DeviceExt;
 use crate::renderer::DEPTH_FORMAT;
 use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, Shading};
-use crate::volume_expansion::volume_texels;
+use crate::volume_expansion::{volume_coefficients, volume_texels};
 use crate::{Camera, GpuContext, GpuError};
 
 /// Highest degree the volume pass shades: a volume of higher lmax is
-/// clipped to it (`ceil((3 (lmax+1)^2 + 1) / 4)` texels are interpolated
-/// per fragment: 19 at lmax 4).
+/// clipped to it (`ceil((3 c + 1) / 4)` texels are interpolated per
+/// fragment, `c` the coefficients of the degrees whose `A_l` is not 0: 7
+/// at lmax 2, 14 at lmax 4, where degree 3's 7 coefficients are left out).
 pub const VOLUME_MAX_LMAX: usize = 4;
 
-/// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 25 + 1) / 4)`.
-const MAX_TEXELS: usize = 19;
+/// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
+const MAX_TEXELS: usize = 14;
 
 /// How the volume pass interpolates the probes' texels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -158,7 +161,8 @@ impl VolumeProbes<'_> {
 pub struct ProbeTexels {
     /// Width, height and depth in texels: `nx`, `by (ny + 2)`, `bz (nz + 2)`.
     pub size: [u32; 3],
-    /// Texels per probe `T = ceil((3 (lmax_v+1)^2 + 1) / 4)`.
+    /// Texels per probe `T = ceil((3 c + 1) / 4)`, `c` the coefficients to
+    /// `lmax_v` less degree 3's (1, 4, 9, 9, 18 at lmax 0..4).
     pub per_probe: usize,
     /// Per texel `j < T`: where block `j`'s first probe layer lies in y and
     /// z (block `j` is column `j % by`, row `j / by` of the tiling; its
@@ -169,8 +173,10 @@ pub struct ProbeTexels {
 }
 
 /// The probes packed as the volume pass's texture: probe `k`'s floats
-/// `v, v L_0 (rgb), v L_1, ...` to lmax `min(lmax, VOLUME_MAX_LMAX)`, four
-/// to a texel (the last padded with 0; an invalid probe all 0), texel `j`
+/// `v, v L_i (rgb), ...` for the coefficients `i` to lmax
+/// `min(lmax, VOLUME_MAX_LMAX)` but those of degree 3 (`A_3 = 0`: they add
+/// nothing to the irradiance), four to a texel (the last padded with 0; an
+/// invalid probe all 0), texel `j`
 /// in block `j`, each block with its first and last y and z layers
 /// repeated once beyond them; the blocks tiled in y and z as near a square
 /// as `max_dimension` (the device's largest 3D texture side) allows.
@@ -200,7 +206,7 @@ pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<Prob
     };
     let (width, height, depth) = (nx, by * hy, bz * hz);
     let nc = (probes.lmax + 1) * (probes.lmax + 1);
-    let slots = (lv + 1) * (lv + 1);
+    let kept = volume_coefficients(lv);
     // Per probe its T texels.
     let mut floats = vec![0.0f32; 4 * per_probe];
     let mut probe_texels = Vec::with_capacity(probes.valid.len() * per_probe);
@@ -208,7 +214,10 @@ pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<Prob
         floats.fill(0.0);
         if valid {
             floats[0] = 1.0;
-            floats[1..=3 * slots].copy_from_slice(&probes.radiance[k * nc * 3..][..slots * 3]);
+            let rows = &probes.radiance[k * nc * 3..][..nc * 3];
+            for (slot, &i) in kept.iter().enumerate() {
+                floats[1 + 3 * slot..4 + 3 * slot].copy_from_slice(&rows[3 * i..3 * i + 3]);
+            }
         }
         probe_texels.extend(floats.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]]));
     }
@@ -386,8 +395,10 @@ impl VolumeMesh {
 pub struct VolumeRenderer {
     color_format: wgpu::TextureFormat,
     fetch: VolumeFetch,
-    /// Per shading lmax, built on first use.
+    /// Per shading lmax, built on first use: meshes lit by interpolation
+    /// (`fs_volume`) and probe spheres (`fs_probe`).
     pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
+    probe_pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
     computes: [OnceLock<wgpu::ComputePipeline>; VOLUME_MAX_LMAX + 1],
     pipeline_layout: wgpu::PipelineLayout,
     compute_layout: wgpu::BindGroupLayout,
@@ -605,6 +616,7 @@ impl VolumeRenderer {
             color_format,
             fetch,
             pipelines: Default::default(),
+            probe_pipelines: Default::default(),
             computes: Default::default(),
             pipeline_layout: pipeline_layout(&layout),
             compute_pipeline_layout: pipeline_layout(&compute_layout),
@@ -780,17 +792,27 @@ impl VolumeRenderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(self.pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax)));
-        pass.set_bind_group(0, &self.bind, &[]);
-        let meshes = [self.scene.as_ref(), self.object.as_ref()]
-            .into_iter()
-            .flatten()
-            .chain(show_probes.then_some(&self.spheres));
-        for mesh in meshes {
+        let draw = |pass: &mut wgpu::RenderPass<'_>, mesh: &VolumeMesh| {
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_vertex_buffer(1, mesh.instances.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, 0..mesh.instance_count);
+        };
+        pass.set_bind_group(0, &self.bind, &[]);
+        pass.set_pipeline(
+            self.pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax, "fs_volume")),
+        );
+        for mesh in [self.scene.as_ref(), self.object.as_ref()]
+            .into_iter()
+            .flatten()
+        {
+            draw(&mut pass, mesh);
+        }
+        if show_probes {
+            pass.set_pipeline(
+                self.probe_pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax, "fs_probe")),
+            );
+            draw(&mut pass, &self.spheres);
         }
     }
 
@@ -801,7 +823,9 @@ impl VolumeRenderer {
         }
     }
 
-    fn pipeline(&self, ctx: &GpuContext, lmax: usize) -> wgpu::RenderPipeline {
+    /// The pipeline at `lmax` whose fragment stage is `fragment`
+    /// (`fs_volume` or `fs_probe`).
+    fn pipeline(&self, ctx: &GpuContext, lmax: usize, fragment: &str) -> wgpu::RenderPipeline {
         let module = shaders::create(&ctx.device, self.module(), lmax);
         let targets = [Some(wgpu::ColorTargetState {
             format: self.color_format,
@@ -846,7 +870,7 @@ impl VolumeRenderer {
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some("fs_volume"),
+                    entry_point: Some(fragment),
                     compilation_options: Default::default(),
                     targets: &targets,
                 }),
@@ -963,8 +987,8 @@ mod tests {
     #[test]
     fn the_uniform_block_has_the_wgsl_size() {
         // Volume in volume.wgsl: vec4<f32> x 2, vec4<u32>, vec4<f32>, then
-        // array<vec4<f32>, 19>.
-        assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 19 * 16);
+        // array<vec4<f32>, 14>.
+        assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 14 * 16);
         assert_eq!(MAX_TEXELS, volume_texels(VOLUME_MAX_LMAX));
         // Instances: vec4 then u32, padded to 32 bytes.
         assert_eq!(std::mem::size_of::<VolumeInstance>(), 32);
@@ -972,8 +996,8 @@ mod tests {
 
     #[test]
     fn texels_pack_premultiplied_clipped_and_padded() {
-        // lmax 5 volume of 2 x 1 x 1 probes: 36 rows each, clipped to 25
-        // (19 texels); probe 1 invalid.
+        // lmax 5 volume of 2 x 1 x 1 probes: 36 rows each, clipped to 25,
+        // less degree 3's rows 9..15: 18 rows (14 texels); probe 1 invalid.
         let nc = 36;
         let radiance: Vec<f32> = (0..2 * nc * 3).map(|x| x as f32 + 1.0).collect();
         let valid = [true, false];
@@ -986,19 +1010,21 @@ mod tests {
             radiance: &radiance,
         };
         let t = pack_texels(&probes, 2048).unwrap();
-        assert_eq!(t.per_probe, 19);
+        assert_eq!(t.per_probe, 14);
         // Blocks of 3 x 3 layers (one probe in y and z, a layer each side),
-        // 19 of them: 4 x 5 or 5 x 4 blocks, 12 x 15 texels, the squarest.
+        // 14 of them: 4 x 4 blocks, 12 x 12 texels, the squarest.
         let [w, h, d] = t.size;
         assert_eq!(w, 2);
-        assert_eq!(h.max(d), 15, "{:?}", t.size);
+        assert_eq!([h, d], [12, 12], "{:?}", t.size);
         assert_eq!(t.data.len(), (w * h * d) as usize);
         let at = |x: u32, y: u32, z: u32| t.data[(x + w * (y + h * z)) as usize];
         for (j, &[oy, oz]) in t.blocks.iter().enumerate() {
-            // Probe 0: floats 1, 1, 2, 3, ..., 75 (its rows 0..24), then 0.
+            // Probe 0: floats 1, 1, 2, ..., 27 (its rows 0..8), 49, ..., 75
+            // (rows 16..24), then 0.
             let f = |i: usize| match i {
                 0 => 1.0,
-                1..=75 => i as f32,
+                1..=27 => i as f32,
+                28..=54 => (i + 21) as f32,
                 _ => 0.0,
             };
             let want = [f(4 * j), f(4 * j + 1), f(4 * j + 2), f(4 * j + 3)];

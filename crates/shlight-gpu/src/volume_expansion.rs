@@ -10,12 +10,16 @@
 //!
 //! with `S_v = sum_k w_k v_k` and `S_i = sum_k w_k v_k L_k,i` over the eight
 //! probes around `p` (`shaders/volume.wgsl`: texel `j` holds floats
-//! `4j..4j+3` of `v, v L_0 (rgb), v L_1, ...`), so that
+//! `4j..4j+3` of `v, v L_i0 (rgb), v L_i1, ...`), so that
 //! `volume_sum(p, sh_basis(n, irradiance_band))` divided by its `w` is the
 //! renormalised interpolation of the probes' irradiance
-//! `E(n) = sum_l A_l w_l sum_m L_lm Y_lm(n)`. `volume_sum` reads its texels
-//! filtered (`volume_filtered`, one trilinear sample each) or by eight
-//! loads each (`volume_loads`), one text per [`VolumeFetch`]. The basis is
+//! `E(n) = sum_l A_l w_l sum_m L_lm Y_lm(n)`. The sums run over the
+//! coefficients of [`volume_coefficients`] only: the degrees whose clamped
+//! cosine eigenvalue `A_l` is 0 (odd `l >= 3`: degree 3 at lmax 4) add
+//! nothing to `E`, so the texels leave them out (14 texels at lmax 4
+//! instead of 19). `volume_sum` reads its texels filtered
+//! (`volume_filtered`, one trilinear sample each) or by eight loads each
+//! (`volume_loads`), one text per [`VolumeFetch`]. The basis is
 //! `sh_expansion.rs`'s: the recurrences of
 //! shlight-core's [`Legendre`] with `sin(theta)^m` carried by
 //! `C_m + i S_m = (x + i y)^m`, every factor an f32 literal, no loops and no
@@ -26,6 +30,7 @@
 use std::fmt::Write;
 
 use shlight_core::legendre::Legendre;
+use shlight_core::zonal::clamped_cosine_eigenvalue;
 
 use crate::sh_expansion::{azimuth_power, literal};
 use crate::volume::{VOLUME_MAX_LMAX, VolumeFetch};
@@ -46,15 +51,19 @@ pub(crate) fn volume_wgsl_loads(lmax: usize) -> String {
 pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
     let lmax = lmax.min(VOLUME_MAX_LMAX);
     let count = (lmax + 1) * (lmax + 1);
+    let kept = volume_coefficients(lmax);
     let legendre = Legendre::<f64>::new(lmax);
     let mut out = String::new();
     let _ = writeln!(
         out,
         "// Generated for lmax {lmax} (crates/shlight-gpu/src/volume_expansion.rs)."
     );
-    let _ = writeln!(out, "// y{{i}} = f_l Y_i(d), i = l(l+1)+m.");
+    let _ = writeln!(
+        out,
+        "// y{{i}} = f_l Y_i(d), i = l(l+1)+m, for the degrees whose A_l is not 0."
+    );
     out.push_str("struct ShBasis {\n");
-    for i in 0..count {
+    for &i in &kept {
         let _ = writeln!(out, "    y{i}: f32,");
     }
     out.push_str("}\n\n");
@@ -111,6 +120,7 @@ pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
     for line in body {
         let _ = writeln!(out, "    {line}");
     }
+    let fields: Vec<&str> = kept.iter().map(|&i| fields[i].as_str()).collect();
     let _ = writeln!(out, "    return ShBasis({});", fields.join(", "));
     out.push_str("}\n\n");
     let texels = volume_texels(lmax);
@@ -140,22 +150,38 @@ pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
     out
 }
 
+/// The SH coefficients `i = l(l+1)+m` to `lmax` (clamped to
+/// [`VOLUME_MAX_LMAX`]) that the volume pass keeps, in order: those of the
+/// degrees whose clamped cosine eigenvalue `A_l` is not 0 (all but odd
+/// `l >= 3`), the only ones the irradiance `sum_l A_l w_l sum_m L_lm Y_lm`
+/// depends on.
+#[must_use]
+pub(crate) fn volume_coefficients(lmax: usize) -> Vec<usize> {
+    let lmax = lmax.min(VOLUME_MAX_LMAX);
+    (0..=lmax)
+        .filter(|&l| clamped_cosine_eigenvalue(l) != 0.0)
+        .flat_map(|l| l * l..(l + 1) * (l + 1))
+        .collect()
+}
+
 /// Texels per probe at `lmax` (clamped to [`VOLUME_MAX_LMAX`]): the floats
-/// `v, v L_0 (rgb), v L_1, ...`, four to a texel.
+/// `v, v L_i (rgb)` for the coefficients `i` of [`volume_coefficients`],
+/// four to a texel.
 #[must_use]
 pub(crate) fn volume_texels(lmax: usize) -> usize {
-    let lmax = lmax.min(VOLUME_MAX_LMAX);
-    (3 * (lmax + 1) * (lmax + 1) + 1).div_ceil(4)
+    (3 * volume_coefficients(lmax).len() + 1).div_ceil(4)
 }
 
 /// `sum_i y.y{i} * vec3(rgb of coefficient i)` over texels `t{j}`, the
-/// float `1 + 3 i + c` (channel `c`) at texel `f / 4`, lane `f % 4`.
+/// coefficient in slot `s` of [`volume_coefficients`] at floats
+/// `f = 1 + 3 s + c` (channel `c`): texel `f / 4`, lane `f % 4`.
 fn texel_dot(lmax: usize) -> String {
     const LANES: [char; 4] = ['x', 'y', 'z', 'w'];
-    let count = (lmax + 1) * (lmax + 1);
-    let terms: Vec<String> = (0..count)
-        .map(|i| {
-            let f = 1 + 3 * i;
+    let terms: Vec<String> = volume_coefficients(lmax)
+        .into_iter()
+        .enumerate()
+        .map(|(slot, i)| {
+            let f = 1 + 3 * slot;
             let rgb = if f / 4 == (f + 2) / 4 {
                 let lanes: String = (0..3).map(|c| LANES[(f + c) % 4]).collect();
                 format!("t{}.{lanes}", f / 4)
@@ -213,16 +239,25 @@ mod tests {
                 let text = volume_wgsl(lmax, fetch);
                 let count = (lmax + 1) * (lmax + 1);
                 let texels = volume_texels(lmax);
-                // Counted by hand: 1, 4, 9, 16, 25 coefficients, 3 floats
-                // each, plus the validity.
-                assert_eq!(texels, [1, 4, 7, 13, 19][lmax]);
-                for i in 0..count {
-                    // Float 0 is the validity; coefficient i's rgb follow.
-                    let want = vec![1 + 3 * i, 2 + 3 * i, 3 + 3 * i];
+                let kept = volume_coefficients(lmax);
+                // Counted by hand: 1, 4, 9, 16, 25 coefficients less degree
+                // 3's seven (A_3 = 0), 3 floats each, plus the validity.
+                assert_eq!(kept.len(), [1, 4, 9, 9, 18][lmax]);
+                assert_eq!(texels, [1, 4, 7, 7, 14][lmax]);
+                for (slot, &i) in kept.iter().enumerate() {
+                    // Float 0 is the validity; the kept coefficients' rgb
+                    // follow in order.
+                    let want = vec![1 + 3 * slot, 2 + 3 * slot, 3 + 3 * slot];
                     // Twice: volume_sum and probe_sum.
                     assert_eq!(text.matches(&format!("y.y{i} * ")).count(), 2, "{text}");
                     assert_eq!(floats_of(&text, i), want, "lmax {lmax} coefficient {i}");
                     assert!(text.contains(&format!("    y{i}: f32,")), "{text}");
+                }
+                for i in (0..count).filter(|i| !kept.contains(i)) {
+                    // Degree 3: in the basis's recurrence, not in the sums.
+                    assert!((9..16).contains(&i), "{i}");
+                    assert!(!text.contains(&format!("y.y{i} ")), "{text}");
+                    assert!(!text.contains(&format!("    y{i}: f32,")), "{text}");
                 }
                 assert!(!text.contains(&format!("y.y{count} ")), "{text}");
                 for j in 0..texels {
