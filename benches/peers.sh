@@ -22,9 +22,11 @@
 #    statistics, projection, quarter turn for y-up, writing the file)
 #    against the peer pair, OpenEXR's reader plus ducc0's
 #    adjoint_synthesis_2d of the three channels in one Python process
-#    (timed inside the process, so without the interpreter's start and
-#    imports; the pair writes nothing). Medians of 7 runs; ratio =
-#    shlight / pair (below 1: shlight is faster).
+#    timed two ways: inside the process ("pair in", without the
+#    interpreter's start and imports, its memory warm after the first of
+#    the 7 runs), and as a whole process ("pair proc", start to exit, the
+#    way shlight is timed). The pair writes nothing. Medians of 7 runs;
+#    ratios = shlight / pair (below 1: shlight is faster).
 #
 # 2. Against each peer on the generated map below, z-up; what is timed:
 #   shlight   projection alone, in-process (cargo bench --bench projection is
@@ -129,6 +131,18 @@ print(f"{statistics.median(ts) * 1e3:.1f}")
 PY
 }
 
+# The pair as a whole process: interpreter start, imports, read, transform.
+cat >"$DIR/pair.py" <<'PY'
+import os, sys, numpy as np, OpenEXR, ducc0
+path, L = sys.argv[1], int(sys.argv[2])
+with OpenEXR.File(path) as f:
+    ch = f.channels()
+    planes = [ch[c].pixels for c in "RGB"] if "R" in ch else [ch["RGB"].pixels[..., c] for c in range(3)]
+for p in planes:
+    ducc0.sht.experimental.adjoint_synthesis_2d(
+        map=p[None].astype(np.float64), spin=0, lmax=L, geometry="F1", nthreads=os.cpu_count())
+PY
+
 median_ms() { # command... -> median wall time of 7 runs in ms
     "$PY" - "$@" <<'PY'
 import subprocess, sys, time, statistics
@@ -140,14 +154,17 @@ PY
 }
 
 echo
-echo "end to end (ms, medians of 7; ratio = shlight / pair)"
-printf "%-6s %12s %12s %8s %12s %8s\n" lmax "pair" "shlight y" "ratio" "shlight z" "ratio"
+echo "end to end (ms, medians of 7; ratios = shlight / pair in, shlight / pair proc)"
+printf "%-6s %9s %10s %10s %6s %6s %10s %6s %6s\n" lmax "pair in" "pair proc" "shlight y" "y/in" "y/proc" \
+    "shlight z" "z/in" "z/proc"
+ratio() { "$PY" -c "print(f'{$1 / $2:.2f}')"; }
 for L in "${LMAXES[@]}"; do
     P=$(pair_ms "$DIR/map.exr" "$L")
+    Q=$(median_ms "$PY" "$DIR/pair.py" "$DIR/map.exr" "$L")
     Y=$(median_ms "$SHLIGHT" project "$DIR/map.exr" --up y --lmax "$L" -o "$DIR/out.json" --quiet)
     Z=$(median_ms "$SHLIGHT" project "$DIR/map.exr" --up z --lmax "$L" -o "$DIR/out.json" --quiet)
-    printf "%-6s %12s %12s %8s %12s %8s\n" "$L" "$P" "$Y" "$("$PY" -c "print(f'{$Y / $P:.2f}')")" \
-        "$Z" "$("$PY" -c "print(f'{$Z / $P:.2f}')")"
+    printf "%-6s %9s %10s %10s %6s %6s %10s %6s %6s\n" "$L" "$P" "$Q" "$Y" "$(ratio "$Y" "$P")" \
+        "$(ratio "$Y" "$Q")" "$Z" "$(ratio "$Z" "$P")" "$(ratio "$Z" "$Q")"
 done
 
 echo
