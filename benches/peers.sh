@@ -113,12 +113,16 @@ with OpenEXR.File(header, channels) as f:
     f.write(out)
 PY
 
-pair_ms() { # map lmax -> median ms of OpenEXR read + ducc0 over 7 runs
-    "$PY" - "$@" <<'PY'
+# The peer pair: OpenEXR's reader and ducc0 on the three channels. With a
+# third argument RUNS it repeats that many times in this one process and
+# prints the median in ms; without, it runs once and prints nothing (timed
+# from outside, as a whole process).
+cat >"$DIR/pair.py" <<'PY'
 import os, sys, time, statistics, numpy as np, OpenEXR, ducc0
 path, L = sys.argv[1], int(sys.argv[2])
+runs = int(sys.argv[3]) if len(sys.argv) > 3 else 1
 ts = []
-for _ in range(7):
+for _ in range(runs):
     t = time.perf_counter()
     with OpenEXR.File(path) as f:
         ch = f.channels()
@@ -127,21 +131,13 @@ for _ in range(7):
         ducc0.sht.experimental.adjoint_synthesis_2d(
             map=p[None].astype(np.float64), spin=0, lmax=L, geometry="F1", nthreads=os.cpu_count())
     ts.append(time.perf_counter() - t)
-print(f"{statistics.median(ts) * 1e3:.1f}")
+if len(sys.argv) > 3:
+    print(f"{statistics.median(ts) * 1e3:.1f}")
 PY
-}
 
-# The pair as a whole process: interpreter start, imports, read, transform.
-cat >"$DIR/pair.py" <<'PY'
-import os, sys, numpy as np, OpenEXR, ducc0
-path, L = sys.argv[1], int(sys.argv[2])
-with OpenEXR.File(path) as f:
-    ch = f.channels()
-    planes = [ch[c].pixels for c in "RGB"] if "R" in ch else [ch["RGB"].pixels[..., c] for c in range(3)]
-for p in planes:
-    ducc0.sht.experimental.adjoint_synthesis_2d(
-        map=p[None].astype(np.float64), spin=0, lmax=L, geometry="F1", nthreads=os.cpu_count())
-PY
+pair_ms() { # map lmax -> median ms of OpenEXR read + ducc0 over 7 runs in one process
+    "$PY" "$DIR/pair.py" "$1" "$2" 7
+}
 
 median_ms() { # command... -> median wall time of 7 runs in ms
     "$PY" - "$@" <<'PY'

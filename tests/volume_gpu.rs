@@ -384,6 +384,49 @@ fn cast(
         .map(|(k, h)| (k, h.triangle, origin + dir * h.t, h.barycentrics))
 }
 
+/// What a pixel's centre sees ([`pixel_hit`]).
+struct PixelHit {
+    /// Which mesh, triangle, hit point and barycentrics ([`cast`]).
+    mesh: usize,
+    triangle: u32,
+    point: Vec3,
+    bary: [f32; 3],
+    /// The interpolated unit normal, as the fragments have it.
+    normal: Vec3,
+    /// Whether the pixel lies well inside the triangle: the rays a third
+    /// of a pixel away hit it too.
+    inside: bool,
+}
+
+/// What pixel `(i, j)`'s centre sees through `ray` (pixel coordinates to
+/// origin and direction); `None` when the ray meets nothing.
+fn pixel_hit(
+    meshes: &[(&shlight_mesh::Mesh, &shlight_prt::bvh::Bvh)],
+    ray: impl Fn(f32, f32) -> (Vec3, Vec3),
+    i: usize,
+    j: usize,
+) -> Option<PixelHit> {
+    let (o, d) = ray(i as f32 + 0.5, j as f32 + 0.5);
+    let (k, tri, p, bary) = cast(meshes, o, d)?;
+    let mesh = meshes[k].0;
+    let corners = mesh.triangles[tri as usize].map(|v| v as usize);
+    let normal: Vec3 = (0..3).map(|t| mesh.normals[corners[t]] * bary[t]).sum();
+    let inside = [(-0.34, 0.0), (0.34, 0.0), (0.0, -0.34), (0.0, 0.34)]
+        .iter()
+        .all(|(dx, dy)| {
+            let (o, d) = ray(i as f32 + 0.5 + dx, j as f32 + 0.5 + dy);
+            cast(meshes, o, d).is_some_and(|(k2, t2, _, _)| k2 == k && t2 == tri)
+        });
+    Some(PixelHit {
+        mesh: k,
+        triangle: tri,
+        point: p,
+        bary,
+        normal: normal.normalize(),
+        inside,
+    })
+}
+
 #[test]
 fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     use crate::util::{s, shlight_ok, temp_dir, write_obj, write_radiance_rows};
@@ -494,23 +537,21 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     let (mut object_pixels, mut scene_pixels, mut worst) = (0, 0, 0.0f64);
     for j in 1..h - 1 {
         for i in 1..w - 1 {
-            let (o, d) = ray(i as f32 + 0.5, j as f32 + 0.5);
-            let Some((k, tri, p, bary)) = cast(&meshes, o, d) else {
+            let d = ray(i as f32 + 0.5, j as f32 + 0.5).1;
+            // Only pixels well inside one triangle (pixel_hit).
+            let Some(PixelHit {
+                mesh: k,
+                triangle: tri,
+                point: p,
+                bary,
+                normal,
+                inside,
+            }) = pixel_hit(&meshes, ray, i, j)
+            else {
                 continue;
             };
             let mesh = meshes[k].0;
             let corners = mesh.triangles[tri as usize].map(|v| v as usize);
-            // The interpolated unit normal, as the fragments have it.
-            let normal: Vec3 = (0..3).map(|t| mesh.normals[corners[t]] * bary[t]).sum();
-            let normal = normal.normalize();
-            // Only pixels well inside one triangle: the rays a third of a
-            // pixel away hit the same one.
-            let inside = [(-0.34, 0.0), (0.34, 0.0), (0.0, -0.34), (0.0, 0.34)]
-                .iter()
-                .all(|(dx, dy)| {
-                    let (o, d) = ray(i as f32 + 0.5 + dx, j as f32 + 0.5 + dy);
-                    cast(&meshes, o, d).is_some_and(|(k2, t2, _, _)| k2 == k && t2 == tri)
-                });
             let emission = mesh.emission.as_ref().map_or(Vec3::ZERO, |e| e[corners[0]]);
             // Surfaces seen at a grazing angle are skipped: there a pixel
             // spans a long stretch of the surface, and the f32 rounding of
@@ -640,10 +681,17 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
         let mut checked = Vec::new();
         for j in 1..h - 1 {
             for i in 1..w - 1 {
-                let (o, d) = ray(i as f32 + 0.5, j as f32 + 0.5);
+                let d = ray(i as f32 + 0.5, j as f32 + 0.5).1;
                 let got = Vec3::from_slice(&shown.pixels[j * w + i][..3]).as_dvec3();
                 let hidden_got = Vec3::from_slice(&hidden.pixels[j * w + i][..3]).as_dvec3();
-                let Some((k, tri, p, bary)) = cast(&meshes, o, d) else {
+                let Some(PixelHit {
+                    mesh: k,
+                    point: p,
+                    normal,
+                    inside,
+                    ..
+                }) = pixel_hit(&meshes, ray, i, j)
+                else {
                     continue;
                 };
                 if k > 0 {
@@ -653,18 +701,8 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
                 } else {
                     assert_eq!(hidden_got, got, "{fetch:?} pixel ({i}, {j})");
                 }
-                let mesh = meshes[k].0;
-                let corners = mesh.triangles[tri as usize].map(|v| v as usize);
-                let normal: Vec3 = (0..3).map(|t| mesh.normals[corners[t]] * bary[t]).sum();
-                let normal = normal.normalize();
                 // Only pixels well inside one triangle, not at a grazing
                 // angle (as in the Cornell box test above).
-                let inside = [(-0.34, 0.0), (0.34, 0.0), (0.0, -0.34), (0.0, 0.34)]
-                    .iter()
-                    .all(|(dx, dy)| {
-                        let (o, d) = ray(i as f32 + 0.5 + dx, j as f32 + 0.5 + dy);
-                        cast(&meshes, o, d).is_some_and(|(k2, t2, _, _)| k2 == k && t2 == tri)
-                    });
                 if !inside || normal.dot(d).abs() < GRAZING {
                     continue;
                 }
