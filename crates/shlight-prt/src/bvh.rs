@@ -194,7 +194,7 @@ pub(crate) const INNER: u32 = 1 << 31;
 #[derive(Clone, Debug)]
 pub struct Bvh {
     pub(crate) nodes: Vec<Node>,
-    triangles: Vec<[Vec3; 3]>,
+    pub(crate) triangles: Vec<[Vec3; 3]>,
     pub(crate) corners: Vec<[u32; 3]>,
     /// The largest vertex index of any triangle.
     pub(crate) max_corner: Option<u32>,
