@@ -735,11 +735,14 @@ mod avx2 {
     ) -> PacketHits {
         unsafe {
             nearest(tree, dir, packet, |rays, k, mask, t_max| {
-                let [a, b, c] = tree
-                    .bvh
-                    .triangles
-                    .get_unchecked(k)
-                    .map(|p| dir.to_ray_space(p));
+                // Not `map` with a closure: core's `map` has no AVX2, so a
+                // closure called from it would not be inlined.
+                let [pa, pb, pc] = *tree.bvh.triangles.get_unchecked(k);
+                let (a, b, c) = (
+                    dir.to_ray_space(pa),
+                    dir.to_ray_space(pb),
+                    dir.to_ray_space(pc),
+                );
                 rays.hits_corners(&a, &b, &c, mask, t_max)
             })
         }
