@@ -549,6 +549,28 @@ mod avx2 {
                     redo_in_f64(&e, &mut uvw, zeros);
                     (u, v, w) = (load(&uvw[0]), load(&uvw[1]), load(&uvw[2]));
                 }
+                // Inside when the edge functions do not differ in sign:
+                // most tests end here, before the division.
+                let outside = _mm256_and_ps(
+                    _mm256_or_ps(
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
+                    ),
+                    _mm256_or_ps(
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
+                    ),
+                );
+                let inside = !bits(outside) & live;
+                if inside == 0 {
+                    return (0, zero, [u, v, w], zero);
+                }
                 let one = _mm256_set1_ps(1.0);
                 let inv = _mm256_div_ps(one, _mm256_add_ps(_mm256_add_ps(u, v), w));
                 let t = _mm256_mul_ps(
@@ -564,20 +586,6 @@ mod avx2 {
                 let abs_mask = _mm256_set1_ps(-0.0);
                 let infinity = _mm256_set1_ps(f32::INFINITY);
                 let ok = {
-                    let neg = _mm256_or_ps(
-                        _mm256_or_ps(
-                            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
-                            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
-                        ),
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
-                    );
-                    let pos = _mm256_or_ps(
-                        _mm256_or_ps(
-                            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
-                            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
-                        ),
-                        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
-                    );
                     // 1/det is finite exactly when det != 0.
                     let finite =
                         _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, inv), infinity);
@@ -585,9 +593,9 @@ mod avx2 {
                         _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
                         _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max),
                     );
-                    _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_and_ps(finite, ahead))
+                    _mm256_and_ps(finite, ahead)
                 };
-                (bits(ok) & live, t, [u, v, w], inv)
+                (bits(ok) & inside, t, [u, v, w], inv)
             }
         }
     }
