@@ -685,13 +685,85 @@ pub fn bake_with_occluder(
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Transfer {
+    let built = occluder.map(|(coarse, map)| (Occluder::new(coarse), map));
+    let occluder = built.as_ref().map(|(o, map)| (o, *map));
     bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// [`bake_with_occluder`] with the occluder made ready already
+/// ([`Occluder::new`] of the mesh `mesh` was subdivided from), for callers
+/// that cast rays of their own against it too.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_against(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// A mesh made ready to cast rays against: its vertices in Morton order
+/// (a direction's ray-space copies of them are then read near one
+/// another), the packet hierarchy over its triangles, and their face
+/// normals (a hit on a triangle's back is blocked).
+#[derive(Clone, Debug)]
+pub struct Occluder {
+    positions: Vec<Vec3>,
+    bvh: PacketBvh,
+    faces: Vec<Vec3>,
+}
+
+impl Occluder {
+    /// `mesh` made ready.
+    #[must_use]
+    pub fn new(mesh: &Mesh) -> Self {
+        let order = morton_order(&mesh.positions, mesh.bounds());
+        let mut rank = vec![0u32; order.len()];
+        for (s, &v) in order.iter().enumerate() {
+            rank[v as usize] = s as u32;
+        }
+        let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
+        let triangles: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| rank[i as usize]))
+            .collect();
+        Self {
+            bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
+            positions,
+            faces: face_normals(mesh),
+        }
+    }
+
+    /// The vertices in Morton order: the positions the hierarchy's corner
+    /// indices refer to (what [`PacketBvh::closest`] takes in ray space).
+    #[must_use]
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// The packet hierarchy; its hits name the mesh's triangles.
+    #[must_use]
+    pub fn bvh(&self) -> &PacketBvh {
+        &self.bvh
+    }
+
+    /// Whether a ray along `dir` meets triangle `triangle` (the mesh's
+    /// index) on its front.
+    #[must_use]
+    pub fn is_front(&self, triangle: u32, dir: Vec3) -> bool {
+        self.faces[triangle as usize].dot(dir) < 0.0
+    }
 }
 
 /// [`bake_with_occluder`], the bounces gathered with `kernels`.
 fn bake_with(
     mesh: &Mesh,
-    occluder: Option<(&Mesh, &Subdivision)>,
+    occluder: Option<(&Occluder, &Subdivision)>,
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     kernels: Kernels,
@@ -733,7 +805,6 @@ fn bake_with(
     for (s, &v) in order.iter().enumerate() {
         rank[v as usize] = s as u32;
     }
-    let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
     let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
     let words = n_vertices.div_ceil(64);
     // Bit s of row j: the ray from the vertex of rank s along direction j
@@ -742,40 +813,16 @@ fn bake_with(
     let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
     let rays = AtomicU64::new(0);
     if shadowed {
-        // What the rays are cast against: `mesh` (its vertices in rank
-        // order), or the occluder (in its own Morton order), with its face
-        // normals for the one-sided test.
-        let (cast_positions, cast_triangles, faces) = match occluder {
-            None => (
-                positions.clone(),
-                mesh.triangles
-                    .iter()
-                    .map(|t| t.map(|i| rank[i as usize]))
-                    .collect::<Vec<[u32; 3]>>(),
-                face_normals(mesh),
-            ),
-            Some((coarse, _)) => {
-                let order = morton_order(&coarse.positions, coarse.bounds());
-                let mut rank = vec![0u32; order.len()];
-                for (s, &v) in order.iter().enumerate() {
-                    rank[v as usize] = s as u32;
-                }
-                (
-                    order
-                        .iter()
-                        .map(|&v| coarse.positions[v as usize])
-                        .collect(),
-                    coarse
-                        .triangles
-                        .iter()
-                        .map(|t| t.map(|i| rank[i as usize]))
-                        .collect(),
-                    face_normals(coarse),
-                )
+        // What the rays are cast against: `mesh`, or the occluder.
+        let own;
+        let (occluder, map) = match occluder {
+            Some((o, m)) => (o, Some(m)),
+            None => {
+                own = Occluder::new(mesh);
+                (&own, None)
             }
         };
-        let map = occluder.map(|(_, m)| m);
-        let bvh = PacketBvh::new(Bvh::new(&cast_positions, &cast_triangles));
+        let (cast_positions, bvh, faces) = (&occluder.positions, &occluder.bvh, &occluder.faces);
         let start = ray_origins(mesh);
         let done = AtomicUsize::new(0);
         visible
@@ -1098,7 +1145,16 @@ mod tests {
             seed: 5,
             emission: fine.emission.clone(),
         };
-        let run = |kernels| bake_with(&fine, Some((&room, &map)), &options, &|_, _, _| {}, kernels);
+        let occluder = Occluder::new(&room);
+        let run = |kernels| {
+            bake_with(
+                &fine,
+                Some((&occluder, &map)),
+                &options,
+                &|_, _, _| {},
+                kernels,
+            )
+        };
         let (portable, simd) = (run(Kernels::Portable), run(Kernels::detect()));
         let max = portable.coeffs.iter().fold(0.0f32, |m, x| m.max(x.abs()));
         for (a, b) in portable.coeffs.iter().zip(&simd.coeffs) {

@@ -42,7 +42,8 @@
 //! # Casting and summing
 //! The probes' rays along one direction are parallel: the probes are taken
 //! eight at a time in Morton order of their grid cells and traced as one
-//! [`Packet`] ([`PacketBvh::closest`]) against the scene's own triangles,
+//! [`Packet`] ([`shlight_prt::packet::PacketBvh::closest`]) against the
+//! scene's own triangles,
 //! not the subdivided ones (the same surface; a room of large quads has a
 //! few dozen instead of a hundred thousand), and each front hit is found
 //! in the subdivided mesh by [`Subdivision::locate_each`]; the surfaces'
@@ -76,9 +77,8 @@ use rayon::prelude::*;
 use shlight_core::montecarlo::stratified_directions;
 use shlight_core::{ShBasis, sh_count};
 use shlight_mesh::{Mesh, Subdivision};
-use shlight_prt::bvh::Bvh;
-use shlight_prt::packet::{Direction, LANES, Packet, PacketBvh};
-use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode};
+use shlight_prt::packet::{Direction, LANES, Packet};
+use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode, Occluder};
 
 use crate::{Grid, ProbeVolume, VolumeError};
 
@@ -398,12 +398,8 @@ fn probe_order(grid: &Grid) -> Vec<u32> {
 /// per vertex.
 struct Surface {
     mesh: Mesh,
-    /// The scene's hierarchy before subdivision, over its vertices in
-    /// Morton order (`ranked`).
-    bvh: PacketBvh,
-    ranked: Vec<Vec3>,
-    /// The scene's face normals (unnormalised) before subdivision.
-    faces: Vec<Vec3>,
+    /// The scene before subdivision, made ready to cast against.
+    occluder: Occluder,
     /// Where the scene's triangles went in `mesh`.
     map: Subdivision,
     /// Per vertex its `channels x nc` transfer and (when the scene emits)
@@ -450,42 +446,19 @@ impl Surface {
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
         };
-        let t = transfer::bake_with_occluder(
+        // The surfaces' rays and the probes' are cast against the scene's
+        // own triangles (the same surface as the subdivided ones, and far
+        // fewer of them when it was subdivided), made ready once; the hits
+        // are then found in the subdivided mesh.
+        let occluder = Occluder::new(coarse);
+        let t = transfer::bake_against(
             &mesh,
-            Some((coarse, &map)),
+            Some((&occluder, &map)),
             &bake_options,
             &|stage, done, total| {
                 progress(Stage::Surface(stage), done, total);
             },
         );
-        // The probes' rays are cast against the scene's own triangles (the
-        // same surface as the subdivided ones, and far fewer of them when
-        // it was subdivided) through the packet layout, over the vertices
-        // in Morton order so that a direction's ray-space vertices are read
-        // near one another; the hits are then found in the subdivided mesh.
-        let order = transfer::morton_order(&coarse.positions, coarse.bounds());
-        let mut rank = vec![0u32; order.len()];
-        for (r, &v) in order.iter().enumerate() {
-            rank[v as usize] = r as u32;
-        }
-        let ranked: Vec<Vec3> = order
-            .iter()
-            .map(|&v| coarse.positions[v as usize])
-            .collect();
-        let triangles: Vec<[u32; 3]> = coarse
-            .triangles
-            .iter()
-            .map(|t| t.map(|i| rank[i as usize]))
-            .collect();
-        let bvh = PacketBvh::new(Bvh::new(&ranked, &triangles));
-        let faces = coarse
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| coarse.positions[i as usize]);
-                (b - a).cross(c - a)
-            })
-            .collect();
         let stride = t.channels * sh_count(t.lmax);
         let len = stride + if t.emitted.is_some() { 3 } else { 0 };
         let lines = len.div_ceil(LINE);
@@ -498,9 +471,7 @@ impl Surface {
             }
         }
         Self {
-            bvh,
-            ranked,
-            faces,
+            occluder,
             map,
             records,
             len,
@@ -526,7 +497,8 @@ impl Surface {
     /// ([`Subdivision::locate_each`]). A scene with few vertices (their
     /// ray-space copies for the whole block fit [`LOCAL_FLOATS`]) is put in
     /// ray space once per direction and block; a larger one triangle by
-    /// triangle as the rays meet it ([`PacketBvh::closest_direct`]).
+    /// triangle as the rays meet it
+    /// ([`shlight_prt::packet::PacketBvh::closest_direct`]).
     fn cast(
         &self,
         chunk: &[u32],
@@ -535,7 +507,8 @@ impl Surface {
         progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Hit> {
         let n = chunk.len();
-        let nv = self.ranked.len();
+        let (bvh, ranked) = (self.occluder.bvh(), self.occluder.positions());
+        let nv = ranked.len();
         let small = nv * 4 * BLOCK <= LOCAL_FLOATS;
         let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
         hits.par_chunks_mut(n * BLOCK)
@@ -549,7 +522,7 @@ impl Surface {
                     local.clear();
                     if small {
                         for dir in &directions {
-                            local.extend(self.ranked.iter().map(|p| dir.to_ray_space(*p)));
+                            local.extend(ranked.iter().map(|p| dir.to_ray_space(*p)));
                         }
                     }
                     for (g, eight) in chunk.chunks(LANES).enumerate() {
@@ -561,9 +534,9 @@ impl Surface {
                         for (jj, dir) in directions.iter().enumerate() {
                             let packet = Packet::new(dir, origins);
                             let found = if small {
-                                self.bvh.closest(dir, &local[jj * nv..][..nv], &packet)
+                                bvh.closest(dir, &local[jj * nv..][..nv], &packet)
                             } else {
-                                self.bvh.closest_direct(dir, &packet)
+                                bvh.closest_direct(dir, &packet)
                             };
                             for k in 0..eight.len() {
                                 if found.mask >> k & 1 == 0 {
@@ -571,7 +544,7 @@ impl Surface {
                                 }
                                 let coarse = found.triangle[k];
                                 let slot = (g * LANES + k) * len + jj;
-                                if self.faces[coarse as usize].dot(dir.dir()) >= 0.0 {
+                                if !self.occluder.is_front(coarse, dir.dir()) {
                                     out[slot] = Hit::BACK;
                                 } else {
                                     front.push((coarse, found.barycentrics[k]));
