@@ -823,7 +823,9 @@ fn bake_with(
             }
         };
         let (cast_positions, bvh, faces) = (&occluder.positions, &occluder.bvh, &occluder.faces);
-        let start = ray_origins(mesh);
+        // Where the rays start, by rank.
+        let origins = ray_origins(mesh);
+        let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
         let done = AtomicUsize::new(0);
         visible
             .par_chunks_mut(words.max(1))
@@ -847,7 +849,7 @@ fn bake_with(
                     for eight in facing.chunks(LANES) {
                         let mut origins = [Vec3::ZERO; LANES];
                         for (o, &s) in origins.iter_mut().zip(eight) {
-                            *o = start[order[s as usize] as usize];
+                            *o = start[s as usize];
                         }
                         let packet = Packet::new(&dir, &origins[..eight.len()]);
                         let escaped = if keep_hits {
