@@ -43,11 +43,12 @@
 //! The probes' rays along one direction are parallel: the probes are taken
 //! eight at a time in Morton order of their grid cells and traced as one
 //! [`Packet`] ([`shlight_prt::packet::PacketBvh::closest`]) against the
-//! scene's own triangles,
-//! not the subdivided ones (the same surface; a room of large quads has a
-//! few dozen instead of a hundred thousand), and each front hit is found
-//! in the subdivided mesh by [`Subdivision::locate_each`]; the surfaces'
-//! transfer is cast the same way ([`transfer::bake_with_occluder`]).
+//! scene's own triangles, not the subdivided ones (the same surface; a room
+//! of large quads has a few dozen instead of a hundred thousand), and each
+//! front hit is found in the subdivided mesh by
+//! [`Subdivision::locate_each`]; the surfaces' transfer is cast the same
+//! way, against the same hierarchy ([`transfer::Occluder`],
+//! [`transfer::bake_against`]).
 //!
 //! The directions are cut into blocks of 64 that are small patches of the
 //! sphere (`direction_order`: halves across the widest axis, down to
