@@ -8,15 +8,19 @@
 //! midpoint for both triangles that use it, so no T-junction or crack
 //! appears and a closed mesh stays closed.
 //!
-//! [`Mesh::subdivided_with_map`] also keeps the bisection tree of every
-//! original triangle ([`Subdivision`]): a point on an original triangle
-//! (its barycentric weights) is found in the subdivided mesh by one side
-//! test per split, so rays can be cast against the original triangles,
-//! far fewer, and the light read from the subdivided ones.
+//! [`Mesh::subdivided_with_map`] also maps the original triangles to the
+//! subdivided ones ([`Subdivision`]): a point on an original triangle (its
+//! barycentric weights) is found in the subdivided mesh through a grid over
+//! the original triangle's barycentric plane, usually by reading one cell
+//! and testing one or two candidates, so rays can be cast against the
+//! original triangles, far fewer, and the light read from the subdivided
+//! ones.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::Mesh;
 
@@ -54,7 +58,7 @@ impl Mesh {
         // sharing vertex indices (a box with flat normals) are split
         // alike; each index edge gets its own midpoint vertex (keeping
         // that side's normal and colour).
-        let mut canonical: HashMap<[u32; 3], u32> = HashMap::new();
+        let mut canonical: HashMap<[u32; 3], u32, Fast> = HashMap::default();
         let mut ids: Vec<u32> = out
             .positions
             .iter()
@@ -65,8 +69,8 @@ impl Mesh {
                     .or_insert(next)
             })
             .collect();
-        let mut split_edges: std::collections::HashSet<(u32, u32)> = Default::default();
-        let mut midpoints: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut split_edges: HashSet<(u32, u32), Fast> = HashSet::default();
+        let mut midpoints: HashMap<(u32, u32), u32, Fast> = HashMap::default();
         let mut pending: Vec<([u32; 3], u32)> = std::mem::take(&mut out.triangles)
             .into_iter()
             .zip(0..)
@@ -144,29 +148,101 @@ impl Mesh {
 
 /// Where the triangles of a subdivided mesh lie in the original ones
 /// ([`Mesh::subdivided_with_map`]): per original triangle, its subdivided
-/// triangles in its own barycentric plane `(w1, w2)`, bucketed in a grid of
-/// about one cell per triangle, so that finding a point's triangle tests a
-/// few candidates.
+/// triangles (its *pieces*) in its own barycentric plane `(w1, w2)`,
+/// bucketed in a grid of about two cells per piece.
+///
+/// A cell lists the pieces that overlap it with a positive area (no side of
+/// the piece has the whole cell outside it): the one that holds the cell's
+/// centre and one other are held in the cell itself, the rest in a list
+/// after it. Finding a point reads its cell and those two pieces (nine
+/// points in ten are in one of them), memory reads that
+/// [`locate_each`](Self::locate_each) starts for a few dozen points at
+/// once so that their cache misses overlap. A piece holds its corner 0 and
+/// the inverse of its edge matrix: a candidate's weights are two dot
+/// products in `f32`. The grids are built in parallel, one original
+/// triangle per task.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Subdivision {
     /// Per original triangle: cells per axis (0: not split, `first` is then
     /// its triangle) and its first cell in `cells`.
     grids: Vec<(u32, u32)>,
-    /// Per cell, its first entry in `entries` (one more at each grid's end).
-    cells: Vec<u32>,
-    /// The pieces meeting each cell: indices into `pieces`.
+    /// Per original triangle, its first piece in `pieces` (one more at the
+    /// end).
+    spans: Vec<u32>,
+    /// The cells of every grid, row by row (`w2` rows, `w1` columns), and
+    /// one more at each grid's end that ends its last cell's `rest`.
+    cells: Vec<Cell>,
+    /// The cells' candidates after their first two.
     entries: Vec<u32>,
     /// Each original triangle's pieces in the order of its bisection tree
     /// (depth first: neighbours in space are near in memory).
     pieces: Vec<Piece>,
 }
 
-/// A subdivided triangle and its corners in its original triangle's
-/// `(w1, w2)` plane.
+/// Cells per piece of a [`Subdivision`]'s grids (over the original
+/// triangle, which covers half of its grid's square). Two: a cell is about
+/// half a piece and meets two or three of them, and the piece holding its
+/// centre holds about two points in three of it (the two candidates a cell
+/// holds, about nine in ten).
+const CELLS_PER_PIECE: f64 = 2.0;
+
+/// No piece: a cell that no piece overlaps with a positive area.
+const NONE: u32 = u32::MAX;
+
+/// One cell of a [`Subdivision`] grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
+struct Cell {
+    /// The piece that holds the cell's centre ([`NONE`]: no piece overlaps
+    /// the cell).
+    first: u32,
+    /// Another piece that overlaps it ([`NONE`]: no other).
+    second: u32,
+    /// Its other candidates: `entries[rest..]` up to the next cell's `rest`.
+    rest: u32,
+}
+
+/// A subdivided triangle in its original triangle's `(w1, w2)` plane: a
+/// point `q`'s weights of its corners 1 and 2 are `inverse (q - origin)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
 struct Piece {
+    /// Corner 0.
+    origin: [f32; 2],
+    /// The inverse of the matrix whose columns are the edges from corner 0
+    /// to corners 1 and 2, row-major.
+    inverse: [f32; 4],
+    /// Its triangle in the subdivided mesh.
     triangle: u32,
-    corners: [[f32; 2]; 3],
+}
+
+impl Piece {
+    /// The piece with corners `p` (in the subdivided triangle's order).
+    fn new(triangle: u32, p: [[f64; 2]; 3]) -> Self {
+        let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1]];
+        let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1]];
+        let det = e1[0] * e2[1] - e1[1] * e2[0];
+        Self {
+            origin: p[0].map(|x| x as f32),
+            inverse: [e2[1] / det, -e2[0] / det, -e1[1] / det, e1[0] / det].map(|x| x as f32),
+            triangle,
+        }
+    }
+
+    /// The barycentric weights of `q` (all `>= 0` inside the piece).
+    #[inline]
+    fn weights(&self, q: [f32; 2]) -> [f32; 3] {
+        let d = [q[0] - self.origin[0], q[1] - self.origin[1]];
+        let [a, b, c, e] = self.inverse;
+        let u1 = a * d[0] + b * d[1];
+        let u2 = c * d[0] + e * d[1];
+        [1.0 - u1 - u2, u1, u2]
+    }
+}
+
+/// The smallest of three weights.
+#[inline]
+fn least(w: [f32; 3]) -> f32 {
+    w[0].min(w[1]).min(w[2])
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -195,14 +271,129 @@ fn prefetch<T>(x: &T) {
 }
 
 /// The cell of `x` (in 0..=1) in a grid of `r` cells per axis.
-fn cell_of(x: f32, r: usize) -> usize {
+fn cell_of(x: f64, r: usize) -> usize {
     // Truncation is the floor for x >= 0 (and NaN goes to cell 0).
-    ((f64::from(x) * r as f64).max(0.0) as usize).min(r - 1)
+    ((x * r as f64).max(0.0) as usize).min(r - 1)
 }
 
-/// `(a - o) x (b - o)`.
-fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+/// One split triangle's pieces and grid, indices local to it.
+struct Part {
+    r: u32,
+    pieces: Vec<Piece>,
+    /// `r * r` cells and the one that ends the last.
+    cells: Vec<Cell>,
+    entries: Vec<u32>,
+}
+
+impl Part {
+    /// The pieces of the bisection tree at `root` (depth first) and their
+    /// grid: each cell lists the pieces that overlap it with a positive
+    /// area, the largest overlap first.
+    fn new(nodes: &[Node], root: usize) -> Self {
+        let mut pieces = Vec::new();
+        let mut corners: Vec<[[f64; 2]; 3]> = Vec::new();
+        let mut stack = vec![(root, [[0.0f64, 0.0], [1.0, 0.0], [0.0, 1.0]])];
+        while let Some((n, p)) = stack.pop() {
+            match nodes[n] {
+                Node::Leaf(triangle) => {
+                    pieces.push(Piece::new(triangle, p));
+                    corners.push(p);
+                }
+                Node::Split { edge, children } => {
+                    let i = usize::from(edge);
+                    let (a, b, c) = (p[i], p[(i + 1) % 3], p[(i + 2) % 3]);
+                    let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                    stack.push((children as usize + 1, [m, b, c]));
+                    stack.push((children as usize, [a, m, c]));
+                }
+            }
+        }
+        // The triangle covers half of the grid's square.
+        let r = (2.0 * CELLS_PER_PIECE * corners.len() as f64).sqrt().ceil() as usize;
+        let size = 1.0 / r as f64;
+        // (cell, whether the piece holds the cell's centre, piece), per
+        // piece in order.
+        let mut overlaps: Vec<(u32, bool, u32)> = Vec::with_capacity(4 * corners.len());
+        for (k, p) in corners.iter().enumerate() {
+            let lo = [0, 1].map(|a| p.iter().map(|c| c[a]).fold(1.0, f64::min));
+            let hi = [0, 1].map(|a| p.iter().map(|c| c[a]).fold(0.0, f64::max));
+            for y in cell_of(lo[1], r)..=cell_of(hi[1], r) {
+                for x in cell_of(lo[0], r)..=cell_of(hi[0], r) {
+                    let (x0, y0) = (x as f64 * size, y as f64 * size);
+                    let (x1, y1) = (x0 + size, y0 + size);
+                    if hi[0] <= x0 || lo[0] >= x1 || hi[1] <= y0 || lo[1] >= y1 {
+                        continue;
+                    }
+                    if let Some(centre) = overlaps_box(p, [x0, y0], [x1, y1]) {
+                        overlaps.push(((y * r + x) as u32, centre, k as u32));
+                    }
+                }
+            }
+        }
+        // Grouped by cell (a counting sort, pieces in order within a
+        // cell), the piece holding the centre first.
+        let mut start = vec![0u32; r * r + 1];
+        for o in &overlaps {
+            start[o.0 as usize + 1] += 1;
+        }
+        for c in 0..r * r {
+            start[c + 1] += start[c];
+        }
+        let mut grouped = vec![(0u32, false); overlaps.len()];
+        let mut at = start.clone();
+        for &(c, centre, k) in &overlaps {
+            grouped[at[c as usize] as usize] = (k, centre);
+            at[c as usize] += 1;
+        }
+        let mut cells = Vec::with_capacity(r * r + 1);
+        let mut entries = Vec::with_capacity(overlaps.len());
+        for c in 0..r * r {
+            let list = &grouped[start[c] as usize..start[c + 1] as usize];
+            let first = list.iter().position(|o| o.1).unwrap_or(0);
+            let mut others = list
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != first)
+                .map(|(_, o)| o.0);
+            cells.push(Cell {
+                first: list.get(first).map_or(NONE, |o| o.0),
+                second: others.next().unwrap_or(NONE),
+                rest: entries.len() as u32,
+            });
+            entries.extend(others);
+        }
+        cells.push(Cell {
+            first: NONE,
+            second: NONE,
+            rest: entries.len() as u32,
+        });
+        Self {
+            r: r as u32,
+            pieces,
+            cells,
+            entries,
+        }
+    }
+}
+
+/// Whether the counter-clockwise triangle `p` and the box `lo..hi` (which
+/// overlap on both axes) share a positive area, and if so whether the
+/// triangle holds the box's centre: no side of the triangle has the whole
+/// box on its outside (the separating axes of a triangle and a box that
+/// are left).
+fn overlaps_box(p: &[[f64; 2]; 3], lo: [f64; 2], hi: [f64; 2]) -> Option<bool> {
+    let corners = [lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+    let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+    let mut centre = true;
+    for i in 0..3 {
+        let (a, b) = (p[i], p[(i + 1) % 3]);
+        let side = |q: [f64; 2]| (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]);
+        if corners.iter().all(|&q| side(q) <= 0.0) {
+            return None;
+        }
+        centre &= side(mid) >= 0.0;
+    }
+    Some(centre)
 }
 
 impl Subdivision {
@@ -210,6 +401,7 @@ impl Subdivision {
     fn unsplit(n: usize) -> Self {
         Self {
             grids: (0..n as u32).map(|t| (0, t)).collect(),
+            spans: vec![0; n + 1],
             cells: Vec::new(),
             entries: Vec::new(),
             pieces: Vec::new(),
@@ -217,64 +409,42 @@ impl Subdivision {
     }
 
     /// The grids of the bisection trees `nodes`, nodes `0..roots` the
-    /// original triangles' roots.
+    /// original triangles' roots (split triangles in parallel).
     fn from_trees(nodes: &[Node], roots: usize) -> Self {
+        let parts: Vec<Option<Part>> = (0..roots)
+            .into_par_iter()
+            .map(|root| match nodes[root] {
+                Node::Leaf(_) => None,
+                Node::Split { .. } => Some(Part::new(nodes, root)),
+            })
+            .collect();
         let mut out = Self {
             grids: Vec::with_capacity(roots),
+            spans: Vec::with_capacity(roots + 1),
             cells: Vec::new(),
             entries: Vec::new(),
             pieces: Vec::new(),
         };
-        let mut stack = Vec::new();
-        let mut bucketed: Vec<(u32, u32)> = Vec::new();
-        for root in 0..roots {
-            if let Node::Leaf(t) = nodes[root] {
-                out.grids.push((0, t));
+        for (root, part) in parts.into_iter().enumerate() {
+            out.spans.push(out.pieces.len() as u32);
+            let Some(part) = part else {
+                if let Node::Leaf(t) = nodes[root] {
+                    out.grids.push((0, t));
+                }
                 continue;
-            }
-            let base = out.pieces.len();
-            stack.push((root, [[0.0f64, 0.0], [1.0, 0.0], [0.0, 1.0]]));
-            while let Some((n, p)) = stack.pop() {
-                match nodes[n] {
-                    Node::Leaf(triangle) => out.pieces.push(Piece {
-                        triangle,
-                        corners: p.map(|c| c.map(|x| x as f32)),
-                    }),
-                    Node::Split { edge, children } => {
-                        let i = usize::from(edge);
-                        let (a, b, c) = (p[i], p[(i + 1) % 3], p[(i + 2) % 3]);
-                        let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-                        stack.push((children as usize + 1, [m, b, c]));
-                        stack.push((children as usize, [a, m, c]));
-                    }
-                }
-            }
-            // About one cell per piece over the half of the square the
-            // triangle covers.
-            let count = out.pieces.len() - base;
-            let r = (1.42 * (count as f64).sqrt()).ceil() as usize;
-            let cell = |x: f32| cell_of(x, r);
-            bucketed.clear();
-            for (k, piece) in out.pieces[base..].iter().enumerate() {
-                let lo = [0, 1].map(|a| piece.corners.iter().map(|c| c[a]).fold(1.0, f32::min));
-                let hi = [0, 1].map(|a| piece.corners.iter().map(|c| c[a]).fold(0.0, f32::max));
-                for y in cell(lo[1])..=cell(hi[1]) {
-                    for x in cell(lo[0])..=cell(hi[0]) {
-                        bucketed.push(((y * r + x) as u32, (base + k) as u32));
-                    }
-                }
-            }
-            bucketed.sort_unstable();
-            out.grids.push((r as u32, out.cells.len() as u32));
-            let mut next = 0;
-            for c in 0..=r * r {
-                out.cells.push(out.entries.len() as u32);
-                while next < bucketed.len() && bucketed[next].0 as usize == c {
-                    out.entries.push(bucketed[next].1);
-                    next += 1;
-                }
-            }
+            };
+            let (pieces, entries) = (out.pieces.len() as u32, out.entries.len() as u32);
+            out.grids.push((part.r, out.cells.len() as u32));
+            let shift = |k: u32| if k == NONE { NONE } else { k + pieces };
+            out.cells.extend(part.cells.iter().map(|c| Cell {
+                first: shift(c.first),
+                second: shift(c.second),
+                rest: c.rest + entries,
+            }));
+            out.entries.extend(part.entries.iter().map(|k| k + pieces));
+            out.pieces.extend(part.pieces);
         }
+        out.spans.push(out.pieces.len() as u32);
         out
     }
 
@@ -284,34 +454,62 @@ impl Subdivision {
         self.grids.len()
     }
 
-    /// [`locate`](Self::locate) for each of `points` (`(triangle, w)`),
-    /// into `out` (cleared first). The points' memory reads are started
-    /// together, so that their cache misses overlap.
-    pub fn locate_each(&self, points: &[(u32, [f32; 3])], out: &mut Vec<Option<(u32, [f32; 3])>>) {
-        out.clear();
-        let cell = |&(t, w): &(u32, [f32; 3])| match self.grids.get(t as usize) {
+    /// The cell of the point of original triangle `triangle` with weights
+    /// `w`, when that triangle was split.
+    #[inline]
+    fn cell(&self, triangle: u32, w: [f32; 3]) -> Option<usize> {
+        match self.grids.get(triangle as usize) {
             Some(&(r, first)) if r > 0 => {
                 let r = r as usize;
-                Some(first as usize + cell_of(w[2], r) * r + cell_of(w[1], r))
+                let (x, y) = (f64::from(w[1]), f64::from(w[2]));
+                Some(first as usize + cell_of(y, r) * r + cell_of(x, r))
             }
             _ => None,
-        };
-        for c in points.iter().filter_map(cell) {
-            prefetch(&self.cells[c]);
         }
-        for c in points.iter().filter_map(cell) {
-            if let Some(&k) = self.entries.get(self.cells[c] as usize) {
-                prefetch(&self.pieces[k as usize]);
+    }
+
+    /// [`locate`](Self::locate) for each of `points` (`(triangle, w)`),
+    /// into `out` (cleared first). The points' memory reads are started
+    /// together, a few dozen points at a time (their cells, then their
+    /// first candidates), so that their cache misses overlap.
+    pub fn locate_each(&self, points: &[(u32, [f32; 3])], out: &mut Vec<Option<(u32, [f32; 3])>>) {
+        const BATCH: usize = 32;
+        out.clear();
+        out.reserve(points.len());
+        for batch in points.chunks(BATCH) {
+            let mut at = [usize::MAX; BATCH];
+            for (a, &(t, w)) in at.iter_mut().zip(batch) {
+                if let Some(c) = self.cell(t, w) {
+                    prefetch(&self.cells[c]);
+                    *a = c;
+                }
             }
+            for &c in &at[..batch.len()] {
+                if c != usize::MAX {
+                    let cell = &self.cells[c];
+                    for k in [cell.first, cell.second] {
+                        if k != NONE {
+                            prefetch(&self.pieces[k as usize]);
+                        }
+                    }
+                }
+            }
+            out.extend(at.iter().zip(batch).map(|(&c, &(t, w))| {
+                if c == usize::MAX {
+                    self.locate(t, w)
+                } else {
+                    self.locate_in(t as usize, c, [w[1], w[2]])
+                }
+            }));
         }
-        out.extend(points.iter().map(|&(t, w)| self.locate(t, w)));
     }
 
     /// The subdivided triangle holding the point of original triangle
     /// `triangle` with barycentric weights `w` (of its corners in order),
     /// and the point's weights in that triangle; `None` when `triangle` is
     /// not an original triangle. A point on a cut goes to either side
-    /// (the two agree there).
+    /// (the two agree there); a point just outside the original triangle
+    /// (by rounding) to the piece it is least outside of.
     #[must_use]
     pub fn locate(&self, triangle: u32, w: [f32; 3]) -> Option<(u32, [f32; 3])> {
         let &(r, first) = self.grids.get(triangle as usize)?;
@@ -319,34 +517,89 @@ impl Subdivision {
             // Not split: the weights as they are.
             return Some((first, w));
         }
-        let r = r as usize;
-        let c = first as usize + cell_of(w[2], r) * r + cell_of(w[1], r);
-        let q = [f64::from(w[1]), f64::from(w[2])];
-        // The candidate the point is most inside of (all weights >= 0 but
-        // for rounding on a cut).
-        let mut best = None;
-        let mut best_min = f64::NEG_INFINITY;
-        for &k in &self.entries[self.cells[c] as usize..self.cells[c + 1] as usize] {
+        let c = self.cell(triangle, w)?;
+        self.locate_in(triangle as usize, c, [w[1], w[2]])
+    }
+
+    /// The piece of original triangle `t` holding `q`, from the candidates
+    /// of its cell `c`: the first that holds it, or the one it is least
+    /// outside of (a point on a cut, or outside by rounding); `None` when
+    /// `q` is not finite.
+    #[inline]
+    fn locate_in(&self, t: usize, c: usize, q: [f32; 2]) -> Option<(u32, [f32; 3])> {
+        if !(q[0].is_finite() && q[1].is_finite()) {
+            return None;
+        }
+        let cell = self.cells[c];
+        if cell.first == NONE {
+            // Only past the triangle's long side, by rounding.
+            return Some(self.nearest(t, q));
+        }
+        let piece = &self.pieces[cell.first as usize];
+        let w = piece.weights(q);
+        let mut best_min = least(w);
+        let mut best = (piece.triangle, w);
+        if best_min >= 0.0 {
+            return Some(best);
+        }
+        let second = (cell.second != NONE).then_some(cell.second);
+        let rest = &self.entries[cell.rest as usize..self.cells[c + 1].rest as usize];
+        for &k in second.iter().chain(rest) {
             let piece = &self.pieces[k as usize];
-            let p = piece.corners.map(|c| c.map(f64::from));
-            // Every piece keeps the original winding: d > 0, and the point
-            // is inside when the three unnormalised weights are >= 0.
-            let d = cross(p[0], p[1], p[2]);
-            let w1 = cross(p[0], q, p[2]);
-            let w2 = cross(p[0], p[1], q);
-            let w0 = d - w1 - w2;
-            let min = w0.min(w1).min(w2) / d;
+            let w = piece.weights(q);
+            let min = least(w);
             if min > best_min {
-                best_min = min;
-                best = Some((piece.triangle, [w0, w1, w2].map(|x| (x / d) as f32)));
+                (best, best_min) = ((piece.triangle, w), min);
                 if min >= 0.0 {
                     break;
                 }
             }
         }
+        Some(best)
+    }
+
+    /// The piece of original triangle `t` that `q` is least outside of,
+    /// among all of them.
+    #[cold]
+    fn nearest(&self, t: usize, q: [f32; 2]) -> (u32, [f32; 3]) {
+        let pieces = &self.pieces[self.spans[t] as usize..self.spans[t + 1] as usize];
+        let mut best = (pieces[0].triangle, pieces[0].weights(q));
+        for piece in &pieces[1..] {
+            let w = piece.weights(q);
+            if least(w) > least(best.1) {
+                best = (piece.triangle, w);
+            }
+        }
         best
     }
 }
+
+/// A multiply-rotate hash of 32-bit words (rustc's FxHash): the
+/// subdivision's maps are keyed by vertex ids and position bits, which need
+/// no protection against chosen collisions, and SipHash took a tenth of the
+/// subdivision's time.
+#[derive(Clone, Copy, Debug, Default)]
+struct FastHasher(u64);
+
+impl Hasher for FastHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(4) {
+            let mut word = [0u8; 4];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u32(u32::from_le_bytes(word));
+        }
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.0 = (self.0.rotate_left(5) ^ u64::from(x)).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type Fast = BuildHasherDefault<FastHasher>;
 
 fn key(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
@@ -487,5 +740,172 @@ mod tests {
         let (same, map) = quad.subdivided_with_map(f32::NAN);
         assert_eq!(same.triangles, quad.triangles);
         assert_eq!(map.locate(1, [0.2, 0.3, 0.5]), Some((1, [0.2, 0.3, 0.5])));
+    }
+
+    /// The pieces of original triangle `t` that hold `q` (all weights at
+    /// least `-slack`), by testing every one of them.
+    fn holders(map: &Subdivision, t: usize, q: [f32; 2], slack: f32) -> Vec<(u32, [f32; 3])> {
+        let pieces = &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize];
+        pieces
+            .iter()
+            .map(|p| (p.triangle, p.weights(q)))
+            .filter(|(_, w)| least(*w) >= -slack)
+            .collect()
+    }
+
+    #[test]
+    fn locate_agrees_with_a_search_over_all_pieces() {
+        // Random points, and points on the pieces' corners and edges (where
+        // grid cells meet cuts), in triangles split a few times and many
+        // times: the located piece is one that holds the point, every
+        // piece holding it by a margin is the located one, and the point
+        // comes back from the subdivided triangle's corners.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut random = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for (mesh, max_edge) in [
+            (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.6),
+            (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.05),
+            (generate::uv_sphere(1.0, 6, 3), 0.07),
+            (generate::cornell_box(), 0.2),
+            (generate::cornell_box(), 0.02),
+        ] {
+            let (fine, map) = mesh.subdivided_with_map(max_edge);
+            let mut points = Vec::new();
+            let mut random_points = 0;
+            for t in 0..mesh.triangle_count() {
+                for _ in 0..400 {
+                    random_points += 1;
+                    let (mut a, mut b) = (random(), random());
+                    if a + b > 1.0 {
+                        (a, b) = (1.0 - a, 1.0 - b);
+                    }
+                    points.push((t as u32, [1.0 - a - b, a, b]));
+                }
+                // The corners and edge midpoints of its pieces.
+                for piece in &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize] {
+                    let o = piece.origin;
+                    points.push((t as u32, [1.0 - o[0] - o[1], o[0], o[1]]));
+                }
+            }
+            let mut each = Vec::new();
+            map.locate_each(&points, &mut each);
+            assert_eq!(each.len(), points.len());
+            let mut strict = 0;
+            for (&(t, w), found) in points.iter().zip(&each) {
+                let located = map.locate(t, w);
+                assert_eq!(
+                    located, *found,
+                    "locate_each and locate differ at {t} {w:?}"
+                );
+                let (sub, u) = located.unwrap();
+                let q = [w[1], w[2]];
+                assert!(least(u) >= -1e-5, "{t} {w:?}: weights {u:?}");
+                let all = holders(&map, t as usize, q, 1e-5);
+                if map.grids[t as usize].0 == 0 {
+                    // Not split: the weights as they are.
+                    assert_eq!((sub, u), (map.grids[t as usize].1, w));
+                } else {
+                    assert!(
+                        all.iter().any(|&(s, _)| s == sub),
+                        "{t} {w:?}: {sub} holds it not"
+                    );
+                }
+                for &(s, v) in &all {
+                    if least(v) > 1e-4 {
+                        strict += 1;
+                        assert_eq!(s, sub, "{t} {w:?}: inside {s}, located in {sub}");
+                        assert_eq!(v, u);
+                    }
+                }
+                // The same point from the subdivided triangle.
+                let [a, b, c] = mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]);
+                let want = w[0] * a + w[1] * b + w[2] * c;
+                let [p, q, r] = fine.triangles[sub as usize].map(|i| fine.positions[i as usize]);
+                let got = u[0] * p + u[1] * q + u[2] * r;
+                assert!(got.distance(want) < 1e-5, "{t}: {got} vs {want}");
+            }
+            assert!(strict > random_points / 2, "{strict} of {random_points}");
+        }
+    }
+
+    #[test]
+    fn a_point_past_the_long_side_goes_to_the_nearest_piece() {
+        // Cells beyond the long side (w1 + w2 = 1) of a triangle hold no
+        // piece; a point there (outside by rounding) is found by the search
+        // over all the triangle's pieces.
+        let quad = generate::plane(1.0, 1);
+        let (fine, map) = quad.subdivided_with_map(0.1);
+        let (r, first) = map.grids[0];
+        let r = r as usize;
+        // The cell whose lower corner is on the long side.
+        let (x, y) = (r / 2, r - r / 2);
+        let c = first as usize + y * r + x;
+        assert_eq!(map.cells[c].first, NONE);
+        let (w1, w2) = (x as f32 / r as f32 + 1e-6, y as f32 / r as f32 + 1e-6);
+        let w = [1.0 - w1 - w2, w1, w2];
+        assert_eq!(map.cell(0, w), Some(c));
+        let (sub, u) = map.locate(0, w).unwrap();
+        let best = holders(&map, 0, [w1, w2], 1.0)
+            .into_iter()
+            .map(|(_, u)| least(u))
+            .fold(f32::NEG_INFINITY, f32::max);
+        assert_eq!(least(u), best);
+        assert!(least(u) > -1e-4, "{u:?}");
+        let [a, b, cc] = quad.triangles[0].map(|i| quad.positions[i as usize]);
+        let want = w[0] * a + w[1] * b + w[2] * cc;
+        let [p, q, s] = fine.triangles[sub as usize].map(|i| fine.positions[i as usize]);
+        assert!((u[0] * p + u[1] * q + u[2] * s).distance(want) < 1e-5);
+        // Not a point at all.
+        assert_eq!(map.locate(0, [0.25, f32::NAN, 0.5]), None);
+        assert_eq!(map.locate(0, [0.5, 0.25, f32::NAN]), None);
+    }
+
+    #[test]
+    fn most_points_are_found_by_the_two_candidates_their_cell_holds() {
+        // The grid's purpose: about two cells per piece, the piece holding
+        // a cell's centre and one other in the cell itself, so that finding
+        // a point usually reads its cell and those two pieces only.
+        let room = generate::cornell_box();
+        let (_, map) = room.subdivided_with_map(0.05);
+        let mut state = 7u64;
+        let (mut first, mut total) = (0, 0);
+        for t in 0..room.triangle_count() {
+            for _ in 0..500 {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1);
+                let a = (state >> 40) as f32 / (1u64 << 24) as f32;
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1);
+                let b = (state >> 40) as f32 / (1u64 << 24) as f32;
+                let (a, b) = if a + b > 1.0 {
+                    (1.0 - a, 1.0 - b)
+                } else {
+                    (a, b)
+                };
+                let c = map.cell(t as u32, [1.0 - a - b, a, b]).unwrap();
+                let piece = &map.pieces[map.cells[c].first as usize];
+                let second = map.cells[c].second;
+                total += 1;
+                first += usize::from(
+                    least(piece.weights([a, b])) >= 0.0
+                        || second != NONE
+                            && least(map.pieces[second as usize].weights([a, b])) >= 0.0,
+                );
+            }
+        }
+        let cells = map.cells.len() as f64 / 2.0;
+        let pieces = map.pieces.len() as f64;
+        assert!(
+            (cells / pieces - CELLS_PER_PIECE).abs() < 0.5,
+            "{cells} cells, {pieces} pieces"
+        );
+        assert!(first * 100 > 85 * total, "{first} of {total}");
     }
 }

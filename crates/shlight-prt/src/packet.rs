@@ -18,7 +18,10 @@
 //! - **Triangles** are tested in *ray space*, the orthonormal frame
 //!   `(e1, e2, d)` in which every ray of the bundle runs along +z: a point
 //!   `p` has coordinates `(e1.p, e2.p, d.p)`. The caller computes them once
-//!   per direction for every mesh vertex ([`Direction::to_ray_space`]), so a
+//!   per direction for every mesh vertex ([`Direction::to_ray_space`]), or
+//!   [`PacketBvh::closest_direct`] computes a triangle's as it tests it (for
+//!   callers that take many directions in turn per packet, or a mesh too
+//!   large to copy per direction); either way a
 //!   vertex has the same coordinates in every triangle that shares it; the
 //!   edge functions of a shared edge are then exact negatives of each other
 //!   and redone in `f64` when zero, as in the watertight test of
@@ -299,7 +302,28 @@ impl PacketBvh {
             // SAFETY: as in `occluded`.
             return unsafe { avx2::closest(self, dir, local, packet) };
         }
-        let _ = (local, self.avx2);
+        let _ = local;
+        self.closest_single(dir, packet)
+    }
+
+    /// [`closest`](Self::closest) without the ray-space copy of the
+    /// vertices: each triangle's corners are put in ray space as it is
+    /// tested ([`Direction::to_ray_space`], so the hits are the same). For
+    /// callers that take the directions in an order of their own, or whose
+    /// mesh is too large to copy for every direction.
+    #[must_use]
+    pub fn closest_direct(&self, dir: &Direction, packet: &Packet) -> PacketHits {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: AVX2 and FMA are present (checked when `self` was
+            // built).
+            return unsafe { avx2::closest_direct(self, dir, packet) };
+        }
+        self.closest_single(dir, packet)
+    }
+
+    /// Each live ray of `packet` traced alone.
+    fn closest_single(&self, dir: &Direction, packet: &Packet) -> PacketHits {
         let mut out = PacketHits {
             mask: 0,
             t: [f32::INFINITY; LANES],
@@ -446,7 +470,8 @@ mod avx2 {
         }
 
         /// Triangle `k` (leaf order) against every lane: `(hit lanes, t,
-        /// [u, v, w], 1/det)` with `0 < t < t_max` on hit lanes.
+        /// [u, v, w], 1/det)` with `0 < t < t_max` on hit lanes. Its
+        /// corners in ray space are read from `local`.
         #[inline(always)]
         unsafe fn hits_triangle(
             &self,
@@ -461,6 +486,22 @@ mod avx2 {
                 let a = local.get_unchecked(ia as usize);
                 let b = local.get_unchecked(ib as usize);
                 let c = local.get_unchecked(ic as usize);
+                self.hits_corners(a, b, c, live, t_max)
+            }
+        }
+
+        /// [`hits_triangle`](Self::hits_triangle) with the corners in ray
+        /// space `a`, `b`, `c`.
+        #[inline(always)]
+        unsafe fn hits_corners(
+            &self,
+            a: &[f32; 4],
+            b: &[f32; 4],
+            c: &[f32; 4],
+            live: u32,
+            t_max: __m256,
+        ) -> (u32, __m256, [__m256; 3], __m256) {
+            unsafe {
                 let [rx, ry, rz] = self.r;
                 let (sax, say, saz) = (
                     _mm256_set1_ps(a[0]),
@@ -508,6 +549,28 @@ mod avx2 {
                     redo_in_f64(&e, &mut uvw, zeros);
                     (u, v, w) = (load(&uvw[0]), load(&uvw[1]), load(&uvw[2]));
                 }
+                // Inside when the edge functions do not differ in sign:
+                // most tests end here, before the division.
+                let outside = _mm256_and_ps(
+                    _mm256_or_ps(
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
+                    ),
+                    _mm256_or_ps(
+                        _mm256_or_ps(
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
+                            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
+                        ),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
+                    ),
+                );
+                let inside = !bits(outside) & live;
+                if inside == 0 {
+                    return (0, zero, [u, v, w], zero);
+                }
                 let one = _mm256_set1_ps(1.0);
                 let inv = _mm256_div_ps(one, _mm256_add_ps(_mm256_add_ps(u, v), w));
                 let t = _mm256_mul_ps(
@@ -523,20 +586,6 @@ mod avx2 {
                 let abs_mask = _mm256_set1_ps(-0.0);
                 let infinity = _mm256_set1_ps(f32::INFINITY);
                 let ok = {
-                    let neg = _mm256_or_ps(
-                        _mm256_or_ps(
-                            _mm256_cmp_ps::<_CMP_LT_OQ>(u, zero),
-                            _mm256_cmp_ps::<_CMP_LT_OQ>(v, zero),
-                        ),
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
-                    );
-                    let pos = _mm256_or_ps(
-                        _mm256_or_ps(
-                            _mm256_cmp_ps::<_CMP_GT_OQ>(u, zero),
-                            _mm256_cmp_ps::<_CMP_GT_OQ>(v, zero),
-                        ),
-                        _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
-                    );
                     // 1/det is finite exactly when det != 0.
                     let finite =
                         _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_andnot_ps(abs_mask, inv), infinity);
@@ -544,9 +593,9 @@ mod avx2 {
                         _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
                         _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max),
                     );
-                    _mm256_andnot_ps(_mm256_and_ps(neg, pos), _mm256_and_ps(finite, ahead))
+                    _mm256_and_ps(finite, ahead)
                 };
-                (bits(ok) & live, t, [u, v, w], inv)
+                (bits(ok) & inside, t, [u, v, w], inv)
             }
         }
     }
@@ -675,6 +724,48 @@ mod avx2 {
         packet: &Packet,
     ) -> PacketHits {
         unsafe {
+            nearest(tree, dir, packet, |rays, k, mask, t_max| {
+                rays.hits_triangle(&tree.bvh, local, k, mask, t_max)
+            })
+        }
+    }
+
+    /// [`closest`] with each triangle's corners put in ray space as it is
+    /// tested.
+    ///
+    /// # Safety
+    /// AVX2 and FMA must be available.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn closest_direct(
+        tree: &PacketBvh,
+        dir: &Direction,
+        packet: &Packet,
+    ) -> PacketHits {
+        unsafe {
+            nearest(tree, dir, packet, |rays, k, mask, t_max| {
+                // Not `map` with a closure: core's `map` has no AVX2, so a
+                // closure called from it would not be inlined.
+                let [pa, pb, pc] = *tree.bvh.triangles.get_unchecked(k);
+                let (a, b, c) = (
+                    dir.to_ray_space(pa),
+                    dir.to_ray_space(pb),
+                    dir.to_ray_space(pc),
+                );
+                rays.hits_corners(&a, &b, &c, mask, t_max)
+            })
+        }
+    }
+
+    /// The closest-hit walk, `test(rays, k, lanes, t_max)` testing
+    /// triangle `k` (leaf order).
+    #[inline(always)]
+    unsafe fn nearest(
+        tree: &PacketBvh,
+        dir: &Direction,
+        packet: &Packet,
+        test: impl Fn(&Rays, usize, u32, __m256) -> (u32, __m256, [__m256; 3], __m256),
+    ) -> PacketHits {
+        unsafe {
             let rays = Rays::new(dir, packet);
             let mut t_max = _mm256_set1_ps(f32::INFINITY);
             let mut best = _mm256_setzero_ps();
@@ -689,8 +780,7 @@ mod avx2 {
                 &mut t_max,
                 |first, count, mask, t_max| {
                     for k in first..first + count {
-                        let (hits, t, [u, v, w], inv) =
-                            rays.hits_triangle(bvh, local, k, mask, *t_max);
+                        let (hits, t, [u, v, w], inv) = test(&rays, k, mask, *t_max);
                         if hits != 0 {
                             let sel = lane_mask(hits);
                             let id = _mm256_castsi256_ps(_mm256_set1_epi32(k as i32));
@@ -759,6 +849,9 @@ mod tests {
                 let packet = Packet::new(&dir, &origins);
                 let blocked = tree.occluded(&dir, &local, &packet);
                 let found = tree.closest(&dir, &local, &packet);
+                // Corners put in ray space as they are tested: the same
+                // numbers, so the same hits to the bit.
+                assert_eq!(tree.closest_direct(&dir, &packet), found);
                 assert_eq!(blocked >> n, 0, "only live lanes");
                 assert_eq!(blocked, found.mask, "occlusion and closest hits agree");
                 for (k, o) in origins.iter().enumerate() {
@@ -826,6 +919,7 @@ mod tests {
                 cast += eight.len();
                 missed += eight.len() - blocked.count_ones() as usize;
                 assert_eq!(tree.closest(&dir, &local, &packet).mask, blocked);
+                assert_eq!(tree.closest_direct(&dir, &packet).mask, blocked);
             }
         }
         assert!(cast > 3000, "{cast}");

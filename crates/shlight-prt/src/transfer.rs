@@ -42,6 +42,17 @@
 //! parallel rays from neighbouring vertices ([`crate::packet`]), and each
 //! vertex's sum runs over the directions in order, so the result is the
 //! same bit for bit at any thread count.
+//!
+//! The bounces are gathered in `f32`, vertices a chunk at a time in Morton
+//! order: a chunk goes through the directions in order and reads its
+//! vertices' front hits along each (a direction's hits are kept in the
+//! order its rays were cast, so a chunk's are one run, and there is no
+//! per-vertex copy of them to make), each hit adding its triangle's three
+//! corner records, the transfer and the emitters' light of the last bounce
+//! together (with AVX2 and FMA eight floats at a time, detected at run
+//! time; portable loops elsewhere). Neighbouring vertices' hits along one
+//! direction land near one another, so the records they read are mostly in
+//! cache.
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
@@ -253,28 +264,23 @@ pub fn exit_radiance(
         .collect()
 }
 
-/// One blocked direction of a vertex, for the bounces: the triangle hit,
-/// the barycentric weights of its corners 1 and 2, and the direction's
-/// weight `w_j`.
-#[derive(Clone, Copy, Debug)]
-struct Blocked {
-    triangle: u32,
-    w: f32,
-    b1: f32,
-    b2: f32,
-}
-
-/// A ray along one direction that met the front of a triangle: its vertex,
-/// the triangle and the barycentric weights of corners 1 and 2.
+/// A ray along one direction that met the front of a triangle: its
+/// vertex's rank (Morton order), the triangle and the barycentric weights
+/// of corners 1 and 2.
 #[derive(Clone, Copy, Debug)]
 struct FrontHit {
-    vertex: u32,
+    rank: u32,
     triangle: u32,
     b1: f32,
     b2: f32,
 }
 
 const CHUNK: usize = 64;
+
+/// Vertices per task of the bounces' gathering ([`Gather`]): their
+/// records of a bounce, 64 KB at lmax 2 with emitters, stay in cache
+/// while the chunk goes through the directions.
+const BOUNCE_CHUNK: usize = 1024;
 
 /// Vertex indices sorted along a Morton (Z-order) curve through the
 /// bounding box `(lo, hi)`, 10 bits per axis: neighbours in the list are
@@ -375,6 +381,272 @@ fn face_normals(mesh: &Mesh) -> Vec<Vec3> {
         .collect()
 }
 
+/// Which kernels gather the bounces: AVX2 and FMA, or portable loops (the
+/// same sums in the same order; the fused roundings differ in the last
+/// bits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kernels {
+    Avx2,
+    Portable,
+}
+
+impl Kernels {
+    /// AVX2 where the processor has it and FMA.
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            return Kernels::Avx2;
+        }
+        Kernels::Portable
+    }
+}
+
+/// Floats in a [`Line`].
+const LINE: usize = 16;
+
+/// One 64-byte line of a vertex's bounce record.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Line([f32; LINE]);
+
+/// The floats of `lines`.
+fn flat(lines: &[Line]) -> &[f32] {
+    // SAFETY: a `Line` is 16 `f32` with no padding (`repr(C)`, 64 bytes).
+    unsafe { std::slice::from_raw_parts(lines.as_ptr().cast::<f32>(), lines.len() * LINE) }
+}
+
+/// The floats of `lines`, mutable.
+fn flat_mut(lines: &mut [Line]) -> &mut [f32] {
+    // SAFETY: as in `flat`.
+    unsafe { std::slice::from_raw_parts_mut(lines.as_mut_ptr().cast::<f32>(), lines.len() * LINE) }
+}
+
+/// The bounces' gathering. A vertex's record holds its transfer of the
+/// last bounce (`channels x nc`) and, when the mesh emits, its exit
+/// radiance due to emitters, in `f32`, padded to whole 64-byte lines; the
+/// records are in rank (Morton) order.
+///
+/// The vertices are taken [`BOUNCE_CHUNK`] ranks at a time, and each chunk goes
+/// through the directions in order, reading the hits its vertices have
+/// along each (every direction's front hits are in rank order, so a
+/// chunk's are one run): each vertex sums its hits in direction order, in
+/// `f32`, whatever the threads, and the hits of neighbouring vertices along
+/// one direction land near one another, so their records are read from
+/// cache.
+struct Gather<'a> {
+    order: &'a [u32],
+    /// Normals and `sum_j max(n.s_j, 0)` by rank.
+    normals: &'a [Vec3],
+    totals: Vec<f64>,
+    dirs: &'a [Vec3],
+    hits: &'a [Vec<FrontHit>],
+    /// Per direction, the first hit of each chunk (and the end).
+    starts: Vec<u32>,
+    /// The mesh's triangles, corners by rank.
+    triangles: Vec<[u32; 3]>,
+    albedo: &'a Albedo,
+    nc: usize,
+    channels: usize,
+    /// Floats used per record (`channels nc`, 3 more when the mesh emits).
+    len: usize,
+    /// Lines per record.
+    lines: usize,
+}
+
+impl<'a> Gather<'a> {
+    fn new(
+        mesh: &Mesh,
+        order: &'a [u32],
+        rank: &[u32],
+        normals: &'a [Vec3],
+        totals: &[f64],
+        dirs: &'a [Vec3],
+        hits: &'a [Vec<FrontHit>],
+        options: &'a BakeOptions,
+    ) -> Self {
+        let n = order.len();
+        let chunks = n.div_ceil(BOUNCE_CHUNK);
+        let mut starts = Vec::with_capacity(dirs.len() * (chunks + 1));
+        for h in hits {
+            for c in 0..=chunks {
+                let first = (c * BOUNCE_CHUNK) as u32;
+                starts.push(h.partition_point(|x| x.rank < first) as u32);
+            }
+        }
+        let nc = sh_count(options.lmax);
+        let channels = options.albedo.channels();
+        let len = channels * nc + if options.emission.is_some() { 3 } else { 0 };
+        Self {
+            order,
+            normals,
+            totals: order.iter().map(|&v| totals[v as usize]).collect(),
+            dirs,
+            hits,
+            starts,
+            triangles: mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| rank[i as usize]))
+                .collect(),
+            albedo: &options.albedo,
+            nc,
+            channels,
+            len,
+            lines: len.div_ceil(LINE),
+        }
+    }
+
+    /// The records of transfer `total` and exit radiance `emission` (both
+    /// by vertex).
+    fn records(&self, total: &[f32], emission: Option<&[Vec3]>) -> Vec<Line> {
+        let stride = self.channels * self.nc;
+        let mut out = vec![Line([0.0; LINE]); self.order.len() * self.lines];
+        for (r, &v) in out.chunks_exact_mut(self.lines).zip(self.order) {
+            let r = flat_mut(r);
+            let v = v as usize;
+            r[..stride].copy_from_slice(&total[v * stride..][..stride]);
+            if let Some(e) = emission {
+                r[stride..stride + 3].copy_from_slice(&e[v].to_array());
+            }
+        }
+        out
+    }
+
+    /// The next bounce's records from the last one's, `progress(vertices)`
+    /// as chunks finish.
+    fn bounce(
+        &self,
+        kernels: Kernels,
+        previous: &[Line],
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Vec<Line> {
+        let mut next = vec![Line([0.0; LINE]); previous.len()];
+        let prev = flat(previous);
+        let stride = self.channels * self.nc;
+        next.par_chunks_mut(BOUNCE_CHUNK * self.lines)
+            .enumerate()
+            .for_each(|(c, out)| {
+                let acc = flat_mut(out);
+                #[cfg(target_arch = "x86_64")]
+                if kernels == Kernels::Avx2 {
+                    // SAFETY: AVX2 and FMA were detected.
+                    unsafe { self.chunk_avx2(c, prev, acc) };
+                } else {
+                    self.chunk(c, prev, acc);
+                }
+                #[cfg(not(target_arch = "x86_64"))]
+                {
+                    let _ = kernels;
+                    self.chunk(c, prev, acc);
+                }
+                let rec = self.lines * LINE;
+                for (k, r) in acc.chunks_exact_mut(rec).enumerate() {
+                    let v = self.order[c * BOUNCE_CHUNK + k] as usize;
+                    for ch in 0..self.channels {
+                        let rho = self.albedo.get(v, ch);
+                        for x in &mut r[ch * self.nc..][..self.nc] {
+                            *x *= rho;
+                        }
+                    }
+                    if self.len > stride {
+                        // Every albedo has three channels (a grey one three
+                        // equal).
+                        for ch in 0..3 {
+                            r[stride + ch] *= self.albedo.get(v, ch);
+                        }
+                    }
+                }
+                progress(acc.len() / rec);
+            });
+        next
+    }
+
+    /// The hits of chunk `c`'s vertices: `w_j (w_a R_a + w_b R_b + w_c R_c)`
+    /// summed into their rows of `acc` (zeros), `R` the corners' records in
+    /// `prev`.
+    fn chunk(&self, c: usize, prev: &[f32], acc: &mut [f32]) {
+        let (rec, len) = (self.lines * LINE, self.len);
+        let first = c * BOUNCE_CHUNK;
+        let row = self.order.len().div_ceil(BOUNCE_CHUNK) + 1;
+        for (j, d) in self.dirs.iter().enumerate() {
+            let (lo, hi) = (self.starts[j * row + c], self.starts[j * row + c + 1]);
+            for h in &self.hits[j][lo as usize..hi as usize] {
+                let s = h.rank as usize;
+                let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
+                let (wa, wb, wc) = (w * (1.0 - h.b1 - h.b2), w * h.b1, w * h.b2);
+                let [a, b, cc] = self.triangles[h.triangle as usize];
+                let ra = &prev[a as usize * rec..][..len];
+                let rb = &prev[b as usize * rec..][..len];
+                let rc = &prev[cc as usize * rec..][..len];
+                let out = &mut acc[(s - first) * rec..][..len];
+                for k in 0..len {
+                    out[k] += wa * ra[k] + wb * rb[k] + wc * rc[k];
+                }
+            }
+        }
+    }
+
+    /// [`chunk`](Self::chunk) with AVX2, eight floats of a record at a
+    /// time.
+    ///
+    /// # Safety
+    /// AVX2 and FMA must be available.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn chunk_avx2(&self, c: usize, prev: &[f32], acc: &mut [f32]) {
+        use std::arch::x86_64::*;
+        let rec = self.lines * LINE;
+        let vectors = self.len.div_ceil(8);
+        let first = c * BOUNCE_CHUNK;
+        let row = self.order.len().div_ceil(BOUNCE_CHUNK) + 1;
+        for (j, d) in self.dirs.iter().enumerate() {
+            let (lo, hi) = (self.starts[j * row + c], self.starts[j * row + c + 1]);
+            for h in &self.hits[j][lo as usize..hi as usize] {
+                let s = h.rank as usize;
+                let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
+                let [a, b, cc] = self.triangles[h.triangle as usize];
+                let ra = &prev[a as usize * rec..][..rec];
+                let rb = &prev[b as usize * rec..][..rec];
+                let rc = &prev[cc as usize * rec..][..rec];
+                let out = &mut acc[(s - first) * rec..][..rec];
+                // SAFETY: vector k covers floats 8k..8k+8 <= rec of each
+                // record and of `out`.
+                unsafe {
+                    let wa = _mm256_set1_ps(w * (1.0 - h.b1 - h.b2));
+                    let wb = _mm256_set1_ps(w * h.b1);
+                    let wc = _mm256_set1_ps(w * h.b2);
+                    for k in 0..vectors {
+                        let x = _mm256_mul_ps(wa, _mm256_loadu_ps(ra.as_ptr().add(8 * k)));
+                        let x = _mm256_fmadd_ps(wb, _mm256_loadu_ps(rb.as_ptr().add(8 * k)), x);
+                        let x = _mm256_fmadd_ps(wc, _mm256_loadu_ps(rc.as_ptr().add(8 * k)), x);
+                        let o = out.as_mut_ptr().add(8 * k);
+                        _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), x));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds bounce records `next` to the transfer `total` and the exit
+    /// radiance `emitted` (by vertex).
+    fn add(&self, next: &[Line], total: &mut [f32], emitted: Option<&mut [Vec3]>) {
+        let stride = self.channels * self.nc;
+        for (r, &v) in next.chunks_exact(self.lines).zip(self.order) {
+            let r = flat(r);
+            for (t, b) in total[v as usize * stride..][..stride].iter_mut().zip(r) {
+                *t += b;
+            }
+        }
+        if let Some(e) = emitted {
+            for (r, &v) in next.chunks_exact(self.lines).zip(self.order) {
+                let r = flat(r);
+                e[v as usize] += Vec3::new(r[stride], r[stride + 1], r[stride + 2]);
+            }
+        }
+    }
+}
+
 /// Bakes the transfer of every vertex of `mesh`.
 ///
 /// Rays are cast direction by direction: for each shared direction, the
@@ -401,7 +673,8 @@ pub fn bake(
 /// [`bake`] for a `mesh` made by [`Mesh::subdivided_with_map`] from
 /// `occluder.0` (`occluder.1` its map): the rays are cast against the
 /// original triangles (the same surface, fewer triangles) and their hits
-/// found in `mesh` by [`Subdivision::locate`]. `None`: cast against `mesh`.
+/// found in `mesh` by [`Subdivision::locate_each`], a direction's hits
+/// together. `None`: cast against `mesh`.
 ///
 /// # Panics
 /// As [`bake`].
@@ -411,6 +684,89 @@ pub fn bake_with_occluder(
     occluder: Option<(&Mesh, &Subdivision)>,
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    let built = occluder.map(|(coarse, map)| (Occluder::new(coarse), map));
+    let occluder = built.as_ref().map(|(o, map)| (o, *map));
+    bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// [`bake_with_occluder`] with the occluder made ready already
+/// ([`Occluder::new`] of the mesh `mesh` was subdivided from), for callers
+/// that cast rays of their own against it too.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_against(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// A mesh made ready to cast rays against: its vertices in Morton order
+/// (a direction's ray-space copies of them are then read near one
+/// another), the packet hierarchy over its triangles, and their face
+/// normals (a hit on a triangle's back is blocked).
+#[derive(Clone, Debug)]
+pub struct Occluder {
+    positions: Vec<Vec3>,
+    bvh: PacketBvh,
+    faces: Vec<Vec3>,
+}
+
+impl Occluder {
+    /// `mesh` made ready.
+    #[must_use]
+    pub fn new(mesh: &Mesh) -> Self {
+        let order = morton_order(&mesh.positions, mesh.bounds());
+        let mut rank = vec![0u32; order.len()];
+        for (s, &v) in order.iter().enumerate() {
+            rank[v as usize] = s as u32;
+        }
+        let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
+        let triangles: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| rank[i as usize]))
+            .collect();
+        Self {
+            bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
+            positions,
+            faces: face_normals(mesh),
+        }
+    }
+
+    /// The vertices in Morton order: the positions the hierarchy's corner
+    /// indices refer to (what [`PacketBvh::closest`] takes in ray space).
+    #[must_use]
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// The packet hierarchy; its hits name the mesh's triangles.
+    #[must_use]
+    pub fn bvh(&self) -> &PacketBvh {
+        &self.bvh
+    }
+
+    /// Whether a ray along `dir` meets triangle `triangle` (the mesh's
+    /// index) on its front.
+    #[must_use]
+    pub fn is_front(&self, triangle: u32, dir: Vec3) -> bool {
+        self.faces[triangle as usize].dot(dir) < 0.0
+    }
+}
+
+/// [`bake_with_occluder`], the bounces gathered with `kernels`.
+fn bake_with(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    kernels: Kernels,
 ) -> Transfer {
     let n_vertices = mesh.vertex_count();
     if let Albedo::PerVertex(a) = &options.albedo {
@@ -449,7 +805,6 @@ pub fn bake_with_occluder(
     for (s, &v) in order.iter().enumerate() {
         rank[v as usize] = s as u32;
     }
-    let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
     let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
     let words = n_vertices.div_ceil(64);
     // Bit s of row j: the ray from the vertex of rank s along direction j
@@ -458,49 +813,27 @@ pub fn bake_with_occluder(
     let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
     let rays = AtomicU64::new(0);
     if shadowed {
-        // What the rays are cast against: `mesh` (its vertices in rank
-        // order), or the occluder (in its own Morton order), with its face
-        // normals for the one-sided test.
-        let (cast_positions, cast_triangles, faces) = match occluder {
-            None => (
-                positions.clone(),
-                mesh.triangles
-                    .iter()
-                    .map(|t| t.map(|i| rank[i as usize]))
-                    .collect::<Vec<[u32; 3]>>(),
-                face_normals(mesh),
-            ),
-            Some((coarse, _)) => {
-                let order = morton_order(&coarse.positions, coarse.bounds());
-                let mut rank = vec![0u32; order.len()];
-                for (s, &v) in order.iter().enumerate() {
-                    rank[v as usize] = s as u32;
-                }
-                (
-                    order
-                        .iter()
-                        .map(|&v| coarse.positions[v as usize])
-                        .collect(),
-                    coarse
-                        .triangles
-                        .iter()
-                        .map(|t| t.map(|i| rank[i as usize]))
-                        .collect(),
-                    face_normals(coarse),
-                )
+        // What the rays are cast against: `mesh`, or the occluder.
+        let own;
+        let (occluder, map) = match occluder {
+            Some((o, m)) => (o, Some(m)),
+            None => {
+                own = Occluder::new(mesh);
+                (&own, None)
             }
         };
-        let map = occluder.map(|(_, m)| m);
-        let bvh = PacketBvh::new(Bvh::new(&cast_positions, &cast_triangles));
-        let start = ray_origins(mesh);
+        let (cast_positions, bvh, faces) = (&occluder.positions, &occluder.bvh, &occluder.faces);
+        // Where the rays start, by rank.
+        let origins = ray_origins(mesh);
+        let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
         let done = AtomicUsize::new(0);
         visible
             .par_chunks_mut(words.max(1))
             .zip(front_hits.par_iter_mut())
             .enumerate()
             .for_each_init(
-                || (Vec::new(), Vec::new()),
-                |(local, facing), (j, (row, hits))| {
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(local, facing, pending, coarse, located), (j, (row, hits))| {
                     let d = dirs[j];
                     let dir = Direction::new(d);
                     local.clear();
@@ -516,7 +849,7 @@ pub fn bake_with_occluder(
                     for eight in facing.chunks(LANES) {
                         let mut origins = [Vec3::ZERO; LANES];
                         for (o, &s) in origins.iter_mut().zip(eight) {
-                            *o = start[order[s as usize] as usize];
+                            *o = start[s as usize];
                         }
                         let packet = Packet::new(&dir, &origins[..eight.len()]);
                         let escaped = if keep_hits {
@@ -529,17 +862,20 @@ pub fn bake_with_occluder(
                                 if faces[triangle as usize].dot(d) >= 0.0 {
                                     continue;
                                 }
-                                let located = match map {
-                                    None => Some((triangle, found.barycentrics[k])),
-                                    Some(m) => m.locate(triangle, found.barycentrics[k]),
-                                };
-                                if let Some((triangle, [_, b1, b2])) = located {
-                                    hits.push(FrontHit {
-                                        vertex: order[s as usize],
-                                        triangle,
-                                        b1,
-                                        b2,
-                                    });
+                                match map {
+                                    None => {
+                                        let [_, b1, b2] = found.barycentrics[k];
+                                        hits.push(FrontHit {
+                                            rank: s,
+                                            triangle,
+                                            b1,
+                                            b2,
+                                        });
+                                    }
+                                    Some(_) => {
+                                        pending.push(s);
+                                        coarse.push((triangle, found.barycentrics[k]));
+                                    }
                                 }
                             }
                             !found.mask
@@ -551,6 +887,23 @@ pub fn bake_with_occluder(
                                 row[s as usize / 64] |= 1 << (s % 64);
                             }
                         }
+                    }
+                    // The direction's hits on the occluder, found in `mesh`
+                    // together (their memory reads overlap).
+                    if let Some(m) = map {
+                        m.locate_each(coarse, located);
+                        for (&s, l) in pending.iter().zip(located.iter()) {
+                            if let Some((triangle, [_, b1, b2])) = *l {
+                                hits.push(FrontHit {
+                                    rank: s,
+                                    triangle,
+                                    b1,
+                                    b2,
+                                });
+                            }
+                        }
+                        pending.clear();
+                        coarse.clear();
                     }
                     rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
                     progress(
@@ -601,38 +954,6 @@ pub fn bake_with_occluder(
     }
     drop(ranked);
 
-    // The front hits per vertex, in direction order, with their weights.
-    let mut first = vec![0usize; n_vertices + 1];
-    for h in front_hits.iter().flatten() {
-        first[h.vertex as usize + 1] += 1;
-    }
-    for v in 0..n_vertices {
-        first[v + 1] += first[v];
-    }
-    let mut blocked = vec![
-        Blocked {
-            triangle: 0,
-            w: 0.0,
-            b1: 0.0,
-            b2: 0.0
-        };
-        first[n_vertices]
-    ];
-    let mut next_slot = first.clone();
-    for (j, hits) in front_hits.into_iter().enumerate() {
-        for h in hits {
-            let v = h.vertex as usize;
-            let cos = mesh.normals[v].dot(dirs[j]);
-            blocked[next_slot[v]] = Blocked {
-                triangle: h.triangle,
-                w: (f64::from(cos) / totals[v]) as f32,
-                b1: h.b1,
-                b2: h.b2,
-            };
-            next_slot[v] += 1;
-        }
-    }
-
     // T^0 = albedo x geometric transfer, per channel.
     let stride = channels * nc;
     let mut total = vec![0.0f32; n_vertices * stride];
@@ -651,75 +972,35 @@ pub fn bake_with_occluder(
     drop(geometric);
 
     // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
-    // the same for the emitters' light E.
+    // the same for the emitters' light E, both in one pass over the hits.
     let mut emitted = options.emission.clone();
-    let mut previous_emitted = options.emission.clone();
-    let mut previous = total.clone();
-    for bounce in 1..=options.mode.bounces() {
-        let done = AtomicUsize::new(0);
-        let mut next = vec![0.0f32; n_vertices * stride];
-        next.par_chunks_mut(CHUNK * stride)
-            .enumerate()
-            .for_each(|(chunk, out)| {
-                let mut acc = vec![0.0f64; stride];
-                for (k, t) in out.chunks_exact_mut(stride).enumerate() {
-                    let v = chunk * CHUNK + k;
-                    acc.fill(0.0);
-                    for h in &blocked[first[v]..first[v + 1]] {
-                        let [a, b, c] = mesh.triangles[h.triangle as usize];
-                        let wa = f64::from(h.w * (1.0 - h.b1 - h.b2));
-                        let (wb, wc) = (f64::from(h.w * h.b1), f64::from(h.w * h.b2));
-                        let (ta, tb, tc) = (
-                            &previous[a as usize * stride..][..stride],
-                            &previous[b as usize * stride..][..stride],
-                            &previous[c as usize * stride..][..stride],
-                        );
-                        for i in 0..stride {
-                            acc[i] += wa * f64::from(ta[i])
-                                + wb * f64::from(tb[i])
-                                + wc * f64::from(tc[i]);
-                        }
-                    }
-                    for c in 0..channels {
-                        let rho = f64::from(options.albedo.get(v, c));
-                        for i in c * nc..(c + 1) * nc {
-                            t[i] = (rho * acc[i]) as f32;
-                        }
-                    }
-                }
-                let now =
-                    done.fetch_add(out.len() / stride, Ordering::Relaxed) + out.len() / stride;
-                progress(Stage::Bounce(bounce), now, n_vertices);
+    let bounces = options.mode.bounces();
+    if bounces > 0 {
+        let gather = Gather::new(
+            mesh,
+            &order,
+            &rank,
+            &normals,
+            &totals,
+            &dirs,
+            &front_hits,
+            options,
+        );
+        let mut previous = gather.records(&total, options.emission.as_deref());
+        for bounce in 1..=bounces {
+            let done = AtomicUsize::new(0);
+            let next = gather.bounce(kernels, &previous, &|n| {
+                progress(
+                    Stage::Bounce(bounce),
+                    done.fetch_add(n, Ordering::Relaxed) + n,
+                    n_vertices,
+                );
             });
-        for (t, b) in total.iter_mut().zip(&next) {
-            *t += b;
-        }
-        previous = next;
-        if let (Some(sum), Some(last)) = (&mut emitted, &previous_emitted) {
-            let next: Vec<Vec3> = (0..n_vertices)
-                .into_par_iter()
-                .map(|v| {
-                    let mut acc = DVec3::ZERO;
-                    for h in &blocked[first[v]..first[v + 1]] {
-                        let [a, b, c] = mesh.triangles[h.triangle as usize];
-                        let wa = f64::from(h.w * (1.0 - h.b1 - h.b2));
-                        let (wb, wc) = (f64::from(h.w * h.b1), f64::from(h.w * h.b2));
-                        acc += wa * last[a as usize].as_dvec3()
-                            + wb * last[b as usize].as_dvec3()
-                            + wc * last[c as usize].as_dvec3();
-                    }
-                    // Every albedo has three channels (a grey one three equal).
-                    let rho =
-                        DVec3::from_array([0, 1, 2].map(|c| f64::from(options.albedo.get(v, c))));
-                    (rho * acc).as_vec3()
-                })
-                .collect();
-            for (e, b) in sum.iter_mut().zip(&next) {
-                *e += *b;
-            }
-            previous_emitted = Some(next);
+            gather.add(&next, &mut total, emitted.as_deref_mut());
+            previous = next;
         }
     }
+    drop(visible);
 
     Transfer {
         lmax,
@@ -729,5 +1010,160 @@ pub fn bake_with_occluder(
         samples: dirs.len(),
         rays: rays.into_inner(),
         emitted,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shlight_mesh::generate;
+
+    /// A small random number stream (xorshift), in `0..1`.
+    fn numbers(seed: u64) -> impl FnMut() -> f32 {
+        let mut s = seed | 1;
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    #[test]
+    fn f32_bounces_match_f64_sums_with_both_kernels() {
+        // Random front hits of random directions on a mesh whose vertices
+        // hold random transfer (3 channels of lmax 2) and emitted light:
+        // one bounce gathered in f32 by either kernel against the same sums
+        // in f64 here.
+        let mesh = generate::uv_sphere(1.0, 12, 6);
+        let n = mesh.vertex_count();
+        let mut next = numbers(9);
+        let albedo: Vec<Vec3> = (0..n).map(|_| Vec3::new(next(), next(), next())).collect();
+        let options = BakeOptions {
+            lmax: 2,
+            samples: 64,
+            mode: Mode::Interreflected { bounces: 1 },
+            albedo: Albedo::PerVertex(albedo.clone()),
+            seed: 0,
+            emission: Some(vec![Vec3::ONE; n]),
+        };
+        let order: Vec<u32> = (0..n as u32).rev().collect();
+        let mut rank = vec![0u32; n];
+        for (s, &v) in order.iter().enumerate() {
+            rank[v as usize] = s as u32;
+        }
+        let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
+        let dirs: Vec<Vec3> = (0..40)
+            .map(|_| Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize())
+            .collect();
+        let totals: Vec<f64> = (0..n).map(|_| 1.0 + f64::from(next()) * 10.0).collect();
+        let mut hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
+        for along in &mut hits {
+            for s in 0..n as u32 {
+                if next() < 0.4 {
+                    continue;
+                }
+                let (b1, b2) = (next(), next());
+                let (b1, b2) = if b1 + b2 > 1.0 {
+                    (1.0 - b1, 1.0 - b2)
+                } else {
+                    (b1, b2)
+                };
+                along.push(FrontHit {
+                    rank: s,
+                    triangle: (next() * mesh.triangle_count() as f32) as u32,
+                    b1,
+                    b2,
+                });
+            }
+        }
+        let gather = Gather::new(
+            &mesh, &order, &rank, &normals, &totals, &dirs, &hits, &options,
+        );
+        let stride = 27;
+        let total: Vec<f32> = (0..n * stride).map(|_| next() * 2.0 - 1.0).collect();
+        let emission: Vec<Vec3> = (0..n).map(|_| Vec3::new(next(), next(), next())).collect();
+        let previous = gather.records(&total, Some(&emission));
+        // The f64 sums, by rank, and their sums of magnitudes.
+        let value = |v: usize, k: usize| {
+            if k < stride {
+                f64::from(total[v * stride + k])
+            } else {
+                f64::from(emission[v][k - stride])
+            }
+        };
+        let mut want = vec![0.0f64; n * 30];
+        let mut size = vec![0.0f64; n * 30];
+        for (j, d) in dirs.iter().enumerate() {
+            for h in &hits[j] {
+                let s = h.rank as usize;
+                let w = f64::from(normals[s].dot(*d)) / totals[order[s] as usize];
+                let ws = [1.0 - h.b1 - h.b2, h.b1, h.b2].map(|b| w * f64::from(b));
+                let corners = mesh.triangles[h.triangle as usize];
+                for k in 0..30 {
+                    let x: f64 = (0..3).map(|i| ws[i] * value(corners[i] as usize, k)).sum();
+                    want[s * 30 + k] += x;
+                    size[s * 30 + k] += x.abs();
+                }
+            }
+        }
+        let hits_per_vertex = hits.iter().map(Vec::len).sum::<usize>() as f64 / n as f64;
+        for kernels in [Kernels::Portable, Kernels::detect()] {
+            let got = gather.bounce(kernels, &previous, &|_| {});
+            for s in 0..n {
+                let r = flat(&got[s * gather.lines..][..gather.lines]);
+                let v = order[s] as usize;
+                for k in 0..30 {
+                    let rho = f64::from(albedo[v][if k < stride { k / 9 } else { k - stride }]);
+                    let want = rho * want[s * 30 + k];
+                    // f32 sums of about `hits_per_vertex` terms: each
+                    // addition rounds by at most half an ulp of a running
+                    // sum, bounded by the sum of magnitudes.
+                    let tol = 4.0
+                        * (hits_per_vertex + 8.0)
+                        * f64::from(f32::EPSILON)
+                        * rho
+                        * size[s * 30 + k];
+                    assert!(
+                        (f64::from(r[k]) - want).abs() <= tol + 1e-12,
+                        "{kernels:?} rank {s} entry {k}: {} vs {want}",
+                        r[k]
+                    );
+                }
+                assert!(r[30..].iter().all(|&x| x == 0.0), "padding stays zero");
+            }
+        }
+    }
+
+    #[test]
+    fn bakes_with_either_kernel_agree() {
+        let room = generate::cornell_box();
+        let (fine, map) = room.subdivided_with_map(0.05);
+        let options = BakeOptions {
+            lmax: 2,
+            samples: 128,
+            mode: Mode::Interreflected { bounces: 2 },
+            albedo: Albedo::PerVertex(fine.colors.clone().unwrap()),
+            seed: 5,
+            emission: fine.emission.clone(),
+        };
+        let occluder = Occluder::new(&room);
+        let run = |kernels| {
+            bake_with(
+                &fine,
+                Some((&occluder, &map)),
+                &options,
+                &|_, _, _| {},
+                kernels,
+            )
+        };
+        let (portable, simd) = (run(Kernels::Portable), run(Kernels::detect()));
+        let max = portable.coeffs.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        for (a, b) in portable.coeffs.iter().zip(&simd.coeffs) {
+            assert!((a - b).abs() <= 1e-5 * max, "{a} vs {b}");
+        }
+        for (a, b) in portable.emitted.unwrap().iter().zip(&simd.emitted.unwrap()) {
+            assert!((*a - *b).abs().max_element() <= 1e-5 * a.abs().max_element().max(1.0));
+        }
     }
 }
