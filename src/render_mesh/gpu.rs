@@ -30,11 +30,9 @@ pub fn camera_for(
         .ok_or_else(|| anyhow!("--camera and --target are the same point"))
 }
 
-/// Renders the checked `args` to `format` on the GPU.
+/// Renders the checked `args` (without `--volume`: `volume.rs`) to
+/// `format` on the GPU.
 pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<()> {
-    if args.volume.volume.is_some() {
-        return super::volume::render(args, format, ui);
-    }
     crate::gpu_scene::check_lmax(args.lmax)?;
     let mode = match (args.mode, &args.prt) {
         (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),

@@ -144,7 +144,11 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     }
     args.volume.check(args.lmax)?;
     #[cfg(feature = "gpu")]
-    return gpu::render(args, format, ui);
+    return if args.volume.volume.is_some() {
+        volume::render(args, format, ui)
+    } else {
+        gpu::render(args, format, ui)
+    };
     #[cfg(not(feature = "gpu"))]
     {
         let _ = ui;

@@ -37,6 +37,7 @@ mod shading;
 mod transfer;
 mod volume;
 mod volume_expansion;
+mod volume_fetch;
 
 pub use camera::{Camera, DEFAULT_FOV_Y_DEGREES, DEFAULT_VIEW_FROM};
 pub use context::{GpuContext, new_instance};
@@ -49,8 +50,9 @@ pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use transfer::Transfer;
 pub use volume::{
-    PROBE_SPHERE_RADIUS, ProbeTexels, VOLUME_MAX_LMAX, VolumeFetch, VolumeInstance, VolumeProbes,
-    VolumeRenderer, pack_texels, place, probe_sphere_instances,
+    PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeProbes, VolumeRenderer, pack_texels,
+    place, probe_sphere_instances,
 };
+pub use volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
 /// wgpu, as this crate uses it (for windows and surfaces).
 pub use wgpu;

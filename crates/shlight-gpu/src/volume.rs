@@ -37,56 +37,11 @@ use crate::renderer::DEPTH_FORMAT;
 use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, Shading};
 use crate::volume_expansion::{volume_coefficients, volume_texels};
+use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
 use crate::{Camera, GpuContext, GpuError};
-
-/// Highest degree the volume pass shades: a volume of higher lmax is
-/// clipped to it (`ceil((3 c + 1) / 4)` texels are interpolated per
-/// fragment, `c` the coefficients of the degrees whose `A_l` is not 0: 7
-/// at lmax 2, 14 at lmax 4, where degree 3's 7 coefficients are left out).
-pub const VOLUME_MAX_LMAX: usize = 4;
 
 /// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
 const MAX_TEXELS: usize = 14;
-
-/// How the volume pass interpolates the probes' texels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum VolumeFetch {
-    /// One trilinear sample per texel by the sampler (needs
-    /// `wgpu::Features::FLOAT32_FILTERABLE`). The sampler computes the
-    /// weights: in f32 on lavapipe (within rounding of the CPU's); GPUs
-    /// round them to their sub-texel precision (8 bits on most: weights
-    /// in steps of 1/256).
-    Filtered,
-    /// Eight `textureLoad`s per texel, weighted in the shader exactly as
-    /// `shlight_volume::Grid::trilinear` weighs them (any adapter).
-    Loads,
-}
-
-impl VolumeFetch {
-    /// Whether `ctx`'s device filters `Rgba32Float` (wgpu's
-    /// `FLOAT32_FILTERABLE`), which [`VolumeFetch::Filtered`] needs.
-    #[must_use]
-    pub fn can_filter(ctx: &GpuContext) -> bool {
-        ctx.device
-            .features()
-            .contains(wgpu::Features::FLOAT32_FILTERABLE)
-    }
-
-    /// What `ctx` runs best without losing exactness: [`VolumeFetch::Filtered`]
-    /// on a CPU adapter (lavapipe) that can filter ([`VolumeFetch::can_filter`]),
-    /// where the sampler weighs in f32 and is the faster path by far; else
-    /// [`VolumeFetch::Loads`]: hardware GPUs round the sampler's weights to
-    /// 8 bits, and serve the eight loads per texel cheaply.
-    #[must_use]
-    pub fn best(ctx: &GpuContext) -> Self {
-        let cpu = ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
-        if cpu && Self::can_filter(ctx) {
-            Self::Filtered
-        } else {
-            Self::Loads
-        }
-    }
-}
 
 /// The instance value of a mesh lit by interpolation (no probe of its own).
 const NO_PROBE: u32 = u32::MAX;

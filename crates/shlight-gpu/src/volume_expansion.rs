@@ -33,7 +33,7 @@ use shlight_core::legendre::Legendre;
 use shlight_core::zonal::clamped_cosine_eigenvalue;
 
 use crate::sh_expansion::{azimuth_power, literal};
-use crate::volume::{VOLUME_MAX_LMAX, VolumeFetch};
+use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
 
 /// The volume module's generated WGSL for `lmax`, texels filtered.
 pub(crate) fn volume_wgsl_filtered(lmax: usize) -> String {
