@@ -1016,17 +1016,13 @@ fn bake_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng, rngs::StdRng};
     use shlight_mesh::generate;
 
-    /// A small random number stream (xorshift), in `0..1`.
+    /// A seeded stream of random numbers in `0..1`.
     fn numbers(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        }
+        let mut rng = StdRng::seed_from_u64(seed);
+        move || rng.random::<f32>()
     }
 
     #[test]

@@ -291,16 +291,12 @@ mod avx2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng, rngs::StdRng};
 
-    /// A small random number stream (xorshift), in `-1..1`.
+    /// A seeded stream of random numbers in `-1..1`.
     fn numbers(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 23) as f32 - 1.0
-        }
+        let mut rng = StdRng::seed_from_u64(seed);
+        move || rng.random_range(-1.0..1.0)
     }
 
     #[test]
