@@ -79,7 +79,7 @@ pub struct SynthArgs {
     #[arg(long, value_parser = parse_vec3, allow_negative_numbers = true)]
     pub direction: Option<DVec3>,
     /// Half-angle in degrees: cap (default 30), directional (default 0 =
-    /// one texel; > 0 a small cap of the same irradiance).
+    /// one texel; up to 90 a small cap of the same irradiance).
     #[arg(long)]
     pub half_angle: Option<f64>,
     /// Points per texel side for the texel means (N x N per texel).
@@ -116,6 +116,12 @@ pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
     });
     if !(0.0..=180.0).contains(&half_angle) {
         bail!("--half-angle {half_angle}: must be between 0 and 180 degrees");
+    }
+    if args.kind == SynthKind::Directional && half_angle > 90.0 {
+        bail!(
+            "--half-angle {half_angle}: a directional light's cap must be at most 90 degrees \
+             (a wider cap cannot give the light's irradiance facing it)"
+        );
     }
     let alpha = half_angle.to_radians();
     let n = args.supersample as usize;

@@ -278,6 +278,16 @@ fn synth_writes_every_format_and_refuses_bad_arguments() {
         before,
         "the old map was touched"
     );
+    let err = shlight_err(&[
+        "synth",
+        "directional",
+        "--half-angle",
+        "120",
+        "-o",
+        s(&keep),
+    ]);
+    assert!(err.contains("at most 90 degrees"), "{err}");
+    assert_eq!(std::fs::read(&keep).unwrap(), before);
     let err = shlight_err(&["synth", "constant", "-o", s(&dir.join("x.jpg"))]);
     assert!(err.contains("x.jpg"), "{err}");
 }

@@ -40,7 +40,7 @@ impl<C: ShValue> CapLight<C> {
     /// Solid angle of the cap, `2π (1 - cos α) = 4π sin²(α/2)`.
     #[must_use]
     pub fn solid_angle(&self) -> f64 {
-        4.0 * PI * (self.half_angle / 2.0).sin().powi(2)
+        cap_solid_angle(self.half_angle)
     }
 
     /// The cap's exact irradiance at unit normal `n` (module docs).
@@ -82,7 +82,13 @@ pub fn cap_irradiance_per_power(alpha: f64, cos_t: f64) -> f64 {
     let y = -x * cos_t / sin_t;
     let s = sin_t * (1.0 - y * y).max(0.0).sqrt();
     let e = (cos_t * y.clamp(-1.0, 1.0).acos() - x * s) * sin2 + (s / x).atan();
-    e / (4.0 * PI * (alpha / 2.0).sin().powi(2))
+    e / cap_solid_angle(alpha)
+}
+
+/// The solid angle of a cap of half-angle `alpha`, `2π (1 - cos α)`,
+/// written as `4π sin²(α/2)` to avoid cancellation at small `α`.
+pub(crate) fn cap_solid_angle(alpha: f64) -> f64 {
+    4.0 * PI * (alpha / 2.0).sin().powi(2)
 }
 
 #[cfg(test)]

@@ -9,8 +9,10 @@
 //!   texel's centre, `E Y_l^m(d_k)`; the centre is at most half a texel
 //!   from the direction asked for ([`DirectionalDrawing::Texel`] says
 //!   where).
-//! - half-angle `α > 0`: a uniform cap of half-angle `α` whose radiance
-//!   `L = E / (π sin² α)` gives irradiance `E` facing it; its coefficients
+//! - half-angle `0 < α <= π/2`: a uniform cap of half-angle `α` whose
+//!   radiance `L = E / (π sin² α)` gives irradiance `E` facing it (past
+//!   `π/2` the cap covers the whole hemisphere facing it, whose irradiance
+//!   is `π L` whatever `L` is spread beyond it, so larger caps are refused); its coefficients
 //!   are [`crate::analytic::cap`]'s and differ from the delta's by about
 //!   `l(l+1) α² / 4` relatively in degree `l`. The cap is drawn as texel
 //!   means ([`crate::texel_means()`], at least `8 x 8` points per equirect
@@ -18,11 +20,12 @@
 //!   exact `2π(1 - cos α) L = 4π sin²(α/2) L`. A cap that misses every
 //!   point falls back to one texel.
 
-use core::f64::consts::PI;
+use core::f64::consts::{FRAC_PI_2, PI};
 
 use glam::DVec3;
 
 use crate::analytic_light::AnalyticLight;
+use crate::cap_light::cap_solid_angle;
 use crate::layout::TexelGrid;
 use crate::texel_means::texel_means;
 
@@ -61,7 +64,10 @@ pub struct DirectionalTexels {
 /// it) drawn into `grid`: in one texel when `half_angle` (radians) is 0, or
 /// as a cap normalised to its exact power (module docs) with `n x n`
 /// points per texel (at least 8). `on_rows` is called with the number of
-/// rows finished (a progress bar).
+/// rows finished (a progress bar), `grid.height()` rows in all.
+///
+/// # Panics
+/// If `half_angle` is not within `0..=π/2`.
 #[must_use]
 pub fn directional_texels(
     grid: &TexelGrid,
@@ -71,6 +77,10 @@ pub fn directional_texels(
     n: usize,
     on_rows: &(dyn Fn(usize) + Sync),
 ) -> DirectionalTexels {
+    assert!(
+        (0.0..=FRAC_PI_2).contains(&half_angle),
+        "a directional light's half-angle must be within 0..=π/2, not {half_angle}"
+    );
     let (w, h) = (grid.width(), grid.height());
     let mut unresolved_cap = false;
     if half_angle > 0.0 {
@@ -82,16 +92,13 @@ pub fn directional_texels(
             radiance: DVec3::ONE,
         };
         let coverage = texel_means(grid, n.max(8), |d| cap.radiance(d), on_rows);
-        let mut power = 0.0;
-        for y in 0..h {
-            for x in 0..w {
-                power += f64::from(coverage[y * w + x][0]) * grid.solid_angle(x, y);
-            }
-        }
+        let power: f64 = coverage
+            .iter()
+            .zip(grid.solid_angles())
+            .map(|(c, omega)| f64::from(c[0]) * omega)
+            .sum();
         if power > 0.0 {
-            // The cap's solid angle 2π(1 - cos a), written without cancellation.
-            let exact = 4.0 * PI * (half_angle / 2.0).sin().powi(2);
-            let scale = exact / power;
+            let scale = cap_solid_angle(half_angle) / power;
             let pixels = coverage
                 .into_iter()
                 .map(|px| {
@@ -111,7 +118,10 @@ pub fn directional_texels(
     let radiance = irradiance / grid.solid_angle(x, y);
     let mut pixels = vec![[0.0f32; 3]; w * h];
     pixels[y * w + x] = radiance.as_vec3().to_array();
-    on_rows(h);
+    if !unresolved_cap {
+        // The cap's texel means have already counted every row.
+        on_rows(h);
+    }
     DirectionalTexels {
         pixels,
         drawing: DirectionalDrawing::Texel {
@@ -132,12 +142,7 @@ mod tests {
     use crate::orientation::MapOrientation;
     use crate::projection::project_map;
     use crate::rotation::Frame;
-
-    fn max_diff(a: &crate::ShCoeffs<DVec3>, b: &crate::ShCoeffs<DVec3>) -> f64 {
-        (0..a.len())
-            .map(|i| (a[i] - b[i]).abs().max_element())
-            .fold(0.0, f64::max)
-    }
+    use crate::test_util::max_diff;
 
     /// On a texel centre the one-texel light projects to exactly the
     /// delta's coefficients `E Y_l^m(d)` (but for the f32 texel), in every
@@ -168,7 +173,8 @@ mod tests {
             assert!(offset < 1e-9 && !unresolved_cap);
             assert_eq!(drawn.pixels.iter().filter(|p| **p != [0.0; 3]).count(), 1);
             let map = EnvMap::new(layout, o, w, h, &drawn.pixels).unwrap();
-            let err = max_diff(&project_map(&map, 4), &analytic::directional(4, d, e));
+            let got = project_map(&map, 4);
+            let err = max_diff(got.as_slice(), analytic::directional(4, d, e).as_slice());
             assert!(err < 1e-6 * 5.0, "{layout:?}: {err}");
         }
         let grid = TexelGrid::new(Layout::Equirect, (32, 16), MapOrientation::default()).unwrap();
@@ -213,7 +219,11 @@ mod tests {
             "{power} {exact}"
         );
         let map = EnvMap::new(Layout::Equirect, o, w, h, &drawn.pixels).unwrap();
-        let err = max_diff(&project_map(&map, 2), &analytic::cap(2, axis, a, radiance));
+        let got = project_map(&map, 2);
+        let err = max_diff(
+            got.as_slice(),
+            analytic::cap(2, axis, a, radiance).as_slice(),
+        );
         // Measured 2e-4 of coefficients near 0.5 (edge texels only).
         assert!(err < 2e-3, "{err}");
     }
@@ -234,5 +244,21 @@ mod tests {
                 ..
             }
         ));
+    }
+
+    /// Each row is reported once, whichever way the light is drawn.
+    #[test]
+    fn progress_counts_every_row_once() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let grid = TexelGrid::new(Layout::Equirect, (16, 8), MapOrientation::default()).unwrap();
+        let axis = grid.sample(3, 2, 0.03, 0.03).unwrap();
+        // One texel, a resolved cap, a cap too small to resolve.
+        for half_angle in [0.0, 0.5, 1e-4] {
+            let rows = AtomicUsize::new(0);
+            let _ = directional_texels(&grid, axis, DVec3::ONE, half_angle, 1, &|n| {
+                rows.fetch_add(n, Ordering::Relaxed);
+            });
+            assert_eq!(rows.into_inner(), 8, "half-angle {half_angle}");
+        }
     }
 }

@@ -273,7 +273,7 @@ mod tests {
         fn radiance(&self, w: DVec3) -> DVec3 {
             let a = self.deg.to_radians();
             if w.dot(self.d) >= a.cos() {
-                self.p / (4.0 * PI * (a / 2.0).sin().powi(2))
+                self.p / crate::cap_light::cap_solid_angle(a)
             } else {
                 DVec3::ZERO
             }
