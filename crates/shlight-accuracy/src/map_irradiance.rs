@@ -72,7 +72,7 @@ impl MapIrradiance {
                     .expect("equirect texels all look somewhere")
             })
             .collect();
-        let weights = grid.solid_angles().to_vec();
+        let weights = grid.solid_angles();
         let exact = irradiance_brute_force(map, &normals, progress);
         Ok(Self {
             normals,

@@ -83,14 +83,8 @@ mod tests {
     use crate::layout::{EnvMap, Layout, TexelGrid};
     use crate::orientation::MapOrientation;
     use crate::projection::project_map;
+    use crate::test_util::max_diff;
     use crate::texel_means::texel_means;
-
-    /// The largest difference between two expansions' coefficients.
-    fn max_diff(a: &ShCoeffs<DVec3>, b: &ShCoeffs<DVec3>) -> f64 {
-        (0..a.len())
-            .map(|i| (a[i] - b[i]).abs().max_element())
-            .fold(0.0, f64::max)
-    }
 
     #[test]
     fn radiance_is_the_definition() {
@@ -167,7 +161,7 @@ mod tests {
             let want = light.coefficients(3);
             let power = ((got[0] - want[0]) / want[0]).abs().max_element();
             assert!(power < power_tolerance, "{light:?}: L00 {power}");
-            let err = max_diff(&got, &want);
+            let err = max_diff(got.as_slice(), want.as_slice());
             assert!(err < 2e-3, "{light:?}: {err}");
         }
     }

@@ -15,7 +15,8 @@ use core::fmt;
 
 use glam::DVec3;
 
-use crate::sphere_minimum::{Minimiser, dense_point_count, vec3_from_f64};
+use crate::channels::dir_from_f64;
+use crate::sphere_minimum::{Minimiser, band_bounds, dense_point_count};
 use crate::window::{Window, WindowFamily};
 use crate::zonal::irradiance;
 use crate::{Real, ShCoeffs, ShValue};
@@ -218,7 +219,7 @@ pub fn auto_window<T: Real + ShValue<Scalar = T>>(
         window,
         min_before: T::from_f64(min_before),
         min_after: T::from_f64(min_after),
-        argmin_before: vec3_from_f64::<T>(argmin_before),
+        argmin_before: dir_from_f64::<T>(argmin_before),
     };
     let lmax = t.lmax();
     let n = dense_point_count(lmax);
@@ -235,7 +236,7 @@ pub fn auto_window<T: Real + ShValue<Scalar = T>>(
         return Err(AutoWindowError::NonPositiveMean {
             mean: T::from_f64(mean),
             min: T::from_f64(min_before),
-            argmin: vec3_from_f64::<T>(argmin_before),
+            argmin: dir_from_f64::<T>(argmin_before),
         });
     }
     let margin = AUTO_WINDOW_MARGIN * mean;
@@ -255,7 +256,7 @@ pub fn auto_window<T: Real + ShValue<Scalar = T>>(
     };
 
     // Verify on an independent, denser set; step stronger if that fails.
-    let check = Minimiser::new(t.clone(), 2 * n + 1);
+    let check = Minimiser::new(t, 2 * n + 1);
     for _ in 0..MAX_STEPS {
         let factors = family.window(p).factors(lmax);
         let min_after = min_of(&search, &factors).min(min_of(&check, &factors));
@@ -305,13 +306,10 @@ impl Rounding {
                 band_bounds: Vec::new(),
             };
         }
-        let band_bounds = (0..=t.lmax())
-            .map(|l| {
-                let norm = t.band(l).iter().map(|v| v * v).sum::<f64>().sqrt();
-                ((2 * l + 1) as f64 / (4.0 * PI)).sqrt() * norm
-            })
-            .collect();
-        Self { unit, band_bounds }
+        Self {
+            unit,
+            band_bounds: band_bounds(t),
+        }
     }
 
     /// `u (N + 4 (top+1) + 8) B_w` for the window `factors` (`w_l`), with
@@ -447,11 +445,13 @@ fn weakest_lambda(lmax: usize, bound: f64, passes: impl Fn(f64) -> bool) -> f64 
 /// `lambda` provably keeps the target `>= c / 2 > 0`.
 fn laplacian_bound(t: &ShCoeffs<f64>) -> f64 {
     let c = t[0] * y00();
-    let b: f64 = (1..=t.lmax())
-        .map(|l| {
-            let norm = t.band(l).iter().map(|v| v * v).sum::<f64>().sqrt();
+    let b: f64 = band_bounds(t)
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(l, b)| {
             let k = (l * (l + 1)) as f64;
-            ((2 * l + 1) as f64 / (4.0 * PI)).sqrt() * norm / (k * k)
+            b / (k * k)
         })
         .sum();
     let bound = 2.0 * b / c;
@@ -476,9 +476,7 @@ mod tests {
     use crate::analytic;
     use crate::quadrature::fibonacci_sphere;
     use crate::sphere_minimum::sphere_minimum;
-
-    /// Unit roundoff of `f32`, `2^-24`.
-    const U32: f64 = f32::EPSILON as f64 / 2.0;
+    use crate::test_util::U32;
 
     /// Accuracy of the `f64` minimum search, relative to the bound `B`
     /// below (its refinement reaches about `1e-15`).

@@ -38,6 +38,12 @@ pub(crate) fn dir_f64<R: Real>(d: R::Vec3) -> DVec3 {
     DVec3::new(a[0].to_f64(), a[1].to_f64(), a[2].to_f64())
 }
 
+/// `d` as a direction of the public API (`Vec3` or `DVec3`), each
+/// component rounded once for `f32`; the inverse of [`dir_f64`].
+pub(crate) fn dir_from_f64<R: Real>(d: DVec3) -> R::Vec3 {
+    R::Vec3::from(d.to_array().map(R::from_f64))
+}
+
 /// The degree-1 vector of channel `c` of radiance coefficients `f` (lmax
 /// at least 1): `(-f_1^1, -f_1^-1, f_1^0)`, which with the Condon-Shortley
 /// phase is `sqrt(3/4π) ∫ L(ω) ω dω` in world axes.

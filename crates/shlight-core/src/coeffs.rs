@@ -3,6 +3,7 @@
 use core::ops::{Add, AddAssign, Index, IndexMut, Mul, Neg, Sub};
 use glam::{DVec3, Vec3};
 
+use crate::channels::dir_from_f64;
 use crate::quadrature::SphereQuadrature;
 use crate::{Real, ShBasis, ShValue, lmax_from_count, sh_count, sh_index};
 
@@ -231,8 +232,9 @@ impl<C: ShValue> ShCoeffs<C> {
     /// (Gauss-Legendre in `cos theta` times the uniform rule in `phi`). When
     /// `f` is a spherical polynomial of degree `<= degree - lmax` the result
     /// is exact up to rounding; otherwise larger `degree` gives better
-    /// accuracy. Cost: `(degree/2 + 1) (degree + 1)` calls of `f`, each with
-    /// one basis evaluation and `(lmax+1)^2` multiply-adds per channel.
+    /// accuracy. Cost, with `n = max(degree, lmax)`: `(n/2 + 1) (n + 1)`
+    /// calls of `f`, each with one basis evaluation and `(lmax+1)^2`
+    /// multiply-adds per channel.
     ///
     /// Works for every value type (`f32`, `f64`, `Vec3`, `DVec3`); `f`
     /// takes the direction as the glam vector of the scalar (`Vec3` for
@@ -255,9 +257,7 @@ impl<C: ShValue> ShCoeffs<C> {
         // Channel-major sums: `sums[c * count + i]` for coefficient `i`.
         let mut sums = vec![0.0f64; C::CHANNELS * count];
         for (d, &w) in q.directions.iter().zip(&q.weights) {
-            let v = f(<S<C> as Real>::Vec3::from(
-                d.to_array().map(S::<C>::from_f64),
-            ));
+            let v = f(dir_from_f64::<S<C>>(*d));
             basis.eval(*d, &mut y);
             for (c, sums) in sums.chunks_exact_mut(count).enumerate() {
                 let vw = v.channel(c).to_f64() * w;
@@ -401,6 +401,7 @@ impl ShCoeffs<Vec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_util::U32;
 
     fn sample() -> ShCoeffs<f64> {
         ShCoeffs::from_fn(3, |l, m| (l as f64) * 0.5 - m as f64 * 0.25 + 0.1)
@@ -463,9 +464,6 @@ mod tests {
             assert!((x - y).abs() < 1e-13);
         }
     }
-
-    /// Unit roundoff of `f32`, `2^-24`.
-    const U32: f64 = f32::EPSILON as f64 / 2.0;
 
     /// Bound on `|f32 value - exact value|` of the test polynomials below at
     /// an `f32`-rounded node, in units of [`U32`]: rounding the node moves

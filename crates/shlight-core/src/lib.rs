@@ -31,10 +31,10 @@
 //!   without pixels, for drawing maps; [`MapOrientation`]: how a map's
 //!   frame meets world directions.
 //! - Drawing lights into maps: [`texel_means()`] (each texel a function's
-//!   mean over equal-area points of it), [`AnalyticLight`] (constant, cap,
-//!   gradient: radiance and closed-form coefficients) and
-//!   [`directional_texels()`] (a delta as one texel, or a cap of exact
-//!   power).
+//!   mean over equal-area points of it in equirect, its centre elsewhere),
+//!   [`AnalyticLight`] (constant, cap, gradient: radiance and closed-form
+//!   coefficients) and [`directional_texels()`] (a delta as one texel, or a
+//!   cap of exact power).
 //! - [`projection`]: environment maps to SH by exact texel-solid-angle
 //!   quadrature, one entry point ([`projection::project`]) over any
 //!   [`TexelSource`] (a contiguous image, a [`StridedImage`], six
@@ -140,6 +140,8 @@ pub mod sloan_light;
 pub mod sphere_minimum;
 pub mod std_error_rotation;
 mod strided_image;
+#[cfg(test)]
+mod test_util;
 pub mod texel_means;
 mod texel_source;
 mod value;

@@ -446,6 +446,7 @@ mod tests {
 
     use super::*;
     use crate::rotation::{rotate_once, rotate_z};
+    use crate::test_util::{U32, max_diff, numbers};
 
     /// Rounding of the quarter turn against other routes: a few hundred
     /// multiply-adds per coefficient at the lmax tested, each within an
@@ -453,22 +454,9 @@ mod tests {
     const TOL: f64 = 1e-12;
 
     fn random(lmax: usize, seed: u64) -> ShCoeffs<DVec3> {
-        let mut s = seed;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = numbers(seed);
         let n = (lmax + 1) * (lmax + 1);
         ShCoeffs::from_vec((0..n).map(|_| DVec3::new(next(), next(), next())).collect()).unwrap()
-    }
-
-    fn max_diff(a: &[DVec3], b: &[DVec3]) -> f64 {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| (*x - *y).abs().max_element())
-            .fold(0.0, f64::max)
     }
 
     /// The whole of `d^l(π/2)`, `(2l+1)^2` entries (row `l + m`, column
@@ -684,9 +672,6 @@ mod tests {
             assert!(d < 1e-10, "band {l}: {d:e}");
         }
     }
-
-    /// Unit roundoff of `f32`, `2^-24`.
-    const U32: f64 = f32::EPSILON as f64 / 2.0;
 
     /// `f32` quarter turn against the `f64` one, per output channel, in
     /// units of `U32 |f_l|` (`|f_l|` the band's 2-norm in that channel):

@@ -1038,3 +1038,24 @@ unsafe fn add_avx(acc: &mut Partial, p: &[f64; LANES], w: &[[f64; LANES]; 6]) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit recurrence's scales `c_l` stay within the range its docs
+    /// give, `[0.16, 1.13]`, for every column to degree 4096.
+    #[test]
+    fn unit_recurrence_scales_stay_in_range() {
+        let lmax = 4096;
+        let leg = Legendre::<f64>::new(lmax);
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for m in 0..=lmax {
+            for &c in &UnitRecurrence::new(leg.column_factors(m)).scale {
+                lo = lo.min(c);
+                hi = hi.max(c);
+            }
+        }
+        assert!(lo >= 0.16 && hi <= 1.13, "c_l in [{lo}, {hi}]");
+    }
+}

@@ -7,6 +7,7 @@ use core::f64::consts::PI;
 
 use glam::DVec3;
 
+use crate::channels::dir_from_f64;
 use crate::quadrature::fibonacci_sphere;
 use crate::{Real, ShBasis, ShCoeffs, ShValue};
 
@@ -78,12 +79,19 @@ pub fn dense_point_count(lmax: usize) -> usize {
 pub fn sphere_minimum<T: Real + ShValue<Scalar = T>>(f: &ShCoeffs<T>) -> (T, T::Vec3) {
     let m = Minimiser::new(f.map(T::to_f64), dense_point_count(f.lmax()));
     let (min, at) = m.minimum(&vec![1.0; f.lmax() + 1]);
-    (T::from_f64(min), vec3_from_f64::<T>(at))
+    (T::from_f64(min), dir_from_f64::<T>(at))
 }
 
-/// `d` in the glam vector of `T` (each component rounded for `f32`).
-pub(crate) fn vec3_from_f64<T: Real>(d: DVec3) -> T::Vec3 {
-    T::Vec3::from(d.to_array().map(T::from_f64))
+/// The bound `b_l = sqrt((2l+1)/4π) |f_l|` of each degree `l` of `f`
+/// (`|f_l|` the Euclidean norm of its `2l+1` coefficients): by
+/// Cauchy-Schwarz and the addition theorem,
+/// `|sum_m f_l^m Y_l^m(d)| <= b_l` at every unit `d`.
+pub(crate) fn band_bounds(f: &ShCoeffs<f64>) -> Vec<f64> {
+    f.band_power()
+        .iter()
+        .enumerate()
+        .map(|(l, p)| ((2 * l + 1) as f64 / (4.0 * PI)).sqrt() * p.sqrt())
+        .collect()
 }
 
 /// Candidates refined per minimum search.
@@ -229,13 +237,8 @@ impl Minimiser {
             .unwrap_or(0);
         let g = g.resized(top);
         let basis = ShBasis::<f64>::new(top);
-        // Rounding level of g: |g| <= sum_l |g_l| sqrt((2l+1)/(4 pi)) (addition theorem).
-        let bound: f64 = (0..=top)
-            .map(|l| {
-                let norm = g.band(l).iter().map(|c| c * c).sum::<f64>().sqrt();
-                norm * ((2 * l + 1) as f64 / (4.0 * PI)).sqrt()
-            })
-            .sum();
+        // Rounding level of g: |g| <= sum_l b_l.
+        let bound: f64 = band_bounds(&g).iter().sum();
         let noise = NOISE_ULPS * f64::EPSILON * bound;
         let mut scratch = vec![0.0; basis.count()];
         let mut eval = |d: [f64; 3]| g.eval_with(&basis, DVec3::from(d), &mut scratch);
@@ -411,9 +414,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-
-    /// Unit roundoff of `f32`, `2^-24`.
-    const U32: f64 = f32::EPSILON as f64 / 2.0;
+    use crate::test_util::{U32, numbers};
 
     /// Accuracy of the `f64` search, relative to [`bound`] (the doc's
     /// `1e-15`-level refinement, with room).
@@ -445,13 +446,8 @@ mod tests {
 
     /// Scalar coefficients in `[-0.5, 0.5)` plus `offset` on the constant.
     fn random(lmax: usize, seed: u64, offset: f64) -> ShCoeffs<f64> {
-        let mut s = seed;
-        let mut f = ShCoeffs::from_fn(lmax, |_, _| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        });
+        let mut next = numbers(seed);
+        let mut f = ShCoeffs::from_fn(lmax, |_, _| next());
         f[0] += offset;
         f
     }

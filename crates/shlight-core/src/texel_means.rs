@@ -1,8 +1,10 @@
 //! [`texel_means`]: a map whose every texel holds a function's **mean over
 //! the texel** (not its value at the centre), the form in which a light
 //! with edges (a cap, a sun) is drawn so that its power in the map is its
-//! exact power up to the sub-sampling, and constant and band-limited
-//! lights project exactly up to `f32` (`shlight synth`).
+//! exact power up to the sub-sampling: a constant light projects exactly up
+//! to `f32`, and the `L_0^0` (power) of any light linear in `cos θ` about
+//! the pole is exact too; higher coefficients carry the projection's own
+//! quadrature error (`shlight synth`).
 //!
 //! Texel `(x, y)` of a `W x H` equirect map covers
 //! `φ ∈ 2π [x/W - 1/2, (x+1)/W - 1/2]` and
@@ -17,7 +19,7 @@
 
 use glam::DVec3;
 
-use crate::layout::{Layout, TexelGrid};
+use crate::layout::TexelGrid;
 
 /// The texels of `grid`, each the mean of `f` over `n x n` equal-area
 /// points of the texel (module docs; `n = 0` is taken as 1, and layouts
@@ -32,13 +34,7 @@ pub fn texel_means(
     f: impl Fn(DVec3) -> DVec3 + Sync,
     on_rows: &(dyn Fn(usize) + Sync),
 ) -> Vec<[f32; 3]> {
-    // Only equirect texels are sub-sampled (TexelGrid::sample); the other
-    // layouts give each texel's centre direction for every point.
-    let n = if grid.layout() == Layout::Equirect {
-        n.max(1)
-    } else {
-        1
-    };
+    let n = grid.points_per_side(n);
     let w = grid.width();
     let mut pixels = vec![[0.0f32; 3]; w * grid.height()];
     let row = |(y, out): (usize, &mut [[f32; 3]])| {
@@ -80,7 +76,7 @@ mod tests {
 
     use super::*;
     use crate::equirect::equirect_row_solid_angle;
-    use crate::layout::render_map;
+    use crate::layout::{Layout, render_map};
     use crate::orientation::MapOrientation;
 
     fn equirect(w: usize, h: usize, o: MapOrientation) -> TexelGrid {

@@ -5,7 +5,6 @@
 //! [`crate::directional_texels()`], SH rendered at texel centres).
 
 use core::f64::consts::PI;
-use std::sync::OnceLock;
 
 use glam::DVec3;
 
@@ -22,15 +21,12 @@ use crate::orientation::MapOrientation;
 ///   [`EnvMap::texel_direction`](super::EnvMap::texel_direction);
 /// - [`TexelGrid::sample`]: points inside a texel whose regular grids
 ///   average a function over the texel;
-/// - [`TexelGrid::solid_angle`]: the exact solid angle a texel covers
-///   (all of them computed once, on first use);
+/// - [`TexelGrid::solid_angle`]: the exact solid angle a texel covers;
 /// - [`TexelGrid::texel_of`]: the texel a direction falls in, the inverse
 ///   of [`TexelGrid::direction`].
 #[derive(Debug)]
 pub struct TexelGrid {
     geo: Geometry,
-    /// Every texel's solid angle, row-major, computed on first use.
-    solid_angles: OnceLock<Vec<f64>>,
 }
 
 impl TexelGrid {
@@ -47,7 +43,6 @@ impl TexelGrid {
         layout.check_size(width, height)?;
         Ok(Self {
             geo: Geometry::new(layout, orientation, width, height),
-            solid_angles: OnceLock::new(),
         })
     }
 
@@ -126,23 +121,32 @@ impl TexelGrid {
         }
     }
 
-    /// The exact solid angle texel `(x, y)` covers (steradians; 0 for
-    /// unused texels and outside the image), as
-    /// [`EnvMap::texel_solid_angle`](super::EnvMap::texel_solid_angle).
-    /// Over all texels they sum to `4π`.
+    /// How many points per texel side of [`TexelGrid::sample`] are worth
+    /// taking when `n` are asked for: `n` (at least 1) for equirect, 1 for
+    /// the other layouts, whose points are all the texel's centre.
     #[must_use]
-    pub fn solid_angle(&self, x: usize, y: usize) -> f64 {
-        if x >= self.geo.w || y >= self.geo.h {
-            return 0.0;
+    pub fn points_per_side(&self, n: usize) -> usize {
+        match self.geo.layout {
+            Layout::Equirect => n.max(1),
+            _ => 1,
         }
-        self.solid_angles()[y * self.geo.w + x]
     }
 
-    /// Every texel's solid angle, row-major (`width * height` values),
-    /// computed on the first call and kept.
+    /// The exact solid angle texel `(x, y)` covers (steradians; 0 for
+    /// unused texels and outside the image), as
+    /// [`EnvMap::texel_solid_angle`](super::EnvMap::texel_solid_angle):
+    /// a disc texel rebuilds its rules per call, so for many texels use
+    /// [`TexelGrid::solid_angles`]. Over all texels they sum to `4π`.
     #[must_use]
-    pub fn solid_angles(&self) -> &[f64] {
-        self.solid_angles.get_or_init(|| self.geo.solid_angles())
+    pub fn solid_angle(&self, x: usize, y: usize) -> f64 {
+        self.geo.solid_angle(x, y, self.geo.disc_rule().as_ref())
+    }
+
+    /// Every texel's solid angle, row-major (`width * height` values), as
+    /// [`EnvMap::texel_solid_angles`](super::EnvMap::texel_solid_angles).
+    #[must_use]
+    pub fn solid_angles(&self) -> Vec<f64> {
+        self.geo.solid_angles()
     }
 
     /// The texel that direction `d` (finite, non-zero) falls in: the image
