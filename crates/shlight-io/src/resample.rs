@@ -8,9 +8,10 @@ impl Image {
     /// texels of columns `[x W / width, (x + 1) W / width)` and rows
     /// `[y H / height, (y + 1) H / height)` (integer division; at least
     /// one of each, so enlarging repeats the nearest texel). Shrinking by
-    /// whole factors averages whole blocks; [`Image::halve`] is the `f32`
-    /// special case kept for GPU texture limits. An empty image gives
-    /// black.
+    /// whole factors averages whole blocks, so on even sizes halving
+    /// agrees with [`Image::halve`] (summed in `f32`, kept for GPU texture
+    /// limits, which rounds odd sizes up and averages partial blocks). An
+    /// empty image gives black.
     #[must_use]
     pub fn resample(&self, width: usize, height: usize) -> Image {
         let (iw, ih) = (self.width(), self.height());

@@ -80,31 +80,17 @@ impl PixelStats {
         let width = width.max(1);
         let values = pixels.as_flattened();
         let blocks = values.len().div_ceil(STATS_BLOCK);
-        let threads = std::thread::available_parallelism()
-            .map_or(1, usize::from)
-            .min(blocks / PARALLEL_BLOCKS)
-            .max(1);
-        let (mut stats, first) = if threads == 1 {
-            run_stats(values)
+        // The core count is asked for only when the image is worth
+        // splitting: it is not cached (a system call and cgroup files each
+        // time), and a map's rows may come here one at a time.
+        let threads = if blocks < 2 * PARALLEL_BLOCKS {
+            1
         } else {
-            let per_run = blocks.div_ceil(threads) * STATS_BLOCK;
-            let runs: Vec<(PixelStats, Option<usize>)> = std::thread::scope(|scope| {
-                let handles: Vec<_> = values
-                    .chunks(per_run)
-                    .map(|run| scope.spawn(move || run_stats(run)))
-                    .collect();
-                handles
-                    .into_iter()
-                    .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                    .collect()
-            });
-            let mut total = (empty_stats(), None);
-            for (r, (part, first)) in runs.into_iter().enumerate() {
-                total.0 = merge(total.0, part);
-                total.1 = total.1.or(first.map(|i| r * per_run + i));
-            }
-            total
+            std::thread::available_parallelism()
+                .map_or(1, usize::from)
+                .min(blocks / PARALLEL_BLOCKS)
         };
+        let (mut stats, first) = stats_in_runs(values, threads);
         stats.first_non_finite = first.map(|i| ((i / 3) % width, (i / 3) / width));
         if stats.min_value > stats.max_value {
             // No finite value at all.
@@ -119,6 +105,32 @@ impl PixelStats {
 /// (about 200 000 values), [`PixelStats::of_pixels`] stays on the calling
 /// thread, where starting threads would cost more than it saves.
 const PARALLEL_BLOCKS: usize = 8;
+
+/// [`run_stats`] of `values` split into `threads` runs of whole blocks,
+/// each on a scoped thread, the results combined in order (the first
+/// non-finite value's index is into all of `values`).
+fn stats_in_runs(values: &[f32], threads: usize) -> (PixelStats, Option<usize>) {
+    if threads <= 1 {
+        return run_stats(values);
+    }
+    let per_run = values.len().div_ceil(STATS_BLOCK).div_ceil(threads) * STATS_BLOCK;
+    let runs: Vec<(PixelStats, Option<usize>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = values
+            .chunks(per_run)
+            .map(|run| scope.spawn(move || run_stats(run)))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
+    let mut total = (empty_stats(), None);
+    for (r, (part, first)) in runs.into_iter().enumerate() {
+        total.0 = merge(total.0, part);
+        total.1 = total.1.or(first.map(|i| r * per_run + i));
+    }
+    total
+}
 
 /// Nothing counted yet: the identity of [`merge`].
 fn empty_stats() -> PixelStats {
@@ -235,5 +247,32 @@ fn block_stats(values: &[f32]) -> PixelStats {
         negative: negative.iter().map(|&n| n as usize).sum(),
         min_value: min.into_iter().fold(f32::INFINITY, f32::min),
         max_value: max.into_iter().fold(f32::NEG_INFINITY, f32::max),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Any split into runs gives the one run's result, whatever the number
+    /// of cores: ten blocks and a ragged tail, with the special values in
+    /// different runs.
+    #[test]
+    fn every_split_gives_the_single_runs_result() {
+        let mut values: Vec<f32> = (0..10 * STATS_BLOCK + 100)
+            .map(|i| (i % 101) as f32 / 100.0)
+            .collect();
+        let n = values.len();
+        values[7 * STATS_BLOCK + 5] = f32::NAN;
+        values[9 * STATS_BLOCK + 1] = f32::INFINITY;
+        values[STATS_BLOCK + 3] = -2.5;
+        values[n - 1] = 42.0;
+        let one = run_stats(&values);
+        assert_eq!(one.1, Some(7 * STATS_BLOCK + 5));
+        assert_eq!((one.0.non_finite, one.0.negative), (2, 1));
+        assert_eq!((one.0.min_value, one.0.max_value), (-2.5, 42.0));
+        for threads in [2, 3, 7, 11, 20] {
+            assert_eq!(stats_in_runs(&values, threads), one, "{threads} runs");
+        }
     }
 }

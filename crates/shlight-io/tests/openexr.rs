@@ -577,10 +577,11 @@ fn compressions_newer_than_the_decoder_are_named() {
 
 #[test]
 fn large_files_are_mapped_and_read_as_their_bytes() {
-    // Files of 1 MiB and more are mapped rather than copied (read.rs): a
-    // 640x480 float file without compression (3.7 MB) reads exactly as
-    // the same bytes through `read_image_bytes`, and as the image written;
-    // cut short, it reports a truncated file, not a crash.
+    // Files of 1 MiB and more are mapped rather than copied (read.rs; this
+    // test sees only the result, not which route was taken): a 640x480
+    // float file without compression (3.7 MB), over that size, reads
+    // exactly as the same bytes through `read_image_bytes`, and as the
+    // image written; cut short, it reports a truncated file, not a crash.
     let dir = TempDir::new("exr-mapped");
     let path = dir.join("big.exr");
     let image = hdr_image(640, 480);
