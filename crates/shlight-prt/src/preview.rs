@@ -11,6 +11,7 @@
 //! quarter of white.
 
 use glam::Vec3;
+use shlight_core::radiance_map::luminance;
 use shlight_io::Image;
 use shlight_mesh::Mesh;
 
@@ -21,12 +22,12 @@ pub const FOV_Y_DEGREES: f32 = 35.0;
 const SUPERSAMPLE: usize = 2;
 
 /// The exposure in stops that puts the mean Rec.709 luminance
-/// `0.2126 r + 0.7152 g + 0.0722 b` of `colors` at 0.25
+/// ([`luminance`], in `f64`) of `colors` at 0.25
 /// ([`shlight_io::auto_exposure`]); 0 for black (or no) colours.
 #[must_use]
 pub fn auto_exposure(colors: &[Vec3]) -> f32 {
-    let luminance = |c: &Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
-    let mean = colors.iter().map(luminance).sum::<f64>() / colors.len().max(1) as f64;
+    let mean =
+        colors.iter().map(|c| luminance(c.as_dvec3())).sum::<f64>() / colors.len().max(1) as f64;
     shlight_io::auto_exposure(mean, 0.25)
 }
 
