@@ -822,7 +822,7 @@ fn bake_with(
                 (&own, None)
             }
         };
-        let (cast_positions, bvh, faces) = (&occluder.positions, &occluder.bvh, &occluder.faces);
+        let (cast_positions, bvh) = (occluder.positions(), occluder.bvh());
         // Where the rays start, by rank.
         let origins = ray_origins(mesh);
         let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
@@ -859,7 +859,7 @@ fn bake_with(
                                     continue;
                                 }
                                 let triangle = found.triangle[k];
-                                if faces[triangle as usize].dot(d) >= 0.0 {
+                                if !occluder.is_front(triangle, d) {
                                     continue;
                                 }
                                 match map {
@@ -953,6 +953,7 @@ fn bake_with(
         geometric[order[s] as usize * nc..][..nc].copy_from_slice(t);
     }
     drop(ranked);
+    drop(visible);
 
     // T^0 = albedo x geometric transfer, per channel.
     let stride = channels * nc;
@@ -1000,7 +1001,6 @@ fn bake_with(
             previous = next;
         }
     }
-    drop(visible);
 
     Transfer {
         lmax,
