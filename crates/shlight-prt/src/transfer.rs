@@ -308,6 +308,23 @@ pub fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
     keyed.into_iter().map(|(_, i)| i).collect()
 }
 
+/// The inverse of the permutation `order`: `ranks(order)[order[s]] = s`.
+fn ranks(order: &[u32]) -> Vec<u32> {
+    let mut rank = vec![0u32; order.len()];
+    for (s, &v) in order.iter().enumerate() {
+        rank[v as usize] = s as u32;
+    }
+    rank
+}
+
+/// `mesh`'s triangles with their corners by rank (`rank[v]`, [`ranks`]).
+fn ranked_triangles(mesh: &Mesh, rank: &[u32]) -> Vec<[u32; 3]> {
+    mesh.triangles
+        .iter()
+        .map(|t| t.map(|i| rank[i as usize]))
+        .collect()
+}
+
 /// The rays [`bake`] casts along each of `dirs`: the direction, and the
 /// origins (`p + eps n`) of the vertices facing it (`n.d > 0`) in Morton
 /// order. For benchmarks and comparisons with other ray casters; `bake`
@@ -444,7 +461,7 @@ struct Gather<'a> {
     /// Per direction, the first hit of each chunk (and the end).
     starts: Vec<u32>,
     /// The mesh's triangles, corners by rank.
-    triangles: Vec<[u32; 3]>,
+    triangles: &'a [[u32; 3]],
     albedo: &'a Albedo,
     nc: usize,
     channels: usize,
@@ -456,11 +473,10 @@ struct Gather<'a> {
 
 impl<'a> Gather<'a> {
     fn new(
-        mesh: &Mesh,
         order: &'a [u32],
-        rank: &[u32],
         normals: &'a [Vec3],
         totals: &[f64],
+        triangles: &'a [[u32; 3]],
         dirs: &'a [Vec3],
         hits: &'a [Vec<FrontHit>],
         options: &'a BakeOptions,
@@ -484,11 +500,7 @@ impl<'a> Gather<'a> {
             dirs,
             hits,
             starts,
-            triangles: mesh
-                .triangles
-                .iter()
-                .map(|t| t.map(|i| rank[i as usize]))
-                .collect(),
+            triangles,
             albedo: &options.albedo,
             nc,
             channels,
@@ -722,18 +734,16 @@ impl Occluder {
     #[must_use]
     pub fn new(mesh: &Mesh) -> Self {
         let order = morton_order(&mesh.positions, mesh.bounds());
-        let mut rank = vec![0u32; order.len()];
-        for (s, &v) in order.iter().enumerate() {
-            rank[v as usize] = s as u32;
-        }
+        let triangles = ranked_triangles(mesh, &ranks(&order));
+        Self::from_ranked(mesh, &order, &triangles)
+    }
+
+    /// `mesh` made ready, its vertices' Morton order `order` and its
+    /// triangles with corners by rank (`triangles`) already known.
+    fn from_ranked(mesh: &Mesh, order: &[u32], triangles: &[[u32; 3]]) -> Self {
         let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
-        let triangles: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .map(|t| t.map(|i| rank[i as usize]))
-            .collect();
         Self {
-            bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
+            bvh: PacketBvh::new(Bvh::new(&positions, triangles)),
             positions,
             faces: face_normals(mesh),
         }
@@ -754,6 +764,7 @@ impl Occluder {
 
     /// Whether a ray along `dir` meets triangle `triangle` (the mesh's
     /// index) on its front.
+    #[inline]
     #[must_use]
     pub fn is_front(&self, triangle: u32, dir: Vec3) -> bool {
         self.faces[triangle as usize].dot(dir) < 0.0
@@ -801,10 +812,13 @@ fn bake_with(
     // make coherent packets and every pass reads memory in sequence.
     let bounds = mesh.bounds();
     let order = morton_order(&mesh.positions, bounds);
-    let mut rank = vec![0u32; n_vertices];
-    for (s, &v) in order.iter().enumerate() {
-        rank[v as usize] = s as u32;
-    }
+    // The triangles with their corners by rank: what the bounces read, and
+    // what the rays are cast against when there is no occluder.
+    let triangles = if shadowed {
+        ranked_triangles(mesh, &ranks(&order))
+    } else {
+        Vec::new()
+    };
     let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
     let words = n_vertices.div_ceil(64);
     // Bit s of row j: the ray from the vertex of rank s along direction j
@@ -818,7 +832,7 @@ fn bake_with(
         let (occluder, map) = match occluder {
             Some((o, m)) => (o, Some(m)),
             None => {
-                own = Occluder::new(mesh);
+                own = Occluder::from_ranked(mesh, &order, &triangles);
                 (&own, None)
             }
         };
@@ -978,11 +992,10 @@ fn bake_with(
     let bounces = options.mode.bounces();
     if bounces > 0 {
         let gather = Gather::new(
-            mesh,
             &order,
-            &rank,
             &normals,
             &totals,
+            &triangles,
             &dirs,
             &front_hits,
             options,
@@ -1044,10 +1057,7 @@ mod tests {
             emission: Some(vec![Vec3::ONE; n]),
         };
         let order: Vec<u32> = (0..n as u32).rev().collect();
-        let mut rank = vec![0u32; n];
-        for (s, &v) in order.iter().enumerate() {
-            rank[v as usize] = s as u32;
-        }
+        let triangles = ranked_triangles(&mesh, &ranks(&order));
         let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
         let dirs: Vec<Vec3> = (0..40)
             .map(|_| Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize())
@@ -1074,7 +1084,7 @@ mod tests {
             }
         }
         let gather = Gather::new(
-            &mesh, &order, &rank, &normals, &totals, &dirs, &hits, &options,
+            &order, &normals, &totals, &triangles, &dirs, &hits, &options,
         );
         let stride = 27;
         let total: Vec<f32> = (0..n * stride).map(|_| next() * 2.0 - 1.0).collect();
