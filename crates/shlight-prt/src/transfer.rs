@@ -455,7 +455,7 @@ struct Gather<'a> {
     order: &'a [u32],
     /// Normals and `sum_j max(n.s_j, 0)` by rank.
     normals: &'a [Vec3],
-    totals: Vec<f64>,
+    totals: &'a [f64],
     dirs: &'a [Vec3],
     hits: &'a [Vec<FrontHit>],
     /// Per direction, the first hit of each chunk (and the end).
@@ -475,7 +475,7 @@ impl<'a> Gather<'a> {
     fn new(
         order: &'a [u32],
         normals: &'a [Vec3],
-        totals: &[f64],
+        totals: &'a [f64],
         triangles: &'a [[u32; 3]],
         dirs: &'a [Vec3],
         hits: &'a [Vec<FrontHit>],
@@ -496,7 +496,7 @@ impl<'a> Gather<'a> {
         Self {
             order,
             normals,
-            totals: order.iter().map(|&v| totals[v as usize]).collect(),
+            totals,
             dirs,
             hits,
             starts,
@@ -510,16 +510,19 @@ impl<'a> Gather<'a> {
     }
 
     /// The records of transfer `total` and exit radiance `emission` (both
-    /// by vertex).
+    /// by rank).
     fn records(&self, total: &[f32], emission: Option<&[Vec3]>) -> Vec<Line> {
         let stride = self.channels * self.nc;
         let mut out = vec![Line([0.0; LINE]); self.order.len() * self.lines];
-        for (r, &v) in out.chunks_exact_mut(self.lines).zip(self.order) {
+        for (s, (r, t)) in out
+            .chunks_exact_mut(self.lines)
+            .zip(total.chunks_exact(stride))
+            .enumerate()
+        {
             let r = flat_mut(r);
-            let v = v as usize;
-            r[..stride].copy_from_slice(&total[v * stride..][..stride]);
+            r[..stride].copy_from_slice(t);
             if let Some(e) = emission {
-                r[stride..stride + 3].copy_from_slice(&e[v].to_array());
+                r[stride..stride + 3].copy_from_slice(&e[s].to_array());
             }
         }
         out
@@ -641,19 +644,21 @@ impl<'a> Gather<'a> {
     }
 
     /// Adds bounce records `next` to the transfer `total` and the exit
-    /// radiance `emitted` (by vertex).
+    /// radiance `emitted` (by rank).
     fn add(&self, next: &[Line], total: &mut [f32], emitted: Option<&mut [Vec3]>) {
         let stride = self.channels * self.nc;
-        for (r, &v) in next.chunks_exact(self.lines).zip(self.order) {
-            let r = flat(r);
-            for (t, b) in total[v as usize * stride..][..stride].iter_mut().zip(r) {
+        for (r, t) in next
+            .chunks_exact(self.lines)
+            .zip(total.chunks_exact_mut(stride))
+        {
+            for (t, b) in t.iter_mut().zip(flat(r)) {
                 *t += b;
             }
         }
         if let Some(e) = emitted {
-            for (r, &v) in next.chunks_exact(self.lines).zip(self.order) {
+            for (r, e) in next.chunks_exact(self.lines).zip(e) {
                 let r = flat(r);
-                e[v as usize] += Vec3::new(r[stride], r[stride + 1], r[stride + 2]);
+                *e += Vec3::new(r[stride], r[stride + 1], r[stride + 2]);
             }
         }
     }
@@ -798,12 +803,6 @@ fn bake_with(
     for (d, row) in dirs.iter().zip(ylm.chunks_exact_mut(nc)) {
         basis.eval(d.as_dvec3(), row);
     }
-    // sum_j max(n.s_j, 0) per vertex: the weights' denominators.
-    let totals: Vec<f64> = mesh
-        .normals
-        .par_iter()
-        .map(|n| dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum())
-        .collect();
 
     let shadowed = options.mode != Mode::Unshadowed;
     let keep_hits = matches!(options.mode, Mode::Interreflected { bounces } if bounces > 0);
@@ -820,6 +819,11 @@ fn bake_with(
         Vec::new()
     };
     let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
+    // sum_j max(n.s_j, 0) per vertex, by rank: the weights' denominators.
+    let totals: Vec<f64> = normals
+        .par_iter()
+        .map(|n| dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum())
+        .collect();
     let words = n_vertices.div_ceil(64);
     // Bit s of row j: the ray from the vertex of rank s along direction j
     // escapes.
@@ -940,7 +944,7 @@ fn bake_with(
             let mut acc = vec![0.0f64; nc];
             for (k, t) in out.chunks_exact_mut(nc).enumerate() {
                 let s = chunk * CHUNK + k;
-                let (n, total) = (normals[s], totals[order[s] as usize]);
+                let (n, total) = (normals[s], totals[s]);
                 acc.fill(0.0);
                 if total > 0.0 {
                     for (j, d) in dirs.iter().enumerate() {
@@ -962,33 +966,32 @@ fn bake_with(
                 }
             }
         });
-    let mut geometric = vec![0.0f32; n_vertices * nc];
-    for (s, t) in ranked.chunks_exact(nc).enumerate() {
-        geometric[order[s] as usize * nc..][..nc].copy_from_slice(t);
-    }
-    drop(ranked);
     drop(visible);
 
-    // T^0 = albedo x geometric transfer, per channel.
+    // T^0 = albedo x geometric transfer, per channel, by rank.
     let stride = channels * nc;
     let mut total = vec![0.0f32; n_vertices * stride];
-    for (v, (t, g)) in total
+    for ((t, g), &v) in total
         .chunks_exact_mut(stride)
-        .zip(geometric.chunks_exact(nc))
-        .enumerate()
+        .zip(ranked.chunks_exact(nc))
+        .zip(&order)
     {
         for c in 0..channels {
-            let rho = options.albedo.get(v, c);
+            let rho = options.albedo.get(v as usize, c);
             for (o, gi) in t[c * nc..][..nc].iter_mut().zip(g) {
                 *o = rho * gi;
             }
         }
     }
-    drop(geometric);
+    drop(ranked);
 
     // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
-    // the same for the emitters' light E, both in one pass over the hits.
-    let mut emitted = options.emission.clone();
+    // the same for the emitters' light E (E^0 = Le, by rank), both in one
+    // pass over the hits.
+    let mut emitted: Option<Vec<Vec3>> = options
+        .emission
+        .as_ref()
+        .map(|e| order.iter().map(|&v| e[v as usize]).collect());
     let bounces = options.mode.bounces();
     if bounces > 0 {
         let gather = Gather::new(
@@ -1000,7 +1003,7 @@ fn bake_with(
             &front_hits,
             options,
         );
-        let mut previous = gather.records(&total, options.emission.as_deref());
+        let mut previous = gather.records(&total, emitted.as_deref());
         for bounce in 1..=bounces {
             let done = AtomicUsize::new(0);
             let next = gather.bounce(kernels, &previous, &|n| {
@@ -1019,11 +1022,21 @@ fn bake_with(
         lmax,
         channels,
         vertex_count: n_vertices,
-        coeffs: total,
+        coeffs: by_vertex(&total, stride, &order),
         samples: dirs.len(),
         rays: rays.into_inner(),
-        emitted,
+        emitted: emitted.map(|e| by_vertex(&e, 1, &order)),
     }
+}
+
+/// Rows of `width` values by rank (`order[s]` the vertex of rank `s`) in
+/// vertex order.
+fn by_vertex<T: Copy + Default>(ranked: &[T], width: usize, order: &[u32]) -> Vec<T> {
+    let mut out = vec![T::default(); ranked.len()];
+    for (row, &v) in ranked.chunks_exact(width).zip(order) {
+        out[v as usize * width..][..width].copy_from_slice(row);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -1063,6 +1076,7 @@ mod tests {
             .map(|_| Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize())
             .collect();
         let totals: Vec<f64> = (0..n).map(|_| 1.0 + f64::from(next()) * 10.0).collect();
+        let ranked_totals: Vec<f64> = order.iter().map(|&v| totals[v as usize]).collect();
         let mut hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
         for along in &mut hits {
             for s in 0..n as u32 {
@@ -1084,12 +1098,25 @@ mod tests {
             }
         }
         let gather = Gather::new(
-            &order, &normals, &totals, &triangles, &dirs, &hits, &options,
+            &order,
+            &normals,
+            &ranked_totals,
+            &triangles,
+            &dirs,
+            &hits,
+            &options,
         );
         let stride = 27;
         let total: Vec<f32> = (0..n * stride).map(|_| next() * 2.0 - 1.0).collect();
         let emission: Vec<Vec3> = (0..n).map(|_| Vec3::new(next(), next(), next())).collect();
-        let previous = gather.records(&total, Some(&emission));
+        // The records by rank.
+        let ranked_total: Vec<f32> = order
+            .iter()
+            .flat_map(|&v| &total[v as usize * stride..][..stride])
+            .copied()
+            .collect();
+        let ranked_emission: Vec<Vec3> = order.iter().map(|&v| emission[v as usize]).collect();
+        let previous = gather.records(&ranked_total, Some(&ranked_emission));
         // The f64 sums, by rank, and their sums of magnitudes.
         let value = |v: usize, k: usize| {
             if k < stride {
