@@ -460,6 +460,8 @@ struct Gather<'a> {
     hits: &'a [Vec<FrontHit>],
     /// Per direction, the first hit of each chunk (and the end).
     starts: Vec<u32>,
+    /// Entries of `starts` per direction: the chunks, and one more.
+    row: usize,
     /// The mesh's triangles, corners by rank.
     triangles: &'a [[u32; 3]],
     albedo: &'a Albedo,
@@ -500,6 +502,7 @@ impl<'a> Gather<'a> {
             dirs,
             hits,
             starts,
+            row: chunks + 1,
             triangles,
             albedo: &options.albedo,
             nc,
@@ -577,29 +580,44 @@ impl<'a> Gather<'a> {
         next
     }
 
+    /// The hits of chunk `c`'s vertices, direction by direction in order:
+    /// `f(k, [w_j w_a, w_j w_b, w_j w_c], [a, b, c])` for each, `k` the
+    /// vertex's place in the chunk, `w_j` its weight of the direction,
+    /// `w_a`, `w_b`, `w_c` the hit's barycentric weights of the triangle's
+    /// corners and `a`, `b`, `c` their ranks. Inlined into both kernels,
+    /// the AVX2 one's `f` included.
+    #[inline(always)]
+    fn each_hit(&self, c: usize, mut f: impl FnMut(usize, [f32; 3], [usize; 3])) {
+        let first = c * BOUNCE_CHUNK;
+        for (j, d) in self.dirs.iter().enumerate() {
+            let starts = &self.starts[j * self.row + c..];
+            for h in &self.hits[j][starts[0] as usize..starts[1] as usize] {
+                let s = h.rank as usize;
+                let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
+                let [a, b, cc] = self.triangles[h.triangle as usize];
+                f(
+                    s - first,
+                    [w * (1.0 - h.b1 - h.b2), w * h.b1, w * h.b2],
+                    [a as usize, b as usize, cc as usize],
+                );
+            }
+        }
+    }
+
     /// The hits of chunk `c`'s vertices: `w_j (w_a R_a + w_b R_b + w_c R_c)`
     /// summed into their rows of `acc` (zeros), `R` the corners' records in
     /// `prev`.
     fn chunk(&self, c: usize, prev: &[f32], acc: &mut [f32]) {
         let (rec, len) = (self.lines * LINE, self.len);
-        let first = c * BOUNCE_CHUNK;
-        let row = self.order.len().div_ceil(BOUNCE_CHUNK) + 1;
-        for (j, d) in self.dirs.iter().enumerate() {
-            let (lo, hi) = (self.starts[j * row + c], self.starts[j * row + c + 1]);
-            for h in &self.hits[j][lo as usize..hi as usize] {
-                let s = h.rank as usize;
-                let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
-                let (wa, wb, wc) = (w * (1.0 - h.b1 - h.b2), w * h.b1, w * h.b2);
-                let [a, b, cc] = self.triangles[h.triangle as usize];
-                let ra = &prev[a as usize * rec..][..len];
-                let rb = &prev[b as usize * rec..][..len];
-                let rc = &prev[cc as usize * rec..][..len];
-                let out = &mut acc[(s - first) * rec..][..len];
-                for k in 0..len {
-                    out[k] += wa * ra[k] + wb * rb[k] + wc * rc[k];
-                }
+        self.each_hit(c, |v, [wa, wb, wc], [a, b, cc]| {
+            let ra = &prev[a * rec..][..len];
+            let rb = &prev[b * rec..][..len];
+            let rc = &prev[cc * rec..][..len];
+            let out = &mut acc[v * rec..][..len];
+            for k in 0..len {
+                out[k] += wa * ra[k] + wb * rb[k] + wc * rc[k];
             }
-        }
+        });
     }
 
     /// [`chunk`](Self::chunk) with AVX2, eight floats of a record at a
@@ -613,34 +631,24 @@ impl<'a> Gather<'a> {
         use std::arch::x86_64::*;
         let rec = self.lines * LINE;
         let vectors = self.len.div_ceil(8);
-        let first = c * BOUNCE_CHUNK;
-        let row = self.order.len().div_ceil(BOUNCE_CHUNK) + 1;
-        for (j, d) in self.dirs.iter().enumerate() {
-            let (lo, hi) = (self.starts[j * row + c], self.starts[j * row + c + 1]);
-            for h in &self.hits[j][lo as usize..hi as usize] {
-                let s = h.rank as usize;
-                let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
-                let [a, b, cc] = self.triangles[h.triangle as usize];
-                let ra = &prev[a as usize * rec..][..rec];
-                let rb = &prev[b as usize * rec..][..rec];
-                let rc = &prev[cc as usize * rec..][..rec];
-                let out = &mut acc[(s - first) * rec..][..rec];
-                // SAFETY: vector k covers floats 8k..8k+8 <= rec of each
-                // record and of `out`.
-                unsafe {
-                    let wa = _mm256_set1_ps(w * (1.0 - h.b1 - h.b2));
-                    let wb = _mm256_set1_ps(w * h.b1);
-                    let wc = _mm256_set1_ps(w * h.b2);
-                    for k in 0..vectors {
-                        let x = _mm256_mul_ps(wa, _mm256_loadu_ps(ra.as_ptr().add(8 * k)));
-                        let x = _mm256_fmadd_ps(wb, _mm256_loadu_ps(rb.as_ptr().add(8 * k)), x);
-                        let x = _mm256_fmadd_ps(wc, _mm256_loadu_ps(rc.as_ptr().add(8 * k)), x);
-                        let o = out.as_mut_ptr().add(8 * k);
-                        _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), x));
-                    }
+        self.each_hit(c, |v, [wa, wb, wc], [a, b, cc]| {
+            let ra = &prev[a * rec..][..rec];
+            let rb = &prev[b * rec..][..rec];
+            let rc = &prev[cc * rec..][..rec];
+            let out = &mut acc[v * rec..][..rec];
+            // SAFETY: vector k covers floats 8k..8k+8 <= rec of each record
+            // and of `out`.
+            unsafe {
+                let (wa, wb, wc) = (_mm256_set1_ps(wa), _mm256_set1_ps(wb), _mm256_set1_ps(wc));
+                for k in 0..vectors {
+                    let x = _mm256_mul_ps(wa, _mm256_loadu_ps(ra.as_ptr().add(8 * k)));
+                    let x = _mm256_fmadd_ps(wb, _mm256_loadu_ps(rb.as_ptr().add(8 * k)), x);
+                    let x = _mm256_fmadd_ps(wc, _mm256_loadu_ps(rc.as_ptr().add(8 * k)), x);
+                    let o = out.as_mut_ptr().add(8 * k);
+                    _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), x));
                 }
             }
-        }
+        });
     }
 
     /// Adds bounce records `next` to the transfer `total` and the exit
