@@ -487,6 +487,10 @@ impl<'a> Gather<'a> {
         let chunks = n.div_ceil(BOUNCE_CHUNK);
         let mut starts = Vec::with_capacity(dirs.len() * (chunks + 1));
         for h in hits {
+            debug_assert!(
+                h.is_sorted_by_key(|x| x.rank),
+                "a direction's hits are in rank order"
+            );
             for c in 0..=chunks {
                 let first = (c * BOUNCE_CHUNK) as u32;
                 starts.push(h.partition_point(|x| x.rank < first) as u32);
