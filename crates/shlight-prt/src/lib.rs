@@ -46,6 +46,7 @@ mod error;
 pub mod gltf_export;
 pub mod packet;
 pub mod preview;
+pub mod records;
 pub mod transfer;
 
 pub use error::PrtError;

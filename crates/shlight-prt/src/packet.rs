@@ -38,6 +38,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 
 use crate::bvh::{Bvh, INNER, Ray};
+use crate::records::has_avx2_and_fma;
 
 /// Rays in a packet: one AVX register. Sixteen (two registers, rays from a
 /// wider patch of vertices) visited 1.5x the nodes per packet (105 against
@@ -59,17 +60,7 @@ pub fn set_packets_enabled(enabled: bool) {
 /// [`set_packets_enabled`] has not turned them off).
 #[must_use]
 pub fn packets_enabled() -> bool {
-    if DISABLED.load(Ordering::Relaxed) {
-        return false;
-    }
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    !DISABLED.load(Ordering::Relaxed) && has_avx2_and_fma()
 }
 
 /// The direction a packet's rays share, and its ray-space frame.

@@ -65,6 +65,7 @@ use shlight_mesh::{Mesh, Subdivision};
 
 use crate::bvh::Bvh;
 use crate::packet::{Direction, LANES, Packet, PacketBvh};
+use crate::records::{self, Kernels, LINE, Line, flat, flat_mut};
 
 /// Ray origins are offset along the normal by this times the bounding box
 /// diagonal.
@@ -398,47 +399,6 @@ fn face_normals(mesh: &Mesh) -> Vec<Vec3> {
         .collect()
 }
 
-/// Which kernels gather the bounces: AVX2 and FMA, or portable loops (the
-/// same sums in the same order; the fused roundings differ in the last
-/// bits).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kernels {
-    Avx2,
-    Portable,
-}
-
-impl Kernels {
-    /// AVX2 where the processor has it and FMA.
-    fn detect() -> Self {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            return Kernels::Avx2;
-        }
-        Kernels::Portable
-    }
-}
-
-/// Floats in a [`Line`].
-const LINE: usize = 16;
-
-/// One 64-byte line of a vertex's bounce record.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
-struct Line([f32; LINE]);
-
-/// The floats of `lines`.
-fn flat(lines: &[Line]) -> &[f32] {
-    // SAFETY: a `Line` is 16 `f32` with no padding (`repr(C)`, 64 bytes).
-    unsafe { std::slice::from_raw_parts(lines.as_ptr().cast::<f32>(), lines.len() * LINE) }
-}
-
-/// The floats of `lines`, mutable.
-fn flat_mut(lines: &mut [Line]) -> &mut [f32] {
-    // SAFETY: as in `flat`.
-    unsafe { std::slice::from_raw_parts_mut(lines.as_mut_ptr().cast::<f32>(), lines.len() * LINE) }
-}
-
 /// The bounces' gathering. A vertex's record holds its transfer of the
 /// last bounce (`channels x nc`) and, when the mesh emits, its exit
 /// radiance due to emitters, in `f32`, padded to whole 64-byte lines; the
@@ -512,27 +472,8 @@ impl<'a> Gather<'a> {
             nc,
             channels,
             len,
-            lines: len.div_ceil(LINE),
+            lines: records::lines(len),
         }
-    }
-
-    /// The records of transfer `total` and exit radiance `emission` (both
-    /// by rank).
-    fn records(&self, total: &[f32], emission: Option<&[Vec3]>) -> Vec<Line> {
-        let stride = self.channels * self.nc;
-        let mut out = vec![Line([0.0; LINE]); self.order.len() * self.lines];
-        for (s, (r, t)) in out
-            .chunks_exact_mut(self.lines)
-            .zip(total.chunks_exact(stride))
-            .enumerate()
-        {
-            let r = flat_mut(r);
-            r[..stride].copy_from_slice(t);
-            if let Some(e) = emission {
-                r[stride..stride + 3].copy_from_slice(&e[s].to_array());
-            }
-        }
-        out
     }
 
     /// The next bounce's records from the last one's, `progress(vertices)`
@@ -543,7 +484,7 @@ impl<'a> Gather<'a> {
         previous: &[Line],
         progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Line> {
-        let mut next = vec![Line([0.0; LINE]); previous.len()];
+        let mut next = vec![Line::ZERO; previous.len()];
         let prev = flat(previous);
         let stride = self.channels * self.nc;
         next.par_chunks_mut(BOUNCE_CHUNK * self.lines)
@@ -1015,7 +956,7 @@ fn bake_with(
             &front_hits,
             options,
         );
-        let mut previous = gather.records(&total, emitted.as_deref());
+        let mut previous = records::build(&total, stride, emitted.as_deref());
         for bounce in 1..=bounces {
             let done = AtomicUsize::new(0);
             let next = gather.bounce(kernels, &previous, &|n| {
@@ -1128,7 +1069,7 @@ mod tests {
             .copied()
             .collect();
         let ranked_emission: Vec<Vec3> = order.iter().map(|&v| emission[v as usize]).collect();
-        let previous = gather.records(&ranked_total, Some(&ranked_emission));
+        let previous = records::build(&ranked_total, stride, Some(&ranked_emission));
         // The f64 sums, by rank, and their sums of magnitudes.
         let value = |v: usize, k: usize| {
             if k < stride {

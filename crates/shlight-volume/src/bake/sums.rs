@@ -7,38 +7,9 @@
 //! computes the same sums in the same order (its roundings differ from the
 //! fused ones in the last bits).
 
+use shlight_prt::records::{Kernels, LINE};
+
 use super::Hit;
-
-/// Which kernels run: AVX2 and FMA, or the portable loops.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Kernels {
-    /// `x86_64` AVX2 and FMA.
-    Avx2,
-    /// Plain Rust, any processor.
-    Portable,
-}
-
-impl Kernels {
-    /// AVX2 where the processor has it (and FMA), the portable loops
-    /// otherwise.
-    pub(super) fn detect() -> Self {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            return Kernels::Avx2;
-        }
-        Kernels::Portable
-    }
-}
-
-/// Floats per surface record: a vertex's `len` values (transfer, then
-/// emitted light) padded with zeros to whole 64-byte lines.
-pub(super) const LINE: usize = 16;
-
-/// One 64-byte line of surface records.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(64))]
-pub(super) struct Line(pub(super) [f32; LINE]);
 
 /// What the rows of one probe's block are made from.
 pub(super) struct Rows<'a> {
