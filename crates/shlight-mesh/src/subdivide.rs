@@ -192,8 +192,10 @@ const NONE: u32 = u32::MAX;
 /// One cell of a [`Subdivision`] grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Cell {
-    /// The piece that holds the cell's centre ([`NONE`]: no piece overlaps
-    /// the cell).
+    /// The piece that holds the cell's centre (the first such piece when
+    /// the centre is on a cut), or, when none does (a cell across the
+    /// triangle's long side), the first piece that overlaps the cell;
+    /// [`NONE`]: no piece overlaps it.
     first: u32,
     /// Another piece that overlaps it ([`NONE`]: no other).
     second: u32,
@@ -288,7 +290,9 @@ struct Part {
 impl Part {
     /// The pieces of the bisection tree at `root` (depth first) and their
     /// grid: each cell lists the pieces that overlap it with a positive
-    /// area, the largest overlap first.
+    /// area, in the pieces' order except that the first piece holding the
+    /// cell's centre comes first (when none holds it, the first piece that
+    /// overlaps the cell stays first).
     fn new(nodes: &[Node], root: usize) -> Self {
         let mut pieces = Vec::new();
         let mut corners: Vec<[[f64; 2]; 3]> = Vec::new();
