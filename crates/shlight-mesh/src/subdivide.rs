@@ -16,11 +16,9 @@
 //! original triangles, far fewer, and the light read from the subdivided
 //! ones.
 
-use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
-
 use glam::Vec3;
 use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::Mesh;
 
@@ -58,7 +56,7 @@ impl Mesh {
         // sharing vertex indices (a box with flat normals) are split
         // alike; each index edge gets its own midpoint vertex (keeping
         // that side's normal and colour).
-        let mut canonical: HashMap<[u32; 3], u32, Fast> = HashMap::default();
+        let mut canonical: FxHashMap<[u32; 3], u32> = FxHashMap::default();
         let mut ids: Vec<u32> = out
             .positions
             .iter()
@@ -69,8 +67,8 @@ impl Mesh {
                     .or_insert(next)
             })
             .collect();
-        let mut split_edges: HashSet<(u32, u32), Fast> = HashSet::default();
-        let mut midpoints: HashMap<(u32, u32), u32, Fast> = HashMap::default();
+        let mut split_edges: FxHashSet<(u32, u32)> = FxHashSet::default();
+        let mut midpoints: FxHashMap<(u32, u32), u32> = FxHashMap::default();
         let mut pending: Vec<([u32; 3], u32)> = std::mem::take(&mut out.triangles)
             .into_iter()
             .zip(0..)
@@ -577,33 +575,6 @@ impl Subdivision {
         best
     }
 }
-
-/// A multiply-rotate hash of 32-bit words (rustc's FxHash): the
-/// subdivision's maps are keyed by vertex ids and position bits, which need
-/// no protection against chosen collisions, and SipHash took a tenth of the
-/// subdivision's time.
-#[derive(Clone, Copy, Debug, Default)]
-struct FastHasher(u64);
-
-impl Hasher for FastHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(4) {
-            let mut word = [0u8; 4];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u32(u32::from_le_bytes(word));
-        }
-    }
-
-    fn write_u32(&mut self, x: u32) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(x)).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-type Fast = BuildHasherDefault<FastHasher>;
 
 fn key(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
