@@ -560,11 +560,16 @@ impl Subdivision {
         Some(best)
     }
 
+    /// The pieces of original triangle `t` (none when it was not split).
+    fn pieces_of(&self, t: usize) -> &[Piece] {
+        &self.pieces[self.spans[t] as usize..self.spans[t + 1] as usize]
+    }
+
     /// The piece of original triangle `t` that `q` is least outside of,
     /// among all of them.
     #[cold]
     fn nearest(&self, t: usize, q: [f32; 2]) -> (u32, [f32; 3]) {
-        let pieces = &self.pieces[self.spans[t] as usize..self.spans[t + 1] as usize];
+        let pieces = self.pieces_of(t);
         let mut best = (pieces[0].triangle, pieces[0].weights(q));
         for piece in &pieces[1..] {
             let w = piece.weights(q);
@@ -598,6 +603,8 @@ fn push_midpoint(mesh: &mut Mesh, a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use std::collections::HashMap;
+
+    use rand::{Rng, SeedableRng, rngs::StdRng};
 
     use super::*;
     use crate::generate;
@@ -720,8 +727,7 @@ mod tests {
     /// The pieces of original triangle `t` that hold `q` (all weights at
     /// least `-slack`), by testing every one of them.
     fn holders(map: &Subdivision, t: usize, q: [f32; 2], slack: f32) -> Vec<(u32, [f32; 3])> {
-        let pieces = &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize];
-        pieces
+        map.pieces_of(t)
             .iter()
             .map(|p| (p.triangle, p.weights(q)))
             .filter(|(_, w)| least(*w) >= -slack)
@@ -735,13 +741,7 @@ mod tests {
         // times: the located piece is one that holds the point, every
         // piece holding it by a margin is the located one, and the point
         // comes back from the subdivided triangle's corners.
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut random = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rng = StdRng::seed_from_u64(5);
         for (mesh, max_edge) in [
             (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.6),
             (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.05),
@@ -755,14 +755,14 @@ mod tests {
             for t in 0..mesh.triangle_count() {
                 for _ in 0..400 {
                     random_points += 1;
-                    let (mut a, mut b) = (random(), random());
+                    let (mut a, mut b): (f32, f32) = (rng.random(), rng.random());
                     if a + b > 1.0 {
                         (a, b) = (1.0 - a, 1.0 - b);
                     }
                     points.push((t as u32, [1.0 - a - b, a, b]));
                 }
                 // The corners and edge midpoints of its pieces.
-                for piece in &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize] {
+                for piece in map.pieces_of(t) {
                     let o = piece.origin;
                     points.push((t as u32, [1.0 - o[0] - o[1], o[0], o[1]]));
                 }
@@ -847,18 +847,11 @@ mod tests {
         // a point usually reads its cell and those two pieces only.
         let room = generate::cornell_box();
         let (_, map) = room.subdivided_with_map(0.05);
-        let mut state = 7u64;
+        let mut rng = StdRng::seed_from_u64(7);
         let (mut first, mut total) = (0, 0);
         for t in 0..room.triangle_count() {
             for _ in 0..500 {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1);
-                let a = (state >> 40) as f32 / (1u64 << 24) as f32;
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1);
-                let b = (state >> 40) as f32 / (1u64 << 24) as f32;
+                let (a, b): (f32, f32) = (rng.random(), rng.random());
                 let (a, b) = if a + b > 1.0 {
                     (1.0 - a, 1.0 - b)
                 } else {
