@@ -769,6 +769,12 @@ mod tests {
         // The portable rows and sums against AVX2's (where the processor
         // has it): the same sums, fused or not, in a scene with emitters
         // and coloured walls.
+        if Kernels::detect() == Kernels::Portable {
+            crate::skip(
+                "bakes_with_either_kernel_agree",
+                "no AVX2 and FMA here: both bakes sum with the portable kernels",
+            );
+        }
         let room = shlight_mesh::generate::cornell_box();
         let grid = Grid::around([3, 2, 3], room.bounds()).unwrap();
         let options = VolumeOptions {
@@ -788,6 +794,7 @@ mod tests {
             )
             .unwrap()
         };
+        // Without AVX2 and FMA this compares the portable bake with itself.
         let (portable, simd) = (run(Kernels::Portable), run(Kernels::detect()));
         assert_eq!(portable.valid, simd.valid);
         assert_eq!(portable.backfaces, simd.backfaces);
