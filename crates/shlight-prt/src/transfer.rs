@@ -766,7 +766,7 @@ fn bake_with(
     let order = morton_order(&mesh.positions, bounds);
     // The triangles with their corners by rank: what the bounces read, and
     // what the rays are cast against when there is no occluder.
-    let triangles = if shadowed {
+    let triangles = if keep_hits || shadowed && occluder.is_none() {
         ranked_triangles(mesh, &ranks(&order))
     } else {
         Vec::new()
