@@ -16,11 +16,9 @@
 //! original triangles, far fewer, and the light read from the subdivided
 //! ones.
 
-use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
-
 use glam::Vec3;
 use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::Mesh;
 
@@ -58,7 +56,7 @@ impl Mesh {
         // sharing vertex indices (a box with flat normals) are split
         // alike; each index edge gets its own midpoint vertex (keeping
         // that side's normal and colour).
-        let mut canonical: HashMap<[u32; 3], u32, Fast> = HashMap::default();
+        let mut canonical: FxHashMap<[u32; 3], u32> = FxHashMap::default();
         let mut ids: Vec<u32> = out
             .positions
             .iter()
@@ -69,8 +67,8 @@ impl Mesh {
                     .or_insert(next)
             })
             .collect();
-        let mut split_edges: HashSet<(u32, u32), Fast> = HashSet::default();
-        let mut midpoints: HashMap<(u32, u32), u32, Fast> = HashMap::default();
+        let mut split_edges: FxHashSet<(u32, u32)> = FxHashSet::default();
+        let mut midpoints: FxHashMap<(u32, u32), u32> = FxHashMap::default();
         let mut pending: Vec<([u32; 3], u32)> = std::mem::take(&mut out.triangles)
             .into_iter()
             .zip(0..)
@@ -192,8 +190,10 @@ const NONE: u32 = u32::MAX;
 /// One cell of a [`Subdivision`] grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Cell {
-    /// The piece that holds the cell's centre ([`NONE`]: no piece overlaps
-    /// the cell).
+    /// The piece that holds the cell's centre (the first such piece when
+    /// the centre is on a cut), or, when none does (a cell across the
+    /// triangle's long side), the first piece that overlaps the cell;
+    /// [`NONE`]: no piece overlaps it.
     first: u32,
     /// Another piece that overlaps it ([`NONE`]: no other).
     second: u32,
@@ -288,7 +288,9 @@ struct Part {
 impl Part {
     /// The pieces of the bisection tree at `root` (depth first) and their
     /// grid: each cell lists the pieces that overlap it with a positive
-    /// area, the largest overlap first.
+    /// area, in the pieces' order except that the first piece holding the
+    /// cell's centre comes first (when none holds it, the first piece that
+    /// overlaps the cell stays first).
     fn new(nodes: &[Node], root: usize) -> Self {
         let mut pieces = Vec::new();
         let mut corners: Vec<[[f64; 2]; 3]> = Vec::new();
@@ -558,11 +560,16 @@ impl Subdivision {
         Some(best)
     }
 
+    /// The pieces of original triangle `t` (none when it was not split).
+    fn pieces_of(&self, t: usize) -> &[Piece] {
+        &self.pieces[self.spans[t] as usize..self.spans[t + 1] as usize]
+    }
+
     /// The piece of original triangle `t` that `q` is least outside of,
     /// among all of them.
     #[cold]
     fn nearest(&self, t: usize, q: [f32; 2]) -> (u32, [f32; 3]) {
-        let pieces = &self.pieces[self.spans[t] as usize..self.spans[t + 1] as usize];
+        let pieces = self.pieces_of(t);
         let mut best = (pieces[0].triangle, pieces[0].weights(q));
         for piece in &pieces[1..] {
             let w = piece.weights(q);
@@ -573,33 +580,6 @@ impl Subdivision {
         best
     }
 }
-
-/// A multiply-rotate hash of 32-bit words (rustc's FxHash): the
-/// subdivision's maps are keyed by vertex ids and position bits, which need
-/// no protection against chosen collisions, and SipHash took a tenth of the
-/// subdivision's time.
-#[derive(Clone, Copy, Debug, Default)]
-struct FastHasher(u64);
-
-impl Hasher for FastHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(4) {
-            let mut word = [0u8; 4];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u32(u32::from_le_bytes(word));
-        }
-    }
-
-    fn write_u32(&mut self, x: u32) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(x)).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-type Fast = BuildHasherDefault<FastHasher>;
 
 fn key(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
@@ -623,6 +603,8 @@ fn push_midpoint(mesh: &mut Mesh, a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use std::collections::HashMap;
+
+    use rand::{Rng, SeedableRng, rngs::StdRng};
 
     use super::*;
     use crate::generate;
@@ -745,8 +727,7 @@ mod tests {
     /// The pieces of original triangle `t` that hold `q` (all weights at
     /// least `-slack`), by testing every one of them.
     fn holders(map: &Subdivision, t: usize, q: [f32; 2], slack: f32) -> Vec<(u32, [f32; 3])> {
-        let pieces = &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize];
-        pieces
+        map.pieces_of(t)
             .iter()
             .map(|p| (p.triangle, p.weights(q)))
             .filter(|(_, w)| least(*w) >= -slack)
@@ -760,13 +741,7 @@ mod tests {
         // times: the located piece is one that holds the point, every
         // piece holding it by a margin is the located one, and the point
         // comes back from the subdivided triangle's corners.
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut random = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rng = StdRng::seed_from_u64(5);
         for (mesh, max_edge) in [
             (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.6),
             (generate::cuboid(Vec3::new(1.0, 0.4, 2.0)), 0.05),
@@ -780,14 +755,14 @@ mod tests {
             for t in 0..mesh.triangle_count() {
                 for _ in 0..400 {
                     random_points += 1;
-                    let (mut a, mut b) = (random(), random());
+                    let (mut a, mut b): (f32, f32) = (rng.random(), rng.random());
                     if a + b > 1.0 {
                         (a, b) = (1.0 - a, 1.0 - b);
                     }
                     points.push((t as u32, [1.0 - a - b, a, b]));
                 }
                 // The corners and edge midpoints of its pieces.
-                for piece in &map.pieces[map.spans[t] as usize..map.spans[t + 1] as usize] {
+                for piece in map.pieces_of(t) {
                     let o = piece.origin;
                     points.push((t as u32, [1.0 - o[0] - o[1], o[0], o[1]]));
                 }
@@ -872,18 +847,11 @@ mod tests {
         // a point usually reads its cell and those two pieces only.
         let room = generate::cornell_box();
         let (_, map) = room.subdivided_with_map(0.05);
-        let mut state = 7u64;
+        let mut rng = StdRng::seed_from_u64(7);
         let (mut first, mut total) = (0, 0);
         for t in 0..room.triangle_count() {
             for _ in 0..500 {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1);
-                let a = (state >> 40) as f32 / (1u64 << 24) as f32;
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1);
-                let b = (state >> 40) as f32 / (1u64 << 24) as f32;
+                let (a, b): (f32, f32) = (rng.random(), rng.random());
                 let (a, b) = if a + b > 1.0 {
                     (1.0 - a, 1.0 - b)
                 } else {

@@ -62,10 +62,9 @@ pub const MAX_LEAF: usize = 8;
 /// What the surface-area heuristic charges a node visit, a triangle test
 /// costing 1. A packet's visit tests two boxes against eight lanes, while
 /// most triangle tests end when the lanes' edge functions differ in sign,
-/// before the division; with 1 the leaves held about 2.6 triangles, with 4
-/// they fill up and the walks are shorter: 0.82x the time of a shadowed
-/// torus bake (`benches/transfer.rs`) and 0.9x a dense volume bake's, with
-/// the same coefficients to the bit in both (docs/benchmarks.md).
+/// before the division; so leaves may hold more triangles, and the walks
+/// are shorter (docs/benchmarks.md, "Irradiance volume bake", has the
+/// timings).
 pub const NODE_COST: f32 = 4.0;
 const BINS: usize = 16;
 /// Depth of the traversal stacks; the build never nests deeper (a split

@@ -46,7 +46,22 @@ mod error;
 pub mod gltf_export;
 pub mod packet;
 pub mod preview;
+pub mod records;
 pub mod transfer;
 
 pub use error::PrtError;
 pub use shlight_format::ShprtFile;
+
+/// Reports a test, or the part of it that needs AVX2 and FMA, as skipped:
+/// prints `SKIPPED test: why` with `write!` on the process's stderr handle,
+/// which the test harness does not capture (it captures only the
+/// `print!`/`eprint!` macros), so the line shows in a passing run; panics
+/// under `SHLIGHT_REQUIRE_ALL=1`, where no test may skip.
+#[cfg(test)]
+pub(crate) fn skip(test: &str, why: &str) {
+    if std::env::var("SHLIGHT_REQUIRE_ALL").as_deref() == Ok("1") {
+        panic!("{test}: SHLIGHT_REQUIRE_ALL=1 but it would be skipped: {why}");
+    }
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
+}

@@ -38,6 +38,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 
 use crate::bvh::{Bvh, INNER, Ray};
+use crate::records::has_avx2_and_fma;
 
 /// Rays in a packet: one AVX register. Sixteen (two registers, rays from a
 /// wider patch of vertices) visited 1.5x the nodes per packet (105 against
@@ -59,17 +60,7 @@ pub fn set_packets_enabled(enabled: bool) {
 /// [`set_packets_enabled`] has not turned them off).
 #[must_use]
 pub fn packets_enabled() -> bool {
-    if DISABLED.load(Ordering::Relaxed) {
-        return false;
-    }
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    !DISABLED.load(Ordering::Relaxed) && has_avx2_and_fma()
 }
 
 /// The direction a packet's rays share, and its ray-space frame.
@@ -823,6 +814,12 @@ mod tests {
     fn packets_agree_with_single_rays() {
         // On a processor with AVX2 this compares the 8-lane traversal with
         // the single-ray one, ray by ray; elsewhere both are single rays.
+        if !packets_enabled() {
+            crate::skip(
+                "packets_agree_with_single_rays",
+                "no AVX2 and FMA here: the packets are single rays, compared with themselves",
+            );
+        }
         let mesh = generate::plane_under_sphere(1.0, 24, 12, 4.0, 6);
         let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
         let bvh = tree.bvh();
@@ -850,7 +847,8 @@ mod tests {
                 let blocked = tree.occluded(&dir, &local, &packet);
                 let found = tree.closest(&dir, &local, &packet);
                 // Corners put in ray space as they are tested: the same
-                // numbers, so the same hits to the bit.
+                // numbers, so the same hits to the bit (without AVX2 both
+                // are the single-ray traversal).
                 assert_eq!(tree.closest_direct(&dir, &packet), found);
                 assert_eq!(blocked >> n, 0, "only live lanes");
                 assert_eq!(blocked, found.mask, "occlusion and closest hits agree");
@@ -886,6 +884,13 @@ mod tests {
     fn parallel_rays_through_shared_edges_and_vertices_never_slip_through() {
         // Bundles of parallel rays from inside a closed sphere aimed exactly
         // at its vertices and edge midpoints must all hit.
+        if !packets_enabled() {
+            crate::skip(
+                "parallel_rays_through_shared_edges_and_vertices_never_slip_through",
+                "no AVX2 and FMA here: single rays are cast instead of packets, \
+                 and closest_direct is compared with closest, the same traversal",
+            );
+        }
         let mesh = generate::uv_sphere(1.0, 37, 23);
         let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
         let mut targets: Vec<Vec3> = mesh.positions.clone();
@@ -918,6 +923,7 @@ mod tests {
                 let blocked = tree.occluded(&dir, &local, &packet);
                 cast += eight.len();
                 missed += eight.len() - blocked.count_ones() as usize;
+                // Without AVX2 these are the single-ray traversal thrice.
                 assert_eq!(tree.closest(&dir, &local, &packet).mask, blocked);
                 assert_eq!(tree.closest_direct(&dir, &packet).mask, blocked);
             }

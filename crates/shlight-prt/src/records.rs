@@ -1,0 +1,134 @@
+//! Per-vertex records as the summing kernels read them, and which kernels
+//! run.
+//!
+//! A record holds a vertex's transfer (`channels x nc` floats) and, when the
+//! mesh emits, its exit radiance due to emitters (3 more), in `f32`, padded
+//! with zeros to whole 64-byte [`Line`]s: a kernel reads it eight floats at
+//! a time without running past it. [`Kernels`] says whether the sums run
+//! with AVX2 and FMA or as portable loops (the same sums in the same order;
+//! the fused roundings differ in the last bits). The bounces of
+//! [`crate::transfer`] and shlight-volume's probe sums read them.
+
+use glam::Vec3;
+
+/// Which kernels run: AVX2 and FMA, or portable loops.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernels {
+    /// `x86_64` AVX2 and FMA.
+    Avx2,
+    /// Plain Rust, any processor.
+    Portable,
+}
+
+impl Kernels {
+    /// AVX2 where the processor has it and FMA ([`has_avx2_and_fma`]), the
+    /// portable loops otherwise.
+    #[must_use]
+    pub fn detect() -> Self {
+        if has_avx2_and_fma() {
+            Kernels::Avx2
+        } else {
+            Kernels::Portable
+        }
+    }
+}
+
+/// Whether the processor has AVX2 and FMA (detected at run time; `false`
+/// off `x86_64`).
+#[must_use]
+pub fn has_avx2_and_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Floats in a [`Line`].
+pub const LINE: usize = 16;
+
+/// One 64-byte line of a record.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub struct Line(pub [f32; LINE]);
+
+impl Line {
+    /// A line of zeros.
+    pub const ZERO: Line = Line([0.0; LINE]);
+}
+
+/// Lines per record of `len` floats.
+#[must_use]
+pub fn lines(len: usize) -> usize {
+    len.div_ceil(LINE)
+}
+
+/// The records of the transfer rows `transfer` (`stride` floats each) and,
+/// when given, the exit radiances `emitted` (one per row), in their order:
+/// each `stride` floats, then the three of its exit radiance, padded with
+/// zeros to whole lines.
+///
+/// # Panics
+/// If `stride` is 0, or `emitted` holds fewer values than `transfer` has
+/// rows.
+#[must_use]
+pub fn build(transfer: &[f32], stride: usize, emitted: Option<&[Vec3]>) -> Vec<Line> {
+    let len = stride + if emitted.is_some() { 3 } else { 0 };
+    let per = lines(len);
+    let count = transfer.len() / stride;
+    let mut out = vec![Line::ZERO; count * per];
+    for (v, (r, t)) in out
+        .chunks_exact_mut(per)
+        .zip(transfer.chunks_exact(stride))
+        .enumerate()
+    {
+        let r = flat_mut(r);
+        r[..stride].copy_from_slice(t);
+        if let Some(e) = emitted {
+            r[stride..stride + 3].copy_from_slice(&e[v].to_array());
+        }
+    }
+    out
+}
+
+/// The floats of `lines`.
+#[must_use]
+pub fn flat(lines: &[Line]) -> &[f32] {
+    // SAFETY: a `Line` is 16 `f32` with no padding (`repr(C)`, 64 bytes).
+    unsafe { std::slice::from_raw_parts(lines.as_ptr().cast::<f32>(), lines.len() * LINE) }
+}
+
+/// The floats of `lines`, mutable.
+#[must_use]
+pub fn flat_mut(lines: &mut [Line]) -> &mut [f32] {
+    // SAFETY: as in `flat`.
+    unsafe { std::slice::from_raw_parts_mut(lines.as_mut_ptr().cast::<f32>(), lines.len() * LINE) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn records_hold_their_rows_padded_to_whole_lines() {
+        // Rows of 15 floats and an exit radiance: 18 floats in two lines.
+        let transfer: Vec<f32> = (0..45).map(|x| x as f32 + 1.0).collect();
+        let emitted = [Vec3::splat(-1.0), Vec3::splat(-2.0), Vec3::splat(-3.0)];
+        let records = build(&transfer, 15, Some(&emitted));
+        assert_eq!(records.len(), 6);
+        for (v, r) in records.chunks_exact(2).enumerate() {
+            let r = flat(r);
+            assert_eq!(&r[..15], &transfer[v * 15..][..15]);
+            assert_eq!(&r[15..18], &emitted[v].to_array());
+            assert!(r[18..].iter().all(|&x| x == 0.0));
+        }
+        // Without one, 15 floats fit one line.
+        let records = build(&transfer, 15, None);
+        assert_eq!(records.len(), 3);
+        assert_eq!(records[1].0[..15], transfer[15..30]);
+        assert_eq!(records[1].0[15], 0.0);
+    }
+}
