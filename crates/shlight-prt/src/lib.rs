@@ -52,13 +52,15 @@ pub mod transfer;
 pub use error::PrtError;
 pub use shlight_format::ShprtFile;
 
-/// Reports a test, or the part of it that needs AVX2 and FMA, as skipped:
-/// prints `SKIPPED test: why` with `write!` on the process's stderr handle,
-/// which the test harness does not capture (it captures only the
-/// `print!`/`eprint!` macros), so the line shows in a passing run; panics
-/// under `SHLIGHT_REQUIRE_ALL=1`, where no test may skip.
-#[cfg(test)]
-pub(crate) fn skip(test: &str, why: &str) {
+/// For shlight's own tests (this crate's, its test binaries' and
+/// shlight-volume's): reports a test, or the part of it that needs AVX2 and
+/// FMA, as skipped. Prints `SKIPPED test: why` with `write!` on the
+/// process's stderr handle, which the test harness does not capture (it
+/// captures only the `print!`/`eprint!` macros), so the line shows in a
+/// passing run; panics under `SHLIGHT_REQUIRE_ALL=1`, where no test may
+/// skip.
+#[doc(hidden)]
+pub fn skip_test(test: &str, why: &str) {
     if std::env::var("SHLIGHT_REQUIRE_ALL").as_deref() == Ok("1") {
         panic!("{test}: SHLIGHT_REQUIRE_ALL=1 but it would be skipped: {why}");
     }

@@ -815,7 +815,7 @@ mod tests {
         // On a processor with AVX2 this compares the 8-lane traversal with
         // the single-ray one, ray by ray; elsewhere both are single rays.
         if !packets_enabled() {
-            crate::skip(
+            crate::skip_test(
                 "packets_agree_with_single_rays",
                 "no AVX2 and FMA here: the packets are single rays, compared with themselves",
             );
@@ -885,7 +885,7 @@ mod tests {
         // Bundles of parallel rays from inside a closed sphere aimed exactly
         // at its vertices and edge midpoints must all hit.
         if !packets_enabled() {
-            crate::skip(
+            crate::skip_test(
                 "parallel_rays_through_shared_edges_and_vertices_never_slip_through",
                 "no AVX2 and FMA here: single rays are cast instead of packets, \
                  and closest_direct is compared with closest, the same traversal",

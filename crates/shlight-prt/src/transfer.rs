@@ -1095,7 +1095,7 @@ mod tests {
         }
         let hits_per_vertex = hits.iter().map(Vec::len).sum::<usize>() as f64 / n as f64;
         if Kernels::detect() == Kernels::Portable {
-            crate::skip(
+            crate::skip_test(
                 "f32_bounces_match_f64_sums_with_both_kernels",
                 "no AVX2 and FMA here: only the portable kernel is held to the f64 sums",
             );
@@ -1131,7 +1131,7 @@ mod tests {
     #[test]
     fn bakes_with_either_kernel_agree() {
         if Kernels::detect() == Kernels::Portable {
-            crate::skip(
+            crate::skip_test(
                 "bakes_with_either_kernel_agree",
                 "no AVX2 and FMA here: both bakes gather with the portable kernel",
             );

@@ -770,7 +770,7 @@ mod tests {
         // has it): the same sums, fused or not, in a scene with emitters
         // and coloured walls.
         if Kernels::detect() == Kernels::Portable {
-            crate::skip(
+            shlight_prt::skip_test(
                 "bakes_with_either_kernel_agree",
                 "no AVX2 and FMA here: both bakes sum with the portable kernels",
             );

@@ -46,17 +46,3 @@ pub use error::VolumeError;
 pub use grid::Grid;
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};
-
-/// Reports a test, or the part of it that needs AVX2 and FMA, as skipped:
-/// prints `SKIPPED test: why` with `write!` on the process's stderr handle,
-/// which the test harness does not capture (it captures only the
-/// `print!`/`eprint!` macros), so the line shows in a passing run; panics
-/// under `SHLIGHT_REQUIRE_ALL=1`, where no test may skip.
-#[cfg(test)]
-pub(crate) fn skip(test: &str, why: &str) {
-    if std::env::var("SHLIGHT_REQUIRE_ALL").as_deref() == Ok("1") {
-        panic!("{test}: SHLIGHT_REQUIRE_ALL=1 but it would be skipped: {why}");
-    }
-    use std::io::Write as _;
-    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
-}

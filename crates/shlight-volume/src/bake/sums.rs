@@ -275,7 +275,7 @@ mod tests {
         // Every tile shape: 1 to 10 rows, widths of 8 to 56 (one to seven
         // vectors), 64 rays, entries of either sign.
         if Kernels::detect() == Kernels::Portable {
-            crate::skip(
+            shlight_prt::skip_test(
                 "block_sums_match_f64_sums_with_both_kernels",
                 "no AVX2 and FMA here: only the portable sums are held to the f64 ones",
             );
@@ -323,7 +323,7 @@ mod tests {
         // rows of 9 + 12 = 21 padded to 24: the AVX2 fill writes 16 floats
         // from 9 and so runs into the next row.
         if Kernels::detect() == Kernels::Portable {
-            crate::skip(
+            shlight_prt::skip_test(
                 "rows_are_the_same_with_both_kernels",
                 "no AVX2 and FMA here: only the portable rows are checked",
             );
