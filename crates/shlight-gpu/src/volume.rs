@@ -43,7 +43,10 @@ use crate::{Camera, GpuContext, GpuError};
 /// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
 const MAX_TEXELS: usize = 14;
 
-/// The instance value of a mesh lit by interpolation (no probe of its own).
+/// The `probe` of an instance lit by interpolation: a filler, since no
+/// shader reads it there (`fs_volume`, the pipeline that draws such
+/// instances, does not look at the probe); [`VolumeInstance::probe`]
+/// reports it as `None`.
 const NO_PROBE: u32 = u32::MAX;
 
 /// A volume's probes as the GPU takes them (the fields of a `.shvol`
@@ -202,14 +205,17 @@ pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<Prob
     })
 }
 
-/// One instance of the volume pass: `world = position * scale + offset`,
-/// lit by interpolation (`probe` = none) or by probe `probe` alone.
+/// One instance of the volume pass: `world = position * scale + offset`.
+/// Which shading it gets is up to the pipeline that draws it: the scene and
+/// the object are lit by interpolation, the probe spheres
+/// ([`probe_sphere_instances`]) each by its probe `probe` alone.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct VolumeInstance {
     /// Offset (xyz) and uniform scale (w).
     pub offset_scale: [f32; 4],
-    /// The probe a probe sphere shows, or `u32::MAX` (interpolated).
+    /// The probe a probe sphere shows; `u32::MAX`, a filler, on a mesh lit
+    /// by interpolation.
     pub probe: u32,
     pad: [u32; 3],
 }
