@@ -11,8 +11,8 @@
 // (the invalid probes' weights dropped and the rest renormalised; when all
 // eight are invalid E = 0: the point is inside geometry). A Lambertian
 // surface of albedo rho leaves rho/pi E(p, n) plus its own emission. A
-// probe sphere (instance with a probe number) shows its own probe's E_k(n),
-// or 0 when the probe is invalid.
+// probe sphere (drawn by the fs_probe pipeline, below) shows its own
+// probe's E_k(n), or 0 when the probe is invalid.
 //
 // The probes are a 3D texture of premultiplied texels: per probe the floats
 // (v, v L_i, ...) (v the validity, L_i the rgb radiance of coefficient i,
@@ -73,9 +73,6 @@ struct Volume {
 // Linear filtering, clamp to edge (the filtered variant only).
 @group(0) @binding(6) var probe_sampler: sampler;
 
-// No probe: the instance is lit by interpolation.
-const NO_PROBE: u32 = 0xffffffffu;
-
 struct VolumeVertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
@@ -83,7 +80,8 @@ struct VolumeVertexIn {
     @location(3) emission: vec3<f32>,
     // Per instance: world = position * scale + offset (xyz offset, w scale).
     @location(4) offset_scale: vec4<f32>,
-    // Per instance: the probe a probe sphere shows, or NO_PROBE.
+    // Per instance: the probe a probe sphere shows (read by fs_probe only;
+    // fs_volume's instances carry a filler value).
     @location(5) probe: u32,
 }
 
@@ -196,7 +194,7 @@ fn vs_volume(in: VolumeVertexIn) -> VolumeVertexOut {
     return out;
 }
 
-// Meshes lit by interpolation (instances without a probe).
+// Meshes lit by interpolation (the scene and the object).
 @fragment
 fn fs_volume(in: VolumeVertexOut) -> @location(0) vec4<f32> {
     let e = volume_irradiance(in.world, normalize(in.normal)).rgb;

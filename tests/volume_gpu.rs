@@ -391,6 +391,8 @@ struct PixelHit {
     triangle: u32,
     point: Vec3,
     bary: [f32; 3],
+    /// The unit direction of the ray through the pixel's centre.
+    direction: Vec3,
     /// The interpolated unit normal, as the fragments have it.
     normal: Vec3,
     /// Whether the pixel lies well inside the triangle: the rays a third
@@ -422,6 +424,7 @@ fn pixel_hit(
         triangle: tri,
         point: p,
         bary,
+        direction: d,
         normal: normal.normalize(),
         inside,
     })
@@ -537,13 +540,13 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     let (mut object_pixels, mut scene_pixels, mut worst) = (0, 0, 0.0f64);
     for j in 1..h - 1 {
         for i in 1..w - 1 {
-            let d = ray(i as f32 + 0.5, j as f32 + 0.5).1;
             // Only pixels well inside one triangle (pixel_hit).
             let Some(PixelHit {
                 mesh: k,
                 triangle: tri,
                 point: p,
                 bary,
+                direction: d,
                 normal,
                 inside,
             }) = pixel_hit(&meshes, ray, i, j)
@@ -596,9 +599,12 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
 /// sphere (pipeline `fs_probe`) shows its own probe's irradiance (black
 /// for the invalid one), an object beside them (pipeline `fs_volume`) the
 /// interpolation, both against the CPU at the point and interpolated
-/// normal a ray through the pixel finds. A volume of lmax 4, so that
-/// degree 3, which the texels leave out (`A_3 = 0`), holds values that
-/// must not show. Without the probes shown, no sphere is drawn.
+/// normal a ray through the pixel finds. A volume of lmax 4 with random
+/// radiance in every degree: degree 3 adds nothing to the irradiance
+/// (`A_3 = 0`, on the CPU as in the shader), so what this checks there is
+/// the texels' layout once degree 3 is left out, degree 4 read from the
+/// slots that follow degree 2's. Without the probes shown, no sphere is
+/// drawn.
 #[test]
 fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
     use shlight_gpu::{Camera, Offscreen, Renderer, place, probe_sphere_instances};
@@ -623,8 +629,9 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
         m.positions.iter_mut().for_each(|p| *p = *p * s + o);
         m
     };
+    let spheres = probe_sphere_instances(&probes);
     let mut world = vec![moved(&object, placement.offset_scale)];
-    for instance in probe_sphere_instances(&probes) {
+    for instance in &spheres {
         world.push(moved(&sphere, instance.offset_scale));
     }
     let bvhs: Vec<_> = world
@@ -681,12 +688,12 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
         let mut checked = Vec::new();
         for j in 1..h - 1 {
             for i in 1..w - 1 {
-                let d = ray(i as f32 + 0.5, j as f32 + 0.5).1;
                 let got = Vec3::from_slice(&shown.pixels[j * w + i][..3]).as_dvec3();
                 let hidden_got = Vec3::from_slice(&hidden.pixels[j * w + i][..3]).as_dvec3();
                 let Some(PixelHit {
                     mesh: k,
                     point: p,
+                    direction: d,
                     normal,
                     inside,
                     ..
@@ -715,9 +722,7 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
                     // A sphere: its own probe alone (albedo 1), at its
                     // centre, where the probe has weight 1; none if invalid.
                     _ => {
-                        let centre = Vec3::from_slice(
-                            &probe_sphere_instances(&probes)[k - 1].offset_scale[..3],
-                        );
+                        let centre = Vec3::from_slice(&spheres[k - 1].offset_scale[..3]);
                         if volume.valid[k - 1] {
                             volume.cpu(centre, normal, 4).unwrap() / std::f64::consts::PI
                         } else {

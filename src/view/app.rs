@@ -392,7 +392,7 @@ impl<'a> App<'a> {
                     PathBuf::from(format!("shlight-view-{}.png", self.screenshots_taken))
                 }
             };
-            save_screenshot(&r.ctx, &texture, r.config.format, &path)?;
+            save_screenshot(&r.ctx, &texture, &path)?;
             self.screenshot_requested = false;
             if last_scripted.is_none() {
                 eprintln!("saved {}", path.display());

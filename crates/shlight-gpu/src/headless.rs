@@ -1,6 +1,7 @@
 //! Rendering without a window: a frame into an offscreen `Rgba32Float`
 //! texture, read back to the CPU.
 
+use crate::readback::TextureReadback;
 use crate::renderer::DEPTH_FORMAT;
 use crate::{Camera, GpuContext, GpuError, Renderer, Shading};
 
@@ -35,8 +36,7 @@ pub struct Offscreen {
     color: wgpu::Texture,
     color_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
-    readback: wgpu::Buffer,
-    padded_row: u32,
+    readback: TextureReadback<[f32; 4]>,
 }
 
 impl Offscreen {
@@ -73,21 +73,13 @@ impl Offscreen {
             HEADLESS_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         );
-        let padded_row = (width as u32 * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let readback = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: u64::from(padded_row) * height as u64,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         Ok(Self {
             width: width as u32,
             height: height as u32,
             color_view: color.create_view(&Default::default()),
             depth_view: depth_view(ctx, width as u32, height as u32),
             color,
-            readback,
-            padded_row,
+            readback: TextureReadback::new(&ctx.device, size),
         })
     }
 
@@ -186,32 +178,12 @@ impl Offscreen {
     fn read_back(
         &self,
         ctx: &GpuContext,
-        mut encoder: wgpu::CommandEncoder,
+        encoder: wgpu::CommandEncoder,
     ) -> Result<Frame, GpuError> {
-        encoder.copy_texture_to_buffer(
-            self.color.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: None,
-                },
-            },
-            self.color.size(),
-        );
-        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
-        let bytes = crate::readback::read_buffer(ctx, &self.readback)?;
-        let (w, h) = (self.width as usize, self.height as usize);
-        let mut pixels = Vec::with_capacity(w * h);
-        for row in bytes.chunks_exact(self.padded_row as usize).take(h) {
-            let values: &[f32] = bytemuck::cast_slice(&row[..w * 16]);
-            pixels.extend(values.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]));
-        }
         Ok(Frame {
-            width: w,
-            height: h,
-            pixels,
+            width: self.width as usize,
+            height: self.height as usize,
+            pixels: self.readback.read(ctx, encoder, &self.color)?,
         })
     }
 }

@@ -45,7 +45,7 @@ pub use error::GpuError;
 pub use headless::{Frame, HEADLESS_FORMAT, Offscreen, depth_view, render_frame};
 pub use orbit_camera::OrbitCamera;
 pub use projection::{GpuProjector, project_equirect};
-pub use readback::{read_buffer, read_srgb8_texture, srgb8_to_linear};
+pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use transfer::Transfer;

@@ -1,6 +1,10 @@
 //! Reading GPU memory back to the CPU: a mappable buffer
-//! ([`read_buffer`]), and an 8-bit sRGB colour texture as linear RGB
-//! ([`read_srgb8_texture`], a window's screenshot).
+//! ([`read_buffer`]), a texture through a buffer of padded rows
+//! (`TextureReadback`: headless frames, screenshots), and an 8-bit sRGB
+//! colour texture as linear RGB ([`read_srgb8_texture`], a window's
+//! screenshot).
+
+use std::marker::PhantomData;
 
 use shlight_io::{Image, srgb_to_linear};
 
@@ -28,49 +32,103 @@ pub fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<u8>, G
     Ok(bytes)
 }
 
-/// Reads a `Rgba8`/`Bgra8` texture (`COPY_SRC`; unorm or unorm-sRGB) back
-/// as linear RGB: copied to a buffer with rows padded to
-/// [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], mapped, and decoded by
-/// [`srgb8_to_linear`] (a window's surface holds sRGB-encoded values,
-/// which the image writers encode again from linear ones). Alpha is
-/// dropped.
+/// A mappable buffer that a 2D texture of one size, with texels of type
+/// `T` (e.g. `[f32; 4]` for `Rgba32Float`, `[u8; 4]` for `Rgba8Unorm`), is
+/// copied into, rows padded to [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], and
+/// read back without the padding.
+#[derive(Debug)]
+pub(crate) struct TextureReadback<T> {
+    buffer: wgpu::Buffer,
+    size: wgpu::Extent3d,
+    padded_row: u32,
+    texel: PhantomData<T>,
+}
+
+impl<T: bytemuck::Pod> TextureReadback<T> {
+    /// A buffer for one layer of `size`.
+    pub(crate) fn new(device: &wgpu::Device, size: wgpu::Extent3d) -> Self {
+        let row = size.width * std::mem::size_of::<T>() as u32;
+        let padded_row = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("texture readback"),
+            size: u64::from(padded_row) * u64::from(size.height),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            buffer,
+            size,
+            padded_row,
+            texel: PhantomData,
+        }
+    }
+
+    /// Appends the copy of `texture` (of this size and texel type, with
+    /// `COPY_SRC`) into the buffer to `encoder`, submits it, waits, and
+    /// returns the texels, rows from the top.
+    ///
+    /// # Errors
+    /// [`GpuError::Runtime`] when the work is invalid (e.g. a texture
+    /// without `COPY_SRC`, or of another size), a lost device or a failed
+    /// mapping.
+    pub(crate) fn read(
+        &self,
+        ctx: &GpuContext,
+        mut encoder: wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+    ) -> Result<Vec<T>, GpuError> {
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: None,
+                },
+            },
+            self.size,
+        );
+        ctx.checked(|| ctx.queue.submit([encoder.finish()]))?;
+        let bytes = read_buffer(ctx, &self.buffer)?;
+        let (w, h) = (self.size.width as usize, self.size.height as usize);
+        let mut texels = vec![T::zeroed(); w * h];
+        let row = w * std::mem::size_of::<T>();
+        let rows = bytemuck::cast_slice_mut::<T, u8>(&mut texels).chunks_exact_mut(row);
+        for (dst, src) in rows.zip(bytes.chunks_exact(self.padded_row as usize)) {
+            dst.copy_from_slice(&src[..row]);
+        }
+        Ok(texels)
+    }
+}
+
+/// Reads a `Rgba8`/`Bgra8` texture (unorm or unorm-sRGB, `COPY_SRC`, one
+/// layer) back as linear RGB: copied to a buffer ([`wgpu::Texture::format`]
+/// says which of the four), mapped, and decoded by `srgb8_to_linear` (a
+/// window's surface holds sRGB-encoded values, which the image writers
+/// encode again from linear ones). Alpha is dropped.
 ///
 /// # Errors
-/// A lost device or a failed mapping.
-pub fn read_srgb8_texture(
-    ctx: &GpuContext,
-    texture: &wgpu::Texture,
-    format: wgpu::TextureFormat,
-) -> Result<Image, GpuError> {
+/// [`GpuError::Invalid`] for a texture of another format;
+/// [`GpuError::Runtime`] for one that cannot be copied (without
+/// `COPY_SRC`), a lost device or a failed mapping.
+pub fn read_srgb8_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Image, GpuError> {
+    let bgra = match texture.format() {
+        wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Rgba8UnormSrgb => false,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb => true,
+        other => {
+            return Err(GpuError::Invalid(format!(
+                "cannot read a {other:?} texture as 8-bit sRGB: it must be Rgba8Unorm, \
+                 Rgba8UnormSrgb, Bgra8Unorm or Bgra8UnormSrgb"
+            )));
+        }
+    };
     let size = texture.size();
     let (w, h) = (size.width as usize, size.height as usize);
-    let padded = (size.width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("texture readback"),
-        size: u64::from(padded) * h as u64,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: None,
-            },
-        },
-        size,
-    );
-    ctx.queue.submit([encoder.finish()]);
-    let bytes = read_buffer(ctx, &buffer)?;
-    let bgra = matches!(
-        format,
-        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-    );
-    let pixels = srgb8_to_linear(&bytes, w, h, padded as usize, bgra);
+    let encoder = ctx.device.create_command_encoder(&Default::default());
+    let texels: Vec<[u8; 4]> =
+        TextureReadback::new(&ctx.device, size).read(ctx, encoder, texture)?;
+    let pixels = srgb8_to_linear(bytemuck::cast_slice(&texels), w, h, w * 4, bgra);
     Image::new(w, h, pixels).map_err(|e| GpuError::Runtime(e.to_string()))
 }
 
@@ -82,7 +140,7 @@ pub fn read_srgb8_texture(
 /// If `bytes` holds fewer than `height` rows or a row fewer than
 /// `4 width` bytes.
 #[must_use]
-pub fn srgb8_to_linear(
+fn srgb8_to_linear(
     bytes: &[u8],
     width: usize,
     height: usize,

@@ -11,8 +11,8 @@ use shlight_io::Image;
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
-use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE, ShaderModuleSource};
-use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading};
+use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE};
+use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading, shader_encodes_srgb};
 use crate::{Camera, GpuContext, GpuError, Transfer};
 
 /// Depth buffer format of every frame.
@@ -65,12 +65,27 @@ impl std::fmt::Debug for Renderer {
     }
 }
 
-fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+/// A uniform block.
+pub(crate) const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
+/// A read-only storage buffer.
+pub(crate) const READ: wgpu::BufferBindingType =
+    wgpu::BufferBindingType::Storage { read_only: true };
+/// A read-write storage buffer.
+pub(crate) const WRITE: wgpu::BufferBindingType =
+    wgpu::BufferBindingType::Storage { read_only: false };
+
+/// A bind group layout entry for a buffer of type `ty` (the whole buffer,
+/// no dynamic offset).
+pub(crate) fn buffer_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
         ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
+            ty,
             has_dynamic_offset: false,
             min_binding_size: None,
         },
@@ -78,17 +93,16 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
     }
 }
 
-fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+/// A pipeline layout of one bind group, `layout`, without immediates.
+pub(crate) fn pipeline_layout(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    })
 }
 
 impl Renderer {
@@ -107,16 +121,16 @@ impl Renderer {
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("mesh"),
             entries: &[
-                uniform_entry(0, vf),
-                uniform_entry(1, vf),
-                storage_entry(2, wgpu::ShaderStages::VERTEX),
+                buffer_entry(0, vf, UNIFORM),
+                buffer_entry(1, vf, UNIFORM),
+                buffer_entry(2, wgpu::ShaderStages::VERTEX, READ),
             ],
         });
         let background_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("background"),
             entries: &[
-                uniform_entry(0, vf),
-                uniform_entry(1, vf),
+                buffer_entry(0, vf, UNIFORM),
+                buffer_entry(1, vf, UNIFORM),
                 wgpu::BindGroupLayoutEntry {
                     binding: 2,
                     visibility: wgpu::ShaderStages::FRAGMENT,
@@ -129,21 +143,9 @@ impl Renderer {
                 },
             ],
         });
-        let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: None,
-                bind_group_layouts: &[Some(layout)],
-                immediate_size: 0,
-            })
-        };
-        let mesh_pipeline_layout = pipeline_layout(&mesh_layout);
-        let background_pipeline_layout = pipeline_layout(&background_layout);
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("frame"),
-            size: std::mem::size_of::<FrameUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let mesh_pipeline_layout = pipeline_layout(device, &mesh_layout);
+        let background_pipeline_layout = pipeline_layout(device, &background_layout);
+        let uniform = FrameUniform::buffer(device, "frame");
         let light = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("light"),
             size: (LIGHT_SLOTS * 16) as u64,
@@ -399,11 +401,6 @@ impl Renderer {
         }
         let env_from_world =
             orientation_matrix(self.map_orientation) * self.environment_rotation.transpose();
-        // 8-bit targets without hardware sRGB encoding get it in the shader.
-        let encode_srgb = matches!(
-            self.color_format,
-            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
-        );
         let lmax = shading.lmax.min(self.light_lmax);
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
@@ -412,7 +409,7 @@ impl Renderer {
             light_from_world: self.environment_rotation.transpose(),
             lmax,
             prt: self.prt,
-            encode_srgb,
+            encode_srgb: shader_encodes_srgb(self.color_format),
         });
         ctx.queue
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
@@ -448,12 +445,12 @@ impl Renderer {
                 0
             };
             pass.set_pipeline(self.background_pipelines[l].get_or_init(|| {
-                pipeline(
+                pipeline_of(
                     device,
                     &self.background_pipeline_layout,
                     self.color_format,
                     &BACKGROUND_PASS,
-                    l,
+                    &shaders::create(device, BACKGROUND_MODULE, l),
                 )
             }));
             pass.set_bind_group(0, &self.background_bind, &[]);
@@ -465,12 +462,12 @@ impl Renderer {
             pass.set_pipeline(match (&self.encoded_pipeline, shading.mode) {
                 (Some(encoded), Mode::Encoded) => encoded,
                 _ => self.mesh_pipelines[l].get_or_init(|| {
-                    pipeline(
+                    pipeline_of(
                         device,
                         &self.mesh_pipeline_layout,
                         self.color_format,
                         &MESH_PASS,
-                        l,
+                        &shaders::create(device, MESH_MODULE, l),
                     )
                 }),
             });
@@ -483,22 +480,26 @@ impl Renderer {
     }
 }
 
-/// What the mesh and background pipelines differ in.
-struct Pass {
-    label: &'static str,
-    module: &'static ShaderModuleSource,
-    vertex_entry: &'static str,
-    fragment_entry: &'static str,
-    vertex_buffers: &'static [Option<wgpu::VertexBufferLayout<'static>>],
-    depth_write: bool,
-    depth_compare: wgpu::CompareFunction,
+/// What the render pipelines ([`pipeline_of`]) differ in besides their
+/// shader module and layout: the mesh, encoded and background passes here,
+/// the volume pass's in `volume.rs`.
+pub(crate) struct Pass {
+    /// The pipeline's label.
+    pub label: &'static str,
+    /// The vertex and fragment entry points in the module.
+    pub vertex_entry: &'static str,
+    pub fragment_entry: &'static str,
+    /// The vertex buffers' layouts, in slot order.
+    pub vertex_buffers: &'static [Option<wgpu::VertexBufferLayout<'static>>],
+    /// Whether fragments write depth, and how they are tested against it.
+    pub depth_write: bool,
+    pub depth_compare: wgpu::CompareFunction,
 }
 
 /// The mesh: positions and normals interleaved, depth tested and written,
 /// both faces drawn (meshes with inconsistent winding still show).
 const MESH_PASS: Pass = Pass {
     label: "mesh",
-    module: &MESH_MODULE,
     vertex_entry: "vs_mesh",
     fragment_entry: "fs_mesh",
     vertex_buffers: &[Some(wgpu::VertexBufferLayout {
@@ -514,7 +515,6 @@ const MESH_PASS: Pass = Pass {
 /// fragment stage.
 const ENCODED_PASS: Pass = Pass {
     label: "encoded",
-    module: &ENCODED_MODULE,
     fragment_entry: "fs_encoded",
     ..MESH_PASS
 };
@@ -522,7 +522,6 @@ const ENCODED_PASS: Pass = Pass {
 /// The background: one full-screen triangle behind everything.
 const BACKGROUND_PASS: Pass = Pass {
     label: "background",
-    module: &BACKGROUND_MODULE,
     vertex_entry: "vs_background",
     fragment_entry: "fs_background",
     vertex_buffers: &[],
@@ -530,21 +529,10 @@ const BACKGROUND_PASS: Pass = Pass {
     depth_compare: wgpu::CompareFunction::Always,
 };
 
-/// The render pipeline of `pass` for colour targets of `color_format`,
-/// with `sh_reconstruct` written out for `lmax`.
-fn pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    color_format: wgpu::TextureFormat,
-    pass: &Pass,
-    lmax: usize,
-) -> wgpu::RenderPipeline {
-    let module = shaders::create(device, *pass.module, lmax);
-    pipeline_of(device, layout, color_format, pass, &module)
-}
-
-/// The render pipeline of `pass` over a compiled `module`.
-fn pipeline_of(
+/// The render pipeline of `pass` over a compiled `module`, for colour
+/// targets of `color_format` (written whole, no blending) and a
+/// [`DEPTH_FORMAT`] depth target, both faces drawn.
+pub(crate) fn pipeline_of(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     color_format: wgpu::TextureFormat,

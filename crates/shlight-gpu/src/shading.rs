@@ -148,7 +148,27 @@ pub(crate) struct FrameInputs<'a> {
     pub encode_srgb: bool,
 }
 
+/// Whether the shaders sRGB-encode a frame for targets of `format`: 8-bit
+/// unorm targets without the hardware's sRGB encoding.
+pub(crate) fn shader_encodes_srgb(format: wgpu::TextureFormat) -> bool {
+    matches!(
+        format,
+        wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+    )
+}
+
 impl FrameUniform {
+    /// A uniform buffer (written with `COPY_DST`) that holds one frame's
+    /// block.
+    pub(crate) fn buffer(device: &wgpu::Device, label: &str) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: std::mem::size_of::<Self>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
     pub(crate) fn new(f: &FrameInputs<'_>) -> Self {
         let mut irradiance_band = [[0.0f32; 4]; 3];
         let mut radiance_band = [[0.0f32; 4]; 3];

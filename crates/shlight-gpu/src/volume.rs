@@ -33,9 +33,9 @@ use glam::{DMat3, Vec3};
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
-use crate::renderer::DEPTH_FORMAT;
+use crate::renderer::{Pass, READ, UNIFORM, WRITE, buffer_entry, pipeline_layout, pipeline_of};
 use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
-use crate::shading::{FrameInputs, FrameUniform, Shading};
+use crate::shading::{FrameInputs, FrameUniform, Shading, shader_encodes_srgb};
 use crate::volume_expansion::{volume_coefficients, volume_texels};
 use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
 use crate::{Camera, GpuContext, GpuError};
@@ -43,7 +43,10 @@ use crate::{Camera, GpuContext, GpuError};
 /// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
 const MAX_TEXELS: usize = 14;
 
-/// The instance value of a mesh lit by interpolation (no probe of its own).
+/// The `probe` of an instance lit by interpolation: a filler, since no
+/// shader reads it there (`fs_volume`, the pipeline that draws such
+/// instances, does not look at the probe); [`VolumeInstance::probe`]
+/// reports it as `None`.
 const NO_PROBE: u32 = u32::MAX;
 
 /// A volume's probes as the GPU takes them (the fields of a `.shvol`
@@ -202,14 +205,17 @@ pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<Prob
     })
 }
 
-/// One instance of the volume pass: `world = position * scale + offset`,
-/// lit by interpolation (`probe` = none) or by probe `probe` alone.
+/// One instance of the volume pass: `world = position * scale + offset`.
+/// Which shading it gets is up to the pipeline that draws it: the scene and
+/// the object are lit by interpolation, the probe spheres
+/// ([`probe_sphere_instances`]) each by its probe `probe` alone.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct VolumeInstance {
     /// Offset (xyz) and uniform scale (w).
     pub offset_scale: [f32; 4],
-    /// The probe a probe sphere shows, or `u32::MAX` (interpolated).
+    /// The probe a probe sphere shows; `u32::MAX`, a filler, on a mesh lit
+    /// by interpolation.
     pub probe: u32,
     pad: [u32; 3],
 }
@@ -345,13 +351,50 @@ impl VolumeMesh {
     }
 }
 
+/// Meshes lit by interpolation (`fs_volume`): per vertex position,
+/// normal, albedo and emission, per instance offset and scale and the
+/// probe ([`VolumeInstance`]); depth tested and written, both faces drawn.
+const VOLUME_PASS: Pass = Pass {
+    label: "volume",
+    vertex_entry: "vs_volume",
+    fragment_entry: "fs_volume",
+    vertex_buffers: &[
+        Some(wgpu::VertexBufferLayout {
+            array_stride: 48,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![
+                0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Float32x3
+            ],
+        }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<VolumeInstance>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &wgpu::vertex_attr_array![4 => Float32x4, 5 => Uint32],
+        }),
+    ],
+    depth_write: true,
+    depth_compare: wgpu::CompareFunction::Less,
+};
+
+/// The probe spheres, each lit by its own probe: [`VOLUME_PASS`] with the
+/// fragment stage `fs_probe`.
+const PROBE_PASS: Pass = Pass {
+    label: "probe spheres",
+    fragment_entry: "fs_probe",
+    ..VOLUME_PASS
+};
+
 /// Draws meshes lit by an irradiance volume into targets of one colour
 /// format, after a [`Renderer`](crate::Renderer) has begun the frame.
 pub struct VolumeRenderer {
     color_format: wgpu::TextureFormat,
     fetch: VolumeFetch,
+    /// Per shading lmax, compiled on first use: `volume.wgsl` as `fetch`
+    /// reads the texels, one module for the three pipelines below.
+    modules: [OnceLock<wgpu::ShaderModule>; VOLUME_MAX_LMAX + 1],
     /// Per shading lmax, built on first use: meshes lit by interpolation
-    /// (`fs_volume`) and probe spheres (`fs_probe`).
+    /// (`VOLUME_PASS`), probe spheres (`PROBE_PASS`) and the interpolation
+    /// as a compute pass (`cs_volume`).
     pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
     probe_pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
     computes: [OnceLock<wgpu::ComputePipeline>; VOLUME_MAX_LMAX + 1],
@@ -384,23 +427,6 @@ impl std::fmt::Debug for VolumeRenderer {
     }
 }
 
-fn entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    ty: wgpu::BufferBindingType,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 /// The probes' texture (binding 2) and, filtered, its sampler (binding 6).
 fn texture_entries(
     visibility: wgpu::ShaderStages,
@@ -428,9 +454,38 @@ fn texture_entries(
     out
 }
 
-const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
-const READ: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: true };
-const WRITE: wgpu::BufferBindingType = wgpu::BufferBindingType::Storage { read_only: false };
+/// The bindings of the render and the compute bind groups alike: the
+/// frame uniform (0), the probes' texture (2), the `Volume` uniform (3)
+/// and, filtered, the sampler (6).
+fn probe_bindings<'a>(
+    frame: &'a wgpu::Buffer,
+    texture_view: &'a wgpu::TextureView,
+    volume: &'a wgpu::Buffer,
+    sampler: &'a wgpu::Sampler,
+    fetch: VolumeFetch,
+) -> Vec<wgpu::BindGroupEntry<'a>> {
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: frame.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::TextureView(texture_view),
+        },
+        wgpu::BindGroupEntry {
+            binding: 3,
+            resource: volume.as_entire_binding(),
+        },
+    ];
+    if fetch == VolumeFetch::Filtered {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 6,
+            resource: wgpu::BindingResource::Sampler(sampler),
+        });
+    }
+    entries
+}
 
 impl VolumeRenderer {
     /// A volume pass for colour targets of `color_format` over `probes`
@@ -472,7 +527,10 @@ impl VolumeRenderer {
         let texels = pack_texels(probes, device.limits().max_texture_dimension_3d)?;
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let mut entries = vec![entry(0, vf, UNIFORM), entry(3, fragment, UNIFORM)];
+        let mut entries = vec![
+            buffer_entry(0, vf, UNIFORM),
+            buffer_entry(3, fragment, UNIFORM),
+        ];
         entries.extend(texture_entries(fragment, fetch));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume"),
@@ -480,29 +538,17 @@ impl VolumeRenderer {
         });
         let compute = wgpu::ShaderStages::COMPUTE;
         let mut entries = vec![
-            entry(0, compute, UNIFORM),
-            entry(3, compute, UNIFORM),
-            entry(4, compute, READ),
-            entry(5, compute, WRITE),
+            buffer_entry(0, compute, UNIFORM),
+            buffer_entry(3, compute, UNIFORM),
+            buffer_entry(4, compute, READ),
+            buffer_entry(5, compute, WRITE),
         ];
         entries.extend(texture_entries(compute, fetch));
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume compute"),
             entries: &entries,
         });
-        let pipeline_layout = |layout: &wgpu::BindGroupLayout| {
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: None,
-                bind_group_layouts: &[Some(layout)],
-                immediate_size: 0,
-            })
-        };
-        let frame = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("volume frame"),
-            size: std::mem::size_of::<FrameUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let frame = FrameUniform::buffer(device, "volume frame");
         let lmax = probes.lmax.min(VOLUME_MAX_LMAX);
         let volume = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("volume grid"),
@@ -540,41 +586,22 @@ impl VolumeRenderer {
             mipmap_filter: wgpu::MipmapFilterMode::Nearest,
             ..Default::default()
         });
-        let mut bind_entries = vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&texture_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: volume.as_entire_binding(),
-            },
-        ];
-        if fetch == VolumeFetch::Filtered {
-            bind_entries.push(wgpu::BindGroupEntry {
-                binding: 6,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            });
-        }
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("volume"),
             layout: &layout,
-            entries: &bind_entries,
+            entries: &probe_bindings(&frame, &texture_view, &volume, &sampler, fetch),
         });
         let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
         let spheres = VolumeMesh::new(ctx, &sphere, [1.0; 3], &probe_sphere_instances(probes));
         Ok(Self {
             color_format,
             fetch,
+            modules: Default::default(),
             pipelines: Default::default(),
             probe_pipelines: Default::default(),
             computes: Default::default(),
-            pipeline_layout: pipeline_layout(&layout),
-            compute_pipeline_layout: pipeline_layout(&compute_layout),
+            pipeline_layout: pipeline_layout(device, &layout),
+            compute_pipeline_layout: pipeline_layout(device, &compute_layout),
             compute_layout,
             frame,
             volume,
@@ -688,10 +715,6 @@ impl VolumeRenderer {
         shading: &Shading,
     ) -> usize {
         let lmax = shading.lmax.min(self.lmax);
-        let encode_srgb = matches!(
-            self.color_format,
-            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
-        );
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
             view_proj: camera.view_proj(aspect),
@@ -699,7 +722,7 @@ impl VolumeRenderer {
             light_from_world: DMat3::IDENTITY,
             lmax,
             prt: None,
-            encode_srgb,
+            encode_srgb: shader_encodes_srgb(self.color_format),
         });
         ctx.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(&uniform));
@@ -755,7 +778,7 @@ impl VolumeRenderer {
         };
         pass.set_bind_group(0, &self.bind, &[]);
         pass.set_pipeline(
-            self.pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax, "fs_volume")),
+            self.pipelines[lmax].get_or_init(|| self.pipeline(ctx, &VOLUME_PASS, lmax)),
         );
         for mesh in [self.scene.as_ref(), self.object.as_ref()]
             .into_iter()
@@ -765,73 +788,34 @@ impl VolumeRenderer {
         }
         if show_probes {
             pass.set_pipeline(
-                self.probe_pipelines[lmax].get_or_init(|| self.pipeline(ctx, lmax, "fs_probe")),
+                self.probe_pipelines[lmax].get_or_init(|| self.pipeline(ctx, &PROBE_PASS, lmax)),
             );
             draw(&mut pass, &self.spheres);
         }
     }
 
-    fn module(&self) -> shaders::ShaderModuleSource {
-        match self.fetch {
-            VolumeFetch::Filtered => VOLUME_MODULE,
-            VolumeFetch::Loads => VOLUME_LOADS_MODULE,
-        }
+    /// The module at `lmax`, compiled on first use: `volume.wgsl` with its
+    /// generated code for `lmax` and this pass's [`VolumeFetch`].
+    fn module(&self, ctx: &GpuContext, lmax: usize) -> &wgpu::ShaderModule {
+        self.modules[lmax].get_or_init(|| {
+            let source = match self.fetch {
+                VolumeFetch::Filtered => VOLUME_MODULE,
+                VolumeFetch::Loads => VOLUME_LOADS_MODULE,
+            };
+            shaders::create(&ctx.device, source, lmax)
+        })
     }
 
-    /// The pipeline at `lmax` whose fragment stage is `fragment`
-    /// (`fs_volume` or `fs_probe`).
-    fn pipeline(&self, ctx: &GpuContext, lmax: usize, fragment: &str) -> wgpu::RenderPipeline {
-        let module = shaders::create(&ctx.device, self.module(), lmax);
-        let targets = [Some(wgpu::ColorTargetState {
-            format: self.color_format,
-            blend: None,
-            write_mask: wgpu::ColorWrites::ALL,
-        })];
-        let buffers = [
-            Some(wgpu::VertexBufferLayout {
-                array_stride: 48,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![
-                    0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Float32x3
-                ],
-            }),
-            Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<VolumeInstance>() as u64,
-                step_mode: wgpu::VertexStepMode::Instance,
-                attributes: &wgpu::vertex_attr_array![4 => Float32x4, 5 => Uint32],
-            }),
-        ];
-        ctx.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("volume"),
-                layout: Some(&self.pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_volume"),
-                    compilation_options: Default::default(),
-                    buffers: &buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fragment),
-                    compilation_options: Default::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+    /// The render pipeline of `pass` (`VOLUME_PASS` or `PROBE_PASS`) at
+    /// `lmax`.
+    fn pipeline(&self, ctx: &GpuContext, pass: &Pass, lmax: usize) -> wgpu::RenderPipeline {
+        pipeline_of(
+            &ctx.device,
+            &self.pipeline_layout,
+            self.color_format,
+            pass,
+            self.module(ctx, lmax),
+        )
     }
 
     /// The interpolated irradiance the fragments see, evaluated by the same
@@ -856,11 +840,10 @@ impl VolumeRenderer {
         let lmax = self.write_frame(ctx, &camera, 1.0, shading);
         let device = &ctx.device;
         let pipeline = self.computes[lmax].get_or_init(|| {
-            let module = shaders::create(device, self.module(), lmax);
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some("volume compute"),
                 layout: Some(&self.compute_pipeline_layout),
-                module: &module,
+                module: self.module(ctx, lmax),
                 entry_point: Some("cs_volume"),
                 compilation_options: Default::default(),
                 cache: None,
@@ -888,28 +871,23 @@ impl VolumeRenderer {
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        fn binding(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+        let mut entries = probe_bindings(
+            &self.frame,
+            &self.texture_view,
+            &self.volume,
+            &self.sampler,
+            self.fetch,
+        );
+        entries.extend([
             wgpu::BindGroupEntry {
-                binding,
-                resource: buffer.as_entire_binding(),
-            }
-        }
-        let mut entries = vec![
-            binding(0, &self.frame),
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&self.texture_view),
+                binding: 4,
+                resource: query_buffer.as_entire_binding(),
             },
-            binding(3, &self.volume),
-            binding(4, &query_buffer),
-            binding(5, &answers),
-        ];
-        if self.fetch == VolumeFetch::Filtered {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 6,
-                resource: wgpu::BindingResource::Sampler(&self.sampler),
-            });
-        }
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: answers.as_entire_binding(),
+            },
+        ]);
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("volume compute"),
             layout: &self.compute_layout,

@@ -8,8 +8,8 @@ use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::rotation::Frame;
 use shlight_core::{ShCoeffs, Window, analytic, irradiance};
 use shlight_gpu::{
-    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading, Transfer,
-    render_frame,
+    Camera, GpuContext, GpuError, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading, Transfer,
+    read_srgb8_texture, render_frame, wgpu,
 };
 use shlight_mesh::Mesh;
 use shlight_mesh::generate::uv_sphere;
@@ -407,6 +407,107 @@ fn transfer_shape_and_mode_errors_are_reported() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("PRT mode needs transfer"), "{err}");
+}
+
+/// An 8-bit texture of `width x height` texels holding `bytes`, with
+/// `usage` besides `COPY_DST`.
+fn texture_of(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    (width, height): (u32, u32),
+    bytes: &[u8],
+) -> wgpu::Texture {
+    let size = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: usage | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    ctx.queue.write_texture(
+        texture.as_image_copy(),
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * 4),
+            rows_per_image: None,
+        },
+        size,
+    );
+    texture
+}
+
+/// `read_srgb8_texture` decodes RGBA and BGRA texels (rows of 3 texels,
+/// padded in the copy, come back whole and in order) and refuses, as
+/// errors rather than panics, a texture of another format and one without
+/// `COPY_SRC`.
+#[test]
+fn srgb8_textures_read_back_as_linear_rgb() {
+    let Some(ctx) = context("srgb8_textures_read_back_as_linear_rgb") else {
+        return;
+    };
+    let bytes: Vec<u8> = (0..3 * 2 * 4).map(|i| (i * 37 % 256) as u8).collect();
+    let decode = |v: u8| shlight_io::srgb_to_linear(f32::from(v) / 255.0);
+    let copy = wgpu::TextureUsages::COPY_SRC;
+    for format in [
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureFormat::Rgba8UnormSrgb,
+        wgpu::TextureFormat::Bgra8Unorm,
+        wgpu::TextureFormat::Bgra8UnormSrgb,
+    ] {
+        let texture = texture_of(&ctx, format, copy, (3, 2), &bytes);
+        let image = read_srgb8_texture(&ctx, &texture).unwrap();
+        assert_eq!((image.width(), image.height()), (3, 2), "{format:?}");
+        let bgra = matches!(
+            format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        );
+        for (k, (got, t)) in image.pixels().iter().zip(bytes.chunks_exact(4)).enumerate() {
+            let rgb = if bgra {
+                [t[2], t[1], t[0]]
+            } else {
+                [t[0], t[1], t[2]]
+            };
+            assert_eq!(*got, rgb.map(decode), "{format:?} texel {k}");
+        }
+    }
+    let float = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: 2,
+            height: 2,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: copy,
+        view_formats: &[],
+    });
+    let err = read_srgb8_texture(&ctx, &float).unwrap_err();
+    assert!(
+        matches!(err, GpuError::Invalid(_)) && err.to_string().contains("Rgba32Float"),
+        "{err}"
+    );
+    let uncopyable = texture_of(
+        &ctx,
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureUsages::TEXTURE_BINDING,
+        (3, 2),
+        &bytes,
+    );
+    let err = read_srgb8_texture(&ctx, &uncopyable).unwrap_err();
+    assert!(matches!(err, GpuError::Runtime(_)), "{err}");
 }
 
 /// The background at the centre pixel of an odd-sized frame, whose ray is
