@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use shlight_core::rotation::Frame;
+use shlight_core::sh::Frame;
 use shlight_io::{Image, ReadOptions, read_image_bytes};
 use shlight_mesh::{Mesh, MeshFormat};
 use shlight_pipeline::Environment;

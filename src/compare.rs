@@ -8,9 +8,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use shlight_accuracy::compare::{self, CompareRow};
-use shlight_core::dominant_lights::DominantLightOptions;
-use shlight_core::layout::EnvMap;
-use shlight_core::projection::MapOrientation;
+use shlight_core::encoding::DominantLightOptions;
+use shlight_core::map::{EnvMap, MapOrientation};
 use shlight_io::ReadOptions;
 
 use crate::input::{InputLayout, load, parse_input_layout};

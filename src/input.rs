@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use anyhow::Result;
-use shlight_core::layout::Layout;
-use shlight_core::rotation::Frame;
+use shlight_core::map::Layout;
+use shlight_core::sh::Frame;
 use shlight_format::SanitizeCounts;
 use shlight_io::{Image, PixelStats, ReadOptions};
 

@@ -4,7 +4,7 @@
 //! Every texel of the output (an equirect map of `--size`, in the input's
 //! frame) gets `E(n) = Σ L_k max(n · d_k, 0) Ω_k` over **every** texel `k`
 //! of the input, for `n` the output texel's centre direction
-//! (`shlight_core::irradiance_map`): `O(input × output)` work, in parallel,
+//! (`shlight_core::map`): `O(input × output)` work, in parallel,
 //! with a progress bar. `--sh LMAX` also writes the SH irradiance of the
 //! same map (quadrature projection to LMAX, `E_l^m = A_l L_l^m`) as
 //! `OUT-sh.EXT` and the difference SH minus exact as `OUT-diff.EXT`, and
@@ -22,8 +22,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
 use shlight_accuracy::map_irradiance::MapIrradiance;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 use shlight_pipeline::output_grid;
 
@@ -54,7 +53,7 @@ pub struct IrradianceArgs {
     /// then the lmax of its SH part (default 2; the dominant lights'
     /// residual for dominant+sh).
     #[arg(long, value_parser = crate::values::encoding())]
-    pub encoding: Option<shlight_core::Encoding>,
+    pub encoding: Option<shlight_core::encoding::Encoding>,
     /// Layout of the input (as for `shlight project`): auto, equirect,
     /// cross-h, cross-v, strip, angular, mirror-ball, faces.
     #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
@@ -91,7 +90,7 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         .map_err(|e| anyhow!("--size: {e}"))?;
     let encoding = match (args.encoding, args.sh) {
         (Some(e), lmax) => Some((e, lmax.unwrap_or(2))),
-        (None, Some(lmax)) => Some((shlight_core::Encoding::Sh, lmax)),
+        (None, Some(lmax)) => Some((shlight_core::encoding::Encoding::Sh, lmax)),
         (None, None) => None,
     };
     let outputs: Vec<PathBuf> = match (args.encoding, encoding) {
@@ -147,11 +146,11 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let Some((encoding, lmax)) = encoding else {
         return Ok(());
     };
-    let encoded = shlight_core::encode_map(
+    let encoded = shlight_core::encoding::encode_map(
         &map,
         encoding,
         lmax,
-        &shlight_core::DominantLightOptions::default(),
+        &shlight_core::encoding::DominantLightOptions::default(),
     );
     let sh = irradiance.estimate(&encoded);
     write(&outputs[1], &sh)?;

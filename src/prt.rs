@@ -199,7 +199,7 @@ fn write_preview(
     path: &Path,
     mesh: &Mesh,
     file: &ShprtFile,
-    light: &shlight_core::ShCoeffs<DVec3>,
+    light: &shlight_core::sh::ShCoeffs<DVec3>,
     args: &PrtArgs,
 ) -> Result<()> {
     let radiance =

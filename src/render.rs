@@ -9,9 +9,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use shlight_core::irradiance;
-use shlight_core::layout::Layout;
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::{Layout, MapOrientation};
+use shlight_core::sh::irradiance;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_pipeline::{default_output_size, output_grid, render_map};
 

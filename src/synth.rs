@@ -1,11 +1,11 @@
 //! `shlight synth`: analytic environment maps, the test inputs whose SH
-//! coefficients are known in closed form (`shlight_core::analytic`).
+//! coefficients are known in closed form (`shlight_core::sh::closed_form`).
 //!
 //! Every texel holds the light's mean over the texel
-//! (`shlight_core::texel_means`, `--supersample N` points a side); a
+//! (`shlight_core::map::texel_means`, `--supersample N` points a side); a
 //! directional light is one texel or a cap of exact power
-//! (`shlight_core::directional_texels`, `--half-angle`). This module
-//! resolves the arguments into a `shlight_core::AnalyticLight`, reports
+//! (`shlight_core::map::directional_texels`, `--half-angle`). This module
+//! resolves the arguments into a `shlight_core::map::AnalyticLight`, reports
 //! where a one-texel sun landed, and writes the map.
 
 use std::path::PathBuf;
@@ -13,9 +13,9 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shlight_core::layout::Layout;
-use shlight_core::projection::MapOrientation;
-use shlight_core::{AnalyticLight, DirectionalDrawing, directional_texels, texel_means};
+use shlight_core::map::{
+    AnalyticLight, DirectionalDrawing, Layout, MapOrientation, directional_texels, texel_means,
+};
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 use shlight_pipeline::{default_output_size, output_grid};
 

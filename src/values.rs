@@ -5,8 +5,8 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use glam::DVec3;
-use shlight_core::Encoding;
-use shlight_core::layout::Layout;
+use shlight_core::encoding::Encoding;
+use shlight_core::map::Layout;
 use shlight_format::{ExportFormat, Quantity};
 
 /// A parser accepting exactly the names of `all`, with their help lines.

@@ -13,8 +13,7 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_pipeline::Environment;
 use shlight_volume::{FileMeta, Grid, Stage, VolumeOptions, bake};
 

@@ -96,7 +96,7 @@ mod gpu {
 
     use anyhow::{Result, bail};
     use glam::{DVec3, Vec3};
-    use shlight_core::ShCoeffs;
+    use shlight_core::sh::ShCoeffs;
     use shlight_format::ShvolFile;
     use shlight_gpu::{GpuContext, VolumeProbes, VolumeRenderer, place, wgpu};
     use shlight_mesh::Mesh;

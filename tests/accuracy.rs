@@ -9,12 +9,11 @@ use std::path::Path;
 use glam::DVec3;
 use shlight_accuracy::error::relative_to_peak;
 use shlight_accuracy::oracle::{Oracle, Shape, unit};
-use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::montecarlo::luminance;
-use shlight_core::projection::project_map;
-use shlight_core::projection::{MapOrientation, equirect_direction};
-use shlight_core::quadrature::fibonacci_sphere;
+use shlight_core::map::{
+    EnvMap, Layout, MapOrientation, equirect_direction, irradiance_brute_force, luminance,
+    project_map,
+};
+use shlight_core::sh::fibonacci_sphere;
 use shlight_io::{ReadOptions, read_image};
 
 use crate::util::{s, shlight, shlight_err, shlight_ok, temp_dir};
@@ -209,7 +208,7 @@ fn real_map_errors(path: &Path, normals: &[DVec3]) -> ((f64, f64), (f64, f64)) {
         .into_iter()
         .map(luminance)
         .collect();
-    let e = shlight_core::irradiance(&project_map(&map, 2));
+    let e = shlight_core::sh::irradiance(&project_map(&map, 2));
     let est: Vec<f64> = normals.iter().map(|n| luminance(e.eval(*n))).collect();
     let peak = relative_to_peak(&est, &exact);
     let point = shlight_accuracy::error::pointwise(&est, &exact, 1e-3);
@@ -374,7 +373,7 @@ fn irradiance_cli_reads_cube_crosses_in_the_z_up_frame() {
     let e = read_image(&out, &ReadOptions::default()).unwrap();
     let axis = DVec3::new(0.2, 0.9, 0.1).normalize();
     let o = MapOrientation {
-        frame: shlight_core::rotation::Frame::ZUp,
+        frame: shlight_core::sh::Frame::ZUp,
         mirror: false,
     };
     let peak = PI * 40f64.to_radians().sin().powi(2);

@@ -19,7 +19,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use shlight_core::Encoding;
+use shlight_core::encoding::Encoding;
 use shlight_format::CoeffFile;
 
 use crate::export::convert;
@@ -217,7 +217,7 @@ fn the_lights_are_in_the_snippet_not_only_in_the_residual() {
     let dirs = sphere_directions(200);
     let residual_only: Vec<DVec3> = dirs
         .iter()
-        .map(|n| shlight_core::irradiance(&file.coeffs).eval(*n))
+        .map(|n| shlight_core::sh::irradiance(&file.coeffs).eval(*n))
         .collect();
     let e = worst(&dirs, &residual_only, |n| encoded.irradiance(n));
     assert!(e > 0.5, "the light is {e} of max E");

@@ -3,10 +3,8 @@
 //! and the comparison covers every encoding.
 
 use glam::DVec3;
-use shlight_core::dominant_lights::DominantLightOptions;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::orientation::MapOrientation;
-use shlight_core::{Encoding, encode_map};
+use shlight_core::encoding::{DominantLightOptions, Encoding, encode_map};
+use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::CoeffFile;
 use shlight_io::{ReadOptions, read_image};
 

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use glam::DVec3;
-use shlight_core::quadrature::fibonacci_sphere;
+use shlight_core::sh::fibonacci_sphere;
 
 use crate::export::{babylon_lambertian_radiance, filament_irradiance_sh, three_get_irradiance_at};
 use crate::util::{s, shlight_ok, skip, temp_dir, write_map};

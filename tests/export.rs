@@ -18,8 +18,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DVec3};
 use serde_json::{Value, json};
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, analytic, irradiance};
+use shlight_core::sh::{Frame, ShCoeffs, closed_form, irradiance};
 
 #[cfg(feature = "gpu")]
 use crate::export_shaders;
@@ -105,8 +104,8 @@ fn random_radiance(lmax: usize, seed: u64) -> ShCoeffs<DVec3> {
 }
 
 pub(crate) fn cases() -> Vec<Case> {
-    let sun = &analytic::directional(2, DVec3::new(0.48, 0.6, 0.64), DVec3::new(3.0, 2.5, 2.0))
-        + &analytic::constant(2, DVec3::new(0.2, 0.3, 0.5));
+    let sun = &closed_form::directional(2, DVec3::new(0.48, 0.6, 0.64), DVec3::new(3.0, 2.5, 2.0))
+        + &closed_form::constant(2, DVec3::new(0.2, 0.3, 0.5));
     vec![
         Case {
             name: "sun",
@@ -122,7 +121,7 @@ pub(crate) fn cases() -> Vec<Case> {
         },
         Case {
             name: "zup4",
-            radiance: &analytic::directional(
+            radiance: &closed_form::directional(
                 4,
                 DVec3::new(0.0, -0.6, 0.8),
                 DVec3::new(1.0, 2.0, 0.5),
@@ -276,7 +275,7 @@ fn txt_is_a_rh_table_that_eq_13_turns_into_shlight_irradiance() {
         } else {
             // The table holds the file's coefficients with odd |m| negated.
             for (i, (got, want)) in values.iter().zip(case.stored().as_slice()).enumerate() {
-                let (_, m) = shlight_core::lm_from_index(i);
+                let (_, m) = shlight_core::sh::lm_from_index(i);
                 let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
                 assert!((*got - *want * sign).abs().max_element() < 1e-8 * (1.0 + want.length()));
             }
@@ -571,7 +570,7 @@ fn check_snippet_values(what: &str, case: &Case, values: &[Vec<DVec3>]) {
 pub(crate) fn high_lmax_case() -> Case {
     Case {
         name: "lmax8",
-        radiance: &analytic::cap(
+        radiance: &closed_form::cap(
             8,
             DVec3::new(0.36, 0.48, 0.8),
             0.4,
@@ -823,7 +822,7 @@ fn wgsl_snippet_validates_holds_the_numbers_and_is_the_tested_evaluator() {
                 .map(|s| s.trim().parse().unwrap())
                 .collect();
             let want: Vec<f64> = (0..=lmax)
-                .map(shlight_core::zonal::clamped_cosine_eigenvalue)
+                .map(shlight_core::sh::clamped_cosine_eigenvalue)
                 .collect();
             assert_eq!(a, want);
         }

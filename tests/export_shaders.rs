@@ -21,8 +21,7 @@ use std::path::Path;
 use std::process::Command;
 
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_gpu::GpuContext;
 use shlight_gpu::wgpu;
 use wgpu::util::DeviceExt as _;

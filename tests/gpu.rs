@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 
 use glam::DVec3;
-use shlight_core::{ShCoeffs, analytic, irradiance};
+use shlight_core::sh::{ShCoeffs, closed_form, irradiance};
 use shlight_io::{ReadOptions, read_image};
 
 use crate::util::{
@@ -31,8 +31,8 @@ fn write_coeffs(path: &Path, c: &ShCoeffs<DVec3>) {
 
 /// A light positive everywhere with bands 0..4 present.
 fn light() -> ShCoeffs<DVec3> {
-    let mut l = analytic::cap(4, DVec3::new(0.3, 0.8, 0.5), 0.5, DVec3::new(5.0, 3.0, 2.0));
-    l += &analytic::constant(4, DVec3::new(1.0, 1.1, 1.3));
+    let mut l = closed_form::cap(4, DVec3::new(0.3, 0.8, 0.5), 0.5, DVec3::new(5.0, 3.0, 2.0));
+    l += &closed_form::constant(4, DVec3::new(1.0, 1.1, 1.3));
     l
 }
 
@@ -97,7 +97,7 @@ fn render_mesh_shades_each_pixel_as_the_cpu_irradiance_at_its_normal() {
 }
 
 /// Every encoding shaded by `render-mesh --encoding` against the core's
-/// evaluation of the same encoding ([`shlight_core::Encoded::irradiance`])
+/// evaluation of the same encoding ([`shlight_core::encoding::Encoded::irradiance`])
 /// at each pixel's normal, under the light as it is and turned by a
 /// rotation `R` (the shader evaluates the unturned encoding at `R^T n`).
 /// Errors are relative to the frame's largest value; lavapipe measures
@@ -109,8 +109,8 @@ fn render_mesh_shades_every_encoding_as_the_cpu_evaluates_it() {
         return;
     }
     use glam::{DMat3, DQuat};
-    use shlight_core::layout::{EnvMap, Layout};
-    use shlight_core::{DominantLightOptions, Encoding, MapOrientation, encode_map};
+    use shlight_core::encoding::{DominantLightOptions, Encoding, encode_map};
+    use shlight_core::map::{EnvMap, Layout, MapOrientation};
 
     let dir = temp_dir("gpu_render_encodings");
     let mesh = dir.join("sphere.obj");

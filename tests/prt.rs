@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use glam::DVec3;
-use shlight_core::analytic;
+use shlight_core::sh::closed_form;
 use shlight_mesh::generate;
 use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, bake};
@@ -66,7 +66,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
     assert_eq!(file.samples, library.samples as u64);
     // Half bowl, half sky from every point: L_o = rho L / (2 - rho) = 1/3
     // (6 bounces leave (rho/2)^7 ~ 6e-5 out; 512 directions err ~0.01).
-    let light = analytic::constant(4, DVec3::ONE);
+    let light = closed_form::constant(4, DVec3::ONE);
     for e in shlight_prt::transfer::exit_radiance(&file.transfer, file.lmax, file.channels, &light)
     {
         assert!((e.x - 1.0 / 3.0).abs() < 0.02, "{e}");

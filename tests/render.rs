@@ -2,7 +2,7 @@
 //! gives the file's coefficients back.
 
 use serde_json::json;
-use shlight_core::{ShCoeffs, irradiance};
+use shlight_core::sh::{ShCoeffs, irradiance};
 
 use crate::util::{assert_rows_near, project_rows, s, shlight, shlight_err, shlight_ok, temp_dir};
 

@@ -1,9 +1,8 @@
 //! `shlight synth`: each analytic map projects to its closed-form
-//! coefficients (`shlight_core::analytic`).
+//! coefficients (`shlight_core::sh::closed_form`).
 
-use shlight_core::projection::{MapOrientation, equirect_direction};
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, analytic};
+use shlight_core::map::{MapOrientation, equirect_direction};
+use shlight_core::sh::{Frame, ShCoeffs, closed_form};
 
 use crate::util::{assert_rows_near, project_rows, s, shlight_err, shlight_ok, temp_dir};
 
@@ -44,7 +43,7 @@ fn constant_and_gradient_maps_give_their_closed_forms() {
         "--value",
         "2",
     ]);
-    let want = scaled(&analytic::constant(LMAX, 1.0), [2.0, 4.0, 1.0]);
+    let want = scaled(&closed_form::constant(LMAX, 1.0), [2.0, 4.0, 1.0]);
     for up in ["y", "z"] {
         // The map is the same in both frames (constant); project it either way.
         let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", up]);
@@ -74,7 +73,7 @@ fn constant_and_gradient_maps_give_their_closed_forms() {
     ]);
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", "z"]);
     let want = scaled(
-        &analytic::linear_gradient(LMAX, glam::DVec3::from(axis), 1.5, -0.75),
+        &closed_form::linear_gradient(LMAX, glam::DVec3::from(axis), 1.5, -0.75),
         [1.0, 0.5, 0.25],
     );
     assert_rows_near(&got, &want, SMOOTH_TOL, "gradient");
@@ -100,7 +99,7 @@ fn hemisphere_and_caps_give_their_closed_forms() {
         ]);
         let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", up]);
         let want = scaled(
-            &analytic::cap(
+            &closed_form::cap(
                 LMAX,
                 glam::DVec3::from(axis),
                 std::f64::consts::FRAC_PI_2,
@@ -132,7 +131,7 @@ fn hemisphere_and_caps_give_their_closed_forms() {
     ]);
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--mirror"]);
     let want = scaled(
-        &analytic::cap(LMAX, glam::DVec3::from(axis), 40f64.to_radians(), 4.0),
+        &closed_form::cap(LMAX, glam::DVec3::from(axis), 40f64.to_radians(), 4.0),
         [1.0; 3],
     );
     assert_rows_near(&got, &want, EDGE_TOL, "cap");
@@ -172,7 +171,7 @@ fn a_one_texel_sun_is_the_delta_at_its_texel_centre() {
         String::from_utf8_lossy(&out.stderr)
     );
     let got = project_rows(&map, &["--lmax", &lmax_arg(), "--up", "z"]);
-    let want = scaled(&analytic::directional(LMAX, d, 5.0), [1.0, 0.9, 0.8]);
+    let want = scaled(&closed_form::directional(LMAX, d, 5.0), [1.0, 0.9, 0.8]);
     // Exact but for the f32 texel value.
     assert_rows_near(&got, &want, 1e-6, "one-texel sun");
 
@@ -217,7 +216,7 @@ fn a_small_cap_sun_keeps_its_irradiance_and_is_near_the_delta() {
     let a = half.to_radians();
     let radiance = 2.0 / (std::f64::consts::PI * a.sin().powi(2));
     let cap = scaled(
-        &analytic::cap(2, glam::DVec3::from(axis), a, radiance),
+        &closed_form::cap(2, glam::DVec3::from(axis), a, radiance),
         [1.0; 3],
     );
     // The cap is ~9 texels across and normalised to its power; measured 1e-4.
@@ -225,7 +224,7 @@ fn a_small_cap_sun_keeps_its_irradiance_and_is_near_the_delta() {
     // The cap and the delta differ by l(l+1)a²/4 relatively in degree l
     // (4e-3 at l = 2, a = 3°); measured 1.3e-3 of the largest coefficient.
     let delta = scaled(
-        &analytic::directional(2, glam::DVec3::from(axis), 2.0),
+        &closed_form::directional(2, glam::DVec3::from(axis), 2.0),
         [1.0; 3],
     );
     assert_rows_near(&got, &delta, 3e-3, "cap sun vs delta");

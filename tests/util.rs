@@ -256,7 +256,7 @@ pub fn have_tool(tool: &str, test: &str) -> bool {
 /// the six axis directions.
 pub fn sphere_directions(n: usize) -> Vec<glam::DVec3> {
     use glam::DVec3;
-    let mut v = shlight_core::quadrature::fibonacci_sphere(n - 6);
+    let mut v = shlight_core::sh::fibonacci_sphere(n - 6);
     v.extend([
         DVec3::X,
         DVec3::Y,

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::Command;
 
 use glam::{DVec3, Vec3};
-use shlight_core::ShCoeffs;
+use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
 use shlight_mesh::generate;
 use shlight_volume::{Grid, VolumeOptions, bake};

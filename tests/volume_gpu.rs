@@ -10,7 +10,7 @@
 //! show their own probe beside an interpolated object in one frame.
 
 use glam::{DVec3, Vec3};
-use shlight_core::sh_count;
+use shlight_core::sh::sh_count;
 use shlight_gpu::{
     GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeProbes, VolumeRenderer, wgpu,
 };
@@ -110,7 +110,7 @@ impl TestVolume {
     /// probe around `p` is invalid.
     fn cpu(&self, p: Vec3, n: Vec3, lmax: usize) -> Option<DVec3> {
         let l = sample(&self.grid, &self.valid, &self.radiance, self.lmax, p)?;
-        Some(shlight_core::irradiance(&l.resized(lmax)).eval(n.as_dvec3()))
+        Some(shlight_core::sh::irradiance(&l.resized(lmax)).eval(n.as_dvec3()))
     }
 }
 
@@ -433,7 +433,7 @@ fn pixel_hit(
 #[test]
 fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     use crate::util::{s, shlight_ok, temp_dir, write_obj, write_radiance_rows};
-    use shlight_core::ShRotation;
+    use shlight_core::sh::ShRotation;
     use shlight_format::ShvolFile;
 
     if gpu_context("render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box").is_none() {
@@ -507,9 +507,10 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
 
     // The CPU side: the volume relit under the sky turned 60 degrees about +Y.
     let mut file = ShvolFile::read(&volume).unwrap();
-    let sky =
-        shlight_core::ShCoeffs::from_vec(sky_rows.iter().map(|r| DVec3::from_array(*r)).collect())
-            .unwrap();
+    let sky = shlight_core::sh::ShCoeffs::from_vec(
+        sky_rows.iter().map(|r| DVec3::from_array(*r)).collect(),
+    )
+    .unwrap();
     let turned =
         ShRotation::from_mat3(2, glam::DMat3::from_rotation_y(60f64.to_radians())).apply(&sky);
     shlight_volume::relight_file(&mut file, &turned).unwrap();
@@ -567,7 +568,7 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
                 None => Vec3::new(0.6, 0.5, 0.4),
             };
             let l = sample(&grid, &file.valid, &file.radiance, 2, p).expect("a lit point");
-            let e = shlight_core::irradiance(&l).eval(normal.as_dvec3());
+            let e = shlight_core::sh::irradiance(&l).eval(normal.as_dvec3());
             let want = albedo.as_dvec3() * e / std::f64::consts::PI;
             let got = Vec3::from_array(frame.pixels()[j * w + i]).as_dvec3();
             let err = ((got - want).abs() / (want.abs() + PIXEL_FLOOR)).max_element();

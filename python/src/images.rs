@@ -6,8 +6,7 @@ use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3, PyUntypedArray};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use shlight_core::layout::Layout;
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::{Layout, MapOrientation};
 use shlight_format::Quantity;
 use shlight_io::{Image, ReadOptions, ToneMap, WriteOptions};
 
@@ -130,7 +129,7 @@ pub fn render<'py>(
     }
     let file = sh.file();
     let coeffs = match (file.quantity, irradiance) {
-        (Quantity::Radiance, true) => shlight_core::irradiance(&file.coeffs),
+        (Quantity::Radiance, true) => shlight_core::sh::irradiance(&file.coeffs),
         _ => file.coeffs.clone(),
     };
     let orientation = MapOrientation {

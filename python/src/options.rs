@@ -3,10 +3,9 @@
 //! line's defaults and checks.
 
 use pyo3::prelude::*;
-use shlight_core::Window;
-use shlight_core::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
-use shlight_core::projection::MapOrientation;
-use shlight_core::rotation::Frame;
+use shlight_core::map::MapOrientation;
+use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
+use shlight_core::sh::{Frame, Window};
 use shlight_format::{Quantity, RotationRecord};
 use shlight_io::ReadOptions;
 use shlight_pipeline::{DEFAULT_SAMPLES, InputLayout, Method, ProjectSettings, ReadSettings};

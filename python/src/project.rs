@@ -5,8 +5,7 @@ use std::path::PathBuf;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use pyo3::prelude::*;
 use rayon::prelude::*;
-use shlight_core::CubeFaces;
-use shlight_core::layout::Layout;
+use shlight_core::map::{CubeFaces, Layout};
 use shlight_format::CoeffFile;
 use shlight_pipeline::{layout_for_size, project_path, project_source};
 
@@ -155,7 +154,7 @@ fn project_faces(
             .map(|v| {
                 (0..v.height)
                     .flat_map(|y| (0..v.width).map(move |x| (x, y)))
-                    .map(|(x, y)| shlight_core::TexelSource::texel(v, x, y))
+                    .map(|(x, y)| shlight_core::map::TexelSource::texel(v, x, y))
                     .collect()
             })
             .collect();

@@ -10,13 +10,10 @@ use numpy::{
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use shlight_core::auto_window::WindowTarget;
-use shlight_core::channel_windows::{apply_channel_windows, auto_windows};
-use shlight_core::rotation::rotate_once;
-use shlight_core::std_error_rotation::rotate_std_error;
-use shlight_core::window::WindowFamily;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, ShRotation, Window};
+use shlight_core::sh::{
+    ShCoeffs, ShRotation, Window, WindowFamily, WindowTarget, apply_channel_windows, auto_windows,
+    clamped_cosine_eigenvalue, rotate_once, rotate_std_error,
+};
 use shlight_format::{CoeffFile, ExportFormat, Quantity, RotationRecord, convert_quantity};
 
 use crate::errors::{chained, shlight_error, warn_all};

@@ -7,8 +7,7 @@ use numpy::{PyArrayDescrMethods, PyReadonlyArray3, PyUntypedArray, PyUntypedArra
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
-use shlight_core::TexelSource;
-use shlight_core::layout::Layout;
+use shlight_core::map::{Layout, TexelSource};
 
 /// The texels of one array: float32 in place, float64 in place (read as
 /// f32 texel by texel), or a float32 copy (an array numpy cannot hand over

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
-use shlight_core::montecarlo::SamplerKind;
+use shlight_core::map::montecarlo::SamplerKind;
 use shlight_format::{ExportFormat, Quantity};
 use shlight_io::{ReadOptions, ToneMap};
 
@@ -70,7 +70,7 @@ pub struct ProjectArgs {
     /// encodings other than sh take radiance by quadrature, without
     /// --window, --rotate or --gpu, into the JSON file.
     #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
-    pub encoding: shlight_core::Encoding,
+    pub encoding: shlight_core::encoding::Encoding,
     /// Project on the GPU (equirect maps, quadrature, lmax up to 8): the
     /// same sums in f32 by a compute shader, within 1e-4 of the CPU.
     #[arg(long)]
@@ -145,7 +145,7 @@ fn sampler_parser() -> impl TypedValueParser<Value = SamplerKind> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::montecarlo::{DEFAULT_SEED, McOptions};
+    use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions};
 
     #[test]
     fn the_help_states_the_library_defaults() {

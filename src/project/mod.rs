@@ -21,7 +21,7 @@ mod write;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
-use shlight_core::channel_windows::apply_channel_windows;
+use shlight_core::sh::apply_channel_windows;
 use shlight_pipeline::{MapInfo, choose_windows, coefficient_file, write_preview};
 
 use crate::input::{is_faces, load};
@@ -113,9 +113,9 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
         sanitized,
     };
     let mut file = coefficient_file(&projection, windows, &s.project, &info);
-    if args.encoding != shlight_core::Encoding::Sh {
+    if args.encoding != shlight_core::encoding::Encoding::Sh {
         bar.set_message(format!("encoding {name} as {}", args.encoding));
-        let map = shlight_core::layout::EnvMap::new(
+        let map = shlight_core::map::EnvMap::new(
             layout,
             s.orientation,
             image.width(),

@@ -2,7 +2,7 @@
 //! ([`shlight_pipeline::project_radiance`]), or the GPU's for `--gpu`.
 
 use anyhow::{Result, anyhow};
-use shlight_core::layout::{EnvMap, Layout};
+use shlight_core::map::{EnvMap, Layout};
 use shlight_io::Image;
 use shlight_pipeline::{Projection, project_radiance};
 
@@ -23,7 +23,7 @@ pub fn project_map(image: &Image, layout: Layout, s: &Settings<'_>) -> Result<Pr
                 layout.name()
             );
         }
-        let view = shlight_core::projection::EquirectView {
+        let view = shlight_core::map::EquirectView {
             width,
             height,
             pixels,

@@ -2,10 +2,9 @@
 //! any input: frame, window, rotation, Monte Carlo options, the GPU.
 
 use anyhow::{Result, anyhow, bail};
-use shlight_core::Window;
-use shlight_core::layout::Layout;
-use shlight_core::montecarlo::{DEFAULT_SEED, McOptions};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions};
+use shlight_core::map::{Layout, MapOrientation};
+use shlight_core::sh::Window;
 use shlight_format::RotationRecord;
 use shlight_io::ReadOptions;
 use shlight_pipeline::{PreviewOptions, ProjectSettings, output_grid};
@@ -32,7 +31,7 @@ pub struct Settings<'a> {
 impl<'a> Settings<'a> {
     pub fn new(args: &'a ProjectArgs) -> Result<Self> {
         let frame = crate::input::frame_of(&args.up);
-        if args.encoding != shlight_core::Encoding::Sh {
+        if args.encoding != shlight_core::encoding::Encoding::Sh {
             let e = args.encoding;
             let clash = [
                 (

@@ -3,7 +3,8 @@
 
 use anyhow::{Context, Result, anyhow, bail};
 use glam::{DMat3, Vec3};
-use shlight_core::{Encoding, ShRotation};
+use shlight_core::encoding::Encoding;
+use shlight_core::sh::ShRotation;
 use shlight_gpu::{Background, Camera, GpuContext, HEADLESS_FORMAT, Mode, Shading, render_frame};
 use shlight_io::{Format, Image, WriteOptions, write_image};
 

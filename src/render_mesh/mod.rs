@@ -21,7 +21,7 @@ mod volume;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
-use shlight_core::Window;
+use shlight_core::sh::Window;
 use shlight_io::{Format, ToneMap};
 
 use crate::progress::Ui;
@@ -61,7 +61,7 @@ pub struct RenderMeshArgs {
     /// is a map (dominant+sh needs one). Not with --prt, --mode
     /// prt/normals or --volume.
     #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
-    pub encoding: shlight_core::Encoding,
+    pub encoding: shlight_core::encoding::Encoding,
     /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
     #[arg(long, default_value = "none")]
     pub window: Window,

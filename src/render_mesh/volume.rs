@@ -2,7 +2,7 @@
 //! by the irradiance volume, over the environment's background.
 
 use anyhow::{Result, bail};
-use shlight_core::ShRotation;
+use shlight_core::sh::ShRotation;
 use shlight_gpu::{Background, GpuContext, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading};
 use shlight_io::Format;
 
@@ -19,7 +19,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     if args.prt.is_some() || args.mode.is_some_and(|m| m != RenderMode::Sh) {
         bail!("--volume shades by the volume's SH: it takes neither --prt nor --mode prt/normals");
     }
-    if args.encoding != shlight_core::Encoding::Sh {
+    if args.encoding != shlight_core::encoding::Encoding::Sh {
         bail!(
             "--volume shades by the volume's SH probes: it does not take --encoding {}",
             args.encoding

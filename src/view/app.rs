@@ -6,7 +6,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
-use shlight_core::{Encoding, ShRotation, Window};
+use shlight_core::encoding::Encoding;
+use shlight_core::sh::{ShRotation, Window};
 use shlight_gpu::wgpu;
 use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, OrbitCamera, Renderer, Shading};
 use shlight_io::ToneMap;

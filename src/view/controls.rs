@@ -1,7 +1,8 @@
 //! What the panel and keys of `shlight view` change.
 
 use glam::DMat3;
-use shlight_core::{Encoding, Window};
+use shlight_core::encoding::Encoding;
+use shlight_core::sh::Window;
 use shlight_gpu::Shading;
 
 /// What the panel and keys change.

@@ -63,7 +63,7 @@ pub struct ViewArgs {
     /// (needs a map), sloan+sh, zh3, zh3-hallucinated, l1-nonlinear,
     /// ambient-cube; the SH part to the lmax shown.
     #[arg(long, value_parser = crate::values::encoding(), default_value = "sh")]
-    pub encoding: shlight_core::Encoding,
+    pub encoding: shlight_core::encoding::Encoding,
     /// Exposure in stops at start.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
@@ -105,7 +105,7 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
     if args.volume.volume.is_some() && args.prt.is_some() {
         bail!("--volume shades by the volume's SH: it takes no --prt");
     }
-    if args.volume.volume.is_some() && args.encoding != shlight_core::Encoding::Sh {
+    if args.volume.volume.is_some() && args.encoding != shlight_core::encoding::Encoding::Sh {
         bail!(
             "--volume shades by the volume's SH probes: it does not take --encoding {}",
             args.encoding
@@ -157,7 +157,7 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         Some(path) => Environment::load(path, up, shlight_gpu::MAX_LMAX)?,
         None => crate::bundled::environment(up)?,
     };
-    if args.encoding == shlight_core::Encoding::DominantSh && env.map.is_none() {
+    if args.encoding == shlight_core::encoding::Encoding::DominantSh && env.map.is_none() {
         // The same message as render-mesh's.
         env.encode(args.encoding, 2)?;
     }

@@ -1,6 +1,6 @@
 //! The egui overlay panel of `shlight view`.
 
-use shlight_core::Encoding;
+use shlight_core::encoding::Encoding;
 use shlight_gpu::{Background, MAX_LMAX, Mode};
 use shlight_io::ToneMap;
 
@@ -11,7 +11,7 @@ pub struct PanelInfo<'a> {
     pub fps: f64,
     pub frame_ms: f64,
     pub adapter: &'a str,
-    pub coefficients: &'a shlight_core::ShCoeffs<glam::DVec3>,
+    pub coefficients: &'a shlight_core::sh::ShCoeffs<glam::DVec3>,
     pub has_map: bool,
     /// The `--prt` file's mode (`shadowed`, ...), when there is one.
     pub prt: Option<&'a str>,

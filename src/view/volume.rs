@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use anyhow::Result;
 use glam::{DVec3, Vec3};
-use shlight_core::ShCoeffs;
+use shlight_core::sh::ShCoeffs;
 use shlight_gpu::{Camera, GpuContext, Shading, VolumeRenderer, wgpu};
 use shlight_mesh::Mesh;
 

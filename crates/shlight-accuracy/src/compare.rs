@@ -3,7 +3,7 @@
 //! error, and its plot.
 //!
 //! The truth is the brute-force irradiance
-//! ([`shlight_core::irradiance_map`]) at the texel centres of an equirect
+//! ([`shlight_core::map`]) at the texel centres of an equirect
 //! grid of normals; each encoding's irradiance is evaluated at the same
 //! normals; errors are of the luminance, relative to its peak over the
 //! normals (as `shlight irradiance` reports them, [`crate::error`]), with
@@ -11,13 +11,11 @@
 
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::dominant_lights::DominantLightOptions;
-use shlight_core::equirect::{equirect_direction, equirect_row_solid_angle};
-use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::EnvMap;
-use shlight_core::orientation::MapOrientation;
-use shlight_core::radiance_map::luminance;
-use shlight_core::{Encoded, Encoding, encode_map};
+use shlight_core::encoding::{DominantLightOptions, Encoded, Encoding, encode_map};
+use shlight_core::map::{
+    EnvMap, MapOrientation, equirect_direction, equirect_row_solid_angle, irradiance_brute_force,
+    luminance,
+};
 
 use crate::error::{ErrorStats, peak_relative_errors};
 use crate::plot::{Series, log_log_svg};

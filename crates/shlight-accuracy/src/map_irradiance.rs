@@ -5,9 +5,9 @@
 //! map's own orientation, weighted by their texels' solid angles. The
 //! exact irradiance is the brute-force sum over **every** texel `k` of the
 //! map, `E(n) = Σ_k L_k max(n · d_k, 0) Ω_k`
-//! ([`shlight_core::irradiance_map`]). An estimate `Ê` (an encoding's
-//! irradiance, [`shlight_core::Encoded::irradiance_at`]) is judged by the
-//! luminance `Y` of both ([`shlight_core::radiance_map::luminance`]), with
+//! ([`shlight_core::map`]). An estimate `Ê` (an encoding's
+//! irradiance, [`shlight_core::encoding::Encoded::irradiance_at`]) is judged by the
+//! luminance `Y` of both ([`shlight_core::map::luminance`]), with
 //! area-weighted means:
 //!
 //! - pointwise, `|Ŷ(n) - Y(n)| / max(Y(n), f Y_peak)` with the floor
@@ -17,11 +17,10 @@
 //!   Hanrahan measure it ([`crate::error::peak_relative_errors`]).
 
 use glam::DVec3;
-use shlight_core::Encoded;
-use shlight_core::irradiance_map::irradiance_brute_force;
-use shlight_core::layout::{EnvMap, Layout, LayoutSizeError, TexelGrid};
-use shlight_core::projection::MapOrientation;
-use shlight_core::radiance_map::luminance;
+use shlight_core::encoding::Encoded;
+use shlight_core::map::{
+    EnvMap, Layout, LayoutSizeError, MapOrientation, TexelGrid, irradiance_brute_force, luminance,
+};
 
 use crate::error::{self, ErrorStats};
 
@@ -125,8 +124,8 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
-    use shlight_core::rotation::Frame;
-    use shlight_core::{DominantLightOptions, Encoding, encode_map};
+    use shlight_core::encoding::{DominantLightOptions, Encoding, encode_map};
+    use shlight_core::sh::Frame;
 
     fn uniform(w: usize, h: usize) -> Vec<[f32; 3]> {
         vec![[1.0, 0.5, 0.25]; w * h]

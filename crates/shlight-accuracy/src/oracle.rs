@@ -22,7 +22,7 @@
 //! clamped-cosine eigenvalues `A_l`; every term is bounded by
 //! `|A_l z_l| sqrt((2l+1)/(4π))` (`|P_l| ≤ 1`), so the tail past `lmax`
 //! bounds the truncation error ([`Oracle::truncation_bound`]). `z_l` and
-//! `A_l` come from `shlight_core::zonal` (`cap_zonal`,
+//! `A_l` come from `shlight_core::sh` (`cap_zonal`,
 //! `clamped_cosine_eigenvalue`), which the tests of this crate check
 //! against numerical Legendre integration written here. The polygon has no
 //! zonal form: its truncation is the projection of its closed-form `E` on
@@ -32,8 +32,8 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::zonal::{self, cap_zonal, clamped_cosine_eigenvalue};
+use shlight_core::sh;
+use shlight_core::sh::{ShCoeffs, cap_zonal, clamped_cosine_eigenvalue};
 
 use crate::lambert::polygon_irradiance;
 
@@ -124,7 +124,7 @@ impl Truncated {
     pub fn eval(&self, n: DVec3) -> f64 {
         match self {
             Truncated::Zonal { axis, c } => {
-                let p = zonal::legendre_polynomials(
+                let p = sh::legendre_polynomials(
                     c.len().saturating_sub(1),
                     axis.dot(n).clamp(-1.0, 1.0),
                 );
@@ -251,7 +251,7 @@ impl Oracle {
     #[must_use]
     pub fn coefficients(&self, lmax: usize) -> Option<ShCoeffs<f64>> {
         let (axis, z) = self.zonal(lmax)?;
-        Some(zonal::zonal_to_sh(&z, axis))
+        Some(sh::zonal_to_sh(&z, axis))
     }
 
     /// The SH irradiance truncated at `lmax` (module docs).
@@ -591,8 +591,8 @@ mod tests {
         assert!((cap.truncated(4).eval(t(0.0)) - 0.779832).abs() < 5e-7);
         assert!((cap.truncated(2).eval(t(135.0)) + 0.014095).abs() < 5e-7);
         // The closed-form series and the core's rotated coefficients agree.
-        let e = shlight_core::irradiance(&cap.coefficients(6).unwrap());
-        for n in shlight_core::quadrature::fibonacci_sphere(50) {
+        let e = shlight_core::sh::irradiance(&cap.coefficients(6).unwrap());
+        for n in shlight_core::sh::fibonacci_sphere(50) {
             let got = cap.truncated(6).eval(n);
             assert!((got - e.eval(n)).abs() < 1e-13);
         }
@@ -603,7 +603,7 @@ mod tests {
     /// about the area of one ring along the edge: measured up to 3.5e-3
     /// (the hemisphere about +Y, whose whole rim cuts the rings about +Z).
     fn numeric_irradiance(o: &Oracle, n: DVec3) -> f64 {
-        let q = shlight_core::quadrature::SphereQuadrature::exact_to_degree(1200);
+        let q = shlight_core::sh::SphereQuadrature::exact_to_degree(1200);
         q.directions
             .iter()
             .zip(&q.weights)
@@ -614,7 +614,7 @@ mod tests {
     #[test]
     fn closed_forms_match_numerical_integration() {
         for o in suite_oracles().iter().filter(|o| o.renderable()) {
-            for n in shlight_core::quadrature::fibonacci_sphere(6) {
+            for n in shlight_core::sh::fibonacci_sphere(6) {
                 let (got, want) = (o.irradiance(n), numeric_irradiance(o, n));
                 assert!((got - want).abs() < 5e-3, "{}: {got} vs {want}", o.name);
             }
@@ -627,7 +627,7 @@ mod tests {
             for lmax in [1, 2, 4, 8, 16] {
                 let bound = o.truncation_bound(lmax);
                 let t = o.truncated(lmax);
-                let worst = shlight_core::quadrature::fibonacci_sphere(300)
+                let worst = shlight_core::sh::fibonacci_sphere(300)
                     .into_iter()
                     .map(|n| (t.eval(n) - o.irradiance(n)).abs())
                     .fold(0.0f64, f64::max);

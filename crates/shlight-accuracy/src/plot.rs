@@ -357,7 +357,7 @@ pub fn format_error(value: f64) -> String {
 }
 
 /// An error map: `error(d)` at the centre of each texel of a `w x h` y-up
-/// equirect map (as [`shlight_core::projection::equirect_direction`]),
+/// equirect map (as [`shlight_core::map::equirect_direction`]),
 /// coloured from 0 to `max` (the largest value if `None`), with a colour bar
 /// labelled `0`, `max/2` and `max` underneath. Returns the image (linear
 /// values whose PNG encoding is the scale's sRGB colours) and the scale's
@@ -369,17 +369,9 @@ pub fn error_map(
     max: Option<f64>,
     error: impl Fn(DVec3) -> f64 + Sync,
 ) -> (Image, f64) {
-    let o = shlight_core::projection::MapOrientation::default();
+    let o = shlight_core::map::MapOrientation::default();
     let values: Vec<f64> = (0..w * h)
-        .map(|k| {
-            error(shlight_core::projection::equirect_direction(
-                k % w,
-                k / w,
-                w,
-                h,
-                o,
-            ))
-        })
+        .map(|k| error(shlight_core::map::equirect_direction(k % w, k / w, w, h, o)))
         .collect();
     let top = max
         .unwrap_or_else(|| values.iter().copied().fold(0.0, f64::max))

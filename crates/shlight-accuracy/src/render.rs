@@ -25,9 +25,8 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 use rayon::prelude::*;
-use shlight_core::layout::{EnvMap, Layout, render_map};
-use shlight_core::projection::MapOrientation;
-use shlight_core::rotation::Frame;
+use shlight_core::map::{EnvMap, Layout, MapOrientation, render_map};
+use shlight_core::sh::Frame;
 
 use crate::oracle::Oracle;
 

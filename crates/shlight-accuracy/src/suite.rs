@@ -60,15 +60,11 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::montecarlo::{
+use shlight_core::map::montecarlo::{
     ImportanceGrid, McOptions, Sampler, SamplerKind, project_montecarlo,
 };
-use shlight_core::projection::MapOrientation;
-use shlight_core::projection::project_map;
-use shlight_core::quadrature::fibonacci_sphere;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShBasis, ShCoeffs};
+use shlight_core::map::{EnvMap, Layout, MapOrientation, project_map};
+use shlight_core::sh::{ShBasis, ShCoeffs, clamped_cosine_eigenvalue, fibonacci_sphere};
 
 use crate::error::{ErrorStats, log_log_slope, peak, relative_to_peak};
 use crate::oracle::{Oracle, Shape, Truncated, suite_oracles};
@@ -368,7 +364,7 @@ fn quadrature_bound(o: &Oracle, lmax: usize, r: f64, peak: f64) -> f64 {
 
 /// SH irradiance of radiance coefficients `l` at the normals.
 fn sh_irradiance(l: &ShCoeffs<f64>, normals: &[DVec3]) -> Vec<f64> {
-    let e = shlight_core::irradiance(l);
+    let e = shlight_core::sh::irradiance(l);
     normals.iter().map(|n| e.eval(*n)).collect()
 }
 
@@ -576,7 +572,7 @@ fn mc_once(case: &Case, options: &McOptions, normals: &[DVec3], reference: &[f64
     let a: Vec<f64> = (0..=lmax).map(clamped_cosine_eigenvalue).collect();
     // sigma(n) = sum_i |A_l Y_i(n)| se_i, at its largest over the normals.
     let weights: Vec<f64> = (0..se.len())
-        .map(|i| a[shlight_core::lm_from_index(i).0].abs() * se[i])
+        .map(|i| a[shlight_core::sh::lm_from_index(i).0].abs() * se[i])
         .collect();
     let basis = ShBasis::<f64>::new(lmax);
     let mut y = vec![0.0; basis.count()];

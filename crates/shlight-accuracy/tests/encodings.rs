@@ -6,10 +6,8 @@ use std::path::Path;
 
 use glam::DVec3;
 use shlight_accuracy::compare::{CompareRow, compare_map};
-use shlight_core::Encoding;
-use shlight_core::dominant_lights::DominantLightOptions;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::orientation::MapOrientation;
+use shlight_core::encoding::{DominantLightOptions, Encoding};
+use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_io::{Image, ReadOptions, read_image};
 
 /// Normals the errors are measured at (equirect grid): coarse enough to keep
@@ -94,18 +92,18 @@ fn the_ambient_cube_reproduces_the_exact_irradiance_at_the_axes() {
         image.pixels(),
     )
     .unwrap();
-    let cube = match shlight_core::encode_map(
+    let cube = match shlight_core::encoding::encode_map(
         &map,
         Encoding::AmbientCube,
         0,
         &DominantLightOptions::default(),
     ) {
-        shlight_core::Encoded::AmbientCube(c) => c,
+        shlight_core::encoding::Encoded::AmbientCube(c) => c,
         other => panic!("{other:?}"),
     };
     // The irradiance at each axis summed here, texel by texel.
     let omega = map.texel_solid_angles();
-    for axis in shlight_core::ambient_cube::AXES {
+    for axis in shlight_core::encoding::AMBIENT_CUBE_AXES {
         let mut e = DVec3::ZERO;
         for y in 0..map.height {
             for x in 0..map.width {

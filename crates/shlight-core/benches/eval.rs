@@ -8,7 +8,7 @@
 
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
-use shlight_core::ShBasis;
+use shlight_core::sh::ShBasis;
 
 fn main() {
     divan::main();
@@ -18,7 +18,7 @@ fn main() {
 const N: usize = 4096;
 
 fn directions() -> (Vec<f32>, Vec<f32>, Vec<f32>) {
-    let d = shlight_core::quadrature::fibonacci_sphere(N);
+    let d = shlight_core::sh::fibonacci_sphere(N);
     (
         d.iter().map(|v| v[0] as f32).collect(),
         d.iter().map(|v| v[1] as f32).collect(),
@@ -44,7 +44,7 @@ fn batch_f32(bencher: Bencher, lmax: usize) {
 #[divan::bench(args = [2, 4, 8, 16, 64])]
 fn single_f64(bencher: Bencher, lmax: usize) {
     let basis = ShBasis::<f64>::new(lmax);
-    let d = shlight_core::quadrature::fibonacci_sphere(N);
+    let d = shlight_core::sh::fibonacci_sphere(N);
     let mut out = vec![0.0f64; basis.count()];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         for v in &d {
@@ -75,7 +75,7 @@ fn sum_batch_f32_lmax2(bencher: Bencher) {
 #[divan::bench]
 fn baseline_google_style_sum_lmax2(bencher: Bencher) {
     let coeffs: Vec<f64> = (0..9).map(|i| 0.1 * i as f64 - 0.3).collect();
-    let d = shlight_core::quadrature::fibonacci_sphere(N);
+    let d = shlight_core::sh::fibonacci_sphere(N);
     let mut out = vec![0.0f64; N];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         for (o, v) in out.iter_mut().zip(&d) {

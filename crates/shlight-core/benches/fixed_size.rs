@@ -12,7 +12,7 @@
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
 use glam::{DMat3, DVec3, Mat3, Vec3};
-use shlight_core::{ShBasis, ShCoeffs, ShL2Rgb, ShRotation, irradiance};
+use shlight_core::sh::{ShBasis, ShCoeffs, ShL2Rgb, ShRotation, irradiance};
 
 fn main() {
     divan::main();
@@ -22,7 +22,7 @@ fn main() {
 const N: usize = 4096;
 
 fn normals() -> Vec<Vec3> {
-    shlight_core::quadrature::fibonacci_sphere(N)
+    shlight_core::sh::fibonacci_sphere(N)
         .iter()
         .map(|d| d.as_vec3())
         .collect()

@@ -7,8 +7,8 @@
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
 use glam::DVec3;
-use shlight_core::montecarlo::{ImportanceGrid, McOptions, Sampler, project_montecarlo};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::MapOrientation;
+use shlight_core::map::montecarlo::{ImportanceGrid, McOptions, Sampler, project_montecarlo};
 
 fn main() {
     divan::main();

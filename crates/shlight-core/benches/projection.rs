@@ -11,10 +11,8 @@
 //! used (rayon). Peers on the same map: `benches/peers.sh`.
 
 use divan::{Bencher, black_box};
-use shlight_core::projection::{
-    EquirectView, MapOrientation, project_equirect, project_equirect_simple,
-};
-use shlight_core::rotation::Frame;
+use shlight_core::map::{EquirectView, MapOrientation, project_equirect, project_equirect_simple};
+use shlight_core::sh::Frame;
 
 fn main() {
     divan::main();

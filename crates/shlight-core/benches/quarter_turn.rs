@@ -7,9 +7,7 @@
 
 use divan::black_box;
 use glam::{DMat3, DVec3};
-use shlight_core::ShCoeffs;
-use shlight_core::quarter_turn::quarter_turn_x;
-use shlight_core::rotation::rotate_once;
+use shlight_core::sh::{ShCoeffs, quarter_turn_x, rotate_once};
 
 fn main() {
     divan::main();

@@ -6,8 +6,7 @@
 
 use divan::{Bencher, black_box};
 use glam::{DMat3, DQuat, DVec3};
-use shlight_core::rotation::rotate_z;
-use shlight_core::{ShCoeffs, ShRotation};
+use shlight_core::sh::{ShCoeffs, ShRotation, rotate_z};
 
 fn main() {
     divan::main();

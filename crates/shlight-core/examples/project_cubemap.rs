@@ -3,7 +3,7 @@
 //!
 //! The faces are built at run time: a blue sky brightening toward the
 //! horizon over a dark ground, and a small sun. They are projected through
-//! [`shlight_core::TexelSource`] ([`CubeFaces`]) without being assembled
+//! [`shlight_core::map::TexelSource`] ([`CubeFaces`]) without being assembled
 //! into a cross or strip, the radiance coefficients are convolved with the
 //! clamped cosine ([`irradiance`]), and the irradiance `E(n)` of a few
 //! normals is printed next to the brute-force sum over every texel.
@@ -11,9 +11,8 @@
 //! Run with `cargo run --release -p shlight-core --example project_cubemap`.
 
 use glam::DVec3;
-use shlight_core::layout::{CubeFace, Layout};
-use shlight_core::projection::project;
-use shlight_core::{CubeFaces, MapOrientation, TexelSource, irradiance};
+use shlight_core::map::{CubeFace, CubeFaces, Layout, MapOrientation, TexelSource, project};
+use shlight_core::sh::irradiance;
 
 /// Texels along a face's edge.
 const FACE: usize = 64;
@@ -53,7 +52,7 @@ fn main() {
     // The same map, every texel cosine-weighted: the irradiance SH
     // approximates.
     let (w, h) = cube.size();
-    let map = shlight_core::layout::EnvMap {
+    let map = shlight_core::map::EnvMap {
         layout: Layout::Strip,
         orientation: o,
         width: w,
@@ -92,6 +91,6 @@ fn main() {
     }
     println!(
         "(nine coefficients cannot hold the sun: the SH irradiance rings, below zero facing \
-         away from it; shlight_core::auto_window finds the weakest window that prevents that)"
+         away from it; shlight_core::sh::auto_window finds the weakest window that prevents that)"
     );
 }

@@ -79,9 +79,9 @@
 //!
 //! # Example
 //! ```
-//! use shlight_core::{ShCoeffs, analytic, irradiance};
+//! use shlight_core::sh::{ShCoeffs, closed_form, irradiance};
 //! // A directional light from +Z of unit irradiance, kept to lmax 2:
-//! let light: ShCoeffs<f64> = analytic::directional(2, glam::DVec3::new(0.0, 0.0, 1.0), 1.0);
+//! let light: ShCoeffs<f64> = closed_form::directional(2, glam::DVec3::new(0.0, 0.0, 1.0), 1.0);
 //! let e = irradiance(&light);
 //! // Ramamoorthi-Hanrahan's 9-term irradiance facing the light is 17/16.
 //! assert!((e.eval(glam::DVec3::new(0.0, 0.0, 1.0)) - 17.0 / 16.0).abs() < 1e-14);
@@ -101,89 +101,13 @@
 
 #![deny(missing_docs)]
 
-pub mod ambient_cube;
-pub mod analytic;
-pub mod analytic_light;
-pub mod auto_window;
-pub mod basis;
-pub mod cap_light;
-pub mod channel_windows;
-mod channels;
-pub mod coeffs;
-mod cpu_features;
-mod cube_faces;
-pub mod directional_texels;
-pub mod dominant_lights;
 pub mod encoding;
-pub mod equirect;
-mod fixed_size;
-mod glam_real;
-mod hardcoded;
-pub mod index;
-pub mod irradiance_map;
-pub mod l1_nonlinear;
-pub mod layout;
-pub mod legendre;
-pub mod montecarlo;
-pub mod orientation;
-pub mod projection;
-pub mod quadrature;
-pub mod quarter_turn;
-pub mod radiance_map;
-mod real;
-mod ring_transform;
-pub mod rotation;
-mod rotation_l2;
-mod sh_l1;
-mod sh_l2;
-pub mod sloan_light;
-pub mod sphere_minimum;
-pub mod std_error_rotation;
-mod strided_image;
+pub mod map;
+pub mod sh;
+
+mod cpu_features;
 #[cfg(test)]
 mod test_util;
-pub mod texel_means;
-mod texel_source;
-mod value;
-pub mod window;
-pub mod zh3;
-pub mod zonal;
-
-pub use ambient_cube::AmbientCube;
-pub use analytic_light::AnalyticLight;
-pub use auto_window::{AutoWindow, AutoWindowError, WindowTarget, auto_window};
-pub use basis::{ShBasis, sh_eval};
-pub use cap_light::CapLight;
-pub use coeffs::ShCoeffs;
-pub use cube_faces::CubeFaces;
-pub use directional_texels::{DirectionalDrawing, DirectionalTexels, directional_texels};
-pub use dominant_lights::{DominantLightOptions, DominantLights, extract_dominant_lights};
-pub use encoding::{Encoded, Encoding, encode_coefficients, encode_map};
-pub use equirect::EquirectView;
-pub use glam_real::GlamReal;
-pub use index::{lm_from_index, lmax_from_count, sh_count, sh_index};
-pub use l1_nonlinear::L1NonLinear;
-pub use layout::{CubeFace, EnvMap, Layout, LayoutSizeError, TexelGrid};
-pub use montecarlo::{
-    ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
-};
-pub use orientation::MapOrientation;
-pub use projection::{project, project_map};
-pub use radiance_map::RadianceMap;
-pub use real::Real;
-pub use rotation::{Frame, ShRotation};
-pub use rotation_l2::ShRotationL2;
-pub use sh_l1::{ShL1, ShL1Rgb};
-pub use sh_l2::{ShL2, ShL2Rgb};
-pub use sloan_light::sloan_directional;
-pub use sphere_minimum::sphere_minimum;
-pub use strided_image::StridedImage;
-pub use texel_means::texel_means;
-pub use texel_source::TexelSource;
-pub use value::ShValue;
-pub use window::{Window, WindowFamily};
-pub use zh3::{Zh3, Zh3Kind};
-pub use zonal::{ZonalKernel, irradiance};
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

@@ -5,10 +5,10 @@ use std::f64::consts::PI;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::legendre::{Legendre, legendre_count, legendre_index};
-use shlight_core::quadrature::{SphereQuadrature, gauss_legendre};
-use shlight_core::zonal::legendre_polynomials;
-use shlight_core::{ShBasis, sh_count, sh_index};
+use shlight_core::sh::{
+    Legendre, ShBasis, SphereQuadrature, gauss_legendre, legendre_count, legendre_index,
+    legendre_polynomials, sh_count, sh_index,
+};
 
 /// Gram error allowed at lmax 256: the recurrence loses about l * eps per degree.
 const GRAM_TOL_256: f64 = 1e-12;

@@ -13,9 +13,9 @@ use std::f64::consts::PI;
 use glam::{DMat3, DQuat, DVec3, Mat3, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::{
-    GlamReal, ShBasis, ShCoeffs, ShL1, ShL1Rgb, ShL2, ShL2Rgb, ShRotation, ShRotationL2, analytic,
-    irradiance,
+use shlight_core::sh::{
+    GlamReal, ShBasis, ShCoeffs, ShL1, ShL1Rgb, ShL2, ShL2Rgb, ShRotation, ShRotationL2,
+    closed_form, irradiance,
 };
 
 /// The reference basis is built for this lmax so that it runs the Legendre
@@ -108,7 +108,7 @@ fn rgb_t<T: GlamReal>(c: &ShCoeffs<DVec3>) -> ShCoeffs<T::Vec3> {
 }
 
 /// The reference: `sum_i c_i Y_i(d)` with the basis from the recurrence.
-fn general_eval<C: shlight_core::ShValue<Scalar = f64>>(c: &ShCoeffs<C>, d: DVec3) -> C {
+fn general_eval<C: shlight_core::sh::ShValue<Scalar = f64>>(c: &ShCoeffs<C>, d: DVec3) -> C {
     let basis = ShBasis::<f64>::new(RECURRENCE_LMAX);
     let mut y = vec![0.0; basis.count()];
     basis.eval(d, &mut y);
@@ -327,13 +327,13 @@ fn directional_light_irradiance_matches_the_closed_form_f32() {
 }
 
 /// The fixed types' coefficients of a directional light agree with the
-/// core's analytic projection (`analytic::directional`, built on `sh_eval`).
+/// core's analytic projection (`closed_form::directional`, built on `sh_eval`).
 #[test]
 fn basis_matches_the_analytic_directional_light() {
     let mut rng = rng(7);
     for _ in 0..SAMPLES {
         let a = random_direction(&mut rng);
-        let want: ShCoeffs<f64> = analytic::directional(RECURRENCE_LMAX, a, 1.0);
+        let want: ShCoeffs<f64> = closed_form::directional(RECURRENCE_LMAX, a, 1.0);
         let got = ShL2::<f64>::basis(a);
         for (i, (g, w)) in got.coeffs.iter().zip(want.as_slice()).enumerate() {
             assert!((g - w).abs() < TOL_F64, "coefficient {i} at {a}");
@@ -420,7 +420,7 @@ fn check_rotation<T: GlamReal>(
         let (a, aw) = dir::<T>(random_direction(&mut rng));
         let moved = ShL2::<T>::basis(a).rotated(mat(r));
         let (_, raw) = dir::<T>(r * aw);
-        let at_ra: ShCoeffs<f64> = analytic::directional(2, raw, 1.0);
+        let at_ra: ShCoeffs<f64> = closed_form::directional(2, raw, 1.0);
         for (i, w) in at_ra.as_slice().iter().enumerate() {
             assert!(
                 (moved.coeffs[i].to_f64() - w).abs() < t,

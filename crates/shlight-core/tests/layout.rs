@@ -1,4 +1,4 @@
-//! Environment-map layouts (`shlight_core::layout`), checked against
+//! Environment-map layouts (`shlight_core::map`), checked against
 //! independent routes: brute-force integration of texel solid angles,
 //! the equirect formulas of `projection`, round trips through
 //! `direction_to_image`, the geometry of seams, and projection of rendered
@@ -9,16 +9,11 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::layout::{
-    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, cube_texel_solid_angle, render_map,
+use shlight_core::map::{
+    CubeFace, EnvMap, Layout, LayoutSizeErrorKind, MapOrientation, RadianceMap,
+    cube_texel_solid_angle, equirect_direction, equirect_row_solid_angle, project_map, render_map,
 };
-use shlight_core::montecarlo::RadianceMap;
-use shlight_core::projection::{
-    MapOrientation, equirect_direction, equirect_row_solid_angle, project_map,
-};
-use shlight_core::quadrature::gauss_legendre;
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, analytic};
+use shlight_core::sh::{Frame, ShCoeffs, closed_form, gauss_legendre};
 
 fn orientations() -> [MapOrientation; 4] {
     let o = |frame, mirror| MapOrientation { frame, mirror };
@@ -786,14 +781,14 @@ fn projection_error_is_second_order() {
 
 /// The constant term of a constant map is exact in every layout (the
 /// weights sum to `4π`); the other coefficients of a constant and of a
-/// linear gradient (`analytic::linear_gradient`) come out to the
+/// linear gradient (`closed_form::linear_gradient`) come out to the
 /// quadrature's accuracy: tolerances about twice the measured worst
 /// coefficient errors (equirect 6.7e-5, cube faces 4.1e-4, angular 1.9e-4,
 /// mirror ball 1.4e-3).
 #[test]
 fn projection_of_simple_lights() {
     let axis = DVec3::new(0.48, 0.6, -0.64);
-    let grad: ShCoeffs<f64> = analytic::linear_gradient(4, axis, 1.0, 0.5);
+    let grad: ShCoeffs<f64> = closed_form::linear_gradient(4, axis, 1.0, 0.5);
     for (layout, size, tol) in [
         (Layout::Equirect, 256, 1.4e-4),
         (Layout::CrossHorizontal, 64, 8e-4),
@@ -848,7 +843,7 @@ fn equirect_ring_path_equals_the_texel_sum() {
         for y in 0..h {
             for x in 0..w {
                 let d = m.texel_direction(x, y).unwrap();
-                let y_lm = shlight_core::sh_eval(6, d);
+                let y_lm = shlight_core::sh::sh_eval(6, d);
                 let f = DVec3::from(px[y * w + x].map(f64::from)) * m.texel_solid_angle(x, y);
                 for k in 0..y_lm.len() {
                     slow[k] += f * y_lm[k];
@@ -881,7 +876,7 @@ fn cube_projection_equals_the_texel_sum() {
             let Some(d) = m.texel_direction(x, y) else {
                 continue;
             };
-            let y_lm = shlight_core::sh_eval(7, d);
+            let y_lm = shlight_core::sh::sh_eval(7, d);
             let f = DVec3::from(px[y * w + x].map(f64::from)) * m.texel_solid_angle(x, y);
             for k in 0..y_lm.len() {
                 slow[k] += f * y_lm[k];

@@ -8,14 +8,11 @@
 use core::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::analytic;
-use shlight_core::montecarlo::{
-    ImportanceGrid, McEstimate, McOptions, RadianceMap, Sampler, SamplerKind, luminance,
-    project_montecarlo,
+use shlight_core::map::montecarlo::{
+    ImportanceGrid, McEstimate, McOptions, Sampler, SamplerKind, project_montecarlo,
 };
-use shlight_core::projection::{MapOrientation, equirect_direction};
-use shlight_core::rotation::Frame;
+use shlight_core::map::{MapOrientation, RadianceMap, equirect_direction, luminance};
+use shlight_core::sh::{Frame, ShCoeffs, closed_form};
 
 const RGB: DVec3 = DVec3::new(1.0, 0.5, 0.25);
 const LMAX: usize = 4;
@@ -43,7 +40,7 @@ fn gradient() -> Case {
     Case {
         name: "gradient",
         map: Box::new(move |d| RGB * (1.0 + 0.5 * d.dot(a))),
-        exact: analytic::linear_gradient(LMAX, a, RGB, RGB * 0.5),
+        exact: closed_form::linear_gradient(LMAX, a, RGB, RGB * 0.5),
     }
 }
 
@@ -51,8 +48,8 @@ fn gradient() -> Case {
 /// uniform sky of `sky`.
 fn cap(name: &'static str, axis: DVec3, half: f64, value: f64, sky: f64) -> Case {
     let c = half.cos();
-    let mut exact = analytic::cap(LMAX, axis, half, RGB * value);
-    exact += &analytic::constant(LMAX, RGB * sky);
+    let mut exact = closed_form::cap(LMAX, axis, half, RGB * value);
+    exact += &closed_form::constant(LMAX, RGB * sky);
     Case {
         name,
         map: Box::new(move |d| RGB * (sky + if d.dot(axis) >= c { value } else { 0.0 })),

@@ -10,8 +10,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use glam::{DMat3, DQuat, DVec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::rotation::{Frame, rotate_once, rotate_z};
-use shlight_core::{ShBasis, ShCoeffs, ShRotation, sh_count, sh_eval};
+use shlight_core::sh::{
+    Frame, ShBasis, ShCoeffs, ShRotation, rotate_once, rotate_z, sh_count, sh_eval,
+};
 
 /// Rotation vs re-projection, relative to the largest coefficient: both
 /// sides are exact in exact arithmetic (the quadrature is exact to degree

@@ -3,7 +3,7 @@
 //! closed forms and geometric identities rather than against the `f64` code.
 
 use glam::{DMat3, DQuat, DVec3, Vec3};
-use shlight_core::{ShCoeffs, ShRotation, Window, ZonalKernel, analytic, irradiance};
+use shlight_core::sh::{ShCoeffs, ShRotation, Window, ZonalKernel, closed_form, irradiance};
 
 /// `f32` rounding of coefficients of order 1 through a few dozen
 /// multiply-adds: a few ulps of 1.2e-7.
@@ -14,7 +14,7 @@ fn f32_irradiance_of_a_directional_light_is_the_nine_term_closed_form() {
     // Ramamoorthi-Hanrahan: truncated at lmax 2 the irradiance of a unit
     // directional light at angle t is 1/4 + cos t / 2 + (5/32)(3 cos^2 t - 1).
     let d = DVec3::new(0.3, -0.4, 0.866).normalize();
-    let light: ShCoeffs<Vec3> = analytic::directional(2, d, Vec3::new(1.0, 0.5, 2.0));
+    let light: ShCoeffs<Vec3> = closed_form::directional(2, d, Vec3::new(1.0, 0.5, 2.0));
     let e = irradiance(&light);
     for n in [d, DVec3::X, DVec3::new(-0.2, 0.9, 0.1).normalize()] {
         let c = n.dot(d);
@@ -36,12 +36,12 @@ fn f32_rotation_moves_a_function_with_its_direction() {
         DVec3::new(1.0, 2.0, 0.5).normalize(),
         0.8,
     ));
-    let f: ShCoeffs<f32> = analytic::cap(6, DVec3::new(0.2, 0.3, 0.9).normalize(), 0.7, 1.0f32);
+    let f: ShCoeffs<f32> = closed_form::cap(6, DVec3::new(0.2, 0.3, 0.9).normalize(), 0.7, 1.0f32);
     let rot = ShRotation::from_mat3(6, r);
     let g = rot.apply(&f);
     let mut g2 = f.clone();
     rot.apply_in_place(&mut g2);
-    let once = shlight_core::rotation::rotate_once(&f, r);
+    let once = shlight_core::sh::rotate_once(&f, r);
     for d in [
         DVec3::Z,
         DVec3::new(0.5, -0.5, 0.7).normalize(),

@@ -1,4 +1,4 @@
-//! Projection through `TexelSource` (`shlight_core::projection::project`):
+//! Projection through `TexelSource` (`shlight_core::map::project`):
 //! sources holding the same texels give the same coefficients bit for bit
 //! (six faces and the strip they make, a strided image and its contiguous
 //! copy, a user's own type), a cross of the same faces agrees to rounding,
@@ -6,12 +6,12 @@
 //! sizes are errors that say what is wrong.
 
 use glam::DVec3;
-use shlight_core::layout::{CubeFace, EnvMap, Layout, LayoutSizeErrorKind, render_map};
-use shlight_core::projection::{project, project_equirect_simple};
-use shlight_core::rotation::Frame;
-use shlight_core::{
-    CubeFaces, MapOrientation, ShCoeffs, StridedImage, TexelSource, analytic, equirect,
+use shlight_core::map;
+use shlight_core::map::{
+    CubeFace, CubeFaces, EnvMap, Layout, LayoutSizeErrorKind, MapOrientation, StridedImage,
+    TexelSource, project, project_equirect_simple, render_map,
 };
+use shlight_core::sh::{Frame, ShCoeffs, closed_form};
 
 /// Largest coefficient difference relative to the largest coefficient.
 fn rel_diff(a: &ShCoeffs<DVec3>, b: &ShCoeffs<DVec3>) -> f64 {
@@ -247,7 +247,7 @@ impl<F: Fn(DVec3) -> f64 + Sync> TexelSource for Procedural<F> {
         (self.w, self.h)
     }
     fn texel(&self, x: usize, y: usize) -> [f32; 3] {
-        let d = equirect::equirect_direction(x, y, self.w, self.h, self.o);
+        let d = map::equirect_direction(x, y, self.w, self.h, self.o);
         let v = (self.f)(d) as f32;
         [v, 0.5 * v, 0.25 * v]
     }
@@ -267,7 +267,7 @@ fn a_procedural_source_projects_to_the_closed_form() {
             f: |d: DVec3| 1.0 + 0.5 * d.dot(axis),
         };
         let got = project(&source, 4, o).unwrap();
-        let want: ShCoeffs<f64> = analytic::linear_gradient(4, axis, 1.0, 0.5);
+        let want: ShCoeffs<f64> = closed_form::linear_gradient(4, axis, 1.0, 0.5);
         for k in 0..want.len() {
             assert!((got[k].x - want[k]).abs() < QUADRATURE_TOL, "{o:?} k {k}");
             assert!(
@@ -280,7 +280,7 @@ fn a_procedural_source_projects_to_the_closed_form() {
             .flat_map(|y| (0..source.w).map(move |x| (x, y)))
             .map(|(x, y)| source.texel(x, y))
             .collect();
-        let view = equirect::EquirectView {
+        let view = map::EquirectView {
             width: source.w,
             height: source.h,
             pixels: &px,

@@ -14,14 +14,11 @@ use std::time::Instant;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::auto_window::{
-    AUTO_WINDOW_MARGIN, AutoWindow, AutoWindowError, WindowTarget, auto_window,
+use shlight_core::sh::{
+    AUTO_WINDOW_MARGIN, AutoWindow, AutoWindowError, ParseWindowErrorKind, ShBasis, ShCoeffs,
+    Window, WindowFamily, WindowTarget, auto_window, clamped_cosine_eigenvalue, fibonacci_sphere,
+    irradiance, legendre_polynomials, sh_eval, sh_index, sphere_minimum, zonal_to_sh,
 };
-use shlight_core::quadrature::fibonacci_sphere;
-use shlight_core::sphere_minimum::sphere_minimum;
-use shlight_core::window::{ParseWindowErrorKind, WindowFamily};
-use shlight_core::zonal::{clamped_cosine_eigenvalue, legendre_polynomials, zonal_to_sh};
-use shlight_core::{ShBasis, ShCoeffs, Window, irradiance, sh_eval, sh_index};
 
 /// Factor formulas vs hand values: a few ulps of numbers of order 1.
 const FACTOR_TOL: f64 = 1e-15;

@@ -12,8 +12,7 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use shlight_core::analytic;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, closed_form};
 use shlight_format::{CoeffFile, ExportFormat, Quantity, export};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -22,8 +21,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Radiance coefficients to lmax 2 in shlight's y-up frame: a warm sun
     // high in the -Z half of the sky over a dim blue sky.
     let sun = DVec3::new(0.3, 0.8, -0.5).normalize();
-    let light = &analytic::directional(2, sun, DVec3::new(3.0, 2.8, 2.5))
-        + &analytic::constant(2, DVec3::new(0.15, 0.2, 0.3));
+    let light = &closed_form::directional(2, sun, DVec3::new(3.0, 2.8, 2.5))
+        + &closed_form::constant(2, DVec3::new(0.15, 0.2, 0.3));
     let mut file = CoeffFile::new(light, Frame::YUp, Quantity::Radiance);
     file.provenance.input = "a sun and a sky (closed form)".into();
     file.write(&dir.join("light.json"))?;

@@ -30,8 +30,8 @@
 //! or zero when none is valid.
 
 use glam::{DVec3, Vec3};
-use shlight_core::ambient_cube::AmbientCube;
-use shlight_core::{ShCoeffs, sh_count};
+use shlight_core::encoding::AmbientCube;
+use shlight_core::sh::{ShCoeffs, sh_count};
 
 use crate::ShvolFile;
 
@@ -39,7 +39,7 @@ use crate::ShvolFile;
 pub const VK_FORMAT: u32 = 97;
 
 /// The six ambient-cube colours of every probe, `E(+-a) / pi` in the order
-/// of [`shlight_core::ambient_cube::AXES`] (+X, -X, +Y, -Y, +Z, -Z), probes
+/// of [`shlight_core::encoding::AMBIENT_CUBE_AXES`] (+X, -X, +Y, -Y, +Z, -Z), probes
 /// in grid order (invalid ones as the file has them).
 #[must_use]
 pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {

@@ -7,9 +7,7 @@ use std::sync::mpsc;
 
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::rotation::Frame;
-use shlight_core::window::sphere_minimum;
-use shlight_core::{ShCoeffs, lm_from_index};
+use shlight_core::sh::{Frame, ShCoeffs, lm_from_index, sphere_minimum};
 
 use crate::encoding_record::FileEncoding;
 use crate::{FormatError, Quantity, Result};
@@ -179,11 +177,11 @@ impl CoeffFile {
         }
     }
 
-    /// The file's light as the core's [`shlight_core::Encoded`], ready to
+    /// The file's light as the core's [`shlight_core::encoding::Encoded`], ready to
     /// evaluate; `None` for irradiance files or coefficients too short for
     /// the encoding.
     #[must_use]
-    pub fn encoded(&self) -> Option<shlight_core::Encoded> {
+    pub fn encoded(&self) -> Option<shlight_core::encoding::Encoded> {
         if self.quantity != Quantity::Radiance {
             return None;
         }
@@ -1039,7 +1037,8 @@ mod tests {
 
     #[test]
     fn every_encoding_round_trips_and_old_versions_refuse_it() {
-        use shlight_core::{CapLight, ShCoeffs};
+        use shlight_core::encoding::CapLight;
+        use shlight_core::sh::ShCoeffs;
         let l1 = ShCoeffs::from_fn(1, |l, m| DVec3::new(1.0 + l as f64, 0.5 * m as f64, 0.25));
         let light = CapLight {
             direction: DVec3::new(0.0, 0.6, 0.8),

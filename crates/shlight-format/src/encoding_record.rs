@@ -5,8 +5,8 @@
 
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::ambient_cube::AmbientCube;
-use shlight_core::{CapLight, Encoded, Encoding, L1NonLinear, ShCoeffs, Zh3, Zh3Kind};
+use shlight_core::encoding::{AmbientCube, CapLight, Encoded, Encoding, L1NonLinear, Zh3, Zh3Kind};
+use shlight_core::sh::ShCoeffs;
 
 /// The keys of the ambient cube's colours, in the core's axis order.
 pub const CUBE_KEYS: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
@@ -111,7 +111,9 @@ impl FileEncoding {
                 lights: lights.clone(),
                 residual: coeffs.clone(),
             },
-            Self::SloanSh => shlight_core::encode_coefficients(coeffs, Encoding::SloanSh)?,
+            Self::SloanSh => {
+                shlight_core::encoding::encode_coefficients(coeffs, Encoding::SloanSh)?
+            }
             Self::Zh3 { zonal } => Encoded::Zh3(Zh3::from_parts(l1()?, *zonal)),
             Self::Zh3Hallucinated => Encoded::Zh3(Zh3::new(coeffs, Zh3Kind::Hallucinated)?),
             Self::L1NonLinear => Encoded::L1NonLinear(L1NonLinear::new(coeffs)?),

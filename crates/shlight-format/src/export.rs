@@ -36,8 +36,7 @@ pub mod wgsl;
 use std::path::Path;
 
 use glam::DVec3;
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, lm_from_index};
+use shlight_core::sh::{Frame, ShCoeffs, lm_from_index};
 
 use crate::{CoeffFile, FormatError, Quantity, Result};
 
@@ -341,7 +340,7 @@ mod tests {
 
     #[test]
     fn basis_constants_times_polynomials_are_the_basis() {
-        let basis = shlight_core::ShBasis::<f64>::new(2);
+        let basis = shlight_core::sh::ShBasis::<f64>::new(2);
         let mut y = [0.0; 9];
         for d in [[0.36, 0.48, 0.8], [-0.6, 0.0, -0.8], [0.0, -1.0, 0.0]] {
             basis.eval(DVec3::from(d), &mut y);
@@ -412,7 +411,7 @@ mod tests {
     fn engine_coeffs_truncate_pad_and_turn_to_y_up() {
         // A directional light from +Z in a z-up file is a light from +Y in y-up.
         let light: ShCoeffs<DVec3> =
-            shlight_core::analytic::directional(4, DVec3::new(0.0, 0.0, 1.0), DVec3::ONE);
+            shlight_core::sh::closed_form::directional(4, DVec3::new(0.0, 0.0, 1.0), DVec3::ONE);
         let input = ExportInput {
             coeffs: &light,
             quantity: Quantity::Radiance,
@@ -421,7 +420,7 @@ mod tests {
         let (c, notes) = engine_coeffs(&input, Quantity::Radiance, ExportFormat::Threejs).unwrap();
         assert_eq!(c.lmax(), 2);
         assert!(notes[0].contains("dropped"), "{notes:?}");
-        let want = shlight_core::sh_eval(2, DVec3::new(0.0, 1.0, 0.0));
+        let want = shlight_core::sh::sh_eval(2, DVec3::new(0.0, 1.0, 0.0));
         for (g, w) in c.as_slice().iter().zip(&want) {
             assert!((g.x - w).abs() < 1e-14);
         }

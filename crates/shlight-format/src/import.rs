@@ -6,8 +6,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use serde_json::Value;
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 
 use crate::export::{filament, gltf, threejs, unity};
 use crate::{CoeffFile, FormatError, Quantity, Result};

@@ -32,12 +32,12 @@
 //! # Example
 //! ```
 //! use glam::DVec3;
-//! use shlight_core::{analytic, rotation::Frame};
+//! use shlight_core::sh::{Frame, closed_form};
 //! use shlight_format::{CoeffFile, ExportFormat, Quantity, export};
 //!
 //! // A sun from +Y over a dim sky, as radiance coefficients to lmax 2.
-//! let light = &analytic::directional(2, DVec3::new(0.0, 1.0, 0.0), DVec3::new(3.0, 2.9, 2.7))
-//!     + &analytic::constant(2, DVec3::splat(0.2));
+//! let light = &closed_form::directional(2, DVec3::new(0.0, 1.0, 0.0), DVec3::new(3.0, 2.9, 2.7))
+//!     + &closed_form::constant(2, DVec3::splat(0.2));
 //! let file = CoeffFile::new(light, Frame::YUp, Quantity::Radiance);
 //! let three = export(&file, ExportFormat::Threejs).unwrap();
 //! assert!(three.text.contains("\"type\": \"LightProbe\""));

@@ -2,8 +2,7 @@
 //! irradiance.
 
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_core::sh::{ShCoeffs, clamped_cosine_eigenvalue};
 
 use crate::{FormatError, Result};
 

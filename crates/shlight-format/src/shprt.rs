@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use serde_json::{Value, json};
-use shlight_core::sh_count;
+use shlight_core::sh::sh_count;
 
 use crate::{FormatError, Result, header_line};
 

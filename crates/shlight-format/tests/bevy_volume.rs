@@ -7,7 +7,7 @@
 use std::f64::consts::PI;
 
 use glam::{DVec3, Vec3};
-use shlight_core::{ShCoeffs, analytic, sh_count};
+use shlight_core::sh::{ShCoeffs, closed_form, sh_count};
 use shlight_format::ShvolFile;
 use shlight_format::bevy_volume::bevy_ktx2;
 
@@ -15,8 +15,8 @@ fn probe_light(i: usize) -> ShCoeffs<DVec3> {
     // A different light per probe: a lobe whose axis and colour move.
     let a = i as f64 * 0.7;
     let axis = DVec3::new(a.cos(), 0.5 * (1.3 * a).sin(), a.sin()).normalize();
-    let lobe = analytic::cosine_lobe(2, axis, DVec3::new(1.0 + 0.1 * i as f64, 0.6, 0.3));
-    let base = analytic::constant(2, DVec3::new(0.2, 0.3, 0.4));
+    let lobe = closed_form::cosine_lobe(2, axis, DVec3::new(1.0 + 0.1 * i as f64, 0.6, 0.3));
+    let base = closed_form::constant(2, DVec3::new(0.2, 0.3, 0.4));
     ShCoeffs::from_vec(
         lobe.as_slice()
             .iter()

@@ -41,8 +41,8 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
-use shlight_core::analytic;
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::sh::closed_form;
 use shlight_gpu::{
     Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
     Transfer, VolumeFetch, VolumeInstance, VolumeProbes, VolumeRenderer,
@@ -104,7 +104,7 @@ fn bench_frame(
     renderer.set_mesh(ctx, mesh);
     renderer.set_light(
         ctx,
-        &analytic::cap(
+        &closed_form::cap(
             8,
             glam::DVec3::new(0.3, 0.8, 0.5),
             0.5,

@@ -1,6 +1,6 @@
 //! Projection of equirect maps to SH on the GPU (`shaders/project.wgsl`).
 //!
-//! The same quadrature as shlight-core's [`shlight_core::projection::project_equirect`],
+//! The same quadrature as shlight-core's [`shlight_core::map::project_equirect`],
 //! by the same ring transform about the map's pole:
 //!
 //! ```text
@@ -18,7 +18,7 @@
 //! the CPU: `(cos psi, sin psi)` per column and `w_l^m(j)` per row, from
 //! shlight-core's [`Legendre`]. The CPU then turns the coefficients from
 //! the map's pole to its frame in `f64`
-//! ([`shlight_core::projection::to_frame`]). Maps whose texels exceed one
+//! ([`shlight_core::map::to_frame`]). Maps whose texels exceed one
 //! storage binding are sent in chunks of rows.
 //!
 //! Per texel this is `2 lmax + 1` multiply-adds per channel and the powers
@@ -29,11 +29,10 @@ use std::f64::consts::SQRT_2;
 use std::sync::OnceLock;
 
 use glam::DVec3;
-use shlight_core::ShCoeffs;
-use shlight_core::legendre::{Legendre, legendre_count, legendre_index};
-use shlight_core::projection::{
+use shlight_core::map::{
     EquirectView, MapOrientation, equirect_angles, equirect_row_solid_angle, to_frame,
 };
+use shlight_core::sh::{Legendre, ShCoeffs, legendre_count, legendre_index};
 use wgpu::util::DeviceExt;
 
 use crate::ring_sums::ring_slots;

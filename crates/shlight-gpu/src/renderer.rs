@@ -5,8 +5,8 @@
 use std::sync::OnceLock;
 
 use glam::{DMat3, DVec3};
-use shlight_core::ShCoeffs;
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::MapOrientation;
+use shlight_core::sh::ShCoeffs;
 use shlight_io::Image;
 use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
@@ -281,7 +281,7 @@ impl Renderer {
 
     /// The rotation `R` the light was turned by (a light from `a` now comes
     /// from `R a`), so that the map background turns with it. The caller
-    /// rotates the coefficients themselves ([`shlight_core::ShRotation`]).
+    /// rotates the coefficients themselves ([`shlight_core::sh::ShRotation`]).
     pub fn set_environment_rotation(&mut self, r: DMat3) {
         self.environment_rotation = r;
     }

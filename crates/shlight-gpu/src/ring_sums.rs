@@ -44,7 +44,7 @@
 
 use std::fmt::Write;
 
-use shlight_core::legendre::legendre_count;
+use shlight_core::sh::legendre_count;
 
 use crate::MAX_LMAX;
 use crate::sh_expansion::azimuth_power;

@@ -30,7 +30,7 @@
 
 use std::fmt::Write;
 
-use shlight_core::legendre::Legendre;
+use shlight_core::sh::Legendre;
 
 use crate::MAX_LMAX;
 

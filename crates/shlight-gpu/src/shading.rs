@@ -2,8 +2,7 @@
 //! shaders read (`Frame` in `shaders/scene.wgsl`).
 
 use glam::{DMat3, Mat4};
-use shlight_core::Window;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_core::sh::{Window, clamped_cosine_eigenvalue};
 use shlight_io::ToneMap;
 
 /// Highest SH degree the shaders evaluate.

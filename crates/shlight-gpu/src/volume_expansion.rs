@@ -29,8 +29,7 @@
 
 use std::fmt::Write;
 
-use shlight_core::legendre::Legendre;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
+use shlight_core::sh::{Legendre, clamped_cosine_eigenvalue};
 
 use crate::sh_expansion::{azimuth_power, literal};
 use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};

@@ -4,9 +4,8 @@
 //! it fails.
 
 use glam::{DVec3, Vec3};
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, Window, analytic, irradiance};
+use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
+use shlight_core::sh::{Frame, ShCoeffs, Window, closed_form, irradiance};
 use shlight_gpu::{
     Camera, GpuContext, GpuError, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading, Transfer,
     read_srgb8_texture, render_frame, wgpu,
@@ -40,7 +39,7 @@ fn test_map(w: usize, h: usize) -> Vec<[f32; 3]> {
     let o = MapOrientation::default();
     (0..w * h)
         .map(|k| {
-            let d = shlight_core::projection::equirect_direction(k % w, k / w, w, h, o);
+            let d = shlight_core::map::equirect_direction(k % w, k / w, w, h, o);
             let sun = DVec3::new(0.3, 0.8, 0.5).normalize();
             let spot = if d.dot(sun) > 0.95 { 20.0 } else { 0.0 };
             [
@@ -135,9 +134,9 @@ fn gpu_projection_refuses_what_it_cannot_do() {
 
 /// A light positive everywhere with every band 0..8 present.
 fn test_light() -> ShCoeffs<DVec3> {
-    let mut light = analytic::cap(8, DVec3::new(0.3, 0.8, 0.5), 0.4, DVec3::new(6.0, 4.0, 2.0));
-    light += &analytic::constant(8, DVec3::new(1.0, 1.2, 1.5));
-    light += &analytic::cap(
+    let mut light = closed_form::cap(8, DVec3::new(0.3, 0.8, 0.5), 0.4, DVec3::new(6.0, 4.0, 2.0));
+    light += &closed_form::constant(8, DVec3::new(1.0, 1.2, 1.5));
+    light += &closed_form::cap(
         8,
         DVec3::new(-0.7, -0.2, 0.4),
         0.7,
@@ -233,7 +232,7 @@ fn sphere_shading_matches_cpu_irradiance_at_each_pixels_normal() {
 /// `T_lm = albedo/pi A_l Y_lm(n)`, so `T . L = albedo/pi E(n)`.
 fn diffuse_transfer(n: Vec3, lmax: usize, albedo: f64) -> Vec<f32> {
     let n = n.as_dvec3().to_array();
-    analytic::cosine_lobe(lmax, DVec3::from(n), albedo / std::f64::consts::PI)
+    closed_form::cosine_lobe(lmax, DVec3::from(n), albedo / std::f64::consts::PI)
         .as_slice()
         .iter()
         .map(|&t| t as f32)

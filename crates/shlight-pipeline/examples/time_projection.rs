@@ -9,8 +9,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::Quantity;
 use shlight_io::{ReadOptions, read_image};
 use shlight_pipeline::{Method, ProjectSettings, project_source};

@@ -2,14 +2,11 @@
 //! coefficient file with its provenance.
 
 use glam::DVec3;
-use shlight_core::auto_window::WindowTarget;
-use shlight_core::channel_windows::{apply_channel_windows, auto_windows};
-use shlight_core::layout::Layout;
-use shlight_core::rotation::rotate_once;
-use shlight_core::std_error_rotation::rotate_std_error;
-use shlight_core::window::WindowFamily;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, ShRotation, Window, irradiance};
+use shlight_core::map::Layout;
+use shlight_core::sh::{
+    ShCoeffs, ShRotation, Window, WindowFamily, WindowTarget, apply_channel_windows, auto_windows,
+    clamped_cosine_eigenvalue, irradiance, rotate_once, rotate_std_error,
+};
 use shlight_format::{CoeffFile, Provenance, Quantity, SanitizeCounts};
 use shlight_io::PixelStats;
 
@@ -60,7 +57,7 @@ impl MapInfo {
 /// or (`window: None`, `auto`) per channel the weakest Hanning window that
 /// makes that channel's result non-negative: the function itself for
 /// radiance, its irradiance for irradiance
-/// ([`shlight_core::channel_windows::auto_windows`]).
+/// ([`shlight_core::sh::auto_windows`]).
 ///
 /// # Errors
 /// No Hanning window makes a channel non-negative; the message names `name`.

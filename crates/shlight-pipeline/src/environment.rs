@@ -6,12 +6,11 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::projection::{EquirectView, MapOrientation, project_equirect};
-use shlight_core::rotation::Frame;
-use shlight_core::{
-    DominantLightOptions, Encoded, Encoding, ShCoeffs, ShRotation, encode_coefficients, encode_map,
+use shlight_core::encoding::{
+    DominantLightOptions, Encoded, Encoding, encode_coefficients, encode_map,
 };
+use shlight_core::map::{EnvMap, EquirectView, Layout, MapOrientation, project_equirect};
+use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
 use shlight_io::{Image, ReadOptions, read_image};
 
@@ -191,7 +190,7 @@ impl Environment {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::analytic;
+    use shlight_core::sh::closed_form;
 
     fn temp_dir(name: &str) -> PathBuf {
         let dir =
@@ -210,7 +209,7 @@ mod tests {
         let image = Image::from_fn(64, 32, |_, _| c);
         let env = Environment::from_map(Path::new("sky.exr"), image, Frame::YUp, 4).unwrap();
         assert_eq!(env.radiance.lmax(), 4);
-        let want = analytic::constant(4, DVec3::from(c.map(f64::from)));
+        let want = closed_form::constant(4, DVec3::from(c.map(f64::from)));
         assert!((env.radiance[0] - want[0]).abs().max_element() < 1e-12);
         for i in 1..want.len() {
             // Measured 7.8e-4 of L_0^0 (degree 2 at 64x32).
@@ -223,7 +222,7 @@ mod tests {
         let path = dir.join("light.json");
         let d = DVec3::new(0.2, 0.3, 0.9).normalize();
         let file = CoeffFile::new(
-            analytic::directional(3, d, DVec3::ONE),
+            closed_form::directional(3, d, DVec3::ONE),
             Frame::ZUp,
             Quantity::Radiance,
         );
@@ -235,7 +234,7 @@ mod tests {
         // Turned to y-up, the light comes from Frame::ZUp -> YUp of d.
         let y_up = env.radiance_in(Frame::YUp);
         let turned = Frame::ZUp.rotation_to(Frame::YUp) * d;
-        let want = analytic::directional(2, turned, DVec3::ONE);
+        let want = closed_form::directional(2, turned, DVec3::ONE);
         for i in 0..want.len() {
             assert!((y_up[i] - want[i]).abs().max_element() < 1e-12, "{i}");
         }
@@ -265,7 +264,7 @@ mod tests {
         // dominant+sh needs texels.
         let env = Environment {
             path: "light.json".into(),
-            radiance: analytic::constant(2, DVec3::ONE),
+            radiance: closed_form::constant(2, DVec3::ONE),
             map: None,
             orientation: MapOrientation::default(),
         };

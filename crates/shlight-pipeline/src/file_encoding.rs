@@ -1,13 +1,13 @@
 //! [`encode_file`]: a coefficient file that keeps its light as an encoding
 //! other than plain SH (`shlight project --encoding`).
 
-use shlight_core::layout::EnvMap;
-use shlight_core::{DominantLightOptions, Encoded, Encoding, encode_map};
+use shlight_core::encoding::{DominantLightOptions, Encoded, Encoding, encode_map};
+use shlight_core::map::EnvMap;
 use shlight_format::{CoeffFile, FileEncoding};
 
 /// Replaces the plain radiance SH of `file` (made from `map`) by
 /// `encoding` of the map's texels, its SH part to `lmax`
-/// ([`shlight_core::encode_map`] with the default dominant-light options),
+/// ([`shlight_core::encoding::encode_map`] with the default dominant-light options),
 /// recording the encoding in the file (`FileEncoding`, which keeps the
 /// plain SH beside `sloan+sh` and the ambient cube).
 pub fn encode_file(file: &mut CoeffFile, map: &EnvMap<'_>, encoding: Encoding, lmax: usize) {
@@ -27,8 +27,7 @@ pub(crate) fn set_encoding(file: &mut CoeffFile, encoding: Encoding, encoded: &E
 mod tests {
     use super::*;
     use glam::DVec3;
-    use shlight_core::layout::Layout;
-    use shlight_core::projection::MapOrientation;
+    use shlight_core::map::{Layout, MapOrientation};
     use shlight_format::Quantity;
 
     use crate::{

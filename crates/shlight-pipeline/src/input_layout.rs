@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use shlight_core::layout::Layout;
+use shlight_core::map::Layout;
 
 /// The layout of an input map, as `--layout` (and the Python `layout=`)
 /// names it.

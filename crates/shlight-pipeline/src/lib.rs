@@ -14,7 +14,7 @@
 //!    [`sanitize_image`] them. Texels already in memory are checked by
 //!    [`source_stats`] and [`check_values`].
 //! 2. [`project_radiance`] (or [`project_radiance_texels`] for any
-//!    [`shlight_core::TexelSource`]): quadrature or Monte Carlo
+//!    [`shlight_core::map::TexelSource`]): quadrature or Monte Carlo
 //!    ([`Method`]).
 //! 3. [`choose_windows`]: the window asked for, or per colour channel the
 //!    weakest Hanning window that keeps the result non-negative.
@@ -33,13 +33,11 @@
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
 //! phase, index `l(l+1)+m`, `lmax` the highest degree; `shlight_core`'s
 //! crate documentation and docs/conventions.md); maps are read in a
-//! [`shlight_core::MapOrientation`] (y-up or z-up frame, mirrored or not).
+//! [`shlight_core::map::MapOrientation`] (y-up or z-up frame, mirrored or not).
 //!
 //! # Example
 //! ```
-//! use shlight_core::layout::Layout;
-//! use shlight_core::projection::MapOrientation;
-//! use shlight_core::layout::EnvMap;
+//! use shlight_core::map::{EnvMap, Layout, MapOrientation};
 //! use shlight_format::Quantity;
 //! use shlight_pipeline::{MapInfo, Method, ProjectSettings, choose_windows, coefficient_file, project_radiance};
 //!

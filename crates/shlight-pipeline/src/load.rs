@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use shlight_core::layout::Layout;
+use shlight_core::map::Layout;
 use shlight_format::SanitizeCounts;
 use shlight_io::{Image, PixelStats, ReadOptions, read_image};
 

@@ -1,8 +1,7 @@
 //! [`output_grid`] and [`default_output_size`]: the texels of a map that
 //! shlight writes (`shlight render`, `synth`, `irradiance`, `--preview`).
 
-use shlight_core::layout::{Layout, TexelGrid};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::{Layout, MapOrientation, TexelGrid};
 
 use crate::{PipelineError, Result};
 

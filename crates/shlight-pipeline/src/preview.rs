@@ -20,10 +20,8 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use glam::DVec3;
-use shlight_core::layout::{EnvMap, Layout, render_map as draw};
-use shlight_core::projection::MapOrientation;
-use shlight_core::radiance_map::luminance;
-use shlight_core::{ShCoeffs, irradiance};
+use shlight_core::map::{EnvMap, Layout, MapOrientation, luminance, render_map as draw};
+use shlight_core::sh::{ShCoeffs, irradiance};
 use shlight_io::{Image, ToneMap, WriteOptions, auto_exposure, write_image};
 
 use crate::output_grid::output_grid;
@@ -125,7 +123,7 @@ pub fn write_preview(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::analytic;
+    use shlight_core::sh::closed_form;
 
     /// A uniform light: every panel of a `(8, 4)` preview is the radiance
     /// (input and reconstruction) or the irradiance over π, which for a
@@ -134,7 +132,7 @@ mod tests {
     fn a_uniform_light_is_the_same_in_every_panel() {
         let c = [0.5f32, 0.25, 1.0];
         let o = MapOrientation::default();
-        let radiance = analytic::constant(2, DVec3::from(c.map(f64::from)));
+        let radiance = closed_form::constant(2, DVec3::from(c.map(f64::from)));
         for (layout, size) in [
             (Layout::Equirect, (16, 8)),
             (Layout::CrossHorizontal, (16, 12)),
@@ -172,7 +170,7 @@ mod tests {
     fn the_panels_are_the_radiance_and_the_lambertian_radiance() {
         let o = MapOrientation::default();
         let d = DVec3::new(0.3, 0.8, 0.2).normalize();
-        let radiance = analytic::directional(3, d, DVec3::new(1.0, 2.0, 3.0));
+        let radiance = closed_form::directional(3, d, DVec3::new(1.0, 2.0, 3.0));
         let input = Image::from_fn(32, 16, |_, _| [0.0; 3]);
         let image = preview_image(&input, Layout::Equirect, &radiance, o, (32, 16)).unwrap();
         let grid = output_grid(Layout::Equirect, (32, 16), o).unwrap();

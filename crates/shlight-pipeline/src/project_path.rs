@@ -3,8 +3,7 @@
 
 use std::path::Path;
 
-use shlight_core::TexelSource;
-use shlight_core::layout::EnvMap;
+use shlight_core::map::{EnvMap, TexelSource};
 use shlight_format::CoeffFile;
 use shlight_io::{Image, ReadOptions};
 
@@ -126,11 +125,9 @@ pub fn project_source<S: TexelSource + ?Sized>(
 mod tests {
     use super::*;
     use crate::settings::Method;
-    use shlight_core::StridedImage;
-    use shlight_core::layout::Layout;
-    use shlight_core::montecarlo::{McOptions, SamplerKind};
-    use shlight_core::projection::MapOrientation;
-    use shlight_core::rotation::Frame;
+    use shlight_core::map::montecarlo::{McOptions, SamplerKind};
+    use shlight_core::map::{Layout, MapOrientation, StridedImage};
+    use shlight_core::sh::Frame;
     use shlight_format::Quantity;
     use shlight_io::read_image;
 

@@ -1,9 +1,9 @@
 //! The projection step: the place where layouts and methods meet.
 
 use glam::DVec3;
-use shlight_core::layout::{EnvMap, Layout};
-use shlight_core::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
-use shlight_core::{ShCoeffs, TexelSource};
+use shlight_core::map::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
+use shlight_core::map::{EnvMap, Layout, TexelSource};
+use shlight_core::sh::ShCoeffs;
 
 use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
@@ -26,7 +26,7 @@ pub struct Projection {
 /// Projects `map` by the settings' method to radiance coefficients.
 ///
 /// Quadrature sums texel × basis × exact texel solid angle
-/// ([`shlight_core::projection::project_map`]). Monte Carlo looks the map
+/// ([`shlight_core::map::project_map`]). Monte Carlo looks the map
 /// up bilinearly ([`EnvMap::radiance_bilinear`]) and, for importance
 /// sampling, draws from [`ImportanceGrid::from_equirect`] over an equirect
 /// map's texels, or from [`ImportanceGrid::from_map`] on a grid of about as
@@ -35,7 +35,7 @@ pub struct Projection {
 pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
     match &s.method {
         Method::Quadrature => Projection {
-            coeffs: shlight_core::projection::project_map(map, s.lmax),
+            coeffs: shlight_core::map::project_map(map, s.lmax),
             std_error: None,
             samples: None,
             seed: None,
@@ -71,7 +71,7 @@ pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
 
 /// [`project_radiance`] of any [`TexelSource`] (read in place, whatever
 /// stores it), read in the settings' orientation. Quadrature reads the
-/// source through [`shlight_core::projection::project`], which gives the
+/// source through [`shlight_core::map::project`], which gives the
 /// same coefficients bit for bit as a contiguous map of the same texels;
 /// Monte Carlo looks texels up bilinearly and needs them contiguous, so it
 /// copies them first.
@@ -85,7 +85,7 @@ pub fn project_radiance_texels<S: TexelSource + ?Sized>(
     let (w, h) = source.size();
     match &s.method {
         Method::Quadrature => {
-            let coeffs = shlight_core::projection::project(source, s.lmax, s.orientation)
+            let coeffs = shlight_core::map::project(source, s.lmax, s.orientation)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
             Ok(Projection {
                 coeffs,

@@ -2,9 +2,8 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
-use shlight_core::layout::{Layout, TexelGrid};
-use shlight_core::projection::MapOrientation;
-use shlight_core::{ShBasis, ShCoeffs};
+use shlight_core::map::{Layout, MapOrientation, TexelGrid};
+use shlight_core::sh::{ShBasis, ShCoeffs};
 use shlight_io::Image;
 
 use crate::{PipelineError, Result};
@@ -102,8 +101,8 @@ impl Scratch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::layout::EnvMap;
-    use shlight_core::rotation::Frame;
+    use shlight_core::map::EnvMap;
+    use shlight_core::sh::Frame;
 
     /// Tolerance of a rendered texel against scalar evaluation: the image
     /// holds `f32`, about 6e-8 relative of values near 1.

@@ -2,7 +2,7 @@
 //! spells it.
 
 use glam::{DMat3, DQuat};
-use shlight_core::rotation::Frame;
+use shlight_core::sh::Frame;
 
 use crate::{PipelineError, Result};
 

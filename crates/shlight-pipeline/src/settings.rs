@@ -2,9 +2,9 @@
 //! is read (lmax, orientation, method, window, rotation, quantity).
 
 use glam::DMat3;
-use shlight_core::Window;
-use shlight_core::montecarlo::{McOptions, SamplerKind};
-use shlight_core::projection::MapOrientation;
+use shlight_core::map::MapOrientation;
+use shlight_core::map::montecarlo::{McOptions, SamplerKind};
+use shlight_core::sh::Window;
 use shlight_format::{Quantity, RotationRecord};
 
 /// Monte Carlo directions drawn when no count is given.
@@ -14,10 +14,10 @@ pub const DEFAULT_SAMPLES: usize = 1 << 16;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Method {
     /// Exact texel-solid-angle quadrature over every texel
-    /// ([`shlight_core::projection::project`]).
+    /// ([`shlight_core::map::project`]).
     Quadrature,
     /// Monte Carlo integration of the bilinearly interpolated map
-    /// ([`shlight_core::montecarlo::project_montecarlo`]), with standard
+    /// ([`shlight_core::map::montecarlo::project_montecarlo`]), with standard
     /// errors. `options.sampler` is replaced per map by `sampler`'s
     /// sampler (importance sampling needs the map).
     MonteCarlo {

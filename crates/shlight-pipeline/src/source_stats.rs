@@ -1,6 +1,6 @@
 //! [`source_stats`]: the value statistics of texels read in place.
 
-use shlight_core::TexelSource;
+use shlight_core::map::TexelSource;
 use shlight_io::PixelStats;
 
 /// [`PixelStats`] of every texel of `source` (the whole image, texels the
@@ -52,8 +52,7 @@ pub fn source_stats<S: TexelSource + ?Sized>(source: &S) -> PixelStats {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::StridedImage;
-    use shlight_core::layout::Layout;
+    use shlight_core::map::{Layout, StridedImage};
 
     /// Read in place with a row pitch, the statistics equal those of the
     /// contiguous copy (an independent route: `PixelStats::of_pixels` over

@@ -27,7 +27,7 @@ use obvhs::cwbvh::builder::build_cwbvh_from_tris;
 use obvhs::ray::{Ray as ORay, RayHit};
 use obvhs::triangle::Triangle;
 use rayon::prelude::*;
-use shlight_core::montecarlo::stratified_directions;
+use shlight_core::map::montecarlo::stratified_directions;
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::bvh::{Bvh, Ray};
 use shlight_prt::packet::PacketBvh;

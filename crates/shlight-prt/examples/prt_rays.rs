@@ -15,7 +15,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use glam::Vec3;
-use shlight_core::montecarlo::stratified_directions;
+use shlight_core::map::montecarlo::stratified_directions;
 use shlight_mesh::generate;
 use shlight_prt::bvh::Bvh;
 use shlight_prt::packet::PacketBvh;

@@ -24,7 +24,7 @@
 //! applied to each colour channel of the light.
 //!
 //! ```
-//! use shlight_core::analytic;
+//! use shlight_core::sh::closed_form;
 //! use shlight_mesh::generate;
 //! use shlight_prt::transfer::{bake, BakeOptions, Mode};
 //!
@@ -32,7 +32,7 @@
 //! let options = BakeOptions { mode: Mode::Shadowed, samples: 256, ..BakeOptions::default() };
 //! let t = bake(&sphere, &options, &|_, _, _| {});
 //! // Under constant radiance 1, a convex surface of albedo 0.8 leaves 0.8.
-//! let light = analytic::constant(4, glam::DVec3::ONE);
+//! let light = closed_form::constant(4, glam::DVec3::ONE);
 //! let top = t.exit_radiance(&light)[0];
 //! assert!((top.x - 0.8).abs() < 1e-5);
 //! ```

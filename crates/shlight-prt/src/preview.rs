@@ -11,7 +11,7 @@
 //! quarter of white.
 
 use glam::Vec3;
-use shlight_core::radiance_map::luminance;
+use shlight_core::map::luminance;
 use shlight_io::Image;
 use shlight_mesh::Mesh;
 

@@ -21,7 +21,7 @@
 //! # Estimator
 //!
 //! One jittered equal-area grid of directions `s_j`
-//! ([`shlight_core::montecarlo::stratified_directions`], seeded) serves
+//! ([`shlight_core::map::montecarlo::stratified_directions`], seeded) serves
 //! every vertex. Per vertex, only directions above the tangent plane are
 //! cast, and each gets the weight `w_j = (n.s_j) / sum_k max(n.s_k, 0)`, so
 //! `int max(n.s, 0) f(s) ds ~ pi sum_j w_j f(s_j)`: a ratio estimator whose
@@ -58,8 +58,8 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use shlight_core::montecarlo::stratified_directions;
-use shlight_core::{ShBasis, ShCoeffs, sh_count};
+use shlight_core::map::montecarlo::stratified_directions;
+use shlight_core::sh::{ShBasis, ShCoeffs, sh_count};
 use shlight_format::ShprtFile;
 use shlight_mesh::{Mesh, Subdivision};
 

@@ -7,8 +7,9 @@ use core::f64::consts::PI;
 
 use glam::{DQuat, DVec3, Vec3};
 use rand::{Rng, SeedableRng, rngs::StdRng};
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, ShRotation, analytic, lm_from_index, sh_eval};
+use shlight_core::sh::{
+    ShCoeffs, ShRotation, clamped_cosine_eigenvalue, closed_form, lm_from_index, sh_eval,
+};
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::brute_force::closest_hit;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Transfer, bake, bake_with_occluder};
@@ -131,8 +132,8 @@ fn plane_under_sphere_occlusion_matches_brute_force_and_the_cap_formula() {
     // Plane vertices along +x from the contact point (plane vertex (4, 4)):
     // distances 0, 0.5, 1, 1.5 from the contact.
     let plane_vertex = |i: usize| sphere_vertices + i * (divisions as usize + 1) + 4;
-    let constant = analytic::constant(4, 1.0);
-    let sun = analytic::directional(4, DVec3::new(0.6, 0.8, 0.0).normalize(), 1.0);
+    let constant = closed_form::constant(4, 1.0);
+    let sun = closed_form::directional(4, DVec3::new(0.6, 0.8, 0.0).normalize(), 1.0);
     for (light, name) in [(&constant, "constant"), (&sun, "directional")] {
         let rgb = light.splat_rgb::<DVec3>();
         let exit = t.exit_radiance(&rgb);
@@ -174,7 +175,7 @@ fn plane_under_sphere_occlusion_matches_brute_force_and_the_cap_formula() {
 #[test]
 fn white_furnace_error_shrinks_geometrically_with_bounces() {
     let bowl = generate::bowl(1.0, 24, 6);
-    let light = analytic::constant(4, DVec3::ONE);
+    let light = closed_form::constant(4, DVec3::ONE);
     let errors: Vec<f64> = (0..=6)
         .map(|bounces| {
             let t = run(&bowl, Mode::Interreflected { bounces }, 1024, 1.0);
@@ -210,11 +211,11 @@ fn grey_bowl_matches_a_path_tracer_and_the_closed_form() {
     // Constant light: every point sees half bowl, half sky, so
     // L_o = rho (L/2 + L_o/2), L_o = rho L / (2 - rho).
     let closed = rho / (2.0 - rho);
-    for e in t.exit_radiance(&analytic::constant(4, DVec3::ONE)) {
+    for e in t.exit_radiance(&closed_form::constant(4, DVec3::ONE)) {
         assert!((f64::from(e.x) - closed).abs() < 0.01, "{e} vs {closed}");
     }
     // A sky brighter above, 1 + 0.5 y, through an independent path tracer.
-    let sky = analytic::linear_gradient(4, DVec3::new(0.0, 1.0, 0.0), 1.0, 0.5);
+    let sky = closed_form::linear_gradient(4, DVec3::new(0.0, 1.0, 0.0), 1.0, 0.5);
     let exit = t.exit_radiance(&sky.splat_rgb());
     let mut rng = StdRng::seed_from_u64(3);
     for v in [0usize, 1 + 3 * 32 + 5, 1 + 6 * 32 + 20] {
@@ -271,13 +272,13 @@ fn rotating_the_light_equals_baking_the_counter_rotated_mesh() {
         None,
     )
     .unwrap();
-    let mut light = analytic::cap(
+    let mut light = closed_form::cap(
         4,
         DVec3::new(0.2, 0.9, 0.4).normalize(),
         0.5,
         DVec3::splat(3.0),
     );
-    light += &analytic::constant(4, DVec3::splat(0.2));
+    light += &closed_form::constant(4, DVec3::splat(0.2));
     let rotation = ShRotation::from_quat(4, q);
     let a = run(&mesh, Mode::Shadowed, 8192, 0.8).exit_radiance(&rotation.apply(&light));
     let b = run(&rotated, Mode::Shadowed, 8192, 0.8).exit_radiance(&light);

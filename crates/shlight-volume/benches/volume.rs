@@ -12,7 +12,7 @@
 use divan::Bencher;
 use divan::counter::ItemsCount;
 use glam::{DQuat, DVec3, Vec3};
-use shlight_core::{ShRotation, analytic};
+use shlight_core::sh::{ShRotation, closed_form};
 use shlight_mesh::generate;
 use shlight_volume::{Grid, VolumeOptions, bake};
 
@@ -75,7 +75,7 @@ fn relight_2048_probes_after_a_rotation(bencher: Bencher) {
         &|_, _, _| {},
     )
     .unwrap();
-    let sky = analytic::cosine_lobe(
+    let sky = closed_form::cosine_lobe(
         2,
         DVec3::new(0.3, 1.0, 0.2).normalize(),
         DVec3::new(1.0, 0.9, 0.8),

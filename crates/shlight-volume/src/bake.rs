@@ -24,7 +24,7 @@
 //!
 //! # Estimator
 //! One jittered equal-area set of `N` directions
-//! ([`shlight_core::montecarlo::stratified_directions`], seeded) serves
+//! ([`shlight_core::map::montecarlo::stratified_directions`], seeded) serves
 //! every probe, each with weight `4 pi / N`. The sky's part, `delta_ik -
 //! int_blocked Y_i Y_k`, is estimated from whichever of the escaping and the
 //! blocked rays are fewer: `w sum_escaped Y_i Y_k` when most rays are
@@ -75,8 +75,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::Vec3;
 use rayon::prelude::*;
-use shlight_core::montecarlo::stratified_directions;
-use shlight_core::{ShBasis, sh_count};
+use shlight_core::map::montecarlo::stratified_directions;
+use shlight_core::sh::{ShBasis, sh_count};
 use shlight_mesh::{Mesh, Subdivision};
 use shlight_prt::packet::{Direction, LANES, Packet};
 use shlight_prt::records::{self, Kernels, LINE, Line, flat};

@@ -19,13 +19,13 @@
 //!
 //! ```
 //! use glam::{DVec3, Vec3};
-//! use shlight_core::analytic;
+//! use shlight_core::sh::closed_form;
 //! use shlight_volume::{Grid, VolumeOptions, bake};
 //!
 //! // No scene: every probe sees the environment itself.
 //! let grid = Grid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
 //! let volume = bake(None, &grid, &VolumeOptions::default(), &|_, _, _| {}).unwrap();
-//! let sky = analytic::constant(2, DVec3::new(1.0, 2.0, 3.0));
+//! let sky = closed_form::constant(2, DVec3::new(1.0, 2.0, 3.0));
 //! let probes = volume.relight(&sky);
 //! // Probe 0's first row, [r, g, b] of L_00, is the sky's.
 //! assert_eq!(&probes[..3], &sky.as_slice()[0].as_vec3().to_array());

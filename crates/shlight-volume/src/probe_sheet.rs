@@ -3,7 +3,7 @@
 //! exposure to show it at ([`probe_sheet_exposure`]).
 
 use glam::{DVec3, Vec3};
-use shlight_core::{ShCoeffs, irradiance, sh_count};
+use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 
 use crate::Grid;
 
@@ -94,7 +94,7 @@ pub fn probe_sheet(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use shlight_core::analytic;
+    use shlight_core::sh::closed_form;
 
     /// The background does not darken the picture: a sheet of balls of
     /// luminance 1 on black is shown at 0.25 whatever the black around.
@@ -115,7 +115,7 @@ mod tests {
         // so its ball shows i + 1 at every pixel.
         let mut radiance = Vec::new();
         for i in 0..8 {
-            for c in analytic::constant(lmax, DVec3::splat(i as f64 + 1.0)).as_slice() {
+            for c in closed_form::constant(lmax, DVec3::splat(i as f64 + 1.0)).as_slice() {
                 radiance.extend(c.as_vec3().to_array());
             }
         }
@@ -151,7 +151,7 @@ mod tests {
     fn a_ball_under_a_light_from_above_is_brighter_at_its_top() {
         let grid = Grid::new([1, 1, 1], Vec3::ZERO, Vec3::ONE).unwrap();
         let lmax = 2;
-        let light = analytic::cosine_lobe(lmax, DVec3::Y, DVec3::ONE);
+        let light = closed_form::cosine_lobe(lmax, DVec3::Y, DVec3::ONE);
         let radiance: Vec<f32> = light
             .as_slice()
             .iter()

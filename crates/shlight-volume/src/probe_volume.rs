@@ -2,7 +2,7 @@
 //! emitters' light, relit for any environment.
 
 use glam::{DVec3, Vec3};
-use shlight_core::{ShCoeffs, sh_count};
+use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_format::ShvolFile;
 
 use crate::{Grid, VolumeError};
@@ -52,7 +52,7 @@ impl ProbeVolume {
     /// Every probe's radiance under `env` (radiance coefficients in the
     /// volume's frame, resized to its lmax): per probe `(lmax+1)^2` rows of
     /// `[r, g, b]`, `L_probe = M L_env + L_emitted`. To rotate the
-    /// environment, rotate `env` first ([`shlight_core::ShRotation`]).
+    /// environment, rotate `env` first ([`shlight_core::sh::ShRotation`]).
     #[must_use]
     pub fn relight(&self, env: &ShCoeffs<DVec3>) -> Vec<f32> {
         let mut out = vec![0.0f32; self.emitted.len()];

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use glam::{DVec3, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use shlight_core::{ShCoeffs, analytic, sh_count, sh_eval};
+use shlight_core::sh::{ShCoeffs, closed_form, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::brute_force::closest_hit;
 use shlight_volume::{Grid, VolumeOptions, bake};
@@ -79,7 +79,7 @@ fn cornell_box_probes_match_a_path_tracer() {
     let room = generate::cornell_box();
     let lmax = 2;
     // A sky brighter above, coloured, seen through the open front.
-    let sky = analytic::linear_gradient(
+    let sky = closed_form::linear_gradient(
         lmax,
         DVec3::new(0.2, 1.0, -0.4).normalize(),
         DVec3::new(0.6, 0.7, 0.9),

@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 
 use glam::{DQuat, DVec3, Vec3};
-use shlight_core::{ShCoeffs, ShRotation, analytic, irradiance, sh_count};
+use shlight_core::sh::{ShCoeffs, ShRotation, closed_form, irradiance, sh_count};
 use shlight_mesh::{Mesh, generate};
 use shlight_volume::{Grid, VolumeOptions, bake, sample};
 
@@ -49,8 +49,8 @@ fn max_difference(a: &ShCoeffs<DVec3>, b: &ShCoeffs<DVec3>) -> f64 {
 
 /// A sky that varies in every band up to 2: a gradient plus a lobe.
 fn sky(lmax: usize) -> ShCoeffs<DVec3> {
-    let g = analytic::linear_gradient(lmax, DVec3::new(0.3, 1.0, -0.2).normalize(), 1.0, 0.6);
-    let lobe = analytic::cosine_lobe(lmax, DVec3::new(1.0, 0.5, 0.0).normalize(), 0.7);
+    let g = closed_form::linear_gradient(lmax, DVec3::new(0.3, 1.0, -0.2).normalize(), 1.0, 0.6);
+    let lobe = closed_form::cosine_lobe(lmax, DVec3::new(1.0, 0.5, 0.0).normalize(), 0.7);
     ShCoeffs::from_vec(
         g.as_slice()
             .iter()
@@ -103,10 +103,14 @@ fn a_black_sphere_removes_its_cap_from_a_constant_sky() {
     )
     .unwrap();
     let light = DVec3::new(1.0, 0.5, 2.0);
-    let got = probe(&volume.relight(&analytic::constant(lmax, light)), lmax, 0);
+    let got = probe(
+        &volume.relight(&closed_form::constant(lmax, light)),
+        lmax,
+        0,
+    );
     let half = f64::from(r / d).asin();
-    let cap = analytic::cap(lmax, DVec3::NEG_Z, half, light);
-    let constant = analytic::constant(lmax, light);
+    let cap = closed_form::cap(lmax, DVec3::NEG_Z, half, light);
+    let constant = closed_form::constant(lmax, light);
     let want = ShCoeffs::from_vec(
         constant
             .as_slice()
@@ -258,7 +262,7 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
     .unwrap();
     assert_eq!(volume.valid, vec![true, false, true]);
     assert!(volume.backfaces[1] == 1.0 && volume.backfaces[0] < 0.5);
-    let radiance = volume.relight(&analytic::constant(lmax, DVec3::ONE));
+    let radiance = volume.relight(&closed_form::constant(lmax, DVec3::ONE));
     // Halfway between the left and the middle probe: only the left counts.
     let p = grid.position([0, 0, 0]).lerp(grid.position([1, 0, 0]), 0.5);
     let got = sample(&grid, &volume.valid, &radiance, lmax, p).unwrap();
@@ -275,7 +279,7 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
         sample(
             &inside.grid,
             &inside.valid,
-            &inside.relight(&analytic::constant(lmax, DVec3::ONE)),
+            &inside.relight(&closed_form::constant(lmax, DVec3::ONE)),
             lmax,
             Vec3::ZERO
         )

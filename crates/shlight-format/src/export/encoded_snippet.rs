@@ -13,16 +13,17 @@
 //! | `ambient-cube` | none | `SHLIGHT_CUBE`, six colours blended by `n²` |
 //!
 //! The formulas are the core's, statement for statement:
-//! [`shlight_core::cap_light`] (Snyder 1996, including the case where the
-//! cap crosses the horizon), [`shlight_core::zh3`], [`shlight_core::l1_nonlinear`],
-//! [`shlight_core::ambient_cube`]. Arrays cannot be empty in these
+//! [`shlight_core::encoding`] (Snyder 1996, including the case where the
+//! cap crosses the horizon), [`shlight_core::encoding`], [`shlight_core::encoding`],
+//! [`shlight_core::encoding`]. Arrays cannot be empty in these
 //! languages: with no light the light arrays hold one zero light and
 //! `SHLIGHT_LIGHT_COUNT` is 0.
 
 use core::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_core::{CapLight, Encoded, Encoding, ShCoeffs};
+use shlight_core::encoding::{CapLight, Encoded, Encoding};
+use shlight_core::sh::ShCoeffs;
 
 use super::{ExportFormat, ExportInput, Exported, float_literal};
 use crate::{CoeffFile, FormatError, Quantity, Result};
@@ -386,7 +387,7 @@ impl Lang {
         s
     }
 
-    /// `shlight_cap_per_power(alpha, cos_t)`: [`shlight_core::cap_light::cap_irradiance_per_power`].
+    /// `shlight_cap_per_power(alpha, cos_t)`: [`shlight_core::encoding::cap_irradiance_per_power`].
     fn cap_function(&self) -> String {
         let four_pi = f(4.0 * PI);
         let doc = "\n// Irradiance per unit power of a uniform cap of half-angle alpha whose centre makes\n\
@@ -816,7 +817,7 @@ impl Lang {
 
 #[cfg(test)]
 mod tests {
-    use shlight_core::rotation::Frame;
+    use shlight_core::sh::Frame;
 
     use super::*;
     use crate::FileEncoding;

@@ -3,8 +3,7 @@
 //! polynomials their shaders evaluate.
 
 use glam::{DMat3, DVec3};
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::{Frame, ShRotation};
+use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 
 use super::{ExportFormat, ExportInput};
 use crate::{Quantity, Result};

@@ -54,8 +54,7 @@
 
 use crate::{FormatError, Result};
 use glam::DVec3;
-use shlight_core::rotation::Frame;
-use shlight_core::{ShCoeffs, lm_from_index, lmax_from_count};
+use shlight_core::sh::{Frame, ShCoeffs, lm_from_index, lmax_from_count};
 
 use super::{
     ExportFormat, ExportInput, Exported, basis_constant, engine_coeffs, engine_frame, transform,
@@ -201,11 +200,11 @@ mod tests {
 
     #[test]
     fn the_shader_gives_irradiance_over_pi_and_reads_back() {
-        let radiance = &shlight_core::analytic::directional(
+        let radiance = &shlight_core::sh::closed_form::directional(
             2,
             DVec3::new(0.6, 0.0, -0.8),
             DVec3::new(2.0, 1.0, 0.5),
-        ) + &shlight_core::analytic::constant(2, DVec3::splat(0.25));
+        ) + &shlight_core::sh::closed_form::constant(2, DVec3::splat(0.25));
         let out = render(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -225,7 +224,7 @@ mod tests {
                 DVec3::new(v[0], v[1], v[2])
             })
             .collect();
-        let e = shlight_core::irradiance(&radiance);
+        let e = shlight_core::sh::irradiance(&radiance);
         for n in [[0.6, 0.0, -0.8], [0.0, 1.0, 0.0], [-0.48, 0.6, 0.64]] {
             // cmgen shows the texel shlight reads at (x, y, z) at (-z, y, x).
             let [x, y, z] = n;

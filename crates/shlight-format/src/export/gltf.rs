@@ -49,8 +49,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 
 use super::{
     ExportFormat, ExportInput, Exported, engine_coeffs, engine_frame, rgb_array, transform,
@@ -509,8 +508,8 @@ mod tests {
     #[test]
     fn babylon_reads_irradiance_over_pi() {
         let radiance =
-            &shlight_core::analytic::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
-                + &shlight_core::analytic::constant(2, DVec3::splat(0.3));
+            &shlight_core::sh::closed_form::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
+                + &shlight_core::sh::closed_form::constant(2, DVec3::splat(0.3));
         let out = render(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -518,7 +517,7 @@ mod tests {
         })
         .unwrap();
         let v: Value = serde_json::from_str(&out.text).unwrap();
-        let e = shlight_core::irradiance(&radiance);
+        let e = shlight_core::sh::irradiance(&radiance);
         for n in [[0.0, 0.6, 0.8], [1.0, 0.0, 0.0], [0.0, -0.8, 0.6]] {
             // The Sample Viewer shows the texel shlight reads at (x, y, z)
             // at (-z, y, x) of the glTF world.

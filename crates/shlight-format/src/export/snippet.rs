@@ -2,8 +2,7 @@
 //! comment, float literals, the coefficient rows and the evaluator's text.
 
 use glam::DVec3;
-use shlight_core::zonal::clamped_cosine_eigenvalue;
-use shlight_core::{ShCoeffs, lm_from_index};
+use shlight_core::sh::{ShCoeffs, clamped_cosine_eigenvalue, lm_from_index};
 
 use super::ExportInput;
 use super::engine::frame_words;

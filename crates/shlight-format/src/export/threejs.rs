@@ -36,8 +36,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use crate::{FormatError, Result};
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 
 use super::{ExportFormat, ExportInput, Exported, engine_coeffs};
 use crate::{Imported, Quantity};
@@ -187,7 +186,7 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
 mod tests {
     use super::*;
     use crate::export::basis_polynomial;
-    use shlight_core::zonal::clamped_cosine_eigenvalue as a_l;
+    use shlight_core::sh::clamped_cosine_eigenvalue as a_l;
 
     /// three.js `SphericalHarmonics3.getIrradianceAt`, constants as in its source.
     fn get_irradiance_at(c: &[[f64; 3]], n: [f64; 3]) -> [f64; 3] {
@@ -214,7 +213,7 @@ mod tests {
 
     #[test]
     fn get_irradiance_at_of_the_export_is_shlight_irradiance() {
-        let light = shlight_core::analytic::directional(
+        let light = shlight_core::sh::closed_form::directional(
             2,
             DVec3::new(0.48, 0.6, 0.64),
             DVec3::new(1.0, 0.5, 0.25),
@@ -233,7 +232,7 @@ mod tests {
             .map(|x| x.as_f64().unwrap())
             .collect();
         let c: Vec<[f64; 3]> = sh.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
-        let e = shlight_core::irradiance(&light);
+        let e = shlight_core::sh::irradiance(&light);
         for n in [[0.0, 1.0, 0.0], [0.6, 0.0, 0.8], [-0.36, 0.48, -0.8]] {
             let got = get_irradiance_at(&c, n);
             let want = e.eval(DVec3::from(n));

@@ -20,7 +20,7 @@
 //!   `E(n) = c1 L22 (x^2-y^2) + c3 L20 z^2 + c4 L00 - c5 L20
 //!          + 2 c1 (L2-2 xy + L21 xz + L2-1 yz) + 2 c2 (L11 x + L1-1 y + L10 z)`.
 
-use shlight_core::lm_from_index;
+use shlight_core::sh::lm_from_index;
 
 use super::{ExportInput, Exported, frame_words};
 use crate::Quantity;
@@ -78,8 +78,7 @@ pub fn render(input: &ExportInput<'_>) -> Exported {
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
-    use shlight_core::ShCoeffs;
-    use shlight_core::rotation::Frame;
+    use shlight_core::sh::{Frame, ShCoeffs};
 
     use super::*;
 

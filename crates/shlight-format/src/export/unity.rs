@@ -47,8 +47,7 @@
 use crate::{FormatError, Result};
 use glam::DVec3;
 use serde_json::{Value, json};
-use shlight_core::ShCoeffs;
-use shlight_core::rotation::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 
 use super::{
     ExportFormat, ExportInput, Exported, basis_constant, engine_coeffs, engine_frame, transform,
@@ -184,8 +183,8 @@ mod tests {
     fn shade_sh9_gives_irradiance_over_pi_in_unity_axes() {
         // A light from shlight's +Z is Unity's -Z.
         let radiance =
-            &shlight_core::analytic::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
-                + &shlight_core::analytic::constant(2, DVec3::splat(0.1));
+            &shlight_core::sh::closed_form::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
+                + &shlight_core::sh::closed_form::constant(2, DVec3::splat(0.1));
         let (sh, _) = unity_floats(&ExportInput {
             coeffs: &radiance,
             quantity: Quantity::Radiance,
@@ -193,7 +192,7 @@ mod tests {
         })
         .unwrap();
         let p = pack(&sh);
-        let e = shlight_core::irradiance(&radiance);
+        let e = shlight_core::sh::irradiance(&radiance);
         for nu in [
             [0.0, 0.6, -0.8],
             [0.0, 0.6, 0.8],
@@ -205,7 +204,7 @@ mod tests {
             assert!((got - want).abs() < 1e-13, "{nu:?}: {got} vs {want}");
         }
         // Uniform radiance c: AddAmbientLight(c) puts c in sh[., 0], ShadeSH9 = c.
-        let c = shlight_core::analytic::constant(2, DVec3::new(0.5, 0.25, 2.0));
+        let c = shlight_core::sh::closed_form::constant(2, DVec3::new(0.5, 0.25, 2.0));
         let (sh, _) = unity_floats(&ExportInput {
             coeffs: &c,
             quantity: Quantity::Radiance,
