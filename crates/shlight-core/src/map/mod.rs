@@ -30,7 +30,7 @@ pub use projection::equirect_simple::project_equirect_simple;
 pub use projection::pole::to_frame;
 pub use projection::{project, project_equirect, project_map};
 pub use radiance_map::{RadianceMap, luminance};
-pub use render::render_map;
+pub use render::{render_coefficients, render_map};
 pub use strided_image::StridedImage;
 pub use texel_means::texel_means;
 pub use texel_source::TexelSource;
