@@ -324,7 +324,7 @@ fn irradiance_cli_matches_closed_forms() {
             let n = equirect_direction(x, y, 32, 16, o);
             let want = PI * (1.0 + n.y) / 2.0;
             // The texel-centre sum errs by O(h²): 5.5e-5 of π measured at
-            // 256x128 (crates/shlight-core/src/irradiance_map.rs).
+            // 256x128 (crates/shlight-core/src/map/irradiance_map.rs).
             let e = f64::from(exact.get(x, y)[0]);
             let h = f64::from(sh.get(x, y)[0]);
             assert!((e - want).abs() < 2e-4 * PI, "{x} {y}: {e} vs {want}");

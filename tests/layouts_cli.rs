@@ -36,7 +36,7 @@ fn rendered_layouts_project_back_to_their_coefficients() {
     let want = rows();
     write_radiance_rows(&file, &want);
     // Faces of 64, discs of 256: the midpoint error is a few 1e-4 of the
-    // largest coefficient (crates/shlight-core/src/layout.rs).
+    // largest coefficient (crates/shlight-core/src/map/projection/mod.rs).
     for (layout, size) in [
         ("cross-h", "256x192"),
         ("cross-v", "192x256"),

@@ -3,15 +3,6 @@
 //! Source Engine*, SIGGRAPH 2006 course, slide 28 "Ambient Cube Basis";
 //! what Bevy's irradiance volumes store and look up in
 //! `bevy_pbr/src/light_probe/irradiance_volume.wgsl`).
-//!
-//! ```text
-//! E(n) = n_x² C[x] + n_y² C[y] + n_z² C[z],
-//! C[x] = C_{+x} if n_x >= 0 else C_{-x}  (likewise y, z)
-//! ```
-//!
-//! The weights `n_i²` sum to 1, so the six colours are exactly the
-//! irradiance at the six axes; shlight fits them that way, from the exact
-//! irradiance of a map or from SH irradiance ([`AmbientCube::from_irradiance`]).
 
 use glam::DVec3;
 
@@ -32,6 +23,15 @@ pub const AMBIENT_CUBE_AXES: [DVec3; 6] = [
 ];
 
 /// Six irradiance colours, in [`AMBIENT_CUBE_AXES`] order.
+///
+/// ```text
+/// E(n) = n_x² C[x] + n_y² C[y] + n_z² C[z],
+/// C[x] = C_{+x} if n_x >= 0 else C_{-x}  (likewise y, z)
+/// ```
+///
+/// The weights `n_i²` sum to 1, so the six colours are exactly the
+/// irradiance at the six axes; shlight fits them that way, from the exact
+/// irradiance of a map or from SH irradiance ([`AmbientCube::from_irradiance`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct AmbientCube<C> {
     /// `C_{+x}, C_{-x}, C_{+y}, C_{-y}, C_{+z}, C_{-z}`.
@@ -65,7 +65,7 @@ impl<C: ShValue> AmbientCube<C> {
         })
     }
 
-    /// `E(n)` at unit normal `n` (module docs).
+    /// `E(n)` at unit normal `n` ([`AmbientCube`]).
     #[must_use]
     pub fn irradiance(&self, n: <C::Scalar as Real>::Vec3) -> C {
         let n = dir_f64::<C::Scalar>(n);

@@ -1,22 +1,6 @@
 //! [`CapLight`]: a small uniform disc of light (a spherical cap of
 //! directions) with its exact irradiance, the form dominant lights are kept
-//! in ([`crate::encoding`]).
-//!
-//! A cap of half-angle `α` about unit `d` with uniform radiance `L` holds
-//! the power `P = ∫ L dω = 2π (1 - cos α) L` (the irradiance a delta of the
-//! same power gives facing it). Its irradiance on a surface whose normal is
-//! at angle `t` from `d` is Snyder's formula (J. Snyder, *Area light sources
-//! for real-time graphics*, Microsoft Research MSR-TR-96-11, 1996; the form
-//! of Lagarde & de Rousiers, *Moving Frostbite to PBR*, 2014, §4.7.2):
-//!
-//! ```text
-//! cos² t >= sin² α:  E = π L sin² α max(cos t, 0)
-//! otherwise, x = cot α, y = -x cot t, s = sin t sqrt(1 - y²):
-//!     E = L ((cos t acos(y) - x s) sin² α + atan(s / x))
-//! ```
-//!
-//! In terms of the power, facing the light `E = P (1 + cos α) / 2`, and a
-//! cap of half-angle 0 is a directional light, `E = P max(cos t, 0)`.
+//! in ([`crate::encoding::DominantLights`]).
 
 use glam::DVec3;
 
@@ -28,6 +12,22 @@ use crate::sh::sh_value::ShValue;
 use crate::sh::zonal::cap_solid_angle;
 
 /// A uniform cap of light: direction, angular radius and power.
+///
+/// A cap of half-angle `α` about unit `d` with uniform radiance `L` holds
+/// the power `P = ∫ L dω = 2π (1 - cos α) L` (the irradiance a delta of the
+/// same power gives facing it). Its irradiance on a surface whose normal is
+/// at angle `t` from `d` is Snyder's formula (J. Snyder, *Area light sources
+/// for real-time graphics*, Microsoft Research MSR-TR-96-11, 1996; the form
+/// of Lagarde & de Rousiers, *Moving Frostbite to PBR*, 2014, §4.7.2):
+///
+/// ```text
+/// cos² t >= sin² α:  E = π L sin² α max(cos t, 0)
+/// otherwise, x = cot α, y = -x cot t, s = sin t sqrt(1 - y²):
+///     E = L ((cos t acos(y) - x s) sin² α + atan(s / x))
+/// ```
+///
+/// In terms of the power, facing the light `E = P (1 + cos α) / 2`, and a
+/// cap of half-angle 0 is a directional light, `E = P max(cos t, 0)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CapLight<C> {
     /// Unit direction towards the cap's centre (world axes).
@@ -45,7 +45,7 @@ impl<C: ShValue> CapLight<C> {
         cap_solid_angle(self.half_angle)
     }
 
-    /// The cap's exact irradiance at unit normal `n` (module docs).
+    /// The cap's exact irradiance at unit normal `n` ([`CapLight`]).
     #[must_use]
     pub fn irradiance(&self, n: <C::Scalar as Real>::Vec3) -> C {
         let n = dir_f64::<C::Scalar>(n);
@@ -69,7 +69,7 @@ impl<C: ShValue> CapLight<C> {
 
 /// Irradiance per unit power of a uniform cap of half-angle `alpha` whose
 /// centre makes cosine `cos_t` with the normal (Snyder's formula divided by
-/// the power `2π (1 - cos α) L`, module docs); `max(cos t, 0)` at `α = 0`.
+/// the power `2π (1 - cos α) L`, [`CapLight`]); `max(cos t, 0)` at `α = 0`.
 #[must_use]
 pub fn cap_irradiance_per_power(alpha: f64, cos_t: f64) -> f64 {
     let cos_t = cos_t.clamp(-1.0, 1.0);

@@ -1,31 +1,6 @@
 //! Dominant lights of an environment map: its bright, compact sources (a
 //! sun, a lamp, a window) taken out as [`CapLight`]s with exact irradiance,
 //! and the map without them (the residual) left to be projected to SH.
-//!
-//! 1. **Candidates.** Texels whose luminance exceeds `threshold` times the
-//!    map's mean luminance `Σ Y_k Ω_k / Σ Ω_k`.
-//! 2. **Clusters.** Connected components of the candidates on the sphere:
-//!    two candidates are linked when their centres lie closer than
-//!    `2 sqrt(max_k Ω_k)` (twice the largest texel's side, so texel
-//!    neighbours in any layout — across the equirect seam, the poles and
-//!    cube edges — are linked and texels a gap apart are not), found with a
-//!    3-D grid of that cell size and union-find. Two lamps apart stay two
-//!    clusters: a light is never put between them.
-//! 3. **Background.** The mean radiance `B` of the non-candidate texels in
-//!    a ring around each cluster (within its angular extent plus two link
-//!    radii); the cluster's texels are set to `B` in the residual.
-//! 4. **The light** from the excess `ΔL_k = max(L_k - B, 0)`: power
-//!    `P = Σ ΔL_k Ω_k`, first moment `m = Σ Y(ΔL_k) Ω_k d_k`, direction
-//!    `m / |m|`, and the half-angle of the uniform cap with the same mean
-//!    resultant length `R = |m| / Σ Y(ΔL_k) Ω_k = (1 + cos α)/2`. With that
-//!    α the cap's irradiance, `P R (n · d)` wherever the whole cap is above
-//!    the horizon, equals the cluster's own `n · Σ ΔL_k Ω_k d_k` for any
-//!    shape: only normals near the cluster's horizon see a difference.
-//! 5. **The test** of compactness and dominance, before anything is
-//!    extracted: a cluster is kept only if every texel lies within
-//!    `max_half_angle` of its direction and its luminance power is at least
-//!    `min_power_fraction` of the map's. At most `max_lights` are kept, the
-//!    most powerful first; a map with no such cluster yields none.
 
 use core::f64::consts::PI;
 use std::collections::HashMap;
@@ -87,7 +62,32 @@ struct Texel {
     radiance: DVec3,
 }
 
-/// Finds the dominant lights of `map` and the residual (module docs).
+/// Finds the dominant lights of `map` and the residual (the method below).
+///
+/// 1. **Candidates.** Texels whose luminance exceeds `threshold` times the
+///    map's mean luminance `Σ Y_k Ω_k / Σ Ω_k`.
+/// 2. **Clusters.** Connected components of the candidates on the sphere:
+///    two candidates are linked when their centres lie closer than
+///    `2 sqrt(max_k Ω_k)` (twice the largest texel's side, so texel
+///    neighbours in any layout — across the equirect seam, the poles and
+///    cube edges — are linked and texels a gap apart are not), found with a
+///    3-D grid of that cell size and union-find. Two lamps apart stay two
+///    clusters: a light is never put between them.
+/// 3. **Background.** The mean radiance `B` of the non-candidate texels in
+///    a ring around each cluster (within its angular extent plus two link
+///    radii); the cluster's texels are set to `B` in the residual.
+/// 4. **The light** from the excess `ΔL_k = max(L_k - B, 0)`: power
+///    `P = Σ ΔL_k Ω_k`, first moment `m = Σ Y(ΔL_k) Ω_k d_k`, direction
+///    `m / |m|`, and the half-angle of the uniform cap with the same mean
+///    resultant length `R = |m| / Σ Y(ΔL_k) Ω_k = (1 + cos α)/2`. With that
+///    α the cap's irradiance, `P R (n · d)` wherever the whole cap is above
+///    the horizon, equals the cluster's own `n · Σ ΔL_k Ω_k d_k` for any
+///    shape: only normals near the cluster's horizon see a difference.
+/// 5. **The test** of compactness and dominance, before anything is
+///    extracted: a cluster is kept only if every texel lies within
+///    `max_half_angle` of its direction and its luminance power is at least
+///    `min_power_fraction` of the map's. At most `max_lights` are kept, the
+///    most powerful first; a map with no such cluster yields none.
 #[must_use]
 pub fn extract_dominant_lights(map: &EnvMap<'_>, options: &DominantLightOptions) -> DominantLights {
     let omega = map.texel_solid_angles();

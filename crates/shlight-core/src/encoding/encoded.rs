@@ -1,15 +1,5 @@
 //! [`Encoding`]: the ways shlight can keep a map's lighting, side by side,
 //! and [`Encoded`], one of them built and evaluated as irradiance.
-//!
-//! | encoding | kept | floats (RGB) |
-//! |---|---|---|
-//! | `sh` | radiance SH to `lmax` | `3 (lmax+1)²` |
-//! | `dominant+sh` | [`crate::encoding`] (7 floats each) and the residual's SH to `lmax` | `7 k + 3 (lmax+1)²` |
-//! | `sloan+sh` | SH to `lmax`; at run time [`crate::encoding`]'s light is taken out of it and kept exact | `3 (lmax+1)²` |
-//! | `zh3` | [`crate::encoding`], stored zonal coefficient | 15 |
-//! | `zh3-hallucinated` | [`crate::encoding`] from lmax 1 | 12 |
-//! | `l1-nonlinear` | lmax 1, [`crate::encoding`] reconstruction | 12 |
-//! | `ambient-cube` | [`crate::encoding`]: the exact irradiance at the six axes | 18 |
 
 use core::fmt;
 use core::str::FromStr;
@@ -28,7 +18,17 @@ use crate::map::projection::project_map;
 use crate::sh::sh_coeffs::ShCoeffs;
 use crate::sh::zonal::irradiance;
 
-/// A way of keeping the lighting (module docs).
+/// A way of keeping the lighting (the table below).
+///
+/// | encoding | kept | floats (RGB) |
+/// |---|---|---|
+/// | `sh` | radiance SH to `lmax` | `3 (lmax+1)²` |
+/// | `dominant+sh` | [`DominantLights`](crate::encoding::DominantLights) (7 floats each) and the residual's SH to `lmax` | `7 k + 3 (lmax+1)²` |
+/// | `sloan+sh` | SH to `lmax`; at run time [`sloan_directional`](crate::encoding::sloan_directional)'s light is taken out of it and kept exact | `3 (lmax+1)²` |
+/// | `zh3` | [`Zh3`], stored zonal coefficient | 15 |
+/// | `zh3-hallucinated` | [`Zh3`] from lmax 1 | 12 |
+/// | `l1-nonlinear` | lmax 1, [`L1NonLinear`] reconstruction | 12 |
+/// | `ambient-cube` | [`AmbientCube`]: the exact irradiance at the six axes | 18 |
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Encoding {
     /// Plain radiance SH.
@@ -170,7 +170,7 @@ impl Encoded {
         }
     }
 
-    /// Floats stored (RGB), as the module's table counts them.
+    /// Floats stored (RGB), as [`Encoding`]'s table counts them.
     #[must_use]
     pub fn floats(&self, encoding: Encoding) -> usize {
         match self {

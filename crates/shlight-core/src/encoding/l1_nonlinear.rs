@@ -4,26 +4,6 @@
 //! <https://grahamhazel.com/blog/2017/12/22/converting-sh-radiance-to-irradiance/>),
 //! the curve Frostbite, Godot's lightmaps, Blender's EEVEE and MJP's
 //! SH.hlsli evaluate.
-//!
-//! In Hazel's normalisation the radiance is `R_0 + 3 R_1 · ω` with
-//! `R_0 = (1/4π) ∫ L` (the mean) and `R_1 = (1/4π) ∫ L ω dω`, so
-//! `0 <= |R_1| <= R_0` for any non-negative radiance. In shlight's basis
-//! `R_0 = f_0^0 / (2 sqrt(π))` and `R_1 = (-f_1^1, -f_1^-1, f_1^0) / (2 sqrt(3π))`.
-//! The linear irradiance is `π (R_0 + 2 R_1 · n)`, negative away from a
-//! strong light; the non-linear one is, per channel,
-//!
-//! ```text
-//! r = |R_1| / R_0,  p = 1 + 2r,  a = (1 - r) / (1 + r),  q = (1 + R̂_1 · n) / 2
-//! E(n) = π R_0 (a + (1 - a) (p + 1) q^p)
-//! ```
-//!
-//! non-negative for `r <= 1` (here `r` is clamped to `[0, 1]`), with the
-//! linear model's mean over the sphere (`π R_0`: energy is conserved,
-//! since the mean of `(p + 1) q^p` is 1) and its slope as `r -> 0`.
-//!
-//! The engines' shaders pass `R_0 = f_0^0` and `R_1 = v / 2`, whose ratio is
-//! `sqrt(3)/2` of Hazel's (a delta reaches `r = 0.87`, not 1): shlight keeps
-//! Hazel's normalisation, under which a single direction gives `p = 3`.
 
 use core::f64::consts::PI;
 
@@ -33,7 +13,27 @@ use crate::sh::real::dir_f64;
 use crate::sh::sh_coeffs::ShCoeffs;
 use crate::sh::sh_value::ShValue;
 
-/// Hazel's `(R_0, R_1)` per channel from lmax-1 radiance (module docs).
+/// Hazel's `(R_0, R_1)` per channel from lmax-1 radiance (below).
+///
+/// In Hazel's normalisation the radiance is `R_0 + 3 R_1 · ω` with
+/// `R_0 = (1/4π) ∫ L` (the mean) and `R_1 = (1/4π) ∫ L ω dω`, so
+/// `0 <= |R_1| <= R_0` for any non-negative radiance. In shlight's basis
+/// `R_0 = f_0^0 / (2 sqrt(π))` and `R_1 = (-f_1^1, -f_1^-1, f_1^0) / (2 sqrt(3π))`.
+/// The linear irradiance is `π (R_0 + 2 R_1 · n)`, negative away from a
+/// strong light; the non-linear one is, per channel,
+///
+/// ```text
+/// r = |R_1| / R_0,  p = 1 + 2r,  a = (1 - r) / (1 + r),  q = (1 + R̂_1 · n) / 2
+/// E(n) = π R_0 (a + (1 - a) (p + 1) q^p)
+/// ```
+///
+/// non-negative for `r <= 1` (here `r` is clamped to `[0, 1]`), with the
+/// linear model's mean over the sphere (`π R_0`: energy is conserved,
+/// since the mean of `(p + 1) q^p` is 1) and its slope as `r -> 0`.
+///
+/// The engines' shaders pass `R_0 = f_0^0` and `R_1 = v / 2`, whose ratio is
+/// `sqrt(3)/2` of Hazel's (a delta reaches `r = 0.87`, not 1): shlight keeps
+/// Hazel's normalisation, under which a single direction gives `p = 3`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct L1NonLinear<C> {
     /// The four lmax-1 radiance coefficients, flat index order.
@@ -51,7 +51,7 @@ impl<C: ShValue> L1NonLinear<C> {
         })
     }
 
-    /// The non-linear irradiance at unit normal `n` (module docs); 0 where a
+    /// The non-linear irradiance at unit normal `n` ([`L1NonLinear`]); 0 where a
     /// channel's mean radiance is not positive.
     #[must_use]
     pub fn irradiance(&self, n: <C::Scalar as Real>::Vec3) -> C {

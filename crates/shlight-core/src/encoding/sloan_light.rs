@@ -1,19 +1,6 @@
 //! A directional light from SH coefficients alone (no map), after P.-P.
 //! Sloan, *Stupid Spherical Harmonics (SH) Tricks*, GDC 2008, §"Extracting
 //! Conventional Lights from SH":
-//!
-//! - **direction**: the optimal linear direction, the unit vector along
-//!   the luminance's degree-1 vector `Σ_c w_c (-f_1^1, -f_1^-1, f_1^0)`
-//!   (Condon-Shortley phase; `w` the Rec.709 weights);
-//! - **intensity**: per channel the least-squares fit of the light's own
-//!   coefficients `c Y_l^m(d)` to degrees `1..=lmax` (the directional
-//!   energy; degree 0 is left to the ambient):
-//!   `c = Σ_{l>=1} Σ_m f_l^m Y_l^m(d) / Σ_{l=1}^{lmax} (2l+1)/(4π)`,
-//!   clamped at 0;
-//! - **residual**: `f - c Y(d)` in every degree, so light plus residual is
-//!   the input.
-//!
-//! `c` is the light's power (the irradiance it gives a surface facing it).
 
 use core::f64::consts::PI;
 
@@ -25,7 +12,20 @@ use crate::sh::sh_coeffs::ShCoeffs;
 use crate::sh::sh_value::ShValue;
 
 /// Sloan's directional light of `f` (lmax >= 1, else `None`) and the
-/// residual (module docs). `None` also when the degree-1 vector is zero.
+/// residual (below). `None` also when the degree-1 vector is zero.
+///
+/// - **direction**: the optimal linear direction, the unit vector along
+///   the luminance's degree-1 vector `Σ_c w_c (-f_1^1, -f_1^-1, f_1^0)`
+///   (Condon-Shortley phase; `w` the Rec.709 weights);
+/// - **intensity**: per channel the least-squares fit of the light's own
+///   coefficients `c Y_l^m(d)` to degrees `1..=lmax` (the directional
+///   energy; degree 0 is left to the ambient):
+///   `c = Σ_{l>=1} Σ_m f_l^m Y_l^m(d) / Σ_{l=1}^{lmax} (2l+1)/(4π)`,
+///   clamped at 0;
+/// - **residual**: `f - c Y(d)` in every degree, so light plus residual is
+///   the input.
+///
+/// `c` is the light's power (the irradiance it gives a surface facing it).
 #[must_use]
 pub fn sloan_directional<C: ShValue>(f: &ShCoeffs<C>) -> Option<(CapLight<C>, ShCoeffs<C>)> {
     if f.lmax() < 1 {

@@ -1,30 +1,6 @@
 //! ZH3: linear SH plus one quadratic zonal coefficient per channel
 //! (Roughton, Sloan, Silvennoinen, Iwanicki and Shirley, *ZH3: Quadratic
 //! Zonal Harmonics*, i3D 2024 / HPG 2024, <https://torust.me/ZH3.pdf>).
-//!
-//! The degree-2 band of the radiance is replaced by a single zonal harmonic
-//! about the **luminance axis** `a`, the direction of the luminance's
-//! degree-1 vector `Σ_c w_c v_c` (`w` the Rec.709 weights, `v_c =
-//! (-f_1^1, -f_1^-1, f_1^0)` per channel, which with the Condon-Shortley
-//! phase points along `∫ L ω dω`). Per channel it stores the four lmax-1
-//! coefficients and one number `z`, so 4 + 1 floats per channel instead of 9:
-//!
-//! - **stored**: `z = sqrt(4π/5) Σ_m f_2^m Y_2^m(a)`, the orthogonal
-//!   projection of the band onto the unit-norm zonal harmonic about `a`
-//!   (exact when the band is zonal about `a`);
-//! - **hallucinated** (the paper's §3.4.3 curve fit, from lmax 1 alone):
-//!   `r = |v · a| / f_0^0`, `z = f_0^0 (0.08 r + 0.6 r²)`.
-//!
-//! Irradiance is the linear part convolved with the clamped cosine plus
-//! the zonal term,
-//!
-//! ```text
-//! E(n) = A_0 f_0^0 Y_0^0 + A_1 Σ_m f_1^m Y_1^m(n) + A_2 z sqrt(5/(16π)) (3 (a·n)² - 1)
-//! ```
-//!
-//! with `A_0 = π`, `A_1 = 2π/3`, `A_2 = π/4` (Ramamoorthi & Hanrahan
-//! 2001). The engines' shader versions (the paper's sample code, MJP's
-//! SH.hlsli) write the same sum.
 
 use core::f64::consts::PI;
 
@@ -46,7 +22,31 @@ pub enum Zh3Kind {
 }
 
 /// A ZH3 encoding of radiance: lmax-1 coefficients, the luminance axis and
-/// one zonal degree-2 coefficient per channel (module docs for formulas).
+/// one zonal degree-2 coefficient per channel (the formulas below).
+///
+/// The degree-2 band of the radiance is replaced by a single zonal harmonic
+/// about the **luminance axis** `a`, the direction of the luminance's
+/// degree-1 vector `Σ_c w_c v_c` (`w` the Rec.709 weights, `v_c =
+/// (-f_1^1, -f_1^-1, f_1^0)` per channel, which with the Condon-Shortley
+/// phase points along `∫ L ω dω`). Per channel it stores the four lmax-1
+/// coefficients and one number `z`, so 4 + 1 floats per channel instead of 9:
+///
+/// - **stored**: `z = sqrt(4π/5) Σ_m f_2^m Y_2^m(a)`, the orthogonal
+///   projection of the band onto the unit-norm zonal harmonic about `a`
+///   (exact when the band is zonal about `a`);
+/// - **hallucinated** (the paper's §3.4.3 curve fit, from lmax 1 alone):
+///   `r = |v · a| / f_0^0`, `z = f_0^0 (0.08 r + 0.6 r²)`.
+///
+/// Irradiance is the linear part convolved with the clamped cosine plus
+/// the zonal term,
+///
+/// ```text
+/// E(n) = A_0 f_0^0 Y_0^0 + A_1 Σ_m f_1^m Y_1^m(n) + A_2 z sqrt(5/(16π)) (3 (a·n)² - 1)
+/// ```
+///
+/// with `A_0 = π`, `A_1 = 2π/3`, `A_2 = π/4` (Ramamoorthi & Hanrahan
+/// 2001). The engines' shader versions (the paper's sample code, MJP's
+/// SH.hlsli) write the same sum.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Zh3<C> {
     /// The four lmax-1 radiance coefficients, flat index order.
@@ -96,7 +96,7 @@ impl<C: ShValue> Zh3<C> {
         })
     }
 
-    /// Irradiance `E(n)` at unit normal `n` (module docs).
+    /// Irradiance `E(n)` at unit normal `n` ([`Zh3`]).
     #[must_use]
     pub fn irradiance(&self, n: <C::Scalar as Real>::Vec3) -> C {
         let n = dir_f64::<C::Scalar>(n);

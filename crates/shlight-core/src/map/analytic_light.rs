@@ -1,20 +1,20 @@
 //! [`AnalyticLight`]: the radiance of the simple lights whose SH
 //! coefficients are known in closed form ([`crate::sh::closed_form`]): the lights
 //! `shlight synth` draws as maps to test projections against.
-//!
-//! - constant: `L(d) = c`;
-//! - cap: `L(d) = c` where `d · axis >= cos α`, else 0 (`α = π/2` is the
-//!   hemisphere about `axis`); the edge belongs to the cap;
-//! - gradient: `L(d) = a + b (d · axis)`, band-limited to degree 1.
-//!
-//! Colours are linear RGB; `axis` is a unit world direction.
 
 use glam::DVec3;
 
 use crate::sh::closed_form;
 use crate::sh::sh_coeffs::ShCoeffs;
 
-/// A light of closed-form radiance and coefficients (module docs).
+/// A light of closed-form radiance and coefficients (below).
+///
+/// - constant: `L(d) = c`;
+/// - cap: `L(d) = c` where `d · axis >= cos α`, else 0 (`α = π/2` is the
+///   hemisphere about `axis`); the edge belongs to the cap;
+/// - gradient: `L(d) = a + b (d · axis)`, band-limited to degree 1.
+///
+/// Colours are linear RGB; `axis` is a unit world direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AnalyticLight {
     /// The same radiance in every direction.

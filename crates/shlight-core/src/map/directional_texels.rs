@@ -1,24 +1,4 @@
 //! [`directional_texels`]: a directional light (a delta) drawn into a map.
-//!
-//! A delta cannot be stored in texels. It is approximated in one of two
-//! ways, both keeping its irradiance `E` facing it:
-//!
-//! - half-angle `0`: all of it in the single texel `k` that the direction
-//!   falls in ([`TexelGrid::texel_of`]), with radiance `E / Ω_k`. A
-//!   projection at texel centres then gives exactly the delta at that
-//!   texel's centre, `E Y_l^m(d_k)`; the centre is at most half a texel
-//!   from the direction asked for ([`DirectionalDrawing::Texel`] says
-//!   where).
-//! - half-angle `0 < α <= π/2`: a uniform cap of half-angle `α` whose
-//!   radiance `L = E / (π sin² α)` gives irradiance `E` facing it (past
-//!   `π/2` the cap covers the whole hemisphere facing it, whose irradiance
-//!   is `π L` whatever `L` is spread beyond it, so larger caps are refused); its coefficients
-//!   are [`crate::sh::closed_form::cap`]'s and differ from the delta's by about
-//!   `l(l+1) α² / 4` relatively in degree `l`. The cap is drawn as texel
-//!   means ([`crate::map::texel_means()`], at least `8 x 8` points per equirect
-//!   texel) and then scaled so that its power `Σ L_k Ω_k` is the cap's
-//!   exact `2π(1 - cos α) L = 4π sin²(α/2) L`. A cap that misses every
-//!   point falls back to one texel.
 
 use core::f64::consts::{FRAC_PI_2, PI};
 
@@ -62,12 +42,34 @@ pub struct DirectionalTexels {
 
 /// A directional light from unit `axis` of irradiance `irradiance` (facing
 /// it) drawn into `grid`: in one texel when `half_angle` (radians) is 0, or
-/// as a cap normalised to its exact power (module docs) with `n x n`
+/// as a cap normalised to its exact power (below) with `n x n`
 /// points per texel (at least 8). `on_rows` is called with the number of
 /// rows finished (a progress bar), `grid.height()` rows in all.
 ///
 /// # Panics
 /// If `half_angle` is not within `0..=π/2`.
+///
+/// # Drawing a delta
+///
+/// A delta cannot be stored in texels. It is approximated in one of two
+/// ways, both keeping its irradiance `E` facing it:
+///
+/// - half-angle `0`: all of it in the single texel `k` that the direction
+///   falls in ([`TexelGrid::texel_of`]), with radiance `E / Ω_k`. A
+///   projection at texel centres then gives exactly the delta at that
+///   texel's centre, `E Y_l^m(d_k)`; the centre is at most half a texel
+///   from the direction asked for ([`DirectionalDrawing::Texel`] says
+///   where).
+/// - half-angle `0 < α <= π/2`: a uniform cap of half-angle `α` whose
+///   radiance `L = E / (π sin² α)` gives irradiance `E` facing it (past
+///   `π/2` the cap covers the whole hemisphere facing it, whose irradiance
+///   is `π L` whatever `L` is spread beyond it, so larger caps are refused); its coefficients
+///   are [`crate::sh::closed_form::cap`]'s and differ from the delta's by about
+///   `l(l+1) α² / 4` relatively in degree `l`. The cap is drawn as texel
+///   means ([`crate::map::texel_means()`], at least `8 x 8` points per equirect
+///   texel) and then scaled so that its power `Σ L_k Ω_k` is the cap's
+///   exact `2π(1 - cos α) L = 4π sin²(α/2) L`. A cap that misses every
+///   point falls back to one texel.
 #[must_use]
 pub fn directional_texels(
     grid: &TexelGrid,

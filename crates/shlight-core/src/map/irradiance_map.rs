@@ -1,25 +1,5 @@
 //! Brute-force irradiance of an environment map: the ground truth that SH
 //! irradiance is compared against.
-//!
-//! For a map of texels with radiance `L_k`, centre direction `d_k` and exact
-//! solid angle `Ω_k` (any [`Layout`](crate::map::Layout), through
-//! [`EnvMap`]), the irradiance on a surface with unit normal `n` is the
-//! cosine-weighted sum over **every** texel
-//!
-//! ```text
-//! E(n) = Σ_k L_k max(n · d_k, 0) Ω_k
-//! ```
-//!
-//! accumulated in `f64`: `O(texels)` per normal, with no truncation in
-//! angular frequency. It is the same texel-centre quadrature that
-//! [`crate::map::project_map`] uses, applied to the clamped cosine
-//! instead of `Y_l^m`, so its only error is that rule's: `O(h²)` in the
-//! texel size where the map is smooth, and the cosine's kink at the horizon
-//! of `n`, which moves the result by at most one ring of texels' worth
-//! (`O(h)`, tiny next to the kink's own small weight there).
-//!
-//! Normals are processed in parallel with the `rayon` feature, each summed
-//! over the texels in eight `f64` lanes (which the compiler vectorises).
 
 use glam::DVec3;
 
@@ -149,7 +129,7 @@ impl TexelSet {
 }
 
 /// The exact (brute-force) irradiance of `map` at each unit normal:
-/// `E(n) = Σ_k L_k max(n · d_k, 0) Ω_k` over every texel (module docs).
+/// `E(n) = Σ_k L_k max(n · d_k, 0) Ω_k` over every texel (below).
 /// `progress` receives the number of normals done, in steps.
 ///
 /// ```
@@ -164,6 +144,26 @@ impl TexelSet {
 /// // (9e-4 relative on 32 rows).
 /// assert!((e[0].x / std::f64::consts::PI - 1.0).abs() < 2e-3);
 /// ```
+///
+/// For a map of texels with radiance `L_k`, centre direction `d_k` and exact
+/// solid angle `Ω_k` (any [`Layout`](crate::map::Layout), through
+/// [`EnvMap`]), the irradiance on a surface with unit normal `n` is the
+/// cosine-weighted sum over **every** texel
+///
+/// ```text
+/// E(n) = Σ_k L_k max(n · d_k, 0) Ω_k
+/// ```
+///
+/// accumulated in `f64`: `O(texels)` per normal, with no truncation in
+/// angular frequency. It is the same texel-centre quadrature that
+/// [`crate::map::project_map`] uses, applied to the clamped cosine
+/// instead of `Y_l^m`, so its only error is that rule's: `O(h²)` in the
+/// texel size where the map is smooth, and the cosine's kink at the horizon
+/// of `n`, which moves the result by at most one ring of texels' worth
+/// (`O(h)`, tiny next to the kink's own small weight there).
+///
+/// Normals are processed in parallel with the `rayon` feature, each summed
+/// over the texels in eight `f64` lanes (which the compiler vectorises).
 #[must_use]
 pub fn irradiance_brute_force(
     map: &EnvMap<'_>,

@@ -1,6 +1,6 @@
 //! [`MapOrientation`]: how an environment map's own y-up frame meets world
 //! directions (which world axis is up, and whether azimuth runs mirrored).
-//! Every layout ([`crate::map`]) first gives a direction in the map's
+//! Every layout ([`Layout`](crate::map::Layout)) first gives a direction in the map's
 //! frame; the orientation takes it to the world.
 
 use glam::DVec3;

@@ -5,28 +5,28 @@
 //! to `f32`, and the `L_0^0` (power) of any light linear in `cos θ` about
 //! the pole is exact too; higher coefficients carry the projection's own
 //! quadrature error (`shlight synth`).
-//!
-//! Texel `(x, y)` of a `W x H` equirect map covers
-//! `φ ∈ 2π [x/W - 1/2, (x+1)/W - 1/2]` and
-//! `cos θ ∈ [cos(yπ/H), cos((y+1)π/H)]`; `n x n` points at the centres of
-//! an `n x n` grid **uniform in `φ` and `cos θ`**
-//! ([`TexelGrid::sample`]) split it into equal solid angles, so their plain
-//! average is the texel mean to the midpoint rule's accuracy: exact for
-//! functions linear in `cos θ` and `φ`, `O(1/n²)` for smooth ones, and for
-//! an edge only the texels it crosses err, by `O(1/n)` of their value.
-//! The other layouts take each texel's centre direction (one point), and
-//! `0` in texels the layout leaves unused.
 
 use glam::DVec3;
 
 use crate::map::layout::texel_grid::TexelGrid;
 
 /// The texels of `grid`, each the mean of `f` over `n x n` equal-area
-/// points of the texel (module docs; `n = 0` is taken as 1, and layouts
+/// points of the texel (below; `n = 0` is taken as 1, and layouts
 /// other than equirect take one point, the centre), row-major
 /// (`width * height` values, rounded to `f32`). Rows run in parallel with
 /// the `rayon` feature; `on_rows(1)` is called as each row finishes (a
 /// progress bar).
+///
+/// Texel `(x, y)` of a `W x H` equirect map covers
+/// `φ ∈ 2π [x/W - 1/2, (x+1)/W - 1/2]` and
+/// `cos θ ∈ [cos(yπ/H), cos((y+1)π/H)]`; `n x n` points at the centres of
+/// an `n x n` grid **uniform in `φ` and `cos θ`**
+/// ([`TexelGrid::sample`]) split it into equal solid angles, so their plain
+/// average is the texel mean to the midpoint rule's accuracy: exact for
+/// functions linear in `cos θ` and `φ`, `O(1/n²)` for smooth ones, and for
+/// an edge only the texels it crosses err, by `O(1/n)` of their value.
+/// The other layouts take each texel's centre direction (one point), and
+/// `0` in texels the layout leaves unused.
 #[must_use]
 pub fn texel_means(
     grid: &TexelGrid,

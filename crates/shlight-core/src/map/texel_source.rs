@@ -1,16 +1,5 @@
 //! [`TexelSource`]: an environment map's texels in one [`Layout`], as the
 //! projection reads them, whatever stores them.
-//!
-//! A source says its layout, the size of the layout's image and the
-//! radiance of texel `(x, y)` (row-major from the top-left corner, as in
-//! [`crate::map`]); when it stores a row contiguously it hands that row
-//! out whole ([`TexelSource::row`]) and the equirect ring transform reads it
-//! without a copy. The crate's own maps ([`EnvMap`], [`EquirectView`]) are
-//! sources, and so are [`crate::map::StridedImage`] (rows with a pitch wider than
-//! the image) and [`crate::map::CubeFaces`] (six separate face images); a user's
-//! own cubemap or image type implements the trait in a few lines and is
-//! projected by [`crate::map::project`] without being copied into
-//! one layout first.
 
 use crate::map::equirect::EquirectView;
 use crate::map::layout::env_map::EnvMap;

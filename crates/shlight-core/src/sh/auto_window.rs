@@ -6,9 +6,6 @@
 //! beyond. It rests on [`crate::sh::sphere_minimum()`], a dense-then-local global
 //! minimum search. Coefficients may be `f32` or `f64`; the search is in `f64`
 //! either way.
-//!
-//! Conventions (real orthonormal SH, Condon-Shortley phase, flat index
-//! `l*(l+1)+m`) are those of the crate root.
 
 use core::f64::consts::PI;
 use core::fmt;

@@ -1,28 +1,10 @@
 //! Evaluation of the real SH basis at unit directions, one at a time or in batches.
-//!
-//! The real orthonormal SH used throughout shlight (Condon-Shortley phase
-//! included; see the crate's conventions) are, with `x = cos t` and
-//! `Pbar_l^m` from [`crate::sh`]:
-//!
-//! ```text
-//! Y_l^m    = sqrt(2) Pbar_l^m(cos t) cos(m phi)    m > 0
-//! Y_l^0    =         Pbar_l^0(cos t)
-//! Y_l^{-m} = sqrt(2) Pbar_l^m(cos t) sin(m phi)    m > 0
-//! ```
-//!
-//! on the world direction `d = (sin t cos phi, sin t sin phi, cos t)`.
-//! No trigonometric function is called: `cos(m phi)` and `sin(m phi)` come
-//! from the complex recurrence `(c_m + i s_m) = (c_{m-1} + i s_{m-1})(x + i y)/s`
-//! on the unit azimuth vector (Sloan 2008, appendix A1, kept unit-length so
-//! nothing underflows at high `m`), and the polar part from the normalised
-//! Legendre recurrences. For `lmax <= 4` the hard-coded polynomials of
-//! the hard-coded polynomials are used.
 
-use crate::sh::legendre::Legendre;
-use crate::sh::low_degree::{Lanes, QuadraticForm, eval_hardcoded, eval_hardcoded_with};
 use glam::DVec3;
 
 use crate::sh::index::sh_count;
+use crate::sh::legendre::Legendre;
+use crate::sh::low_degree::{Lanes, QuadraticForm, eval_hardcoded, eval_hardcoded_with};
 use crate::sh::real::Real;
 
 /// Lanes the batch evaluator processes together (a multiple of every SIMD width).
@@ -39,6 +21,26 @@ const LANES: usize = 16;
 /// basis.eval(glam::DVec3::Z, &mut y);
 /// assert!((y[2] - 0.4886025119029199).abs() < 1e-15); // Y_1^0 at +Z
 /// ```
+///
+/// # The basis
+///
+/// The real orthonormal SH used throughout shlight (Condon-Shortley phase
+/// included; see the crate's conventions) are, with `x = cos t` and
+/// `Pbar_l^m` from [`Legendre`]:
+///
+/// ```text
+/// Y_l^m    = sqrt(2) Pbar_l^m(cos t) cos(m phi)    m > 0
+/// Y_l^0    =         Pbar_l^0(cos t)
+/// Y_l^{-m} = sqrt(2) Pbar_l^m(cos t) sin(m phi)    m > 0
+/// ```
+///
+/// on the world direction `d = (sin t cos phi, sin t sin phi, cos t)`.
+/// No trigonometric function is called: `cos(m phi)` and `sin(m phi)` come
+/// from the complex recurrence `(c_m + i s_m) = (c_{m-1} + i s_{m-1})(x + i y)/s`
+/// on the unit azimuth vector (Sloan 2008, appendix A1, kept unit-length so
+/// nothing underflows at high `m`), and the polar part from the normalised
+/// Legendre recurrences. For `lmax <= 4` the hard-coded Cartesian
+/// polynomials of each function are used instead.
 #[derive(Clone, Debug)]
 pub struct ShBasis<T> {
     lmax: usize,

@@ -1,36 +1,4 @@
 //! Normalised associated Legendre functions by stable recurrences, to any degree.
-//!
-//! This module computes the *SH-normalised* associated Legendre functions
-//!
-//! ```text
-//! Pbar_l^m(x) = K_l^m P_l^m(x),   K_l^m = sqrt((2l+1)/(4 pi) * (l-m)!/(l+m)!),   0 <= m <= l,
-//! ```
-//!
-//! with the Condon-Shortley phase `(-1)^m` included in `P_l^m`, so that the
-//! real SH are `Y_l^0 = Pbar_l^0(cos t)` and `Y_l^{+-m} = sqrt(2) Pbar_l^m(cos t) {cos, sin}(m phi)`
-//! (see [`crate::sh`]). No factorial is ever formed; the recurrences run
-//! directly on normalised values (`s = sqrt(1 - x^2)`):
-//!
-//! ```text
-//! Pbar_0^0     = 1 / sqrt(4 pi)
-//! Pbar_m^m     = -sqrt((2m+1)/(2m)) s Pbar_{m-1}^{m-1}                  (sectoral)
-//! Pbar_{m+1}^m = sqrt(2m+3) x Pbar_m^m
-//! Pbar_l^m     = a_l^m (x Pbar_{l-1}^m - b_l^m Pbar_{l-2}^m),
-//!     a_l^m = sqrt((4l^2-1)/(l^2-m^2)),  b_l^m = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)) = 1/a_{l-1}^m
-//! ```
-//!
-//! **Underflow.** The sectoral values behave like `s^m`, which underflows
-//! `f64` (about `1e-308`) near the poles once `m` is in the hundreds, although
-//! the column recurrence later grows those columns back to significant
-//! values. Each column therefore carries an integer exponent `k <= 0`: the
-//! true value is `p * SMALL^(-k)` with `SMALL = 2^-600` (`2^-60` for `f32`).
-//! A sectoral value that falls under `SMALL` is multiplied by `BIG = 1/SMALL`
-//! and `k` decreases; a column value that grows past `BIG` while `k < 0` is
-//! multiplied by `SMALL` and `k` increases. A value is emitted as `p` when
-//! `k = 0`, `p * SMALL` when `k = -1`, and `0` when it is smaller than that
-//! (below `2^-600`, it cannot matter). This is the extended-exponent scheme of
-//! SHTns and ducc0; it keeps the orthonormality of the computed functions at
-//! about `1e-12` at degree 2048 and beyond (see the tests).
 
 use crate::sh::real::Real;
 
@@ -64,6 +32,42 @@ pub const fn legendre_index(l: usize, m: usize) -> usize {
 /// let want = (3.0 / (4.0 * std::f64::consts::PI)).sqrt() * 0.5;
 /// assert!((p[legendre_index(1, 0)] - want).abs() < 1e-15);
 /// ```
+///
+/// # Recurrences
+///
+/// The functions are the *SH-normalised* associated Legendre functions
+///
+/// ```text
+/// Pbar_l^m(x) = K_l^m P_l^m(x),   K_l^m = sqrt((2l+1)/(4 pi) * (l-m)!/(l+m)!),   0 <= m <= l,
+/// ```
+///
+/// with the Condon-Shortley phase `(-1)^m` included in `P_l^m`, so that the
+/// real SH are `Y_l^0 = Pbar_l^0(cos t)` and `Y_l^{+-m} = sqrt(2) Pbar_l^m(cos t) {cos, sin}(m phi)`
+/// ([`ShBasis`](crate::sh::ShBasis)). No factorial is ever formed; the recurrences run
+/// directly on normalised values (`s = sqrt(1 - x^2)`):
+///
+/// ```text
+/// Pbar_0^0     = 1 / sqrt(4 pi)
+/// Pbar_m^m     = -sqrt((2m+1)/(2m)) s Pbar_{m-1}^{m-1}                  (sectoral)
+/// Pbar_{m+1}^m = sqrt(2m+3) x Pbar_m^m
+/// Pbar_l^m     = a_l^m (x Pbar_{l-1}^m - b_l^m Pbar_{l-2}^m),
+///     a_l^m = sqrt((4l^2-1)/(l^2-m^2)),  b_l^m = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)) = 1/a_{l-1}^m
+/// ```
+///
+/// # Underflow
+///
+/// The sectoral values behave like `s^m`, which underflows
+/// `f64` (about `1e-308`) near the poles once `m` is in the hundreds, although
+/// the column recurrence later grows those columns back to significant
+/// values. Each column therefore carries an integer exponent `k <= 0`: the
+/// true value is `p * SMALL^(-k)` with `SMALL = 2^-600` (`2^-60` for `f32`).
+/// A sectoral value that falls under `SMALL` is multiplied by `BIG = 1/SMALL`
+/// and `k` decreases; a column value that grows past `BIG` while `k < 0` is
+/// multiplied by `SMALL` and `k` increases. A value is emitted as `p` when
+/// `k = 0`, `p * SMALL` when `k = -1`, and `0` when it is smaller than that
+/// (below `2^-600`, it cannot matter). This is the extended-exponent scheme of
+/// SHTns and ducc0; it keeps the orthonormality of the computed functions at
+/// about `1e-12` at degree 2048 and beyond (see the tests).
 #[derive(Clone, Debug)]
 pub struct Legendre<T> {
     lmax: usize,

@@ -1,6 +1,6 @@
 //! Hard-coded polynomial forms of the real SH for `lmax <= 4`.
 //!
-//! These are the Cartesian polynomials of [`crate::sh`]'s functions on the
+//! These are the Cartesian polynomials of [`crate::sh::ShBasis`]'s functions on the
 //! unit sphere (Condon-Shortley phase included), e.g.
 //! `Y_1^{-1} = -sqrt(3/(4pi)) y`, `Y_2^{-2} = sqrt(15/(4pi)) x y`,
 //! `Y_2^0 = sqrt(5/(16pi)) (3z^2 - 1)`. They are the fast path for the common

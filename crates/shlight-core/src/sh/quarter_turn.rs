@@ -1,54 +1,6 @@
 //! Quarter turns of SH coefficients from Wigner's `d(π/2)`, in
 //! `O(lmax^3)` with a small constant: the fast route between the y-up and
 //! z-up frames, which differ by a quarter turn about X.
-//!
-//! A rotation about Y by `π/2` keeps functions even in `y` (`m >= 0`,
-//! `cos mφ`) apart from odd ones (`m < 0`, `sin mφ`). In shlight's real basis
-//! its band-`l` block is, with `d = d^l(π/2)` (Wigner's small d,
-//! `d_{m m'}(β) = <l m| e^{-iβJ_y} |l m'>`) and `a, b > 0`,
-//!
-//! ```text
-//! even:  M_{a b}   = d_{a b} + (-1)^b d_{a,-b}     M_{a 0} = sqrt2 d_{a 0}
-//!        M_{0 b}   = sqrt2 d_{0 b}                 M_{0 0} = d_{0 0}
-//! odd:   M_{-a,-b} = d_{a b} - (-1)^b d_{a,-b}
-//! ```
-//!
-//! (`conj(U) d U^T` for the unitary `U` from complex to real SH, whose
-//! mixed even-odd entries vanish). At `β = π/2` the reflection
-//! `d_{m m'}(π - β) = (-1)^(l+m) d_{m,-m'}(β)` (Varshalovich, Moskalev &
-//! Khersonskii, *Quantum Theory of Angular Momentum*, 4.4) gives
-//! `d_{a,-b} = (-1)^(l+a) d_{a b}`, so
-//!
-//! ```text
-//! even:  M_{a b}   = s_a s_b d_{a b}   when a + b + l is even, else 0
-//! odd:   M_{-a,-b} = 2 d_{a b}         when a + b + l is odd,  else 0
-//! ```
-//!
-//! with `s_0 = 1`, `s_{b>0} = sqrt2`: each block is a checkerboard, and only
-//! the columns `m' >= 0` of `d` are needed. Both blocks are signed-symmetric
-//! (`d_{m m'} = (-1)^(m-m') d_{m' m}`), with the one sign `(-1)^l` (even) or
-//! `(-1)^(l+1)` (odd) on their non-zero entries, so each row of `d` is used
-//! up to the diagonal only, as it leaves the recurrence; no matrix is stored.
-//! Per band and channel that is about `(l+1)^2 / 2` multiply-adds for the
-//! rows and as many for their transposes.
-//!
-//! `d(π/2)` comes from the three-term recurrence in the row index at
-//! `cos β = 0`,
-//!
-//! ```text
-//! sqrt((l+m)(l-m+1)) d_{m-1,m'} = 2 m' d_{m m'} - sqrt((l-m)(l+m+1)) d_{m+1,m'},
-//! ```
-//!
-//! run from the edge `d_{l m'} = (-1)^(l-m') 2^-l sqrt(C(2l, l+m'))` down to
-//! `m = m'`, the direction in which the values grow (stable); each column
-//! runs on its own, so columns of one parity of `m'` sit side by side in
-//! vector lanes, matching the checkerboard.
-//! A quarter turn about X is `Rz(-π/2) Ry(π/2) Rz(π/2)`, and the `Rz` are
-//! exact signed swaps within each `(m, -m)` pair, done per band.
-//!
-//! Coefficients of any value type (`f32`, `f64`, `Vec3`, `DVec3`) are turned
-//! in `f64`; `f32` ones are widened on the way in and rounded once on the
-//! way out.
 
 use core::f64::consts::SQRT_2;
 
@@ -57,7 +9,7 @@ use crate::sh::sh_coeffs::ShCoeffs;
 use crate::sh::sh_value::ShValue;
 
 /// The rows of `d^l(π/2)` from `m = l` down to `0`, by the recurrence (see
-/// the module docs), columns `m' = 0..=m` only, split by the parity of `m'`
+/// [`quarter_turn_x`]), columns `m' = 0..=m` only, split by the parity of `m'`
 /// (index `k` of part `p` is column `m' = 2k + p`).
 struct HalfPiRows {
     l: usize,
@@ -173,7 +125,7 @@ unsafe fn turn_y_band_avx<C: ShValue>(l: usize, x: &[C], out: &mut [C]) {
 }
 
 /// The band's product with the even block `E = S D S` and the odd block
-/// `O = 2 D` (module docs; `D` the checkerboard part of `d`, `S` the
+/// `O = 2 D` ([`quarter_turn_x`]; `D` the checkerboard part of `d`, `S` the
 /// `s_b`): inputs are scaled by `S` on the way in, outputs by `S` (even)
 /// or 2 (odd) on the way out.
 #[inline(always)]
@@ -387,7 +339,7 @@ fn quarter_turn_z_band<C: ShValue>(l: usize, band: &mut [C], turns: i32) {
 ///
 /// Band by band, `g_l = Rz(∓π/2) Ry(π/2) Rz(±π/2) f_l`: the `Rz` are exact
 /// signed swaps of `f_l^m` and `f_l^-m`, and `Ry(π/2)` is the checkerboard
-/// block of Wigner's `d^l(π/2)` from the module docs. Equals
+/// block of Wigner's `d^l(π/2)` below. Equals
 /// `rotate_once(f, R)` to rounding, at a fraction of the cost: about
 /// `(l+1)^2` multiply-adds per band and channel, and no rotation blocks built
 /// by recurrence. Bands run in parallel with the `rayon` feature.
@@ -401,6 +353,56 @@ fn quarter_turn_z_band<C: ShValue>(l: usize, band: &mut [C], turns: i32) {
 ///
 /// # Panics
 /// If `turns` is not `1` or `-1`.
+///
+/// # The blocks
+///
+/// A rotation about Y by `π/2` keeps functions even in `y` (`m >= 0`,
+/// `cos mφ`) apart from odd ones (`m < 0`, `sin mφ`). In shlight's real basis
+/// its band-`l` block is, with `d = d^l(π/2)` (Wigner's small d,
+/// `d_{m m'}(β) = <l m| e^{-iβJ_y} |l m'>`) and `a, b > 0`,
+///
+/// ```text
+/// even:  M_{a b}   = d_{a b} + (-1)^b d_{a,-b}     M_{a 0} = sqrt2 d_{a 0}
+///        M_{0 b}   = sqrt2 d_{0 b}                 M_{0 0} = d_{0 0}
+/// odd:   M_{-a,-b} = d_{a b} - (-1)^b d_{a,-b}
+/// ```
+///
+/// (`conj(U) d U^T` for the unitary `U` from complex to real SH, whose
+/// mixed even-odd entries vanish). At `β = π/2` the reflection
+/// `d_{m m'}(π - β) = (-1)^(l+m) d_{m,-m'}(β)` (Varshalovich, Moskalev &
+/// Khersonskii, *Quantum Theory of Angular Momentum*, 4.4) gives
+/// `d_{a,-b} = (-1)^(l+a) d_{a b}`, so
+///
+/// ```text
+/// even:  M_{a b}   = s_a s_b d_{a b}   when a + b + l is even, else 0
+/// odd:   M_{-a,-b} = 2 d_{a b}         when a + b + l is odd,  else 0
+/// ```
+///
+/// with `s_0 = 1`, `s_{b>0} = sqrt2`: each block is a checkerboard, and only
+/// the columns `m' >= 0` of `d` are needed. Both blocks are signed-symmetric
+/// (`d_{m m'} = (-1)^(m-m') d_{m' m}`), with the one sign `(-1)^l` (even) or
+/// `(-1)^(l+1)` (odd) on their non-zero entries, so each row of `d` is used
+/// up to the diagonal only, as it leaves the recurrence; no matrix is stored.
+/// Per band and channel that is about `(l+1)^2 / 2` multiply-adds for the
+/// rows and as many for their transposes.
+///
+/// `d(π/2)` comes from the three-term recurrence in the row index at
+/// `cos β = 0`,
+///
+/// ```text
+/// sqrt((l+m)(l-m+1)) d_{m-1,m'} = 2 m' d_{m m'} - sqrt((l-m)(l+m+1)) d_{m+1,m'},
+/// ```
+///
+/// run from the edge `d_{l m'} = (-1)^(l-m') 2^-l sqrt(C(2l, l+m'))` down to
+/// `m = m'`, the direction in which the values grow (stable); each column
+/// runs on its own, so columns of one parity of `m'` sit side by side in
+/// vector lanes, matching the checkerboard.
+/// A quarter turn about X is `Rz(-π/2) Ry(π/2) Rz(π/2)`, and the `Rz` are
+/// exact signed swaps within each `(m, -m)` pair, done per band.
+///
+/// Coefficients of any value type (`f32`, `f64`, `Vec3`, `DVec3`) are turned
+/// in `f64`; `f32` ones are widened on the way in and rounded once on the
+/// way out.
 #[must_use]
 pub fn quarter_turn_x<C: ShValue>(f: &ShCoeffs<C>, turns: i32) -> ShCoeffs<C> {
     assert!(
@@ -514,7 +516,7 @@ mod tests {
             .collect()
     }
 
-    /// `Ry(π/2)` on band `l` by the module docs' first formula, from the
+    /// `Ry(π/2)` on band `l` by the first formula of [`quarter_turn_x`]'s docs, from the
     /// dense `d`: every entry of both blocks, no checkerboard, no symmetry.
     fn dense_turn_y(l: usize, x: &[DVec3]) -> Vec<DVec3> {
         let d = dense_d(l);

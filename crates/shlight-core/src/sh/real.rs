@@ -12,7 +12,7 @@ use glam::DVec3;
 /// Legendre recurrence ([`Real::BIG`], [`Real::SMALL`]): values that would
 /// underflow are kept as `mantissa * SMALL^k` with an integer `k`, which is
 /// what keeps `f64` evaluation accurate far past lmax 1000
-/// (see [`crate::sh`]).
+/// ([`crate::sh::Legendre`]).
 pub trait Real:
     Copy
     + PartialOrd

@@ -1,106 +1,6 @@
-//! Rotation of SH coefficients to any `lmax`: [`ShRotation`], the cheap
-//! rotation about +Z [`rotate_z`], and the y-up / z-up [`Frame`] conversion.
-//!
-//! # What a rotation does
-//!
-//! For a rotation matrix `R` (orthonormal, `det R = +1`) the rotated function
-//! is
-//!
-//! ```text
-//! g(d) = f(R^T d)
-//! ```
-//!
-//! i.e. the function is carried along by `R`: a light that came from
-//! direction `a` comes from `R a` afterwards. Rotations never mix degrees, so
-//! on the coefficients the rotation is block diagonal, one orthogonal
-//! `(2l+1) x (2l+1)` block `M^l(R)` per degree:
-//!
-//! ```text
-//! Y_l^m(R d) = sum_{m'} M^l_{m m'}(R) Y_l^{m'}(d)      (definition of M^l)
-//! g_l^m      = sum_{m'} M^l_{m m'}(R) f_l^{m'}          (what `apply` computes)
-//! ```
-//!
-//! (substitute `d = R e` in `g_l^m = int f(R^T d) Y_l^m(d) dd`). With these
-//! definitions `M^l(R_a R_b) = M^l(R_a) M^l(R_b)` and `M^l(R^T) = M^l(R)^T`,
-//! and the coefficients of a directional light `Y_l^m(a)` become exactly
-//! `Y_l^m(R a)`.
-//!
-//! # How the blocks are built
-//!
-//! Degree 1 is read off `R` directly. In shlight's basis (Condon-Shortley
-//! phase included) `(Y_1^{-1}, Y_1^0, Y_1^1) = sqrt(3/(4 pi)) P d` with
-//! `P d = (-y, z, -x)`, so `M^1 = P R P^T`:
-//! `M^1_{ij} = s_i s_j R[a_i][a_j]`, axes `a = (y, z, x)`, signs
-//! `s = (-1, +1, -1)`.
-//!
-//! Higher degrees follow from `M^1` and `M^{l-1}` by the recurrence of
-//! Ivanic & Ruedenberg, "Rotation matrices for real spherical harmonics.
-//! Direct determination by recursion", J. Phys. Chem. 100 (1996) 6342,
-//! eq. 8.1 and tables 1-2, with the corrections of their erratum (J. Phys.
-//! Chem. A 102 (1998) 9099). Their row side, for `l >= 2`, `d = [m == 0]`:
-//!
-//! ```text
-//! u = sqrt((l+m)(l-m)),  v = 1/2 sqrt((1+d)(l+|m|-1)(l+|m|)) (1-2d),
-//! w = -1/2 sqrt((l-|m|-1)(l-|m|)) (1-d)
-//! u U + v V + w W   with   P(i, a, .) = M^1_{i,.} (x) M^{l-1}_{a,.}  and
-//! U = P(0, m)
-//! V = P(1, 1) + P(-1, -1)                                         m = 0
-//!   = P(1, m-1) sqrt(1 + [m=1])  - P(-1, 1-m) (1 - [m=1])          m > 0
-//!   = P(1, m+1) (1 - [m=-1])     + P(-1, -m-1) sqrt(1 + [m=-1])    m < 0
-//! W = P(1, m+1) + P(-1, -m-1)                                     m > 0
-//!   = P(1, m-1) - P(-1, 1-m)                                      m < 0
-//! ```
-//!
-//! These terms, divided by `sqrt(l(2l-1))`, are exactly column `m` of the
-//! coupling isometry `C: V_l -> V_1 (x) V_{l-1}` (real Clebsch-Gordan
-//! coefficients; `u^2 + 2v^2 + 2w^2 = l(2l-1)` for every `m`), and the
-//! recurrence is `M^l = C^T (M^1 (x) M^{l-1}) C`. Ivanic & Ruedenberg
-//! evaluate the column side `C` by picking one product term per column `n`
-//! (`P(i, a, n) = M^1_{i,0} M^{l-1}_{a,n}` for `|n| < l`) and dividing by its
-//! coefficient, their `sqrt(denom)`, `denom = (l+n)(l-n)`, which is small
-//! for `|n|` near `l`. That division amplifies rounding at every degree: in
-//! double precision `|M M^T - I|` grows about tenfold per ten degrees
-//! (1e-12 at `l` 50, 1e-3 at `l` 150, above 1 by `l` 180). shlight
-//! therefore applies the same terms on both sides:
-//!
-//! ```text
-//! M^l_{mn} = 1/(l(2l-1)) sum_{(c,i,a) in terms(m)} sum_{(c',j,b) in terms(n)}
-//!            c c' M^1_{ij} M^{l-1}_{ab}
-//! ```
-//!
-//! Equal to the published recurrence in exact arithmetic (its `|n| = l`
-//! columns are this formula already), but `C` is an isometry, so an error
-//! in `M^{l-1}` passes to `M^l` without amplification and rounding only
-//! adds up: `|M M^T - I|` grows linearly, below `3e-13` to `l` 256 (`1e-14`
-//! to `1e-13` typically; measured over random rotations).
-//!
-//! The `m < 0` line of `V` is where the published versions disagree (shlight's
-//! reference notes that the erratum itself still has a sign error there).
-//! The `+` above is the sign the tests in `tests/rotation.rs` accept:
-//! with the second term negated, every block from degree 2 on is wrong
-//! (`|M M^T - I| ~ 1` at `l = 2`, lights land in the wrong place). It is also
-//! the only sign that reproduces the paper's own `n = -l` column
-//! (`P(i, a, -l) = M^1_{i,1} M^{l-1}_{a,1-l} + M^1_{i,-1} M^{l-1}_{a,l-1}`).
-//!
-//! The recurrence only multiplies by factors that depend on `(l, m, n)`, so
-//! it is the same in the basis with and without the Condon-Shortley phase:
-//! conjugating every `M^l` by `diag((-1)^m)` (the phase toggle, which is
-//! also `M^l` of the half turn about Z) maps solutions to solutions, because
-//! every product in it carries the sign `(-1)^(m+n)`. shlight therefore runs
-//! it directly on its own `M^1`. Nothing divides by a quantity that depends
-//! on `R`, so half and quarter turns are as accurate as any other rotation.
-//!
-//! # Cost and accuracy
-//!
-//! Building costs `O(lmax^3)`: about `80 l^2` multiply-adds for degree `l`
-//! (each entry is at most 25 products, shared through the row side). It
-//! stores `sum (2l+1)^2 ~ (4/3) lmax^3` values (180 MB at `lmax` 256).
-//! Applying costs `sum (2l+1)^2` multiply-adds per channel, also
-//! `O(lmax^3)`. Every block is orthogonal to about `1e-13` or better at
-//! `lmax` 64 and 256 (measured by the tests).
-//!
-//! The rotation about +Z alone needs no blocks: [`rotate_z`] does it in
-//! `O(lmax^2)` from `cos(m alpha)`, `sin(m alpha)`.
+//! Rotation of SH coefficients to any `lmax`: [`ShRotation`] (its blocks by
+//! the Ivanic-Ruedenberg recurrence), the cheap rotation about +Z
+//! [`rotate_z`], and [`rotate_once`] without stored blocks.
 
 use core::ops::Mul;
 
@@ -123,7 +23,7 @@ pub const ORTHONORMAL_TOLERANCE: f64 = 1e-6;
 /// The rotation of SH coefficients by a 3-D rotation `R`, to degree `lmax`:
 /// one `(2l+1) x (2l+1)` orthogonal block `M^l(R)` per degree `l = 0..=lmax`.
 ///
-/// Semantics (see the [module documentation](self) for the maths): applied
+/// Semantics (the maths below): applied
 /// to the coefficients of `f`, it gives those of `g(d) = f(R^T d)`, the
 /// function carried along by `R`. The coefficients of a directional light
 /// from `a`, `Y_l^m(a)`, become `Y_l^m(R a)`.
@@ -145,6 +45,107 @@ pub const ORTHONORMAL_TOLERANCE: f64 = 1e-6;
 ///     assert!((g - w).abs() < 1e-14);
 /// }
 /// ```
+///
+/// # What a rotation does
+///
+/// For a rotation matrix `R` (orthonormal, `det R = +1`) the rotated function
+/// is
+///
+/// ```text
+/// g(d) = f(R^T d)
+/// ```
+///
+/// i.e. the function is carried along by `R`: a light that came from
+/// direction `a` comes from `R a` afterwards. Rotations never mix degrees, so
+/// on the coefficients the rotation is block diagonal, one orthogonal
+/// `(2l+1) x (2l+1)` block `M^l(R)` per degree:
+///
+/// ```text
+/// Y_l^m(R d) = sum_{m'} M^l_{m m'}(R) Y_l^{m'}(d)      (definition of M^l)
+/// g_l^m      = sum_{m'} M^l_{m m'}(R) f_l^{m'}          (what `apply` computes)
+/// ```
+///
+/// (substitute `d = R e` in `g_l^m = int f(R^T d) Y_l^m(d) dd`). With these
+/// definitions `M^l(R_a R_b) = M^l(R_a) M^l(R_b)` and `M^l(R^T) = M^l(R)^T`,
+/// and the coefficients of a directional light `Y_l^m(a)` become exactly
+/// `Y_l^m(R a)`.
+///
+/// # How the blocks are built
+///
+/// Degree 1 is read off `R` directly. In shlight's basis (Condon-Shortley
+/// phase included) `(Y_1^{-1}, Y_1^0, Y_1^1) = sqrt(3/(4 pi)) P d` with
+/// `P d = (-y, z, -x)`, so `M^1 = P R P^T`:
+/// `M^1_{ij} = s_i s_j R[a_i][a_j]`, axes `a = (y, z, x)`, signs
+/// `s = (-1, +1, -1)`.
+///
+/// Higher degrees follow from `M^1` and `M^{l-1}` by the recurrence of
+/// Ivanic & Ruedenberg, "Rotation matrices for real spherical harmonics.
+/// Direct determination by recursion", J. Phys. Chem. 100 (1996) 6342,
+/// eq. 8.1 and tables 1-2, with the corrections of their erratum (J. Phys.
+/// Chem. A 102 (1998) 9099). Their row side, for `l >= 2`, `d = [m == 0]`:
+///
+/// ```text
+/// u = sqrt((l+m)(l-m)),  v = 1/2 sqrt((1+d)(l+|m|-1)(l+|m|)) (1-2d),
+/// w = -1/2 sqrt((l-|m|-1)(l-|m|)) (1-d)
+/// u U + v V + w W   with   P(i, a, .) = M^1_{i,.} (x) M^{l-1}_{a,.}  and
+/// U = P(0, m)
+/// V = P(1, 1) + P(-1, -1)                                         m = 0
+///   = P(1, m-1) sqrt(1 + [m=1])  - P(-1, 1-m) (1 - [m=1])          m > 0
+///   = P(1, m+1) (1 - [m=-1])     + P(-1, -m-1) sqrt(1 + [m=-1])    m < 0
+/// W = P(1, m+1) + P(-1, -m-1)                                     m > 0
+///   = P(1, m-1) - P(-1, 1-m)                                      m < 0
+/// ```
+///
+/// These terms, divided by `sqrt(l(2l-1))`, are exactly column `m` of the
+/// coupling isometry `C: V_l -> V_1 (x) V_{l-1}` (real Clebsch-Gordan
+/// coefficients; `u^2 + 2v^2 + 2w^2 = l(2l-1)` for every `m`), and the
+/// recurrence is `M^l = C^T (M^1 (x) M^{l-1}) C`. Ivanic & Ruedenberg
+/// evaluate the column side `C` by picking one product term per column `n`
+/// (`P(i, a, n) = M^1_{i,0} M^{l-1}_{a,n}` for `|n| < l`) and dividing by its
+/// coefficient, their `sqrt(denom)`, `denom = (l+n)(l-n)`, which is small
+/// for `|n|` near `l`. That division amplifies rounding at every degree: in
+/// double precision `|M M^T - I|` grows about tenfold per ten degrees
+/// (1e-12 at `l` 50, 1e-3 at `l` 150, above 1 by `l` 180). shlight
+/// therefore applies the same terms on both sides:
+///
+/// ```text
+/// M^l_{mn} = 1/(l(2l-1)) sum_{(c,i,a) in terms(m)} sum_{(c',j,b) in terms(n)}
+///            c c' M^1_{ij} M^{l-1}_{ab}
+/// ```
+///
+/// Equal to the published recurrence in exact arithmetic (its `|n| = l`
+/// columns are this formula already), but `C` is an isometry, so an error
+/// in `M^{l-1}` passes to `M^l` without amplification and rounding only
+/// adds up: `|M M^T - I|` grows linearly, below `3e-13` to `l` 256 (`1e-14`
+/// to `1e-13` typically; measured over random rotations).
+///
+/// The `m < 0` line of `V` is where the published versions disagree (shlight's
+/// reference notes that the erratum itself still has a sign error there).
+/// The `+` above is the sign the tests in `tests/rotation.rs` accept:
+/// with the second term negated, every block from degree 2 on is wrong
+/// (`|M M^T - I| ~ 1` at `l = 2`, lights land in the wrong place). It is also
+/// the only sign that reproduces the paper's own `n = -l` column
+/// (`P(i, a, -l) = M^1_{i,1} M^{l-1}_{a,1-l} + M^1_{i,-1} M^{l-1}_{a,l-1}`).
+///
+/// The recurrence only multiplies by factors that depend on `(l, m, n)`, so
+/// it is the same in the basis with and without the Condon-Shortley phase:
+/// conjugating every `M^l` by `diag((-1)^m)` (the phase toggle, which is
+/// also `M^l` of the half turn about Z) maps solutions to solutions, because
+/// every product in it carries the sign `(-1)^(m+n)`. shlight therefore runs
+/// it directly on its own `M^1`. Nothing divides by a quantity that depends
+/// on `R`, so half and quarter turns are as accurate as any other rotation.
+///
+/// # Cost and accuracy
+///
+/// Building costs `O(lmax^3)`: about `80 l^2` multiply-adds for degree `l`
+/// (each entry is at most 25 products, shared through the row side). It
+/// stores `sum (2l+1)^2 ~ (4/3) lmax^3` values (180 MB at `lmax` 256).
+/// Applying costs `sum (2l+1)^2` multiply-adds per channel, also
+/// `O(lmax^3)`. Every block is orthogonal to about `1e-13` or better at
+/// `lmax` 64 and 256 (measured by the tests).
+///
+/// The rotation about +Z alone needs no blocks: [`rotate_z`] does it in
+/// `O(lmax^2)` from `cos(m alpha)`, `sin(m alpha)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShRotation {
     lmax: usize,

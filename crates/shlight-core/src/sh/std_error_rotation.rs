@@ -1,11 +1,4 @@
 //! Standard errors of coefficients carried through a rotation.
-//!
-//! A Monte Carlo estimate comes with a standard error `σ_n` per
-//! coefficient. Rotating the estimate mixes the coefficients of each degree
-//! `l` by the rotation's block `M` ([`ShRotation::block`]); taking the
-//! errors of one degree as independent, the rotated errors are
-//! `σ'_m = sqrt(Σ_n M_mn² σ_n²)` (the variance of a linear combination of
-//! independent variables), per colour channel.
 
 use glam::DVec3;
 
@@ -15,6 +8,13 @@ use crate::sh::sh_coeffs::ShCoeffs;
 /// The standard errors `se` after `rotation`: per degree `l` and channel,
 /// `σ'_m = sqrt(Σ_n M_mn² σ_n²)` with `M` the rotation's `(2l+1)²` block.
 /// Degrees above the rotation's lmax are returned as 0.
+///
+/// A Monte Carlo estimate comes with a standard error `σ_n` per
+/// coefficient. Rotating the estimate mixes the coefficients of each degree
+/// `l` by the rotation's block `M` ([`ShRotation::block`]); taking the
+/// errors of one degree as independent, the rotated errors are
+/// `σ'_m = sqrt(Σ_n M_mn² σ_n²)` (the variance of a linear combination of
+/// independent variables), per colour channel.
 pub fn rotate_std_error(rotation: &ShRotation, se: &ShCoeffs<DVec3>) -> ShCoeffs<DVec3> {
     let mut out = ShCoeffs::<DVec3>::zeros(se.lmax());
     for l in 0..=se.lmax().min(rotation.lmax()) {

@@ -1,36 +1,5 @@
 //! Windowing SH expansions against ringing, and an automatic window that
 //! makes a reconstruction non-negative on the whole sphere.
-//!
-//! A truncated SH expansion of a function with a sharp feature (a sun, a
-//! window frame, the kink of the clamped cosine) rings: it overshoots and goes
-//! negative away from the feature. The remedy in Sloan 2008, "Stupid
-//! Spherical Harmonics (SH) Tricks", section "Windowing", is to multiply each
-//! degree `l` by a factor `w_l` that falls from 1 at `l = 0` towards 0 at the
-//! highest degree:
-//!
-//! ```text
-//! f'_l^m = w_l f_l^m                                   (a zonal convolution)
-//! Hanning:   w_l = (1 + cos(pi l / w)) / 2   l < w,   0 for l >= w
-//! Lanczos:   w_l = sinc(pi l / w) = sin(pi l / w) / (pi l / w)   l < w,   0 for l >= w
-//! Laplacian: w_l = 1 / (1 + lambda l^2 (l+1)^2)
-//! ```
-//!
-//! The Laplacian-penalised form is the minimiser of
-//! `int (f' - f)^2 + lambda int (Laplacian f')^2` over the sphere (the SH
-//! are eigenfunctions of the Laplacian with eigenvalue `-l(l+1)`), also from
-//! Sloan 2008. Sloan suggests `w` somewhat past `lmax` for Hanning and
-//! Lanczos; here `w` is any positive real, and `w <= 1` keeps only `l = 0`.
-//!
-//! Every window keeps `w_0 = 1`, so the mean of the function (its integral)
-//! is unchanged, and every factor lies in `[0, 1]`.
-//!
-//! [`crate::sh::auto_window()`] picks the weakest window of a family whose
-//! reconstruction (or its irradiance) is non-negative everywhere on the
-//! sphere; it rests on [`crate::sh::sphere_minimum()`], a dense-then-local global
-//! minimum search (re-exported here as [`sphere_minimum()`]).
-//!
-//! Conventions (real orthonormal SH, Condon-Shortley phase, flat index
-//! `l*(l+1)+m`) are those of the crate root.
 
 use core::f64::consts::PI;
 use core::fmt;
@@ -42,7 +11,7 @@ use crate::sh::sh_value::ShValue;
 
 /// A per-degree window `w_l` applied to SH coefficients to reduce ringing
 /// (Sloan 2008, "Stupid Spherical Harmonics (SH) Tricks", section
-/// "Windowing"). See the [module documentation](self) for the formulas.
+/// "Windowing"); the formulas are below.
 ///
 /// The CLI spelling ([`FromStr`] / [`Display`](fmt::Display), round-trip
 /// exact) is `none`, `hanning:W`, `lanczos:W`, `laplacian:LAMBDA`.
@@ -56,6 +25,34 @@ use crate::sh::sh_value::ShValue;
 /// assert_eq!(w.factor(6), 0.0);
 /// assert_eq!(w.to_string(), "hanning:6");
 /// ```
+///
+/// A truncated SH expansion of a function with a sharp feature (a sun, a
+/// window frame, the kink of the clamped cosine) rings: it overshoots and goes
+/// negative away from the feature. The remedy in Sloan 2008, "Stupid
+/// Spherical Harmonics (SH) Tricks", section "Windowing", is to multiply each
+/// degree `l` by a factor `w_l` that falls from 1 at `l = 0` towards 0 at the
+/// highest degree:
+///
+/// ```text
+/// f'_l^m = w_l f_l^m                                   (a zonal convolution)
+/// Hanning:   w_l = (1 + cos(pi l / w)) / 2   l < w,   0 for l >= w
+/// Lanczos:   w_l = sinc(pi l / w) = sin(pi l / w) / (pi l / w)   l < w,   0 for l >= w
+/// Laplacian: w_l = 1 / (1 + lambda l^2 (l+1)^2)
+/// ```
+///
+/// The Laplacian-penalised form is the minimiser of
+/// `int (f' - f)^2 + lambda int (Laplacian f')^2` over the sphere (the SH
+/// are eigenfunctions of the Laplacian with eigenvalue `-l(l+1)`), also from
+/// Sloan 2008. Sloan suggests `w` somewhat past `lmax` for Hanning and
+/// Lanczos; here `w` is any positive real, and `w <= 1` keeps only `l = 0`.
+///
+/// Every window keeps `w_0 = 1`, so the mean of the function (its integral)
+/// is unchanged, and every factor lies in `[0, 1]`.
+///
+/// [`crate::sh::auto_window()`] picks the weakest window of a family whose
+/// reconstruction (or its irradiance) is non-negative everywhere on the
+/// sphere; it rests on [`crate::sh::sphere_minimum()`], a dense-then-local
+/// global minimum search.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Window {
     /// No window: `w_l = 1`.

@@ -12,7 +12,7 @@ use crate::map::radiance_map::RadianceMap;
 
 /// A borrowed environment map in any [`Layout`]: `width x height` linear
 /// RGB texels, row-major from the top-left corner, read in `orientation`
-/// (see the [module documentation](crate::map) for every convention).
+/// (see [`Layout`] for every convention).
 ///
 /// The methods assume the size fits the layout ([`Layout::check_size`]);
 /// [`EnvMap::new`] checks it and the pixel count. With a size that does not
@@ -71,7 +71,7 @@ impl<'a> EnvMap<'a> {
     /// texels that hold no direction (unused cells of a cross, disc texels
     /// wholly outside the disc) and for `x >= width` or `y >= height`.
     /// Disc rim texels whose centre lies outside the disc give the rim's
-    /// single direction (module docs).
+    /// single direction ([`Layout`]).
     #[must_use]
     pub fn texel_direction(&self, x: usize, y: usize) -> Option<DVec3> {
         self.geometry().direction(x, y)
@@ -81,8 +81,8 @@ impl<'a> EnvMap<'a> {
     /// texels that hold no direction. Over all texels the values sum to `4π`.
     ///
     /// Equirect `(2π/W)(cos(yπ/H) - cos((y+1)π/H))`; cube
-    /// [`cube_texel_solid_angle`](super::cube_texel_solid_angle); disc `int w(r) dA` over the texel's part
-    /// of the disc (module docs). A disc texel costs a few microseconds
+    /// [`cube_texel_solid_angle`](crate::map::cube_texel_solid_angle); disc
+    /// `int w(r) dA` over the texel's part of the disc ([`Layout`]). A disc texel costs a few microseconds
     /// here (the rules are rebuilt per call); [`EnvMap::texel_solid_angles`]
     /// and the projection build them once.
     #[must_use]

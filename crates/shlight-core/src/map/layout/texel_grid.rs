@@ -14,11 +14,11 @@ use crate::map::orientation::MapOrientation;
 
 /// A `width x height` image of one [`Layout`] read in one
 /// [`MapOrientation`], seen as texels that look in world directions (the
-/// conventions of the [module documentation](crate::map)).
+/// conventions of [`Layout`]).
 ///
 /// - [`TexelGrid::direction`]: the unit world direction of a texel's
 ///   centre (`None` for texels the layout leaves unused), as
-///   [`EnvMap::texel_direction`](super::EnvMap::texel_direction);
+///   [`EnvMap::texel_direction`](crate::map::EnvMap::texel_direction);
 /// - [`TexelGrid::sample`]: points inside a texel whose regular grids
 ///   average a function over the texel;
 /// - [`TexelGrid::solid_angle`]: the exact solid angle a texel covers;
@@ -134,7 +134,7 @@ impl TexelGrid {
 
     /// The exact solid angle texel `(x, y)` covers (steradians; 0 for
     /// unused texels and outside the image), as
-    /// [`EnvMap::texel_solid_angle`](super::EnvMap::texel_solid_angle):
+    /// [`EnvMap::texel_solid_angle`](crate::map::EnvMap::texel_solid_angle):
     /// a disc texel rebuilds its rules per call, so for many texels use
     /// [`TexelGrid::solid_angles`]. Over all texels they sum to `4π`.
     #[must_use]
@@ -143,14 +143,14 @@ impl TexelGrid {
     }
 
     /// Every texel's solid angle, row-major (`width * height` values), as
-    /// [`EnvMap::texel_solid_angles`](super::EnvMap::texel_solid_angles).
+    /// [`EnvMap::texel_solid_angles`](crate::map::EnvMap::texel_solid_angles).
     #[must_use]
     pub fn solid_angles(&self) -> Vec<f64> {
         self.geo.solid_angles()
     }
 
     /// The texel that direction `d` (finite, non-zero) falls in: the image
-    /// point of [`EnvMap::direction_to_image`](super::EnvMap::direction_to_image),
+    /// point of [`EnvMap::direction_to_image`](crate::map::EnvMap::direction_to_image),
     /// floored and clamped to the image. For every texel whose centre
     /// carries its own direction, `texel_of(direction(x, y)) == (x, y)`.
     #[must_use]

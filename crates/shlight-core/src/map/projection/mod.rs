@@ -1,55 +1,16 @@
-//! Projection of environment maps to SH by exact texel-solid-angle quadrature.
-//!
-//! The estimate of each radiance coefficient is the sum over texels
-//!
-//! ```text
-//! L_l^m ≈ sum_texels f(texel) Y_l^m(d(texel centre)) Ω(texel)
-//! ```
-//!
-//! with `Ω` the exact solid angle the texel covers ([`crate::map`] gives
-//! both for every layout). For an equirect map of `W x H` texels every
-//! texel of row `j` covers `Ω_j = (2π/W)(cos(jπ/H) - cos((j+1)π/H))`
-//! ([`equirect_row_solid_angle`]), and the rows sum to exactly `4π`.
-//!
-//! **Ring structure.** Rows are rings about the map's own pole. In the z-up
-//! frame that pole is the basis's polar axis, so the sum separates:
-//! per row, azimuthal sums `C_m = sum_i f_i cos(m ψ_i)`, `S_m = sum_i f_i sin(m ψ_i)`,
-//! then `L_l^m += Ω_j sqrt2 Pbar_l^m(cos θ_j) {C_m, S_m}` — `O(W lmax + lmax^2)`
-//! per row instead of `O(W lmax^2)`. A y-up map is projected the same way and
-//! its coefficients rotated by `Rx(-90°)` (docs/conventions.md).
-//!
-//! # Accuracy of projection
-//!
-//! With exact weights only the texel-centre (midpoint) error is left, which
-//! falls as `h²`. Projecting a rendered lmax-4 expansion (constant 3, other
-//! coefficients up to 0.3) back to lmax 4, the worst coefficient is off by
-//! `6.5e-5` (equirect `512 x 256`), `3.6e-4` / `2.2e-5` (cube faces of
-//! `64²` / `256²`), `1.5e-4` / `9.6e-6` (angular `N = 256` / `1024`),
-//! `1.1e-3` / `7.2e-5` (mirror ball `N = 256` / `1024`).
-//!
-//! # Entry points
-//!
-//! [`project`] takes any [`TexelSource`]; [`project_map`] and
-//! [`project_equirect`] are its wrappers for the crate's own contiguous
-//! maps (panicking on a bad size, as they always have). Every route sums
-//! rows in fixed bands, so a result repeats bit for bit for any thread
-//! count.
-//!
-//! The equirect geometry ([`EquirectView`], [`equirect_angles`],
-//! [`equirect_direction`], [`equirect_row_solid_angle`]) and
-//! [`MapOrientation`] are re-exported here from [`crate::map`] and
-//! the crate root.
+//! Projection of environment maps to SH by exact texel-solid-angle
+//! quadrature: [`project`], the entry point for every texel source, and its
+//! wrappers for the crate's own maps.
 
 use glam::DVec3;
 
+use crate::map::equirect::EquirectView;
 use crate::map::layout::env_map::EnvMap;
 use crate::map::layout::kind::{Layout, LayoutSizeError};
-use crate::map::texel_source::TexelSource;
-use crate::sh::sh_coeffs::ShCoeffs;
-
-use crate::map::equirect::EquirectView;
 use crate::map::orientation::MapOrientation;
 use crate::map::projection::pole::to_frame;
+use crate::map::texel_source::TexelSource;
+use crate::sh::sh_coeffs::ShCoeffs;
 
 pub(crate) mod equirect_simple;
 pub(crate) mod layout_quadrature;
@@ -74,7 +35,7 @@ pub(crate) mod rows;
 /// any lmax, the Legendre values carrying an extended exponent; cost
 /// `O(W H min(lmax, log W) + H lmax^2)`; a y-up map's coefficients are then
 /// turned from the map's z-up pole by a quarter turn about X,
-/// [`crate::sh`]), reading each row through
+/// [`crate::sh::quarter_turn_x`]), reading each row through
 /// [`TexelSource::row`] without a copy when the source stores it
 /// contiguously. The other layouts evaluate the basis in batches
 /// ([`crate::sh::ShBasis::eval_batch`]) per row, rows in parallel. The
@@ -89,6 +50,46 @@ pub(crate) mod rows;
 /// # Errors
 /// [`LayoutSizeError`] when the source's size does not fit its layout
 /// ([`Layout::check_size`]).
+///
+/// # Quadrature
+///
+/// The estimate of each radiance coefficient is the sum over texels
+///
+/// ```text
+/// L_l^m ≈ sum_texels f(texel) Y_l^m(d(texel centre)) Ω(texel)
+/// ```
+///
+/// with `Ω` the exact solid angle the texel covers ([`Layout`] gives both
+/// for every layout). For an equirect map of `W x H` texels every texel of
+/// row `j` covers `Ω_j = (2π/W)(cos(jπ/H) - cos((j+1)π/H))`
+/// ([`crate::map::equirect_row_solid_angle`]), and the rows sum to exactly
+/// `4π`.
+///
+/// # Ring structure
+///
+/// Rows are rings about the map's own pole. In the z-up
+/// frame that pole is the basis's polar axis, so the sum separates:
+/// per row, azimuthal sums `C_m = sum_i f_i cos(m ψ_i)`, `S_m = sum_i f_i sin(m ψ_i)`,
+/// then `L_l^m += Ω_j sqrt2 Pbar_l^m(cos θ_j) {C_m, S_m}` — `O(W lmax + lmax^2)`
+/// per row instead of `O(W lmax^2)`. A y-up map is projected the same way and
+/// its coefficients rotated by `Rx(-90°)` (docs/conventions.md).
+///
+/// # Accuracy of projection
+///
+/// With exact weights only the texel-centre (midpoint) error is left, which
+/// falls as `h²`. Projecting a rendered lmax-4 expansion (constant 3, other
+/// coefficients up to 0.3) back to lmax 4, the worst coefficient is off by
+/// `6.5e-5` (equirect `512 x 256`), `3.6e-4` / `2.2e-5` (cube faces of
+/// `64²` / `256²`), `1.5e-4` / `9.6e-6` (angular `N = 256` / `1024`),
+/// `1.1e-3` / `7.2e-5` (mirror ball `N = 256` / `1024`).
+///
+/// # Entry points
+///
+/// [`project`] takes any [`TexelSource`]; [`project_map`] and
+/// [`project_equirect`] are its wrappers for the crate's own contiguous
+/// maps (panicking on a bad size, as they always have). Every route sums
+/// rows in fixed bands, so a result repeats bit for bit for any thread
+/// count.
 pub fn project<S: TexelSource + ?Sized>(
     source: &S,
     lmax: usize,

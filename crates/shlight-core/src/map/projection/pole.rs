@@ -8,7 +8,7 @@ use crate::sh::sh_coeffs::ShCoeffs;
 
 /// Coefficients computed about the map's pole (z-up) turned into `frame`:
 /// unchanged for z-up, a quarter turn about X (`Rx(-90°)`,
-/// [`crate::sh`]) for y-up. The last step of [`super::project_equirect`],
+/// [`crate::sh::quarter_turn_x`]) for y-up. The last step of [`super::project_equirect`],
 /// public for other routes to the same ring sums (the GPU's).
 #[must_use]
 pub fn to_frame(zup: ShCoeffs<DVec3>, frame: Frame) -> ShCoeffs<DVec3> {

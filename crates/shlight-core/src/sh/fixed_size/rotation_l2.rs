@@ -2,43 +2,6 @@
 //! dense blocks (3x3 for degree 1, 5x5 for degree 2), built straight from
 //! the rotation matrix for the fixed-size types ([`crate::sh::ShL1`],
 //! [`crate::sh::ShL2`] and their RGB forms).
-//!
-//! # Convention
-//!
-//! As for [`crate::sh::ShRotation`]: rotating the coefficients of `f` by `R`
-//! gives those of `g(d) = f(R^T d)`, so a light from `a` comes from `R a`
-//! afterwards. The blocks `M^l` are defined by
-//! `Y_l^m(R d) = sum_n M^l_{mn} Y_l^n(d)` and act as `g_l^m = sum_n M^l_{mn} f_l^n`.
-//!
-//! # Derivation (independent of the Ivanic-Ruedenberg recurrence)
-//!
-//! Degree 1: `(Y_1^{-1}, Y_1^0, Y_1^1) = sqrt(3/(4 pi)) (-y, z, -x)`, so
-//! `M^1_{ij} = s_i s_j R[a_i][a_j]` with axes `a = (y, z, x)` and signs
-//! `s = (-1, +1, -1)`.
-//!
-//! Degree 2: on the unit sphere every degree-2 function is a quadratic form
-//! `d^T S d` with a traceless symmetric `S`. With `k = sqrt(15/pi)/4`
-//! (half of [`crate::sh::low_degree`]'s `sqrt(15/pi)/2`) and
-//! `k_0 = sqrt(5/(16 pi))`:
-//!
-//! ```text
-//! Y_2^-2 = d^T S_-2 d,  S_-2 =  k (E_xy + E_yx)
-//! Y_2^-1 = d^T S_-1 d,  S_-1 = -k (E_yz + E_zy)
-//! Y_2^0  = d^T S_0 d,   S_0  =  k_0 diag(-1, -1, 2)     (3 z^2 - 1 = 2 z^2 - x^2 - y^2)
-//! Y_2^1  = d^T S_1 d,   S_1  = -k (E_xz + E_zx)
-//! Y_2^2  = d^T S_2 d,   S_2  =  k diag(1, -1, 0)
-//! ```
-//!
-//! These five are orthogonal in the Frobenius product and all have
-//! `|S_m|_F^2 = 15/(8 pi)`. Then `Y_2^m(R d) = d^T (R^T S_m R) d`, and
-//! `R^T S_m R` is again traceless symmetric, so
-//!
-//! ```text
-//! M^2_{mn} = <S_n, R^T S_m R>_F / (15/(8 pi)).
-//! ```
-//!
-//! The blocks are built in `f64` whatever `T` is, then rounded to `T`.
-//! Building costs about 500 multiply-adds; applying costs 9 + 25 per channel.
 
 use core::f64::consts::PI;
 
@@ -52,8 +15,8 @@ use crate::sh::rotation::ORTHONORMAL_TOLERANCE;
 /// Applied to the coefficients of `f` it gives those of `g(d) = f(R^T d)`:
 /// a light from `a` comes from `R a` afterwards (the convention of
 /// [`crate::sh::ShRotation`]). Build it once and rotate many probes with
-/// [`crate::sh::ShL2::rotated_by`] and friends; the module documentation derives
-/// the blocks.
+/// [`crate::sh::ShL2::rotated_by`] and friends; the blocks are derived
+/// below.
 ///
 /// ```
 /// use glam::{Mat3, Vec3};
@@ -65,6 +28,43 @@ use crate::sh::rotation::ORTHONORMAL_TOLERANCE;
 /// let want = ShL2::<f32>::basis(Vec3::Y);
 /// assert!(moved.coeffs.iter().zip(&want.coeffs).all(|(a, b)| (a - b).abs() < 1e-6));
 /// ```
+///
+/// # Convention
+///
+/// As for [`crate::sh::ShRotation`]: rotating the coefficients of `f` by `R`
+/// gives those of `g(d) = f(R^T d)`, so a light from `a` comes from `R a`
+/// afterwards. The blocks `M^l` are defined by
+/// `Y_l^m(R d) = sum_n M^l_{mn} Y_l^n(d)` and act as `g_l^m = sum_n M^l_{mn} f_l^n`.
+///
+/// # Derivation (independent of the Ivanic-Ruedenberg recurrence)
+///
+/// Degree 1: `(Y_1^{-1}, Y_1^0, Y_1^1) = sqrt(3/(4 pi)) (-y, z, -x)`, so
+/// `M^1_{ij} = s_i s_j R[a_i][a_j]` with axes `a = (y, z, x)` and signs
+/// `s = (-1, +1, -1)`.
+///
+/// Degree 2: on the unit sphere every degree-2 function is a quadratic form
+/// `d^T S d` with a traceless symmetric `S`. With `k = sqrt(15/pi)/4`
+/// (half of the basis constant `sqrt(15/pi)/2` of `xy`, `yz`, `xz`) and
+/// `k_0 = sqrt(5/(16 pi))`:
+///
+/// ```text
+/// Y_2^-2 = d^T S_-2 d,  S_-2 =  k (E_xy + E_yx)
+/// Y_2^-1 = d^T S_-1 d,  S_-1 = -k (E_yz + E_zy)
+/// Y_2^0  = d^T S_0 d,   S_0  =  k_0 diag(-1, -1, 2)     (3 z^2 - 1 = 2 z^2 - x^2 - y^2)
+/// Y_2^1  = d^T S_1 d,   S_1  = -k (E_xz + E_zx)
+/// Y_2^2  = d^T S_2 d,   S_2  =  k diag(1, -1, 0)
+/// ```
+///
+/// These five are orthogonal in the Frobenius product and all have
+/// `|S_m|_F^2 = 15/(8 pi)`. Then `Y_2^m(R d) = d^T (R^T S_m R) d`, and
+/// `R^T S_m R` is again traceless symmetric, so
+///
+/// ```text
+/// M^2_{mn} = <S_n, R^T S_m R>_F / (15/(8 pi)).
+/// ```
+///
+/// The blocks are built in `f64` whatever `T` is, then rounded to `T`.
+/// Building costs about 500 multiply-adds; applying costs 9 + 25 per channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShRotationL2<T> {
     band1: [[T; 3]; 3],

@@ -384,7 +384,7 @@ unsafe fn run_plain_avx(
 }
 
 /// [`add`] of the true values of extended-exponent lanes (see
-/// [`crate::sh`]); nothing when every lane is negligible.
+/// [`crate::sh::Legendre`]); nothing when every lane is negligible.
 #[inline(always)]
 pub(crate) fn add_scaled<const FMA: bool>(
     acc: &mut Partial,

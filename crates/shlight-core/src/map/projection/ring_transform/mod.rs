@@ -24,7 +24,7 @@
 //!    `±cos θ` with the same `Ω`, and `Pbar_l^m(-x) = (-1)^(l+m) Pbar_l^m(x)`,
 //!    so each pair enters through `Ω (C(j) ± C(H-1-j))` and the recurrence
 //!    runs once per pair, on 16 pairs at a time (vector lanes), with the
-//!    extended exponent of [`crate::sh`] near the poles; lanes worth
+//!    extended exponent of [`crate::sh::Legendre`] near the poles; lanes worth
 //!    less than `2^-200` are left out, and a block whose lanes are all such
 //!    skips its sums. The recurrence is taken in the form with a unit
 //!    coefficient on `l - 2` ([`UnitRecurrence`]: two operations per lane
@@ -184,7 +184,7 @@ pub(crate) fn project_rings<S: TexelSource + ?Sized>(
 }
 
 /// `Pbar_m^m(sin θ)` for every `m`, as `(mantissa, exponent count k <= 0)`
-/// with the true value `mantissa * SMALL^(-k)` ([`crate::sh`]).
+/// with the true value `mantissa * SMALL^(-k)` ([`crate::sh::Legendre`]).
 fn sectoral_values(leg: &Legendre<f64>, s: f64, out: &mut [[f64; 2]]) {
     let (big, small) = (f64::BIG, f64::SMALL);
     let mut p = 0.5 / PI.sqrt();
