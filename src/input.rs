@@ -12,7 +12,7 @@ use shlight_io::{Image, PixelStats, ReadOptions};
 
 use crate::progress::Ui;
 
-pub use shlight_pipeline::{FACE_PLACEHOLDER, InputLayout, is_faces};
+pub use shlight_pipeline::{FACE_PLACEHOLDER, InputLayout};
 
 /// `--up y|z` as a frame.
 pub fn frame_of(up: &str) -> Frame {

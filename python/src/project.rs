@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use shlight_core::map::{CubeFaces, Layout};
 use shlight_format::CoeffFile;
-use shlight_pipeline::{layout_for_size, project_path, project_source};
+use shlight_pipeline::{Settings, Source as MapSource, layout_for_size, project_with_warnings};
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::{guard, panic_text};
@@ -77,9 +77,17 @@ pub fn project(
     Ok(Sh::new(file))
 }
 
+/// The pipeline's settings of `o` (plain SH, no preview).
+fn settings(o: &Options) -> Settings {
+    Settings {
+        read: o.read.clone(),
+        ..Settings::new(o.settings.clone())
+    }
+}
+
 /// The projection of one file: every step of `shlight project`.
 fn project_one(path: &std::path::Path, o: &Options) -> PyResult<(CoeffFile, Vec<String>)> {
-    project_path(path, &o.read, &o.settings).map_err(pipeline_error)
+    project_with_warnings(MapSource::Path(path), &settings(o)).map_err(pipeline_error)
 }
 
 /// The projection of an `(H, W, 3)` array in the options' layout, read in
@@ -101,14 +109,12 @@ fn project_array(
     let view = array.view(layout);
     let (file, more) = py.detach(|| {
         guard(|| {
-            project_source(
-                &view,
-                ARRAY_NAME,
-                layout.name(),
-                o.read.sanitize,
-                &o.settings,
-            )
-            .map_err(pipeline_error)
+            let source = MapSource::Texels {
+                texels: &view,
+                name: ARRAY_NAME,
+                layout_name: layout.name(),
+            };
+            project_with_warnings(source, &settings(o)).map_err(pipeline_error)
         })
     })?;
     warnings.extend(more);
@@ -164,8 +170,12 @@ fn project_faces(
         .map_err(|e| shlight_error(format!("{ARRAY_NAME}: {e}")))?;
     py.detach(|| {
         guard(|| {
-            project_source(&cube, ARRAY_NAME, "faces", o.read.sanitize, &o.settings)
-                .map_err(pipeline_error)
+            let source = MapSource::Texels {
+                texels: &cube,
+                name: ARRAY_NAME,
+                layout_name: "faces",
+            };
+            project_with_warnings(source, &settings(o)).map_err(pipeline_error)
         })
     })
 }
@@ -243,7 +253,7 @@ pub fn project_many(
             .par_iter()
             .map(|path| {
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    project_path(path, &options.read, &options.settings)
+                    project_with_warnings(MapSource::Path(path), &settings(&options))
                 }));
                 bar.inc(1);
                 match r {

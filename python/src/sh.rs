@@ -10,11 +10,8 @@ use numpy::{
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use shlight_core::sh::{
-    ShCoeffs, ShRotation, Window, WindowFamily, WindowTarget, apply_channel_windows, auto_windows,
-    clamped_cosine_eigenvalue, rotate_once, rotate_std_error,
-};
-use shlight_format::{CoeffFile, ExportFormat, Quantity, RotationRecord, convert_quantity};
+use shlight_core::sh::{ShCoeffs, WindowTarget};
+use shlight_format::{CoeffFile, ExportFormat};
 
 use crate::errors::{chained, shlight_error, warn_all};
 use crate::guard::guard;
@@ -41,14 +38,6 @@ impl Sh {
     /// The coefficient file.
     pub fn file(&self) -> &CoeffFile {
         &self.file
-    }
-
-    /// A copy with other coefficients and standard errors.
-    fn with(&self, coeffs: ShCoeffs<DVec3>, std_error: Option<ShCoeffs<DVec3>>) -> Self {
-        let mut file = self.file.clone();
-        file.coeffs = coeffs;
-        file.std_error = std_error;
-        Self { file }
     }
 }
 
@@ -154,19 +143,10 @@ impl Sh {
     /// each direction receives. An SH that holds irradiance is returned as
     /// it is.
     fn irradiance(&self) -> PyResult<Sh> {
-        if self.file.quantity == Quantity::Irradiance {
-            return Ok(Sh::new(self.file.clone()));
-        }
-        let coeffs = convert_quantity(&self.file.coeffs, Quantity::Radiance, Quantity::Irradiance)
-            .map_err(|e| chained(&e))?;
-        let se = self
-            .file
-            .std_error
-            .as_ref()
-            .map(|se| se.scaled_per_band(|l| clamped_cosine_eigenvalue(l).abs()));
-        let mut out = self.with(coeffs, se);
-        out.file.quantity = Quantity::Irradiance;
-        Ok(out)
+        self.file
+            .to_irradiance()
+            .map(Sh::new)
+            .map_err(|e| chained(&e))
     }
 
     /// The expansion at unit directions: dirs (N, 3) (or (3,)) float64 in
@@ -231,27 +211,7 @@ impl Sh {
     /// rotated too.
     fn rotate(&self, r: &Bound<'_, PyAny>) -> PyResult<Sh> {
         let (m, spec) = rotation_of(r)?;
-        guard(|| {
-            let coeffs = rotate_once(&self.file.coeffs, m);
-            let se = self
-                .file
-                .std_error
-                .as_ref()
-                .map(|se| rotate_std_error(&ShRotation::from_mat3(se.lmax(), m), se));
-            let mut out = self.with(coeffs, se);
-            let (spec, total) = match &self.file.provenance.rotate {
-                None => (spec, m),
-                Some(old) => {
-                    let before = DMat3::from_cols_array_2d(&old.matrix).transpose();
-                    (format!("{}, then {spec}", old.spec), m * before)
-                }
-            };
-            out.file.provenance.rotate = Some(RotationRecord {
-                spec,
-                matrix: total.transpose().to_cols_array_2d(),
-            });
-            Ok(out)
-        })
+        guard(|| Ok(Sh::new(self.file.rotated(m, &spec))))
     }
 
     /// The same light with ringing suppressed: window is "none",
@@ -259,40 +219,11 @@ impl Sh {
     /// channel the weakest Hanning window that makes these coefficients'
     /// function non-negative), as `shlight project --window`.
     fn window(&self, window: &str) -> PyResult<Sh> {
-        let spec = window.trim();
-        let windows = if spec == "auto" {
-            auto_windows(
-                &self.file.coeffs,
-                WindowFamily::Hanning,
-                WindowTarget::Function,
-            )
-            .map_err(|e| shlight_error(format!("--window auto: {e}")))?
-        } else {
-            [spec.parse::<Window>()
-                .map_err(|e| shlight_error(format!("--window {spec}: {e}")))?; 3]
-        };
-        let coeffs = apply_channel_windows(&windows, &self.file.coeffs);
-        let se = self
+        let windows = self
             .file
-            .std_error
-            .as_ref()
-            .map(|se| apply_channel_windows(&windows, se));
-        let mut out = self.with(coeffs, se);
-        let p = &mut out.file.provenance;
-        let first = p.window == "none" || p.window.is_empty();
-        p.window = if first {
-            spec.to_string()
-        } else {
-            format!("{}, then {spec}", p.window)
-        };
-        for (old, new) in p.windows.iter_mut().zip(windows) {
-            *old = if first || old == "none" {
-                new.to_string()
-            } else {
-                format!("{old}, then {new}")
-            };
-        }
-        Ok(out)
+            .windows_for(window, WindowTarget::Function)
+            .map_err(|e| shlight_error(e.to_string()))?;
+        Ok(Sh::new(self.file.windowed(windows, window)))
     }
 
     /// Writes shlight's JSON coefficient file (the same as `shlight project

@@ -7,7 +7,9 @@ use shlight_core::map::{Layout, MapOrientation};
 use shlight_core::sh::Window;
 use shlight_format::RotationRecord;
 use shlight_io::ReadOptions;
-use shlight_pipeline::{PreviewOptions, ProjectSettings, output_grid};
+use shlight_pipeline::{
+    CpuProjector, PreviewOptions, ProjectSettings, Projector, ReadSettings, output_grid,
+};
 
 use super::args::{DEFAULT_SAMPLES, Method, ProjectArgs};
 
@@ -17,15 +19,13 @@ type LibMethod = shlight_pipeline::Method;
 /// Everything decided from the arguments before any input is read.
 pub struct Settings<'a> {
     pub args: &'a ProjectArgs,
-    pub orientation: MapOrientation,
-    /// lmax, orientation, method, window, rotation and quantity, as the
-    /// library's pipeline takes them.
-    pub project: ProjectSettings,
-    pub read: ReadOptions,
+    /// The pipeline's settings for every input (the preview is set per
+    /// input).
+    pub pipeline: shlight_pipeline::Settings,
     pub preview: PreviewOptions,
     /// The device and pipelines of `--gpu`.
     #[cfg(feature = "gpu")]
-    pub gpu: Option<(shlight_gpu::GpuContext, shlight_gpu::GpuProjector)>,
+    pub gpu: Option<super::gpu::GpuProjection>,
 }
 
 impl<'a> Settings<'a> {
@@ -117,7 +117,7 @@ impl<'a> Settings<'a> {
             }
             let ctx = anyhow::Context::context(shlight_gpu::GpuContext::headless(), "--gpu")?;
             let projector = shlight_gpu::GpuProjector::new(&ctx);
-            Some((ctx, projector))
+            Some(super::gpu::GpuProjection { ctx, projector })
         } else {
             None
         };
@@ -135,18 +135,25 @@ impl<'a> Settings<'a> {
         };
         Ok(Self {
             args,
-            orientation,
-            project: ProjectSettings {
-                lmax: args.lmax,
-                orientation,
-                method,
-                window,
-                rotation,
-                quantity: args.quantity,
-            },
-            read: ReadOptions {
-                layer: args.layer.clone(),
-                max_pixels: args.max_pixels,
+            pipeline: shlight_pipeline::Settings {
+                read: ReadSettings {
+                    layout: args.layout,
+                    read: ReadOptions {
+                        layer: args.layer.clone(),
+                        max_pixels: args.max_pixels,
+                    },
+                    sanitize: args.sanitize,
+                },
+                project: ProjectSettings {
+                    lmax: args.lmax,
+                    orientation,
+                    method,
+                    window,
+                    rotation,
+                    quantity: args.quantity,
+                },
+                encoding: args.encoding,
+                preview: None,
             },
             preview: PreviewOptions {
                 panel: args.preview_size,
@@ -156,5 +163,14 @@ impl<'a> Settings<'a> {
             #[cfg(feature = "gpu")]
             gpu,
         })
+    }
+
+    /// The projection step: the GPU's for `--gpu`, else the library's.
+    pub fn projector(&self) -> &dyn Projector {
+        #[cfg(feature = "gpu")]
+        if let Some(gpu) = &self.gpu {
+            return gpu;
+        }
+        &CpuProjector
     }
 }

@@ -59,6 +59,7 @@ mod error;
 pub mod export;
 mod header_line;
 mod import;
+mod light_transforms;
 mod quantity;
 pub mod shprt;
 pub mod shvol;

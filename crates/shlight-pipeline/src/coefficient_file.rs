@@ -3,10 +3,7 @@
 
 use glam::DVec3;
 use shlight_core::map::Layout;
-use shlight_core::sh::{
-    ShCoeffs, ShRotation, Window, WindowFamily, WindowTarget, apply_channel_windows, auto_windows,
-    clamped_cosine_eigenvalue, irradiance, rotate_once, rotate_std_error,
-};
+use shlight_core::sh::{ShCoeffs, Window, WindowFamily, WindowTarget, auto_windows};
 use shlight_format::{CoeffFile, Provenance, Quantity, SanitizeCounts};
 use shlight_io::PixelStats;
 
@@ -79,10 +76,11 @@ pub fn choose_windows(
 }
 
 /// The coefficient file of a projection: each channel windowed by its
-/// window, then rotated by the settings' rotation (errors by
-/// [`rotate_std_error`]), then made irradiance if asked
-/// (`E_l^m = A_l L_l^m`, errors scaled by `|A_l|`), with the provenance of
-/// the input, the method and every setting.
+/// window ([`CoeffFile::windowed`]), then rotated by the settings' rotation
+/// ([`CoeffFile::rotated`]), then made irradiance if asked
+/// ([`CoeffFile::to_irradiance`]: `E_l^m = A_l L_l^m`, errors scaled by
+/// `|A_l|`), with the provenance of the input, the method and every
+/// setting.
 #[must_use]
 pub fn coefficient_file(
     projection: &Projection,
@@ -90,46 +88,41 @@ pub fn coefficient_file(
     s: &ProjectSettings,
     info: &MapInfo,
 ) -> CoeffFile {
-    let mut radiance = apply_channel_windows(&windows, &projection.coeffs);
-    // Window factors lie in [0, 1], so errors scale by them as they are.
-    let mut std_error = projection
-        .std_error
-        .as_ref()
-        .map(|se| apply_channel_windows(&windows, se));
-    if let Some((_, matrix)) = &s.rotation {
-        radiance = rotate_once(&radiance, *matrix);
-        std_error =
-            std_error.map(|se| rotate_std_error(&ShRotation::from_mat3(se.lmax(), *matrix), &se));
-    }
-    let coeffs = match s.quantity {
-        Quantity::Radiance => radiance,
-        Quantity::Irradiance => {
-            std_error =
-                std_error.map(|se| se.scaled_per_band(|l| clamped_cosine_eigenvalue(l).abs()));
-            irradiance(&radiance)
-        }
-    };
-    let mut file = CoeffFile::new(coeffs, s.orientation.frame, s.quantity);
+    let mut file = CoeffFile::new(
+        projection.coeffs.clone(),
+        s.orientation.frame,
+        Quantity::Radiance,
+    );
     file.mirror = s.orientation.mirror;
+    file.std_error.clone_from(&projection.std_error);
     file.provenance = Provenance {
         input: info.name.clone(),
         width: info.width,
         height: info.height,
         layout: info.layout.clone(),
         method: s.method.name().into(),
-        window: match s.window {
-            Some(w) => w.to_string(),
-            None => "auto".into(),
-        },
-        windows: windows.map(|w| w.to_string()),
+        window: "none".into(),
+        windows: ["none".into(), "none".into(), "none".into()],
         samples: projection.samples,
         seed: projection.seed,
         sampler: projection.sampler.clone(),
-        rotate: s.rotation.as_ref().map(|(r, _)| r.clone()),
+        rotate: None,
     };
     file.input_negative_texels = info.stats.negative;
     file.input_min_value = f64::from(info.stats.min_value);
     file.sanitized = info.sanitized;
-    file.std_error = std_error;
-    file
+    let spec = match s.window {
+        Some(w) => w.to_string(),
+        None => "auto".into(),
+    };
+    file = file.windowed(windows, &spec);
+    if let Some((record, matrix)) = &s.rotation {
+        file = file.rotated(*matrix, &record.spec);
+    }
+    match s.quantity {
+        Quantity::Radiance => file,
+        Quantity::Irradiance => file
+            .to_irradiance()
+            .expect("plain SH radiance turns into irradiance"),
+    }
 }

@@ -5,29 +5,38 @@
 //! in memory) in, shlight's coefficient file ([`shlight_format::CoeffFile`])
 //! out, through the same steps and with the same messages whoever calls
 //! them; and the way back, coefficients rendered to a map in any layout.
-//! No command-line, GPU or error-erasing dependency.
+//! No command-line, GPU or error-erasing dependency: the GPU's projection
+//! comes in as a [`Projector`], progress and warnings as callbacks
+//! ([`Hooks`]).
 //!
 //! # Steps
+//! [`project`]`(source, settings, hooks)` sequences every step, the only
+//! place they are sequenced:
 //! 1. [`load_map`]: read a map (or six `{face}` files laid out as a strip),
 //!    settle its [`InputLayout`], and check its values ([`check_values`]:
 //!    NaN and infinity refused, negatives kept with a warning) or
-//!    [`sanitize_image`] them. Texels already in memory are checked by
-//!    [`source_stats`] and [`check_values`].
-//! 2. [`project_radiance`] (or [`project_radiance_texels`] for any
-//!    [`shlight_core::map::TexelSource`]): quadrature or Monte Carlo
-//!    ([`Method`]).
+//!    [`sanitize_image`] them. Texels already in memory
+//!    ([`Source::Texels`]) are checked by [`source_stats`] and
+//!    [`check_values`].
+//! 2. The [`Projector`]: [`CpuProjector`] ([`project_radiance_texels`]:
+//!    quadrature or Monte Carlo, [`Method`]) or one the caller brings.
 //! 3. [`choose_windows`]: the window asked for, or per colour channel the
 //!    weakest Hanning window that keeps the result non-negative.
-//! 4. [`coefficient_file`]: windows, rotation, quantity, provenance; with
-//!    [`encode_file`], an encoding other than plain SH.
+//! 4. [`write_preview`], when [`Settings::preview`] asks for one.
+//! 5. [`coefficient_file`]: windows, rotation, quantity, provenance (the
+//!    coefficient file's own [`shlight_format::CoeffFile::windowed`],
+//!    [`rotated`](shlight_format::CoeffFile::rotated) and
+//!    [`to_irradiance`](shlight_format::CoeffFile::to_irradiance)); with
+//!    [`encode_file`], an encoding other than plain SH
+//!    ([`Settings::encoding`]).
 //!
-//! [`project_path`] runs all four on one file, [`project_source`] on texels
-//! in memory ([`layout_for_size`] settles their layout). [`render_map`] evaluates
-//! coefficients at every texel centre of a map in any layout, on the
-//! [`output_grid`] of a map shlight writes; [`write_preview`] draws
-//! `--preview`'s three panels. [`Environment`] is the distant light of the
-//! commands that shade a scene (a map projected, or a coefficient file),
-//! with its encodings and their WGSL snippets.
+//! [`project_with_warnings`] runs it on the CPU and hands the warnings
+//! back. [`layout_for_size`] settles the layout of texels in memory.
+//! [`render_map`] evaluates coefficients at every texel centre of a map in
+//! any layout, on the [`output_grid`] of a map shlight writes;
+//! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
+//! distant light of the commands that shade a scene (a map projected, or a
+//! coefficient file), with its encodings and their WGSL snippets.
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -37,17 +46,16 @@
 //!
 //! # Example
 //! ```
-//! use shlight_core::map::{EnvMap, Layout, MapOrientation};
+//! use shlight_core::map::{Layout, MapOrientation, StridedImage};
 //! use shlight_format::Quantity;
-//! use shlight_pipeline::{MapInfo, Method, ProjectSettings, choose_windows, coefficient_file, project_radiance};
+//! use shlight_pipeline::{Hooks, Method, ProjectSettings, Settings, Source, project};
 //!
 //! // A grey 64x32 equirect map: only L_0^0 = 2 sqrt(pi) * 0.5 is non-zero.
 //! let pixels = vec![[0.5_f32; 3]; 64 * 32];
-//! let s = ProjectSettings::new(2, MapOrientation::default(), Method::Quadrature, Quantity::Radiance);
-//! let map = EnvMap::new(Layout::Equirect, s.orientation, 64, 32, &pixels).unwrap();
-//! let projection = project_radiance(&map, &s);
-//! let windows = choose_windows(&projection.coeffs, &s, "grey").unwrap();
-//! let file = coefficient_file(&projection, windows, &s, &MapInfo::of_pixels("grey", Layout::Equirect, 64, 32, &pixels));
+//! let texels = StridedImage::new(Layout::Equirect, 64, 32, 64, &pixels).unwrap();
+//! let p = ProjectSettings::new(2, MapOrientation::default(), Method::Quadrature, Quantity::Radiance);
+//! let source = Source::Texels { texels: &texels, name: "grey", layout_name: "equirect" };
+//! let file = project(source, &Settings::new(p), &Hooks::default()).unwrap();
 //! assert!((file.coeffs[0].x - std::f64::consts::PI.sqrt()).abs() < 1e-12);
 //! ```
 
@@ -61,7 +69,7 @@ mod input_layout;
 mod load;
 mod output_grid;
 mod preview;
-mod project_path;
+mod project;
 mod projection;
 mod render;
 mod rotation_spec;
@@ -76,9 +84,11 @@ pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
-pub use project_path::{ReadSettings, project_path, project_source};
+pub use project::{
+    CpuProjector, Hooks, Preview, Projector, Settings, Source, project, project_with_warnings,
+};
 pub use projection::{Projection, project_radiance, project_radiance_texels};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
-pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings};
+pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings, ReadSettings};
 pub use source_stats::source_stats;

@@ -73,8 +73,9 @@ pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
 /// stores it), read in the settings' orientation. Quadrature reads the
 /// source through [`shlight_core::map::project`], which gives the
 /// same coefficients bit for bit as a contiguous map of the same texels;
-/// Monte Carlo looks texels up bilinearly and needs them contiguous, so it
-/// copies them first.
+/// Monte Carlo looks texels up bilinearly and needs them contiguous: it
+/// reads them in place where the source holds them so
+/// ([`TexelSource::pixels`]), and copies them otherwise.
 ///
 /// # Errors
 /// The source's size does not fit its layout.
@@ -100,14 +101,22 @@ pub fn project_radiance_texels<S: TexelSource + ?Sized>(
                 .layout()
                 .check_size(w, h)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
-            let mut pixels = Vec::with_capacity(w * h);
-            for y in 0..h {
-                match source.row(y) {
-                    Some(row) if row.len() == w => pixels.extend_from_slice(row),
-                    _ => pixels.extend((0..w).map(|x| source.texel(x, y))),
+            let owned: Vec<[f32; 3]>;
+            let pixels = match source.pixels() {
+                Some(p) if p.len() == w * h => p,
+                _ => {
+                    let mut copy = Vec::with_capacity(w * h);
+                    for y in 0..h {
+                        match source.row(y) {
+                            Some(row) if row.len() == w => copy.extend_from_slice(row),
+                            _ => copy.extend((0..w).map(|x| source.texel(x, y))),
+                        }
+                    }
+                    owned = copy;
+                    &owned
                 }
-            }
-            let map = EnvMap::new(source.layout(), s.orientation, w, h, &pixels)
+            };
+            let map = EnvMap::new(source.layout(), s.orientation, w, h, pixels)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
             Ok(project_radiance(&map, s))
         }

@@ -1,11 +1,15 @@
 //! [`ProjectSettings`]: everything a projection decides before any input
-//! is read (lmax, orientation, method, window, rotation, quantity).
+//! is read (lmax, orientation, method, window, rotation, quantity), and
+//! [`ReadSettings`]: how input files are read.
 
 use glam::DMat3;
 use shlight_core::map::MapOrientation;
 use shlight_core::map::montecarlo::{McOptions, SamplerKind};
 use shlight_core::sh::Window;
 use shlight_format::{Quantity, RotationRecord};
+use shlight_io::ReadOptions;
+
+use crate::input_layout::InputLayout;
 
 /// Monte Carlo directions drawn when no count is given.
 pub const DEFAULT_SAMPLES: usize = 1 << 16;
@@ -77,4 +81,16 @@ impl ProjectSettings {
             quantity,
         }
     }
+}
+
+/// How input files are read: their layout, the reader's options, and
+/// whether bad values are replaced instead of refused.
+#[derive(Clone, Debug, Default)]
+pub struct ReadSettings {
+    /// The layout of the inputs (`auto` by aspect ratio).
+    pub layout: InputLayout,
+    /// EXR layer and pixel limit.
+    pub read: ReadOptions,
+    /// Replace NaN, infinities and negatives ([`crate::sanitize_image`]).
+    pub sanitize: bool,
 }

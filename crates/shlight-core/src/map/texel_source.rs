@@ -64,6 +64,15 @@ pub trait TexelSource: Sync {
         let _ = y;
         None
     }
+
+    /// Every texel as one contiguous slice of `width * height`, row after
+    /// row from the top, when the source stores them so; `None` (the
+    /// default) when it does not. A slice of another length is ignored.
+    /// Readers that need the whole image at once (Monte Carlo's bilinear
+    /// lookups, a GPU upload) read it in place instead of copying it.
+    fn pixels(&self) -> Option<&[[f32; 3]]> {
+        None
+    }
 }
 
 /// Row `y` of `source`: its own slice when it has one of `width` texels,
@@ -100,6 +109,9 @@ impl TexelSource for EnvMap<'_> {
     fn row(&self, y: usize) -> Option<&[[f32; 3]]> {
         self.pixels.get(y * self.width..(y + 1) * self.width)
     }
+    fn pixels(&self) -> Option<&[[f32; 3]]> {
+        Some(self.pixels)
+    }
 }
 
 /// A contiguous equirect image, rows straight from the slice.
@@ -115,5 +127,8 @@ impl TexelSource for EquirectView<'_> {
     }
     fn row(&self, y: usize) -> Option<&[[f32; 3]]> {
         self.pixels.get(y * self.width..(y + 1) * self.width)
+    }
+    fn pixels(&self) -> Option<&[[f32; 3]]> {
+        Some(self.pixels)
     }
 }

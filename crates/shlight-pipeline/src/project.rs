@@ -1,0 +1,453 @@
+//! [`project`]: every step of `shlight project` on one map, in order, for
+//! every front end (the command line, the Python package).
+
+use std::path::PathBuf;
+
+use shlight_core::encoding::Encoding;
+use shlight_core::map::{EnvMap, TexelSource};
+use shlight_core::sh::{Window, apply_channel_windows};
+use shlight_format::CoeffFile;
+use shlight_io::Image;
+
+use crate::coefficient_file::{MapInfo, choose_windows, coefficient_file};
+use crate::file_encoding::encode_file;
+use crate::input_layout::is_faces;
+use crate::load::{check_values, load_map, sanitize_image};
+use crate::preview::{PreviewOptions, write_preview};
+use crate::projection::{Projection, project_radiance_texels};
+use crate::settings::ProjectSettings;
+use crate::settings::ReadSettings;
+use crate::source_stats::source_stats;
+use crate::{PipelineError, Result};
+
+/// Where a map comes from.
+#[derive(Clone, Copy)]
+pub enum Source<'a> {
+    /// A map file, or six `{face}` files ([`crate::load_map`], with the
+    /// settings' [`ReadSettings`]); the path as given names it everywhere.
+    Path(&'a std::path::Path),
+    /// Texels already in memory (a numpy array, a readback), read in place.
+    Texels {
+        /// The texels and their layout.
+        texels: &'a dyn TexelSource,
+        /// The map as named to the user (messages, `provenance.input`).
+        name: &'a str,
+        /// `provenance.layout` (`equirect`, ..., `faces`).
+        layout_name: &'a str,
+    },
+}
+
+/// `--preview`: the three-panel picture of a projection, and where it goes.
+#[derive(Clone, Debug)]
+pub struct Preview {
+    /// The image file written.
+    pub path: PathBuf,
+    /// Panel size, exposure, tone map.
+    pub options: PreviewOptions,
+}
+
+/// Everything [`project`] does with a map, decided before it is read.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// How files are read (layout, reader options, `--sanitize`); texels in
+    /// memory use only `sanitize`.
+    pub read: ReadSettings,
+    /// lmax, orientation, method, window, rotation, quantity.
+    pub project: ProjectSettings,
+    /// The light kept as this encoding of the map's texels
+    /// ([`Encoding::Sh`]: plain SH, the coefficients as projected).
+    pub encoding: Encoding,
+    /// A preview to write, if any.
+    pub preview: Option<Preview>,
+}
+
+impl Settings {
+    /// Plain SH by `project`'s settings, files read with the defaults, no
+    /// preview.
+    #[must_use]
+    pub fn new(project: ProjectSettings) -> Self {
+        Self {
+            read: ReadSettings::default(),
+            project,
+            encoding: Encoding::Sh,
+            preview: None,
+        }
+    }
+}
+
+/// The projection step, injected: the library's own on the CPU
+/// ([`CpuProjector`]), or another (the command line's GPU projector) that
+/// the pipeline need not know.
+pub trait Projector: Sync {
+    /// Radiance coefficients of `texels`, read in `s.orientation`, to
+    /// `s.lmax` by `s.method`.
+    ///
+    /// # Errors
+    /// The projector cannot project this map (its layout, size or method).
+    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection>;
+}
+
+/// The library's projection on the CPU ([`project_radiance_texels`]):
+/// quadrature or Monte Carlo, on every core.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CpuProjector;
+
+impl Projector for CpuProjector {
+    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
+        project_radiance_texels(texels, s)
+    }
+}
+
+/// What [`project`] calls as it goes: the projector, and where progress and
+/// warnings go.
+#[derive(Clone, Copy)]
+pub struct Hooks<'a> {
+    /// The projection step.
+    pub projector: &'a dyn Projector,
+    /// Told what the pipeline starts next (`"reading NAME"`,
+    /// `"projecting NAME (WxH, lmax L)"`, ...), for a progress line.
+    pub progress: &'a (dyn Fn(&str) + Sync),
+    /// Given each warning for the user as it arises (a stretched equirect
+    /// map, negative texels, replaced values), naming the input.
+    pub warn: &'a (dyn Fn(&str) + Sync),
+}
+
+impl Default for Hooks<'static> {
+    /// The CPU projector; progress ignored; warnings dropped.
+    fn default() -> Self {
+        Hooks {
+            projector: &CpuProjector,
+            progress: &|_| {},
+            warn: &|_| {},
+        }
+    }
+}
+
+/// Reads (or takes), checks, projects and finishes one map: every step of
+/// `shlight project` in order, with the same messages whoever calls it.
+///
+/// 1. A file is read by [`crate::load_map`] (layout settled, values
+///    checked, or replaced with `sanitize`); texels in memory are checked
+///    ([`check_values`]) or copied and sanitized ([`sanitize_image`]).
+/// 2. The projector makes radiance coefficients ([`Projector`]).
+/// 3. The window of each channel ([`choose_windows`]).
+/// 4. The preview, if asked ([`write_preview`]), of the windowed radiance.
+/// 5. The coefficient file ([`coefficient_file`]: windows, rotation,
+///    quantity, provenance), then the encoding, if other than plain SH
+///    ([`encode_file`]).
+///
+/// The coefficients of texels in memory equal those of a file holding the
+/// same texels, bit for bit.
+///
+/// # Errors
+/// Any step's error; every message names the map.
+pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<CoeffFile> {
+    match source {
+        Source::Path(path) => {
+            let name = path.display().to_string();
+            (hooks.progress)(&format!("reading {name}"));
+            let loaded = load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?;
+            for w in &loaded.warnings {
+                (hooks.warn)(w);
+            }
+            let info = MapInfo {
+                name,
+                width: loaded.image.width(),
+                height: loaded.image.height(),
+                layout: if is_faces(path) {
+                    "faces".into()
+                } else {
+                    loaded.layout.name().into()
+                },
+                stats: loaded.stats,
+                sanitized: loaded.sanitized,
+            };
+            let map = env_map(&loaded.image, loaded.layout, s, &info.name)?;
+            finish(&map, Some(&loaded.image), info, s, hooks)
+        }
+        Source::Texels {
+            texels,
+            name,
+            layout_name,
+        } => {
+            let (w, h) = texels.size();
+            let layout = texels.layout();
+            layout
+                .check_size(w, h)
+                .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
+            let stats = source_stats(texels);
+            let mut info = MapInfo {
+                name: name.to_string(),
+                width: w,
+                height: h,
+                layout: layout_name.to_string(),
+                stats,
+                sanitized: None,
+            };
+            // The preview and the encodings read a contiguous image.
+            let needs_copy = s.read.sanitize || s.preview.is_some() || s.encoding != Encoding::Sh;
+            if !needs_copy {
+                let mut warnings = Vec::new();
+                check_values(name, &info.stats, &mut warnings)?;
+                for w in &warnings {
+                    (hooks.warn)(w);
+                }
+                return finish(texels, None, info, s, hooks);
+            }
+            let mut image = Image::from_fn(w, h, |x, y| texels.texel(x, y));
+            let mut warnings = Vec::new();
+            if s.read.sanitize {
+                info.sanitized = Some(sanitize_image(name, &mut image, &mut warnings));
+            } else {
+                check_values(name, &info.stats, &mut warnings)?;
+            }
+            for w in &warnings {
+                (hooks.warn)(w);
+            }
+            let map = env_map(&image, layout, s, name)?;
+            finish(&map, Some(&image), info, s, hooks)
+        }
+    }
+}
+
+/// `image` as a map in the settings' orientation.
+fn env_map<'a>(
+    image: &'a Image,
+    layout: shlight_core::map::Layout,
+    s: &Settings,
+    name: &str,
+) -> Result<EnvMap<'a>> {
+    EnvMap::new(
+        layout,
+        s.project.orientation,
+        image.width(),
+        image.height(),
+        image.pixels(),
+    )
+    .map_err(|e| PipelineError::new(e.to_string()).context(format!("{name}: projecting")))
+}
+
+/// Steps 2 to 5 of [`project`] on checked texels (`image`: the same texels
+/// as one image, for the preview and the encodings).
+fn finish(
+    texels: &dyn TexelSource,
+    image: Option<&Image>,
+    info: MapInfo,
+    s: &Settings,
+    hooks: &Hooks<'_>,
+) -> Result<CoeffFile> {
+    let name = &info.name;
+    let p = &s.project;
+    (hooks.progress)(&format!(
+        "projecting {name} ({}x{}, lmax {})",
+        info.width, info.height, p.lmax
+    ));
+    let projection = hooks
+        .projector
+        .project(texels, p)
+        .map_err(|e| e.context(format!("{name}: projecting")))?;
+    if p.window.is_none() {
+        (hooks.progress)(&format!("choosing windows for {name}"));
+    }
+    let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name)?;
+    if let (Some(preview), Some(image)) = (&s.preview, image) {
+        (hooks.progress)(&format!("preview of {name}"));
+        let radiance = apply_channel_windows(&windows, &projection.coeffs);
+        write_preview(
+            &preview.path,
+            image,
+            texels.layout(),
+            &radiance,
+            p.orientation,
+            &preview.options,
+        )
+        .map_err(|e| e.context(format!("{name}: preview")))?;
+    }
+    let mut file = coefficient_file(&projection, windows, p, &info);
+    if s.encoding != Encoding::Sh {
+        (hooks.progress)(&format!("encoding {name} as {}", s.encoding));
+        let image = image.expect("an encoding copies the texels into an image");
+        let map = env_map(image, texels.layout(), s, name)?;
+        encode_file(&mut file, &map, s.encoding, p.lmax);
+    }
+    Ok(file)
+}
+
+/// [`project`] with the CPU projector, no progress, and the warnings
+/// collected and returned beside the file (for front ends that show them
+/// afterwards, as the Python package does).
+///
+/// # Errors
+/// As [`project`].
+pub fn project_with_warnings(source: Source<'_>, s: &Settings) -> Result<(CoeffFile, Vec<String>)> {
+    let warnings = std::sync::Mutex::new(Vec::new());
+    let warn = |w: &str| {
+        warnings
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .push(w.to_string());
+    };
+    let hooks = Hooks {
+        warn: &warn,
+        ..Hooks::default()
+    };
+    let file = project(source, s, &hooks)?;
+    Ok((
+        file,
+        warnings
+            .into_inner()
+            .unwrap_or_else(std::sync::PoisonError::into_inner),
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::Method;
+    use glam::DVec3;
+    use shlight_core::map::montecarlo::{McOptions, SamplerKind};
+    use shlight_core::map::{Layout, MapOrientation, StridedImage};
+    use shlight_core::sh::{Frame, ShCoeffs};
+    use shlight_format::Quantity;
+    use shlight_io::{ReadOptions, read_image};
+    use std::path::Path;
+    use std::sync::Mutex;
+
+    fn sky() -> (std::path::PathBuf, Image) {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../envmaps/sky.exr");
+        let image = read_image(&path, &ReadOptions::default()).unwrap();
+        (path, image)
+    }
+
+    /// A bundled map read from its file and the same texels in memory with
+    /// a row pitch give the same coefficient file, bit for bit, for both
+    /// methods, plain and encoded.
+    #[test]
+    fn texels_in_memory_project_as_their_file() {
+        let (path, image) = sky();
+        let (w, h, stride) = (image.width(), image.height(), image.width() + 3);
+        let mut padded = vec![[f32::NAN; 3]; stride * h];
+        for y in 0..h {
+            padded[y * stride..y * stride + w].copy_from_slice(image.row(y));
+        }
+        let source = StridedImage::new(Layout::Equirect, w, h, stride, &padded).unwrap();
+        let orientation = MapOrientation {
+            frame: Frame::ZUp,
+            mirror: false,
+        };
+        let name = path.display().to_string();
+        for (method, encoding) in [
+            (Method::Quadrature, Encoding::Sh),
+            (Method::Quadrature, Encoding::DominantSh),
+            (
+                Method::MonteCarlo {
+                    options: McOptions {
+                        samples: 4096,
+                        ..McOptions::default()
+                    },
+                    sampler: SamplerKind::Importance,
+                },
+                Encoding::Sh,
+            ),
+        ] {
+            let mut p = ProjectSettings::new(4, orientation, method, Quantity::Irradiance);
+            p.window = None;
+            if encoding != Encoding::Sh {
+                p.quantity = Quantity::Radiance;
+            }
+            let s = Settings {
+                encoding,
+                ..Settings::new(p)
+            };
+            let (from_file, _) = project_with_warnings(Source::Path(&path), &s).unwrap();
+            let texels = Source::Texels {
+                texels: &source,
+                name: &name,
+                layout_name: "equirect",
+            };
+            let (in_memory, _) = project_with_warnings(texels, &s).unwrap();
+            assert_eq!(in_memory.encoding.encoding(), encoding);
+            assert_eq!(in_memory.to_json_string(), from_file.to_json_string());
+        }
+        // A NaN inside the image is refused, naming the input.
+        padded[5 * stride + 7][1] = f32::NAN;
+        let source = StridedImage::new(Layout::Equirect, w, h, stride, &padded).unwrap();
+        let p = ProjectSettings::new(2, orientation, Method::Quadrature, Quantity::Radiance);
+        let texels = Source::Texels {
+            texels: &source,
+            name: "mem",
+            layout_name: "equirect",
+        };
+        let e = project_with_warnings(texels, &Settings::new(p)).unwrap_err();
+        assert!(e.message().starts_with("mem: 1 texels are NaN"), "{e}");
+    }
+
+    /// A projector that reports a uniform light of radiance 1 whatever the
+    /// map, and counts its calls.
+    struct Uniform(Mutex<usize>);
+
+    impl Projector for Uniform {
+        fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
+            *self.0.lock().unwrap() += 1;
+            if texels.layout() != Layout::Equirect {
+                return Err(PipelineError::new("equirect only"));
+            }
+            let mut coeffs = ShCoeffs::<DVec3>::zeros(s.lmax);
+            coeffs[0] = DVec3::splat(2.0 * std::f64::consts::PI.sqrt());
+            Ok(Projection {
+                coeffs,
+                std_error: None,
+                samples: None,
+                seed: None,
+                sampler: None,
+            })
+        }
+    }
+
+    /// The injected projector makes the coefficients (irradiance of a
+    /// uniform unit light is pi in every direction), its error is named
+    /// with the map, and progress comes in the order of the steps.
+    #[test]
+    fn the_injected_projector_and_progress_are_used() {
+        let (path, _) = sky();
+        let projector = Uniform(Mutex::new(0));
+        let steps = Mutex::new(Vec::<String>::new());
+        let progress = |m: &str| steps.lock().unwrap().push(m.to_string());
+        let hooks = Hooks {
+            projector: &projector,
+            progress: &progress,
+            warn: &|_| {},
+        };
+        let mut p = ProjectSettings::new(
+            2,
+            MapOrientation::default(),
+            Method::Quadrature,
+            Quantity::Irradiance,
+        );
+        p.window = None;
+        let file = project(Source::Path(&path), &Settings::new(p.clone()), &hooks).unwrap();
+        assert_eq!(*projector.0.lock().unwrap(), 1);
+        let e = file.coeffs.eval(DVec3::new(0.2, -0.9, 0.3).normalize());
+        assert!((e - DVec3::splat(std::f64::consts::PI)).abs().max_element() < 1e-12);
+        let name = path.display().to_string();
+        let steps = steps.lock().unwrap().clone();
+        assert_eq!(
+            steps,
+            [
+                format!("reading {name}"),
+                format!("projecting {name} (512x256, lmax 2)"),
+                format!("choosing windows for {name}"),
+            ]
+        );
+        // Its refusal names the map and the step.
+        let strip = vec![[1.0f32; 3]; 6 * 8 * 8];
+        let source = StridedImage::new(Layout::Strip, 48, 8, 48, &strip).unwrap();
+        let texels = Source::Texels {
+            texels: &source,
+            name: "strip",
+            layout_name: "strip",
+        };
+        let e = project(texels, &Settings::new(p), &hooks).unwrap_err();
+        assert_eq!(e.message(), "strip: projecting: equirect only");
+    }
+}

@@ -1,0 +1,57 @@
+//! `--gpu`: the GPU's projection ([`shlight_gpu::GpuProjector`]) as the
+//! pipeline's injected [`Projector`], so the pipeline stays free of wgpu.
+
+use shlight_core::map::{EquirectView, Layout, TexelSource};
+use shlight_pipeline::{PipelineError, ProjectSettings, Projection, Projector};
+
+/// The device and pipelines of `--gpu`.
+pub struct GpuProjection {
+    pub ctx: shlight_gpu::GpuContext,
+    pub projector: shlight_gpu::GpuProjector,
+}
+
+impl Projector for GpuProjection {
+    /// The quadrature of an equirect map on the GPU; other layouts are
+    /// refused.
+    fn project(
+        &self,
+        texels: &dyn TexelSource,
+        s: &ProjectSettings,
+    ) -> shlight_pipeline::Result<Projection> {
+        let layout = texels.layout();
+        if layout != Layout::Equirect {
+            return Err(PipelineError::new(format!(
+                "--gpu projects equirect maps; this one is {}",
+                layout.name()
+            )));
+        }
+        let (width, height) = texels.size();
+        let owned: Vec<[f32; 3]>;
+        let pixels = match texels.pixels() {
+            Some(p) if p.len() == width * height => p,
+            _ => {
+                owned = (0..height)
+                    .flat_map(|y| (0..width).map(move |x| (x, y)))
+                    .map(|(x, y)| texels.texel(x, y))
+                    .collect();
+                &owned
+            }
+        };
+        let view = EquirectView {
+            width,
+            height,
+            pixels,
+        };
+        let coeffs = self
+            .projector
+            .project(&self.ctx, view, s.lmax, s.orientation)
+            .map_err(|e| PipelineError::new(shlight_pipeline::error_chain(&e)))?;
+        Ok(Projection {
+            coeffs,
+            std_error: None,
+            samples: None,
+            seed: None,
+            sampler: None,
+        })
+    }
+}
