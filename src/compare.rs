@@ -5,11 +5,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use shlight_accuracy::compare::{self, CompareRow};
 use shlight_core::encoding::DominantLightOptions;
-use shlight_core::map::{EnvMap, MapOrientation};
+use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
 
 use crate::input::{InputLayout, load, parse_input_layout};
@@ -62,15 +62,8 @@ pub fn run(args: &CompareArgs, ui: &Ui) -> Result<()> {
             |s| s.to_string_lossy().into_owned(),
         );
         let bar = ui.spinner(&format!("comparing {name}"));
-        let (image, layout, _, _) = load(input, args.layout, &read, args.sanitize, ui)?;
-        let map = EnvMap::new(
-            layout,
-            orientation,
-            image.width(),
-            image.height(),
-            image.pixels(),
-        )
-        .map_err(|e| anyhow!("{}: {e}", input.display()))?;
+        let loaded = load(input, args.layout, &read, args.sanitize, ui)?;
+        let map = loaded.map(orientation, &input.display().to_string())?;
         rows.extend(compare::compare_map(
             &name,
             &map,

@@ -5,10 +5,9 @@
 use std::path::Path;
 
 use anyhow::Result;
-use shlight_core::map::Layout;
 use shlight_core::sh::Frame;
-use shlight_format::SanitizeCounts;
-use shlight_io::{Image, PixelStats, ReadOptions};
+use shlight_io::ReadOptions;
+use shlight_pipeline::LoadedMap;
 
 use crate::progress::Ui;
 
@@ -25,18 +24,17 @@ pub fn parse_input_layout(s: &str) -> std::result::Result<InputLayout, String> {
 }
 
 /// Reads and checks an input ([`shlight_pipeline::load_map`]), showing its
-/// warnings through `ui`. Returns the image, its layout, the statistics of
-/// the values as read, and what was replaced.
+/// warnings through `ui`.
 pub fn load(
     path: &Path,
     input_layout: InputLayout,
     read: &ReadOptions,
     sanitize: bool,
     ui: &Ui,
-) -> Result<(Image, Layout, PixelStats, Option<SanitizeCounts>)> {
+) -> Result<LoadedMap> {
     let loaded = shlight_pipeline::load_map(path, input_layout, read, sanitize)?;
-    for w in loaded.warnings {
+    for w in &loaded.warnings {
         ui.warn(w);
     }
-    Ok((loaded.image, loaded.layout, loaded.stats, loaded.sanitized))
+    Ok(loaded)
 }

@@ -22,7 +22,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
 use shlight_accuracy::map_irradiance::MapIrradiance;
-use shlight_core::map::{EnvMap, Layout, MapOrientation};
+use shlight_core::map::{Layout, MapOrientation};
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 use shlight_pipeline::output_grid;
 
@@ -117,15 +117,8 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         layer: None,
         max_pixels: args.max_pixels,
     };
-    let (image, layout, _, _) = load(&args.input, args.layout, &read, args.sanitize, ui)?;
-    let map = EnvMap::new(
-        layout,
-        orientation,
-        image.width(),
-        image.height(),
-        image.pixels(),
-    )
-    .map_err(|e| anyhow!("{name}: {e}"))?;
+    let loaded = load(&args.input, args.layout, &read, args.sanitize, ui)?;
+    let map = loaded.map(orientation, &name)?;
     let bar = ui.bar((w * h) as u64, "irradiance");
     let irradiance = MapIrradiance::on_equirect(&map, (w, h), orientation, &|n| bar.inc(n as u64))?;
     bar.finish_and_clear();
@@ -167,8 +160,8 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     println!(
         "{name}: {what} against brute force over {} normals ({}x{} texels of input):",
         irradiance.normals.len(),
-        image.width(),
-        image.height()
+        map.width,
+        map.height
     );
     if args.encoding.is_some() {
         println!("  floats stored:      {}", encoded.floats(encoding));

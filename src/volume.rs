@@ -130,7 +130,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         );
     }
     // The light first: a bad file fails before a long bake.
-    let env = environment(&args.env, args.lmax)?;
+    let env = environment(&args.env, args.lmax, ui)?;
     let scene = shlight_mesh::load(&args.scene)?;
     let name = args.scene.display().to_string();
     if scene.report.degenerate_triangles > 0 {
@@ -222,8 +222,9 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
 /// The environment's radiance coefficients to `lmax`, in the y-up frame
 /// (`shlight_pipeline::Environment`), refusing a coefficient file that
 /// stops below `lmax`.
-fn environment(path: &Path, lmax: usize) -> Result<ShCoeffs<DVec3>> {
+fn environment(path: &Path, lmax: usize, ui: &Ui) -> Result<ShCoeffs<DVec3>> {
     let env = Environment::load(path, Frame::YUp, lmax)?;
+    env.warnings.iter().for_each(|w| ui.warn(w));
     if env.radiance.lmax() < lmax {
         bail!(
             "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",

@@ -52,6 +52,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     };
     bar.set_message("reading the environment");
     let mut env = Environment::load(&args.env, frame_of(&args.up), MAX_LMAX)?;
+    env.warnings.iter().for_each(|w| ui.warn(w));
     // Encoded before the light is turned: the renderer turns the normal back.
     let snippet = match args.encoding {
         Encoding::Sh => None,

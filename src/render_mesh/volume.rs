@@ -34,6 +34,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     let mut volume = VolumeInput::load(&args.volume, &mesh, &args.mesh, ui)?;
     bar.set_message("reading the environment");
     let mut env = Environment::load(&args.env, frame_of(&args.up), shlight_gpu::MAX_LMAX)?;
+    env.warnings.iter().for_each(|w| ui.warn(w));
     if args.background == BackgroundArg::Map && env.map.is_none() {
         bail!(
             "--background map needs an environment map; {} holds coefficients (use --background sh)",

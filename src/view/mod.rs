@@ -157,6 +157,7 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         Some(path) => Environment::load(path, up, shlight_gpu::MAX_LMAX)?,
         None => crate::bundled::environment(up)?,
     };
+    env.warnings.iter().for_each(|w| ui.warn(w));
     if args.encoding == shlight_core::encoding::Encoding::DominantSh && env.map.is_none() {
         // The same message as render-mesh's.
         env.encode(args.encoding, 2)?;

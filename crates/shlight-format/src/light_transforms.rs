@@ -161,7 +161,10 @@ mod tests {
             }
         }
         // An irradiance file comes back as it is.
-        assert_eq!(e.to_irradiance().unwrap().to_json_string(), e.to_json_string());
+        assert_eq!(
+            e.to_irradiance().unwrap().to_json_string(),
+            e.to_json_string()
+        );
     }
 
     /// A rotation turns the sun's direction: the rotated expansion equals

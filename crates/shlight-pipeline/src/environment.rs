@@ -12,7 +12,10 @@ use shlight_core::encoding::{
 use shlight_core::map::{EnvMap, EquirectView, Layout, MapOrientation, project_equirect};
 use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
-use shlight_io::{Image, ReadOptions, read_image};
+use shlight_io::{Image, ReadOptions};
+
+use crate::input_layout::InputLayout;
+use crate::load::load_map;
 
 use crate::file_encoding::set_encoding;
 use crate::{PipelineError, Result};
@@ -30,12 +33,16 @@ pub struct Environment {
     /// How the map's texels meet world directions, or the coefficient
     /// file's frame and mirroring.
     pub orientation: MapOrientation,
+    /// Warnings from reading the map ([`crate::load_map`]'s: negative
+    /// texels, ...), each naming the file, for the caller to show.
+    pub warnings: Vec<String>,
 }
 
 impl Environment {
     /// Reads `path`: a `.json` coefficient file (radiance; kept to lmax
     /// `lmax` at most), or an equirect map in any format shlight reads,
-    /// projected by quadrature to `lmax` with its top row facing `up`
+    /// read and checked by [`crate::load_map`] (the loader of every map)
+    /// and projected by quadrature to `lmax` with its top row facing `up`
     /// ([`Environment::from_map`]).
     ///
     /// # Errors
@@ -58,10 +65,13 @@ impl Environment {
                     frame: file.frame,
                     mirror: file.mirror,
                 },
+                warnings: Vec::new(),
             });
         }
-        let image = read_image(path, &ReadOptions::default())?;
-        Self::from_map(path, image, up, lmax)
+        let loaded = load_map(path, InputLayout::Auto, &ReadOptions::default(), false)?;
+        let mut env = Self::from_map(path, loaded.image, up, lmax)?;
+        env.warnings = loaded.warnings;
+        Ok(env)
     }
 
     /// An equirect map read from `path` (or built in), checked (2:1, every
@@ -101,6 +111,7 @@ impl Environment {
             radiance,
             map: Some(image),
             orientation,
+            warnings: Vec::new(),
         })
     }
 
@@ -267,10 +278,47 @@ mod tests {
             radiance: closed_form::constant(2, DVec3::ONE),
             map: None,
             orientation: MapOrientation::default(),
+            warnings: Vec::new(),
         };
         let e = env.encode(Encoding::DominantSh, 2).unwrap_err();
         assert!(e.message().contains("holds coefficients"), "{e}");
         assert!(env.encode(Encoding::Zh3, 2).is_ok());
+    }
+
+    /// A map file comes in through the loader of every map
+    /// ([`crate::load_map`]): its warnings are kept, its refusals given,
+    /// and its texels projected as read.
+    #[test]
+    fn map_files_come_in_through_the_loader() {
+        let dir = temp_dir("environment-loader");
+        let write = |name: &str, image: &Image| {
+            let path = dir.join(name);
+            shlight_io::write_image(&path, image, &shlight_io::WriteOptions::default()).unwrap();
+            path
+        };
+        let mut image = Image::from_fn(32, 16, |_, _| [1.0; 3]);
+        image.set(4, 3, [-0.5, 1.0, 1.0]);
+        let negative = write("negative.exr", &image);
+        let env = Environment::load(&negative, Frame::YUp, 2).unwrap();
+        assert_eq!(env.warnings.len(), 1, "{:?}", env.warnings);
+        assert!(
+            env.warnings[0].contains("negative.exr"),
+            "{:?}",
+            env.warnings
+        );
+        assert!(env.warnings[0].contains("negative"), "{:?}", env.warnings);
+        assert_eq!(env.map.as_ref().unwrap().get(4, 3), [-0.5, 1.0, 1.0]);
+        image.set(5, 3, [f32::NAN, 1.0, 1.0]);
+        let nan = write("nan.exr", &image);
+        let e = Environment::load(&nan, Frame::YUp, 2).unwrap_err();
+        assert!(
+            e.message()
+                .contains("nan.exr: 1 texels are NaN or infinite"),
+            "{e}"
+        );
+        let e = Environment::load(&dir.join("sky_{face}.exr"), Frame::YUp, 2).unwrap_err();
+        assert!(e.message().contains("face file"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// The snippet is the WGSL export of the encoded light, and the

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use shlight_core::map::Layout;
+use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::SanitizeCounts;
 use shlight_io::{Image, PixelStats, ReadOptions, read_image};
 
@@ -24,6 +24,24 @@ pub struct LoadedMap {
     /// Warnings for the user (a stretched equirect map, negative texels,
     /// replaced values), each naming the input.
     pub warnings: Vec<String>,
+}
+
+impl LoadedMap {
+    /// The texels as a map in `orientation`, for the steps after reading.
+    ///
+    /// # Errors
+    /// None in practice ([`load_map`] settled a layout the size fits); the
+    /// message would name `name`.
+    pub fn map(&self, orientation: MapOrientation, name: &str) -> Result<EnvMap<'_>> {
+        EnvMap::new(
+            self.layout,
+            orientation,
+            self.image.width(),
+            self.image.height(),
+            self.image.pixels(),
+        )
+        .map_err(|e| PipelineError::new(format!("{name}: {e}")))
+    }
 }
 
 /// Reads the six face files of `path` (all must exist, be square and of

@@ -162,7 +162,7 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
                 stats: loaded.stats,
                 sanitized: loaded.sanitized,
             };
-            let map = env_map(&loaded.image, loaded.layout, s, &info.name)?;
+            let map = loaded.map(s.project.orientation, &info.name)?;
             finish(&map, Some(&loaded.image), info, s, hooks)
         }
         Source::Texels {
