@@ -4,7 +4,7 @@
 //! lmax to shade at.
 
 use anyhow::{Result, bail};
-use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, Transfer, wgpu};
+use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, wgpu};
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
 use shlight_prt::ShprtFile;
@@ -59,8 +59,7 @@ pub fn renderer(
     let mut renderer = Renderer::new(ctx, format);
     renderer.set_mesh(ctx, mesh);
     if let Some(t) = transfer {
-        let t = Transfer::new(t.lmax, t.channels, t.vertex_count, &t.transfer)?;
-        renderer.set_transfer(ctx, &t)?;
+        renderer.set_transfer(ctx, &t.view()?)?;
     }
     renderer.set_light(ctx, &env.radiance);
     if let Some(map) = &env.map {

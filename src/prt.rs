@@ -208,7 +208,7 @@ fn write_preview(
     let image = shlight_prt::preview::render(mesh, &radiance, w, h);
     let exposure = args
         .preview_exposure
-        .unwrap_or_else(|| shlight_prt::preview::auto_exposure(&radiance));
+        .unwrap_or_else(|| shlight_prt::preview::vertex_exposure(&radiance));
     write_image(
         path,
         &image,

@@ -13,9 +13,10 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
+use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_pipeline::Environment;
-use shlight_volume::{FileMeta, Grid, Stage, VolumeOptions, bake};
+use shlight_volume::{FileMeta, Stage, VolumeOptions, bake};
 
 use crate::progress::{StageBars, Ui};
 
@@ -98,8 +99,12 @@ pub struct VolumeArgs {
 
 /// Runs `shlight volume`.
 pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
-    let resolution = Grid::parse_resolution(&args.resolution)?;
-    let bounds = args.bounds.as_deref().map(Grid::parse_bounds).transpose()?;
+    let resolution = ProbeGrid::parse_resolution(&args.resolution)?;
+    let bounds = args
+        .bounds
+        .as_deref()
+        .map(ProbeGrid::parse_bounds)
+        .transpose()?;
     let extension = args
         .output
         .extension()
@@ -122,11 +127,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         invalid_backfaces: args.invalid_backfaces,
         seed: args.seed,
     };
-    if args.lmax > shlight_volume::bake::MAX_LMAX {
+    if args.lmax > shlight_baked::MAX_LMAX {
         bail!(
             "--lmax {} is beyond {}, the most a volume holds",
             args.lmax,
-            shlight_volume::bake::MAX_LMAX
+            shlight_baked::MAX_LMAX
         );
     }
     // The light first: a bad file fails before a long bake.
@@ -140,8 +145,8 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         ));
     }
     let grid = match bounds {
-        Some((min, max)) => Grid::new(resolution, min, max)?,
-        None => Grid::around(resolution, scene.bounds())?,
+        Some((min, max)) => ProbeGrid::new(resolution, min, max)?,
+        None => ProbeGrid::around(resolution, scene.bounds())?,
     };
     ui.note(format!(
         "{name}: {} triangles, {}; grid {}x{}x{} over {}:{}",

@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use anyhow::{Result, bail};
 use clap::Args;
 use glam::Vec3;
+use shlight_baked::SHADED_MAX_LMAX;
 
 /// The volume options shared by `render-mesh` and `view`.
 #[derive(Args, Debug, Clone, Default)]
@@ -38,14 +39,9 @@ pub struct VolumeShadingArgs {
     pub object_size: Option<f32>,
 }
 
-/// Highest lmax the volume pass shades (shlight-gpu's `VOLUME_MAX_LMAX`,
-/// here so that builds without the `gpu` feature check the same; a test
-/// keeps the two equal).
-pub const VOLUME_SHADING_LMAX: usize = 4;
-
 impl VolumeShadingArgs {
     /// Refuses the object options without `--volume`, a volume that is not
-    /// a `.shvol` file, an `--lmax` beyond [`VOLUME_SHADING_LMAX`] and a
+    /// a `.shvol` file, an `--lmax` beyond [`SHADED_MAX_LMAX`] and a
     /// size that is not positive.
     ///
     /// # Errors
@@ -74,8 +70,8 @@ impl VolumeShadingArgs {
                 path.display()
             );
         }
-        if let Some(l) = lmax.filter(|&l| l > VOLUME_SHADING_LMAX) {
-            bail!("--lmax {l}: volumes are shaded to lmax {VOLUME_SHADING_LMAX} at most");
+        if let Some(l) = lmax.filter(|&l| l > SHADED_MAX_LMAX) {
+            bail!("--lmax {l}: volumes are shaded to lmax {SHADED_MAX_LMAX} at most");
         }
         if let Some(s) = self.object_size
             && !(s.is_finite() && s > 0.0)
@@ -96,9 +92,10 @@ mod gpu {
 
     use anyhow::{Result, bail};
     use glam::{DVec3, Vec3};
+    use shlight_baked::VolumeView;
     use shlight_core::sh::ShCoeffs;
     use shlight_format::ShvolFile;
-    use shlight_gpu::{GpuContext, VolumeProbes, VolumeRenderer, place, wgpu};
+    use shlight_gpu::{GpuContext, VolumeRenderer, place, wgpu};
     use shlight_mesh::Mesh;
 
     use super::VolumeShadingArgs;
@@ -160,11 +157,11 @@ mod gpu {
                     scene.content_hash()
                 ));
             }
-            if file.lmax > shlight_gpu::VOLUME_MAX_LMAX {
+            if file.lmax > shlight_baked::SHADED_MAX_LMAX {
                 ui.note(format!(
                     "{name} holds lmax {}; the GPU shades volumes to lmax {}",
                     file.lmax,
-                    shlight_gpu::VOLUME_MAX_LMAX
+                    shlight_baked::SHADED_MAX_LMAX
                 ));
             }
             let (object, object_name) = match &args.object {
@@ -174,10 +171,7 @@ mod gpu {
                     crate::bundled::MESH_NAME.to_string(),
                 ),
             };
-            let (lo, hi) = (
-                Vec3::from_array(file.bounds.0),
-                Vec3::from_array(file.bounds.1),
-            );
+            let (lo, hi) = (file.grid().min, file.grid().max);
             let at = args.at.unwrap_or((lo + hi) * 0.5);
             if !at.is_finite() {
                 bail!("--at {at}: expected finite coordinates");
@@ -218,10 +212,8 @@ mod gpu {
 
         /// The grid box.
         pub fn bounds(&self) -> (Vec3, Vec3) {
-            (
-                Vec3::from_array(self.file.bounds.0),
-                Vec3::from_array(self.file.bounds.1),
-            )
+            let grid = self.file.grid();
+            (grid.min, grid.max)
         }
 
         /// Relights a relightable volume under `env` (radiance SH in the
@@ -238,16 +230,8 @@ mod gpu {
         }
 
         /// The probes as the GPU takes them.
-        pub fn probes(&self) -> VolumeProbes<'_> {
-            let (min, max) = self.bounds();
-            VolumeProbes {
-                resolution: self.file.resolution,
-                min,
-                max,
-                lmax: self.file.lmax,
-                valid: &self.file.valid,
-                radiance: &self.file.radiance,
-            }
+        pub fn probes(&self) -> VolumeView<'_> {
+            self.file.view()
         }
 
         /// The object's placement at `at`.
@@ -283,11 +267,6 @@ mod tests {
     use super::*;
 
     #[cfg(feature = "gpu")]
-    #[test]
-    fn the_lmax_limit_is_the_renderers() {
-        assert_eq!(VOLUME_SHADING_LMAX, shlight_gpu::VOLUME_MAX_LMAX);
-    }
-
     #[test]
     fn object_options_need_a_volume_and_a_volume_needs_its_extension() {
         let object = VolumeShadingArgs {

@@ -8,10 +8,11 @@ use std::path::Path;
 use std::process::Command;
 
 use glam::{DVec3, Vec3};
+use shlight_baked::ProbeGrid;
 use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
 use shlight_mesh::generate;
-use shlight_volume::{Grid, VolumeOptions, bake};
+use shlight_volume::{VolumeOptions, bake};
 
 use crate::util::{read_json, s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows};
 
@@ -91,7 +92,7 @@ fn the_file_holds_the_library_bake_and_the_json_agrees() {
     // The library, given the same options and the scene's padded box.
     let scene = shlight_mesh::load(Path::new(SCENE)).unwrap();
     assert_eq!(file.scene_hash, scene.content_hash());
-    let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+    let grid = ProbeGrid::around([3, 2, 3], scene.bounds()).unwrap();
     assert_eq!(file.bounds, (grid.min.to_array(), grid.max.to_array()));
     let options = VolumeOptions {
         samples: 256,
@@ -114,7 +115,7 @@ fn the_file_holds_the_library_bake_and_the_json_agrees() {
     assert_eq!(j["resolution"], serde_json::json!([3, 2, 3]));
     let positions = j["positions"].as_array().unwrap();
     assert_eq!(positions.len(), 18);
-    for (i, p) in grid.positions().iter().enumerate() {
+    for (i, p) in grid.centres().iter().enumerate() {
         let got = Vec3::new(
             positions[i][0].as_f64().unwrap() as f32,
             positions[i][1].as_f64().unwrap() as f32,

@@ -10,11 +10,10 @@
 //! show their own probe beside an interpolated object in one frame.
 
 use glam::{DVec3, Vec3};
+use shlight_baked::{ProbeGrid, VolumeView};
 use shlight_core::sh::sh_count;
-use shlight_gpu::{
-    GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeProbes, VolumeRenderer, wgpu,
-};
-use shlight_volume::{Grid, sample};
+use shlight_gpu::{GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeRenderer, wgpu};
+use shlight_volume::sample;
 
 use crate::util::gpu_context;
 
@@ -48,7 +47,7 @@ impl Lcg {
 }
 
 struct TestVolume {
-    grid: Grid,
+    grid: ProbeGrid,
     lmax: usize,
     valid: Vec<bool>,
     radiance: Vec<f32>,
@@ -62,7 +61,7 @@ impl TestVolume {
     /// Random radiance on a grid of `resolution` over the box
     /// (-1, 0, 2)..(3, 1.5, 3), a probe or two invalid.
     fn random_on(resolution: [usize; 3], lmax: usize, seed: u64) -> Self {
-        let grid = Grid::new(
+        let grid = ProbeGrid::new(
             resolution,
             Vec3::new(-1.0, 0.0, 2.0),
             Vec3::new(3.0, 1.5, 3.0),
@@ -85,11 +84,9 @@ impl TestVolume {
         }
     }
 
-    fn probes(&self) -> VolumeProbes<'_> {
-        VolumeProbes {
-            resolution: self.grid.resolution,
-            min: self.grid.min,
-            max: self.grid.max,
+    fn probes(&self) -> VolumeView<'_> {
+        VolumeView {
+            grid: self.grid,
             lmax: self.lmax,
             valid: &self.valid,
             radiance: &self.radiance,
@@ -209,7 +206,7 @@ fn edge_queries(seed: u64) -> Vec<(Vec3, Vec3)> {
 fn the_cpu_interpolation_matches_a_hand_computation() {
     // Two probes along x at 0.5 and 1.5 (box 0..2): at x = 0.75 the
     // weights are 3/4 and 1/4; with probe 1 invalid, probe 0 alone.
-    let grid = Grid::new([2, 1, 1], Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)).unwrap();
+    let grid = ProbeGrid::new([2, 1, 1], Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)).unwrap();
     let radiance = [4.0, 8.0, 12.0, 0.0, 4.0, 40.0];
     let got = sample(
         &grid,
@@ -514,7 +511,7 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     let turned =
         ShRotation::from_mat3(2, glam::DMat3::from_rotation_y(60f64.to_radians())).apply(&sky);
     shlight_volume::relight_file(&mut file, &turned).unwrap();
-    let grid = Grid::new(
+    let grid = ProbeGrid::new(
         file.resolution,
         Vec3::from_array(file.bounds.0),
         Vec3::from_array(file.bounds.1),

@@ -89,7 +89,7 @@ impl<'a> App<'a> {
         let lmax = match &volume {
             Some(v) => args
                 .lmax
-                .unwrap_or(v.file.lmax.min(shlight_gpu::VOLUME_MAX_LMAX)),
+                .unwrap_or(v.file.lmax.min(shlight_baked::SHADED_MAX_LMAX)),
             None => crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref()),
         };
         Self {

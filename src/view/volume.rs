@@ -130,7 +130,7 @@ impl ViewVolume {
     pub fn panel_lines(&self) -> Vec<String> {
         let file = &self.input.file;
         let valid = file.valid.iter().filter(|v| **v).count();
-        let lmax = file.lmax.min(shlight_gpu::VOLUME_MAX_LMAX);
+        let lmax = file.lmax.min(shlight_baked::SHADED_MAX_LMAX);
         vec![
             format!(
                 "volume {}: {valid} valid of {} probes ({}x{}x{}), shaded to lmax {lmax}",

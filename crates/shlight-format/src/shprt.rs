@@ -56,6 +56,22 @@ pub struct ShprtFile {
 }
 
 impl ShprtFile {
+    /// The transfer vectors borrowed, as the renderer takes them.
+    ///
+    /// # Errors
+    /// A channel count other than 1 or 3, or a length that does not fit
+    /// the counts (a file read by [`ShprtFile::from_bytes`] always fits).
+    pub fn view(
+        &self,
+    ) -> std::result::Result<shlight_baked::TransferView<'_>, shlight_baked::ShapeError> {
+        shlight_baked::TransferView::new(
+            self.lmax,
+            self.channels,
+            self.vertex_count,
+            &self.transfer,
+        )
+    }
+
     /// Coefficients per vertex and channel, `(lmax+1)^2`.
     #[must_use]
     pub fn coeffs_per_channel(&self) -> usize {

@@ -24,6 +24,7 @@
 use std::path::Path;
 
 use serde_json::{Value, json};
+use shlight_baked::{MAX_LMAX, MAX_PROBES, ProbeGrid, VolumeView};
 use shlight_core::sh::sh_count;
 
 use crate::{FormatError, Result, header_line};
@@ -34,10 +35,6 @@ pub const FORMAT: &str = "shlight-volume";
 pub const FORMAT_VERSION: u64 = 1;
 /// Longest header a reader accepts, in bytes.
 pub const MAX_HEADER: usize = 16 << 20;
-/// Highest lmax a volume may have.
-pub const MAX_LMAX: usize = 8;
-/// Most probes a file may hold (a 256 x 256 x 256 grid).
-pub const MAX_PROBES: usize = 1 << 24;
 
 /// A `.shvol` file's content.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,27 +95,26 @@ impl ShvolFile {
         self.transfer.is_some()
     }
 
-    /// The centre of probe `(x, y, z)`: `min + (i + 1/2) (max - min) / n`.
+    /// The probes' grid (its box and resolution, as stored).
     #[must_use]
-    pub fn position(&self, index: [usize; 3]) -> [f32; 3] {
-        let (lo, hi) = self.bounds;
-        [0, 1, 2]
-            .map(|a| lo[a] + (index[a] as f32 + 0.5) * (hi[a] - lo[a]) / self.resolution[a] as f32)
+    pub fn grid(&self) -> ProbeGrid {
+        ProbeGrid {
+            resolution: self.resolution,
+            min: self.bounds.0.into(),
+            max: self.bounds.1.into(),
+        }
     }
 
-    /// Every probe's centre, in grid order (x fastest).
+    /// The probes borrowed, as the renderer and every reader of a volume
+    /// take them (not checked: [`VolumeView::check`]).
     #[must_use]
-    pub fn positions(&self) -> Vec<[f32; 3]> {
-        let [nx, ny, nz] = self.resolution;
-        let mut out = Vec::with_capacity(nx * ny * nz);
-        for z in 0..nz {
-            for y in 0..ny {
-                for x in 0..nx {
-                    out.push(self.position([x, y, z]));
-                }
-            }
+    pub fn view(&self) -> VolumeView<'_> {
+        VolumeView {
+            grid: self.grid(),
+            lmax: self.lmax,
+            valid: &self.valid,
+            radiance: &self.radiance,
         }
-        out
     }
 
     /// The header line's JSON object.
@@ -190,9 +186,10 @@ impl ShvolFile {
         };
         object.insert(
             "positions".into(),
-            self.positions()
+            self.grid()
+                .centres()
                 .into_iter()
-                .map(shortest)
+                .map(|c| shortest(c.to_array()))
                 .collect::<Vec<_>>()
                 .into(),
         );
@@ -494,7 +491,7 @@ mod tests {
     #[test]
     fn positions_are_cell_centres_x_fastest() {
         let f = sample(false);
-        let p = f.positions();
+        let p: Vec<[f32; 3]> = f.grid().centres().iter().map(|c| c.to_array()).collect();
         assert_eq!(p.len(), 6);
         assert_eq!(p[0], [-0.5, 0.25, -2.0]);
         assert_eq!(p[1], [0.5, 0.25, -2.0]);

@@ -159,7 +159,7 @@ fn bevy_reads_each_probes_irradiance_over_pi_at_the_six_axes() {
     let tex = Texture::read(&bytes);
     assert_eq!(tex.size, [3, 4, 6]);
     assert_eq!(sh_count(file.lmax), 9);
-    for (i, p) in file.positions().into_iter().enumerate() {
+    for (i, p) in centres(&file).into_iter().enumerate() {
         let l = probe_light(i);
         for n in [
             DVec3::X,
@@ -179,7 +179,10 @@ fn bevy_reads_each_probes_irradiance_over_pi_at_the_six_axes() {
         }
     }
     // Halfway between two probes along x the sampler blends them equally.
-    let (a, b) = (file.position([0, 1, 1]), file.position([1, 1, 1]));
+    let (a, b) = (
+        file.grid().centre([0, 1, 1]).to_array(),
+        file.grid().centre([1, 1, 1]).to_array(),
+    );
     let mid = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
     let got = tex.bevy_light(unit(&file, mid), Vec3::Y);
     let want =
@@ -194,7 +197,7 @@ fn invalid_probes_take_their_valid_neighbours_light() {
     let file = volume(valid);
     let tex = Texture::read(&bevy_ktx2(&file, "t"));
     // Probe 0's face neighbours: probe 1 (+x), probe 3 (+y), probe 6 (+z).
-    let positions = file.positions();
+    let positions = centres(&file);
     for n in [Vec3::X, Vec3::NEG_Y] {
         let got = tex.bevy_light(unit(&file, positions[0]), n);
         let want = [1usize, 3, 6]
@@ -207,4 +210,9 @@ fn invalid_probes_take_their_valid_neighbours_light() {
             "{got} vs {want}"
         );
     }
+}
+
+/// Every probe's centre as an array, in probe order.
+fn centres(file: &ShvolFile) -> Vec<[f32; 3]> {
+    file.grid().centres().iter().map(|c| c.to_array()).collect()
 }

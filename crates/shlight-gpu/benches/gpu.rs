@@ -41,11 +41,12 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
+use shlight_baked::{ProbeGrid, TransferView, VolumeView};
 use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::sh::closed_form;
 use shlight_gpu::{
     Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
-    Transfer, VolumeFetch, VolumeInstance, VolumeProbes, VolumeRenderer,
+    VolumeFetch, VolumeInstance, VolumeRenderer,
 };
 use shlight_mesh::Mesh;
 
@@ -113,7 +114,7 @@ fn bench_frame(
     );
     if let Some(lmax) = prt_lmax {
         let data = pseudo_random(mesh.vertex_count() * 3 * (lmax + 1) * (lmax + 1));
-        let transfer = Transfer::new(lmax, 3, mesh.vertex_count(), &data).unwrap();
+        let transfer = TransferView::new(lmax, 3, mesh.vertex_count(), &data).unwrap();
         renderer.set_transfer(ctx, &transfer).unwrap();
     }
     let target = Offscreen::new(ctx, 1920, 1080).unwrap();
@@ -176,10 +177,12 @@ fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: V
         .collect();
     let valid: Vec<bool> = (0..count).map(|k| k % 10 != 0).collect();
     let (min, max) = mesh.bounds();
-    let probes = VolumeProbes {
-        resolution,
-        min: min - 0.01,
-        max: max + 0.01,
+    let probes = VolumeView {
+        grid: ProbeGrid {
+            resolution,
+            min: min - 0.01,
+            max: max + 0.01,
+        },
         lmax,
         valid: &valid,
         radiance: &radiance,

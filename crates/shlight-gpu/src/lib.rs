@@ -5,11 +5,11 @@
 //!   per fragment as a Lambertian surface, `ρ/π Σ_l A_l w_l Σ_m L_lm Y_lm(n)`
 //!   (Ramamoorthi & Hanrahan 2001; `A_l` the clamped-cosine eigenvalues,
 //!   `w_l` a run-time window, any lmax up to 8), or by PRT transfer vectors
-//!   `Σ_i T_vi L_i` per vertex ([`Transfer`]), or as world normals; with the
+//!   `Σ_i T_vi L_i` per vertex ([`shlight_baked::TransferView`]), or as world normals; with the
 //!   environment map or its SH reconstruction behind;
 //! - [`VolumeRenderer`]: a scene and a dynamic object lit per fragment by
 //!   trilinear interpolation of an irradiance volume's valid probes (any
-//!   lmax up to [`VOLUME_MAX_LMAX`]), and the probes as spheres;
+//!   lmax up to [`shlight_baked::SHADED_MAX_LMAX`]), and the probes as spheres;
 //! - [`Offscreen`] / [`render_frame`]: frames read back as linear `f32` RGBA;
 //!   [`read_srgb8_texture`]: a window's 8-bit sRGB texture as linear RGB;
 //! - [`Camera`] (a look-at perspective camera; [`Camera::framing`] and
@@ -34,7 +34,6 @@ mod ring_sums;
 mod sh_expansion;
 pub mod shaders;
 mod shading;
-mod transfer;
 mod volume;
 mod volume_expansion;
 mod volume_fetch;
@@ -48,11 +47,10 @@ pub use projection::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
-pub use transfer::Transfer;
 pub use volume::{
-    PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeProbes, VolumeRenderer, pack_texels,
-    place, probe_sphere_instances,
+    PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, pack_texels, place,
+    probe_sphere_instances,
 };
-pub use volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
+pub use volume_fetch::VolumeFetch;
 /// wgpu, as this crate uses it (for windows and surfaces).
 pub use wgpu;

@@ -13,7 +13,9 @@ use wgpu::util::DeviceExt;
 
 use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading, shader_encodes_srgb};
-use crate::{Camera, GpuContext, GpuError, Transfer};
+use shlight_baked::TransferView;
+
+use crate::{Camera, GpuContext, GpuError};
 
 /// Depth buffer format of every frame.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -332,7 +334,7 @@ impl Renderer {
     ///
     /// # Errors
     /// [`GpuError::Invalid`] without a mesh, or when the vertex counts differ.
-    pub fn set_transfer(&mut self, ctx: &GpuContext, t: &Transfer<'_>) -> Result<(), GpuError> {
+    pub fn set_transfer(&mut self, ctx: &GpuContext, t: &TransferView<'_>) -> Result<(), GpuError> {
         let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
         if vertices != Some(t.vertex_count) {
             return Err(GpuError::Invalid(match vertices {

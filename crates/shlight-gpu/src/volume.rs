@@ -8,7 +8,7 @@
 //! `Rgba32Float` 3D texture of premultiplied texels ([`pack_texels`]): per
 //! probe the floats `v, v L_i, ...` (`v` the validity 1 or 0, `L_i` the rgb
 //! radiance of coefficient `i` to `lmax_v`, the volume's lmax clipped to
-//! [`VOLUME_MAX_LMAX`], leaving out degree 3, whose clamped cosine
+//! [`SHADED_MAX_LMAX`], leaving out degree 3, whose clamped cosine
 //! eigenvalue `A_3` is 0 so that it adds nothing to the irradiance), four
 //! to a texel; texel `j` of every
 //! probe in block `j`, a copy of the grid with one more layer on each side
@@ -37,10 +37,11 @@ use crate::renderer::{Pass, READ, UNIFORM, WRITE, buffer_entry, pipeline_layout,
 use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, Shading, shader_encodes_srgb};
 use crate::volume_expansion::{volume_coefficients, volume_texels};
-use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
+use crate::volume_fetch::VolumeFetch;
 use crate::{Camera, GpuContext, GpuError};
+use shlight_baked::{ProbeGrid, SHADED_MAX_LMAX, VolumeView};
 
-/// Texels per probe at [`VOLUME_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
+/// Texels per probe at [`SHADED_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
 const MAX_TEXELS: usize = 14;
 
 /// The `probe` of an instance lit by interpolation: a filler, since no
@@ -49,68 +50,17 @@ const MAX_TEXELS: usize = 14;
 /// reports it as `None`.
 const NO_PROBE: u32 = u32::MAX;
 
-/// A volume's probes as the GPU takes them (the fields of a `.shvol`
-/// file: docs/shvol.md).
-#[derive(Clone, Copy, Debug)]
-pub struct VolumeProbes<'a> {
-    /// Probes along x, y and z (each at least 1).
-    pub resolution: [usize; 3],
-    /// The grid box's lower corner.
-    pub min: Vec3,
-    /// The grid box's upper corner (above `min` on every axis).
-    pub max: Vec3,
-    /// Highest SH degree of `radiance`.
-    pub lmax: usize,
-    /// Per probe: whether interpolation may use it.
-    pub valid: &'a [bool],
-    /// Per probe `(lmax+1)^2` rows of `[r, g, b]` radiance coefficients,
-    /// probes x fastest, then y, then z.
-    pub radiance: &'a [f32],
-}
-
-impl VolumeProbes<'_> {
-    fn probe_count(&self) -> usize {
-        self.resolution.iter().product()
+/// Checks `probes` for the volume pass: their shape
+/// ([`VolumeView::check`]) and a count the pass can index.
+fn check(probes: &VolumeView<'_>) -> Result<(), GpuError> {
+    probes.check().map_err(|e| GpuError::Invalid(e.0))?;
+    if probes.probe_count() > u32::MAX as usize / 32 {
+        return Err(GpuError::Invalid(format!(
+            "volume resolution {:?}: each count must be at least 1",
+            probes.grid.resolution
+        )));
     }
-
-    fn check(&self) -> Result<(), GpuError> {
-        let n = self.probe_count();
-        let nc = (self.lmax + 1) * (self.lmax + 1);
-        if self.resolution.contains(&0) || n > u32::MAX as usize / 32 {
-            return Err(GpuError::Invalid(format!(
-                "volume resolution {:?}: each count must be at least 1",
-                self.resolution
-            )));
-        }
-        if !(self.min.is_finite() && self.max.is_finite()) || self.min.cmpge(self.max).any() {
-            return Err(GpuError::Invalid(format!(
-                "volume bounds {}:{}: min must be below max on every axis",
-                self.min, self.max
-            )));
-        }
-        if self.valid.len() != n || self.radiance.len() != n * nc * 3 {
-            return Err(GpuError::Invalid(format!(
-                "a volume of {n} probes at lmax {} needs {n} validity flags and {} values, not {} and {}",
-                self.lmax,
-                n * nc * 3,
-                self.valid.len(),
-                self.radiance.len()
-            )));
-        }
-        Ok(())
-    }
-
-    /// The centre of probe `k`: `min + (i + 1/2) (max - min) / n` per axis.
-    fn centre(&self, k: usize) -> Vec3 {
-        let [nx, ny, _] = self.resolution;
-        let index = Vec3::new(
-            (k % nx) as f32,
-            (k / nx % ny) as f32,
-            (k / (nx * ny)) as f32,
-        );
-        let cell = (self.max - self.min) / Vec3::from_array(self.resolution.map(|n| n as f32));
-        self.min + (index + 0.5) * cell
-    }
+    Ok(())
 }
 
 /// The probes as the volume pass's 3D texture (`Rgba32Float`, texels x
@@ -132,7 +82,7 @@ pub struct ProbeTexels {
 
 /// The probes packed as the volume pass's texture: probe `k`'s floats
 /// `v, v L_i (rgb), ...` for the coefficients `i` to lmax
-/// `min(lmax, VOLUME_MAX_LMAX)` but those of degree 3 (`A_3 = 0`: they add
+/// `min(lmax, SHADED_MAX_LMAX)` but those of degree 3 (`A_3 = 0`: they add
 /// nothing to the irradiance), four to a texel (the last padded with 0; an
 /// invalid probe all 0), texel `j`
 /// in block `j`, each block with its first and last y and z layers
@@ -142,11 +92,11 @@ pub struct ProbeTexels {
 /// # Errors
 /// [`GpuError::Invalid`] when the grid does not fit in a 3D texture of
 /// side `max_dimension`, or for the faults [`VolumeRenderer::new`] names.
-pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<ProbeTexels, GpuError> {
-    probes.check()?;
-    let lv = probes.lmax.min(VOLUME_MAX_LMAX);
+pub fn pack_texels(probes: &VolumeView<'_>, max_dimension: u32) -> Result<ProbeTexels, GpuError> {
+    check(probes)?;
+    let lv = probes.lmax.min(SHADED_MAX_LMAX);
     let per_probe = volume_texels(lv);
-    let [nx, ny, nz] = probes.resolution;
+    let [nx, ny, nz] = probes.grid.resolution;
     let (hy, hz) = (ny + 2, nz + 2);
     let max = max_dimension as usize;
     // Columns by and rows bz of blocks: the smallest larger side, then the
@@ -159,7 +109,7 @@ pub fn pack_texels(probes: &VolumeProbes<'_>, max_dimension: u32) -> Result<Prob
         return Err(GpuError::Invalid(format!(
             "volume resolution {:?} at lmax {lv}: {per_probe} copies of the grid do not fit in \
              a 3D texture of side {max_dimension}",
-            probes.resolution
+            probes.grid.resolution
         )));
     };
     let (width, height, depth) = (nx, by * hy, bz * hz);
@@ -243,12 +193,16 @@ impl VolumeInstance {
 /// to the probe's centre, shaded by that probe's own SH (black when it is
 /// invalid).
 #[must_use]
-pub fn probe_sphere_instances(probes: &VolumeProbes<'_>) -> Vec<VolumeInstance> {
-    let cell = (probes.max - probes.min) / Vec3::from_array(probes.resolution.map(|n| n as f32));
+pub fn probe_sphere_instances(probes: &VolumeView<'_>) -> Vec<VolumeInstance> {
+    let cell = probes.grid.cell();
     let radius = PROBE_SPHERE_RADIUS * cell.min_element();
     (0..probes.probe_count())
         .map(|k| VolumeInstance {
-            offset_scale: probes.centre(k).extend(radius).to_array(),
+            offset_scale: probes
+                .grid
+                .centre(probes.grid.grid_index(k))
+                .extend(radius)
+                .to_array(),
             probe: k as u32,
             pad: [0; 3],
         })
@@ -280,10 +234,10 @@ struct VolumeUniform {
 }
 
 impl VolumeUniform {
-    fn new(probes: &VolumeProbes<'_>, texels: &ProbeTexels) -> Self {
-        let inv_cell =
-            Vec3::from_array(probes.resolution.map(|n| n as f32)) / (probes.max - probes.min);
-        let [nx, ny, nz] = probes.resolution.map(|n| n as u32);
+    fn new(probes: &VolumeView<'_>, texels: &ProbeTexels) -> Self {
+        let inv_cell = Vec3::from_array(probes.grid.resolution.map(|n| n as f32))
+            / (probes.grid.max - probes.grid.min);
+        let [nx, ny, nz] = probes.grid.resolution.map(|n| n as u32);
         let [w, h, d] = texels.size.map(|n| n as f32);
         let mut blocks = [[0.0; 4]; MAX_TEXELS];
         for (b, &[oy, oz]) in blocks.iter_mut().zip(&texels.blocks) {
@@ -291,7 +245,7 @@ impl VolumeUniform {
             *b = [oy / h, oz / d, oy, oz];
         }
         Self {
-            min: probes.min.extend(0.0).to_array(),
+            min: probes.grid.min.extend(0.0).to_array(),
             inv_cell: inv_cell.extend(0.0).to_array(),
             resolution: [nx, ny, nz, texels.per_probe as u32],
             inv_size: [1.0 / w, 1.0 / h, 1.0 / d, 0.0],
@@ -391,13 +345,13 @@ pub struct VolumeRenderer {
     fetch: VolumeFetch,
     /// Per shading lmax, compiled on first use: `volume.wgsl` as `fetch`
     /// reads the texels, one module for the three pipelines below.
-    modules: [OnceLock<wgpu::ShaderModule>; VOLUME_MAX_LMAX + 1],
+    modules: [OnceLock<wgpu::ShaderModule>; SHADED_MAX_LMAX + 1],
     /// Per shading lmax, built on first use: meshes lit by interpolation
     /// (`VOLUME_PASS`), probe spheres (`PROBE_PASS`) and the interpolation
     /// as a compute pass (`cs_volume`).
-    pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
-    probe_pipelines: [OnceLock<wgpu::RenderPipeline>; VOLUME_MAX_LMAX + 1],
-    computes: [OnceLock<wgpu::ComputePipeline>; VOLUME_MAX_LMAX + 1],
+    pipelines: [OnceLock<wgpu::RenderPipeline>; SHADED_MAX_LMAX + 1],
+    probe_pipelines: [OnceLock<wgpu::RenderPipeline>; SHADED_MAX_LMAX + 1],
+    computes: [OnceLock<wgpu::ComputePipeline>; SHADED_MAX_LMAX + 1],
     pipeline_layout: wgpu::PipelineLayout,
     compute_layout: wgpu::BindGroupLayout,
     compute_pipeline_layout: wgpu::PipelineLayout,
@@ -489,7 +443,7 @@ fn probe_bindings<'a>(
 
 impl VolumeRenderer {
     /// A volume pass for colour targets of `color_format` over `probes`
-    /// (clipped to lmax [`VOLUME_MAX_LMAX`]), with no scene and no object
+    /// (clipped to lmax [`SHADED_MAX_LMAX`]), with no scene and no object
     /// yet, interpolating as [`VolumeFetch::best`] says.
     ///
     /// # Errors
@@ -499,7 +453,7 @@ impl VolumeRenderer {
     pub fn new(
         ctx: &GpuContext,
         color_format: wgpu::TextureFormat,
-        probes: &VolumeProbes<'_>,
+        probes: &VolumeView<'_>,
     ) -> Result<Self, GpuError> {
         Self::with_fetch(ctx, color_format, probes, VolumeFetch::best(ctx))
     }
@@ -513,7 +467,7 @@ impl VolumeRenderer {
     pub fn with_fetch(
         ctx: &GpuContext,
         color_format: wgpu::TextureFormat,
-        probes: &VolumeProbes<'_>,
+        probes: &VolumeView<'_>,
         fetch: VolumeFetch,
     ) -> Result<Self, GpuError> {
         if fetch == VolumeFetch::Filtered && !VolumeFetch::can_filter(ctx) {
@@ -549,7 +503,7 @@ impl VolumeRenderer {
             entries: &entries,
         });
         let frame = FrameUniform::buffer(device, "volume frame");
-        let lmax = probes.lmax.min(VOLUME_MAX_LMAX);
+        let lmax = probes.lmax.min(SHADED_MAX_LMAX);
         let volume = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("volume grid"),
             contents: bytemuck::bytes_of(&VolumeUniform::new(probes, &texels)),
@@ -609,7 +563,7 @@ impl VolumeRenderer {
             texture_view,
             sampler,
             bind,
-            resolution: probes.resolution,
+            resolution: probes.grid.resolution,
             lmax,
             probe_count: probes.probe_count(),
             valid: probes.valid.to_vec(),
@@ -620,7 +574,7 @@ impl VolumeRenderer {
     }
 
     /// The lmax the probes are shaded at (the volume's, at most
-    /// [`VOLUME_MAX_LMAX`]).
+    /// [`SHADED_MAX_LMAX`]).
     #[must_use]
     pub fn lmax(&self) -> usize {
         self.lmax
@@ -645,16 +599,18 @@ impl VolumeRenderer {
         radiance: &[f32],
     ) -> Result<(), GpuError> {
         let (min, max) = (Vec3::ZERO, Vec3::ONE);
-        let probes = VolumeProbes {
-            resolution: self.resolution,
-            min,
-            max,
+        let probes = VolumeView {
+            grid: ProbeGrid {
+                resolution: self.resolution,
+                min,
+                max,
+            },
             lmax,
             valid: &self.valid,
             radiance,
         };
-        probes.check()?;
-        if lmax.min(VOLUME_MAX_LMAX) != self.lmax {
+        check(&probes)?;
+        if lmax.min(SHADED_MAX_LMAX) != self.lmax {
             return Err(GpuError::Invalid(format!(
                 "radiance of lmax {lmax} for a volume shaded at lmax {}",
                 self.lmax
@@ -922,7 +878,7 @@ mod tests {
         // Volume in volume.wgsl: vec4<f32> x 2, vec4<u32>, vec4<f32>, then
         // array<vec4<f32>, 14>.
         assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 14 * 16);
-        assert_eq!(MAX_TEXELS, volume_texels(VOLUME_MAX_LMAX));
+        assert_eq!(MAX_TEXELS, volume_texels(SHADED_MAX_LMAX));
         // Instances: vec4 then u32, padded to 32 bytes.
         assert_eq!(std::mem::size_of::<VolumeInstance>(), 32);
     }
@@ -934,10 +890,12 @@ mod tests {
         let nc = 36;
         let radiance: Vec<f32> = (0..2 * nc * 3).map(|x| x as f32 + 1.0).collect();
         let valid = [true, false];
-        let probes = VolumeProbes {
-            resolution: [2, 1, 1],
-            min: Vec3::ZERO,
-            max: Vec3::ONE,
+        let probes = VolumeView {
+            grid: ProbeGrid {
+                resolution: [2, 1, 1],
+                min: Vec3::ZERO,
+                max: Vec3::ONE,
+            },
             lmax: 5,
             valid: &valid,
             radiance: &radiance,
@@ -986,10 +944,12 @@ mod tests {
     fn probe_spheres_sit_at_cell_centres_and_placement_centres_the_object() {
         let valid = [true; 12];
         let radiance = [0.0; 12 * 3];
-        let probes = VolumeProbes {
-            resolution: [2, 3, 2],
-            min: Vec3::new(-1.0, 0.0, 0.0),
-            max: Vec3::new(1.0, 3.0, 4.0),
+        let probes = VolumeView {
+            grid: ProbeGrid {
+                resolution: [2, 3, 2],
+                min: Vec3::new(-1.0, 0.0, 0.0),
+                max: Vec3::new(1.0, 3.0, 4.0),
+            },
             lmax: 0,
             valid: &valid,
             radiance: &radiance,

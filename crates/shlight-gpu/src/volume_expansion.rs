@@ -32,7 +32,8 @@ use std::fmt::Write;
 use shlight_core::sh::{Legendre, clamped_cosine_eigenvalue};
 
 use crate::sh_expansion::{azimuth_power, literal};
-use crate::volume_fetch::{VOLUME_MAX_LMAX, VolumeFetch};
+use crate::volume_fetch::VolumeFetch;
+use shlight_baked::SHADED_MAX_LMAX;
 
 /// The volume module's generated WGSL for `lmax`, texels filtered.
 pub(crate) fn volume_wgsl_filtered(lmax: usize) -> String {
@@ -45,10 +46,10 @@ pub(crate) fn volume_wgsl_loads(lmax: usize) -> String {
 }
 
 /// The WGSL text of `ShBasis`, `sh_basis`, `volume_sum` and `probe_sum`
-/// for `lmax` (clamped to [`VOLUME_MAX_LMAX`]) and `fetch`.
+/// for `lmax` (clamped to [`SHADED_MAX_LMAX`]) and `fetch`.
 #[must_use]
 pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
-    let lmax = lmax.min(VOLUME_MAX_LMAX);
+    let lmax = lmax.min(SHADED_MAX_LMAX);
     let count = (lmax + 1) * (lmax + 1);
     let kept = volume_coefficients(lmax);
     let legendre = Legendre::<f64>::new(lmax);
@@ -150,20 +151,20 @@ pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
 }
 
 /// The SH coefficients `i = l(l+1)+m` to `lmax` (clamped to
-/// [`VOLUME_MAX_LMAX`]) that the volume pass keeps, in order: those of the
+/// [`SHADED_MAX_LMAX`]) that the volume pass keeps, in order: those of the
 /// degrees whose clamped cosine eigenvalue `A_l` is not 0 (all but odd
 /// `l >= 3`), the only ones the irradiance `sum_l A_l w_l sum_m L_lm Y_lm`
 /// depends on.
 #[must_use]
 pub(crate) fn volume_coefficients(lmax: usize) -> Vec<usize> {
-    let lmax = lmax.min(VOLUME_MAX_LMAX);
+    let lmax = lmax.min(SHADED_MAX_LMAX);
     (0..=lmax)
         .filter(|&l| clamped_cosine_eigenvalue(l) != 0.0)
         .flat_map(|l| l * l..(l + 1) * (l + 1))
         .collect()
 }
 
-/// Texels per probe at `lmax` (clamped to [`VOLUME_MAX_LMAX`]): the floats
+/// Texels per probe at `lmax` (clamped to [`SHADED_MAX_LMAX`]): the floats
 /// `v, v L_i (rgb)` for the coefficients `i` of [`volume_coefficients`],
 /// four to a texel.
 #[must_use]
@@ -234,7 +235,7 @@ mod tests {
     #[test]
     fn every_coefficient_reads_its_own_three_floats_once() {
         for fetch in [VolumeFetch::Filtered, VolumeFetch::Loads] {
-            for lmax in 0..=VOLUME_MAX_LMAX {
+            for lmax in 0..=SHADED_MAX_LMAX {
                 let text = volume_wgsl(lmax, fetch);
                 let count = (lmax + 1) * (lmax + 1);
                 let texels = volume_texels(lmax);
@@ -270,7 +271,7 @@ mod tests {
                 assert!(!text.contains(other), "{text}");
             }
             // Beyond the volume's highest degree the text is the clamped one's.
-            assert_eq!(volume_wgsl(8, fetch), volume_wgsl(VOLUME_MAX_LMAX, fetch));
+            assert_eq!(volume_wgsl(8, fetch), volume_wgsl(SHADED_MAX_LMAX, fetch));
         }
     }
 }

@@ -1,16 +1,10 @@
 //! [`VolumeFetch`]: the two ways the volume pass interpolates the probes'
-//! texels, and which an adapter runs; [`VOLUME_MAX_LMAX`], the highest
-//! degree the pass shades. Apart from [`crate::volume`] so that the
-//! shader text (`volume_expansion.rs`) and the pass both depend on it and
-//! not on each other.
+//! texels, and which an adapter runs. Apart from [`crate::volume`] so that
+//! the shader text (`volume_expansion.rs`) and the pass both depend on it
+//! and not on each other. The highest degree the pass shades is
+//! [`shlight_baked::SHADED_MAX_LMAX`].
 
 use crate::GpuContext;
-
-/// Highest degree the volume pass shades: a volume of higher lmax is
-/// clipped to it (`ceil((3 c + 1) / 4)` texels are interpolated per
-/// fragment, `c` the coefficients of the degrees whose `A_l` is not 0: 7
-/// at lmax 2, 14 at lmax 4, where degree 3's 7 coefficients are left out).
-pub const VOLUME_MAX_LMAX: usize = 4;
 
 /// How the volume pass interpolates the probes' texels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,7 +16,7 @@ pub enum VolumeFetch {
     /// in steps of 1/256).
     Filtered,
     /// Eight `textureLoad`s per texel, weighted in the shader exactly as
-    /// `shlight_volume::Grid::trilinear` weighs them (any adapter).
+    /// [`shlight_baked::ProbeGrid::trilinear`] weighs them (any adapter).
     Loads,
 }
 

@@ -4,10 +4,11 @@
 //! it fails.
 
 use glam::{DVec3, Vec3};
+use shlight_baked::TransferView;
 use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::sh::{Frame, ShCoeffs, Window, closed_form, irradiance};
 use shlight_gpu::{
-    Camera, GpuContext, GpuError, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading, Transfer,
+    Camera, GpuContext, GpuError, GpuProjector, HEADLESS_FORMAT, Mode, Renderer, Shading,
     read_srgb8_texture, render_frame, wgpu,
 };
 use shlight_mesh::Mesh;
@@ -284,7 +285,7 @@ fn prt_shading_shows_the_cpu_dot_products() {
                 data.extend((0..count).map(|i| value(v / 4, c, i)));
             }
         }
-        let transfer = Transfer::new(lmax, channels, mesh.vertex_count(), &data).unwrap();
+        let transfer = TransferView::new(lmax, channels, mesh.vertex_count(), &data).unwrap();
         let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
         renderer.set_mesh(&ctx, &mesh);
         renderer.set_light(&ctx, &light);
@@ -339,7 +340,7 @@ fn diffuse_prt_transfer_reproduces_sh_irradiance_shading() {
         .iter()
         .flat_map(|n| diffuse_transfer(*n, lmax, albedo))
         .collect();
-    let transfer = Transfer::new(lmax, 1, mesh.vertex_count(), &data).unwrap();
+    let transfer = TransferView::new(lmax, 1, mesh.vertex_count(), &data).unwrap();
     let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
     renderer.set_mesh(&ctx, &mesh);
     renderer.set_light(&ctx, &test_light().resized(lmax));
@@ -383,18 +384,20 @@ fn transfer_shape_and_mode_errors_are_reported() {
         return;
     };
     assert!(
-        Transfer::new(2, 2, 1, &[0.0; 18])
+        TransferView::new(2, 2, 1, &[0.0; 18])
             .unwrap_err()
             .to_string()
             .contains("2 channels")
     );
-    let err = Transfer::new(2, 1, 3, &[0.0; 9]).unwrap_err().to_string();
+    let err = TransferView::new(2, 1, 3, &[0.0; 9])
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("need 27"), "{err}");
     let mesh = uv_sphere(1.0, 8, 4);
     let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
     renderer.set_mesh(&ctx, &mesh);
     let data = vec![0.0; 9];
-    let t = Transfer::new(2, 1, 1, &data).unwrap();
+    let t = TransferView::new(2, 1, 1, &data).unwrap();
     let err = renderer.set_transfer(&ctx, &t).unwrap_err().to_string();
     assert!(err.contains("mesh has"), "{err}");
     let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, 1.0);

@@ -15,7 +15,7 @@
 //!   ([`ShprtFile`], docs/shprt.md, read and written by shlight-format).
 //! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
 //! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours;
-//!   [`preview::auto_exposure`] the exposure to show them at.
+//!   [`preview::vertex_exposure`] the exposure to show them at.
 //!
 //! # Shading convention
 //! Exit radiance = transfer . (light radiance coefficients): albedo/pi is

@@ -7,7 +7,7 @@
 //! meshes), far enough that the bounding sphere fills the vertical field of
 //! view [`FOV_Y_DEGREES`]. Pixels are rendered 2 x 2 supersampled and box
 //! filtered. Both sides of every triangle are drawn; the background is 0.
-//! [`auto_exposure`] picks the exposure that shows the colours at a
+//! [`vertex_exposure`] picks the exposure that shows the colours at a
 //! quarter of white.
 
 use glam::Vec3;
@@ -25,7 +25,7 @@ const SUPERSAMPLE: usize = 2;
 /// ([`luminance`], in `f64`) of `colors` at 0.25
 /// ([`shlight_io::auto_exposure`]); 0 for black (or no) colours.
 #[must_use]
-pub fn auto_exposure(colors: &[Vec3]) -> f32 {
+pub fn vertex_exposure(colors: &[Vec3]) -> f32 {
     let mean =
         colors.iter().map(|c| luminance(c.as_dvec3())).sum::<f64>() / colors.len().max(1) as f64;
     shlight_io::auto_exposure(mean, 0.25)
@@ -162,14 +162,14 @@ mod tests {
     #[test]
     fn the_exposure_puts_the_mean_luminance_at_a_quarter() {
         // Mean luminance 0.5 (one grey 1, one black): one stop down.
-        assert_eq!(auto_exposure(&[Vec3::ONE, Vec3::ZERO]), -1.0);
-        let green = auto_exposure(&[Vec3::new(0.0, 1.0, 0.0)]);
+        assert_eq!(vertex_exposure(&[Vec3::ONE, Vec3::ZERO]), -1.0);
+        let green = vertex_exposure(&[Vec3::new(0.0, 1.0, 0.0)]);
         assert!(
             (f64::from(green).exp2() * 0.7152 - 0.25).abs() < 1e-6,
             "{green}"
         );
-        assert_eq!(auto_exposure(&[]), 0.0);
-        assert_eq!(auto_exposure(&[Vec3::ZERO; 3]), 0.0);
+        assert_eq!(vertex_exposure(&[]), 0.0);
+        assert_eq!(vertex_exposure(&[Vec3::ZERO; 3]), 0.0);
     }
 
     #[test]

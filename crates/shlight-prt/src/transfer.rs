@@ -203,6 +203,18 @@ pub struct Transfer {
 }
 
 impl Transfer {
+    /// The transfer vectors borrowed, as the renderer and every reader of a
+    /// bake take them.
+    #[must_use]
+    pub fn view(&self) -> shlight_baked::TransferView<'_> {
+        shlight_baked::TransferView {
+            lmax: self.lmax,
+            channels: self.channels,
+            vertex_count: self.vertex_count,
+            data: &self.coeffs,
+        }
+    }
+
     /// The `.shprt` file of this bake and what produced it.
     #[must_use]
     pub fn to_shprt(
@@ -284,29 +296,16 @@ const CHUNK: usize = 64;
 const BOUNCE_CHUNK: usize = 1024;
 
 /// Vertex indices sorted along a Morton (Z-order) curve through the
-/// bounding box `(lo, hi)`, 10 bits per axis: neighbours in the list are
-/// neighbours in space, so consecutive vertices make coherent ray packets.
+/// bounding box `(lo, hi)`, 10 bits per axis ([`shlight_baked::morton_code`]):
+/// neighbours in the list are neighbours in space, so consecutive vertices
+/// make coherent ray packets.
 #[must_use]
-pub fn morton_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
+pub fn vertex_order(positions: &[Vec3], (lo, hi): (Vec3, Vec3)) -> Vec<u32> {
     let scale = Vec3::splat(1023.0) / (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
-    let spread = |x: u32| {
-        let mut x = u64::from(x & 1023);
-        x = (x | (x << 16)) & 0x0300_00ff;
-        x = (x | (x << 8)) & 0x0300_f00f;
-        x = (x | (x << 4)) & 0x030c_30c3;
-        (x | (x << 2)) & 0x0924_9249
-    };
-    let mut keyed: Vec<(u64, u32)> = positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let q = ((*p - lo) * scale).clamp(Vec3::ZERO, Vec3::splat(1023.0));
-            let code = spread(q.x as u32) | spread(q.y as u32) << 1 | spread(q.z as u32) << 2;
-            (code, i as u32)
-        })
-        .collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    shlight_baked::morton_order(positions.iter().map(|p| {
+        let q = ((*p - lo) * scale).clamp(Vec3::ZERO, Vec3::splat(1023.0));
+        shlight_baked::morton_code(q.x as u32, q.y as u32, q.z as u32)
+    }))
 }
 
 /// The inverse of the permutation `order`: `ranks(order)[order[s]] = s`.
@@ -334,7 +333,7 @@ fn ranked_triangles(mesh: &Mesh, rank: &[u32]) -> Vec<[u32; 3]> {
 pub fn cast_rays(mesh: &Mesh, dirs: &[Vec3]) -> Vec<(Vec3, Vec<Vec3>)> {
     let bounds = mesh.bounds();
     let start = ray_origins(mesh);
-    let order = morton_order(&mesh.positions, bounds);
+    let order = vertex_order(&mesh.positions, bounds);
     dirs.iter()
         .map(|d| {
             let origins = order
@@ -691,7 +690,7 @@ impl Occluder {
     /// `mesh` made ready.
     #[must_use]
     pub fn new(mesh: &Mesh) -> Self {
-        let order = morton_order(&mesh.positions, mesh.bounds());
+        let order = vertex_order(&mesh.positions, mesh.bounds());
         let triangles = ranked_triangles(mesh, &ranks(&order));
         Self::from_ranked(mesh, &order, &triangles)
     }
@@ -763,7 +762,7 @@ fn bake_with(
     // at rank `s`, so the vertices facing a direction, taken in rank order,
     // make coherent packets and every pass reads memory in sequence.
     let bounds = mesh.bounds();
-    let order = morton_order(&mesh.positions, bounds);
+    let order = vertex_order(&mesh.positions, bounds);
     // The triangles with their corners by rank: what the bounces read, and
     // what the rays are cast against when there is no occluder.
     let triangles = if keep_hits || shadowed && occluder.is_none() {

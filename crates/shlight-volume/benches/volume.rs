@@ -12,9 +12,10 @@
 use divan::Bencher;
 use divan::counter::ItemsCount;
 use glam::{DQuat, DVec3, Vec3};
+use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShRotation, closed_form};
 use shlight_mesh::generate;
-use shlight_volume::{Grid, VolumeOptions, bake};
+use shlight_volume::{VolumeOptions, bake};
 
 fn main() {
     divan::main();
@@ -33,7 +34,7 @@ fn options() -> VolumeOptions {
 
 /// Bakes the 16x8x16 grid around the Cornell box in `scene`, counting rays.
 fn bench_bake(bencher: Bencher, scene: &shlight_mesh::Mesh) {
-    let grid = Grid::around([16, 8, 16], generate::cornell_box().bounds()).unwrap();
+    let grid = ProbeGrid::around([16, 8, 16], generate::cornell_box().bounds()).unwrap();
     let rays = bake(Some(scene), &grid, &options(), &|_, _, _| {})
         .unwrap()
         .rays;
@@ -64,7 +65,7 @@ fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher) {
 fn relight_2048_probes_after_a_rotation(bencher: Bencher) {
     // Relighting is a matrix-vector product per probe and channel whatever
     // the matrices hold: an empty scene's bake gives the same work.
-    let grid = Grid::new([16, 8, 16], Vec3::ZERO, Vec3::ONE).unwrap();
+    let grid = ProbeGrid::new([16, 8, 16], Vec3::ZERO, Vec3::ONE).unwrap();
     let volume = bake(
         None,
         &grid,

@@ -82,14 +82,13 @@ use shlight_prt::packet::{Direction, LANES, Packet};
 use shlight_prt::records::{self, Kernels, LINE, Line, flat};
 use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode, Occluder};
 
-use crate::{Grid, ProbeVolume, VolumeError};
+use shlight_baked::ProbeGrid;
+
+use crate::{ProbeVolume, VolumeError};
 
 mod sums;
 
 use sums::{Rows, block_sum};
-
-/// Highest lmax a volume bakes.
-pub const MAX_LMAX: usize = shlight_format::shvol::MAX_LMAX;
 
 /// What to bake.
 #[derive(Clone, Debug, PartialEq)]
@@ -151,11 +150,11 @@ pub enum Stage {
 /// finishes.
 ///
 /// # Errors
-/// An lmax beyond [`MAX_LMAX`], no samples, or an albedo or
+/// An lmax beyond [`shlight_baked::MAX_LMAX`], no samples, or an albedo or
 /// `invalid_backfaces` outside 0..=1.
 pub fn bake(
     scene: Option<&Mesh>,
-    grid: &Grid,
+    grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<ProbeVolume, VolumeError> {
@@ -173,16 +172,17 @@ pub fn bake(
 /// the probes' sums with `kernels`.
 fn bake_in_chunks(
     scene: Option<&Mesh>,
-    grid: &Grid,
+    grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     hits_memory: usize,
     kernels: Kernels,
 ) -> Result<ProbeVolume, VolumeError> {
     let lmax = options.lmax;
-    if lmax > MAX_LMAX {
+    if lmax > shlight_baked::MAX_LMAX {
         return Err(VolumeError::Options(format!(
-            "lmax {lmax} is beyond {MAX_LMAX}, the most a volume holds"
+            "lmax {lmax} is beyond {}, the most a volume holds",
+            shlight_baked::MAX_LMAX
         )));
     }
     if options.samples == 0 || options.surface_samples == 0 {
@@ -201,7 +201,7 @@ fn bake_in_chunks(
         )));
     }
     let nc = sh_count(lmax);
-    let probes = grid.positions();
+    let probes = grid.centres();
     // The directions in compact blocks (`direction_order`).
     let set: Vec<Vec3> = stratified_directions(options.samples, options.seed)
         .iter()
@@ -371,29 +371,15 @@ fn direction_order(dirs: &[Vec3]) -> Vec<usize> {
     order
 }
 
-/// Morton (Z-order) ranks of the probes of `grid`: `order[r]` is the probe
-/// of rank `r`, so that eight consecutive ranks are a 2x2x2 block of
-/// neighbours (where the resolution allows) and their rays stay together.
-fn probe_order(grid: &Grid) -> Vec<u32> {
-    let spread = |x: usize| {
-        let mut code = 0u64;
-        for bit in 0..21 {
-            code |= ((x as u64 >> bit) & 1) << (3 * bit);
-        }
-        code
-    };
-    let [nx, ny, nz] = grid.resolution;
-    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(nx * ny * nz);
-    for z in 0..nz {
-        for y in 0..ny {
-            for x in 0..nx {
-                let code = spread(x) | spread(y) << 1 | spread(z) << 2;
-                keyed.push((code, grid.index([x, y, z]) as u32));
-            }
-        }
-    }
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+/// Morton (Z-order) ranks of the probes of `grid`
+/// ([`shlight_baked::morton_order`]): `order[r]` is the probe of rank `r`,
+/// so that eight consecutive ranks are a 2x2x2 block of neighbours (where
+/// the resolution allows) and their rays stay together.
+fn probe_order(grid: &ProbeGrid) -> Vec<u32> {
+    shlight_baked::morton_order((0..grid.probe_count()).map(|k| {
+        let [x, y, z] = grid.grid_index(k).map(|i| i as u32);
+        shlight_baked::morton_code(x, y, z)
+    }))
 }
 
 /// The scene's surfaces, subdivided, with their transfer and emitted light
@@ -696,7 +682,7 @@ mod tests {
         // 3x2x3 probes, about 1024 rays: 12 KB of hits each, so 16 KB holds
         // one packet of probes at a time and the 18 go in three chunks.
         let scene = shlight_mesh::generate::plane_under_sphere(0.5, 16, 8, 3.0, 4);
-        let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+        let grid = ProbeGrid::around([3, 2, 3], scene.bounds()).unwrap();
         let options = VolumeOptions {
             samples: 1024,
             surface_samples: 64,
@@ -776,7 +762,7 @@ mod tests {
             );
         }
         let room = shlight_mesh::generate::cornell_box();
-        let grid = Grid::around([3, 2, 3], room.bounds()).unwrap();
+        let grid = ProbeGrid::around([3, 2, 3], room.bounds()).unwrap();
         let options = VolumeOptions {
             samples: 1024,
             surface_samples: 64,

@@ -8,8 +8,8 @@
 #[non_exhaustive]
 pub enum VolumeError {
     /// A bad grid: resolution or bounds.
-    #[error("{0}")]
-    Grid(String),
+    #[error(transparent)]
+    Grid(#[from] shlight_baked::ShapeError),
     /// Bad bake settings (lmax, samples, an environment of another lmax).
     #[error("{0}")]
     Options(String),

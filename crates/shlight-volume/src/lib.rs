@@ -4,8 +4,8 @@
 //! probes around them.
 //!
 //! # Main items
-//! - [`Grid`]: the probes' box and resolution, probes at cell centres,
-//!   x fastest; trilinear weights.
+//! - The grid: [`shlight_baked::ProbeGrid`] (the probes' box and
+//!   resolution, probes at cell centres, x fastest; trilinear weights).
 //! - [`bake()`]: each probe's incident radiance as a transfer matrix per
 //!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
 //!   through the scene's shadows and interreflections
@@ -20,10 +20,11 @@
 //! ```
 //! use glam::{DVec3, Vec3};
 //! use shlight_core::sh::closed_form;
-//! use shlight_volume::{Grid, VolumeOptions, bake};
+//! use shlight_baked::ProbeGrid;
+//! use shlight_volume::{VolumeOptions, bake};
 //!
 //! // No scene: every probe sees the environment itself.
-//! let grid = Grid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
+//! let grid = ProbeGrid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
 //! let volume = bake(None, &grid, &VolumeOptions::default(), &|_, _, _| {}).unwrap();
 //! let sky = closed_form::constant(2, DVec3::new(1.0, 2.0, 3.0));
 //! let probes = volume.relight(&sky);
@@ -37,12 +38,10 @@
 
 pub mod bake;
 mod error;
-pub mod grid;
 pub mod probe_sheet;
 mod probe_volume;
 
 pub use bake::{Stage, VolumeOptions, bake};
 pub use error::VolumeError;
-pub use grid::Grid;
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};

@@ -5,7 +5,7 @@
 use glam::{DVec3, Vec3};
 use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 
-use crate::Grid;
+use shlight_baked::ProbeGrid;
 
 /// Shaded colour of invalid probes (a flat mid grey).
 pub const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
@@ -13,7 +13,7 @@ pub const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
 /// The exposure in stops for a [`probe_sheet`]'s pixels: the mean
 /// luminance of the pixels that are not black (the balls, not the
 /// background) at 0.25, as the PRT preview
-/// ([`shlight_prt::preview::auto_exposure`]).
+/// ([`shlight_prt::preview::vertex_exposure`]).
 #[must_use]
 pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
     let lit: Vec<Vec3> = pixels
@@ -21,7 +21,7 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
         .map(|p| Vec3::from_array(*p))
         .filter(|p| *p != Vec3::ZERO)
         .collect();
-    shlight_prt::preview::auto_exposure(&lit)
+    shlight_prt::preview::vertex_exposure(&lit)
 }
 
 /// The probes of `radiance` (per probe `(lmax+1)^2` rows of `[r, g, b]`)
@@ -36,7 +36,7 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
 /// black.
 #[must_use]
 pub fn probe_sheet(
-    grid: &Grid,
+    grid: &ProbeGrid,
     valid: &[bool],
     radiance: &[f32],
     lmax: usize,
@@ -109,7 +109,7 @@ mod tests {
 
     #[test]
     fn each_ball_shows_its_probes_light_where_the_layout_says() {
-        let grid = Grid::new([2, 2, 2], Vec3::ZERO, Vec3::ONE).unwrap();
+        let grid = ProbeGrid::new([2, 2, 2], Vec3::ZERO, Vec3::ONE).unwrap();
         let lmax = 2;
         // Probe i lit by constant radiance i + 1: E = pi (i + 1) everywhere,
         // so its ball shows i + 1 at every pixel.
@@ -149,7 +149,7 @@ mod tests {
 
     #[test]
     fn a_ball_under_a_light_from_above_is_brighter_at_its_top() {
-        let grid = Grid::new([1, 1, 1], Vec3::ZERO, Vec3::ONE).unwrap();
+        let grid = ProbeGrid::new([1, 1, 1], Vec3::ZERO, Vec3::ONE).unwrap();
         let lmax = 2;
         let light = closed_form::cosine_lobe(lmax, DVec3::Y, DVec3::ONE);
         let radiance: Vec<f32> = light

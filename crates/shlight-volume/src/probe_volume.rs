@@ -5,13 +5,15 @@ use glam::{DVec3, Vec3};
 use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_format::ShvolFile;
 
-use crate::{Grid, VolumeError};
+use shlight_baked::ProbeGrid;
+
+use crate::VolumeError;
 
 /// A baked, relightable probe volume ([`crate::bake()`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProbeVolume {
     /// Where the probes are.
-    pub grid: Grid,
+    pub grid: ProbeGrid,
     /// Highest SH degree.
     pub lmax: usize,
     /// Per probe: whether interpolation may use it.
@@ -155,7 +157,7 @@ fn relight(transfer: &[f32], emitted: &[f32], lmax: usize, env: &ShCoeffs<DVec3>
 /// invalid.
 #[must_use]
 pub fn sample(
-    grid: &Grid,
+    grid: &ProbeGrid,
     valid: &[bool],
     radiance: &[f32],
     lmax: usize,

@@ -10,10 +10,11 @@ use std::f64::consts::PI;
 use glam::{DVec3, Vec3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShCoeffs, closed_form, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::brute_force::closest_hit;
-use shlight_volume::{Grid, VolumeOptions, bake};
+use shlight_volume::{VolumeOptions, bake};
 
 const BOUNCES: u32 = 2;
 
@@ -104,7 +105,7 @@ fn cornell_box_probes_match_a_path_tracer() {
         ..VolumeOptions::default()
     };
     for (k, p) in points.iter().enumerate() {
-        let grid = Grid::new([1, 1, 1], *p - 0.001, *p + 0.001).unwrap();
+        let grid = ProbeGrid::new([1, 1, 1], *p - 0.001, *p + 0.001).unwrap();
         let volume = bake(Some(&room), &grid, &options, &|_, _, _| {}).unwrap();
         assert!(volume.valid[0]);
         let baked = volume.relight(&sky);

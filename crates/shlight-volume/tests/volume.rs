@@ -6,9 +6,10 @@
 use std::f64::consts::PI;
 
 use glam::{DQuat, DVec3, Vec3};
+use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShCoeffs, ShRotation, closed_form, irradiance, sh_count};
 use shlight_mesh::{Mesh, generate};
-use shlight_volume::{Grid, VolumeOptions, bake, sample};
+use shlight_volume::{VolumeOptions, bake, sample};
 
 fn options(lmax: usize, samples: usize, bounces: u32, albedo: f32) -> VolumeOptions {
     VolumeOptions {
@@ -23,8 +24,8 @@ fn options(lmax: usize, samples: usize, bounces: u32, albedo: f32) -> VolumeOpti
 }
 
 /// One probe at `p`.
-fn at(p: Vec3) -> Grid {
-    Grid::new([1, 1, 1], p - 0.01, p + 0.01).unwrap()
+fn at(p: Vec3) -> ProbeGrid {
+    ProbeGrid::new([1, 1, 1], p - 0.01, p + 0.01).unwrap()
 }
 
 /// Probe `i`'s radiance coefficients from a relit buffer.
@@ -76,7 +77,7 @@ fn inside_out(mesh: &Mesh) -> Mesh {
 
 #[test]
 fn an_empty_scene_gives_the_environment_at_every_probe() {
-    let grid = Grid::new([3, 2, 2], Vec3::splat(-1.0), Vec3::ONE).unwrap();
+    let grid = ProbeGrid::new([3, 2, 2], Vec3::splat(-1.0), Vec3::ONE).unwrap();
     let env = sky(4);
     let volume = bake(None, &grid, &options(4, 256, 2, 0.8), &|_, _, _| {}).unwrap();
     let radiance = volume.relight(&env);
@@ -181,7 +182,7 @@ fn a_floor_reflects_the_sky_it_sees_and_relights_under_a_rotated_sky() {
 #[test]
 fn a_closed_box_lets_no_sky_in_and_its_emitting_walls_reach_the_furnace_limit() {
     let room = inside_out(&generate::cuboid(Vec3::new(2.0, 1.5, 3.0)));
-    let grid = Grid::new(
+    let grid = ProbeGrid::new(
         [3, 2, 3],
         Vec3::new(-1.5, -1.0, -2.5),
         Vec3::new(1.5, 1.0, 2.5),
@@ -246,7 +247,7 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
     // A solid block in the middle of a 3x1x1 grid: the middle probe is
     // inside it and sees only back faces.
     let block = generate::cuboid(Vec3::new(0.3, 2.0, 2.0));
-    let grid = Grid::new(
+    let grid = ProbeGrid::new(
         [3, 1, 1],
         Vec3::new(-1.5, -0.5, -0.5),
         Vec3::new(1.5, 0.5, 0.5),
@@ -264,7 +265,7 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
     assert!(volume.backfaces[1] == 1.0 && volume.backfaces[0] < 0.5);
     let radiance = volume.relight(&closed_form::constant(lmax, DVec3::ONE));
     // Halfway between the left and the middle probe: only the left counts.
-    let p = grid.position([0, 0, 0]).lerp(grid.position([1, 0, 0]), 0.5);
+    let p = grid.centre([0, 0, 0]).lerp(grid.centre([1, 0, 0]), 0.5);
     let got = sample(&grid, &volume.valid, &radiance, lmax, p).unwrap();
     assert!(max_difference(&got, &probe(&radiance, lmax, 0)) < 1e-6);
     // A grid of only invalid probes has nothing to give.
@@ -290,7 +291,7 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
 #[test]
 fn the_bake_is_the_same_at_any_thread_count() {
     let scene = generate::plane_under_sphere(0.5, 24, 12, 3.0, 6);
-    let grid = Grid::around([3, 2, 3], scene.bounds()).unwrap();
+    let grid = ProbeGrid::around([3, 2, 3], scene.bounds()).unwrap();
     let run = |threads| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

@@ -1,4 +1,5 @@
-//! PRT transfer vectors as the renderer takes them.
+//! [`TransferView`]: PRT transfer vectors borrowed, as the renderer and
+//! every reader of a bake take them.
 //!
 //! A transfer vector `T_v` per vertex turns distant radiance into the
 //! radiance the vertex leaves: `L_out(v) = sum_i T_vi L_i` (Sloan, Kautz &
@@ -8,11 +9,12 @@
 //! colours of the light; three apply channel by channel. The light's
 //! coefficients are used up to the smaller of the two degrees.
 
-use crate::GpuError;
+use crate::ShapeError;
 
-/// Borrowed per-vertex transfer vectors.
+/// Borrowed per-vertex transfer vectors (shlight-prt's `Transfer` owns
+/// them; a `.shprt` file holds them).
 #[derive(Clone, Copy, Debug)]
-pub struct Transfer<'a> {
+pub struct TransferView<'a> {
     /// Highest degree of each vector.
     pub lmax: usize,
     /// 1 (the same for R, G, B) or 3 (one vector per colour channel).
@@ -23,28 +25,28 @@ pub struct Transfer<'a> {
     pub data: &'a [f32],
 }
 
-impl<'a> Transfer<'a> {
+impl<'a> TransferView<'a> {
     /// Checks the shape of a transfer array.
     ///
     /// # Errors
-    /// [`GpuError::Invalid`] for a channel count other than 1 or 3, or a
+    /// [`ShapeError`] for a channel count other than 1 or 3, or a
     /// length that is not `vertex_count * channels * (lmax+1)^2`.
     pub fn new(
         lmax: usize,
         channels: usize,
         vertex_count: usize,
         data: &'a [f32],
-    ) -> Result<Self, GpuError> {
+    ) -> Result<Self, ShapeError> {
         if channels != 1 && channels != 3 {
-            return Err(GpuError::Invalid(format!(
+            return Err(ShapeError(format!(
                 "PRT transfer has {channels} channels (expected 1 or 3)"
             )));
         }
         let expected = vertex_count
             .checked_mul(channels * (lmax + 1) * (lmax + 1))
-            .ok_or_else(|| GpuError::Invalid("PRT transfer is too large".into()))?;
+            .ok_or_else(|| ShapeError("PRT transfer is too large".into()))?;
         if data.len() != expected {
-            return Err(GpuError::Invalid(format!(
+            return Err(ShapeError(format!(
                 "PRT transfer holds {} values; {vertex_count} vertices x {channels} channels x \
                  {} coefficients (lmax {lmax}) need {expected}",
                 data.len(),
@@ -57,5 +59,22 @@ impl<'a> Transfer<'a> {
             vertex_count,
             data,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_are_checked() {
+        let data = vec![0.0f32; 2 * 3 * 9];
+        let t = TransferView::new(2, 3, 2, &data).unwrap();
+        assert_eq!((t.lmax, t.channels, t.vertex_count), (2, 3, 2));
+        let e = TransferView::new(2, 2, 2, &data).unwrap_err();
+        assert_eq!(e.0, "PRT transfer has 2 channels (expected 1 or 3)");
+        let e = TransferView::new(2, 1, 2, &data).unwrap_err();
+        assert!(e.0.starts_with("PRT transfer holds 54 values; 2 vertices x 1 channels x 9 coefficients (lmax 2) need 18"), "{e}");
+        assert!(TransferView::new(2, 3, usize::MAX, &data).is_err());
     }
 }

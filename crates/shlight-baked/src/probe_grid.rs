@@ -1,14 +1,18 @@
-//! The probe grid: a box cut into cells, one probe at each cell's centre.
+//! [`ProbeGrid`]: a box cut into cells, one probe at each cell's centre.
 
 use glam::Vec3;
 
-use crate::VolumeError;
+use crate::ShapeError;
+
+/// Most probes a grid holds (`2^24`): a `.shvol` file, a bake and the GPU's
+/// volume texture all stay within it.
+pub const MAX_PROBES: usize = 1 << 24;
 
 /// A grid of probes: `resolution` cells along x, y and z of the box
 /// `min..max`, a probe at the centre of each cell (as Bevy's and three.js's
 /// irradiance volumes place them), numbered x fastest, then y, then z.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Grid {
+pub struct ProbeGrid {
     /// Probes along x, y and z (each at least 1).
     pub resolution: [usize; 3],
     /// The box's lower corner.
@@ -17,33 +21,30 @@ pub struct Grid {
     pub max: Vec3,
 }
 
-/// How much [`Grid::around`] grows a scene's bounding box on each side, as
+/// How much [`ProbeGrid::around`] grows a scene's bounding box on each side, as
 /// a fraction of its diagonal: probes sit inside the scene's walls, not on
 /// them, and a flat scene still gets a box of some height.
 pub const PADDING: f32 = 0.02;
 
-impl Grid {
+impl ProbeGrid {
     /// A grid over `min..max`.
     ///
     /// # Errors
-    /// A zero count, more than [`shlight_format::shvol::MAX_PROBES`] probes,
+    /// A zero count, more than [`MAX_PROBES`] probes,
     /// or bounds that are not finite with `min < max` on every axis.
-    pub fn new(resolution: [usize; 3], min: Vec3, max: Vec3) -> Result<Self, VolumeError> {
+    pub fn new(resolution: [usize; 3], min: Vec3, max: Vec3) -> Result<Self, ShapeError> {
         let probes = resolution
             .iter()
             .try_fold(1usize, |acc, &n| acc.checked_mul(n))
             .unwrap_or(usize::MAX);
-        if resolution.contains(&0) || probes > shlight_format::shvol::MAX_PROBES {
-            return Err(VolumeError::Grid(format!(
+        if resolution.contains(&0) || probes > MAX_PROBES {
+            return Err(ShapeError(format!(
                 "resolution {}x{}x{}: each count must be at least 1 and the grid at most {} probes",
-                resolution[0],
-                resolution[1],
-                resolution[2],
-                shlight_format::shvol::MAX_PROBES
+                resolution[0], resolution[1], resolution[2], MAX_PROBES
             )));
         }
         if !(min.is_finite() && max.is_finite()) || min.cmpge(max).any() {
-            return Err(VolumeError::Grid(format!(
+            return Err(ShapeError(format!(
                 "bounds {min}:{max}: min must be below max on every axis"
             )));
         }
@@ -58,8 +59,8 @@ impl Grid {
     /// times its diagonal on every side.
     ///
     /// # Errors
-    /// As [`Grid::new`].
-    pub fn around(resolution: [usize; 3], (lo, hi): (Vec3, Vec3)) -> Result<Self, VolumeError> {
+    /// As [`ProbeGrid::new`].
+    pub fn around(resolution: [usize; 3], (lo, hi): (Vec3, Vec3)) -> Result<Self, ShapeError> {
         let pad = PADDING * (hi - lo).length().max(f32::MIN_POSITIVE.sqrt());
         Self::new(resolution, lo - Vec3::splat(pad), hi + Vec3::splat(pad))
     }
@@ -82,21 +83,32 @@ impl Grid {
         x + self.resolution[0] * (y + self.resolution[1] * z)
     }
 
-    /// The centre of cell `(x, y, z)`: `min + (i + 1/2) cell`.
+    /// The grid index `(x, y, z)` of probe number `k` (the inverse of
+    /// [`ProbeGrid::index`]).
     #[must_use]
-    pub fn position(&self, index: [usize; 3]) -> Vec3 {
+    pub fn grid_index(&self, k: usize) -> [usize; 3] {
+        let [nx, ny, _] = self.resolution;
+        [k % nx, k / nx % ny, k / (nx * ny)]
+    }
+
+    /// The centre of cell `(x, y, z)`, where its probe sits:
+    /// `min + (i + 1/2) cell` per axis, with `cell = (max - min) / n`. The
+    /// one formula of a probe's place: the bake casts from it, the files
+    /// record it, the GPU interpolates between it.
+    #[must_use]
+    pub fn centre(&self, index: [usize; 3]) -> Vec3 {
         self.min + (Vec3::from_array(index.map(|i| i as f32)) + 0.5) * self.cell()
     }
 
-    /// Every probe's position, in probe order.
+    /// Every probe's centre, in probe order.
     #[must_use]
-    pub fn positions(&self) -> Vec<Vec3> {
+    pub fn centres(&self) -> Vec<Vec3> {
         let [nx, ny, nz] = self.resolution;
         let mut out = Vec::with_capacity(self.probe_count());
         for z in 0..nz {
             for y in 0..ny {
                 for x in 0..nx {
-                    out.push(self.position([x, y, z]));
+                    out.push(self.centre([x, y, z]));
                 }
             }
         }
@@ -148,9 +160,9 @@ impl Grid {
     ///
     /// # Errors
     /// Anything else, or a zero count.
-    pub fn parse_resolution(text: &str) -> Result<[usize; 3], VolumeError> {
+    pub fn parse_resolution(text: &str) -> Result<[usize; 3], ShapeError> {
         let bad = || {
-            VolumeError::Grid(format!(
+            ShapeError(format!(
                 "resolution \"{text}\" is not NXxNYxNZ with whole numbers of at least 1 (e.g. 16x8x16)"
             ))
         };
@@ -169,13 +181,13 @@ impl Grid {
     ///
     /// # Errors
     /// Anything else, or `min` not below `max` on every axis.
-    pub fn parse_bounds(text: &str) -> Result<(Vec3, Vec3), VolumeError> {
+    pub fn parse_bounds(text: &str) -> Result<(Vec3, Vec3), ShapeError> {
         let bad = || {
-            VolumeError::Grid(format!(
+            ShapeError(format!(
                 "bounds \"{text}\" are not X0,Y0,Z0:X1,Y1,Z1 with finite numbers and X0 < X1, Y0 < Y1, Z0 < Z1"
             ))
         };
-        let corner = |s: &str| -> Result<Vec3, VolumeError> {
+        let corner = |s: &str| -> Result<Vec3, ShapeError> {
             let v: Vec<f32> = s
                 .split(',')
                 .map(|x| x.trim().parse::<f32>().map_err(|_| bad()))
@@ -198,8 +210,8 @@ mod tests {
 
     #[test]
     fn probes_sit_at_cell_centres_x_fastest() {
-        let g = Grid::new([2, 3, 4], Vec3::ZERO, Vec3::new(2.0, 3.0, 4.0)).unwrap();
-        let p = g.positions();
+        let g = ProbeGrid::new([2, 3, 4], Vec3::ZERO, Vec3::new(2.0, 3.0, 4.0)).unwrap();
+        let p = g.centres();
         assert_eq!(p.len(), 24);
         assert_eq!(p[0], Vec3::splat(0.5));
         assert_eq!(p[1], Vec3::new(1.5, 0.5, 0.5));
@@ -207,6 +219,9 @@ mod tests {
         assert_eq!(p[6], Vec3::new(0.5, 0.5, 1.5));
         assert_eq!(g.index([1, 2, 3]), 23);
         assert_eq!(p[g.index([1, 2, 3])], Vec3::new(1.5, 2.5, 3.5));
+        for k in 0..24 {
+            assert_eq!(g.index(g.grid_index(k)), k);
+        }
     }
 
     #[test]
@@ -214,13 +229,13 @@ mod tests {
         // Interpolating the probes' own positions must give the point back
         // anywhere inside the probes' hull (trilinear interpolation is exact
         // for linear functions), and the weights sum to 1.
-        let g = Grid::new(
+        let g = ProbeGrid::new(
             [3, 2, 4],
             Vec3::new(-1.0, 0.0, 2.0),
             Vec3::new(2.0, 1.0, 6.0),
         )
         .unwrap();
-        let positions = g.positions();
+        let positions = g.centres();
         for p in [
             Vec3::new(0.1, 0.4, 3.3),
             Vec3::new(-0.5, 0.25, 2.5),
@@ -237,7 +252,7 @@ mod tests {
         let w = g.trilinear(Vec3::new(-10.0, -10.0, -10.0));
         assert_eq!(w, vec![(0, 1.0)]);
         // A flat grid (one probe along y) interpolates in x and z only.
-        let flat = Grid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
+        let flat = ProbeGrid::new([2, 1, 2], Vec3::ZERO, Vec3::ONE).unwrap();
         let w = flat.trilinear(Vec3::new(0.5, 0.9, 0.5));
         assert_eq!(w.len(), 4);
         assert!(w.iter().all(|&(_, x)| (x - 0.25).abs() < 1e-6));
@@ -245,23 +260,23 @@ mod tests {
 
     #[test]
     fn parses_and_refuses() {
-        assert_eq!(Grid::parse_resolution("16x8x16").unwrap(), [16, 8, 16]);
+        assert_eq!(ProbeGrid::parse_resolution("16x8x16").unwrap(), [16, 8, 16]);
         for bad in ["16x8", "0x1x1", "ax1x1", "1x1x1x1", ""] {
-            let e = Grid::parse_resolution(bad).unwrap_err().to_string();
+            let e = ProbeGrid::parse_resolution(bad).unwrap_err().to_string();
             assert!(e.contains(&format!("\"{bad}\"")), "{e}");
         }
-        let (lo, hi) = Grid::parse_bounds("-1,0,-2.5:1,2,2.5").unwrap();
+        let (lo, hi) = ProbeGrid::parse_bounds("-1,0,-2.5:1,2,2.5").unwrap();
         assert_eq!(
             (lo, hi),
             (Vec3::new(-1.0, 0.0, -2.5), Vec3::new(1.0, 2.0, 2.5))
         );
         for bad in ["1,1,1:0,2,2", "0,0:1,1", "0,0,0", "0,0,0:1,1,nan"] {
-            assert!(Grid::parse_bounds(bad).is_err(), "{bad}");
+            assert!(ProbeGrid::parse_bounds(bad).is_err(), "{bad}");
         }
-        assert!(Grid::new([1, 1, 0], Vec3::ZERO, Vec3::ONE).is_err());
-        assert!(Grid::new([1, 1, 1], Vec3::ONE, Vec3::ONE).is_err());
-        assert!(Grid::new([4096, 4096, 4096], Vec3::ZERO, Vec3::ONE).is_err());
-        let g = Grid::around([1, 1, 1], (Vec3::ZERO, Vec3::new(1.0, 0.0, 1.0))).unwrap();
+        assert!(ProbeGrid::new([1, 1, 0], Vec3::ZERO, Vec3::ONE).is_err());
+        assert!(ProbeGrid::new([1, 1, 1], Vec3::ONE, Vec3::ONE).is_err());
+        assert!(ProbeGrid::new([4096, 4096, 4096], Vec3::ZERO, Vec3::ONE).is_err());
+        let g = ProbeGrid::around([1, 1, 1], (Vec3::ZERO, Vec3::new(1.0, 0.0, 1.0))).unwrap();
         assert!(g.min.y < 0.0 && g.max.y > 0.0);
     }
 }
