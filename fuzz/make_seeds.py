@@ -1,6 +1,7 @@
 """Writes the seed corpus of every fuzz target under fuzz/corpus/ (small
-files: 16x8 images, meshes of a few triangles), from the bundled
-envmaps/studio.exr and a shlight binary.
+files: 16x8 images, meshes of a few triangles, 2x2x2 volumes), from the
+bundled envmaps/studio.exr, meshes/cornell_box.obj and .mtl, and a
+shlight binary.
 
     python3 fuzz/make_seeds.py path/to/shlight
 
@@ -172,6 +173,16 @@ vs = [l for l in lines if l.startswith("v ")][:40]
 fs = [l for l in lines if l.startswith("f ") and all(0 < int(t.split("/")[0]) <= 40 for t in l.split()[1:])][:40]
 out("obj", "teapot-part.obj", "\n".join(vs + fs) + "\n")
 
+# MTL: the bundled Cornell box's library, and one material with every key
+# tobj reads (colours, scalars, texture maps with options, illum, unknown).
+with open(os.path.join(ROOT, "meshes", "cornell_box.mtl"), "rb") as f:
+    out("mtl", "cornell_box.mtl", f.read())
+out("mtl", "every-key.mtl",
+    "# every key\nnewmtl all\nKa 0.1 0.1 0.1\nKd 0.8 0.5 0.2\nKs 0.5 0.5 0.5\nKe 2 1.5 0.5\n"
+    "Ns 96.0\nNi 1.45\nd 0.9\nTr 0.1\nillum 2\nmap_Ka ka.png\nmap_Kd -s 1 1 1 kd.png\n"
+    "map_Ks ks.png\nmap_Ns ns.png\nmap_d d.png\nmap_Bump -bm 0.5 bump.png\nbump b.png\n"
+    "norm n.png\nPr 0.5\n\nnewmtl second\nKd 1 1 1\n")
+
 verts = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 1)]
 faces = [(0, 2, 1), (0, 3, 2), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
 cols = [(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0), (128, 128, 128)]
@@ -285,4 +296,16 @@ for lmax, extra in [(1, []), (2, ["--albedo", "0.8,0.5,0.2"])]:
     sh("prt", mesh, "--lmax", str(lmax), "--samples", "64", *extra, "-o", o)
     with open(o, "rb") as f:
         out("shprt", f"pyramid-l{lmax}.shprt", f.read())
+
+# --- .shvol: the Cornell box's volume, 2x2x2 probes under the lmax 2 file ---
+# Relightable (radiance, emitted, transfer) and static (radiance only); the
+# static one at lmax 1 in a box reaching outside the room (the probes
+# outside see the walls' backs: invalid at a low back-face fraction).
+box = os.path.join(ROOT, "meshes", "cornell_box.obj")
+for name, extra in [("relightable-l2", []),
+                    ("static-l1-outside", ["--static", "--lmax", "1", "--bounds", "-0.3,0.1,-0.3:0.7,0.45,0.7", "--invalid-backfaces", "0.1"])]:
+    o = os.path.join(tmpdir, f"{name}.shvol")
+    sh("volume", box, "--env", j, "--resolution", "2x2x2", "--samples", "16", *extra, "-o", o)
+    with open(o, "rb") as f:
+        out("shvol", f"cornell-{name}.shvol", f.read())
 shutil.rmtree(tmpdir)

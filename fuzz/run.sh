@@ -3,12 +3,13 @@
 #
 #     fuzz/run.sh TARGET SECONDS [libFuzzer options...]
 #
-# TARGET is one of fuzz/fuzz_targets/*.rs (exr, hdr, png_jpeg, obj, ply,
-# off, gltf, coefficients, shprt). The seeds are fuzz/corpus/TARGET and the
-# regression inputs the crate's tests check (tests/fuzz_regressions/TARGET);
-# both are only read: what the fuzzer adds goes to fuzz/target/corpus/TARGET,
-# kept between runs. A crash, hang or out-of-memory input is written to
-# fuzz/artifacts/TARGET/ and the script fails.
+# TARGET is one of fuzz/fuzz_targets/*.rs (exr, hdr, png_jpeg, obj, mtl,
+# ply, off, gltf, coefficients, shprt, shvol). The seeds are
+# fuzz/corpus/TARGET and the regression inputs the crate's tests check
+# (tests/fuzz_regressions/TARGET); both are only read: what the fuzzer
+# adds goes to fuzz/target/corpus/TARGET, kept between runs. A crash, hang
+# or out-of-memory input is written to fuzz/artifacts/TARGET/ and the
+# script fails.
 #
 # The limits are docs/limits.md's: 2048 MiB of memory (-rss_limit_mb, also
 # the largest single allocation) and 10 s an input (-timeout).
@@ -58,7 +59,7 @@ fi
 
 case $target in
     exr | hdr | png_jpeg) crate=shlight-io ;;
-    obj | ply | off | gltf) crate=shlight-mesh ;;
+    obj | mtl | ply | off | gltf) crate=shlight-mesh ;;
     *) crate=shlight-format ;;
 esac
 dirs=("target/corpus/$target" "corpus/$target")

@@ -215,34 +215,57 @@ fn real_map_errors(path: &Path, normals: &[DVec3]) -> ((f64, f64), (f64, f64)) {
     ((peak.mean, peak.max), (point.mean, point.max))
 }
 
+/// Each bundled map's limits on the 9-term irradiance's error against
+/// brute force: mean and max relative to max E, then mean and max relative
+/// to E(n), each about 1.3x the value measured (in the comment).
+const REAL_MAP_LIMITS: [(&str, [f64; 4]); 4] = [
+    // Measured 1.38%, 4.46%; 3.96%, 28.4%.
+    ("park", [0.018, 0.058, 0.051, 0.37]),
+    // Measured 0.39%, 1.08%; 1.77%, 14.5%.
+    ("city", [0.0051, 0.014, 0.023, 0.19]),
+    // Measured 2.38%, 7.31%; 16.3%, 72.9%.
+    ("sky", [0.031, 0.095, 0.21, 0.95]),
+    // Measured 2.77%, 9.36%; 27.1%, 714%.
+    ("studio", [0.036, 0.122, 0.35, 9.3]),
+];
+
 /// The bundled real maps: 9-term irradiance against brute force (every
-/// texel) at 2000 equal-area normals. Measured (relative to max E, then to
-/// E(n), mean / max): park 1.38% / 4.46%, 3.96% / 28%; city 0.39% / 1.08%,
-/// 1.77% / 14%; sky 2.38% / 7.31%, 16% / 73%; studio 2.77% / 9.36%,
-/// 27% / 714%.
+/// texel) at 2000 equal-area normals, each error held to about 1.3x its
+/// measured value ([`REAL_MAP_LIMITS`]).
 /// Ramamoorthi & Hanrahan's claim "under 3% average for any lighting"
 /// holds in their normalisation (relative to the peak) on every map; their
 /// 9% is a directional light's own worst case, and two bright sources on
 /// opposite sides (the studio's softboxes) add up beyond it, so the
-/// largest errors are held to 10%. Pointwise errors are large where E(n)
-/// is small (facing away from the sun or the softboxes).
+/// largest errors are held to 10% on every map as well. Pointwise errors
+/// are large where E(n) is small (facing away from the sun or the
+/// softboxes).
 #[test]
 fn real_maps_nine_term_irradiance_against_brute_force() {
     let normals: Vec<DVec3> = fibonacci_sphere(2000).into_iter().collect();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps");
-    for name in ["park", "city", "sky", "studio"] {
+    for (name, limits) in REAL_MAP_LIMITS {
         let ((mean, max), (pmean, pmax)) =
             real_map_errors(&root.join(format!("{name}.exr")), &normals);
         eprintln!(
-            "{name}: 9-term irradiance vs brute force: of max E mean {:.2}% max {:.2}%; of E(n) mean {:.2}% max {:.1}%",
+            "{name}: 9-term irradiance vs brute force: of max E mean {:.3}% max {:.3}%; of E(n) mean {:.2}% max {:.1}%",
             100.0 * mean,
             100.0 * max,
             100.0 * pmean,
             100.0 * pmax
         );
+        let errors = [mean, max, pmean, pmax];
+        let what = [
+            "mean of max E",
+            "max of max E",
+            "mean of E(n)",
+            "max of E(n)",
+        ];
+        for ((e, limit), what) in errors.iter().zip(limits).zip(what) {
+            assert!(e < &limit, "{name}: {what} {e} (limit {limit})");
+        }
+        // The published claims, on every map.
         assert!(mean < 0.03, "{name}: mean {mean}");
         assert!(max < 0.10, "{name}: max {max}");
-        assert!(pmean >= mean, "{name}: pointwise is at least peak-relative");
     }
 }
 

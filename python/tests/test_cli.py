@@ -66,3 +66,8 @@ def test_every_export_equals_the_clis_format_output(cli, tmp_path):
         assert text == out.read_text(), fmt
     with pytest.raises(shlight.ShlightError, match="unity"):
         sh.export("unreal")
+
+
+def test_the_bundled_maps_are_distinct():
+    contents = [m.read_bytes() for m in MAPS]
+    assert len(MAPS) == 4 and len(set(contents)) == len(contents), MAPS

@@ -25,7 +25,9 @@ mod mesh;
 mod subdivide;
 
 pub use error::MeshError;
-pub use load::{MeshFormat, load, load_bytes, load_bytes_with, load_with};
+pub use load::{
+    MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_with, parse_mtl_bytes,
+};
 pub use load_options::LoadOptions;
 pub use mesh::{Mesh, MeshReport};
 pub use subdivide::Subdivision;

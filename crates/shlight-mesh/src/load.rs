@@ -5,8 +5,11 @@
 //! per-vertex records of a `.shprt` file baked from the mesh.
 
 mod gltf_file;
+mod mtl;
 mod off;
 mod ply;
+
+pub use mtl::{MtlMaterial, parse_mtl_bytes};
 
 use std::panic::{self, AssertUnwindSafe};
 use std::path::Path;
@@ -112,8 +115,17 @@ pub fn load_bytes_with(
         MeshFormat::Off => off::read(path, bytes, options),
         MeshFormat::Gltf => gltf_file::read(path, bytes, options),
     };
-    // A parser that panics on a malformed file (tobj and gltf do on some,
-    // where overflow checks are on) gives an error, not a crash.
+    caught(path, format.name(), read)
+}
+
+/// `read`, with a parser's panic on a malformed file (tobj and gltf panic
+/// on some, where overflow checks are on) given as an error naming the
+/// file and the reader (`format`: `OBJ`, `MTL`, ...), not a crash.
+fn caught<T>(
+    path: &Path,
+    format: &str,
+    read: impl FnOnce() -> Result<T, MeshError>,
+) -> Result<T, MeshError> {
     panic::catch_unwind(AssertUnwindSafe(read)).unwrap_or_else(|payload| {
         let message = payload
             .downcast_ref::<&str>()
@@ -122,7 +134,7 @@ pub fn load_bytes_with(
             .unwrap_or_else(|| "unknown panic".into());
         Err(MeshError::Parse {
             path: path.to_path_buf(),
-            message: format!("the {} reader failed: {message}", format.name()),
+            message: format!("the {format} reader failed: {message}"),
         })
     })
 }
@@ -135,7 +147,7 @@ pub fn load_bytes_with(
 /// limits are checked on what it found.
 ///
 /// Materials: the `mtllib` files named by the OBJ are read from its
-/// directory; an object's material gives its vertices albedo `Kd` and
+/// directory (parsed as [`parse_mtl_bytes`] does); an object's material gives its vertices albedo `Kd` and
 /// emitted radiance `Ke`. Without any material (or with a missing `mtllib`,
 /// which tobj reports and shlight then ignores) the mesh has no colours, as
 /// before; objects without a material get white albedo when others have one.
@@ -147,21 +159,32 @@ fn obj(path: &Path, bytes: &[u8], limits: &LoadOptions) -> Result<Mesh, MeshErro
         ignore_lines: true,
     };
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let (models, materials) =
-        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |mtl| {
-            let file = dir.join(mtl);
-            match std::fs::read(&file) {
-                Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(b)),
-                Err(_) => Ok(Default::default()),
-            }
-        })
-        .map_err(|e| MeshError::Parse {
-            path: path.to_path_buf(),
-            message: format!("not a valid OBJ file: {e}"),
-        })?;
+    // What mtl::check found wrong in a library, for the error below.
+    let bad_mtl = std::cell::RefCell::new(None);
+    let (models, materials) = tobj::load_obj_buf(
+        &mut std::io::Cursor::new(bytes),
+        &options,
+        |name| match std::fs::read(dir.join(name)) {
+            Ok(b) => match mtl::check(&b) {
+                Ok(()) => mtl::parse(&b),
+                Err(e) => {
+                    *bad_mtl.borrow_mut() = Some(format!("{}: {e}", name.display()));
+                    Err(tobj::LoadError::MaterialParseError)
+                }
+            },
+            Err(_) => Ok(Default::default()),
+        },
+    )
+    .map_err(|e| MeshError::Parse {
+        path: path.to_path_buf(),
+        message: format!("not a valid OBJ file: {e}"),
+    })?;
     let materials = materials.map_err(|e| MeshError::Parse {
         path: path.to_path_buf(),
-        message: format!("not a valid MTL file: {e}"),
+        message: format!(
+            "not a valid MTL file: {}",
+            bad_mtl.take().unwrap_or_else(|| e.to_string())
+        ),
     })?;
     limits.check_vertices(
         path,
@@ -272,6 +295,18 @@ mod tests {
         )
         .unwrap();
         assert!(m.colors.is_none() && m.emission.is_none());
+        // A library tobj would panic on (a colour of two values) is an error
+        // naming the OBJ, the library and its line.
+        std::fs::write(dir.join("bad.mtl"), "newmtl red\nKd 0.8 0.1\n").unwrap();
+        let obj = b"mtllib bad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+        let e = load_bytes(&dir.join("u.obj"), MeshFormat::Obj, obj).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: not a valid MTL file: bad.mtl: line 2: Kd needs 3 values, has 2",
+                dir.join("u.obj").display()
+            )
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

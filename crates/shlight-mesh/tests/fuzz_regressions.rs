@@ -1,7 +1,9 @@
 //! Every input that once made a mesh loader crash, hang or run out of
-//! memory (found by the fuzz targets in fuzz/ or while writing the limits
-//! they test), read through the loader a user calls with the default
-//! limits: each must give the clean error listed here, naming the file.
+//! memory, or panic inside a parser (found by the fuzz targets in fuzz/ or
+//! while writing the limits they test), read through the loader a user
+//! calls with the default limits (MTL files through `parse_mtl_bytes`,
+//! what the OBJ loader parses each `mtllib` with): each must give the
+//! clean error listed here, naming the file.
 //!
 //! The inputs live in `tests/fuzz_regressions/<target>/`, one folder per
 //! fuzz target (`fuzz/run.sh` also feeds them to the fuzzer as seeds). A
@@ -12,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use shlight_mesh::{MeshFormat, load_bytes};
+use shlight_mesh::{MeshFormat, load_bytes, parse_mtl_bytes};
 
 /// (fuzz target folder, file, what the error must say), with what the
 /// file once did.
@@ -84,6 +86,13 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "signed-byte-colours.gltf",
         "the glTF reader failed: internal error: entered unreachable code",
     ),
+    // A colour of two values: tobj's `try_into::<[f32; 3]>().unwrap()`
+    // panicked (in any build; the guard made it "the MTL reader failed").
+    (
+        "mtl",
+        "colour-of-two-values.mtl",
+        "not a valid MTL file: line 2: Kd needs 3 values, has 2",
+    ),
 ];
 
 /// Longer than any of these files takes (each is refused from its
@@ -133,14 +142,19 @@ fn every_regression_input_reads_cleanly() {
         let name = PathBuf::from(file);
         let (send, receive) = mpsc::channel();
         std::thread::spawn(move || {
-            let result = load_bytes(&name, format(target), &bytes).map_err(|e| e.to_string());
+            let result = if target == "mtl" {
+                parse_mtl_bytes(&name, &bytes).map(|m| m.len())
+            } else {
+                load_bytes(&name, format(target), &bytes).map(|m| m.triangle_count())
+            };
+            let result = result.map_err(|e| e.to_string());
             let _ = send.send(result);
         });
         let result = receive
             .recv_timeout(TIME_LIMIT)
             .unwrap_or_else(|_| panic!("{file}: no answer within {TIME_LIMIT:?}"));
         match (result, expected) {
-            (Ok(mesh), "") => assert!(mesh.triangle_count() > 0, "{file}"),
+            (Ok(count), "") => assert!(count > 0, "{file}"),
             (Ok(_), _) => panic!("{file}: read, expected the error \"{expected}\""),
             (Err(e), _) => {
                 assert!(e.starts_with(&format!("{file}: ")), "{file}: {e}");

@@ -87,7 +87,7 @@ mod tests {
     use super::*;
     use crate::sh::closed_form;
     use crate::sh::quadrature::fibonacci_sphere;
-    use crate::sh::zonal::irradiance;
+    use core::f64::consts::PI;
 
     /// Bevy's lookup (irradiance_volume.wgsl) with the six texels as an
     /// array: the negative half of each slice where `N < 0`, then
@@ -101,19 +101,62 @@ mod tests {
         rgb_x * nn.x + rgb_y * nn.y + rgb_z * nn.z
     }
 
+    /// A constant sky `c`, a gradient `a + b (u . w)` and a directional
+    /// light of irradiance `e` from `d`, as radiance SH to lmax 2 (closed
+    /// forms), and their irradiance written out by hand, not through the
+    /// zonal convolution [`AmbientCube::from_sh`] uses: `π c` everywhere,
+    /// `π a + (2π/3) b (u . n)` for the gradient (its radiance is degree 1,
+    /// so its SH is exact), and for the light truncated at lmax 2
+    /// `e (1/4 + k/2 + (5/32)(3 k² - 1))`, `k = d . n` (Ramamoorthi &
+    /// Hanrahan: `A_l (2l+1)/(4π) P_l(k)` for l = 0, 1, 2).
+    struct Sky {
+        c: DVec3,
+        u: DVec3,
+        a: DVec3,
+        b: DVec3,
+        d: DVec3,
+        e: DVec3,
+    }
+
+    impl Sky {
+        fn new() -> Self {
+            Self {
+                c: DVec3::new(0.1, 0.2, 0.4),
+                u: DVec3::new(0.2, 0.9, -0.3).normalize(),
+                a: DVec3::new(0.5, 0.6, 0.8),
+                b: DVec3::new(0.3, 0.25, 0.1),
+                d: DVec3::new(0.3, 0.8, 0.5).normalize(),
+                e: DVec3::new(3.0, 2.0, 1.0),
+            }
+        }
+
+        fn sh(&self) -> ShCoeffs<DVec3> {
+            let f = &closed_form::constant(2, self.c)
+                + &closed_form::linear_gradient(2, self.u, self.a, self.b);
+            &f + &closed_form::directional(2, self.d, self.e)
+        }
+
+        fn irradiance(&self, n: DVec3) -> DVec3 {
+            let k = self.d.dot(n);
+            PI * self.c
+                + PI * self.a
+                + 2.0 * PI / 3.0 * self.b * self.u.dot(n)
+                + self.e * (0.25 + k / 2.0 + 5.0 / 32.0 * (3.0 * k * k - 1.0))
+        }
+    }
+
     #[test]
     fn reproduces_the_irradiance_at_the_axes_and_bevys_lookup() {
-        let f = &closed_form::cap(
-            2,
-            DVec3::new(0.3, 0.8, 0.5).normalize(),
-            0.4,
-            DVec3::new(3.0, 2.0, 1.0),
-        ) + &closed_form::constant(2, DVec3::new(0.1, 0.2, 0.4));
-        let cube = AmbientCube::from_sh(&f);
-        let e = irradiance(&f);
-        for axis in AMBIENT_CUBE_AXES {
+        let sky = Sky::new();
+        let cube = AmbientCube::from_sh(&sky.sh());
+        for (axis, colour) in AMBIENT_CUBE_AXES.into_iter().zip(&cube.colours) {
+            let want = sky.irradiance(axis);
             assert!(
-                (cube.irradiance(axis) - e.eval(axis)).abs().max_element() < 1e-12,
+                (*colour - want).abs().max_element() < 1e-12,
+                "{axis}: {colour} {want}"
+            );
+            assert!(
+                (cube.irradiance(axis) - want).abs().max_element() < 1e-12,
                 "{axis}"
             );
         }
@@ -125,9 +168,81 @@ mod tests {
         // is not reproduced everywhere.
         let worst = fibonacci_sphere(200)
             .into_iter()
-            .map(|n| (cube.irradiance(n) - e.eval(n)).abs().max_element())
+            .map(|n| (cube.irradiance(n) - sky.irradiance(n)).abs().max_element())
             .fold(0.0, f64::max);
         assert!(worst > 1e-2, "{worst}");
+    }
+
+    /// The cube of a map's exact irradiance ([`crate::encoding::encode_map`])
+    /// against closed forms: a one-texel sun of irradiance `E` gives
+    /// `E max(0, axis . d)` at each axis (`d` the texel's centre, its
+    /// radiance `E / Ω` with the row's solid angle written out here), and a
+    /// constant sky `c` gives `π c` to the map's quadrature error.
+    #[test]
+    fn a_maps_cube_is_a_suns_and_a_constant_skys_closed_form() {
+        use crate::encoding::{DominantLightOptions, Encoded, Encoding, encode_map};
+        use crate::map::layout::env_map::EnvMap;
+        use crate::map::layout::kind::Layout;
+        use crate::map::orientation::MapOrientation;
+        let (w, h) = (128, 64);
+        let o = MapOrientation::default();
+        let cube_of = |px: &[[f32; 3]]| {
+            let map = EnvMap::new(Layout::Equirect, o, w, h, px).unwrap();
+            match encode_map(
+                &map,
+                Encoding::AmbientCube,
+                0,
+                &DominantLightOptions::default(),
+            ) {
+                Encoded::AmbientCube(c) => c,
+                other => panic!("{other:?}"),
+            }
+        };
+        // The sun texel's centre and solid angle: a 2π/w slice between the
+        // row's polar angles.
+        let (x0, y0) = (37, 11);
+        let mut px = vec![[0.0f32; 3]; w * h];
+        let d = EnvMap::new(Layout::Equirect, o, w, h, &px)
+            .unwrap()
+            .texel_direction(x0, y0)
+            .unwrap();
+        let polar = |y: usize| PI * y as f64 / h as f64;
+        let omega = 2.0 * PI / w as f64 * (polar(y0).cos() - polar(y0 + 1).cos());
+        let e = DVec3::new(2.0, 1.5, 0.5);
+        px[y0 * w + x0] = (e / omega).as_vec3().to_array();
+        let cube = cube_of(&px);
+        for (axis, colour) in AMBIENT_CUBE_AXES.into_iter().zip(&cube.colours) {
+            let want = e * axis.dot(d).max(0.0);
+            // The radiance is stored as f32.
+            assert!(
+                (*colour - want).abs().max_element() <= 1e-7 * e.max_element(),
+                "{axis}: {colour} {want}"
+            );
+        }
+        // At least three axes see the sun, and three do not.
+        assert_eq!(cube.colours.iter().filter(|c| c.x > 0.0).count(), 3);
+
+        // A constant sky: the texel sum is the midpoint rule in θ and φ,
+        // whose error on `max(0, n . w)` has a closed form on a w = 2h map
+        // (w a multiple of 4). About ±y each row gives `cos θ_c Ω_row`,
+        // `1 / cos(Δ/2)` times its exact integral (`Δ = π/h`), so `π c /
+        // cos(Δ/2)`; about a horizontal axis the sum over φ is
+        // `1 / sin(π/w)` and over θ `Σ sin² θ_c = h/2`, which with `Ω_row`
+        // give `π c` exactly.
+        let c = DVec3::new(0.25, 0.5, 1.0);
+        let cube = cube_of(&vec![c.as_vec3().to_array(); w * h]);
+        for (axis, colour) in AMBIENT_CUBE_AXES.into_iter().zip(&cube.colours) {
+            let want = if axis.y == 0.0 {
+                PI * c
+            } else {
+                PI * c / (PI / (2 * h) as f64).cos()
+            };
+            let rel = ((*colour - want) / want).abs().max_element();
+            assert!(rel < 1e-12, "{axis}: {colour} against {want}");
+            // Against the integral, the poles are off by the midpoint
+            // rule's `Δ² / 8` (3.0e-4 at 128x64).
+            assert!(((*colour - PI * c) / (PI * c)).abs().max_element() < 4e-4);
+        }
     }
 
     #[test]

@@ -267,6 +267,130 @@ pub fn encode_map(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::encoding::zh3::Zh3Kind;
+    use crate::map::layout::kind::Layout;
+    use crate::map::layout::texel_grid::TexelGrid;
+    use crate::map::orientation::MapOrientation;
+    use crate::map::texel_means::texel_means;
+
+    const W: usize = 128;
+    const H: usize = 64;
+
+    /// A gradient sky plus a 4° sun of power 10 at each of `suns`, as
+    /// texel means on a `W x H` equirect map.
+    fn sky_with(suns: &[DVec3]) -> Vec<[f32; 3]> {
+        let grid = TexelGrid::new(Layout::Equirect, (W, H), MapOrientation::default()).unwrap();
+        let cap = 4f64.to_radians();
+        let sun = 10.0 / crate::sh::zonal::cap_solid_angle(cap);
+        texel_means(
+            &grid,
+            4,
+            |w| {
+                let lit = suns.iter().filter(|d| w.dot(**d) >= cap.cos()).count();
+                DVec3::new(0.2, 0.3, 0.5) * (1.0 + 0.5 * w.y) + DVec3::splat(sun * lit as f64)
+            },
+            &|_| {},
+        )
+    }
+
+    fn encode(px: &[[f32; 3]], encoding: Encoding, lmax: usize) -> Encoded {
+        let map = EnvMap::new(Layout::Equirect, MapOrientation::default(), W, H, px).unwrap();
+        encode_map(&map, encoding, lmax, &DominantLightOptions::default())
+    }
+
+    /// README.md's "floats" column (RGB): `(encoding, lmax, floats)`, and
+    /// `dominant+sh` 7 more per light.
+    const FLOATS: [(Encoding, usize, usize); 9] = [
+        (Encoding::Sh, 1, 12),
+        (Encoding::L1NonLinear, 1, 12),
+        (Encoding::Zh3Hallucinated, 1, 12),
+        (Encoding::Zh3, 2, 15),
+        (Encoding::AmbientCube, 0, 18),
+        (Encoding::Sh, 2, 27),
+        (Encoding::SloanSh, 2, 27),
+        (Encoding::DominantSh, 2, 27),
+        (Encoding::Sh, 4, 75),
+    ];
+
+    #[test]
+    fn floats_are_the_readmes_counts_and_seven_per_light() {
+        let suns = [
+            DVec3::new(0.3, 0.8, 0.5).normalize(),
+            DVec3::new(-0.7, 0.2, -0.6).normalize(),
+        ];
+        for k in 0..=2 {
+            let px = sky_with(&suns[..k]);
+            for (encoding, lmax, floats) in FLOATS {
+                let e = encode(&px, encoding, lmax);
+                let lights = e.lights().len();
+                let want = match encoding {
+                    Encoding::DominantSh => {
+                        assert_eq!(lights, k, "{k} suns: {:?}", e.lights());
+                        floats + 7 * k
+                    }
+                    // Sloan's light is found at run time from the SH, not stored.
+                    Encoding::SloanSh => {
+                        assert_eq!(lights, 1, "{encoding}");
+                        floats
+                    }
+                    _ => floats,
+                };
+                assert_eq!(e.floats(encoding), want, "{encoding} lmax {lmax}, {k} suns");
+            }
+        }
+    }
+
+    /// `encode_map` gives each encoding its own variant, with the SH part
+    /// to the lmax asked where the encoding takes one, and its fixed size
+    /// (lmax ignored) where it does not.
+    #[test]
+    fn encode_map_dispatches_each_encoding_to_its_variant() {
+        let px = sky_with(&[DVec3::new(0.3, 0.8, 0.5).normalize()]);
+        let map = EnvMap::new(Layout::Equirect, MapOrientation::default(), W, H, &px).unwrap();
+        for lmax in 0..=4 {
+            match encode(&px, Encoding::Sh, lmax) {
+                Encoded::Sh(f) => assert_eq!(f, project_map(&map, lmax)),
+                other => panic!("sh: {other:?}"),
+            }
+            match encode(&px, Encoding::DominantSh, lmax) {
+                Encoded::Lights { lights, residual } => {
+                    assert_eq!((lights.len(), residual.lmax()), (1, lmax));
+                }
+                other => panic!("dominant+sh: {other:?}"),
+            }
+        }
+        for lmax in 1..=4 {
+            match encode(&px, Encoding::SloanSh, lmax) {
+                Encoded::Lights { lights, residual } => {
+                    assert_eq!((lights.len(), residual.lmax()), (1, lmax));
+                }
+                other => panic!("sloan+sh: {other:?}"),
+            }
+        }
+        for lmax in [0, 1, 2, 4] {
+            let f2 = project_map(&map, 2);
+            let zh3 = |kind| Encoded::Zh3(Zh3::new(&f2, kind).unwrap());
+            assert_eq!(encode(&px, Encoding::Zh3, lmax), zh3(Zh3Kind::Stored));
+            assert_eq!(
+                encode(&px, Encoding::Zh3Hallucinated, lmax),
+                zh3(Zh3Kind::Hallucinated)
+            );
+            assert_eq!(
+                encode(&px, Encoding::L1NonLinear, lmax),
+                Encoded::L1NonLinear(L1NonLinear::new(&project_map(&map, 1)).unwrap())
+            );
+            assert!(matches!(
+                encode(&px, Encoding::AmbientCube, lmax),
+                Encoded::AmbientCube(_)
+            ));
+        }
+        // The two ZH3 kinds are told apart: under a sun their zonal
+        // coefficients differ.
+        assert_ne!(
+            encode(&px, Encoding::Zh3, 2),
+            encode(&px, Encoding::Zh3Hallucinated, 2)
+        );
+    }
 
     #[test]
     fn names_round_trip() {
