@@ -70,6 +70,7 @@ def project(
     rotate=None,
     layer=None,
     max_pixels=None,
+    encoding="sh",
 ):
     """Project an environment map to SH coefficients (``shlight project``).
 
@@ -113,13 +114,23 @@ def project(
         light from a comes from R a afterwards.
     layer, max_pixels :
         EXR layer to read; refuse inputs with more pixels.
+    encoding : str
+        How the light is kept (``--encoding``): ``sh`` (plain SH to
+        ``lmax``), ``dominant+sh`` (the map's compact bright lights kept
+        exactly, the rest as SH to ``lmax``), ``sloan+sh``, ``zh3``,
+        ``zh3-hallucinated``, ``l1-nonlinear`` or ``ambient-cube``. The
+        encodings other than ``sh`` take radiance by quadrature: not with
+        ``quantity="irradiance"``, ``rotate``, ``method="montecarlo"`` or a
+        ``window`` other than none. Evaluate an encoded light with
+        ``SH.irradiance_at``; its coefficients alone are not the light.
 
     Returns
     -------
     SH
         Coefficients ``((lmax+1)**2, 3)`` float64 with their frame,
-        quantity and provenance; the same numbers as ``shlight project`` with
-        the same options, bit for bit.
+        quantity, encoding and provenance; the same numbers as ``shlight
+        project`` with the same options, bit for bit (``save`` writes the
+        CLI's JSON file byte for byte).
 
     Raises
     ------
@@ -146,6 +157,7 @@ def project(
         rotate=rotate,
         layer=layer,
         max_pixels=max_pixels,
+        encoding=encoding,
     )
 
 
@@ -171,7 +183,7 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
     **options :
         The keyword options of ``project`` (up, layout, method, samples,
         sampler, seed, window, quantity, mirror, sanitize, rotate, layer,
-        max_pixels).
+        max_pixels, encoding).
 
     Returns
     -------

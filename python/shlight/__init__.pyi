@@ -36,13 +36,19 @@ class SH:
     def quantity(self) -> Literal["radiance", "irradiance"]:
         """What the coefficients hold."""
     @property
+    def encoding(self) -> str:
+        """How the light is kept: "sh" (plain) or an encoding ("zh3", ...)."""
+    @property
     def std_error(self) -> Optional[npt.NDArray[np.float64]]:
         """((lmax+1)**2, 3) float64 standard errors (Monte Carlo), else None."""
     def irradiance(self) -> "SH":
         """E_l^m = A_l L_l^m (Ramamoorthi & Hanrahan 2001)."""
     def eval(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The expansion at directions (N, 3) -> (N, 3) (or (3,) -> (3,)),
-        in the SH's frame; directions are normalised."""
+        in the SH's frame; directions are normalised. Plain SH only."""
+    def irradiance_at(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The irradiance E(n) the light gives at normals (N, 3) -> (N, 3)
+        (or (3,) -> (3,)), for every encoding."""
     def rotate(self, r: npt.ArrayLike) -> "SH":
         """Rotated by a 3x3 matrix or a quaternion (x, y, z, w): a light
         from a comes from R a afterwards."""
@@ -59,6 +65,9 @@ class SH:
         """An SH from a coefficient file's JSON text (pickling uses it)."""
 
 Source = Union[PathLike, Image, Sequence[Image]]
+Encoding = Literal[
+    "sh", "dominant+sh", "sloan+sh", "zh3", "zh3-hallucinated", "l1-nonlinear", "ambient-cube"
+]
 
 def project(
     source: Source,
@@ -77,6 +86,7 @@ def project(
     rotate: Optional[str] = None,
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
+    encoding: Encoding = "sh",
 ) -> SH: ...
 def project_many(
     paths: Sequence[PathLike],
@@ -97,6 +107,7 @@ def project_many(
     rotate: Optional[str] = None,
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
+    encoding: Encoding = "sh",
 ) -> list[Optional[SH]]: ...
 def load(path: PathLike) -> SH:
     """A coefficient file, or any engine file `shlight convert` reads."""
