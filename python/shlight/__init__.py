@@ -35,6 +35,7 @@ from ._shlight import (
     render,
     write_image,
 )
+from ._shlight import irradiance as _irradiance
 from ._shlight import project as _project
 from ._shlight import project_many as _project_many
 
@@ -42,6 +43,7 @@ __all__ = [
     "EXPORT_FORMATS",
     "SH",
     "ShlightError",
+    "irradiance",
     "load",
     "project",
     "project_many",
@@ -193,4 +195,42 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
     """
     return _project_many(
         [str(p) for p in paths], lmax, errors=errors, progress=progress, **options
+    )
+
+
+def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sanitize=False, max_pixels=None):
+    """The exact irradiance of a map (``shlight irradiance MAP -o E.exr``).
+
+    Every texel of the output, an equirect map of ``size`` in the map's
+    frame, gets ``E(n) = sum_k L_k max(n . d_k, 0) Omega_k`` over every texel
+    ``k`` of the map, ``n`` the output texel's centre direction: the ground
+    truth an SH or any encoding's ``SH.irradiance_at`` is compared with.
+    ``O(map texels x output texels)`` work, on every core.
+
+    Parameters
+    ----------
+    source : str | os.PathLike
+        A map file in any layout ``project`` reads (``NAME_{face}.exr``:
+        six face files).
+    size : (int, int)
+        ``(width, height)`` of the output, 2:1.
+    up, layout, mirror, sanitize, max_pixels :
+        As for ``project``. The output lies in the map's own frame, so
+        ``up`` and ``mirror`` turn the map and the normals together and
+        leave the values as they are.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(height, width, 3)`` float64 linear RGB, rows from the top: the
+        numbers the CLI writes to its EXR (float32 there).
+
+    Raises
+    ------
+    ShlightError
+        An unreadable map, NaN or infinite texels (without ``sanitize``), a
+        size that is not 2:1; the CLI's messages.
+    """
+    return _irradiance(
+        source, tuple(size), up=up, layout=layout, mirror=mirror, sanitize=sanitize, max_pixels=max_pixels
     )

@@ -127,3 +127,15 @@ def render(
     irradiance: bool = False,
 ) -> npt.NDArray[np.float32]:
     """(H, W, 3) float32: the expansion at every texel centre."""
+def irradiance(
+    source: PathLike,
+    size: tuple[int, int] = (64, 32),
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    mirror: bool = False,
+    sanitize: bool = False,
+    max_pixels: Optional[int] = None,
+) -> npt.NDArray[np.float64]:
+    """(H, W, 3) float64: the exact irradiance of the map at every texel
+    centre of an equirect grid (shlight irradiance)."""

@@ -3,12 +3,14 @@
 //!
 //! One job: translating between Python (numpy arrays, keyword options,
 //! exceptions, warnings) and shlight's libraries. Every step of a
-//! projection, render or export is a library call
-//! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`);
+//! projection, render, export or measurement is a library call
+//! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`,
+//! `shlight_accuracy`);
 //! nothing here computes lighting. Work runs with the GIL released, and no
 //! Rust panic reaches Python ([`guard::guard`] turns one into a
 //! `shlight.ShlightError`).
 
+mod accuracy;
 mod errors;
 mod guard;
 mod images;
@@ -31,6 +33,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::render, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }
