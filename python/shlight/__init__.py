@@ -35,6 +35,7 @@ from ._shlight import (
     render,
     write_image,
 )
+from ._shlight import compare as _compare
 from ._shlight import irradiance as _irradiance
 from ._shlight import project as _project
 from ._shlight import project_many as _project_many
@@ -43,6 +44,7 @@ __all__ = [
     "EXPORT_FORMATS",
     "SH",
     "ShlightError",
+    "compare",
     "irradiance",
     "load",
     "project",
@@ -234,3 +236,36 @@ def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sa
     return _irradiance(
         source, tuple(size), up=up, layout=layout, mirror=mirror, sanitize=sanitize, max_pixels=max_pixels
     )
+
+
+def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
+    """Every encoding on every map against its exact irradiance (``shlight compare``).
+
+    For each map: the exact irradiance at the texel centres of an equirect
+    grid of ``normals`` (as ``irradiance``), and against it the irradiance
+    of plain SH (lmax 1, 2, 4), dominant lights plus SH (lmax 1, 2, 4),
+    ``sloan+sh``, ``zh3``, ``zh3-hallucinated``, ``l1-nonlinear`` and the
+    ambient cube. Errors are of the luminance relative to its peak over
+    the normals, mean and RMS weighted by the normals' solid angles.
+
+    Parameters
+    ----------
+    paths : sequence of str | os.PathLike
+        Map files; a row's ``map`` is the file's stem.
+    normals : (int, int)
+        ``(width, height)`` of the grid of normals.
+    up, layout, sanitize :
+        As for ``project``.
+
+    Returns
+    -------
+    list[dict]
+        One dict per map and encoding, in the order of the CLI's table,
+        with the keys and values of the ``compare.json`` that ``shlight
+        compare ... -o DIR`` writes: ``map``, ``encoding``, ``lmax`` (None
+        for the fixed-size encodings), ``floats`` (stored, RGB), ``mean``,
+        ``max``, ``rms`` (fractions of the peak), ``lights`` (kept exactly)
+        and ``light_angle_degrees`` (first light to the brightest texel, or
+        None).
+    """
+    return _compare([str(p) for p in paths], tuple(normals), up=up, layout=layout, sanitize=sanitize)

@@ -1,7 +1,7 @@
 """Type stubs of shlight (conventions: see the package docstring)."""
 
 import os
-from typing import Literal, Optional, Sequence, Union
+from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -139,3 +139,13 @@ def irradiance(
 ) -> npt.NDArray[np.float64]:
     """(H, W, 3) float64: the exact irradiance of the map at every texel
     centre of an equirect grid (shlight irradiance)."""
+def compare(
+    paths: Sequence[PathLike],
+    normals: tuple[int, int] = (128, 64),
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    sanitize: bool = False,
+) -> list[dict[str, Any]]:
+    """Every encoding on every map against its exact irradiance: the rows
+    of shlight compare's compare.json."""

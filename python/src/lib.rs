@@ -34,6 +34,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::render, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }
