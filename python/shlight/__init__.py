@@ -30,11 +30,13 @@ from ._shlight import (
     EXPORT_FORMATS,
     SH,
     ShlightError,
+    Transfer,
     load,
     read_image,
     render,
     write_image,
 )
+from ._shlight import bake_transfer as _bake_transfer
 from ._shlight import compare as _compare
 from ._shlight import irradiance as _irradiance
 from ._shlight import project as _project
@@ -44,6 +46,8 @@ __all__ = [
     "EXPORT_FORMATS",
     "SH",
     "ShlightError",
+    "Transfer",
+    "bake_transfer",
     "compare",
     "irradiance",
     "load",
@@ -269,3 +273,44 @@ def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
         None).
     """
     return _compare([str(p) for p in paths], tuple(normals), up=up, layout=layout, sanitize=sanitize)
+
+
+def bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024, bounces=None, albedo=None, seed=0):
+    """Bake precomputed radiance transfer for a mesh (``shlight prt MESH -o OUT.shprt``).
+
+    Per-vertex diffuse transfer vectors T (Sloan, Kautz & Snyder 2002),
+    albedo / pi folded in: a vertex's exit radiance under distant radiance
+    SH L (``project(...).coefficients``, radiance) is ``T[v, c] @ L[:n, c]``
+    per channel (a grey transfer, one channel, for each colour of L). The
+    defaults are the CLI's.
+
+    Parameters
+    ----------
+    mesh : str | os.PathLike
+        .obj, .ply, .off, .gltf or .glb.
+    mode : "unshadowed" | "shadowed" | "interreflected"
+        Cosine-weighted only; with self-shadowing; with self-shadowing and
+        ``bounces`` bounces of diffuse interreflection.
+    lmax : int
+        Highest SH degree of the transfer, at most 32.
+    samples : int
+        Directions per vertex over the whole sphere (a stratified grid of
+        about this many, shared by all vertices; about half are cast).
+    bounces : None | int
+        Bounces of interreflection (``mode="interreflected"`` only;
+        default 2).
+    albedo : None | float | (float, float, float)
+        Diffuse albedo, linear, in [0, 1]; None: the mesh's vertex colours
+        if it has them, otherwise 0.8.
+    seed : int
+        Seed of the direction set (the same seed gives the same bake).
+
+    Returns
+    -------
+    Transfer
+        ``coefficients`` ``(vertex_count, channels, (lmax+1)**2)`` float32;
+        ``save(path)`` writes the CLI's .shprt file byte for byte.
+    """
+    return _bake_transfer(
+        str(mesh), mode, lmax, samples=samples, bounces=bounces, albedo=albedo, seed=seed
+    )

@@ -64,6 +64,34 @@ class SH:
     def from_json(text: str) -> "SH":
         """An SH from a coefficient file's JSON text (pickling uses it)."""
 
+class Transfer:
+    """Per-vertex diffuse transfer of a mesh (a .shprt file): exit radiance
+    of vertex v under radiance SH L is coefficients[v, c] @ L[:n, c]."""
+
+    @property
+    def lmax(self) -> int:
+        """Highest SH degree."""
+    @property
+    def channels(self) -> Literal[1, 3]:
+        """1 (grey albedo) or 3 (RGB)."""
+    @property
+    def mode(self) -> Literal["unshadowed", "shadowed", "interreflected"]:
+        """The light transport baked."""
+    @property
+    def bounces(self) -> int:
+        """Interreflection bounces (0 unless interreflected)."""
+    @property
+    def samples(self) -> int:
+        """Directions in the shared stratified set."""
+    @property
+    def vertex_count(self) -> int:
+        """Vertices, in the mesh file's order."""
+    @property
+    def coefficients(self) -> npt.NDArray[np.float32]:
+        """(vertex_count, channels, (lmax+1)**2) float32."""
+    def save(self, path: PathLike) -> None:
+        """Writes the .shprt file (as the CLI's shlight prt -o FILE.shprt)."""
+
 Source = Union[PathLike, Image, Sequence[Image]]
 Encoding = Literal[
     "sh", "dominant+sh", "sloan+sh", "zh3", "zh3-hallucinated", "l1-nonlinear", "ambient-cube"
@@ -149,3 +177,14 @@ def compare(
 ) -> list[dict[str, Any]]:
     """Every encoding on every map against its exact irradiance: the rows
     of shlight compare's compare.json."""
+def bake_transfer(
+    mesh: PathLike,
+    mode: Literal["unshadowed", "shadowed", "interreflected"] = "shadowed",
+    lmax: int = 4,
+    *,
+    samples: int = 1024,
+    bounces: Optional[int] = None,
+    albedo: Union[None, float, tuple[float, float, float]] = None,
+    seed: int = 0,
+) -> Transfer:
+    """PRT of a mesh as shlight prt bakes it."""

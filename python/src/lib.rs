@@ -3,9 +3,9 @@
 //!
 //! One job: translating between Python (numpy arrays, keyword options,
 //! exceptions, warnings) and shlight's libraries. Every step of a
-//! projection, render, export or measurement is a library call
+//! projection, render, export, measurement or bake is a library call
 //! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`,
-//! `shlight_accuracy`);
+//! `shlight_accuracy`, `shlight_prt`);
 //! nothing here computes lighting. Work runs with the GIL released, and no
 //! Rust panic reaches Python ([`guard::guard`] turns one into a
 //! `shlight.ShlightError`).
@@ -16,6 +16,7 @@ mod guard;
 mod images;
 mod options;
 mod project;
+mod prt;
 mod sh;
 mod source;
 
@@ -27,6 +28,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("ShlightError", py.get_type::<errors::ShlightError>())?;
     m.add_class::<sh::Sh>()?;
+    m.add_class::<prt::Transfer>()?;
     m.add_function(wrap_pyfunction!(project::project, m)?)?;
     m.add_function(wrap_pyfunction!(project::project_many, m)?)?;
     m.add_function(wrap_pyfunction!(sh::load, m)?)?;
@@ -35,6 +37,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(images::render, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }
