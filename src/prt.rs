@@ -12,10 +12,11 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
+use shlight_format::ShprtFile;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
-use shlight_prt::ShprtFile;
-use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
+use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
+use shlight_prt::transfer::{Albedo, Mode, Stage};
 
 use crate::progress::{StageBars, Ui};
 use crate::values::{parse_albedo, parse_size};
@@ -83,7 +84,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     }
     let mode = match (args.mode, args.bounces) {
         (ModeArg::Interreflected, b) => Mode::Interreflected {
-            bounces: b.unwrap_or(2),
+            bounces: b.unwrap_or(DEFAULT_BOUNCES),
         },
         (_, Some(_)) => bail!("--bounces needs --mode interreflected"),
         (ModeArg::Unshadowed, None) => Mode::Unshadowed,
@@ -92,9 +93,9 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     if args.samples == 0 {
         bail!("--samples must be at least 1");
     }
-    if args.lmax > 32 {
+    if args.lmax > MAX_BAKE_LMAX {
         bail!(
-            "--lmax {} is beyond 32 (diffuse transfer needs 2 to 6)",
+            "--lmax {} is beyond {MAX_BAKE_LMAX} (diffuse transfer needs 2 to 6)",
             args.lmax
         );
     }
@@ -120,28 +121,22 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
             mesh.report.degenerate_triangles
         ));
     }
-    let (albedo, recorded) = match (args.albedo, &mesh.colors) {
-        (Some(rgb), _) => (Albedo::Constant(rgb), Some(rgb)),
-        (None, Some(colors)) => {
-            ui.note(format!("{name}: albedo from the mesh's vertex colours"));
-            (Albedo::PerVertex(colors.clone()), None)
-        }
-        (None, None) => (Albedo::Constant([0.8; 3]), Some([0.8; 3])),
-    };
-    let options = BakeOptions {
+    let request = BakeRequest {
         lmax: args.lmax,
         samples: args.samples,
         mode,
-        albedo,
+        albedo: args.albedo,
         seed: args.seed,
-        emission: None,
     };
+    if matches!(request.albedo(&mesh).0, Albedo::PerVertex(_)) {
+        ui.note(format!("{name}: albedo from the mesh's vertex colours"));
+    }
     let bars = StageBars::new(ui, |stage| match stage {
         Stage::Rays => "directions".to_string(),
         Stage::Bounce(k) => format!("bounce {k}"),
     });
     let start = Instant::now();
-    let transfer = bake(&mesh, &options, &|stage, done, total| {
+    let (transfer, file) = bake_file(&mesh, &args.mesh, &request, &|stage, done, total| {
         bars.update(stage, done, total)
     });
     bars.finish();
@@ -156,11 +151,6 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         transfer.rays,
         transfer.rays as f64 / seconds.max(1e-9) / 1e6,
     ));
-    let mesh_name = args
-        .mesh
-        .file_name()
-        .map_or(name.clone(), |n| n.to_string_lossy().into_owned());
-    let file = transfer.to_shprt(mode, args.seed, recorded, mesh.content_hash(), &mesh_name);
     if let (Some(out), Some(kind)) = (&args.output, output_kind) {
         match kind {
             Output::Shprt => file.write(out)?,

@@ -30,11 +30,15 @@ from ._shlight import (
     EXPORT_FORMATS,
     SH,
     ShlightError,
+    Transfer,
     load,
     read_image,
     render,
     write_image,
 )
+from ._shlight import bake_transfer as _bake_transfer
+from ._shlight import compare as _compare
+from ._shlight import irradiance as _irradiance
 from ._shlight import project as _project
 from ._shlight import project_many as _project_many
 
@@ -42,6 +46,10 @@ __all__ = [
     "EXPORT_FORMATS",
     "SH",
     "ShlightError",
+    "Transfer",
+    "bake_transfer",
+    "compare",
+    "irradiance",
     "load",
     "project",
     "project_many",
@@ -70,6 +78,7 @@ def project(
     rotate=None,
     layer=None,
     max_pixels=None,
+    encoding="sh",
 ):
     """Project an environment map to SH coefficients (``shlight project``).
 
@@ -113,13 +122,23 @@ def project(
         light from a comes from R a afterwards.
     layer, max_pixels :
         EXR layer to read; refuse inputs with more pixels.
+    encoding : str
+        How the light is kept (``--encoding``): ``sh`` (plain SH to
+        ``lmax``), ``dominant+sh`` (the map's compact bright lights kept
+        exactly, the rest as SH to ``lmax``), ``sloan+sh``, ``zh3``,
+        ``zh3-hallucinated``, ``l1-nonlinear`` or ``ambient-cube``. The
+        encodings other than ``sh`` take radiance by quadrature: not with
+        ``quantity="irradiance"``, ``rotate``, ``method="montecarlo"`` or a
+        ``window`` other than none. Evaluate an encoded light with
+        ``SH.irradiance_at``; its coefficients alone are not the light.
 
     Returns
     -------
     SH
         Coefficients ``((lmax+1)**2, 3)`` float64 with their frame,
-        quantity and provenance; the same numbers as ``shlight project`` with
-        the same options, bit for bit.
+        quantity, encoding and provenance; the same numbers as ``shlight
+        project`` with the same options, bit for bit (``save`` writes the
+        CLI's JSON file byte for byte).
 
     Raises
     ------
@@ -146,6 +165,7 @@ def project(
         rotate=rotate,
         layer=layer,
         max_pixels=max_pixels,
+        encoding=encoding,
     )
 
 
@@ -171,7 +191,7 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
     **options :
         The keyword options of ``project`` (up, layout, method, samples,
         sampler, seed, window, quantity, mirror, sanitize, rotate, layer,
-        max_pixels).
+        max_pixels, encoding).
 
     Returns
     -------
@@ -181,4 +201,116 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
     """
     return _project_many(
         [str(p) for p in paths], lmax, errors=errors, progress=progress, **options
+    )
+
+
+def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sanitize=False, max_pixels=None):
+    """The exact irradiance of a map (``shlight irradiance MAP -o E.exr``).
+
+    Every texel of the output, an equirect map of ``size`` in the map's
+    frame, gets ``E(n) = sum_k L_k max(n . d_k, 0) Omega_k`` over every texel
+    ``k`` of the map, ``n`` the output texel's centre direction: the ground
+    truth an SH or any encoding's ``SH.irradiance_at`` is compared with.
+    ``O(map texels x output texels)`` work, on every core.
+
+    Parameters
+    ----------
+    source : str | os.PathLike
+        A map file in any layout ``project`` reads (``NAME_{face}.exr``:
+        six face files).
+    size : (int, int)
+        ``(width, height)`` of the output, 2:1.
+    up, layout, mirror, sanitize, max_pixels :
+        As for ``project``. The output lies in the map's own frame, so
+        ``up`` and ``mirror`` turn the map and the normals together and
+        leave the values as they are.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(height, width, 3)`` float64 linear RGB, rows from the top: the
+        numbers the CLI writes to its EXR (float32 there).
+
+    Raises
+    ------
+    ShlightError
+        An unreadable map, NaN or infinite texels (without ``sanitize``), a
+        size that is not 2:1; the CLI's messages.
+    """
+    return _irradiance(
+        source, tuple(size), up=up, layout=layout, mirror=mirror, sanitize=sanitize, max_pixels=max_pixels
+    )
+
+
+def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
+    """Every encoding on every map against its exact irradiance (``shlight compare``).
+
+    For each map: the exact irradiance at the texel centres of an equirect
+    grid of ``normals`` (as ``irradiance``), and against it the irradiance
+    of plain SH (lmax 1, 2, 4), dominant lights plus SH (lmax 1, 2, 4),
+    ``sloan+sh``, ``zh3``, ``zh3-hallucinated``, ``l1-nonlinear`` and the
+    ambient cube. Errors are of the luminance relative to its peak over
+    the normals, mean and RMS weighted by the normals' solid angles.
+
+    Parameters
+    ----------
+    paths : sequence of str | os.PathLike
+        Map files; a row's ``map`` is the file's stem.
+    normals : (int, int)
+        ``(width, height)`` of the grid of normals.
+    up, layout, sanitize :
+        As for ``project``.
+
+    Returns
+    -------
+    list[dict]
+        One dict per map and encoding, in the order of the CLI's table,
+        with the keys and values of the ``compare.json`` that ``shlight
+        compare ... -o DIR`` writes: ``map``, ``encoding``, ``lmax`` (None
+        for the fixed-size encodings), ``floats`` (stored, RGB), ``mean``,
+        ``max``, ``rms`` (fractions of the peak), ``lights`` (kept exactly)
+        and ``light_angle_degrees`` (first light to the brightest texel, or
+        None).
+    """
+    return _compare([str(p) for p in paths], tuple(normals), up=up, layout=layout, sanitize=sanitize)
+
+
+def bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024, bounces=None, albedo=None, seed=0):
+    """Bake precomputed radiance transfer for a mesh (``shlight prt MESH -o OUT.shprt``).
+
+    Per-vertex diffuse transfer vectors T (Sloan, Kautz & Snyder 2002),
+    albedo / pi folded in: a vertex's exit radiance under distant radiance
+    SH L (``project(...).coefficients``, radiance) is ``T[v, c] @ L[:n, c]``
+    per channel (a grey transfer, one channel, for each colour of L). The
+    defaults are the CLI's.
+
+    Parameters
+    ----------
+    mesh : str | os.PathLike
+        .obj, .ply, .off, .gltf or .glb.
+    mode : "unshadowed" | "shadowed" | "interreflected"
+        Cosine-weighted only; with self-shadowing; with self-shadowing and
+        ``bounces`` bounces of diffuse interreflection.
+    lmax : int
+        Highest SH degree of the transfer, at most 32.
+    samples : int
+        Directions per vertex over the whole sphere (a stratified grid of
+        about this many, shared by all vertices; about half are cast).
+    bounces : None | int
+        Bounces of interreflection (``mode="interreflected"`` only;
+        default 2).
+    albedo : None | float | (float, float, float)
+        Diffuse albedo, linear, in [0, 1]; None: the mesh's vertex colours
+        if it has them, otherwise 0.8.
+    seed : int
+        Seed of the direction set (the same seed gives the same bake).
+
+    Returns
+    -------
+    Transfer
+        ``coefficients`` ``(vertex_count, channels, (lmax+1)**2)`` float32;
+        ``save(path)`` writes the CLI's .shprt file byte for byte.
+    """
+    return _bake_transfer(
+        str(mesh), mode, lmax, samples=samples, bounces=bounces, albedo=albedo, seed=seed
     )

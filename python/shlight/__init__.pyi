@@ -1,7 +1,7 @@
 """Type stubs of shlight (conventions: see the package docstring)."""
 
 import os
-from typing import Literal, Optional, Sequence, Union
+from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -36,13 +36,19 @@ class SH:
     def quantity(self) -> Literal["radiance", "irradiance"]:
         """What the coefficients hold."""
     @property
+    def encoding(self) -> str:
+        """How the light is kept: "sh" (plain) or an encoding ("zh3", ...)."""
+    @property
     def std_error(self) -> Optional[npt.NDArray[np.float64]]:
         """((lmax+1)**2, 3) float64 standard errors (Monte Carlo), else None."""
     def irradiance(self) -> "SH":
         """E_l^m = A_l L_l^m (Ramamoorthi & Hanrahan 2001)."""
     def eval(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The expansion at directions (N, 3) -> (N, 3) (or (3,) -> (3,)),
-        in the SH's frame; directions are normalised."""
+        in the SH's frame; directions are normalised. Plain SH only."""
+    def irradiance_at(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The irradiance E(n) the light gives at normals (N, 3) -> (N, 3)
+        (or (3,) -> (3,)), for every encoding."""
     def rotate(self, r: npt.ArrayLike) -> "SH":
         """Rotated by a 3x3 matrix or a quaternion (x, y, z, w): a light
         from a comes from R a afterwards."""
@@ -58,7 +64,38 @@ class SH:
     def from_json(text: str) -> "SH":
         """An SH from a coefficient file's JSON text (pickling uses it)."""
 
+class Transfer:
+    """Per-vertex diffuse transfer of a mesh (a .shprt file): exit radiance
+    of vertex v under radiance SH L is coefficients[v, c] @ L[:n, c]."""
+
+    @property
+    def lmax(self) -> int:
+        """Highest SH degree."""
+    @property
+    def channels(self) -> Literal[1, 3]:
+        """1 (grey albedo) or 3 (RGB)."""
+    @property
+    def mode(self) -> Literal["unshadowed", "shadowed", "interreflected"]:
+        """The light transport baked."""
+    @property
+    def bounces(self) -> int:
+        """Interreflection bounces (0 unless interreflected)."""
+    @property
+    def samples(self) -> int:
+        """Directions in the shared stratified set."""
+    @property
+    def vertex_count(self) -> int:
+        """Vertices, in the mesh file's order."""
+    @property
+    def coefficients(self) -> npt.NDArray[np.float32]:
+        """(vertex_count, channels, (lmax+1)**2) float32."""
+    def save(self, path: PathLike) -> None:
+        """Writes the .shprt file (as the CLI's shlight prt -o FILE.shprt)."""
+
 Source = Union[PathLike, Image, Sequence[Image]]
+Encoding = Literal[
+    "sh", "dominant+sh", "sloan+sh", "zh3", "zh3-hallucinated", "l1-nonlinear", "ambient-cube"
+]
 
 def project(
     source: Source,
@@ -77,6 +114,7 @@ def project(
     rotate: Optional[str] = None,
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
+    encoding: Encoding = "sh",
 ) -> SH: ...
 def project_many(
     paths: Sequence[PathLike],
@@ -97,6 +135,7 @@ def project_many(
     rotate: Optional[str] = None,
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
+    encoding: Encoding = "sh",
 ) -> list[Optional[SH]]: ...
 def load(path: PathLike) -> SH:
     """A coefficient file, or any engine file `shlight convert` reads."""
@@ -116,3 +155,36 @@ def render(
     irradiance: bool = False,
 ) -> npt.NDArray[np.float32]:
     """(H, W, 3) float32: the expansion at every texel centre."""
+def irradiance(
+    source: PathLike,
+    size: tuple[int, int] = (64, 32),
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    mirror: bool = False,
+    sanitize: bool = False,
+    max_pixels: Optional[int] = None,
+) -> npt.NDArray[np.float64]:
+    """(H, W, 3) float64: the exact irradiance of the map at every texel
+    centre of an equirect grid (shlight irradiance)."""
+def compare(
+    paths: Sequence[PathLike],
+    normals: tuple[int, int] = (128, 64),
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    sanitize: bool = False,
+) -> list[dict[str, Any]]:
+    """Every encoding on every map against its exact irradiance: the rows
+    of shlight compare's compare.json."""
+def bake_transfer(
+    mesh: PathLike,
+    mode: Literal["unshadowed", "shadowed", "interreflected"] = "shadowed",
+    lmax: int = 4,
+    *,
+    samples: int = 1024,
+    bounces: Optional[int] = None,
+    albedo: Union[None, float, tuple[float, float, float]] = None,
+    seed: int = 0,
+) -> Transfer:
+    """PRT of a mesh as shlight prt bakes it."""

@@ -127,6 +127,7 @@ pub fn render<'py>(
             ReadOptions::DEFAULT_MAX_PIXELS
         )));
     }
+    sh.plain("render")?;
     let file = sh.file();
     let coeffs = match (file.quantity, irradiance) {
         (Quantity::Radiance, true) => shlight_core::sh::irradiance(&file.coeffs),

@@ -3,17 +3,20 @@
 //!
 //! One job: translating between Python (numpy arrays, keyword options,
 //! exceptions, warnings) and shlight's libraries. Every step of a
-//! projection, render or export is a library call
-//! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`);
+//! projection, render, export, measurement or bake is a library call
+//! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`,
+//! `shlight_accuracy`, `shlight_prt`);
 //! nothing here computes lighting. Work runs with the GIL released, and no
 //! Rust panic reaches Python ([`guard::guard`] turns one into a
 //! `shlight.ShlightError`).
 
+mod accuracy;
 mod errors;
 mod guard;
 mod images;
 mod options;
 mod project;
+mod prt;
 mod sh;
 mod source;
 
@@ -25,12 +28,16 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("ShlightError", py.get_type::<errors::ShlightError>())?;
     m.add_class::<sh::Sh>()?;
+    m.add_class::<prt::Transfer>()?;
     m.add_function(wrap_pyfunction!(project::project, m)?)?;
     m.add_function(wrap_pyfunction!(project::project_many, m)?)?;
     m.add_function(wrap_pyfunction!(sh::load, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::render, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! line's defaults and checks.
 
 use pyo3::prelude::*;
+use shlight_core::encoding::Encoding;
 use shlight_core::map::MapOrientation;
 use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
 use shlight_core::sh::{Frame, Window};
@@ -29,6 +30,7 @@ pub struct RawOptions {
     pub rotate: Option<String>,
     pub layer: Option<String>,
     pub max_pixels: Option<usize>,
+    pub encoding: String,
 }
 
 /// The settings of a projection and how its inputs are read.
@@ -36,6 +38,8 @@ pub struct RawOptions {
 pub struct Options {
     pub settings: ProjectSettings,
     pub read: ReadSettings,
+    /// The light kept: plain SH or an encoding of the map.
+    pub encoding: Encoding,
 }
 
 /// `up="y"` or `"z"` as a frame.
@@ -52,7 +56,8 @@ pub fn frame_of(up: &str) -> PyResult<Frame> {
 impl RawOptions {
     /// Checks the options and makes the library's settings: the same
     /// defaults and refusals as `shlight project` (Monte Carlo options only
-    /// with `method="montecarlo"`).
+    /// with `method="montecarlo"`; an encoding other than `sh` only for
+    /// radiance by quadrature, without a window or rotation).
     pub fn resolve(&self) -> PyResult<Options> {
         let frame = frame_of(&self.up)?;
         let layout: InputLayout = self
@@ -132,6 +137,8 @@ impl RawOptions {
             frame,
             mirror: self.mirror,
         };
+        // After the other options are known to be valid.
+        let encoding = self.encoding()?;
         Ok(Options {
             settings: ProjectSettings {
                 lmax: self.lmax,
@@ -149,6 +156,36 @@ impl RawOptions {
                 },
                 sanitize: self.sanitize,
             },
+            encoding,
         })
+    }
+
+    /// `encoding=`, refused with the options `shlight project --encoding`
+    /// refuses it with (src/project/settings.rs), in Python's spelling.
+    fn encoding(&self) -> PyResult<Encoding> {
+        let e: Encoding = self
+            .encoding
+            .trim()
+            .parse()
+            .map_err(|err| shlight_error(format!("encoding={:?}: {err}", self.encoding)))?;
+        if e == Encoding::Sh {
+            return Ok(e);
+        }
+        let window = self.window.as_deref().map(str::trim);
+        let clash = [
+            (
+                self.quantity.trim() != Quantity::Radiance.name(),
+                "quantity=\"irradiance\"",
+            ),
+            (self.rotate.is_some(), "rotate"),
+            (self.method.trim() != "quadrature", "method=\"montecarlo\""),
+            (window.is_some_and(|w| w != "none"), "window"),
+        ];
+        if let Some((_, what)) = clash.iter().find(|(c, _)| *c) {
+            return Err(shlight_error(format!(
+                "encoding=\"{e}\" keeps radiance projected by quadrature in shlight's JSON file; it cannot be combined with {what}"
+            )));
+        }
+        Ok(e)
     }
 }

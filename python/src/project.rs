@@ -20,7 +20,8 @@ const ARRAY_NAME: &str = "<array>";
 
 /// project(source, lmax=2, *, up="y", layout="auto", method="quadrature",
 /// samples=None, sampler=None, seed=None, window=None, quantity="radiance",
-/// mirror=False, sanitize=False, rotate=None, layer=None, max_pixels=None)
+/// mirror=False, sanitize=False, rotate=None, layer=None, max_pixels=None,
+/// encoding="sh")
 /// --
 ///
 /// See the package documentation (`help(shlight.project)`).
@@ -28,7 +29,7 @@ const ARRAY_NAME: &str = "<array>";
 #[pyo3(signature = (source, lmax=2, *, up="y".to_string(), layout="auto".to_string(),
     method="quadrature".to_string(), samples=None, sampler=None, seed=None, window=None,
     quantity="radiance".to_string(), mirror=false, sanitize=false, rotate=None, layer=None,
-    max_pixels=None))]
+    max_pixels=None, encoding="sh".to_string()))]
 pub fn project(
     py: Python<'_>,
     source: &Bound<'_, PyAny>,
@@ -46,6 +47,7 @@ pub fn project(
     rotate: Option<String>,
     layer: Option<String>,
     max_pixels: Option<usize>,
+    encoding: String,
 ) -> PyResult<Sh> {
     let options = RawOptions {
         lmax,
@@ -62,6 +64,7 @@ pub fn project(
         rotate,
         layer,
         max_pixels,
+        encoding,
     }
     .resolve()?;
     let source = Source::from_py(source)?;
@@ -77,10 +80,11 @@ pub fn project(
     Ok(Sh::new(file))
 }
 
-/// The pipeline's settings of `o` (plain SH, no preview).
+/// The pipeline's settings of `o` (no preview).
 fn settings(o: &Options) -> Settings {
     Settings {
         read: o.read.clone(),
+        encoding: o.encoding,
         ..Settings::new(o.settings.clone())
     }
 }
@@ -188,7 +192,8 @@ fn project_faces(
 #[pyo3(signature = (paths, lmax=2, *, errors="raise".to_string(), progress=false,
     up="y".to_string(), layout="auto".to_string(), method="quadrature".to_string(),
     samples=None, sampler=None, seed=None, window=None, quantity="radiance".to_string(),
-    mirror=false, sanitize=false, rotate=None, layer=None, max_pixels=None))]
+    mirror=false, sanitize=false, rotate=None, layer=None, max_pixels=None,
+    encoding="sh".to_string()))]
 pub fn project_many(
     py: Python<'_>,
     paths: Vec<PathBuf>,
@@ -208,6 +213,7 @@ pub fn project_many(
     rotate: Option<String>,
     layer: Option<String>,
     max_pixels: Option<usize>,
+    encoding: String,
 ) -> PyResult<Vec<Option<Sh>>> {
     let raise = match errors.as_str() {
         "raise" => true,
@@ -233,6 +239,7 @@ pub fn project_many(
         rotate,
         layer,
         max_pixels,
+        encoding,
     }
     .resolve()?;
     let results: Vec<Result<(CoeffFile, Vec<String>), String>> = py.detach(|| {

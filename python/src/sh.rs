@@ -10,8 +10,9 @@ use numpy::{
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use shlight_core::encoding::Encoding;
 use shlight_core::sh::{ShCoeffs, WindowTarget};
-use shlight_format::{CoeffFile, ExportFormat};
+use shlight_format::{CoeffFile, ExportFormat, Quantity};
 
 use crate::errors::{chained, shlight_error, warn_all};
 use crate::guard::guard;
@@ -38,6 +39,77 @@ impl Sh {
     /// The coefficient file.
     pub fn file(&self) -> &CoeffFile {
         &self.file
+    }
+
+    /// Refuses `what` on an encoded light, whose coefficients alone are
+    /// not the light (as `shlight project` refuses `--encoding` with
+    /// `--window` and `--rotate`).
+    pub fn plain(&self, what: &str) -> PyResult<()> {
+        let e = self.file.encoding.encoding();
+        if e == Encoding::Sh {
+            return Ok(());
+        }
+        Err(shlight_error(format!(
+            "{what}: the light is kept as {e}, whose coefficients alone are not the light; irradiance_at(dirs) evaluates it"
+        )))
+    }
+}
+
+/// Directions from Python, (N, 3) or (3,) (`true`: one), checked and
+/// normalised.
+fn directions(dirs: &Bound<'_, PyAny>) -> PyResult<(Vec<DVec3>, bool)> {
+    let single = dirs.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>();
+    let (rows, one): (Vec<[f64; 3]>, bool) = match single {
+        Ok(d) if d.shape() == [3] => {
+            let a = d.as_array();
+            (vec![[a[0], a[1], a[2]]], true)
+        }
+        _ => {
+            let m = dirs
+                .extract::<PyArrayLike2<'_, f64, AllowTypeChange>>()
+                .map_err(|_| PyValueError::new_err("dirs must be an (N, 3) array of directions"))?;
+            if m.shape()[1] != 3 {
+                return Err(PyValueError::new_err(format!(
+                    "dirs must have shape (N, 3), not {:?}",
+                    m.shape()
+                )));
+            }
+            let a = m.as_array();
+            (
+                (0..a.nrows())
+                    .map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]])
+                    .collect(),
+                false,
+            )
+        }
+    };
+    if let Some(i) = rows.iter().position(|d| {
+        let v = DVec3::from(*d);
+        !v.is_finite() || v.length_squared() == 0.0
+    }) {
+        return Err(PyValueError::new_err(format!(
+            "dirs[{i}] = {:?} is not a direction (zero or not finite)",
+            rows[i]
+        )));
+    }
+    Ok((
+        rows.into_iter()
+            .map(|d| DVec3::from(d).normalize())
+            .collect(),
+        one,
+    ))
+}
+
+/// `values` as an (N, 3) float64 array, or (3,) when `one`.
+fn rgb_rows<'py>(py: Python<'py>, values: &[DVec3], one: bool) -> PyResult<Bound<'py, PyAny>> {
+    let flat: Vec<f64> = values.iter().flat_map(|v| v.to_array()).collect();
+    let out = Array2::from_shape_vec((values.len(), 3), flat)
+        .expect("n x 3")
+        .into_pyarray(py);
+    if one {
+        Ok(out.call_method1("reshape", (3,))?)
+    } else {
+        Ok(out.into_any())
     }
 }
 
@@ -120,6 +192,15 @@ impl Sh {
         self.file.mirror
     }
 
+    /// How the light is kept: "sh" (plain SH, the coefficients are the
+    /// light) or an encoding of `shlight project --encoding` ("dominant+sh",
+    /// "sloan+sh", "zh3", "zh3-hallucinated", "l1-nonlinear",
+    /// "ambient-cube"), evaluated by irradiance_at.
+    #[getter]
+    fn encoding(&self) -> &'static str {
+        self.file.encoding.encoding().name()
+    }
+
     /// "radiance" (L) or "irradiance" (E = A_l L_l^m).
     #[getter]
     fn quantity(&self) -> &'static str {
@@ -141,8 +222,9 @@ impl Sh {
     /// Irradiance E_l^m = A_l L_l^m (Ramamoorthi & Hanrahan 2001; A_0 = pi,
     /// A_1 = 2 pi / 3, A_2 = pi / 4): what a white Lambertian surface facing
     /// each direction receives. An SH that holds irradiance is returned as
-    /// it is.
+    /// it is. An encoded light is refused (irradiance_at evaluates it).
     fn irradiance(&self) -> PyResult<Sh> {
+        self.plain("irradiance")?;
         self.file
             .to_irradiance()
             .map(Sh::new)
@@ -151,58 +233,43 @@ impl Sh {
 
     /// The expansion at unit directions: dirs (N, 3) (or (3,)) float64 in
     /// the SH's frame, normalised here; returns (N, 3) (or (3,)) float64 RGB.
+    /// An encoded light (`encoding` other than "sh") is refused: its
+    /// coefficients alone are not the light (irradiance_at evaluates it).
     fn eval<'py>(&self, py: Python<'py>, dirs: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        let single = dirs.extract::<PyArrayLike1<'py, f64, AllowTypeChange>>();
-        let (rows, one): (Vec<[f64; 3]>, bool) = match single {
-            Ok(d) if d.shape() == [3] => {
-                let a = d.as_array();
-                (vec![[a[0], a[1], a[2]]], true)
-            }
-            _ => {
-                let m = dirs
-                    .extract::<PyArrayLike2<'py, f64, AllowTypeChange>>()
-                    .map_err(|_| {
-                        PyValueError::new_err("dirs must be an (N, 3) array of directions")
-                    })?;
-                if m.shape()[1] != 3 {
-                    return Err(PyValueError::new_err(format!(
-                        "dirs must have shape (N, 3), not {:?}",
-                        m.shape()
-                    )));
-                }
-                let a = m.as_array();
-                (
-                    (0..a.nrows())
-                        .map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]])
-                        .collect(),
-                    false,
-                )
-            }
-        };
-        if let Some(i) = rows.iter().position(|d| {
-            let v = DVec3::from(*d);
-            !v.is_finite() || v.length_squared() == 0.0
-        }) {
-            return Err(PyValueError::new_err(format!(
-                "dirs[{i}] = {:?} is not a direction (zero or not finite)",
-                rows[i]
-            )));
-        }
+        self.plain("eval")?;
+        let (dirs, one) = directions(dirs)?;
         let coeffs = &self.file.coeffs;
-        let values: Vec<f64> = py.detach(|| {
-            rows.iter()
-                .flat_map(|d| coeffs.eval(DVec3::from(*d).normalize()).to_array())
-                .collect()
-        });
-        let n = rows.len();
-        let out = Array2::from_shape_vec((n, 3), values)
-            .expect("n x 3")
-            .into_pyarray(py);
-        if one {
-            Ok(out.call_method1("reshape", (3,))?)
+        let values: Vec<DVec3> = py.detach(|| dirs.iter().map(|d| coeffs.eval(*d)).collect());
+        rgb_rows(py, &values, one)
+    }
+
+    /// The irradiance E(n) the file's light gives at unit normals: dirs
+    /// (N, 3) (or (3,)) float64 in the SH's frame, normalised here; returns
+    /// (N, 3) (or (3,)) float64 RGB. Every encoding evaluates its own way
+    /// (dominant lights plus SH, ZH3, non-linear L1, the ambient cube);
+    /// plain SH radiance is convolved (E_l^m = A_l L_l^m); an SH that
+    /// holds irradiance is evaluated as it is.
+    fn irradiance_at<'py>(
+        &self,
+        py: Python<'py>,
+        dirs: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (dirs, one) = directions(dirs)?;
+        let values: Vec<DVec3> = if self.file.quantity == Quantity::Irradiance {
+            let coeffs = &self.file.coeffs;
+            py.detach(|| dirs.iter().map(|d| coeffs.eval(*d)).collect())
         } else {
-            Ok(out.into_any())
-        }
+            let encoded = self.file.encoded().ok_or_else(|| {
+                shlight_error(format!(
+                    "the file's {} coefficients (lmax {}) are too few for its encoding {}",
+                    self.file.quantity.name(),
+                    self.file.coeffs.lmax(),
+                    self.encoding()
+                ))
+            })?;
+            py.detach(|| guard(|| Ok(encoded.irradiance_at(&dirs))))?
+        };
+        rgb_rows(py, &values, one)
     }
 
     /// The same light rotated by R: a 3x3 rotation matrix (acting on column
@@ -210,6 +277,7 @@ impl Sh {
     /// R a afterwards, as `shlight project --rotate`; standard errors are
     /// rotated too.
     fn rotate(&self, r: &Bound<'_, PyAny>) -> PyResult<Sh> {
+        self.plain("rotate")?;
         let (m, spec) = rotation_of(r)?;
         guard(|| Ok(Sh::new(self.file.rotated(m, &spec))))
     }
@@ -219,6 +287,7 @@ impl Sh {
     /// channel the weakest Hanning window that makes these coefficients'
     /// function non-negative), as `shlight project --window`.
     fn window(&self, window: &str) -> PyResult<Sh> {
+        self.plain("window")?;
         let windows = self
             .file
             .windows_for(window, WindowTarget::Function)
@@ -266,11 +335,17 @@ impl Sh {
 
     fn __repr__(&self) -> String {
         let input = &self.file.provenance.input;
+        let encoding = self.file.encoding.encoding();
         format!(
-            "SH(lmax={}, quantity={:?}, frame={:?}{})",
+            "SH(lmax={}, quantity={:?}, frame={:?}{}{})",
             self.file.coeffs.lmax(),
             self.file.quantity.name(),
             self.file.frame.to_string(),
+            if encoding == Encoding::Sh {
+                String::new()
+            } else {
+                format!(", encoding={:?}", encoding.name())
+            },
             if input.is_empty() {
                 String::new()
             } else {

@@ -13,6 +13,10 @@
 //!   deterministic for a seed ([`transfer`] states the estimator).
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
 //!   ([`ShprtFile`], docs/shprt.md, read and written by shlight-format).
+//! - [`bake_file::bake_file`]: a bake as a front end asks for it
+//!   ([`bake_file::BakeRequest`], `shlight prt`'s options: the albedo
+//!   chosen, the bake, its `.shprt` file), for the command line and the
+//!   Python package alike.
 //! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
 //! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours;
 //!   [`preview::vertex_exposure`] the exposure to show them at.
@@ -40,6 +44,7 @@
 //! **Architecture invariant:** no GPU and no command line; files are
 //! written through shlight-io's atomic writer.
 
+pub mod bake_file;
 pub mod brute_force;
 pub mod bvh;
 mod error;
