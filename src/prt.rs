@@ -12,9 +12,9 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
+use shlight_format::ShprtFile;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
-use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Stage, bake};
 
 use crate::progress::{StageBars, Ui};

@@ -12,7 +12,7 @@
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
-//!   ([`ShprtFile`], docs/shprt.md, read and written by shlight-format).
+//!   ([`shlight_format::ShprtFile`], docs/shprt.md).
 //! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
 //! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours;
 //!   [`preview::vertex_exposure`] the exposure to show them at.
@@ -50,7 +50,6 @@ pub mod records;
 pub mod transfer;
 
 pub use error::PrtError;
-pub use shlight_format::ShprtFile;
 
 /// For shlight's own tests (this crate's, its test binaries' and
 /// shlight-volume's): reports a test, or the part of it that needs AVX2 and
