@@ -12,8 +12,6 @@ mod compare;
 mod convert;
 #[cfg(not(feature = "gpu"))]
 mod gpu_feature;
-#[cfg(feature = "gpu")]
-mod gpu_scene;
 mod heap;
 mod input;
 mod irradiance;

@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use anyhow::{Result, bail};
+use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
-use shlight_prt::ShprtFile;
 
 /// Reads `path` and checks it was baked for `mesh` (read from `mesh_path`):
 /// the same vertex count and the same content hash (positions, normals and

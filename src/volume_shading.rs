@@ -1,13 +1,9 @@
-//! `--volume FILE.shvol` of `render-mesh` and `view`: the scene lit by its
-//! baked irradiance volume and a dynamic object moved through it, both
-//! shaded per fragment by trilinear interpolation of the valid probes on
-//! the GPU (shlight-gpu's `VolumeRenderer`; docs/shvol.md, "Shading").
-//!
-//! A relightable volume is relit on the CPU from its transfer matrices
-//! under `--env`, turned by the environment's rotation
-//! (`L_probe = M R(L_env) + L_emitted`, shlight-volume's `relight_file`);
-//! a `--static` one keeps its stored SH, and turning the environment is
-//! refused (`render-mesh --rotate`) or moves only the background (`view`).
+//! `--volume FILE.shvol` of `render-mesh` and `view`: the arguments, and
+//! `load_volume`, which reads them into shlight-viewer's `VolumeScene` (the
+//! scene lit by its baked irradiance volume and a dynamic object moved
+//! through it, docs/shvol.md, "Shading"). A `--static` volume keeps its
+//! stored SH, and turning the environment is refused (`render-mesh
+//! --rotate`) or moves only the background (`view`).
 
 use std::path::PathBuf;
 
@@ -82,184 +78,68 @@ impl VolumeShadingArgs {
     }
 }
 
+/// Reads `--volume` and `--object` into the scene the GPU shades, warning
+/// when `scene` is not the mesh the volume was baked in and noting a volume
+/// above the shading lmax.
+///
+/// # Errors
+/// An unreadable or invalid file, an `--at` that is not finite.
 #[cfg(feature = "gpu")]
-pub use gpu::{VolumeInput, VolumeLight};
-
-#[cfg(feature = "gpu")]
-mod gpu {
-    use std::path::{Path, PathBuf};
-    use std::time::{Duration, Instant};
-
-    use anyhow::{Result, bail};
-    use glam::{DVec3, Vec3};
-    use shlight_baked::VolumeView;
-    use shlight_core::sh::ShCoeffs;
-    use shlight_format::ShvolFile;
-    use shlight_gpu::{GpuContext, VolumeRenderer, place, wgpu};
-    use shlight_mesh::Mesh;
-
-    use super::VolumeShadingArgs;
-    use crate::progress::Ui;
-
-    /// Whether the probes follow the environment.
-    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-    pub enum VolumeLight {
-        /// Relit from the transfer matrices under the (turned) environment.
-        Relit,
-        /// `--static`: the stored SH, whatever the environment does.
-        Stored,
+pub fn load_volume(
+    args: &VolumeShadingArgs,
+    scene: &shlight_mesh::Mesh,
+    scene_name: &std::path::Path,
+    ui: &crate::progress::Ui,
+) -> Result<shlight_viewer::VolumeScene> {
+    let path = args
+        .volume
+        .clone()
+        .expect("load_volume is called with --volume");
+    if !path.exists() {
+        bail!("{}: no such volume file", path.display());
     }
-
-    /// A volume read and checked, with its object, before the GPU.
-    pub struct VolumeInput {
-        /// The `.shvol` file (its radiance replaced when relit).
-        pub file: ShvolFile,
-        /// Its path.
-        pub path: PathBuf,
-        /// The object and its name.
-        pub object: Mesh,
-        /// The object's file name (or the bundled bunny's).
-        pub object_name: String,
-        /// Where the object's bounding-box centre is.
-        pub at: Vec3,
-        /// The object's bounding-box diagonal.
-        pub size: f32,
+    let file = shlight_format::ShvolFile::read(&path)?;
+    let name = path.display();
+    if file.scene_hash != scene.content_hash() {
+        ui.warn(format!(
+            "{name} was baked in {} (fnv1a64:{:016x}), not in {} (fnv1a64:{:016x}): its light does not match this scene",
+            file.scene,
+            file.scene_hash,
+            scene_name.display(),
+            scene.content_hash()
+        ));
     }
-
-    impl VolumeInput {
-        /// Reads `--volume` and `--object`, warns when `scene` is not the
-        /// mesh the volume was baked in and notes a volume above the
-        /// shading lmax.
-        ///
-        /// # Errors
-        /// An unreadable or invalid file.
-        pub fn load(
-            args: &VolumeShadingArgs,
-            scene: &Mesh,
-            scene_name: &Path,
-            ui: &Ui,
-        ) -> Result<Self> {
-            let path = args
-                .volume
-                .clone()
-                .expect("VolumeInput::load is called with --volume");
-            if !path.exists() {
-                bail!("{}: no such volume file", path.display());
-            }
-            let file = ShvolFile::read(&path)?;
-            let name = path.display();
-            if file.scene_hash != scene.content_hash() {
-                ui.warn(format!(
-                    "{name} was baked in {} (fnv1a64:{:016x}), not in {} (fnv1a64:{:016x}): its light does not match this scene",
-                    file.scene,
-                    file.scene_hash,
-                    scene_name.display(),
-                    scene.content_hash()
-                ));
-            }
-            if file.lmax > shlight_baked::SHADED_MAX_LMAX {
-                ui.note(format!(
-                    "{name} holds lmax {}; the GPU shades volumes to lmax {}",
-                    file.lmax,
-                    shlight_baked::SHADED_MAX_LMAX
-                ));
-            }
-            let (object, object_name) = match &args.object {
-                Some(p) => (shlight_mesh::load(p)?, p.display().to_string()),
-                None => (
-                    crate::bundled::mesh()?,
-                    crate::bundled::MESH_NAME.to_string(),
-                ),
-            };
-            let (lo, hi) = (file.grid().min, file.grid().max);
-            let at = args.at.unwrap_or((lo + hi) * 0.5);
-            if !at.is_finite() {
-                bail!("--at {at}: expected finite coordinates");
-            }
-            let size = args.object_size.unwrap_or((hi - lo).min_element() / 3.0);
-            let valid = file.valid.iter().filter(|v| **v).count();
-            ui.note(format!(
-                "{name}: {}x{}x{} probes ({valid} valid of {}), lmax {}, {}",
-                file.resolution[0],
-                file.resolution[1],
-                file.resolution[2],
-                file.valid.len(),
-                file.lmax,
-                if file.transfer.is_some() {
-                    "relightable"
-                } else {
-                    "static"
-                }
-            ));
-            Ok(Self {
-                file,
-                path,
-                object,
-                object_name,
-                at,
-                size,
-            })
-        }
-
-        /// How the probes meet the environment.
-        pub fn light(&self) -> VolumeLight {
-            if self.file.transfer.is_some() {
-                VolumeLight::Relit
-            } else {
-                VolumeLight::Stored
-            }
-        }
-
-        /// The grid box.
-        pub fn bounds(&self) -> (Vec3, Vec3) {
-            let grid = self.file.grid();
-            (grid.min, grid.max)
-        }
-
-        /// Relights a relightable volume under `env` (radiance SH in the
-        /// world frame, already turned), returning the time it took;
-        /// `None` for a static one (left as stored).
-        pub fn relight(&mut self, env: &ShCoeffs<DVec3>) -> Option<Duration> {
-            if self.light() == VolumeLight::Stored {
-                return None;
-            }
-            let start = Instant::now();
-            let env = env.resized(self.file.lmax);
-            shlight_volume::relight_file(&mut self.file, &env).expect("a relightable file");
-            Some(start.elapsed())
-        }
-
-        /// The probes as the GPU takes them.
-        pub fn probes(&self) -> VolumeView<'_> {
-            self.file.view()
-        }
-
-        /// The object's placement at `at`.
-        pub fn placement(&self, at: Vec3) -> shlight_gpu::VolumeInstance {
-            place(self.object.bounds(), at, self.size)
-        }
-
-        /// The volume pass for colour targets of `format`: `scene` (if
-        /// any) and the object, both of `albedo` where they have no
-        /// colours.
-        ///
-        /// # Errors
-        /// Probes the GPU cannot take.
-        pub fn renderer(
-            &self,
-            ctx: &GpuContext,
-            format: wgpu::TextureFormat,
-            scene: Option<&Mesh>,
-            albedo: [f32; 3],
-        ) -> Result<VolumeRenderer> {
-            let mut r = VolumeRenderer::new(ctx, format, &self.probes())?;
-            if let Some(scene) = scene {
-                r.set_scene(ctx, scene, albedo);
-            }
-            r.set_object(ctx, &self.object, albedo, self.placement(self.at));
-            Ok(r)
-        }
+    if file.lmax > SHADED_MAX_LMAX {
+        ui.note(format!(
+            "{name} holds lmax {}; the GPU shades volumes to lmax {SHADED_MAX_LMAX}",
+            file.lmax
+        ));
     }
+    let object = match &args.object {
+        Some(p) => (shlight_mesh::load(p)?, p.display().to_string()),
+        None => (
+            crate::bundled::mesh()?,
+            crate::bundled::MESH_NAME.to_string(),
+        ),
+    };
+    let volume =
+        shlight_viewer::VolumeScene::new(file, path.clone(), object, args.at, args.object_size)?;
+    let file = &volume.file;
+    let valid = file.valid.iter().filter(|v| **v).count();
+    ui.note(format!(
+        "{name}: {}x{}x{} probes ({valid} valid of {}), lmax {}, {}",
+        file.resolution[0],
+        file.resolution[1],
+        file.resolution[2],
+        file.valid.len(),
+        file.lmax,
+        if file.transfer.is_some() {
+            "relightable"
+        } else {
+            "static"
+        }
+    ));
+    Ok(volume)
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use glam::DVec3;
 use shlight_core::sh::closed_form;
+use shlight_format::ShprtFile;
 use shlight_mesh::generate;
-use shlight_prt::ShprtFile;
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode, bake};
 
 use crate::util::{s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows, write_obj};

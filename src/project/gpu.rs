@@ -46,12 +46,6 @@ impl Projector for GpuProjection {
             .projector
             .project(&self.ctx, view, s.lmax, s.orientation)
             .map_err(|e| PipelineError::new(shlight_pipeline::error_chain(&e)))?;
-        Ok(Projection {
-            coeffs,
-            std_error: None,
-            samples: None,
-            seed: None,
-            sampler: None,
-        })
+        Ok(Projection::exact(coeffs))
     }
 }

@@ -34,7 +34,7 @@ pub fn camera_for(
 /// Renders the checked `args` (without `--volume`: `volume.rs`) to
 /// `format` on the GPU.
 pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<()> {
-    crate::gpu_scene::check_lmax(args.lmax)?;
+    shlight_viewer::check_lmax(args.lmax)?;
     let mode = match (args.mode, &args.prt) {
         (Some(RenderMode::Prt), None) => bail!("--mode prt needs --prt FILE.shprt"),
         (Some(mode), _) => mode,
@@ -86,12 +86,12 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     bar.set_message("opening the GPU");
     let ctx = GpuContext::headless()?;
     let mut renderer =
-        crate::gpu_scene::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
+        shlight_viewer::renderer(&ctx, HEADLESS_FORMAT, &mesh, transfer.as_ref(), &env)?;
     renderer.set_environment_rotation(rotation);
     if let Some(snippet) = &snippet {
         renderer.set_encoding(&ctx, snippet)?;
     }
-    let lmax = crate::gpu_scene::shading_lmax(
+    let lmax = shlight_viewer::shading_lmax(
         args.lmax,
         transfer.as_ref().filter(|_| mode == RenderMode::Prt),
     );

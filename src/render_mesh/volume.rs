@@ -8,8 +8,8 @@ use shlight_io::Format;
 
 use crate::input::frame_of;
 use crate::progress::Ui;
-use crate::volume_shading::{VolumeInput, VolumeLight};
 use shlight_pipeline::Environment;
+use shlight_viewer::VolumeLight;
 
 use super::gpu::{camera_for, rotation, write_frame};
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
@@ -31,7 +31,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     crate::output_path::refuse_overwriting(&args.output, &inputs)?;
     let bar = ui.spinner("reading the scene");
     let mesh = shlight_mesh::load(&args.mesh)?;
-    let mut volume = VolumeInput::load(&args.volume, &mesh, &args.mesh, ui)?;
+    let mut volume = crate::volume_shading::load_volume(&args.volume, &mesh, &args.mesh, ui)?;
     bar.set_message("reading the environment");
     let mut env = Environment::load(&args.env, frame_of(&args.up), shlight_gpu::MAX_LMAX)?;
     env.warnings.iter().for_each(|w| ui.warn(w));

@@ -11,23 +11,8 @@
 //! tone map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
 //! the last (overlay included) and exits.
 //!
-//! Files: `app.rs` (the window, the GPU surface and the event loop; the
-//! camera is shlight-gpu's `OrbitCamera`), `controls.rs` (what the
-//! panel and keys change), `panel.rs` (the egui overlay), `screenshot.rs`
-//! (the swapchain image read back to PNG), `volume.rs` (`--volume`: the
-//! object moved by `j`/`l`, `u`/`o`, `i`/`k`, the probes shown by `g`, the
-//! volume relit every frame).
-
-#[cfg(feature = "gpu")]
-mod app;
-#[cfg(feature = "gpu")]
-mod controls;
-#[cfg(feature = "gpu")]
-mod panel;
-#[cfg(feature = "gpu")]
-mod screenshot;
-#[cfg(feature = "gpu")]
-mod volume;
+//! The window is shlight-viewer's ([`shlight_viewer::run`]); this module
+//! parses the arguments and reads the files.
 
 use std::path::PathBuf;
 
@@ -123,13 +108,10 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
 /// Opens the window and runs its event loop until it closes.
 #[cfg(feature = "gpu")]
 fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    use anyhow::anyhow;
-    use winit::event_loop::{ControlFlow, EventLoop};
-
     use crate::input::frame_of;
     use shlight_pipeline::Environment;
 
-    crate::gpu_scene::check_lmax(args.lmax)?;
+    shlight_viewer::check_lmax(args.lmax)?;
     let mesh_path = args
         .mesh
         .clone()
@@ -163,7 +145,7 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         env.encode(args.encoding, 2)?;
     }
     let volume = match &args.volume.volume {
-        Some(_) => Some(crate::volume_shading::VolumeInput::load(
+        Some(_) => Some(crate::volume_shading::load_volume(
             &args.volume,
             &mesh,
             &mesh_path,
@@ -171,15 +153,21 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         )?),
         None => None,
     };
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = app::App::new(args, mesh, transfer, env, volume);
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| anyhow!("window event loop: {e}"))?;
-    match app.error {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    let options = shlight_viewer::ViewerOptions {
+        lmax: args.lmax,
+        encoding: args.encoding,
+        exposure: args.exposure,
+        tone_map: args.tone_map,
+        size: args.size,
+        screenshot: args.screenshot.clone(),
+        frames: args.frames,
+        hide_panel: args.hide_panel,
+    };
+    let scene = shlight_viewer::ViewerScene {
+        mesh,
+        transfer,
+        env,
+        volume,
+    };
+    shlight_viewer::run(&options, scene)
 }

@@ -9,7 +9,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs, lm_from_index, sphere_minimum};
 
-use crate::encoding_record::FileEncoding;
+use crate::file_encoding::FileEncoding;
 use crate::{FormatError, Quantity, Result};
 
 /// Highest lmax whose file gets `statistics.minimum` (the search costs

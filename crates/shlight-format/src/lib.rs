@@ -54,9 +54,9 @@
 
 pub mod bevy_volume;
 pub mod coeff_file;
-pub mod encoding_record;
 mod error;
 pub mod export;
+mod file_encoding;
 mod header_line;
 mod import;
 mod light_transforms;
@@ -65,9 +65,9 @@ pub mod shprt;
 pub mod shvol;
 
 pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
-pub use encoding_record::FileEncoding;
 pub use error::{FormatError, Result};
 pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
+pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};
 pub use shprt::ShprtFile;

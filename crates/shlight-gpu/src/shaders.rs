@@ -109,7 +109,7 @@ pub const PROJECT_MODULE: ShaderModuleSource = ShaderModuleSource {
 /// spheres, and the interpolation as a compute pass), the probes' texels
 /// interpolated by the sampler (`VolumeFetch::Filtered`); its generated
 /// `sh_basis`, `volume_sum` and `probe_sum` stop at lmax
-/// [`SHADED_MAX_LMAX`](crate::SHADED_MAX_LMAX).
+/// [`shlight_baked::SHADED_MAX_LMAX`].
 pub const VOLUME_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "volume",
     files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],

@@ -17,7 +17,7 @@ use shlight_io::{Image, ReadOptions};
 use crate::input_layout::InputLayout;
 use crate::load::load_map;
 
-use crate::file_encoding::set_encoding;
+use crate::encode_file::set_encoding;
 use crate::{PipelineError, Result};
 
 /// A light read from a file.

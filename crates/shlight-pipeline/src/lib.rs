@@ -61,25 +61,24 @@
 
 #![deny(missing_docs)]
 
-mod coefficient_file;
+mod encode_file;
 mod environment;
 mod error;
-mod file_encoding;
 mod input_layout;
 mod load;
 mod output_grid;
 mod preview;
 mod project;
+mod projected_file;
 mod projection;
 mod render;
 mod rotation_spec;
 mod settings;
 mod source_stats;
 
-pub use coefficient_file::{MapInfo, choose_windows, coefficient_file};
+pub use encode_file::encode_file;
 pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
-pub use file_encoding::encode_file;
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use output_grid::{default_output_size, output_grid};
@@ -87,6 +86,7 @@ pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview
 pub use project::{
     CpuProjector, Hooks, Preview, Projector, Settings, Source, project, project_with_warnings,
 };
+pub use projected_file::{MapInfo, choose_windows, coefficient_file};
 pub use projection::{Projection, project_radiance, project_radiance_texels};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;

@@ -9,11 +9,11 @@ use shlight_core::sh::{Window, apply_channel_windows};
 use shlight_format::CoeffFile;
 use shlight_io::Image;
 
-use crate::coefficient_file::{MapInfo, choose_windows, coefficient_file};
-use crate::file_encoding::encode_file;
+use crate::encode_file::encode_file;
 use crate::input_layout::is_faces;
 use crate::load::{check_values, load_map, sanitize_image};
 use crate::preview::{PreviewOptions, write_preview};
+use crate::projected_file::{MapInfo, choose_windows, coefficient_file};
 use crate::projection::{Projection, project_radiance_texels};
 use crate::settings::ProjectSettings;
 use crate::settings::ReadSettings;
@@ -394,13 +394,7 @@ mod tests {
             }
             let mut coeffs = ShCoeffs::<DVec3>::zeros(s.lmax);
             coeffs[0] = DVec3::splat(2.0 * std::f64::consts::PI.sqrt());
-            Ok(Projection {
-                coeffs,
-                std_error: None,
-                samples: None,
-                seed: None,
-                sampler: None,
-            })
+            Ok(Projection::exact(coeffs))
         }
     }
 

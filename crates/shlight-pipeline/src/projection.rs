@@ -23,6 +23,21 @@ pub struct Projection {
     pub sampler: Option<String>,
 }
 
+impl Projection {
+    /// The coefficients of an exact method (quadrature): no standard
+    /// errors, no samples.
+    #[must_use]
+    pub fn exact(coeffs: ShCoeffs<DVec3>) -> Self {
+        Self {
+            coeffs,
+            std_error: None,
+            samples: None,
+            seed: None,
+            sampler: None,
+        }
+    }
+}
+
 /// Projects `map` by the settings' method to radiance coefficients.
 ///
 /// Quadrature sums texel × basis × exact texel solid angle
@@ -34,13 +49,7 @@ pub struct Projection {
 #[must_use]
 pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
     match &s.method {
-        Method::Quadrature => Projection {
-            coeffs: shlight_core::map::project_map(map, s.lmax),
-            std_error: None,
-            samples: None,
-            seed: None,
-            sampler: None,
-        },
+        Method::Quadrature => Projection::exact(shlight_core::map::project_map(map, s.lmax)),
         Method::MonteCarlo { options, sampler } => {
             let (width, height) = (map.width, map.height);
             let sampler = sampler.sampler(|| match map.layout {
@@ -88,13 +97,7 @@ pub fn project_radiance_texels<S: TexelSource + ?Sized>(
         Method::Quadrature => {
             let coeffs = shlight_core::map::project(source, s.lmax, s.orientation)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
-            Ok(Projection {
-                coeffs,
-                std_error: None,
-                samples: None,
-                seed: None,
-                sampler: None,
-            })
+            Ok(Projection::exact(coeffs))
         }
         Method::MonteCarlo { .. } => {
             source

@@ -19,7 +19,9 @@ use base64::Engine as _;
 use serde_json::{Value, json};
 use shlight_mesh::Mesh;
 
-use crate::{PrtError, ShprtFile};
+use shlight_format::ShprtFile;
+
+use crate::PrtError;
 
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;

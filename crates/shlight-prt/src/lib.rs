@@ -12,7 +12,7 @@
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
-//!   ([`ShprtFile`], docs/shprt.md, read and written by shlight-format).
+//!   ([`shlight_format::ShprtFile`], docs/shprt.md).
 //! - [`bake_file::bake_file`]: a bake as a front end asks for it
 //!   ([`bake_file::BakeRequest`], `shlight prt`'s options: the albedo
 //!   chosen, the bake, its `.shprt` file), for the command line and the
@@ -55,7 +55,6 @@ pub mod records;
 pub mod transfer;
 
 pub use error::PrtError;
-pub use shlight_format::ShprtFile;
 
 /// For shlight's own tests (this crate's, its test binaries' and
 /// shlight-volume's): reports a test, or the part of it that needs AVX2 and

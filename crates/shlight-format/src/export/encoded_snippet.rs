@@ -147,7 +147,7 @@ impl Parts {
             Extra::Zh3Stored(z) => vec![("the zonal coefficient".into(), *z)],
             Extra::Cube(c) => c
                 .iter()
-                .zip(crate::encoding_record::CUBE_KEYS)
+                .zip(crate::file_encoding::CUBE_KEYS)
                 .map(|(v, k)| (format!("ambient cube colour {k}"), *v))
                 .collect(),
             Extra::Zh3Hallucinated | Extra::L1NonLinear => Vec::new(),

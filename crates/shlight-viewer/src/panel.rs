@@ -4,7 +4,7 @@ use shlight_core::encoding::Encoding;
 use shlight_gpu::{Background, MAX_LMAX, Mode};
 use shlight_io::ToneMap;
 
-use super::controls::{Controls, WINDOWS};
+use crate::controls::{Controls, WINDOWS};
 
 /// What the panel shows besides the controls.
 pub struct PanelInfo<'a> {

@@ -1,4 +1,4 @@
-//! `shlight view --volume`: the object moved through the volume by keys,
+//! [`ViewVolume`], the viewer's `--volume`: the object moved through the volume by keys,
 //! the probes as spheres on a key, the volume relit every frame under the
 //! turned environment, and the panel's lines about it.
 //!
@@ -14,7 +14,7 @@ use shlight_core::sh::ShCoeffs;
 use shlight_gpu::{Camera, GpuContext, Shading, VolumeRenderer, wgpu};
 use shlight_mesh::Mesh;
 
-use crate::volume_shading::{VolumeInput, VolumeLight};
+use crate::volume_scene::{VolumeLight, VolumeScene};
 
 /// The keys that move the object and the direction of each.
 pub const MOVE_KEYS: [(&str, Vec3); 6] = [
@@ -40,7 +40,7 @@ pub fn moved(at: Vec3, key: &str, step: f32, bounds: (Vec3, Vec3)) -> Option<Vec
 /// The volume of the viewer: its input, its GPU pass once the window
 /// exists, the object's position and the last relight's time.
 pub struct ViewVolume {
-    input: VolumeInput,
+    input: VolumeScene,
     renderer: Option<VolumeRenderer>,
     at: Vec3,
     step: f32,
@@ -49,7 +49,8 @@ pub struct ViewVolume {
 }
 
 impl ViewVolume {
-    pub fn new(input: VolumeInput) -> Self {
+    /// The volume's state in the viewer, the object at its start.
+    pub fn new(input: VolumeScene) -> Self {
         let (lo, hi) = input.bounds();
         let cell = (hi - lo) / Vec3::from_array(input.file.resolution.map(|n| n as f32));
         Self {

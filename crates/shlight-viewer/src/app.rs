@@ -8,11 +8,11 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow};
 use shlight_core::encoding::Encoding;
 use shlight_core::sh::{ShRotation, Window};
+use shlight_format::ShprtFile;
 use shlight_gpu::wgpu;
 use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, OrbitCamera, Renderer, Shading};
 use shlight_io::ToneMap;
 use shlight_mesh::Mesh;
-use shlight_prt::ShprtFile;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::ActiveEventLoop;
@@ -21,12 +21,12 @@ use winit::window::WindowId;
 
 use shlight_pipeline::Environment;
 
-use super::ViewArgs;
-use super::controls::{Controls, WINDOWS};
-use super::panel::{PanelInfo, draw_panel};
-use super::screenshot::save_screenshot;
-use super::volume::ViewVolume;
-use crate::volume_shading::VolumeInput;
+use crate::ViewerOptions;
+use crate::controls::{Controls, WINDOWS};
+use crate::panel::{PanelInfo, draw_panel};
+use crate::screenshot::save_screenshot;
+use crate::view_volume::ViewVolume;
+use crate::volume_scene::VolumeScene;
 
 /// Everything that exists once the window does.
 struct Running {
@@ -42,7 +42,7 @@ struct Running {
 
 /// The viewer's state, driven by winit's event loop.
 pub struct App<'a> {
-    args: &'a ViewArgs,
+    options: &'a ViewerOptions,
     mesh: Mesh,
     /// `--prt`'s transfer, checked against the mesh.
     transfer: Option<ShprtFile>,
@@ -70,11 +70,11 @@ pub struct App<'a> {
 
 impl<'a> App<'a> {
     pub fn new(
-        args: &'a ViewArgs,
+        options: &'a ViewerOptions,
         mesh: Mesh,
         transfer: Option<ShprtFile>,
         env: Environment,
-        volume: Option<VolumeInput>,
+        volume: Option<VolumeScene>,
     ) -> Self {
         let background = if env.map.is_some() {
             Background::Map
@@ -87,13 +87,13 @@ impl<'a> App<'a> {
             Mode::Sh
         };
         let lmax = match &volume {
-            Some(v) => args
+            Some(v) => options
                 .lmax
                 .unwrap_or(v.file.lmax.min(shlight_baked::SHADED_MAX_LMAX)),
-            None => crate::gpu_scene::shading_lmax(args.lmax, transfer.as_ref()),
+            None => crate::scene_renderer::shading_lmax(options.lmax, transfer.as_ref()),
         };
         Self {
-            args,
+            options,
             mesh,
             transfer,
             env,
@@ -104,16 +104,16 @@ impl<'a> App<'a> {
                     mode,
                     lmax,
                     window: Window::None,
-                    exposure_ev: args.exposure,
-                    tone_map: Some(args.tone_map),
+                    exposure_ev: options.exposure,
+                    tone_map: Some(options.tone_map),
                     albedo: [0.8; 3],
                     background,
                 },
                 env_yaw: 0.0,
                 env_pitch: 0.0,
                 window_choice: 0,
-                encoding: args.encoding,
-                show_panel: !args.hide_panel,
+                encoding: options.encoding,
+                show_panel: !options.hide_panel,
             },
             orbit: None,
             dragging: None,
@@ -132,7 +132,7 @@ impl<'a> App<'a> {
     }
 
     fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
-        let (w, h) = self.args.size;
+        let (w, h) = self.options.size;
         let window = Arc::new(
             event_loop
                 .create_window(
@@ -172,9 +172,9 @@ impl<'a> App<'a> {
             // The scene is drawn by the volume pass, lit by its probes.
             Some(v) => {
                 v.start(&ctx, format, &self.mesh, [0.8; 3])?;
-                crate::gpu_scene::background_renderer(&ctx, format, &self.env)
+                crate::scene_renderer::background_renderer(&ctx, format, &self.env)
             }
-            None => crate::gpu_scene::renderer(
+            None => crate::scene_renderer::renderer(
                 &ctx,
                 format,
                 &self.mesh,
@@ -296,10 +296,10 @@ impl<'a> App<'a> {
         }
 
         let last_scripted = self
-            .args
+            .options
             .screenshot
             .as_ref()
-            .filter(|_| self.frames + 1 >= self.args.frames);
+            .filter(|_| self.frames + 1 >= self.options.frames);
         let capture = last_scripted.is_some() || self.screenshot_requested;
         let frame = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)

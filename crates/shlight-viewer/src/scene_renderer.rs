@@ -4,10 +4,10 @@
 //! lmax to shade at.
 
 use anyhow::{Result, bail};
+use shlight_format::ShprtFile;
 use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, wgpu};
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
-use shlight_prt::ShprtFile;
 
 /// Refuses an `--lmax` above what the GPU shades.
 pub fn check_lmax(lmax: Option<usize>) -> Result<()> {
@@ -23,14 +23,8 @@ pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize 
     requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
 }
 
-/// A renderer for colour targets of `format` with no mesh: the light of
-/// `env` and its map, for the background behind a volume pass.
-pub fn background_renderer(
-    ctx: &GpuContext,
-    format: wgpu::TextureFormat,
-    env: &Environment,
-) -> Renderer {
-    let mut renderer = Renderer::new(ctx, format);
+/// Gives `renderer` the light of `env` and its map, if it has one.
+fn set_light(renderer: &mut Renderer, ctx: &GpuContext, env: &Environment) {
     renderer.set_light(ctx, &env.radiance);
     if let Some(map) = &env.map {
         renderer.set_environment(
@@ -41,6 +35,17 @@ pub fn background_renderer(
             env.orientation,
         );
     }
+}
+
+/// A renderer for colour targets of `format` with no mesh: the light of
+/// `env` and its map, for the background behind a volume pass.
+pub fn background_renderer(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    env: &Environment,
+) -> Renderer {
+    let mut renderer = Renderer::new(ctx, format);
+    set_light(&mut renderer, ctx, env);
     renderer
 }
 
@@ -61,15 +66,6 @@ pub fn renderer(
     if let Some(t) = transfer {
         renderer.set_transfer(ctx, &t.view()?)?;
     }
-    renderer.set_light(ctx, &env.radiance);
-    if let Some(map) = &env.map {
-        renderer.set_environment(
-            ctx,
-            map.width(),
-            map.height(),
-            map.pixels(),
-            env.orientation,
-        );
-    }
+    set_light(&mut renderer, ctx, env);
     Ok(renderer)
 }
