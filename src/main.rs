@@ -25,6 +25,7 @@ mod render;
 mod render_mesh;
 #[cfg(feature = "gpu")]
 mod runtime_dir;
+mod sample;
 mod synth;
 mod values;
 mod view;
@@ -72,6 +73,9 @@ enum Command {
     Prt(prt::PrtArgs),
     /// Bake an irradiance volume: relightable SH probes on a grid through a scene.
     Volume(volume::VolumeArgs),
+    /// What a baked file shades with: a volume's irradiance at points, a
+    /// PRT file's exit radiance per vertex.
+    Sample(sample::SampleArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -128,6 +132,7 @@ fn main() -> ExitCode {
         Command::View(args) => view::run(&args, &ui),
         Command::Prt(args) => prt::run(&args, &ui),
         Command::Volume(args) => volume::run(&args, &ui),
+        Command::Sample(args) => sample::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

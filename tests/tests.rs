@@ -19,6 +19,7 @@ mod project;
 mod prt;
 mod readme;
 mod render;
+mod sample;
 #[cfg(feature = "gpu")]
 mod shaders;
 mod synth;

@@ -62,9 +62,55 @@ impl<'a> TransferView<'a> {
     }
 }
 
+impl TransferView<'_> {
+    /// Each vertex's exit radiance under the distant light `light` (its
+    /// radiance SH coefficients, index `l(l+1)+m`, one `[r, g, b]` each):
+    /// `L_out(v, c) = sum_i T[v, c, i] L_i[c]` over the coefficients both
+    /// hold (the smaller lmax of the two), one channel applying to all
+    /// three colours; what the renderer's PRT mode shades each vertex with.
+    #[must_use]
+    pub fn exit_radiance(&self, light: &[glam::DVec3]) -> Vec<glam::DVec3> {
+        let nc = (self.lmax + 1) * (self.lmax + 1);
+        let n = nc.min(light.len());
+        self.data
+            .chunks_exact(self.channels * nc)
+            .map(|v| {
+                let mut out = [0.0f64; 3];
+                for (c, o) in out.iter_mut().enumerate() {
+                    let t = &v[if self.channels == 1 { 0 } else { c * nc }..][..n];
+                    *o = t
+                        .iter()
+                        .zip(light)
+                        .map(|(t, l)| f64::from(*t) * l[c])
+                        .sum();
+                }
+                glam::DVec3::from_array(out)
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
+
+    /// Worked by hand: two vertices, lmax 1 (4 coefficients), a light of
+    /// lmax 0 uses only the first of each.
+    #[test]
+    fn exit_radiance_dots_each_channel() {
+        let grey: Vec<f32> = vec![1.0, 2.0, 3.0, 4.0, 0.5, 0.0, 0.0, 0.0];
+        let t = TransferView::new(1, 1, 2, &grey).unwrap();
+        let light = [DVec3::new(1.0, 2.0, 3.0), DVec3::splat(1.0), DVec3::ZERO, DVec3::splat(-1.0)];
+        let out = t.exit_radiance(&light);
+        // Vertex 0: 1 L0 + 2 L1 + 3 L2 + 4 L3 = (1 + 2 - 4, 2 + 2 - 4, 3 + 2 - 4).
+        assert_eq!(out, vec![DVec3::new(-1.0, 0.0, 1.0), DVec3::new(0.5, 1.0, 1.5)]);
+        assert_eq!(t.exit_radiance(&light[..1])[0], DVec3::new(1.0, 2.0, 3.0));
+        let rgb: Vec<f32> = (0..12).map(|i| i as f32).collect();
+        let t = TransferView::new(1, 3, 1, &rgb).unwrap();
+        let out = t.exit_radiance(&[DVec3::new(1.0, 10.0, 100.0)]);
+        assert_eq!(out, vec![DVec3::new(0.0, 40.0, 800.0)]);
+    }
 
     #[test]
     fn shapes_are_checked() {

@@ -61,6 +61,7 @@ mod header_line;
 mod import;
 mod light_transforms;
 mod quantity;
+mod samples;
 pub mod shprt;
 pub mod shvol;
 
@@ -70,5 +71,6 @@ pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};
+pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
 pub use shprt::ShprtFile;
 pub use shvol::ShvolFile;

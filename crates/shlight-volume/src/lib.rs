@@ -12,7 +12,9 @@
 //!   ([`bake`](mod@bake) states the estimator).
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
-//! - [`sample`]: trilinear interpolation of the valid probes.
+//! - [`sample`]: trilinear interpolation of the valid probes;
+//!   [`irradiance_at`]: the irradiance a point facing a normal is shaded
+//!   with, by a [`Lookup`] (`shlight sample`).
 //! - [`probe_sheet()`]: a picture of the probes, each a white ball lit by its
 //!   light, and [`probe_sheet_exposure`] to show it at.
 //! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
@@ -38,10 +40,12 @@
 
 pub mod bake;
 mod error;
+mod lookup;
 pub mod probe_sheet;
 mod probe_volume;
 
 pub use bake::{Stage, VolumeOptions, bake};
 pub use error::VolumeError;
+pub use lookup::{Lookup, irradiance_at, shaded_lmax};
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};

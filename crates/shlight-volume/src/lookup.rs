@@ -1,0 +1,145 @@
+//! [`Lookup`] and [`irradiance_at`]: what a volume shades a point with, as
+//! the GPU's volume pass shades it, for `shlight sample`.
+
+use glam::{DVec3, Vec3};
+use shlight_baked::{SHADED_MAX_LMAX, VolumeView};
+use shlight_core::sh::irradiance;
+
+use crate::sample;
+
+/// How the light at a point is read off a volume's probes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lookup {
+    /// The best lookup shlight has. Today that is [`Lookup::Trilinear`]:
+    /// the volume pass of `render-mesh --volume` and `view --volume`.
+    Shlight,
+    /// Trilinear interpolation of the valid probes among the eight around
+    /// the point, weights renormalised ([`sample`]; docs/shvol.md,
+    /// "Shading").
+    Trilinear,
+}
+
+impl Lookup {
+    /// Every lookup, in `--lookup` order.
+    pub const ALL: [Lookup; 2] = [Lookup::Shlight, Lookup::Trilinear];
+
+    /// The name on the command line and in files.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Lookup::Shlight => "shlight",
+            Lookup::Trilinear => "trilinear",
+        }
+    }
+}
+
+impl std::fmt::Display for Lookup {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Lookup {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Lookup::ALL
+            .into_iter()
+            .find(|l| l.name() == s.trim())
+            .ok_or_else(|| {
+                format!(
+                    "unknown lookup {s:?} (expected {})",
+                    Lookup::ALL.map(Lookup::name).join(", ")
+                )
+            })
+    }
+}
+
+/// The lmax the GPU's volume pass shades `view` at when asked for
+/// `requested` (`None`: the volume's own): at most the volume's and at
+/// most [`SHADED_MAX_LMAX`].
+#[must_use]
+pub fn shaded_lmax(view: &VolumeView<'_>, requested: Option<usize>) -> usize {
+    requested
+        .unwrap_or(view.lmax)
+        .min(view.lmax)
+        .min(SHADED_MAX_LMAX)
+}
+
+/// The irradiance `E(p, n) = sum_lm A_l L_lm(p) Y_lm(n)` at `p` facing the
+/// unit normal `n`, with `L(p)` read off the probes of `view` by `lookup`
+/// and kept to `lmax` (Ramamoorthi & Hanrahan 2001's `A_l`): what the
+/// volume pass shades with (a Lambertian fragment of albedo `rho` leaves
+/// `rho / pi E`). Zero where no valid probe is around `p`, as on the GPU.
+#[must_use]
+pub fn irradiance_at(
+    view: &VolumeView<'_>,
+    lookup: Lookup,
+    lmax: usize,
+    p: Vec3,
+    n: Vec3,
+) -> DVec3 {
+    match lookup {
+        Lookup::Shlight | Lookup::Trilinear => {
+            sample(&view.grid, view.valid, view.radiance, view.lmax, p).map_or(DVec3::ZERO, |l| {
+                irradiance(&l.resized(lmax.min(view.lmax))).eval(n.as_dvec3().normalize())
+            })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shlight_baked::ProbeGrid;
+    use std::f64::consts::PI;
+
+    /// Two probes along x, degree 1, probe 1 pointing its light along +x:
+    /// the irradiance is the closed form `E = pi a Y00 + 2 pi / 3 (b . n)
+    /// sqrt(3 / 4 pi)` of the interpolated coefficients, worked out here by
+    /// hand (`Y_00 = 1 / (2 sqrt(pi))`, `Y_1,1 = -sqrt(3 / 4 pi) x`).
+    #[test]
+    fn the_closed_form_of_interpolated_degree_one_probes() {
+        let grid = ProbeGrid::new([2, 1, 1], Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)).unwrap();
+        // Per probe 4 rows of [r, g, b]: L00, L1-1, L10, L11.
+        let mut radiance = vec![0.0f32; 2 * 4 * 3];
+        radiance[..3].copy_from_slice(&[1.0, 2.0, 3.0]);
+        radiance[12..15].copy_from_slice(&[2.0, 2.0, 2.0]);
+        radiance[12 + 9..12 + 12].copy_from_slice(&[-0.5, -0.5, -0.5]);
+        let valid = [true, true];
+        let view = VolumeView {
+            grid,
+            lmax: 1,
+            valid: &valid,
+            radiance: &radiance,
+        };
+        let c1 = (3.0 / (4.0 * PI)).sqrt();
+        let y00 = 0.5 / PI.sqrt();
+        // A quarter of the way from probe 0 (x = 0.5) to probe 1 (x = 1.5).
+        let p = Vec3::new(0.75, 0.5, 0.5);
+        for n in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)] {
+            let got = irradiance_at(&view, Lookup::Trilinear, 1, p, n);
+            let nn = n.as_dvec3().normalize();
+            let l00 = 0.75 * DVec3::new(1.0, 2.0, 3.0) + 0.25 * DVec3::splat(2.0);
+            let l11 = 0.25 * DVec3::splat(-0.5);
+            let want = PI * l00 * y00 + 2.0 * PI / 3.0 * l11 * (-c1 * nn.x);
+            assert!((got - want).abs().max_element() < 1e-6, "{n}: {got} {want}");
+        }
+        // lmax 0 drops the directional term.
+        let got = irradiance_at(&view, Lookup::Shlight, 0, p, Vec3::X);
+        let want = PI * y00 * (0.75 * DVec3::new(1.0, 2.0, 3.0) + 0.25 * DVec3::splat(2.0));
+        assert!((got - want).abs().max_element() < 1e-6);
+        // An invalid probe takes no weight; none valid: no light.
+        let one = [false, true];
+        let view1 = VolumeView { valid: &one, ..view };
+        let got = irradiance_at(&view1, Lookup::Trilinear, 0, p, Vec3::X);
+        assert!((got - PI * y00 * DVec3::splat(2.0)).abs().max_element() < 1e-6);
+        let none = [false, false];
+        let view0 = VolumeView { valid: &none, ..view };
+        assert_eq!(irradiance_at(&view0, Lookup::Trilinear, 1, p, Vec3::X), DVec3::ZERO);
+        assert_eq!(shaded_lmax(&view, None), 1);
+        assert_eq!(shaded_lmax(&view, Some(0)), 0);
+        assert_eq!("trilinear".parse::<Lookup>(), Ok(Lookup::Trilinear));
+        assert!("bevy".parse::<Lookup>().unwrap_err().contains("shlight, trilinear"));
+    }
+}

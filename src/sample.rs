@@ -1,0 +1,192 @@
+//! `shlight sample`: what a baked file shades with, at points a user
+//! names: a volume's irradiance `E(p, n)` (by a lookup, relit first with
+//! `--env`), or a PRT file's exit radiance per vertex under `--light`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Result, bail};
+use clap::Args;
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
+use shlight_pipeline::Environment;
+use shlight_volume::Lookup;
+
+use crate::input::frame_of;
+use crate::output_path::refuse_overwriting;
+
+/// Highest lmax of the light read for a PRT file (the GPU's).
+const LIGHT_MAX_LMAX: usize = 8;
+
+/// Arguments of `shlight sample`.
+#[derive(Args, Debug)]
+pub struct SampleArgs {
+    /// A baked file: an irradiance volume (.shvol) or PRT transfer (.shprt).
+    pub file: PathBuf,
+    /// Where to sample a volume: JSON {"points": [[x, y, z], ...],
+    /// "normals": [[x, y, z], ...]}, or CSV rows x,y,z,nx,ny,nz (.csv).
+    #[arg(long, value_name = "POINTS.json|csv")]
+    pub points: Option<PathBuf>,
+    /// The answer: JSON (the values, the lookup, the file's provenance), or
+    /// CSV rows r,g,b (.csv); written atomically.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Relight a relightable volume under this light first (an equirect
+    /// map or a radiance coefficient file), as render-mesh --volume does.
+    #[arg(long)]
+    pub env: Option<PathBuf>,
+    /// The distant light of a .shprt file (an equirect map or a radiance
+    /// coefficient file).
+    #[arg(long)]
+    pub light: Option<PathBuf>,
+    /// Which world axis a map's top row faces.
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// How a volume's light at a point is read off its probes: shlight (the
+    /// best shlight has; today trilinear) or trilinear (the valid probes of
+    /// the eight around the point, weights renormalised).
+    #[arg(long, default_value = "shlight")]
+    pub lookup: Lookup,
+    /// Highest degree shaded [default: what the GPU shades: a volume's
+    /// lmax, at most 4; a PRT file's, at most 8].
+    #[arg(long)]
+    pub lmax: Option<usize>,
+}
+
+/// Runs `shlight sample`.
+pub fn run(args: &SampleArgs) -> Result<()> {
+    let mut inputs = vec![args.file.clone()];
+    inputs.extend(args.points.clone());
+    inputs.extend(args.env.clone());
+    inputs.extend(args.light.clone());
+    refuse_overwriting(&args.output, &inputs)?;
+    let ext = args
+        .file
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let samples = match ext.as_deref() {
+        Some("shvol") => volume(args)?,
+        Some("shprt") => transfer(args)?,
+        _ => bail!(
+            "{}: sample reads irradiance volumes (.shvol) and PRT transfer (.shprt)",
+            args.file.display()
+        ),
+    };
+    samples.write(&args.output)?;
+    Ok(())
+}
+
+/// The light of `path` as radiance coefficients to `lmax` at most.
+fn light(path: &Path, up: &str, lmax: usize) -> Result<Environment> {
+    Ok(Environment::load(path, frame_of(up), lmax)?)
+}
+
+/// A volume's irradiance at the points.
+fn volume(args: &SampleArgs) -> Result<Samples> {
+    let Some(points_path) = &args.points else {
+        bail!("sampling a volume needs --points POINTS.json (or .csv): where to sample it");
+    };
+    if args.light.is_some() {
+        bail!("--light is the light of a .shprt file; a volume is relit by --env");
+    }
+    if let Some(l) = args.lmax.filter(|&l| l > shlight_baked::SHADED_MAX_LMAX) {
+        bail!(
+            "--lmax {l}: volumes are shaded to lmax {} at most",
+            shlight_baked::SHADED_MAX_LMAX
+        );
+    }
+    let mut file = ShvolFile::read(&args.file)?;
+    let points = SamplePoints::read(points_path)?;
+    if let Some(env) = &args.env {
+        let env = light(env, &args.up, shlight_baked::MAX_LMAX)?;
+        shlight_volume::relight_file(&mut file, &env.radiance.resized(file.lmax))
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+    }
+    let view = file.view();
+    let lmax = shlight_volume::shaded_lmax(&view, args.lmax);
+    let values: Vec<[f64; 3]> = points
+        .points
+        .par_iter()
+        .zip(&points.normals)
+        .map(|(p, n)| {
+            shlight_volume::irradiance_at(
+                &view,
+                args.lookup,
+                lmax,
+                Vec3::from_array(*p),
+                Vec3::from_array(*n),
+            )
+            .to_array()
+        })
+        .collect();
+    Ok(Samples {
+        quantity: "irradiance",
+        values,
+        about: json!({
+            "file": args.file.display().to_string(),
+            "points": points_path.display().to_string(),
+            "lookup": args.lookup.name(),
+            "lmax": lmax,
+            "light": args.env.as_ref().map(|p| p.display().to_string()),
+            "frame": file.frame,
+            "provenance": {
+                "scene": file.scene,
+                "scene_hash": format!("fnv1a64:{:016x}", file.scene_hash),
+                "environment": file.environment,
+                "generator": file.generator,
+                "samples": file.samples,
+                "bounces": file.bounces,
+                "seed": file.seed,
+                "relightable": file.relightable(),
+            },
+        }),
+    })
+}
+
+/// A PRT file's exit radiance per vertex.
+fn transfer(args: &SampleArgs) -> Result<Samples> {
+    let Some(light_path) = &args.light else {
+        bail!("sampling a .shprt file needs --light LIGHT (an equirect map or a radiance coefficient file)");
+    };
+    for (given, what) in [
+        (args.points.is_some(), "--points"),
+        (args.env.is_some(), "--env"),
+    ] {
+        if given {
+            bail!("{what} samples a volume; a .shprt file gives every vertex's exit radiance under --light");
+        }
+    }
+    let file = ShprtFile::read(&args.file)?;
+    let env = light(light_path, &args.up, LIGHT_MAX_LMAX)?;
+    let lmax = args
+        .lmax
+        .unwrap_or(file.lmax)
+        .min(file.lmax)
+        .min(LIGHT_MAX_LMAX);
+    let l = env.radiance.resized(lmax.min(env.radiance.lmax()));
+    let values = file
+        .view()?
+        .exit_radiance(l.as_slice())
+        .into_iter()
+        .map(DVec3::to_array)
+        .collect();
+    Ok(Samples {
+        quantity: "radiance",
+        values,
+        about: json!({
+            "file": args.file.display().to_string(),
+            "lmax": lmax,
+            "light": light_path.display().to_string(),
+            "provenance": {
+                "mode": file.mode,
+                "samples": file.samples,
+                "bounces": file.bounces,
+                "seed": file.seed,
+                "albedo": file.albedo.map_or(Value::Null, |a| json!(a)),
+                "vertex_count": file.vertex_count,
+            },
+        }),
+    })
+}
