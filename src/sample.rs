@@ -148,14 +148,18 @@ fn volume(args: &SampleArgs) -> Result<Samples> {
 /// A PRT file's exit radiance per vertex.
 fn transfer(args: &SampleArgs) -> Result<Samples> {
     let Some(light_path) = &args.light else {
-        bail!("sampling a .shprt file needs --light LIGHT (an equirect map or a radiance coefficient file)");
+        bail!(
+            "sampling a .shprt file needs --light LIGHT (an equirect map or a radiance coefficient file)"
+        );
     };
     for (given, what) in [
         (args.points.is_some(), "--points"),
         (args.env.is_some(), "--env"),
     ] {
         if given {
-            bail!("{what} samples a volume; a .shprt file gives every vertex's exit radiance under --light");
+            bail!(
+                "{what} samples a volume; a .shprt file gives every vertex's exit radiance under --light"
+            );
         }
     }
     let file = ShprtFile::read(&args.file)?;

@@ -126,7 +126,16 @@ fn a_volume_gives_the_closed_form_of_its_interpolated_probes() {
     assert_eq!(text.lines().next(), Some("r,g,b"));
     assert_eq!(rows, got);
     // lmax 0 drops the directional term.
-    shlight_ok(&["sample", s(&vol), "--points", s(&points), "-o", s(&out), "--lmax", "0"]);
+    shlight_ok(&[
+        "sample",
+        s(&vol),
+        "--points",
+        s(&points),
+        "-o",
+        s(&out),
+        "--lmax",
+        "0",
+    ]);
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let g0 = values(&v, "irradiance");
     assert!((g0[0][0] - g0[1][0]).abs() < 1e-9 && (g0[0][0] - g0[1][0]).abs() < 1e-9);
@@ -141,7 +150,16 @@ fn env_relights_a_relightable_volume_first() {
     let vol = dir.join("relit.shvol");
     two_probes(true).write(&vol).unwrap();
     let sky = dir.join("sky.exr");
-    shlight_ok(&["synth", "constant", "-o", s(&sky), "--value", "0.5", "--size", "64x32"]);
+    shlight_ok(&[
+        "synth",
+        "constant",
+        "-o",
+        s(&sky),
+        "--value",
+        "0.5",
+        "--size",
+        "64x32",
+    ]);
     let points = dir.join("p.json");
     std::fs::write(
         &points,
@@ -149,7 +167,16 @@ fn env_relights_a_relightable_volume_first() {
     )
     .unwrap();
     let out = dir.join("e.json");
-    shlight_ok(&["sample", s(&vol), "--points", s(&points), "--env", s(&sky), "-o", s(&out)]);
+    shlight_ok(&[
+        "sample",
+        s(&vol),
+        "--points",
+        s(&points),
+        "--env",
+        s(&sky),
+        "-o",
+        s(&out),
+    ]);
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     for e in values(&v, "irradiance") {
         for c in e {
@@ -160,9 +187,21 @@ fn env_relights_a_relightable_volume_first() {
     }
     let fixed = dir.join("static.shvol");
     two_probes(false).write(&fixed).unwrap();
-    let o = shlight(&["sample", s(&fixed), "--points", s(&points), "--env", s(&sky), "-o", s(&out)]);
+    let o = shlight(&[
+        "sample",
+        s(&fixed),
+        "--points",
+        s(&points),
+        "--env",
+        s(&sky),
+        "-o",
+        s(&out),
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("static.shvol") && err.contains("--static"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("static.shvol") && err.contains("--static"),
+        "{err}"
+    );
 }
 
 /// Unshadowed PRT transfer of a surface of albedo `rho` under a constant
@@ -185,7 +224,16 @@ fn a_prt_file_gives_each_vertexs_exit_radiance() {
         s(&prt),
     ]);
     let sky = dir.join("sky.exr");
-    shlight_ok(&["synth", "constant", "-o", s(&sky), "--value", "2", "--size", "64x32"]);
+    shlight_ok(&[
+        "synth",
+        "constant",
+        "-o",
+        s(&sky),
+        "--value",
+        "2",
+        "--size",
+        "64x32",
+    ]);
     let out = dir.join("l.json");
     shlight_ok(&["sample", s(&prt), "--light", s(&sky), "-o", s(&out)]);
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
@@ -201,7 +249,16 @@ fn a_prt_file_gives_each_vertexs_exit_radiance() {
     assert!(worst < 0.02, "worst relative error {worst:.3e}");
     eprintln!("unshadowed furnace: worst {worst:.2e} of rho c");
     // What a volume needs, a PRT file refuses, and the reverse.
-    let o = shlight(&["sample", s(&prt), "--light", s(&sky), "--points", s(&sky), "-o", s(&out)]);
+    let o = shlight(&[
+        "sample",
+        s(&prt),
+        "--light",
+        s(&sky),
+        "--points",
+        s(&sky),
+        "-o",
+        s(&out),
+    ]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--points samples a volume"));
     let o = shlight(&["sample", s(&prt), "-o", s(&out)]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("needs --light"));
@@ -218,19 +275,35 @@ fn bad_points_are_refused_naming_the_file() {
     let out = dir.join("e.json");
     for (name, text, want) in [
         ("a.json", r#"{"points": [[0, 0, 0]]}"#, "no \"normals\""),
-        ("b.json", r#"{"points": [[0, 0, 0]], "normals": [[0, 0, 0]]}"#, "not a direction"),
+        (
+            "b.json",
+            r#"{"points": [[0, 0, 0]], "normals": [[0, 0, 0]]}"#,
+            "not a direction",
+        ),
         ("c.csv", "1,2,3\n", "line 1"),
     ] {
         let p = dir.join(name);
         std::fs::write(&p, text).unwrap();
         let o = shlight(&["sample", s(&vol), "--points", s(&p), "-o", s(&out)]);
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success() && err.contains(name) && err.contains(want), "{err}");
+        assert!(
+            !o.status.success() && err.contains(name) && err.contains(want),
+            "{err}"
+        );
         assert!(!out.exists());
     }
     let o = shlight(&["sample", s(&vol), "-o", s(&out)]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("needs --points"));
-    let o = shlight(&["sample", s(&vol), "--points", s(&vol), "-o", s(&out), "--lmax", "5"]);
+    let o = shlight(&[
+        "sample",
+        s(&vol),
+        "--points",
+        s(&vol),
+        "-o",
+        s(&out),
+        "--lmax",
+        "5",
+    ]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("lmax 4 at most"));
 }
 
@@ -246,15 +319,38 @@ fn sampling_equals_the_gpus_volume_pass() {
     let dir = temp_dir("sample-gpu");
     let light = dir.join("sun.json");
     let sun = dir.join("sun.exr");
-    shlight_ok(&["synth", "directional", "-o", s(&sun), "--direction=-0.4,0.8,0.45", "--value", "3", "--size", "64x32"]);
+    shlight_ok(&[
+        "synth",
+        "directional",
+        "-o",
+        s(&sun),
+        "--direction=-0.4,0.8,0.45",
+        "--value",
+        "3",
+        "--size",
+        "64x32",
+    ]);
     shlight_ok(&["project", s(&sun), "--lmax", "4", "-o", s(&light)]);
     let vol = dir.join("cornell.shvol");
     shlight_ok(&[
-        "volume", "meshes/cornell_box.obj", "--env", s(&light), "--resolution", "3x2x3",
-        "--samples", "128", "--lmax", "4", "-o", s(&vol),
+        "volume",
+        "meshes/cornell_box.obj",
+        "--env",
+        s(&light),
+        "--resolution",
+        "3x2x3",
+        "--samples",
+        "128",
+        "--lmax",
+        "4",
+        "-o",
+        s(&vol),
     ]);
     let file = ShvolFile::read(&vol).unwrap();
-    let (lo, hi) = (Vec3::from_array(file.bounds.0), Vec3::from_array(file.bounds.1));
+    let (lo, hi) = (
+        Vec3::from_array(file.bounds.0),
+        Vec3::from_array(file.bounds.1),
+    );
     let mut queries = Vec::new();
     for k in 0..60u32 {
         let f = |i: u32| ((k * 2_654_435_761u32).wrapping_add(i * 40_503) % 1000) as f32 / 1000.0;

@@ -78,11 +78,7 @@ impl TransferView<'_> {
                 let mut out = [0.0f64; 3];
                 for (c, o) in out.iter_mut().enumerate() {
                     let t = &v[if self.channels == 1 { 0 } else { c * nc }..][..n];
-                    *o = t
-                        .iter()
-                        .zip(light)
-                        .map(|(t, l)| f64::from(*t) * l[c])
-                        .sum();
+                    *o = t.iter().zip(light).map(|(t, l)| f64::from(*t) * l[c]).sum();
                 }
                 glam::DVec3::from_array(out)
             })
@@ -101,10 +97,18 @@ mod tests {
     fn exit_radiance_dots_each_channel() {
         let grey: Vec<f32> = vec![1.0, 2.0, 3.0, 4.0, 0.5, 0.0, 0.0, 0.0];
         let t = TransferView::new(1, 1, 2, &grey).unwrap();
-        let light = [DVec3::new(1.0, 2.0, 3.0), DVec3::splat(1.0), DVec3::ZERO, DVec3::splat(-1.0)];
+        let light = [
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::splat(1.0),
+            DVec3::ZERO,
+            DVec3::splat(-1.0),
+        ];
         let out = t.exit_radiance(&light);
         // Vertex 0: 1 L0 + 2 L1 + 3 L2 + 4 L3 = (1 + 2 - 4, 2 + 2 - 4, 3 + 2 - 4).
-        assert_eq!(out, vec![DVec3::new(-1.0, 0.0, 1.0), DVec3::new(0.5, 1.0, 1.5)]);
+        assert_eq!(
+            out,
+            vec![DVec3::new(-1.0, 0.0, 1.0), DVec3::new(0.5, 1.0, 1.5)]
+        );
         assert_eq!(t.exit_radiance(&light[..1])[0], DVec3::new(1.0, 2.0, 3.0));
         let rgb: Vec<f32> = (0..12).map(|i| i as f32).collect();
         let t = TransferView::new(1, 3, 1, &rgb).unwrap();

@@ -49,8 +49,7 @@ impl SamplePoints {
     /// As [`SamplePoints::read`].
     pub fn from_json_str(text: &str, name: &str) -> Result<Self> {
         let bad = |m: String| FormatError::invalid(name, m);
-        let v: Value =
-            serde_json::from_str(text).map_err(|e| bad(format!("not JSON ({e})")))?;
+        let v: Value = serde_json::from_str(text).map_err(|e| bad(format!("not JSON ({e})")))?;
         let list = |key: &str| -> Result<Vec<[f32; 3]>> {
             let rows = v
                 .get(key)
@@ -195,7 +194,11 @@ impl Samples {
     /// # Errors
     /// The file cannot be written, or a value is not finite.
     pub fn write(&self, path: &Path) -> Result<()> {
-        if let Some(i) = self.values.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
+        if let Some(i) = self
+            .values
+            .iter()
+            .position(|v| !v.iter().all(|c| c.is_finite()))
+        {
             return Err(FormatError::Export(format!(
                 "{}: value {i} is not finite: {:?}",
                 path.display(),
@@ -233,15 +236,28 @@ mod tests {
         assert_eq!(a.normals[0], [0.0, 1.0, 0.0]);
         for (text, want) in [
             (r#"{"points": [[0, 1, 2]]}"#, "no \"normals\""),
-            (r#"{"points": [[0, 1]], "normals": [[0, 1, 0]]}"#, "points[0] is not [x, y, z]"),
-            (r#"{"points": [[0, 1, 2]], "normals": [[0, 0, 0]]}"#, "normal 0 is not a direction"),
-            (r#"{"points": [[0, 1, 2]], "normals": []}"#, "1 points but 0 normals"),
+            (
+                r#"{"points": [[0, 1]], "normals": [[0, 1, 0]]}"#,
+                "points[0] is not [x, y, z]",
+            ),
+            (
+                r#"{"points": [[0, 1, 2]], "normals": [[0, 0, 0]]}"#,
+                "normal 0 is not a direction",
+            ),
+            (
+                r#"{"points": [[0, 1, 2]], "normals": []}"#,
+                "1 points but 0 normals",
+            ),
             ("[", "not JSON"),
         ] {
-            let e = SamplePoints::from_json_str(text, "p.json").unwrap_err().to_string();
+            let e = SamplePoints::from_json_str(text, "p.json")
+                .unwrap_err()
+                .to_string();
             assert!(e.starts_with("p.json: ") && e.contains(want), "{e}");
         }
-        let e = SamplePoints::from_csv_str("0,1,2,0,1,0\n1,2\n", "p.csv").unwrap_err().to_string();
+        let e = SamplePoints::from_csv_str("0,1,2,0,1,0\n1,2\n", "p.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("line 2: expected x,y,z,nx,ny,nz"), "{e}");
     }
 
@@ -261,7 +277,10 @@ mod tests {
             values: vec![[f64::NAN, 0.0, 0.0]],
             ..s
         };
-        let e = bad.write(Path::new("/nonexistent/x.json")).unwrap_err().to_string();
+        let e = bad
+            .write(Path::new("/nonexistent/x.json"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("not finite"), "{e}");
     }
 }

@@ -131,15 +131,29 @@ mod tests {
         assert!((got - want).abs().max_element() < 1e-6);
         // An invalid probe takes no weight; none valid: no light.
         let one = [false, true];
-        let view1 = VolumeView { valid: &one, ..view };
+        let view1 = VolumeView {
+            valid: &one,
+            ..view
+        };
         let got = irradiance_at(&view1, Lookup::Trilinear, 0, p, Vec3::X);
         assert!((got - PI * y00 * DVec3::splat(2.0)).abs().max_element() < 1e-6);
         let none = [false, false];
-        let view0 = VolumeView { valid: &none, ..view };
-        assert_eq!(irradiance_at(&view0, Lookup::Trilinear, 1, p, Vec3::X), DVec3::ZERO);
+        let view0 = VolumeView {
+            valid: &none,
+            ..view
+        };
+        assert_eq!(
+            irradiance_at(&view0, Lookup::Trilinear, 1, p, Vec3::X),
+            DVec3::ZERO
+        );
         assert_eq!(shaded_lmax(&view, None), 1);
         assert_eq!(shaded_lmax(&view, Some(0)), 0);
         assert_eq!("trilinear".parse::<Lookup>(), Ok(Lookup::Trilinear));
-        assert!("bevy".parse::<Lookup>().unwrap_err().contains("shlight, trilinear"));
+        assert!(
+            "bevy"
+                .parse::<Lookup>()
+                .unwrap_err()
+                .contains("shlight, trilinear")
+        );
     }
 }
