@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
 use clap::Args;
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
@@ -101,7 +101,8 @@ fn volume(args: &SampleArgs) -> Result<Samples> {
     let points = SamplePoints::read(points_path)?;
     if let Some(env) = &args.env {
         let env = light(env, &args.up, shlight_baked::MAX_LMAX)?;
-        shlight_volume::relight_file(&mut file, &env.radiance.resized(file.lmax))
+        let env = env.radiance.resized(file.lmax);
+        shlight_volume::relight_file(&mut file, &env)
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
     }
     let view = file.view();
@@ -174,7 +175,7 @@ fn transfer(args: &SampleArgs) -> Result<Samples> {
         .view()?
         .exit_radiance(l.as_slice())
         .into_iter()
-        .map(DVec3::to_array)
+        .map(|v| v.to_array())
         .collect();
     Ok(Samples {
         quantity: "radiance",

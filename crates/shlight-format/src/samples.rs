@@ -2,7 +2,6 @@
 //! baked file for its light) and [`Samples`] written (what it answers),
 //! each as JSON or CSV by the file's extension (docs/cli.md, "sample").
 
-use std::io::Write;
 use std::path::Path;
 
 use serde_json::{Value, json};
