@@ -83,6 +83,16 @@ pub struct VolumeArgs {
     /// thread count).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Keep the probes at their cells' centres: do not move probes inside
+    /// geometry, or nearer a surface than a fifth of a cell, to free space
+    /// within their cell.
+    #[arg(long)]
+    pub no_relocate: bool,
+    /// Store no distance maps: the file is shaded by trilinear
+    /// interpolation of the valid probes, which leaks light through thin
+    /// walls (docs/shvol.md, "Visibility").
+    #[arg(long)]
+    pub no_visibility: bool,
     /// Keep only the probes' SH for --env (no transfer matrices: smaller,
     /// but the volume cannot be relit).
     #[arg(long = "static")]
@@ -126,6 +136,12 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         albedo: args.albedo,
         invalid_backfaces: args.invalid_backfaces,
         seed: args.seed,
+        relocate: !args.no_relocate,
+        visibility_size: if args.no_visibility {
+            0
+        } else {
+            shlight_baked::visibility::VISIBILITY_SIZE
+        },
     };
     if args.lmax > shlight_baked::MAX_LMAX {
         bail!(
@@ -167,6 +183,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     let bars = StageBars::new(ui, |stage| match stage {
         Stage::Surface(shlight_prt::transfer::Stage::Rays) => "surface rays".to_string(),
         Stage::Surface(shlight_prt::transfer::Stage::Bounce(k)) => format!("bounce {k}"),
+        Stage::Relocate => "relocate".to_string(),
         Stage::Probes => "probes".to_string(),
     });
     let start = Instant::now();
@@ -177,10 +194,18 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     let radiance = volume.relight(&env);
     let invalid = volume.invalid_count();
+    let moved = volume.offsets.as_ref().map_or(0.0f32, |o| {
+        let cell = grid.cell();
+        o.chunks_exact(3)
+            .map(|d| (glam::Vec3::from_slice(d) / cell).abs().max_element())
+            .fold(0.0, f32::max)
+    });
     ui.note(format!(
-        "{} probes ({} invalid: inside geometry), {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        "{} probes ({} invalid: inside geometry; {} moved out of geometry, at most {:.2} of a cell), {} rays in {seconds:.2} s ({:.1} M rays/s)",
         volume.probe_count(),
         invalid,
+        volume.relocated_count(),
+        moved,
         volume.rays,
         volume.rays as f64 / seconds.max(1e-9) / 1e6
     ));

@@ -34,6 +34,8 @@ fn two_probes(relightable: bool) -> ShvolFile {
         radiance,
         emitted: relightable.then(|| vec![0.0; 2 * nc * 3]),
         transfer: relightable.then_some(identity),
+        offsets: None,
+        visibility: None,
         samples: 1,
         bounces: 0,
         seed: 0,

@@ -90,6 +90,8 @@ impl TestVolume {
             lmax: self.lmax,
             valid: &self.valid,
             radiance: &self.radiance,
+            offsets: None,
+            visibility: None,
         }
     }
 

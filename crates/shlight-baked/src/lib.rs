@@ -8,7 +8,14 @@
 //!   trilinear weights of a point, clamped to the grid.
 //! - [`VolumeView`]: a volume's probes borrowed (grid, lmax, validity,
 //!   radiance), checked for shape; [`MAX_LMAX`], the most a volume holds,
-//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades.
+//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades; the
+//!   probes' offsets (where the bake moved them out of geometry) and
+//!   [`Visibility`], their distance maps.
+//! - [`visibility`]: DDGI's probe visibility (Majercik et al. 2019), the one
+//!   definition of the distance moments a bake stores
+//!   ([`visibility::MomentFilter`]) and of the weights a shaded point gives
+//!   the probes around it ([`visibility::visibility_weights`]), on
+//!   [`octahedral`] maps of the sphere.
 //! - [`TransferView`]: PRT transfer vectors borrowed (Sloan, Kautz &
 //!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex.
 //! - [`morton_code`] and [`morton_order`]: the Z-order that bakes
@@ -28,13 +35,16 @@
 //! mathematics of SH (that is shlight-core's).
 
 mod morton;
+pub mod octahedral;
 mod probe_grid;
 mod shape_error;
 mod transfer_view;
+pub mod visibility;
 mod volume_view;
 
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;
 pub use transfer_view::TransferView;
+pub use visibility::{ProbeVisibility, Visibility};
 pub use volume_view::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView};

@@ -1,7 +1,9 @@
 //! [`VolumeView`]: an irradiance volume's probes borrowed, as the renderer
 //! and every reader of a bake take them, and the lmax limits of volumes.
 
-use crate::{ProbeGrid, ShapeError};
+use glam::Vec3;
+
+use crate::{ProbeGrid, ShapeError, Visibility};
 
 /// Highest lmax a volume's probes hold (a `.shvol` file, a bake).
 pub const MAX_LMAX: usize = 8;
@@ -27,6 +29,12 @@ pub struct VolumeView<'a> {
     /// Per probe `(lmax+1)^2` rows of `[r, g, b]` radiance coefficients,
     /// probes x fastest, then y, then z.
     pub radiance: &'a [f32],
+    /// Per probe `[dx, dy, dz]`: where the bake moved it from its cell's
+    /// centre out of geometry (`None`: every probe at its centre).
+    pub offsets: Option<&'a [f32]>,
+    /// The probes' distance maps, for the visibility-weighted lookup
+    /// (`None`: a volume baked without them, or a version 1 file).
+    pub visibility: Option<Visibility<'a>>,
 }
 
 impl VolumeView<'_> {
@@ -36,9 +44,20 @@ impl VolumeView<'_> {
         self.grid.probe_count()
     }
 
+    /// Where probe `k` is: its cell's centre plus its offset.
+    #[must_use]
+    pub fn position(&self, k: usize) -> Vec3 {
+        let c = self.grid.centre(self.grid.grid_index(k));
+        match self.offsets {
+            Some(o) => c + Vec3::from_slice(&o[3 * k..3 * k + 3]),
+            None => c,
+        }
+    }
+
     /// Checks that the view's parts fit together: counts of at least 1,
-    /// `min < max` on every axis, `probes` validity flags and
-    /// `probes * (lmax+1)^2 * 3` values.
+    /// `min < max` on every axis, `probes` validity flags,
+    /// `probes * (lmax+1)^2 * 3` values, `3 probes` finite offsets and
+    /// distance maps of the right shape.
     ///
     /// # Errors
     /// [`ShapeError`] naming the part that does not fit.
@@ -71,6 +90,21 @@ impl VolumeView<'_> {
                 self.radiance.len()
             )));
         }
+        if let Some(o) = self.offsets {
+            if o.len() != 3 * n {
+                return Err(ShapeError(format!(
+                    "a volume of {n} probes needs {} offset values, not {}",
+                    3 * n,
+                    o.len()
+                )));
+            }
+            if o.iter().any(|x| !x.is_finite()) {
+                return Err(ShapeError("a probe offset is not finite".into()));
+            }
+        }
+        if let Some(v) = &self.visibility {
+            v.check(n)?;
+        }
         Ok(())
     }
 }
@@ -78,7 +112,6 @@ impl VolumeView<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
 
     #[test]
     fn parts_must_fit() {
@@ -90,6 +123,8 @@ mod tests {
             lmax: 2,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         assert!(v.check().is_ok());
         assert_eq!(v.probe_count(), 2);
@@ -113,6 +148,51 @@ mod tests {
                 .unwrap_err()
                 .0
                 .contains("min must be below max")
+        );
+        let offsets = [0.0, 0.5, 0.0, 0.0, 0.0, -0.25];
+        let moved = VolumeView {
+            offsets: Some(&offsets),
+            ..v
+        };
+        assert!(moved.check().is_ok());
+        assert_eq!(moved.position(0), Vec3::new(0.25, 1.0, 0.5));
+        assert_eq!(moved.position(1), Vec3::new(0.75, 0.5, 0.25));
+        assert_eq!(v.position(1), Vec3::new(0.75, 0.5, 0.5));
+        let short = VolumeView {
+            offsets: Some(&offsets[1..]),
+            ..v
+        };
+        assert!(
+            short
+                .check()
+                .unwrap_err()
+                .0
+                .contains("6 offset values, not 5")
+        );
+        let maps = vec![1.0f32; 2 * 2 * 4 * 4];
+        let seen = VolumeView {
+            visibility: Some(Visibility {
+                size: 4,
+                max_distance: 1.0,
+                moments: &maps,
+            }),
+            ..v
+        };
+        assert!(seen.check().is_ok());
+        let short = VolumeView {
+            visibility: Some(Visibility {
+                size: 4,
+                max_distance: 1.0,
+                moments: &maps[1..],
+            }),
+            ..v
+        };
+        assert!(
+            short
+                .check()
+                .unwrap_err()
+                .0
+                .contains("need 64 values, not 63")
         );
         let empty = VolumeView {
             grid: ProbeGrid {

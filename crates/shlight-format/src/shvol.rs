@@ -16,7 +16,15 @@
 //!    `[r, g, b]`, the incident radiance that comes from emitters;
 //! 3. `transfer` (relightable files): per probe, per channel r, g, b, a
 //!    row-major `(lmax+1)^2 x (lmax+1)^2` matrix `M` with
-//!    `L_probe = M L_env + L_emitted` (per channel, SH index order).
+//!    `L_probe = M L_env + L_emitted` (per channel, SH index order);
+//! 4. `offsets` (version 2): per probe `[dx, dy, dz]`, where the bake moved
+//!    it from its cell's centre out of geometry;
+//! 5. `visibility` (version 2): per probe `size` rows of `size` texels
+//!    (column fastest) of `[mean, mean_sq]`, the octahedral map of its
+//!    distances to the nearest surface (shlight_baked::visibility).
+//!
+//! A file with neither of the last two is written as version 1, as shlight
+//! wrote volumes before them.
 //!
 //! The JSON form ([`ShvolFile::to_json`], `shlight volume --format json`)
 //! holds the same values with per-probe arrays.
@@ -24,15 +32,20 @@
 use std::path::Path;
 
 use serde_json::{Value, json};
-use shlight_baked::{MAX_LMAX, MAX_PROBES, ProbeGrid, VolumeView};
+use shlight_baked::visibility::{
+    BACKFACE_DISTANCE, DISTANCE_SHARPNESS, MAX_VISIBILITY_SIZE, NORMAL_BIAS,
+};
+use shlight_baked::{MAX_LMAX, MAX_PROBES, ProbeGrid, ProbeVisibility, Visibility, VolumeView};
 use shlight_core::sh::sh_count;
 
 use crate::{FormatError, Result, header_line};
 
 /// The `format` key's value (both the binary and the JSON form).
 pub const FORMAT: &str = "shlight-volume";
-/// The layout version this build writes (and the newest it reads).
-pub const FORMAT_VERSION: u64 = 1;
+/// The newest layout version this build writes and reads: 2 adds the
+/// probes' `offsets` and `visibility` sections (a file without them is
+/// written as version 1).
+pub const FORMAT_VERSION: u64 = 2;
 /// Longest header a reader accepts, in bytes.
 pub const MAX_HEADER: usize = 16 << 20;
 
@@ -60,6 +73,12 @@ pub struct ShvolFile {
     /// Per probe `3 x (lmax+1)^2 x (lmax+1)^2` transfer matrices (relightable
     /// files only).
     pub transfer: Option<Vec<f32>>,
+    /// Per probe `[dx, dy, dz]` from its cell's centre, where the bake
+    /// moved probes out of geometry (version 2).
+    pub offsets: Option<Vec<f32>>,
+    /// The probes' distance maps, for the visibility-weighted lookup
+    /// (version 2).
+    pub visibility: Option<ProbeVisibility>,
     /// Rays cast per probe.
     pub samples: u64,
     /// Interreflection bounces of the surfaces' light.
@@ -114,7 +133,42 @@ impl ShvolFile {
             lmax: self.lmax,
             valid: &self.valid,
             radiance: &self.radiance,
+            offsets: self.offsets.as_deref(),
+            visibility: self.visibility.as_ref().map(ProbeVisibility::view),
         }
+    }
+
+    /// The layout version of this file: 2 with offsets or visibility, 1
+    /// without.
+    #[must_use]
+    pub fn version(&self) -> u64 {
+        if self.offsets.is_some() || self.visibility.is_some() {
+            2
+        } else {
+            1
+        }
+    }
+
+    /// The probes the bake moved (a non-zero offset), in probe order.
+    #[must_use]
+    pub fn relocated(&self) -> Vec<usize> {
+        self.offsets.as_ref().map_or_else(Vec::new, |o| {
+            o.chunks_exact(3)
+                .enumerate()
+                .filter(|(_, d)| d.iter().any(|&x| x != 0.0))
+                .map(|(i, _)| i)
+                .collect()
+        })
+    }
+
+    /// Where each probe is: its cell's centre plus its offset, in probe
+    /// order.
+    #[must_use]
+    pub fn positions(&self) -> Vec<[f32; 3]> {
+        let view = self.view();
+        (0..self.probe_count())
+            .map(|k| view.position(k).to_array())
+            .collect()
     }
 
     /// The header line's JSON object.
@@ -124,10 +178,16 @@ impl ShvolFile {
         if self.relightable() {
             holds.extend(["emitted", "transfer"]);
         }
+        if self.offsets.is_some() {
+            holds.push("offsets");
+        }
+        if self.visibility.is_some() {
+            holds.push("visibility");
+        }
         let invalid: Vec<usize> = (0..self.valid.len()).filter(|&i| !self.valid[i]).collect();
-        json!({
+        let mut header = json!({
             "format": FORMAT,
-            "format_version": FORMAT_VERSION,
+            "format_version": self.version(),
             "lmax": self.lmax,
             "resolution": self.resolution,
             "bounds": {"min": shortest(self.bounds.0), "max": shortest(self.bounds.1)},
@@ -145,8 +205,26 @@ impl ShvolFile {
             "scene_hash": header_line::hash_text(self.scene_hash),
             "environment": self.environment,
             "generator": self.generator,
-            "data": "f32 little-endian sections in `holds` order, probe-major: radiance and emitted (lmax+1)^2 rows of [r, g, b]; transfer 3 row-major (lmax+1)^2 x (lmax+1)^2 matrices",
-        })
+            "data": "f32 little-endian sections in `holds` order, probe-major: radiance and emitted (lmax+1)^2 rows of [r, g, b]; transfer 3 row-major (lmax+1)^2 x (lmax+1)^2 matrices; offsets [dx, dy, dz]; visibility size rows of size texels of [mean, mean_sq]",
+        });
+        let object = header.as_object_mut().expect("the header is an object");
+        if self.offsets.is_some() {
+            object.insert("relocated".into(), json!(self.relocated()));
+        }
+        if let Some(v) = &self.visibility {
+            object.insert(
+                "visibility".into(),
+                json!({
+                    "size": v.size,
+                    "max_distance": f64::from(v.max_distance),
+                    "sharpness": DISTANCE_SHARPNESS,
+                    "backface_distance": f64::from(BACKFACE_DISTANCE),
+                    "normal_bias": f64::from(NORMAL_BIAS),
+                    "map": "octahedral, +z at the centre, -z at the corners; texel (i, j) at column i, row j",
+                }),
+            );
+        }
+        header
     }
 
     /// The whole file as bytes.
@@ -156,6 +234,8 @@ impl ShvolFile {
             Some(&self.radiance),
             self.emitted.as_ref(),
             self.transfer.as_ref(),
+            self.offsets.as_ref(),
+            self.visibility.as_ref().map(|v| &v.moments),
         ];
         header_line::to_bytes(&self.header(), sections.into_iter().flatten().flatten())
     }
@@ -165,7 +245,11 @@ impl ShvolFile {
     /// fastest), `valid` (booleans), `coefficients` (per probe
     /// `(lmax+1)^2` rows of `[r, g, b]`, the radiance for the bake's
     /// environment) and, for relightable volumes, `emitted` (the same shape)
-    /// and `transfer` (per probe three matrices of `(lmax+1)^2` rows).
+    /// and `transfer` (per probe three matrices of `(lmax+1)^2` rows); in
+    /// version 2, `positions` are where the probes are (cell centres plus
+    /// `offsets`, per probe `[dx, dy, dz]`), and `distance_moments` holds
+    /// per probe `size` rows of `size` `[mean, mean_sq]` (the header's
+    /// `visibility` says how they were made).
     #[must_use]
     pub fn to_json(&self) -> Value {
         let mut v = self.header();
@@ -186,13 +270,36 @@ impl ShvolFile {
         };
         object.insert(
             "positions".into(),
-            self.grid()
-                .centres()
+            self.positions()
                 .into_iter()
-                .map(|c| shortest(c.to_array()))
+                .map(shortest)
                 .collect::<Vec<_>>()
                 .into(),
         );
+        if let Some(o) = &self.offsets {
+            let o: Vec<[f64; 3]> = o
+                .chunks_exact(3)
+                .map(|d| [d[0], d[1], d[2]].map(f64::from))
+                .collect();
+            object.insert("offsets".into(), json!(o));
+        }
+        if let Some(v) = &self.visibility {
+            let maps: Vec<Value> = v
+                .moments
+                .chunks_exact(Visibility::floats_per_probe(v.size))
+                .map(|map| {
+                    map.chunks_exact(2 * v.size)
+                        .map(|row| {
+                            row.chunks_exact(2)
+                                .map(|t| json!([f64::from(t[0]), f64::from(t[1])]))
+                                .collect::<Vec<_>>()
+                        })
+                        .collect::<Vec<_>>()
+                        .into()
+                })
+                .collect();
+            object.insert("distance_moments".into(), maps.into());
+        }
         object.insert("valid".into(), json!(self.valid));
         object.insert("coefficients".into(), rows(&self.radiance));
         if let Some(e) = &self.emitted {
@@ -355,14 +462,55 @@ impl ShvolFile {
                     .collect()
             })
             .unwrap_or_default();
-        let relightable = match holds.iter().map(String::as_str).collect::<Vec<_>>()[..] {
-            ["radiance"] => false,
-            ["radiance", "emitted", "transfer"] => true,
+        // radiance, then emitted and transfer together or neither, then
+        // (version 2) offsets and visibility, each or neither.
+        let named: Vec<&str> = holds.iter().map(String::as_str).collect();
+        let (relightable, rest) = match named[..] {
+            ["radiance", "emitted", "transfer", ref rest @ ..] => (true, rest),
+            ["radiance", ref rest @ ..] => (false, rest),
+            _ => (false, &["?"][..]),
+        };
+        let (has_offsets, has_visibility) = match rest {
+            [] => (false, false),
+            ["offsets"] => (true, false),
+            ["visibility"] => (false, true),
+            ["offsets", "visibility"] => (true, true),
             _ => {
                 return Err(bad(format!(
-                    "bad header (\"holds\" is {holds:?}, not [\"radiance\"] or [\"radiance\", \"emitted\", \"transfer\"])"
+                    "bad header (\"holds\" is {holds:?}, not \"radiance\", then \"emitted\" and \"transfer\" or neither, then \"offsets\" and \"visibility\" or either or neither)"
                 )));
             }
+        };
+        if version < 2 && (has_offsets || has_visibility) {
+            return Err(bad(format!(
+                "bad header (format_version {version} holds no offsets or visibility)"
+            )));
+        }
+        let visibility_shape = if has_visibility {
+            let v = header.get("visibility");
+            let size = v
+                .and_then(|v| v.get("size"))
+                .and_then(Value::as_u64)
+                .filter(|&s| s >= 1 && s <= MAX_VISIBILITY_SIZE as u64)
+                .ok_or_else(|| {
+                    bad(format!(
+                        "bad header (\"visibility\".\"size\" is not a whole number from 1 to {MAX_VISIBILITY_SIZE})"
+                    ))
+                })? as usize;
+            let max_distance = v
+                .and_then(|v| v.get("max_distance"))
+                .and_then(Value::as_f64)
+                .map(|x| x as f32)
+                .filter(|x| x.is_finite() && *x > 0.0)
+                .ok_or_else(|| {
+                    bad(
+                        "bad header (\"visibility\".\"max_distance\" is not a positive number)"
+                            .into(),
+                    )
+                })?;
+            Some((size, max_distance))
+        } else {
+            None
         };
         let mut valid = vec![true; probes];
         for i in header
@@ -384,7 +532,10 @@ impl ShvolFile {
         let scene_hash = header_line::hash(&header, "scene_hash", &name)?;
 
         let nc = sh_count(lmax);
-        let per_probe = 3 * nc + if relightable { 3 * nc + 3 * nc * nc } else { 0 };
+        let per_probe = 3 * nc
+            + if relightable { 3 * nc + 3 * nc * nc } else { 0 }
+            + if has_offsets { 3 } else { 0 }
+            + visibility_shape.map_or(0, |(size, _)| Visibility::floats_per_probe(size));
         let count = probes
             .checked_mul(per_probe)
             .filter(|c| c.checked_mul(4).is_some())
@@ -408,12 +559,24 @@ impl ShvolFile {
             return Err(bad(format!("value {k} of the data is not finite")));
         }
         let (radiance, rest) = values.split_at(probes * 3 * nc);
-        let (emitted, transfer) = if relightable {
-            let (e, t) = rest.split_at(probes * 3 * nc);
-            (Some(e.to_vec()), Some(t.to_vec()))
+        let (emitted, transfer, rest) = if relightable {
+            let (e, rest) = rest.split_at(probes * 3 * nc);
+            let (t, rest) = rest.split_at(probes * 3 * nc * nc);
+            (Some(e.to_vec()), Some(t.to_vec()), rest)
         } else {
-            (None, None)
+            (None, None, rest)
         };
+        let (offsets, rest) = if has_offsets {
+            let (o, rest) = rest.split_at(probes * 3);
+            (Some(o.to_vec()), rest)
+        } else {
+            (None, rest)
+        };
+        let visibility = visibility_shape.map(|(size, max_distance)| ProbeVisibility {
+            size,
+            max_distance,
+            moments: rest.to_vec(),
+        });
         Ok(Self {
             lmax,
             resolution,
@@ -423,6 +586,8 @@ impl ShvolFile {
             radiance: radiance.to_vec(),
             emitted,
             transfer,
+            offsets,
+            visibility,
             samples: uint("samples")?,
             bounces: uint("bounces")? as u32,
             seed: uint("seed")?,
@@ -459,6 +624,8 @@ mod tests {
                     .map(|i| -(i as f32) / 8.0)
                     .collect()
             }),
+            offsets: None,
+            visibility: None,
             samples: 1035,
             bounces: 2,
             seed: 7,
@@ -486,6 +653,82 @@ mod tests {
             let back = ShvolFile::from_bytes(&bytes, Path::new("v.shvol")).unwrap();
             assert_eq!(back, f);
         }
+    }
+
+    /// [`sample`] with version 2's sections: probe 2 moved, maps of 2x2.
+    fn moved(relightable: bool) -> ShvolFile {
+        let mut offsets = vec![0.0f32; 18];
+        offsets[6..9].copy_from_slice(&[0.25, -0.125, 0.5]);
+        ShvolFile {
+            offsets: Some(offsets),
+            visibility: Some(ProbeVisibility {
+                size: 2,
+                max_distance: 1.5,
+                moments: (0..6 * 8).map(|i| i as f32 / 64.0).collect(),
+            }),
+            ..sample(relightable)
+        }
+    }
+
+    #[test]
+    fn version_2_round_trips_and_version_1_stays_as_it_was() {
+        for relightable in [false, true] {
+            let f = moved(relightable);
+            let bytes = f.to_bytes();
+            let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+            let header: Value = serde_json::from_slice(&bytes[..nl]).unwrap();
+            assert_eq!(header["format_version"], 2);
+            assert_eq!(header["relocated"], json!([2]));
+            assert_eq!(header["visibility"]["size"], 2);
+            let per_probe = if relightable { 12 + 12 + 48 } else { 12 } + 3 + 8;
+            assert_eq!(bytes.len(), nl + 1 + 6 * per_probe * 4);
+            // The offsets follow the earlier sections: probe 2's dx.
+            let at = nl + 1 + 4 * (6 * (per_probe - 11) + 6);
+            assert_eq!(
+                f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()),
+                0.25
+            );
+            let back = ShvolFile::from_bytes(&bytes, Path::new("v.shvol")).unwrap();
+            assert_eq!(back, f);
+            assert!(back.view().check().is_ok());
+            // A file without the new sections is version 1 and names
+            // neither.
+            let old = sample(relightable).to_bytes();
+            let end = old.iter().position(|&b| b == b'\n').unwrap();
+            let h: Value = serde_json::from_slice(&old[..end]).unwrap();
+            assert_eq!(h["format_version"], 1);
+            assert!(h.get("visibility").is_none() && h.get("relocated").is_none());
+        }
+        let f = moved(false);
+        assert_eq!(f.positions()[2], [-0.25, 0.125, 0.5]);
+        let j = f.to_json();
+        assert_eq!(j["positions"][2], json!([-0.25, 0.125, 0.5]));
+        assert_eq!(j["offsets"][2], json!([0.25, -0.125, 0.5]));
+        // Probe 1's map, row 1, column 0: values 8 + 4 and 8 + 5 of 64ths.
+        assert_eq!(
+            j["distance_moments"][1][1][0],
+            json!([12.0 / 64.0, 13.0 / 64.0])
+        );
+        // A version 1 header that claims the new sections is refused.
+        let bytes = f.to_bytes();
+        let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+        let header = std::str::from_utf8(&bytes[..nl]).unwrap();
+        let mut b = header
+            .replace("\"format_version\":2", "\"format_version\":1")
+            .into_bytes();
+        b.extend_from_slice(&bytes[nl..]);
+        let e = ShvolFile::from_bytes(&b, Path::new("old.shvol")).unwrap_err();
+        assert!(e.to_string().contains("holds no offsets"), "{e}");
+        let mut b = header.replace("\"size\":2", "\"size\":0").into_bytes();
+        b.extend_from_slice(&bytes[nl..]);
+        let e = ShvolFile::from_bytes(&b, Path::new("v.shvol")).unwrap_err();
+        assert!(e.to_string().contains("\"visibility\".\"size\""), "{e}");
+        let mut b = header
+            .replace("\"offsets\",\"visibility\"", "\"visibility\",\"offsets\"")
+            .into_bytes();
+        b.extend_from_slice(&bytes[nl..]);
+        let e = ShvolFile::from_bytes(&b, Path::new("v.shvol")).unwrap_err();
+        assert!(e.to_string().contains("\"holds\""), "{e}");
     }
 
     #[test]

@@ -45,6 +45,8 @@ fn volume(valid: Vec<bool>) -> ShvolFile {
         radiance,
         emitted: None,
         transfer: None,
+        offsets: None,
+        visibility: None,
         samples: 1,
         bounces: 0,
         seed: 0,

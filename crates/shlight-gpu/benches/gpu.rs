@@ -186,6 +186,8 @@ fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: V
         lmax,
         valid: &valid,
         radiance: &radiance,
+        offsets: None,
+        visibility: None,
     };
     // The plain renderer only clears (no mesh, no background); the volume
     // pass draws the bunny in place.

@@ -608,6 +608,8 @@ impl VolumeRenderer {
             lmax,
             valid: &self.valid,
             radiance,
+            offsets: None,
+            visibility: None,
         };
         check(&probes)?;
         if lmax.min(SHADED_MAX_LMAX) != self.lmax {
@@ -899,6 +901,8 @@ mod tests {
             lmax: 5,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         let t = pack_texels(&probes, 2048).unwrap();
         assert_eq!(t.per_probe, 14);
@@ -953,6 +957,8 @@ mod tests {
             lmax: 0,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         let spheres = probe_sphere_instances(&probes);
         assert_eq!(spheres.len(), 12);

@@ -82,10 +82,12 @@ use shlight_prt::packet::{Direction, LANES, Packet};
 use shlight_prt::records::{self, Kernels, LINE, Line, flat};
 use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode, Occluder};
 
-use shlight_baked::ProbeGrid;
+use shlight_baked::visibility::{MomentFilter, ray_distance};
+use shlight_baked::{ProbeGrid, ProbeVisibility, Visibility};
 
 use crate::{ProbeVolume, VolumeError};
 
+pub mod relocate;
 mod sums;
 
 use sums::{Rows, block_sum};
@@ -113,6 +115,14 @@ pub struct VolumeOptions {
     pub invalid_backfaces: f32,
     /// Seed of the direction sets.
     pub seed: u64,
+    /// Move probes inside geometry, or nearer a surface than
+    /// [`relocate::CLEARANCE`] of their cell, to free space within their
+    /// cell before their rays are cast ([`relocate`]).
+    pub relocate: bool,
+    /// Texels per side of each probe's distance map for the
+    /// visibility-weighted lookup ([`shlight_baked::visibility`]); 0: no
+    /// maps.
+    pub visibility_size: usize,
 }
 
 /// Default subdivision: edges no longer than the scene's diagonal over this.
@@ -129,6 +139,8 @@ impl Default for VolumeOptions {
             albedo: [0.8; 3],
             invalid_backfaces: 0.5,
             seed: 0,
+            relocate: true,
+            visibility_size: shlight_baked::visibility::VISIBILITY_SIZE,
         }
     }
 }
@@ -138,6 +150,8 @@ impl Default for VolumeOptions {
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
     Surface(transfer::Stage),
+    /// Moving probes out of geometry (`done` and `total` in probes).
+    Relocate,
     /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
 }
@@ -194,6 +208,13 @@ fn bake_in_chunks(
             options.albedo
         )));
     }
+    if options.visibility_size > shlight_baked::visibility::MAX_VISIBILITY_SIZE {
+        return Err(VolumeError::Options(format!(
+            "visibility maps of {0}x{0} texels: at most {1}x{1}",
+            options.visibility_size,
+            shlight_baked::visibility::MAX_VISIBILITY_SIZE
+        )));
+    }
     if !(0.0..=1.0).contains(&options.invalid_backfaces) {
         return Err(VolumeError::Options(format!(
             "invalid_backfaces {} is not within 0..=1",
@@ -201,7 +222,6 @@ fn bake_in_chunks(
         )));
     }
     let nc = sh_count(lmax);
-    let probes = grid.centres();
     // The directions in compact blocks (`direction_order`).
     let set: Vec<Vec3> = stratified_directions(options.samples, options.seed)
         .iter()
@@ -216,6 +236,32 @@ fn bake_in_chunks(
     let weight = 4.0 * std::f64::consts::PI / dirs.len() as f64;
 
     let surface = scene.map(|mesh| Surface::bake(mesh, options, progress));
+    // Probes moved out of geometry before their rays are cast.
+    let offsets: Option<Vec<Vec3>> = options.relocate.then(|| match &surface {
+        Some(s) => {
+            progress(Stage::Relocate, 0, grid.probe_count());
+            let o = relocate::offsets(&s.occluder, grid, options.seed);
+            progress(Stage::Relocate, grid.probe_count(), grid.probe_count());
+            o
+        }
+        None => vec![Vec3::ZERO; grid.probe_count()],
+    });
+    let probes: Vec<Vec3> = match &offsets {
+        Some(o) => grid.centres().iter().zip(o).map(|(c, o)| *c + *o).collect(),
+        None => grid.centres(),
+    };
+    let max_distance = shlight_baked::visibility::max_distance(grid);
+    let filter =
+        (options.visibility_size > 0).then(|| MomentFilter::new(options.visibility_size, &dirs));
+    let per_map = Visibility::floats_per_probe(options.visibility_size);
+    let mut moments = vec![
+        0.0f32;
+        if filter.is_some() {
+            probes.len() * per_map
+        } else {
+            0
+        }
+    ];
     let mut transfer = vec![0.0f32; probes.len() * 3 * nc * nc];
     let mut emitted = vec![0.0f32; probes.len() * 3 * nc];
     let mut backfaces = vec![0.0f32; probes.len()];
@@ -227,6 +273,10 @@ fn bake_in_chunks(
                 for (o, i) in m.iter_mut().zip(eye.iter().cycle()) {
                     *o = *i as f32;
                 }
+            }
+            // Every ray escapes.
+            for t in moments.chunks_exact_mut(2) {
+                t.copy_from_slice(&[max_distance, max_distance * max_distance]);
             }
             progress(Stage::Probes, dirs.len(), dirs.len());
         }
@@ -272,6 +322,14 @@ fn bake_in_chunks(
                     emitted[p * 3 * nc..][..3 * nc].copy_from_slice(&e[i * 3 * nc..][..3 * nc]);
                     backfaces[p] = back[i];
                 }
+                if let Some(filter) = &filter {
+                    let mut maps = vec![0.0f32; chunk.len() * per_map];
+                    distance_maps(filter, &hits, chunk.len(), max_distance, &mut maps);
+                    for (i, &p) in chunk.iter().enumerate() {
+                        moments[p as usize * per_map..][..per_map]
+                            .copy_from_slice(&maps[i * per_map..][..per_map]);
+                    }
+                }
             }
         }
     }
@@ -283,6 +341,12 @@ fn bake_in_chunks(
         grid: *grid,
         lmax,
         valid,
+        offsets: offsets.map(|o| o.iter().flat_map(|v| v.to_array()).collect()),
+        visibility: filter.map(|_| ProbeVisibility {
+            size: options.visibility_size,
+            max_distance,
+            moments,
+        }),
         backfaces,
         transfer,
         emitted,
@@ -292,6 +356,33 @@ fn bake_in_chunks(
         rays: rays + surface.as_ref().map_or(0, |s| s.rays),
         scene_hash: scene.map_or(0, Mesh::content_hash),
     })
+}
+
+/// The distance maps of a chunk's probes from their hits (laid out as
+/// [`Surface::cast`] gives them), into `maps` in the chunk's order.
+fn distance_maps(
+    filter: &MomentFilter,
+    hits: &[Hit],
+    n: usize,
+    max_distance: f32,
+    maps: &mut [f32],
+) {
+    let per_map = maps.len() / n.max(1);
+    let ndirs = hits.len() / n.max(1);
+    maps.par_chunks_mut(per_map)
+        .enumerate()
+        .for_each_init(Vec::new, |distances, (p, map)| {
+            distances.clear();
+            for b in 0..ndirs.div_ceil(BLOCK) {
+                let len = BLOCK.min(ndirs - b * BLOCK);
+                distances.extend(
+                    hits[b * BLOCK * n + p * len..][..len]
+                        .iter()
+                        .map(|h| h.distance(max_distance)),
+                );
+            }
+            filter.filter(distances, max_distance, map);
+        });
 }
 
 /// The `n x n` identity, row-major.
@@ -309,12 +400,14 @@ const BLOCK: usize = 64;
 const HITS_MEMORY: usize = 256 << 20;
 
 /// What one probe ray met: a triangle's front (its index and the
-/// barycentric weights of corners 1 and 2), a back face, or nothing.
+/// barycentric weights of corners 1 and 2), a back face, or nothing; and
+/// how far away.
 #[derive(Clone, Copy, Debug)]
 struct Hit {
     triangle: u32,
     b1: f32,
     b2: f32,
+    t: f32,
 }
 
 impl Hit {
@@ -326,12 +419,29 @@ impl Hit {
         triangle: Self::ESCAPED_ID,
         b1: 0.0,
         b2: 0.0,
+        t: f32::INFINITY,
     };
     const BACK: Hit = Hit {
         triangle: Self::BACK_ID,
         b1: 0.0,
         b2: 0.0,
+        t: 0.0,
     };
+
+    /// A back face at distance `t`.
+    fn back(t: f32) -> Hit {
+        Hit { t, ..Hit::BACK }
+    }
+
+    /// The distance the ray reaches for a distance map
+    /// ([`shlight_baked::visibility::ray_distance`]).
+    fn distance(&self, max_distance: f32) -> f32 {
+        match self.triangle {
+            Self::ESCAPED_ID => ray_distance(None, false, max_distance),
+            Self::BACK_ID => ray_distance(Some(self.t), true, max_distance),
+            _ => ray_distance(Some(self.t), false, max_distance),
+        }
+    }
 }
 
 /// The order in which the probes take the directions `dirs`, so that each
@@ -493,8 +603,8 @@ impl Surface {
         hits.par_chunks_mut(n * BLOCK)
             .zip(dirs.par_chunks(BLOCK))
             .for_each_init(
-                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                |(local, front, located, slots), (out, block)| {
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(local, front, located, slots, distances), (out, block)| {
                     let len = block.len();
                     let directions: Vec<Direction> =
                         block.iter().map(|d| Direction::new(*d)).collect();
@@ -524,24 +634,33 @@ impl Surface {
                                 let coarse = found.triangle[k];
                                 let slot = (g * LANES + k) * len + jj;
                                 if !self.occluder.is_front(coarse, dir.dir()) {
-                                    out[slot] = Hit::BACK;
+                                    out[slot] = Hit::back(found.t[k]);
                                 } else {
                                     front.push((coarse, found.barycentrics[k]));
                                     slots.push(slot);
+                                    distances.push(found.t[k]);
                                 }
                             }
                         }
                         // The packet's front hits in the block, found in
                         // the subdivided mesh together.
                         self.map.locate_each(front, located);
-                        for (&i, found) in slots.iter().zip(located.iter()) {
+                        for ((&i, found), &t) in
+                            slots.iter().zip(located.iter()).zip(distances.iter())
+                        {
                             out[i] = match *found {
-                                Some((triangle, [_, b1, b2])) => Hit { triangle, b1, b2 },
-                                None => Hit::BACK,
+                                Some((triangle, [_, b1, b2])) => Hit {
+                                    triangle,
+                                    b1,
+                                    b2,
+                                    t,
+                                },
+                                None => Hit::back(t),
                             };
                         }
                         front.clear();
                         slots.clear();
+                        distances.clear();
                     }
                     progress(len);
                 },

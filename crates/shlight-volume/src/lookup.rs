@@ -2,16 +2,21 @@
 //! the GPU's volume pass shades it, for `shlight sample`.
 
 use glam::{DVec3, Vec3};
+use shlight_baked::visibility::visibility_weights;
 use shlight_baked::{SHADED_MAX_LMAX, VolumeView};
-use shlight_core::sh::irradiance;
+use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 
 use crate::sample;
 
 /// How the light at a point is read off a volume's probes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lookup {
-    /// The best lookup shlight has. Today that is [`Lookup::Trilinear`]:
-    /// the volume pass of `render-mesh --volume` and `view --volume`.
+    /// The best lookup shlight has: the probes' trilinear weights times
+    /// DDGI's visibility and backface terms
+    /// ([`shlight_baked::visibility`]), where the volume holds distance
+    /// maps; [`Lookup::Trilinear`] where it does not (a version 1 file, a
+    /// bake with `--no-visibility`). The volume pass of `render-mesh
+    /// --volume` and `view --volume` shades the same way.
     Shlight,
     /// Trilinear interpolation of the valid probes among the eight around
     /// the point, weights renormalised ([`sample`]; docs/shvol.md,
@@ -79,13 +84,45 @@ pub fn irradiance_at(
     p: Vec3,
     n: Vec3,
 ) -> DVec3 {
-    match lookup {
-        Lookup::Shlight | Lookup::Trilinear => {
-            sample(&view.grid, view.valid, view.radiance, view.lmax, p).map_or(DVec3::ZERO, |l| {
-                irradiance(&l.resized(lmax.min(view.lmax))).eval(n.as_dvec3().normalize())
-            })
+    let n = n.normalize();
+    let light = match (lookup, &view.visibility) {
+        (Lookup::Shlight, Some(visibility)) => {
+            let weights = visibility_weights(
+                &view.grid,
+                view.valid,
+                &|k| view.position(k),
+                visibility,
+                p,
+                n,
+            );
+            weighted(view, &weights)
+        }
+        (Lookup::Shlight | Lookup::Trilinear, _) => {
+            sample(&view.grid, view.valid, view.radiance, view.lmax, p)
+        }
+    };
+    light.map_or(DVec3::ZERO, |l| {
+        irradiance(&l.resized(lmax.min(view.lmax))).eval(n.as_dvec3())
+    })
+}
+
+/// The probes' radiance summed with `weights` (`None` when there are none).
+fn weighted(view: &VolumeView<'_>, weights: &[(usize, f32)]) -> Option<ShCoeffs<DVec3>> {
+    if weights.is_empty() {
+        return None;
+    }
+    let nc = sh_count(view.lmax);
+    let mut out = ShCoeffs::<DVec3>::zeros(view.lmax);
+    for &(k, w) in weights {
+        for (o, rgb) in out
+            .as_mut_slice()
+            .iter_mut()
+            .zip(view.radiance[k * 3 * nc..][..3 * nc].chunks_exact(3))
+        {
+            *o += f64::from(w) * Vec3::from_slice(rgb).as_dvec3();
         }
     }
+    Some(out)
 }
 
 #[cfg(test)]
@@ -112,6 +149,8 @@ mod tests {
             lmax: 1,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         let c1 = (3.0 / (4.0 * PI)).sqrt();
         let y00 = 0.5 / PI.sqrt();

@@ -5,7 +5,7 @@ use glam::{DVec3, Vec3};
 use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_format::ShvolFile;
 
-use shlight_baked::ProbeGrid;
+use shlight_baked::{ProbeGrid, ProbeVisibility};
 
 use crate::VolumeError;
 
@@ -18,6 +18,11 @@ pub struct ProbeVolume {
     pub lmax: usize,
     /// Per probe: whether interpolation may use it.
     pub valid: Vec<bool>,
+    /// Per probe `[dx, dy, dz]` from its cell's centre, where the bake
+    /// moved it out of geometry (`None`: baked without relocation).
+    pub offsets: Option<Vec<f32>>,
+    /// The probes' distance maps (`None`: baked without them).
+    pub visibility: Option<ProbeVisibility>,
     /// Per probe: the fraction of its rays that hit back faces.
     pub backfaces: Vec<f32>,
     /// Per probe, per channel, a row-major `(lmax+1)^2` square matrix `M`
@@ -43,6 +48,16 @@ impl ProbeVolume {
     #[must_use]
     pub fn probe_count(&self) -> usize {
         self.valid.len()
+    }
+
+    /// Number of probes the bake moved out of geometry.
+    #[must_use]
+    pub fn relocated_count(&self) -> usize {
+        self.offsets.as_ref().map_or(0, |o| {
+            o.chunks_exact(3)
+                .filter(|d| d.iter().any(|&x| x != 0.0))
+                .count()
+        })
     }
 
     /// Number of probes marked invalid.
@@ -84,6 +99,8 @@ impl ProbeVolume {
             radiance,
             emitted: relightable.then(|| self.emitted.clone()),
             transfer: relightable.then(|| self.transfer.clone()),
+            offsets: self.offsets.clone(),
+            visibility: self.visibility.clone(),
             samples: self.samples as u64,
             bounces: self.bounces,
             seed: self.seed,

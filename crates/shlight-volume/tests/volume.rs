@@ -242,25 +242,36 @@ fn a_closed_box_lets_no_sky_in_and_its_emitting_walls_reach_the_furnace_limit() 
     }
 }
 
-#[test]
-fn probes_inside_geometry_are_invalid_and_take_no_weight() {
-    // A solid block in the middle of a 3x1x1 grid: the middle probe is
-    // inside it and sees only back faces.
-    let block = generate::cuboid(Vec3::new(0.3, 2.0, 2.0));
+/// A solid block `2 half_x` thick (4 high and deep) in the middle of a
+/// 3x1x1 grid of unit cells: the middle probe's centre is inside it.
+fn block_and_grid(half_x: f32) -> (Mesh, ProbeGrid) {
+    let block = generate::cuboid(Vec3::new(half_x, 2.0, 2.0));
     let grid = ProbeGrid::new(
         [3, 1, 1],
         Vec3::new(-1.5, -0.5, -0.5),
         Vec3::new(1.5, 0.5, 0.5),
     )
     .unwrap();
+    (block, grid)
+}
+
+#[test]
+fn probes_inside_geometry_are_invalid_and_take_no_weight() {
+    // Left where they are (no relocation), the middle probe sees only
+    // back faces.
+    let (block, grid) = block_and_grid(0.3);
     let lmax = 1;
     let volume = bake(
         Some(&block),
         &grid,
-        &options(lmax, 256, 1, 0.5),
+        &VolumeOptions {
+            relocate: false,
+            ..options(lmax, 256, 1, 0.5)
+        },
         &|_, _, _| {},
     )
     .unwrap();
+    assert!(volume.offsets.is_none());
     assert_eq!(volume.valid, vec![true, false, true]);
     assert!(volume.backfaces[1] == 1.0 && volume.backfaces[0] < 0.5);
     let radiance = volume.relight(&closed_form::constant(lmax, DVec3::ONE));
@@ -268,7 +279,9 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
     let p = grid.centre([0, 0, 0]).lerp(grid.centre([1, 0, 0]), 0.5);
     let got = sample(&grid, &volume.valid, &radiance, lmax, p).unwrap();
     assert!(max_difference(&got, &probe(&radiance, lmax, 0)) < 1e-6);
-    // A grid of only invalid probes has nothing to give.
+    // A grid of only invalid probes has nothing to give: a probe in a cell
+    // too small to leave the block stays inside and invalid, relocation or
+    // not.
     let inside = bake(
         Some(&block),
         &at(Vec3::ZERO),
@@ -286,6 +299,37 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
         )
         .is_none()
     );
+    assert!(!inside.valid[0] && inside.relocated_count() == 0);
+}
+
+#[test]
+fn a_probe_inside_a_wall_is_moved_out_and_is_then_valid() {
+    // A wall 0.1 thick: the middle probe can leave it only along x (it is
+    // 4 wide along y and z). Its nearest free place on the candidate
+    // lattice (steps of 0.15 of a cell, up to 0.45) is 0.3 to the side,
+    // 0.25 from the wall's face, beyond the clearance of 0.2; 0.15 to the
+    // side would be only 0.1 from it. Lattice ties go to the lower offset:
+    // -x.
+    let (block, grid) = block_and_grid(0.05);
+    let volume = bake(Some(&block), &grid, &options(1, 256, 1, 0.5), &|_, _, _| {}).unwrap();
+    let offsets = volume.offsets.as_ref().unwrap();
+    assert_eq!(&offsets[..3], &[0.0; 3], "probe 0 was free");
+    assert_eq!(&offsets[6..], &[0.0; 3], "probe 2 was free");
+    assert!(
+        (offsets[3] + 0.3).abs() < 1e-6 && offsets[4] == 0.0 && offsets[5] == 0.0,
+        "{offsets:?}"
+    );
+    assert_eq!(volume.valid, vec![true, true, true]);
+    assert_eq!(volume.backfaces[1], 0.0);
+    assert_eq!(volume.relocated_count(), 1);
+    // Moved to x = -0.3, it sees the wall fill the +x half of its sky less
+    // the part beyond the wall's edges: under a white sky its L_00 lies
+    // between half (a wall of infinite extent) and all of it, the wall
+    // being lit grey on its face.
+    let radiance = volume.relight(&closed_form::constant(1, DVec3::ONE));
+    let sky = closed_form::constant(1, DVec3::ONE).as_slice()[0].x;
+    let l00 = f64::from(radiance[12]);
+    assert!(l00 > 0.5 * sky && l00 < sky, "{l00} of {sky}");
 }
 
 #[test]

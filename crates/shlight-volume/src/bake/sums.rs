@@ -357,6 +357,7 @@ mod tests {
                         triangle: (k % 4) as u32,
                         b1: b1 * (1.0 - b2),
                         b2,
+                        t: 1.0,
                     }
                 }
             });
