@@ -246,3 +246,71 @@ fn the_dark_room_stays_dark_and_the_lit_room_lit_next_to_a_thin_wall() {
         );
     }
 }
+
+/// Two storeys, one above the other, split by a floor slab 4 cm thick at
+/// `y = slab`, a lamp under the upper storey's ceiling.
+fn two_storeys(slab: f32) -> Mesh {
+    let (below, above) = (slab - HALF_WALL, slab + HALF_WALL);
+    let top = 3.0;
+    let mut list = room(Vec3::ZERO, Vec3::new(2.0, below, DEPTH));
+    list.extend(room(Vec3::new(0.0, above, 0.0), Vec3::new(2.0, top, DEPTH)));
+    let y = top - 0.05;
+    list.push((
+        [
+            Vec3::new(0.5, y, 0.5),
+            Vec3::new(1.5, y, 0.5),
+            Vec3::new(1.5, y, 1.5),
+            Vec3::new(0.5, y, 1.5),
+        ],
+        Vec3::splat(4.0),
+    ));
+    quads(&list)
+}
+
+#[test]
+fn a_grid_that_straddles_a_floor_keeps_the_storey_below_dark() {
+    // Cells of 0.5 m, the slab between two rows of probes, midway (1.5)
+    // and near the lower one (1.4): the lower storey's ceiling, 7 cm under
+    // the slab, is dark for the visibility lookup and lit for trilinear.
+    // (A wall through a row of probes is the rooms' test's.)
+    let grid = ProbeGrid::new([4, 6, 4], Vec3::ZERO, Vec3::new(2.0, 3.0, DEPTH)).unwrap();
+    for slab in [1.4f32, 1.5] {
+        let scene = two_storeys(slab);
+        let volume = bake(Some(&scene), &grid, &options(), &|_, _, _| {}).unwrap();
+        assert_eq!(volume.invalid_count(), 0, "relocation frees every probe");
+        let radiance = lit(&volume);
+        let v = view(&volume, &radiance);
+        let e = |lookup, p: Vec3, n: Vec3| grey(irradiance_at(&v, lookup, 2, p, n));
+        // The upper floor's mean irradiance, facing up.
+        let mut upper = Vec::new();
+        for x in [0.25, 0.75, 1.25, 1.75] {
+            for z in [0.25, 0.75, 1.25, 1.75] {
+                upper.push(e(Lookup::Shlight, Vec3::new(x, slab + 0.1, z), Vec3::Y));
+            }
+        }
+        let mean = upper.iter().sum::<f64>() / upper.len() as f64;
+        assert!(mean > 0.1, "{mean}");
+        let (mut worst, mut trilinear) = (0.0f64, 0.0f64);
+        for x in [0.25, 0.75, 1.25, 1.75] {
+            for z in [0.25, 0.75, 1.25, 1.75] {
+                // The lower storey's ceiling, facing down, and its walls'
+                // tops, facing sideways.
+                for (p, n) in [
+                    (Vec3::new(x, slab - 0.09, z), Vec3::NEG_Y),
+                    (Vec3::new(0.05, slab - 0.15, z), Vec3::X),
+                ] {
+                    worst = worst.max(e(Lookup::Shlight, p, n) / mean);
+                    trilinear = trilinear.max(e(Lookup::Trilinear, p, n) / mean);
+                }
+            }
+        }
+        eprintln!(
+            "slab at y = {slab}: the storey below at most {:.2}% of the upper floor's mean (trilinear {:.1}%); {} probes moved",
+            100.0 * worst,
+            100.0 * trilinear,
+            volume.relocated_count()
+        );
+        assert!(worst <= 0.02, "slab at {slab}: {worst}");
+        assert!(trilinear > 0.05, "slab at {slab}: trilinear {trilinear}");
+    }
+}
