@@ -11,6 +11,8 @@
 //!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades.
 //! - [`TransferView`]: PRT transfer vectors borrowed (Sloan, Kautz &
 //!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex.
+//! - [`dilate`]: a volume's invalid probes filled from their valid face
+//!   neighbours, pass by pass, for engines whose lookups know no validity.
 //! - [`morton_code`] and [`morton_order`]: the Z-order that bakes
 //!   neighbouring probes and vertices together.
 //!
@@ -27,12 +29,14 @@
 //! **Architecture invariant:** a leaf (glam only): no I/O, no GPU, no
 //! mathematics of SH (that is shlight-core's).
 
+mod dilate;
 mod morton;
 mod probe_grid;
 mod shape_error;
 mod transfer_view;
 mod volume_view;
 
+pub use dilate::dilate;
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;
