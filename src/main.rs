@@ -132,7 +132,7 @@ fn main() -> ExitCode {
         Command::View(args) => view::run(&args, &ui),
         Command::Prt(args) => prt::run(&args, &ui),
         Command::Volume(args) => volume::run(&args, &ui),
-        Command::Sample(args) => sample::run(&args),
+        Command::Sample(args) => sample::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

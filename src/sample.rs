@@ -11,10 +11,11 @@ use rayon::prelude::*;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
 use shlight_pipeline::Environment;
-use shlight_volume::Lookup;
+use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax};
 
 use crate::input::frame_of;
 use crate::output_path::refuse_overwriting;
+use crate::progress::Ui;
 
 /// Highest lmax of the light read for a PRT file (the GPU's).
 const LIGHT_MAX_LMAX: usize = 8;
@@ -44,18 +45,25 @@ pub struct SampleArgs {
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
     /// How a volume's light at a point is read off its probes: shlight (the
-    /// best shlight has; today trilinear) or trilinear (the valid probes of
-    /// the eight around the point, weights renormalised).
+    /// best shlight has; today trilinear); trilinear (the valid probes of
+    /// the eight around the point, weights renormalised); bevy (what Bevy
+    /// shows from the --format bevy export: half-float ambient cubes,
+    /// filtered and blended as its shader does; 0 outside the volume's
+    /// box); threejs (what three.js's LightProbeGrid shows: the point moved
+    /// half a probe spacing along the normal, trilinear L2 SH, three.js's
+    /// constants; 0 where that point leaves the box). The engines' lookups
+    /// read invalid probes dilated from their valid neighbours.
     #[arg(long, default_value = "shlight")]
     pub lookup: Lookup,
-    /// Highest degree shaded [default: what the GPU shades: a volume's
-    /// lmax, at most 4; a PRT file's, at most 8].
+    /// Highest degree shaded [default: a volume's lmax, at most 4 (what the
+    /// GPU shades) for shlight and trilinear, all of it for bevy, at most 2
+    /// for threejs; a PRT file's lmax, at most 8].
     #[arg(long)]
     pub lmax: Option<usize>,
 }
 
 /// Runs `shlight sample`.
-pub fn run(args: &SampleArgs) -> Result<()> {
+pub fn run(args: &SampleArgs, ui: &Ui) -> Result<()> {
     let mut inputs = vec![args.file.clone()];
     inputs.extend(args.points.clone());
     inputs.extend(args.env.clone());
@@ -67,7 +75,7 @@ pub fn run(args: &SampleArgs) -> Result<()> {
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let samples = match ext.as_deref() {
-        Some("shvol") => volume(args)?,
+        Some("shvol") => volume(args, ui)?,
         Some("shprt") => transfer(args)?,
         _ => bail!(
             "{}: sample reads irradiance volumes (.shvol) and PRT transfer (.shprt)",
@@ -84,20 +92,16 @@ fn light(path: &Path, up: &str, lmax: usize) -> Result<Environment> {
 }
 
 /// A volume's irradiance at the points.
-fn volume(args: &SampleArgs) -> Result<Samples> {
+fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
     let Some(points_path) = &args.points else {
         bail!("sampling a volume needs --points POINTS.json (or .csv): where to sample it");
     };
     if args.light.is_some() {
         bail!("--light is the light of a .shprt file; a volume is relit by --env");
     }
-    if let Some(l) = args.lmax.filter(|&l| l > shlight_baked::SHADED_MAX_LMAX) {
-        bail!(
-            "--lmax {l}: volumes are shaded to lmax {} at most",
-            shlight_baked::SHADED_MAX_LMAX
-        );
-    }
     let mut file = ShvolFile::read(&args.file)?;
+    let LookupLmax { lmax, note } = lookup_lmax(&file.view(), args.lookup, args.lmax)
+        .map_err(|e| anyhow::anyhow!("{}: --lookup {}: {e}", args.file.display(), args.lookup))?;
     let points = SamplePoints::read(points_path)?;
     if let Some(env) = &args.env {
         let env = light(env, &args.up, shlight_baked::MAX_LMAX)?;
@@ -105,21 +109,18 @@ fn volume(args: &SampleArgs) -> Result<Samples> {
         shlight_volume::relight_file(&mut file, &env)
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
     }
-    let view = file.view();
-    let lmax = shlight_volume::shaded_lmax(&view, args.lmax);
+    if let Some(note) = &note {
+        ui.note(format!("{}: {note}", args.file.display()));
+    }
+    let lookup = PreparedLookup::new(&file.view(), args.lookup, lmax);
     let values: Vec<[f64; 3]> = points
         .points
         .par_iter()
         .zip(&points.normals)
         .map(|(p, n)| {
-            shlight_volume::irradiance_at(
-                &view,
-                args.lookup,
-                lmax,
-                Vec3::from_array(*p),
-                Vec3::from_array(*n),
-            )
-            .to_array()
+            lookup
+                .irradiance_at(Vec3::from_array(*p), Vec3::from_array(*n))
+                .to_array()
         })
         .collect();
     Ok(Samples {
@@ -130,6 +131,7 @@ fn volume(args: &SampleArgs) -> Result<Samples> {
             "points": points_path.display().to_string(),
             "lookup": args.lookup.name(),
             "lmax": lmax,
+            "notes": note.into_iter().collect::<Vec<_>>(),
             "light": args.env.as_ref().map(|p| p.display().to_string()),
             "frame": file.frame,
             "provenance": {

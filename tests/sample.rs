@@ -206,6 +206,188 @@ fn env_relights_a_relightable_volume_first() {
     );
 }
 
+/// Writes `points` and `normals` as a POINTS.json file.
+fn write_points(path: &Path, points: &[[f64; 3]], normals: &[[f64; 3]]) {
+    let json = serde_json::json!({"points": points, "normals": normals});
+    std::fs::write(path, json.to_string()).unwrap();
+}
+
+/// `--lookup bevy` at points where Bevy's ambient cube is exact, worked
+/// out by hand from the two probes' SH: at a probe facing an axis, the
+/// probe's `E = pi L00 Y00 + 2 pi / 3 L11 Y11(n)`; facing between two axes,
+/// `N^2`-weighted axis values; halfway between the probes along x, their
+/// mean; outside the volume's box, nothing (Bevy lights it from
+/// elsewhere). Within the texels' half floats.
+#[test]
+fn lookup_bevy_gives_bevys_ambient_cubes() {
+    let dir = temp_dir("sample-bevy");
+    let vol = dir.join("two.shvol");
+    two_probes(false).write(&vol).unwrap();
+    let points = dir.join("p.json");
+    let d = std::f64::consts::FRAC_1_SQRT_2;
+    write_points(
+        &points,
+        &[
+            [0.5, 0.5, 0.5],
+            [1.5, 0.5, 0.5],
+            [1.0, 0.2, 0.9],
+            [-3.0, 0.5, 0.5],
+        ],
+        &[
+            [1.0, 0.0, 0.0],
+            [d, d, 0.0],
+            [-1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+        ],
+    );
+    let out = dir.join("e.json");
+    shlight_ok(&[
+        "sample",
+        s(&vol),
+        "--points",
+        s(&points),
+        "--lookup",
+        "bevy",
+        "-o",
+        s(&out),
+    ]);
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(v["lookup"], "bevy");
+    assert_eq!(v["lmax"], 1);
+    let (y00, c1) = (0.5 / PI.sqrt(), (3.0 / (4.0 * PI)).sqrt());
+    // Probe 0: L00 = (1, 2, 3), nothing else; probe 1: L00 = 2, L11 = -0.5
+    // (so E(+-x) = 2 pi Y00 +- pi / 3 sqrt(3 / 4 pi)).
+    let e0 = [1.0, 2.0, 3.0].map(|l| PI * y00 * l);
+    let e1 = |nx: f64| [2.0 * PI * y00 + nx * PI / 3.0 * c1; 3];
+    let want = [
+        e0,
+        [0, 1, 2].map(|c| 0.5 * e1(1.0)[c] + 0.5 * e1(0.0)[c]),
+        [0, 1, 2].map(|c| 0.5 * e0[c] + 0.5 * e1(-1.0)[c]),
+        [0.0; 3],
+    ];
+    let got = values(&v, "irradiance");
+    for (g, w) in got.iter().zip(&want) {
+        for c in 0..3 {
+            assert!(
+                (g[c] - w[c]).abs() <= 1e-3 * w[c].abs(),
+                "{got:?} vs {want:?}"
+            );
+        }
+    }
+}
+
+/// `--lookup threejs` by three.js's formula worked out by hand for the two
+/// probes (spacing 1 on every axis, probes at x = 0.5 and 1.5): the point
+/// moved half a spacing along the normal, x clamped to the probes, the
+/// interpolated three.js coefficients (`c3 = -L11`: no Condon-Shortley
+/// phase), `0.886227 c0 + 2 0.511664 c3 x`; nothing where the moved point
+/// leaves the box. A volume of lmax 3 is clipped to 2 with a note; `--lmax
+/// 3` is refused.
+#[test]
+fn lookup_threejs_gives_threejs_light_probe_grid() {
+    let dir = temp_dir("sample-threejs");
+    let vol = dir.join("two.shvol");
+    two_probes(false).write(&vol).unwrap();
+    let points = dir.join("p.json");
+    write_points(
+        &points,
+        &[
+            [0.6, 0.5, 0.5],
+            [0.6, 0.5, 0.7],
+            [0.2, 0.5, 0.5],
+            [1.9, 0.5, 0.5],
+        ],
+        &[
+            [2.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 1.0, 0.0],
+            [-1.0, 0.0, 0.0],
+        ],
+    );
+    let out = dir.join("e.json");
+    let run = |vol: &Path, extra: &[&str]| -> (Value, String) {
+        let mut args = vec![
+            "sample",
+            s(vol),
+            "--points",
+            s(&points),
+            "--lookup",
+            "threejs",
+            "-o",
+            s(&out),
+        ];
+        args.extend(extra);
+        let o = shlight_ok(&args);
+        let v = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        (v, String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (v, _) = run(&vol, &[]);
+    assert_eq!(v["lookup"], "threejs");
+    assert_eq!(v["lmax"], 1);
+    assert_eq!(v["notes"], serde_json::json!([]));
+    // w: the weight of probe 1; nx the normal's x.
+    let e = |w: f64, nx: f64| {
+        let c3 = -(w * -0.5);
+        [1.0, 2.0, 3.0].map(|l| 0.886227 * ((1.0 - w) * l + w * 2.0) + 2.0 * 0.511664 * c3 * nx)
+    };
+    let want = [
+        // Moved to x = 1.1: grid coordinate 0.6.
+        e(0.6, 1.0),
+        // Moved to z = 1.2, beyond the box's 1 + 0.01.
+        [0.0; 3],
+        // Moved to y = 1.0, still in the box; x = 0.2 clamped to probe 0.
+        e(0.0, 0.0),
+        // Moved to x = 1.4: grid coordinate 0.9.
+        e(0.9, -1.0),
+    ];
+    let got = values(&v, "irradiance");
+    for (g, w) in got.iter().zip(&want) {
+        for c in 0..3 {
+            assert!((g[c] - w[c]).abs() < 1e-5, "{got:?} vs {want:?}");
+        }
+    }
+    // lmax 3: the same probes with a degree-3 term three.js cannot hold.
+    let mut deep = two_probes(false);
+    deep.lmax = 3;
+    deep.radiance = deep
+        .radiance
+        .chunks_exact(12)
+        .flat_map(|p| {
+            let mut rows = p.to_vec();
+            rows.resize(16 * 3, 0.0);
+            rows[10 * 3..10 * 3 + 3].copy_from_slice(&[5.0, 5.0, 5.0]);
+            rows
+        })
+        .collect();
+    let deep_vol = dir.join("deep.shvol");
+    deep.write(&deep_vol).unwrap();
+    let (v, stderr) = run(&deep_vol, &[]);
+    assert_eq!(v["lmax"], 2);
+    assert!(v["notes"][0].as_str().unwrap().contains("left out"), "{v}");
+    assert!(
+        stderr.contains("note:") && stderr.contains("degree 3 is left out"),
+        "{stderr}"
+    );
+    assert_eq!(values(&v, "irradiance"), got);
+    let o = shlight(&[
+        "sample",
+        s(&deep_vol),
+        "--points",
+        s(&points),
+        "--lookup",
+        "threejs",
+        "--lmax",
+        "3",
+        "-o",
+        s(&out),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("deep.shvol") && err.contains("lmax 2 at most"),
+        "{err}"
+    );
+}
+
 /// Unshadowed PRT transfer of a surface of albedo `rho` under a constant
 /// sky of radiance `c`: every vertex leaves `rho c` (the cosine integral
 /// over the hemisphere is `pi`).

@@ -18,6 +18,8 @@
 //!   [`octahedral`] maps of the sphere.
 //! - [`TransferView`]: PRT transfer vectors borrowed (Sloan, Kautz &
 //!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex.
+//! - [`dilate`]: a volume's invalid probes filled from their valid face
+//!   neighbours, pass by pass, for engines whose lookups know no validity.
 //! - [`morton_code`] and [`morton_order`]: the Z-order that bakes
 //!   neighbouring probes and vertices together.
 //!
@@ -34,6 +36,7 @@
 //! **Architecture invariant:** a leaf (glam only): no I/O, no GPU, no
 //! mathematics of SH (that is shlight-core's).
 
+mod dilate;
 mod morton;
 pub mod octahedral;
 mod probe_grid;
@@ -42,6 +45,7 @@ mod transfer_view;
 pub mod visibility;
 mod volume_view;
 
+pub use dilate::dilate;
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;

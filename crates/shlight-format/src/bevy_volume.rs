@@ -25,11 +25,17 @@
 //! KTX2 (Khronos), `VK_FORMAT_R16G16B16A16_SFLOAT` (linear, filterable
 //! everywhere; alpha 1), one level, one layer, one face, no
 //! supercompression, a basic data format descriptor (RGBSDA, BT.709
-//! primaries, linear transfer) and a `KTXwriter` key. Invalid probes take
-//! the mean of their valid neighbours (Bevy's sampler knows no validity),
-//! or zero when none is valid.
+//! primaries, linear transfer) and a `KTXwriter` key. Bevy's sampler knows
+//! no validity, so invalid probes are filled first by
+//! [`shlight_baked::dilate`] (the mean of their valid face neighbours, pass
+//! by pass from the valid probes outwards; zero when none is valid).
+//!
+//! [`BevyTexture`] holds the texels in memory: the KTX2 export writes them
+//! and `shlight sample --lookup bevy` (shlight-volume) looks them up as
+//! Bevy's shader does.
 
 use glam::{DVec3, Vec3};
+use shlight_baked::{VolumeView, dilate};
 use shlight_core::encoding::AmbientCube;
 use shlight_core::sh::{ShCoeffs, sh_count};
 
@@ -38,13 +44,15 @@ use crate::ShvolFile;
 /// `VK_FORMAT_R16G16B16A16_SFLOAT`.
 pub const VK_FORMAT: u32 = 97;
 
-/// The six ambient-cube colours of every probe, `E(+-a) / pi` in the order
-/// of [`shlight_core::encoding::AMBIENT_CUBE_AXES`] (+X, -X, +Y, -Y, +Z, -Z), probes
-/// in grid order (invalid ones as the file has them).
+/// The six ambient-cube colours of every probe of `view`, `E(+-a) / pi` in
+/// the order of [`shlight_core::encoding::AMBIENT_CUBE_AXES`] (+X, -X, +Y,
+/// -Y, +Z, -Z), probes in grid order, each from its radiance as `view`
+/// holds it (invalid probes too: [`BevyTexture::from_view`] dilates
+/// first).
 #[must_use]
-pub fn ambient_cubes(file: &ShvolFile) -> Vec<[Vec3; 6]> {
-    let nc = sh_count(file.lmax);
-    file.radiance
+pub fn ambient_cubes(view: &VolumeView<'_>) -> Vec<[Vec3; 6]> {
+    let nc = sh_count(view.lmax);
+    view.radiance
         .chunks_exact(3 * nc)
         .map(|p| {
             let l = ShCoeffs::from_vec(
@@ -72,85 +80,88 @@ pub fn light_probe_transform((lo, hi): ([f32; 3], [f32; 3])) -> ([f32; 3], [f32;
     )
 }
 
-/// The KTX2 file Bevy's `IrradianceVolume` takes.
-#[must_use]
-pub fn bevy_ktx2(file: &ShvolFile, writer: &str) -> Vec<u8> {
-    let [nx, ny, nz] = file.resolution;
-    let mut cubes = ambient_cubes(file);
-    fill_invalid(file, &mut cubes);
-    let (w, h, d) = (nx, 2 * ny, 3 * nz);
-    let mut texels = vec![[0u16; 4]; w * h * d];
-    for z in 0..nz {
-        for y in 0..ny {
-            for x in 0..nx {
-                let cube = &cubes[x + nx * (y + ny * z)];
-                for a in 0..3 {
-                    for s in 0..2 {
-                        let c = cube[2 * a + s];
-                        let (ty, tz) = (y + ny * s, z + nz * a);
-                        texels[x + w * (ty + h * tz)] = [
-                            half::f16::from_f32(c.x).to_bits(),
-                            half::f16::from_f32(c.y).to_bits(),
-                            half::f16::from_f32(c.z).to_bits(),
-                            half::f16::ONE.to_bits(),
-                        ];
-                    }
-                }
-            }
-        }
-    }
-    let data: Vec<u8> = texels
-        .iter()
-        .flatten()
-        .flat_map(|v| v.to_le_bytes())
-        .collect();
-    write_ktx2([w, h, d], &data, writer)
+/// The texture Bevy's `IrradianceVolume` samples, in memory: `nx x 2 ny x
+/// 3 nz` RGBA16F texels, x fastest, then y, then z, probe `(x, y, z)`'s
+/// colour for axis `a` and sign `s` at texel `(x, y + ny s, z + nz a)`
+/// (the module's docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BevyTexture {
+    /// Width, height, depth: `[nx, 2 ny, 3 nz]`.
+    pub size: [usize; 3],
+    /// The texels' half-float bits `[r, g, b, a]` (alpha 1).
+    pub texels: Vec<[u16; 4]>,
 }
 
-/// Invalid probes take the mean of their valid face neighbours (repeated
-/// outwards until every probe next to a valid one has a value).
-fn fill_invalid(file: &ShvolFile, cubes: &mut [[Vec3; 6]]) {
-    let [nx, ny, nz] = file.resolution;
-    let mut known = file.valid.clone();
-    if !known.iter().any(|k| *k) {
-        cubes.fill([Vec3::ZERO; 6]);
-        return;
-    }
-    while known.iter().any(|k| !k) {
-        let mut next = known.clone();
-        let snapshot = cubes.to_vec();
+impl BevyTexture {
+    /// The texture of `view`: invalid probes dilated
+    /// ([`shlight_baked::dilate`]), each probe's [`ambient_cubes`] rounded to
+    /// half floats (round to nearest even, as `half::f16::from_f32`).
+    #[must_use]
+    pub fn from_view(view: &VolumeView<'_>) -> Self {
+        let [nx, ny, nz] = view.grid.resolution;
+        let radiance = dilate(view);
+        let cubes = ambient_cubes(&VolumeView {
+            radiance: &radiance,
+            ..*view
+        });
+        let (w, h, d) = (nx, 2 * ny, 3 * nz);
+        let mut texels = vec![[0u16; 4]; w * h * d];
         for z in 0..nz {
             for y in 0..ny {
                 for x in 0..nx {
-                    let i = x + nx * (y + ny * z);
-                    if known[i] {
-                        continue;
-                    }
-                    let mut sum = [Vec3::ZERO; 6];
-                    let mut count = 0.0;
-                    let neighbours = [
-                        (x > 0).then(|| i - 1),
-                        (x + 1 < nx).then(|| i + 1),
-                        (y > 0).then(|| i - nx),
-                        (y + 1 < ny).then(|| i + nx),
-                        (z > 0).then(|| i - nx * ny),
-                        (z + 1 < nz).then(|| i + nx * ny),
-                    ];
-                    for j in neighbours.into_iter().flatten().filter(|&j| known[j]) {
-                        for (s, c) in sum.iter_mut().zip(&snapshot[j]) {
-                            *s += *c;
+                    let cube = &cubes[x + nx * (y + ny * z)];
+                    for a in 0..3 {
+                        for s in 0..2 {
+                            let c = cube[2 * a + s];
+                            let (ty, tz) = (y + ny * s, z + nz * a);
+                            texels[x + w * (ty + h * tz)] = [
+                                half::f16::from_f32(c.x).to_bits(),
+                                half::f16::from_f32(c.y).to_bits(),
+                                half::f16::from_f32(c.z).to_bits(),
+                                half::f16::ONE.to_bits(),
+                            ];
                         }
-                        count += 1.0;
-                    }
-                    if count > 0.0 {
-                        cubes[i] = sum.map(|s| s / count);
-                        next[i] = true;
                     }
                 }
             }
         }
-        known = next;
+        Self {
+            size: [w, h, d],
+            texels,
+        }
     }
+
+    /// The colour of texel `(x, y, z)`, its half floats widened to `f32`
+    /// (exactly, as a GPU reads them).
+    #[must_use]
+    pub fn rgb(&self, [x, y, z]: [usize; 3]) -> Vec3 {
+        let [w, h, _] = self.size;
+        let t = self.texels[x + w * (y + h * z)];
+        Vec3::new(
+            half::f16::from_bits(t[0]).to_f32(),
+            half::f16::from_bits(t[1]).to_f32(),
+            half::f16::from_bits(t[2]).to_f32(),
+        )
+    }
+
+    /// The KTX2 file of the texture, `writer` in its `KTXwriter` key.
+    #[must_use]
+    pub fn ktx2(&self, writer: &str) -> Vec<u8> {
+        let data: Vec<u8> = self
+            .texels
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        write_ktx2(self.size, &data, writer)
+    }
+}
+
+/// The KTX2 file Bevy's `IrradianceVolume` takes ([`BevyTexture`] of the
+/// file's probes).
+#[must_use]
+pub fn bevy_ktx2(file: &ShvolFile, writer: &str) -> Vec<u8> {
+    BevyTexture::from_view(&file.view()).ktx2(writer)
 }
 
 /// A KTX2 file of one level of RGBA16F texels (`size` = width, height,

@@ -14,7 +14,16 @@
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes;
 //!   [`irradiance_at`]: the irradiance a point facing a normal is shaded
-//!   with, by a [`Lookup`] (`shlight sample`).
+//!   with, by a [`Lookup`] (`shlight sample`): shlight's own, or an
+//!   engine's as the engine computes it from shlight's export —
+//!   [`bevy_lookup`] (Bevy's irradiance volume: the KTX2 export's
+//!   half-float ambient cubes, filtered and blended as its shader does) and
+//!   [`threejs_lookup`] (three.js r187's `LightProbeGrid`: the point offset
+//!   half a probe spacing along the normal, trilinear L2 SH, three.js's
+//!   constants); [`PreparedLookup`] makes one ready for many points and
+//!   [`lookup_lmax`] says which degrees each reads. The engines know no
+//!   probe validity: their lookups read the probes dilated
+//!   ([`shlight_baked::dilate`]).
 //! - [`probe_sheet()`]: a picture of the probes, each a white ball lit by its
 //!   light, and [`probe_sheet_exposure`] to show it at.
 //! - Files: [`shlight_format::ShvolFile`] (docs/shvol.md).
@@ -39,13 +48,19 @@
 //! shlight-format.
 
 pub mod bake;
+pub mod bevy_lookup;
 mod error;
 mod lookup;
+mod prepared_lookup;
 pub mod probe_sheet;
 mod probe_volume;
+pub mod threejs_lookup;
 
 pub use bake::{Stage, VolumeOptions, bake};
+pub use bevy_lookup::BevyLookup;
 pub use error::VolumeError;
 pub use lookup::{Lookup, irradiance_at, shaded_lmax};
+pub use prepared_lookup::{LookupLmax, PreparedLookup, lookup_lmax};
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};
+pub use threejs_lookup::ThreeJsLookup;

@@ -22,11 +22,24 @@ pub enum Lookup {
     /// the point, weights renormalised ([`sample`]; docs/shvol.md,
     /// "Shading").
     Trilinear,
+    /// Bevy's own lookup of the `--format bevy` export: ambient cubes of
+    /// half floats, filtered and blended as bevy_pbr's
+    /// `irradiance_volume.wgsl` does ([`crate::bevy_lookup`]).
+    Bevy,
+    /// three.js `LightProbeGrid`'s lookup: the point offset half a probe
+    /// spacing along the normal, trilinear L2 SH of the dilated probes,
+    /// three.js's irradiance constants ([`crate::threejs_lookup`]).
+    ThreeJs,
 }
 
 impl Lookup {
     /// Every lookup, in `--lookup` order.
-    pub const ALL: [Lookup; 2] = [Lookup::Shlight, Lookup::Trilinear];
+    pub const ALL: [Lookup; 4] = [
+        Lookup::Shlight,
+        Lookup::Trilinear,
+        Lookup::Bevy,
+        Lookup::ThreeJs,
+    ];
 
     /// The name on the command line and in files.
     #[must_use]
@@ -34,6 +47,8 @@ impl Lookup {
         match self {
             Lookup::Shlight => "shlight",
             Lookup::Trilinear => "trilinear",
+            Lookup::Bevy => "bevy",
+            Lookup::ThreeJs => "threejs",
         }
     }
 }
@@ -121,6 +136,8 @@ fn weighted(view: &VolumeView<'_>, weights: &[(usize, f32)]) -> Option<ShCoeffs<
         {
             *o += f64::from(w) * Vec3::from_slice(rgb).as_dvec3();
         }
+        Lookup::Bevy => crate::bevy_lookup::irradiance_at(view, lmax, p, n),
+        Lookup::ThreeJs => crate::threejs_lookup::irradiance_at(view, lmax, p, n),
     }
     Some(out)
 }
@@ -189,10 +206,10 @@ mod tests {
         assert_eq!(shaded_lmax(&view, Some(0)), 0);
         assert_eq!("trilinear".parse::<Lookup>(), Ok(Lookup::Trilinear));
         assert!(
-            "bevy"
+            "unity"
                 .parse::<Lookup>()
                 .unwrap_err()
-                .contains("shlight, trilinear")
+                .contains("shlight, trilinear, bevy, threejs")
         );
     }
 }

@@ -1,0 +1,164 @@
+//! `--lookup threejs`: what three.js's `LightProbeGrid` shows from a
+//! volume's probes.
+//!
+//! # Source
+//! three.js r187 (npm `three` 0.187.0):
+//! `src/renderers/shaders/ShaderChunk/lightprobes_pars_fragment.glsl.js`
+//! (`isInsideLightProbeGrid`, `getLightProbeGridIrradiance`), called from
+//! `lights_fragment_begin.glsl.js` with the fragment's world position and
+//! unit world normal; the grid is `examples/jsm/lighting/LightProbeGridWebGL.js`
+//! (`LightProbeGrid.js` and `tsl/lighting/LightProbeGridNode.js`, the
+//! WebGPU variant, compute the same).
+//!
+//! # What is computed, step by step as three.js does it
+//! 1. **The grid**: the grid's `boundingBox` is the volume's bounds and its
+//!    `resolution` the probe counts; three.js places probe `i` at
+//!    `min + (i + 1/2) (max - min) / n` (`getProbePosition`), the cell
+//!    centres where shlight bakes them. Each probe holds the nine L2
+//!    radiance coefficients in three.js's basis (`SphericalHarmonics3`:
+//!    shlight's with the Condon-Shortley phase removed, odd `|m|` negated),
+//!    lmax 2: a volume of lower lmax is zero-padded, one of higher lmax
+//!    clipped to 2. Invalid probes are dilated first
+//!    ([`shlight_baked::dilate`]): the grid knows no validity.
+//! 2. **The offset**: `spacing = (max - min) / n`; the point is moved half
+//!    a probe spacing along the normal, `s = p + n spacing / 2`
+//!    (per axis).
+//! 3. **Inside**: three.js uses the grid only when `s` lies within the
+//!    bounds grown by 1% of a cell on each side; elsewhere the grid adds
+//!    nothing and this lookup returns 0.
+//! 4. **Clamp and interpolate**: `uvw = clamp((s - min) / (max - min),
+//!    1 / 2n, 1 - 1 / 2n)`, the outermost probes' texel centres; the seven
+//!    RGBA sub-volumes of the atlas are sampled there with the linear
+//!    filter. The atlas's padding slices copy the edge slices and the clamp
+//!    keeps the filter between texel centres, so each read is the
+//!    trilinear interpolation of the probes at grid coordinates
+//!    `uvw n - 1/2`, clamped to the grid, nothing more (exact weights here;
+//!    a GPU rounds them to its sub-texel precision). The WebGL grid's atlas
+//!    is `FloatType`, which holds shlight's `f32` coefficients exactly, so no
+//!    rounding is modelled (the WebGPU grid's is `HalfFloatType`).
+//! 5. **Irradiance** of the interpolated coefficients `c0..c8` at the unit
+//!    normal `(x, y, z)`, with three.js's constants:
+//!    `0.886227 c0 + 2 0.511664 (c1 y + c2 z + c3 x) + 2 0.429043 (c4 xy +
+//!    c5 yz + c7 xz) + c6 (0.743125 z^2 - 0.247708) + 0.429043 c8 (x^2 -
+//!    y^2)`, clamped to 0 per channel: the irradiance `E` (three.js then
+//!    multiplies it by `BRDF_Lambert = albedo / pi`).
+//!
+//! Arithmetic: the point's offset and `uvw` in `f32` as the shader has
+//! them; the interpolation and the irradiance in `f64`.
+
+use glam::{DVec3, Vec3};
+use shlight_baked::{ProbeGrid, VolumeView, dilate};
+use shlight_core::sh::{ShCoeffs, sh_count};
+
+/// The highest lmax three.js's grid holds (`SphericalHarmonics3`).
+pub const THREEJS_LMAX: usize = 2;
+
+/// A volume's probes as three.js's `LightProbeGrid` holds them, ready to
+/// be looked up as three.js does.
+#[derive(Clone, Debug)]
+pub struct ThreeJsLookup {
+    grid: ProbeGrid,
+    /// Per probe nine `[r, g, b]` coefficients in three.js's basis.
+    probes: Vec<[[f32; 3]; 9]>,
+}
+
+impl ThreeJsLookup {
+    /// The grid of `view`'s probes: dilated, kept to `lmax` (at most
+    /// [`THREEJS_LMAX`] and the volume's; the rest of the nine coefficients
+    /// zero), in three.js's basis.
+    #[must_use]
+    pub fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
+        let lmax = lmax.min(THREEJS_LMAX).min(view.lmax);
+        let radiance = dilate(view);
+        let nc = sh_count(view.lmax);
+        let probes = radiance
+            .chunks_exact(3 * nc)
+            .map(|p| {
+                let shlight = ShCoeffs::from_vec(
+                    p.chunks_exact(3)
+                        .take(sh_count(lmax))
+                        .map(Vec3::from_slice)
+                        .collect(),
+                )
+                .expect("(lmax+1)^2 rows");
+                let mut out = [[0.0f32; 3]; 9];
+                for (o, c) in out.iter_mut().zip(shlight.toggled_cs_phase().as_slice()) {
+                    *o = c.to_array();
+                }
+                out
+            })
+            .collect();
+        Self {
+            grid: view.grid,
+            probes,
+        }
+    }
+
+    /// The irradiance three.js shades a point `p` facing `n` with (the
+    /// module's docs); 0 where the offset point is outside the grid's box.
+    #[must_use]
+    pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
+        let world_normal = n.normalize();
+        let (min, max) = (self.grid.min, self.grid.max);
+        let res = Vec3::from_array(self.grid.resolution.map(|r| r as f32));
+        let grid_range = max - min;
+        let probe_spacing = grid_range / res;
+        let sample_pos = p + world_normal * probe_spacing * 0.5;
+        let margin = probe_spacing * 0.01;
+        if !(sample_pos.cmpge(min - margin).all() && sample_pos.cmple(max + margin).all()) {
+            return DVec3::ZERO;
+        }
+        let half_texel = Vec3::splat(0.5) / res;
+        let uvw = ((sample_pos - min) / grid_range).clamp(half_texel, 1.0 - half_texel);
+        // The filter's texel coordinates in the probe grid, between the
+        // first and last probe on each axis.
+        let t = (uvw * res - 0.5).clamp(Vec3::ZERO, res - 1.0);
+        let base = t.floor();
+        let f = (t - base).as_dvec3();
+        let [nx, ny, nz] = self.grid.resolution;
+        let i0 = [base.x as usize, base.y as usize, base.z as usize];
+        let mut c = [DVec3::ZERO; 9];
+        for corner in 0..8 {
+            let d = [corner & 1, corner >> 1 & 1, corner >> 2 & 1];
+            let w = [f.x, f.y, f.z]
+                .iter()
+                .zip(d)
+                .map(|(f, d)| if d == 1 { *f } else { 1.0 - f })
+                .product::<f64>();
+            if w == 0.0 {
+                continue;
+            }
+            let [x, y, z] = [
+                (i0[0] + d[0]).min(nx - 1),
+                (i0[1] + d[1]).min(ny - 1),
+                (i0[2] + d[2]).min(nz - 1),
+            ];
+            for (ci, v) in c.iter_mut().zip(&self.probes[x + nx * (y + ny * z)]) {
+                *ci += w * Vec3::from_array(*v).as_dvec3();
+            }
+        }
+        let (x, y, z) = (
+            f64::from(world_normal.x),
+            f64::from(world_normal.y),
+            f64::from(world_normal.z),
+        );
+        let mut result = c[0] * 0.886227;
+        result += c[1] * 2.0 * 0.511664 * y;
+        result += c[2] * 2.0 * 0.511664 * z;
+        result += c[3] * 2.0 * 0.511664 * x;
+        result += c[4] * 2.0 * 0.429043 * x * y;
+        result += c[5] * 2.0 * 0.429043 * y * z;
+        result += c[6] * (0.743125 * z * z - 0.247708);
+        result += c[7] * 2.0 * 0.429043 * x * z;
+        result += c[8] * 0.429043 * (x * x - y * y);
+        result.max(DVec3::ZERO)
+    }
+}
+
+/// three.js's irradiance at `p` facing `n` from `view`'s probes kept to
+/// `lmax`: [`ThreeJsLookup::irradiance_at`]. Prepares the grid on every
+/// call; [`ThreeJsLookup::new`] once for many points.
+#[must_use]
+pub fn irradiance_at(view: &VolumeView<'_>, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
+    ThreeJsLookup::new(view, lmax).irradiance_at(p, n)
+}
