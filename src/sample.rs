@@ -45,7 +45,9 @@ pub struct SampleArgs {
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
     /// How a volume's light at a point is read off its probes: shlight (the
-    /// best shlight has; today trilinear); trilinear (the valid probes of
+    /// best shlight has: trilinear weights times each probe's visibility
+    /// of the point, from the file's distance maps; trilinear for a file
+    /// without them); trilinear (the valid probes of
     /// the eight around the point, weights renormalised); bevy (what Bevy
     /// shows from the --format bevy export: half-float ambient cubes,
     /// filtered and blended as its shader does; 0 outside the volume's
@@ -129,7 +131,14 @@ fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
         about: json!({
             "file": args.file.display().to_string(),
             "points": points_path.display().to_string(),
-            "lookup": args.lookup.name(),
+            "lookup": match args.lookup {
+                // A file without distance maps is shaded by trilinear
+                // interpolation, by the GPU too.
+                Lookup::Shlight if file.visibility.is_none() => Lookup::Trilinear.name(),
+                l => l.name(),
+            },
+            "visibility": file.visibility.is_some(),
+            "relocated": file.relocated().len(),
             "lmax": lmax,
             "notes": note.into_iter().collect::<Vec<_>>(),
             "light": args.env.as_ref().map(|p| p.display().to_string()),

@@ -74,7 +74,10 @@ fn a_volume_gives_the_closed_form_of_its_interpolated_probes() {
     shlight_ok(&["sample", s(&vol), "--points", s(&points), "-o", s(&out)]);
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_eq!(v["format"], "shlight-samples");
-    assert_eq!(v["lookup"], "shlight");
+    // The default lookup of a file without distance maps is trilinear,
+    // and the output says so.
+    assert_eq!(v["lookup"], "trilinear");
+    assert_eq!(v["visibility"], false);
     assert_eq!(v["lmax"], 1);
     assert_eq!(v["count"], 4);
     assert_eq!(v["provenance"]["scene"], "two probes");
@@ -568,4 +571,196 @@ fn sampling_equals_the_gpus_volume_pass() {
     }
     eprintln!("sample against the GPU: worst {worst:.2e} of the largest");
     assert!(worst < 1e-4, "worst {worst:.2e}");
+}
+
+/// Two sealed rooms split by a wall 4 cm thick at x = 2, a lamp (an MTL
+/// emitter) under the left room's ceiling, as an OBJ file of quads facing
+/// into the rooms.
+fn two_rooms_obj(dir: &Path) -> std::path::PathBuf {
+    let quad = |q: [[f32; 3]; 4]| q;
+    let room = |a: [f32; 3], b: [f32; 3]| {
+        let c = |x: f32, y: f32, z: f32| [x, y, z];
+        vec![
+            quad([
+                c(a[0], a[1], a[2]),
+                c(a[0], a[1], b[2]),
+                c(b[0], a[1], b[2]),
+                c(b[0], a[1], a[2]),
+            ]),
+            quad([
+                c(a[0], b[1], a[2]),
+                c(b[0], b[1], a[2]),
+                c(b[0], b[1], b[2]),
+                c(a[0], b[1], b[2]),
+            ]),
+            quad([
+                c(a[0], a[1], a[2]),
+                c(a[0], b[1], a[2]),
+                c(a[0], b[1], b[2]),
+                c(a[0], a[1], b[2]),
+            ]),
+            quad([
+                c(b[0], a[1], a[2]),
+                c(b[0], a[1], b[2]),
+                c(b[0], b[1], b[2]),
+                c(b[0], b[1], a[2]),
+            ]),
+            quad([
+                c(a[0], a[1], a[2]),
+                c(b[0], a[1], a[2]),
+                c(b[0], b[1], a[2]),
+                c(a[0], b[1], a[2]),
+            ]),
+            quad([
+                c(a[0], a[1], b[2]),
+                c(a[0], b[1], b[2]),
+                c(b[0], b[1], b[2]),
+                c(b[0], a[1], b[2]),
+            ]),
+        ]
+    };
+    let mut walls = room([0.0, 0.0, 0.0], [1.98, 1.5, 2.0]);
+    walls.extend(room([2.02, 0.0, 0.0], [4.0, 1.5, 2.0]));
+    let lamp = [
+        [0.4, 1.45, 0.5],
+        [1.58, 1.45, 0.5],
+        [1.58, 1.45, 1.5],
+        [0.4, 1.45, 1.5],
+    ];
+    let mut obj = String::from("mtllib rooms.mtl\n");
+    let mut faces = String::new();
+    let mut v = 0;
+    for (i, q) in walls.iter().chain([&lamp]).enumerate() {
+        for p in q {
+            obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
+        }
+        if i == walls.len() {
+            faces.push_str("usemtl lamp\n");
+        } else if i == 0 {
+            faces.push_str("usemtl wall\n");
+        }
+        faces.push_str(&format!("f {} {} {} {}\n", v + 1, v + 2, v + 3, v + 4));
+        v += 4;
+    }
+    obj.push_str(&faces);
+    std::fs::write(dir.join("rooms.obj"), obj).unwrap();
+    std::fs::write(
+        dir.join("rooms.mtl"),
+        "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0.8 0.8 0.8\nKe 4 4 4\n",
+    )
+    .unwrap();
+    dir.join("rooms.obj")
+}
+
+/// `shlight volume` then `shlight sample`, as a user would: the dark room's
+/// floor next to the wall stays dark under the default lookup of the
+/// default bake, and leaks under trilinear interpolation, as it does in a
+/// bake without visibility or relocation (a version 1 file).
+#[test]
+fn a_bake_of_two_rooms_does_not_leak_through_the_wall() {
+    let dir = temp_dir("sample-rooms");
+    let scene = two_rooms_obj(&dir);
+    let sky = dir.join("black.exr");
+    shlight_ok(&[
+        "synth",
+        "constant",
+        "-o",
+        s(&sky),
+        "--value",
+        "0",
+        "--size",
+        "32x16",
+    ]);
+    let points = dir.join("floor.json");
+    // The dark room 7 cm from the wall, then the lit room's floor.
+    let mut p = Vec::new();
+    for z in [0.5, 1.0, 1.5] {
+        p.push(format!("[2.09, 0.05, {z}]"));
+    }
+    for x in [0.25, 0.75, 1.25, 1.75] {
+        for z in [0.25, 0.75, 1.25, 1.75] {
+            p.push(format!("[{x}, 0.05, {z}]"));
+        }
+    }
+    let normals = vec!["[0, 1, 0]"; p.len()].join(", ");
+    std::fs::write(
+        &points,
+        format!(
+            "{{\"points\": [{}], \"normals\": [{normals}]}}",
+            p.join(", ")
+        ),
+    )
+    .unwrap();
+    let bake = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "volume",
+            s(&scene),
+            "--env",
+            s(&sky),
+            "--resolution",
+            "8x3x4",
+            "--bounds",
+            "0,0,0:4,1.5,2",
+            "--samples",
+            "512",
+            "--surface-samples",
+            "128",
+            "--bounces",
+            "1",
+            "-o",
+            s(&out),
+        ];
+        args.extend_from_slice(extra);
+        shlight_ok(&args);
+        out
+    };
+    let leak = |vol: &Path, lookup: &str| -> (f64, Value) {
+        let out = dir.join(format!("e-{lookup}.json"));
+        let _ = std::fs::remove_file(&out);
+        shlight_ok(&[
+            "sample",
+            s(vol),
+            "--points",
+            s(&points),
+            "--lookup",
+            lookup,
+            "-o",
+            s(&out),
+        ]);
+        let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        let e: Vec<f64> = values(&v, "irradiance")
+            .iter()
+            .map(|c| c.iter().sum::<f64>() / 3.0)
+            .collect();
+        let mean = e[3..].iter().sum::<f64>() / (e.len() - 3) as f64;
+        assert!(mean > 0.1, "the lamp lights the floor: {mean}");
+        (e[..3].iter().fold(0.0f64, |m, x| m.max(*x)) / mean, v)
+    };
+    let vol = bake("rooms.shvol", &[]);
+    let file = ShvolFile::read(&vol).unwrap();
+    assert!(file.visibility.is_some() && file.offsets.is_some());
+    let (shlight_leak, v) = leak(&vol, "shlight");
+    assert_eq!(v["lookup"], "shlight");
+    assert_eq!(v["visibility"], true);
+    let (trilinear_leak, _) = leak(&vol, "trilinear");
+    assert!(shlight_leak <= 0.02, "dark side {shlight_leak}");
+    assert!(trilinear_leak > 0.1, "trilinear {trilinear_leak}");
+    let plain = bake("plain.shvol", &["--no-visibility", "--no-relocate"]);
+    let header = std::fs::read(&plain).unwrap();
+    let end = header.iter().position(|&b| b == b'\n').unwrap();
+    let header: Value = serde_json::from_slice(&header[..end]).unwrap();
+    assert_eq!(header["format_version"], 1);
+    assert_eq!(
+        header["holds"],
+        serde_json::json!(["radiance", "emitted", "transfer"])
+    );
+    let (plain_leak, v) = leak(&plain, "shlight");
+    assert_eq!(v["lookup"], "trilinear");
+    assert!((plain_leak - trilinear_leak).abs() < 1e-6 * trilinear_leak.max(1.0));
+    eprintln!(
+        "two rooms through the CLI: dark side {:.2}% of the lit floor's mean (trilinear {:.1}%)",
+        100.0 * shlight_leak,
+        100.0 * trilinear_leak
+    );
 }

@@ -138,6 +138,8 @@ mod tests {
             lmax: 0,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         view.check().unwrap();
         let want: Vec<f32> = [1.0, 3.0, 5.0, 5.0, 5.5, 5.0, 9.0, 9.0, 7.0]
@@ -161,6 +163,8 @@ mod tests {
             lmax: 1,
             valid: &valid,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         let want: Vec<f32> = [2.0, 3.0, 4.0, 4.0].into_iter().flat_map(probe).collect();
         assert_eq!(dilate(&view), want);
@@ -177,6 +181,8 @@ mod tests {
             lmax: 0,
             valid: &all,
             radiance: &radiance,
+            offsets: None,
+            visibility: None,
         };
         assert_eq!(dilate(&view), radiance);
         let none = [false; 4];

@@ -12,15 +12,14 @@ use crate::sample;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lookup {
     /// The best lookup shlight has: the probes' trilinear weights times
-    /// DDGI's visibility and backface terms
-    /// ([`shlight_baked::visibility`]), where the volume holds distance
+    /// DDGI's visibility term ([`shlight_baked::visibility`]), where the volume holds distance
     /// maps; [`Lookup::Trilinear`] where it does not (a version 1 file, a
     /// bake with `--no-visibility`). The volume pass of `render-mesh
     /// --volume` and `view --volume` shades the same way.
     Shlight,
     /// Trilinear interpolation of the valid probes among the eight around
     /// the point, weights renormalised ([`sample`]; docs/shvol.md,
-    /// "Shading").
+    /// "Lookups").
     Trilinear,
     /// Bevy's own lookup of the `--format bevy` export: ambient cubes of
     /// half floats, filtered and blended as bevy_pbr's
@@ -99,8 +98,9 @@ pub fn irradiance_at(
     p: Vec3,
     n: Vec3,
 ) -> DVec3 {
-    let n = n.normalize();
     let light = match (lookup, &view.visibility) {
+        (Lookup::Bevy, _) => return crate::bevy_lookup::irradiance_at(view, lmax, p, n),
+        (Lookup::ThreeJs, _) => return crate::threejs_lookup::irradiance_at(view, lmax, p, n),
         (Lookup::Shlight, Some(visibility)) => {
             let weights = visibility_weights(
                 &view.grid,
@@ -108,7 +108,7 @@ pub fn irradiance_at(
                 &|k| view.position(k),
                 visibility,
                 p,
-                n,
+                n.normalize(),
             );
             weighted(view, &weights)
         }
@@ -117,7 +117,7 @@ pub fn irradiance_at(
         }
     };
     light.map_or(DVec3::ZERO, |l| {
-        irradiance(&l.resized(lmax.min(view.lmax))).eval(n.as_dvec3())
+        irradiance(&l.resized(lmax.min(view.lmax))).eval(n.as_dvec3().normalize())
     })
 }
 
@@ -136,8 +136,6 @@ fn weighted(view: &VolumeView<'_>, weights: &[(usize, f32)]) -> Option<ShCoeffs<
         {
             *o += f64::from(w) * Vec3::from_slice(rgb).as_dvec3();
         }
-        Lookup::Bevy => crate::bevy_lookup::irradiance_at(view, lmax, p, n),
-        Lookup::ThreeJs => crate::threejs_lookup::irradiance_at(view, lmax, p, n),
     }
     Some(out)
 }

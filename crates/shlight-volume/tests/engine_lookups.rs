@@ -28,6 +28,8 @@ fn file(resolution: [usize; 3], bounds: ([f32; 3], [f32; 3]), lmax: usize) -> Sh
         radiance: vec![0.0; n * 3 * (lmax + 1) * (lmax + 1)],
         emitted: None,
         transfer: None,
+        offsets: None,
+        visibility: None,
         samples: 1,
         bounces: 0,
         seed: 0,
