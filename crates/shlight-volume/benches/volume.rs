@@ -5,7 +5,9 @@
 //! surfaces' and the probes'), probes per second for the relight. The bake
 //! runs twice: the 32-triangle room subdivided by the bake itself
 //! (`max_edge`, so rays can be cast against the 32 triangles), and the
-//! subdivided room given as the scene (dense from the start).
+//! subdivided room given as the scene (dense from the start). Each runs
+//! with the default relocation and distance maps and without either, so
+//! their cost shows as the ratio of the two.
 //!
 //! `cargo bench -p shlight-volume --bench volume`
 
@@ -32,33 +34,44 @@ fn options() -> VolumeOptions {
     }
 }
 
-/// Bakes the 16x8x16 grid around the Cornell box in `scene`, counting rays.
-fn bench_bake(bencher: Bencher, scene: &shlight_mesh::Mesh) {
+/// Bakes the 16x8x16 grid around the Cornell box in `scene`, counting
+/// rays; `visibility`: with relocation and distance maps (the default),
+/// else with neither.
+fn bench_bake(bencher: Bencher, scene: &shlight_mesh::Mesh, visibility: bool) {
     let grid = ProbeGrid::around([16, 8, 16], generate::cornell_box().bounds()).unwrap();
-    let rays = bake(Some(scene), &grid, &options(), &|_, _, _| {})
+    let options = if visibility {
+        options()
+    } else {
+        VolumeOptions {
+            relocate: false,
+            visibility_size: 0,
+            ..options()
+        }
+    };
+    let rays = bake(Some(scene), &grid, &options, &|_, _, _| {})
         .unwrap()
         .rays;
     bencher
         .counter(ItemsCount::new(rays))
-        .bench(|| bake(Some(scene), &grid, &options(), &|_, _, _| {}).unwrap());
+        .bench(|| bake(Some(scene), &grid, &options, &|_, _, _| {}).unwrap());
 }
 
 /// The room's 32 triangles, subdivided by the bake itself (`max_edge`) to
 /// 119,808.
-#[divan::bench(sample_count = 1, sample_size = 1)]
-fn cornell_100k_16x8x16_4096_rays(bencher: Bencher) {
+#[divan::bench(sample_count = 1, sample_size = 1, args = [true, false])]
+fn cornell_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
     let room = generate::cornell_box();
     let fine = room.subdivided(0.0088);
     eprintln!("{} triangles after subdivision", fine.triangle_count());
-    bench_bake(bencher, &room);
+    bench_bake(bencher, &room, visibility);
 }
 
 /// The same bake with the scene dense to begin with: the 119,808
 /// triangles given as the scene (no coarser surface to cast against), as a
 /// scanned or modelled scene of that size would be.
-#[divan::bench(sample_count = 1, sample_size = 1)]
-fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher) {
-    bench_bake(bencher, &generate::cornell_box().subdivided(0.0088));
+#[divan::bench(sample_count = 1, sample_size = 1, args = [true, false])]
+fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
+    bench_bake(bencher, &generate::cornell_box().subdivided(0.0088), visibility);
 }
 
 #[divan::bench]
