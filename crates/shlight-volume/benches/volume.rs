@@ -71,7 +71,11 @@ fn cornell_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
 /// scanned or modelled scene of that size would be.
 #[divan::bench(sample_count = 1, sample_size = 1, args = [true, false])]
 fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
-    bench_bake(bencher, &generate::cornell_box().subdivided(0.0088), visibility);
+    bench_bake(
+        bencher,
+        &generate::cornell_box().subdivided(0.0088),
+        visibility,
+    );
 }
 
 #[divan::bench]

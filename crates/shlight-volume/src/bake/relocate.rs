@@ -16,13 +16,16 @@
 //! clearance among those not inside geometry is taken; where every
 //! candidate is inside, the probe stays at its centre (and the bake marks
 //! it invalid as before). Deterministic: the same rays for every probe and
-//! candidate, a fixed order, one result at any thread count.
+//! candidate, a fixed order, one result at any thread count. The rays are
+//! cast as packets ([`Packet`]): eight probes' centres, then eight
+//! candidates of one probe at a time along each direction, a point's rays
+//! stopping once its answer is settled.
 
 use glam::Vec3;
 use rayon::prelude::*;
 use shlight_baked::ProbeGrid;
 use shlight_core::map::montecarlo::stratified_directions;
-use shlight_prt::bvh::Ray;
+use shlight_prt::packet::{Direction, LANES, Packet};
 use shlight_prt::transfer::Occluder;
 
 /// Rays cast from each position tested.
@@ -49,12 +52,18 @@ struct Look {
     clearance: f32,
 }
 
+impl Look {
+    fn is_free(&self, clearance: f32) -> bool {
+        !self.inside && self.clearance >= clearance
+    }
+}
+
 /// Each probe's offset from its cell centre (`Vec3::ZERO` where it stays),
 /// in probe order, against `occluder`.
 pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
-    let dirs: Vec<Vec3> = stratified_directions(RELOCATION_RAYS, seed ^ 0x0ff5_e7ed)
+    let dirs: Vec<Direction> = stratified_directions(RELOCATION_RAYS, seed ^ 0x0ff5_e7ed)
         .iter()
-        .map(|d| d.as_vec3())
+        .map(|d| Direction::new(d.as_vec3()))
         .collect();
     let cell = grid.cell();
     let clearance = CLEARANCE * cell.min_element();
@@ -76,75 +85,113 @@ pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
             .total_cmp(&offset(y).length_squared())
             .then(x.cmp(&y))
     });
-    (0..grid.probe_count())
-        .into_par_iter()
-        .map(|k| {
-            let centre = grid.centre(grid.grid_index(k));
-            if look(occluder, &dirs, centre, clearance).is_free(clearance) {
-                return Vec3::ZERO;
-            }
-            // The nearest free candidate; a ray nearer than the clearance
-            // or too many back faces end a candidate's rays early.
-            for &l in &lattice {
-                let o = offset(l);
-                if look(occluder, &dirs, centre + o, clearance).is_free(clearance) {
-                    return o;
-                }
-            }
-            // None free: the most clearance outside geometry, all rays cast.
-            let mut best: Option<(f32, Vec3)> = None;
-            for o in std::iter::once(Vec3::ZERO).chain(lattice.iter().map(|&l| offset(l))) {
-                let at = look(occluder, &dirs, centre + o, 0.0);
-                if !at.inside && best.is_none_or(|(c, _)| at.clearance > c) {
-                    best = Some((at.clearance, o));
-                }
-            }
-            best.map_or(Vec3::ZERO, |(_, o)| o)
-        })
-        .collect()
-}
-
-impl Look {
-    fn is_free(&self, clearance: f32) -> bool {
-        !self.inside && self.clearance >= clearance
+    let lattice: Vec<Vec3> = lattice.into_iter().map(offset).collect();
+    let centres = grid.centres();
+    // The centres first, eight probes a packet.
+    let mut out = vec![Vec3::ZERO; centres.len()];
+    let mut stuck: Vec<usize> = Vec::new();
+    let looks: Vec<Look> = centres
+        .par_chunks(LANES)
+        .flat_map_iter(|eight| look(occluder, &dirs, eight, clearance))
+        .collect();
+    for (k, l) in looks.iter().enumerate() {
+        if !l.is_free(clearance) {
+            stuck.push(k);
+        }
     }
+    let moved: Vec<Vec3> = stuck
+        .par_iter()
+        .map(|&k| place(occluder, &dirs, centres[k], &lattice, clearance))
+        .collect();
+    for (&k, o) in stuck.iter().zip(moved) {
+        out[k] = o;
+    }
+    out
 }
 
-/// The rays from `p`: whether it is inside geometry (more than
-/// [`INSIDE_BACKFACES`] of them on back faces) and its clearance (the
-/// nearest hit). The rays stop once the answer is known: when a hit is
-/// nearer than `stop_within` (the clearance is then that hit's, and
-/// `inside` is false though the rest might have said otherwise) or when
-/// the back faces are already too many.
-fn look(occluder: &Occluder, dirs: &[Vec3], p: Vec3, stop_within: f32) -> Look {
-    let limit = INSIDE_BACKFACES * dirs.len() as f32;
-    let (mut back, mut nearest) = (0usize, f32::INFINITY);
-    for d in dirs {
-        if let Some(hit) = occluder
-            .bvh()
-            .bvh()
-            .closest_hit(&Ray::new(p, *d, f32::INFINITY))
-        {
-            nearest = nearest.min(hit.t);
-            if !occluder.is_front(hit.triangle, *d) {
-                back += 1;
-                if back as f32 > limit {
-                    return Look {
-                        inside: true,
-                        clearance: nearest,
-                    };
-                }
-            }
-            if nearest < stop_within {
-                return Look {
-                    inside: false,
-                    clearance: nearest,
-                };
+/// The offset of a probe whose centre is not free: the first free
+/// candidate of `lattice` (in its order), else the one with the most
+/// clearance outside geometry (the centre among them), else none.
+fn place(
+    occluder: &Occluder,
+    dirs: &[Direction],
+    centre: Vec3,
+    lattice: &[Vec3],
+    clearance: f32,
+) -> Vec3 {
+    let mut points = [Vec3::ZERO; LANES];
+    for batch in lattice.chunks(LANES) {
+        for (p, o) in points.iter_mut().zip(batch) {
+            *p = centre + *o;
+        }
+        let looks = look(occluder, dirs, &points[..batch.len()], clearance);
+        if let Some(i) = looks.iter().position(|l| l.is_free(clearance)) {
+            return batch[i];
+        }
+    }
+    // None free: the most clearance outside geometry, all rays cast.
+    let mut best: Option<(f32, Vec3)> = None;
+    let all: Vec<Vec3> = std::iter::once(Vec3::ZERO)
+        .chain(lattice.iter().copied())
+        .collect();
+    for batch in all.chunks(LANES) {
+        for (p, o) in points.iter_mut().zip(batch) {
+            *p = centre + *o;
+        }
+        let looks = look(occluder, dirs, &points[..batch.len()], 0.0);
+        for (l, o) in looks.iter().zip(batch) {
+            if !l.inside && best.is_none_or(|(c, _)| l.clearance > c) {
+                best = Some((l.clearance, *o));
             }
         }
     }
-    Look {
-        inside: false,
-        clearance: nearest,
+    best.map_or(Vec3::ZERO, |(_, o)| o)
+}
+
+/// The rays from each of `points` (at most [`LANES`], cast together as
+/// packets along each direction): whether it is inside geometry (more than
+/// [`INSIDE_BACKFACES`] of them on back faces) and its clearance (the
+/// nearest hit). A point's answer is settled, and its rays may stop, once
+/// a hit is nearer than `stop_within` (the clearance is then that hit's,
+/// and `inside` is false though the rest might have said otherwise) or
+/// its back faces are already too many; the packets stop when every
+/// point's answer is.
+fn look(occluder: &Occluder, dirs: &[Direction], points: &[Vec3], stop_within: f32) -> Vec<Look> {
+    let n = points.len();
+    let limit = INSIDE_BACKFACES * dirs.len() as f32;
+    let mut back = [0usize; LANES];
+    let mut nearest = [f32::INFINITY; LANES];
+    let mut inside = [false; LANES];
+    let mut settled = 0u32;
+    let all = ((1u64 << n) - 1) as u32;
+    for dir in dirs {
+        let packet = Packet::new(dir, points);
+        let found = occluder.bvh().closest_direct(dir, &packet);
+        for k in 0..n {
+            if settled >> k & 1 == 1 || found.mask >> k & 1 == 0 {
+                continue;
+            }
+            nearest[k] = nearest[k].min(found.t[k]);
+            if !occluder.is_front(found.triangle[k], dir.dir()) {
+                back[k] += 1;
+                if back[k] as f32 > limit {
+                    inside[k] = true;
+                    settled |= 1 << k;
+                    continue;
+                }
+            }
+            if nearest[k] < stop_within {
+                settled |= 1 << k;
+            }
+        }
+        if settled == all {
+            break;
+        }
     }
+    (0..n)
+        .map(|k| Look {
+            inside: inside[k],
+            clearance: nearest[k],
+        })
+        .collect()
 }
