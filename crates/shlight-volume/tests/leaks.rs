@@ -314,3 +314,53 @@ fn a_grid_that_straddles_a_floor_keeps_the_storey_below_dark() {
         assert!(trilinear > 0.05, "slab at {slab}: trilinear {trilinear}");
     }
 }
+
+/// What relocation and dilation alone buy under the engines' own lookups,
+/// which know no visibility: the dark room's floor next to the wall under
+/// Bevy's and three.js's lookups of a bake with and without relocation
+/// (both dilate invalid probes). They stay far above what the visibility
+/// lookup gives: a wall between two probes is invisible to trilinear
+/// interpolation wherever the probes are.
+#[test]
+fn the_engines_lookups_leak_with_or_without_relocation() {
+    let grid = ProbeGrid::new([8, 3, 4], Vec3::ZERO, Vec3::new(4.0, HEIGHT, DEPTH)).unwrap();
+    for wall in [2.0f32, 2.25] {
+        let scene = two_rooms(wall);
+        let mut row = Vec::new();
+        for relocate in [false, true] {
+            let options = VolumeOptions {
+                relocate,
+                ..options()
+            };
+            let volume = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+            let radiance = lit(&volume);
+            let v = view(&volume, &radiance);
+            let e = |lookup, p: Vec3| grey(irradiance_at(&v, lookup, 2, p, Vec3::Y));
+            let left = wall - HALF_WALL;
+            let mut floor = Vec::new();
+            let mut x = 0.25;
+            while x < left - 0.1 {
+                for z in [0.25, 0.75, 1.25, 1.75] {
+                    floor.push(e(Lookup::Shlight, Vec3::new(x, ABOVE, z)));
+                }
+                x += 0.25;
+            }
+            let mean = floor.iter().sum::<f64>() / floor.len() as f64;
+            for lookup in [Lookup::Bevy, Lookup::ThreeJs, Lookup::Shlight] {
+                let leak = DEPTHS
+                    .iter()
+                    .map(|&z| e(lookup, Vec3::new(wall + HALF_WALL + BESIDE, ABOVE, z)) / mean)
+                    .fold(0.0f64, f64::max);
+                row.push(format!(
+                    "{lookup} {}: {:.1}%",
+                    if relocate { "relocated" } else { "at centres" },
+                    100.0 * leak
+                ));
+                if lookup != Lookup::Shlight {
+                    assert!(leak > 0.05, "wall at {wall}, {lookup}: {leak}");
+                }
+            }
+        }
+        eprintln!("wall at x = {wall}: {}", row.join(", "));
+    }
+}
