@@ -47,6 +47,20 @@ impl SamplePoints {
     /// # Errors
     /// As [`SamplePoints::read`].
     pub fn from_json_str(text: &str, name: &str) -> Result<Self> {
+        // The common case read straight into arrays; anything it does not
+        // take is read again as a JSON value, for an error that names the
+        // problem.
+        #[derive(serde::Deserialize)]
+        struct Rows {
+            points: Vec<[f32; 3]>,
+            normals: Vec<[f32; 3]>,
+        }
+        if let Ok(rows) = serde_json::from_str::<Rows>(text)
+            && rows.points.len() <= MAX_POINTS
+            && rows.normals.len() <= MAX_POINTS
+        {
+            return Self::checked(rows.points, rows.normals, name);
+        }
         let bad = |m: String| FormatError::invalid(name, m);
         let v: Value = serde_json::from_str(text).map_err(|e| bad(format!("not JSON ({e})")))?;
         let list = |key: &str| -> Result<Vec<[f32; 3]>> {
@@ -177,6 +191,31 @@ impl Samples {
         Value::Object(o)
     }
 
+    /// [`Samples::to_json`] as text: indented, one `[r, g, b]` row a line.
+    #[must_use]
+    pub fn to_json_text(&self) -> String {
+        let mut head = self.to_json();
+        let object = head.as_object_mut().expect("an object");
+        object.remove(self.quantity);
+        let mut t = serde_json::to_string_pretty(&head).expect("JSON of numbers");
+        // Reopen the object for the values, one row a line.
+        t.truncate(t.trim_end().len() - 1);
+        let t = t.trim_end().to_string();
+        let mut out = String::with_capacity(t.len() + 64 * self.values.len());
+        out.push_str(&t);
+        out.push_str(&format!(",\n  \"{}\": [", self.quantity));
+        for (i, v) in self.values.iter().enumerate() {
+            out.push_str(if i == 0 { "\n    " } else { ",\n    " });
+            out.push_str(&serde_json::to_string(v).expect("finite numbers"));
+        }
+        out.push_str(if self.values.is_empty() {
+            "]\n}\n"
+        } else {
+            "\n  ]\n}\n"
+        });
+        out
+    }
+
     /// The CSV text: a header `r,g,b`, then one row per point.
     #[must_use]
     pub fn to_csv(&self) -> String {
@@ -207,9 +246,7 @@ impl Samples {
         let text = if is_csv(path) {
             self.to_csv()
         } else {
-            let mut t = serde_json::to_string_pretty(&self.to_json()).expect("JSON of numbers");
-            t.push('\n');
-            t
+            self.to_json_text()
         };
         shlight_io::write_atomically(path, |w| w.write_all(text.as_bytes()))?;
         Ok(())
@@ -224,6 +261,25 @@ fn is_csv(path: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_json_text_is_the_json_document() {
+        for values in [
+            vec![],
+            vec![[1.0, 0.25, 1e-7]],
+            vec![[0.5, 2.0, 3.0], [4.0, -0.0, 1e300]],
+        ] {
+            let s = Samples {
+                quantity: "irradiance",
+                values,
+                about: json!({"lookup": "shlight", "provenance": {"seed": 3}}),
+            };
+            let text = s.to_json_text();
+            let back: Value = serde_json::from_str(&text).unwrap();
+            assert_eq!(back, s.to_json(), "{text}");
+            assert!(text.ends_with("}\n"));
+        }
+    }
 
     #[test]
     fn points_read_as_json_and_csv_alike() {

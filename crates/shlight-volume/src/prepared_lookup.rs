@@ -3,11 +3,13 @@
 //! [`lookup_lmax`], the lmax each lookup reads a volume to.
 
 use glam::{DVec3, Vec3};
-use shlight_baked::{SHADED_MAX_LMAX, VolumeView};
+use shlight_baked::visibility::visibility_weights;
+use shlight_baked::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView};
+use shlight_core::sh::{ShBasis, ShCoeffs, ZonalKernel, sh_count};
 
 use crate::bevy_lookup::BevyLookup;
 use crate::threejs_lookup::{THREEJS_LMAX, ThreeJsLookup};
-use crate::{Lookup, VolumeError, irradiance_at, shaded_lmax};
+use crate::{Lookup, VolumeError, shaded_lmax};
 
 /// The lmax a lookup reads a volume to, and what the user should know
 /// about it.
@@ -91,9 +93,67 @@ pub struct PreparedLookup<'a> {
 
 #[derive(Clone, Debug)]
 enum Engine {
-    Probes,
+    /// The `shlight` and `trilinear` lookups: per probe its irradiance
+    /// coefficients `A_l L_lm` to the lookup's lmax, `[r, g, b]` rows.
+    Probes(Vec<DVec3>, ShBasis<f64>),
     Bevy(BevyLookup),
     ThreeJs(ThreeJsLookup),
+}
+
+impl PreparedLookup<'_> {
+    /// [`crate::irradiance_at`] of the `shlight` and `trilinear` lookups
+    /// from the probes' irradiance coefficients `e`: the same weights, the
+    /// weighted sum taken after the convolution (the same value, in
+    /// another order of sums).
+    fn probes_at(&self, e: &[DVec3], basis: &ShBasis<f64>, p: Vec3, n: Vec3) -> DVec3 {
+        let view = &self.view;
+        let weights: Vec<(usize, f64)> = match (self.lookup, &view.visibility) {
+            (Lookup::Shlight, Some(visibility)) => visibility_weights(
+                &view.grid,
+                view.valid,
+                &|k| view.position(k),
+                visibility,
+                p,
+                n.normalize(),
+            )
+            .into_iter()
+            .map(|(k, w)| (k, f64::from(w)))
+            .collect(),
+            _ => {
+                let corners: Vec<(usize, f32)> = view
+                    .grid
+                    .trilinear(p)
+                    .into_iter()
+                    .filter(|&(k, _)| view.valid[k])
+                    .collect();
+                let total: f64 = corners.iter().map(|&(_, w)| f64::from(w)).sum();
+                if total <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                corners
+                    .into_iter()
+                    .map(|(k, w)| (k, f64::from(w) / total))
+                    .collect()
+            }
+        };
+        if weights.is_empty() {
+            return DVec3::ZERO;
+        }
+        let lmax = view.lmax.min(self.lmax);
+        let nc = sh_count(lmax);
+        let mut y = [0.0f64; sh_count(MAX_LMAX)];
+        basis.eval(n.as_dvec3().normalize(), &mut y[..nc]);
+        let mut out = DVec3::ZERO;
+        for (k, w) in weights {
+            let probe = &e[k * nc..][..nc];
+            let mut sum = DVec3::ZERO;
+            for (c, yl) in probe.iter().zip(&y[..nc]) {
+                sum += *c * *yl;
+            }
+            out += w * sum;
+        }
+        out
+    }
 }
 
 impl<'a> PreparedLookup<'a> {
@@ -103,7 +163,26 @@ impl<'a> PreparedLookup<'a> {
         let engine = match lookup {
             Lookup::Bevy => Engine::Bevy(BevyLookup::new(view, lmax)),
             Lookup::ThreeJs => Engine::ThreeJs(ThreeJsLookup::new(view, lmax)),
-            _ => Engine::Probes,
+            _ => {
+                let nc = view.lmax.min(lmax);
+                let per = sh_count(view.lmax);
+                let kernel = ZonalKernel::clamped_cosine(nc);
+                let e = view
+                    .radiance
+                    .chunks_exact(3 * per)
+                    .flat_map(|probe| {
+                        let l = ShCoeffs::from_vec(
+                            probe[..3 * sh_count(nc)]
+                                .chunks_exact(3)
+                                .map(|c| Vec3::from_slice(c).as_dvec3())
+                                .collect(),
+                        )
+                        .expect("whole degrees");
+                        kernel.apply(&l).as_slice().to_vec()
+                    })
+                    .collect();
+                Engine::Probes(e, ShBasis::new(nc))
+            }
         };
         Self {
             view: *view,
@@ -120,7 +199,7 @@ impl<'a> PreparedLookup<'a> {
         match &self.engine {
             Engine::Bevy(b) => b.irradiance_at(p, n),
             Engine::ThreeJs(t) => t.irradiance_at(p, n),
-            Engine::Probes => irradiance_at(&self.view, self.lookup, self.lmax, p, n),
+            Engine::Probes(e, basis) => self.probes_at(e, basis, p, n),
         }
     }
 }

@@ -364,3 +364,41 @@ fn the_engines_lookups_leak_with_or_without_relocation() {
         eprintln!("wall at x = {wall}: {}", row.join(", "));
     }
 }
+
+/// `shlight sample`'s prepared lookup (the probes' irradiance coefficients
+/// made once) gives what `irradiance_at` gives, visibility and all, at
+/// random points and normals through the two rooms, at every lmax.
+#[test]
+fn the_prepared_lookup_is_irradiance_at() {
+    use rand::{Rng, SeedableRng};
+    use shlight_volume::PreparedLookup;
+    let grid = ProbeGrid::new([8, 3, 4], Vec3::ZERO, Vec3::new(4.0, HEIGHT, DEPTH)).unwrap();
+    let scene = two_rooms(2.25);
+    let volume = bake(Some(&scene), &grid, &options(), &|_, _, _| {}).unwrap();
+    let radiance = lit(&volume);
+    let v = view(&volume, &radiance);
+    let mut rng = rand::rngs::StdRng::seed_from_u64(5);
+    for lookup in [Lookup::Shlight, Lookup::Trilinear] {
+        for lmax in 0..=2 {
+            let prepared = PreparedLookup::new(&v, lookup, lmax);
+            for _ in 0..300 {
+                let p = Vec3::new(
+                    rng.random_range(-0.2..4.2),
+                    rng.random_range(0.0..HEIGHT),
+                    rng.random_range(0.0..DEPTH),
+                );
+                let n = Vec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                let want = irradiance_at(&v, lookup, lmax, p, n);
+                let got = prepared.irradiance_at(p, n);
+                assert!(
+                    (got - want).abs().max_element() <= 1e-12 * want.abs().max_element().max(1.0),
+                    "{lookup} lmax {lmax} at {p} {n}: {got} vs {want}"
+                );
+            }
+        }
+    }
+}
