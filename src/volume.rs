@@ -3,9 +3,10 @@
 //!
 //! Loads the scene (shlight-mesh, with albedo and emission from its
 //! materials), the environment (an equirect map projected to the bake's
-//! lmax, or a radiance coefficient file), bakes the probes (shlight-volume,
-//! in parallel with progress bars) and writes a `.shvol` file or its JSON
-//! form (shlight-format; docs/shvol.md).
+//! lmax, or a radiance coefficient file), bakes the probes (shlight-volume's
+//! `bake_file`, which the Python package calls too; in parallel with progress
+//! bars) and writes a `.shvol` file or its JSON form (shlight-format;
+//! docs/shvol.md).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -16,7 +17,9 @@ use glam::DVec3;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_pipeline::Environment;
-use shlight_volume::{FileMeta, Stage, VolumeOptions, bake};
+use shlight_volume::{
+    BakedVolume, Stage, VolumeOptions, VolumeRequest, bake_file, check_environment,
+};
 
 use crate::progress::{StageBars, Ui};
 
@@ -127,22 +130,6 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     for out in std::iter::once(&args.output).chain(&args.preview) {
         crate::output_path::refuse_overwriting(out, &[args.scene.clone(), args.env.clone()])?;
     }
-    let options = VolumeOptions {
-        lmax: args.lmax,
-        samples: args.samples,
-        bounces: args.bounces,
-        surface_samples: args.surface_samples,
-        max_edge: None,
-        albedo: args.albedo,
-        invalid_backfaces: args.invalid_backfaces,
-        seed: args.seed,
-        relocate: !args.no_relocate,
-        visibility_size: if args.no_visibility {
-            0
-        } else {
-            shlight_baked::visibility::VISIBILITY_SIZE
-        },
-    };
     if args.lmax > shlight_baked::MAX_LMAX {
         bail!(
             "--lmax {} is beyond {}, the most a volume holds",
@@ -150,6 +137,27 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
             shlight_baked::MAX_LMAX
         );
     }
+    let request = VolumeRequest {
+        resolution,
+        bounds,
+        options: VolumeOptions {
+            lmax: args.lmax,
+            samples: args.samples,
+            bounces: args.bounces,
+            surface_samples: args.surface_samples,
+            max_edge: None,
+            albedo: args.albedo,
+            invalid_backfaces: args.invalid_backfaces,
+            seed: args.seed,
+            relocate: !args.no_relocate,
+            visibility_size: if args.no_visibility {
+                0
+            } else {
+                shlight_baked::visibility::VISIBILITY_SIZE
+            },
+        },
+        relightable: !args.static_only,
+    };
     // The light first: a bad file fails before a long bake.
     let env = environment(&args.env, args.lmax, ui)?;
     let scene = shlight_mesh::load(&args.scene)?;
@@ -160,10 +168,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
             scene.report.degenerate_triangles
         ));
     }
-    let grid = match bounds {
-        Some((min, max)) => ProbeGrid::new(resolution, min, max)?,
-        None => ProbeGrid::around(resolution, scene.bounds())?,
-    };
+    let grid = request.grid(&scene)?;
     ui.note(format!(
         "{name}: {} triangles, {}; grid {}x{}x{} over {}:{}",
         scene.triangle_count(),
@@ -187,12 +192,18 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         Stage::Probes => "probes".to_string(),
     });
     let start = Instant::now();
-    let volume = bake(Some(&scene), &grid, &options, &|stage, done, total| {
-        bars.update(stage, done, total);
-    })?;
+    let BakedVolume { volume, file } = bake_file(
+        &scene,
+        &args.scene,
+        &env,
+        &args.env,
+        &request,
+        &|stage, done, total| {
+            bars.update(stage, done, total);
+        },
+    )?;
     bars.finish();
     let seconds = start.elapsed().as_secs_f64();
-    let radiance = volume.relight(&env);
     let invalid = volume.invalid_count();
     let moved = volume.offsets.as_ref().map_or(0.0f32, |o| {
         let cell = grid.cell();
@@ -209,17 +220,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         volume.rays,
         volume.rays as f64 / seconds.max(1e-9) / 1e6
     ));
-    let meta = FileMeta {
-        frame: "y-up".into(),
-        scene: file_name(&args.scene),
-        environment: file_name(&args.env),
-        generator: format!("shlight {}", env!("CARGO_PKG_VERSION")),
-    };
     if let Some(path) = &args.preview {
         let (w, h, pixels) = shlight_volume::probe_sheet(
             &grid,
-            &volume.valid,
-            &radiance,
+            &file.valid,
+            &file.radiance,
             args.lmax,
             args.preview_ball,
         );
@@ -232,12 +237,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         };
         shlight_io::write_image(path, &image, &options)?;
     }
-    let file = volume.to_shvol(radiance, !args.static_only, &meta);
     match format {
         VolumeFormat::Shvol => file.write(&args.output)?,
         VolumeFormat::Json => file.write_json(&args.output)?,
         VolumeFormat::Bevy => {
-            let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &meta.generator);
+            let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &file.generator);
             shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
             let ([tx, ty, tz], [sx, sy, sz]) =
                 shlight_format::bevy_volume::light_probe_transform(file.bounds);
@@ -255,19 +259,6 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
 fn environment(path: &Path, lmax: usize, ui: &Ui) -> Result<ShCoeffs<DVec3>> {
     let env = Environment::load(path, Frame::YUp, lmax)?;
     env.warnings.iter().for_each(|w| ui.warn(w));
-    if env.radiance.lmax() < lmax {
-        bail!(
-            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
-            path.display(),
-            env.radiance.lmax()
-        );
-    }
+    check_environment(&env.radiance, path, lmax)?;
     Ok(env.radiance_in(Frame::YUp))
-}
-
-fn file_name(path: &Path) -> String {
-    path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    )
 }

@@ -31,12 +31,14 @@ from ._shlight import (
     SH,
     ShlightError,
     Transfer,
+    Volume,
     load,
     read_image,
     render,
     write_image,
 )
 from ._shlight import bake_transfer as _bake_transfer
+from ._shlight import bake_volume as _bake_volume
 from ._shlight import compare as _compare
 from ._shlight import irradiance as _irradiance
 from ._shlight import project as _project
@@ -47,7 +49,9 @@ __all__ = [
     "SH",
     "ShlightError",
     "Transfer",
+    "Volume",
     "bake_transfer",
+    "bake_volume",
     "compare",
     "irradiance",
     "load",
@@ -313,4 +317,110 @@ def bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024, bounces=None, 
     """
     return _bake_transfer(
         str(mesh), mode, lmax, samples=samples, bounces=bounces, albedo=albedo, seed=seed
+    )
+
+
+def bake_volume(
+    scene,
+    env,
+    resolution=(8, 4, 8),
+    bounds=None,
+    lmax=2,
+    samples=1024,
+    bounces=2,
+    surface_samples=512,
+    albedo=0.8,
+    invalid_backfaces=0.5,
+    seed=0,
+    relocate=True,
+    visibility=True,
+    static=False,
+    output=None,
+):
+    """Bake an irradiance volume through a scene (``shlight volume SCENE --env ENV -o OUT``).
+
+    SH probes on a grid (Greger et al. 1998): each probe's incident radiance
+    through the scene's shadows and interreflections, as a transfer matrix
+    per channel plus the emitters' light, so the volume can be relit under
+    any environment (``Volume.relight``). Probes inside geometry, or too
+    near a surface, are moved within their cell (``relocate``); probes
+    still inside geometry are invalid. The per-probe distance maps
+    (``visibility``) let the ``shlight`` lookup keep light from leaking
+    through thin walls. The defaults are the CLI's; the same options give
+    the CLI's file byte for byte (``shlight_volume::bake_file``, which the
+    CLI calls too). The bake runs on every core with the GIL released.
+
+    Parameters
+    ----------
+    scene : str | os.PathLike
+        .obj (+ .mtl: Kd albedo, Ke emission), .ply, .off, .gltf or .glb
+        (baseColorFactor x COLOR_0 albedo, emissive materials).
+    env : str | os.PathLike
+        The distant light: an equirect map (projected to ``lmax``, its top
+        row facing +Y) or a radiance coefficient file (``SH.save``,
+        ``shlight project -o FILE.json``) holding at least ``lmax``.
+    resolution : (int, int, int) | str
+        Probes along x, y and z, or ``"NXxNYxNZ"``.
+    bounds : None | ((float, float, float), (float, float, float)) | str
+        The grid's box ``((x0, y0, z0), (x1, y1, z1))`` or
+        ``"X0,Y0,Z0:X1,Y1,Z1"``; None: the scene's bounding box padded by
+        2% of its diagonal.
+    lmax : int
+        Highest SH degree of the probes, at most 8.
+    samples : int
+        Rays per probe (a stratified set of about this many, shared by all
+        probes).
+    bounces : int
+        Interreflection bounces of the surfaces' light.
+    surface_samples : int
+        Directions per surface vertex for the surfaces' own light.
+    albedo : float | (float, float, float)
+        Diffuse albedo of surfaces without colours, linear, in [0, 1].
+    invalid_backfaces : float
+        A probe is invalid when more than this fraction of its rays hit
+        back faces.
+    seed : int
+        Seed of the ray directions (the same seed gives the same file at
+        any thread count).
+    relocate : bool
+        Move probes inside geometry, or nearer a surface than a fifth of a
+        cell, to free space within their cell (``--no-relocate`` when
+        False).
+    visibility : bool
+        Store the probes' distance maps (``--no-visibility`` when False:
+        the file is shaded by trilinear interpolation, which leaks).
+    static : bool
+        Keep only the probes' SH under ``env`` (``--static``: smaller, but
+        the volume cannot be relit).
+    output : None | str | os.PathLike
+        Also write the file: ``.shvol``, its JSON form for a ``.json``
+        name, Bevy's KTX2 texture for ``.ktx2`` (as ``Volume.write``).
+
+    Returns
+    -------
+    Volume
+        The baked volume, its probes lit by ``env``.
+
+    Raises
+    ------
+    ShlightError
+        A missing or unreadable scene or map, a coefficient file below
+        ``lmax``, a bad option; the CLI's messages.
+    """
+    return _bake_volume(
+        str(scene),
+        str(env),
+        resolution,
+        bounds,
+        lmax,
+        samples,
+        bounces,
+        surface_samples,
+        albedo,
+        invalid_backfaces,
+        seed,
+        relocate,
+        visibility,
+        static_only=static,
+        output=None if output is None else str(output),
     )

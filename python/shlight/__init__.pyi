@@ -92,6 +92,79 @@ class Transfer:
     def save(self, path: PathLike) -> None:
         """Writes the .shprt file (as the CLI's shlight prt -o FILE.shprt)."""
 
+Lookup = Literal["shlight", "trilinear", "bevy", "threejs"]
+
+class Volume:
+    """An irradiance volume (a .shvol file): SH probes on a grid through a
+    scene, with validity, positions, distance maps and, when relightable,
+    transfer matrices."""
+
+    @staticmethod
+    def load(path: PathLike) -> "Volume":
+        """Reads a .shvol file (versions 1 and 2)."""
+    @property
+    def lmax(self) -> int:
+        """Highest SH degree of every probe."""
+    @property
+    def resolution(self) -> tuple[int, int, int]:
+        """Probes along x, y and z (x fastest in per-probe arrays)."""
+    @property
+    def bounds(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """The grid's box ((x0, y0, z0), (x1, y1, z1))."""
+    @property
+    def probe_count(self) -> int:
+        """nx * ny * nz."""
+    @property
+    def valid(self) -> npt.NDArray[np.bool_]:
+        """(N,) bool: whether a lookup may use each probe."""
+    @property
+    def positions(self) -> npt.NDArray[np.float32]:
+        """(N, 3) float32: each probe's cell centre plus its offset."""
+    @property
+    def offsets(self) -> Optional[npt.NDArray[np.float32]]:
+        """(N, 3) float32 moves out of geometry; None without relocation."""
+    @property
+    def relightable(self) -> bool:
+        """Whether the file keeps transfer matrices (not static)."""
+    @property
+    def has_visibility(self) -> bool:
+        """Whether the file holds the probes' distance maps."""
+    @property
+    def radiance(self) -> npt.NDArray[np.float32]:
+        """(N, (lmax+1)**2, 3) float32 incident radiance SH per probe."""
+    @property
+    def frame(self) -> str:
+        """The probes' frame ("y-up")."""
+    @property
+    def scene(self) -> str:
+        """The scene's file name."""
+    @property
+    def environment(self) -> str:
+        """The environment's file name."""
+    @property
+    def samples(self) -> int:
+        """Rays per probe."""
+    @property
+    def bounces(self) -> int:
+        """Interreflection bounces."""
+    @property
+    def seed(self) -> int:
+        """Seed of the ray directions."""
+    def relight(self, env: Union[PathLike, SH], *, up: Literal["y", "z"] = "y") -> "Volume":
+        """A new Volume relit under a map, a radiance coefficient file or an
+        SH of radiance (shlight sample --env); static volumes refuse."""
+    def irradiance(
+        self,
+        points: npt.ArrayLike,
+        normals: npt.ArrayLike,
+        lookup: Lookup = "shlight",
+        lmax: Optional[int] = None,
+    ) -> npt.NDArray[np.float64]:
+        """(N, 3) points facing (N, 3) normals -> (N, 3) float64 irradiance
+        E(p, n) (shlight sample --lookup)."""
+    def write(self, path: PathLike) -> None:
+        """Writes .shvol, .json or .ktx2 (Bevy) as shlight volume -o does."""
+
 Source = Union[PathLike, Image, Sequence[Image]]
 Encoding = Literal[
     "sh", "dominant+sh", "sloan+sh", "zh3", "zh3-hallucinated", "l1-nonlinear", "ambient-cube"
@@ -188,3 +261,23 @@ def bake_transfer(
     seed: int = 0,
 ) -> Transfer:
     """PRT of a mesh as shlight prt bakes it."""
+def bake_volume(
+    scene: PathLike,
+    env: PathLike,
+    resolution: Union[tuple[int, int, int], str] = (8, 4, 8),
+    bounds: Union[
+        None, tuple[tuple[float, float, float], tuple[float, float, float]], str
+    ] = None,
+    lmax: int = 2,
+    samples: int = 1024,
+    bounces: int = 2,
+    surface_samples: int = 512,
+    albedo: Union[float, tuple[float, float, float]] = 0.8,
+    invalid_backfaces: float = 0.5,
+    seed: int = 0,
+    relocate: bool = True,
+    visibility: bool = True,
+    static: bool = False,
+    output: Optional[PathLike] = None,
+) -> Volume:
+    """An irradiance volume as shlight volume bakes it."""

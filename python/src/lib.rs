@@ -5,7 +5,7 @@
 //! exceptions, warnings) and shlight's libraries. Every step of a
 //! projection, render, export, measurement or bake is a library call
 //! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`,
-//! `shlight_accuracy`, `shlight_prt`);
+//! `shlight_accuracy`, `shlight_prt`, `shlight_volume`);
 //! nothing here computes lighting. Work runs with the GIL released, and no
 //! Rust panic reaches Python ([`guard::guard`] turns one into a
 //! `shlight.ShlightError`).
@@ -19,6 +19,7 @@ mod project;
 mod prt;
 mod sh;
 mod source;
+mod volume;
 
 use pyo3::prelude::*;
 
@@ -29,6 +30,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ShlightError", py.get_type::<errors::ShlightError>())?;
     m.add_class::<sh::Sh>()?;
     m.add_class::<prt::Transfer>()?;
+    m.add_class::<volume::Volume>()?;
     m.add_function(wrap_pyfunction!(project::project, m)?)?;
     m.add_function(wrap_pyfunction!(project::project_many, m)?)?;
     m.add_function(wrap_pyfunction!(sh::load, m)?)?;
@@ -38,6 +40,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
     m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::bake_volume, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }

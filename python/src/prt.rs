@@ -105,8 +105,9 @@ fn mode_of(mode: &str, bounces: Option<u32>) -> PyResult<Mode> {
     }
 }
 
-/// An albedo from Python: one value or (R, G, B).
-fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
+/// An albedo from Python: one value or (R, G, B) (`bake_transfer`'s and
+/// `bake_volume`'s).
+pub fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
     let rgb = if let Ok(v) = albedo.extract::<f32>() {
         [v; 3]
     } else {

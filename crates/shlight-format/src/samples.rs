@@ -86,7 +86,7 @@ impl SamplePoints {
                 })
                 .collect()
         };
-        Self::checked(list("points")?, list("normals")?, name)
+        Self::new(list("points")?, list("normals")?, name)
     }
 
     /// Parses the CSV form; `name` names the text in errors.
@@ -126,10 +126,17 @@ impl SamplePoints {
                 }
             }
         }
-        Self::checked(points, normals, name)
+        Self::new(points, normals, name)
     }
 
-    fn checked(points: Vec<[f32; 3]>, normals: Vec<[f32; 3]>, name: &str) -> Result<Self> {
+    /// Points and normals given as values (the Python package's arrays),
+    /// checked as a file's are and the normals normalised; `name` names
+    /// them in errors.
+    ///
+    /// # Errors
+    /// Counts that differ, a point that is not finite, or a normal that is
+    /// not a direction (zero or not finite).
+    pub fn new(points: Vec<[f32; 3]>, normals: Vec<[f32; 3]>, name: &str) -> Result<Self> {
         let bad = |m: String| FormatError::invalid(name, m);
         if points.len() != normals.len() {
             return Err(bad(format!(

@@ -10,6 +10,9 @@
 //!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
 //!   through the scene's shadows and interreflections
 //!   ([`bake`](mod@bake) states the estimator).
+//! - [`bake_file()`]: a bake as a front end asks for it (`shlight volume`,
+//!   the Python package's `bake_volume`): a [`VolumeRequest`] over a scene
+//!   and an environment to the `.shvol` file.
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes;
@@ -48,6 +51,7 @@
 //! shlight-format.
 
 pub mod bake;
+pub mod bake_file;
 pub mod bevy_lookup;
 mod error;
 mod lookup;
@@ -57,6 +61,7 @@ mod probe_volume;
 pub mod threejs_lookup;
 
 pub use bake::{Stage, VolumeOptions, bake};
+pub use bake_file::{BakedVolume, VolumeRequest, bake_file, check_environment};
 pub use bevy_lookup::BevyLookup;
 pub use error::VolumeError;
 pub use lookup::{Lookup, irradiance_at, shaded_lmax};

@@ -1,0 +1,219 @@
+//! [`bake_file`]: a volume bake as a front end asks for it (`shlight
+//! volume`, the Python package's `bake_volume`), from its options to the
+//! `.shvol` file, so every front end bakes, lights and records a scene the
+//! same way.
+//!
+//! The front end reads the inputs (the scene with [`shlight_mesh::load`],
+//! the light with shlight-pipeline's `Environment`, turned to the y-up
+//! frame) and shows their warnings; [`check_environment`] refuses a light
+//! too short for the bake before the scene is read; [`bake_file`] does the
+//! rest: the grid ([`VolumeRequest::grid`]), the bake, the probes lit by the
+//! environment, and the file with its provenance.
+
+use std::path::Path;
+
+use glam::{DVec3, Vec3};
+use shlight_baked::ProbeGrid;
+use shlight_core::sh::ShCoeffs;
+use shlight_format::ShvolFile;
+use shlight_mesh::Mesh;
+
+use crate::{FileMeta, ProbeVolume, Stage, VolumeError, VolumeOptions, bake};
+
+/// The frame a volume is baked in (its scene's): the environment is turned
+/// to it before [`bake_file`].
+pub const BAKE_FRAME: &str = "y-up";
+
+/// What a front end asks of a volume bake: `shlight volume`'s options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeRequest {
+    /// Probes along x, y and z.
+    pub resolution: [usize; 3],
+    /// The grid's box `(min, max)`; `None`: the scene's bounding box,
+    /// padded ([`ProbeGrid::around`]).
+    pub bounds: Option<(Vec3, Vec3)>,
+    /// The bake's options (lmax, rays, bounces, albedo, relocation,
+    /// distance maps...).
+    pub options: VolumeOptions,
+    /// Keep the transfer matrices and emitted light in the file, so it
+    /// can be relit (`false`: `--static`).
+    pub relightable: bool,
+}
+
+impl VolumeRequest {
+    /// The probe grid over `scene`: [`VolumeRequest::bounds`], or the
+    /// scene's padded bounding box.
+    ///
+    /// # Errors
+    /// A zero count, too many probes, or bounds that are not a box.
+    pub fn grid(&self, scene: &Mesh) -> Result<ProbeGrid, VolumeError> {
+        Ok(match self.bounds {
+            Some((min, max)) => ProbeGrid::new(self.resolution, min, max)?,
+            None => ProbeGrid::around(self.resolution, scene.bounds())?,
+        })
+    }
+}
+
+/// A baked volume and its file.
+#[derive(Clone, Debug)]
+pub struct BakedVolume {
+    /// The bake (probe counts, relocation, rays cast).
+    pub volume: ProbeVolume,
+    /// The `.shvol` file: the probes lit by the environment, and its
+    /// provenance.
+    pub file: ShvolFile,
+}
+
+/// Refuses `env` (radiance coefficients read from `env_path`) when it stops
+/// below the bake's `lmax`: a coefficient file projected to a lower lmax.
+///
+/// # Errors
+/// `env` holds fewer degrees than `lmax`; the message names the file and
+/// how to project it again.
+pub fn check_environment(
+    env: &ShCoeffs<DVec3>,
+    env_path: &Path,
+    lmax: usize,
+) -> Result<(), VolumeError> {
+    if env.lmax() < lmax {
+        return Err(VolumeError::Options(format!(
+            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
+            env_path.display(),
+            env.lmax()
+        )));
+    }
+    Ok(())
+}
+
+/// The name a `.shvol` file records for an input read from `path`: its
+/// file name (the path as given when it has none).
+#[must_use]
+pub fn input_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// What writes the files: `shlight` and its version.
+#[must_use]
+pub fn generator() -> String {
+    format!("shlight {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// Bakes the volume `request` asks for through `scene` (read from
+/// `scene_path`) and makes its `.shvol` file: the grid
+/// ([`VolumeRequest::grid`]), [`bake()`] (`progress` as there), the probes
+/// relit under `env` (radiance coefficients in the y-up frame, read from
+/// `env_path`; [`ProbeVolume::relight`]), and [`ProbeVolume::to_shvol`]
+/// recording the frame, the inputs' [`input_name`]s and the
+/// [`generator`].
+///
+/// # Errors
+/// An environment too short for the bake ([`check_environment`]), a bad
+/// grid, or options [`bake()`] refuses.
+pub fn bake_file(
+    scene: &Mesh,
+    scene_path: &Path,
+    env: &ShCoeffs<DVec3>,
+    env_path: &Path,
+    request: &VolumeRequest,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Result<BakedVolume, VolumeError> {
+    check_environment(env, env_path, request.options.lmax)?;
+    let grid = request.grid(scene)?;
+    let volume = bake(Some(scene), &grid, &request.options, progress)?;
+    let radiance = volume.relight(env);
+    let meta = FileMeta {
+        frame: BAKE_FRAME.into(),
+        scene: input_name(scene_path),
+        environment: input_name(env_path),
+        generator: generator(),
+    };
+    let file = volume.to_shvol(radiance, request.relightable, &meta);
+    Ok(BakedVolume { volume, file })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shlight_core::sh::closed_form;
+    use shlight_mesh::generate;
+
+    /// The file holds the bake of the request's options over its grid,
+    /// lit by the environment, with the inputs' names; a static request
+    /// keeps no transfer; a short environment is refused.
+    #[test]
+    fn the_file_is_the_bake_of_the_request() {
+        let scene = generate::uv_sphere(0.3, 8, 4);
+        let options = VolumeOptions {
+            samples: 64,
+            surface_samples: 16,
+            bounces: 1,
+            ..VolumeOptions::default()
+        };
+        let request = VolumeRequest {
+            resolution: [2, 1, 2],
+            bounds: Some((Vec3::splat(-1.0), Vec3::ONE)),
+            options: options.clone(),
+            relightable: true,
+        };
+        let env = closed_form::constant(2, DVec3::new(1.0, 0.5, 0.25));
+        let baked = bake_file(
+            &scene,
+            Path::new("dir/ball.obj"),
+            &env,
+            Path::new("maps/sky.exr"),
+            &request,
+            &|_, _, _| {},
+        )
+        .unwrap();
+        let grid = ProbeGrid::new([2, 1, 2], Vec3::splat(-1.0), Vec3::ONE).unwrap();
+        let direct = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+        assert_eq!(baked.volume, direct);
+        assert_eq!(baked.file.radiance, direct.relight(&env));
+        assert_eq!(baked.file.transfer.as_ref(), Some(&direct.transfer));
+        assert_eq!(
+            (baked.file.scene.as_str(), baked.file.environment.as_str()),
+            ("ball.obj", "sky.exr")
+        );
+        assert_eq!((baked.file.frame.as_str(), baked.file.seed), ("y-up", 0));
+        assert_eq!(baked.file.generator, generator());
+
+        let fixed = VolumeRequest {
+            bounds: None,
+            relightable: false,
+            ..request.clone()
+        };
+        assert_eq!(
+            fixed.grid(&scene).unwrap(),
+            ProbeGrid::around([2, 1, 2], scene.bounds()).unwrap()
+        );
+        let baked = bake_file(
+            &scene,
+            Path::new("ball.obj"),
+            &env,
+            Path::new("sky.exr"),
+            &fixed,
+            &|_, _, _| {},
+        )
+        .unwrap();
+        assert!(baked.file.transfer.is_none() && !baked.file.relightable());
+
+        let short = closed_form::constant(1, DVec3::ONE);
+        let e = bake_file(
+            &scene,
+            Path::new("ball.obj"),
+            &short,
+            Path::new("l1.json"),
+            &request,
+            &|_, _, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "l1.json: holds coefficients to lmax 1, the bake needs 2 (project with --lmax 2)"
+        );
+        assert_eq!(input_name(Path::new("..")), "..");
+    }
+}
