@@ -103,6 +103,8 @@ fn the_file_holds_the_library_bake_and_the_json_agrees() {
     let volume = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
     assert_eq!(file.radiance, volume.relight(&sky()));
     assert_eq!(file.transfer.as_ref(), Some(&volume.transfer));
+    assert_eq!(file.offsets, volume.offsets);
+    assert_eq!(file.visibility, volume.visibility);
     // Light reaches every probe: the ceiling lamp and the sky through the
     // open front.
     assert!(file.radiance.chunks_exact(27).all(|p| p[0] > 0.1));
@@ -115,7 +117,12 @@ fn the_file_holds_the_library_bake_and_the_json_agrees() {
     assert_eq!(j["resolution"], serde_json::json!([3, 2, 3]));
     let positions = j["positions"].as_array().unwrap();
     assert_eq!(positions.len(), 18);
-    for (i, p) in grid.centres().iter().enumerate() {
+    // Where the probes are: their cells' centres, moved where the bake
+    // moved them out of geometry.
+    let offsets = volume.offsets.as_ref().unwrap();
+    assert!(volume.relocated_count() > 0, "the box's probes near its walls move");
+    for (i, c) in grid.centres().iter().enumerate() {
+        let p = &(*c + Vec3::from_slice(&offsets[3 * i..3 * i + 3]));
         let got = Vec3::new(
             positions[i][0].as_f64().unwrap() as f32,
             positions[i][1].as_f64().unwrap() as f32,
