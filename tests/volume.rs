@@ -120,7 +120,10 @@ fn the_file_holds_the_library_bake_and_the_json_agrees() {
     // Where the probes are: their cells' centres, moved where the bake
     // moved them out of geometry.
     let offsets = volume.offsets.as_ref().unwrap();
-    assert!(volume.relocated_count() > 0, "the box's probes near its walls move");
+    assert!(
+        volume.relocated_count() > 0,
+        "the box's probes near its walls move"
+    );
     for (i, c) in grid.centres().iter().enumerate() {
         let p = &(*c + Vec3::from_slice(&offsets[3 * i..3 * i + 3]));
         let got = Vec3::new(

@@ -59,7 +59,7 @@ impl SamplePoints {
             && rows.points.len() <= MAX_POINTS
             && rows.normals.len() <= MAX_POINTS
         {
-            return Self::checked(rows.points, rows.normals, name);
+            return Self::new(rows.points, rows.normals, name);
         }
         let bad = |m: String| FormatError::invalid(name, m);
         let v: Value = serde_json::from_str(text).map_err(|e| bad(format!("not JSON ({e})")))?;
