@@ -1,6 +1,8 @@
 // Irradiance-volume shading (shaders/README.md, docs/shvol.md "Shading"):
 // meshes lit per fragment by trilinear interpolation of an irradiance
-// volume's valid probes (Greger et al. 1998), any lmax up to 4.
+// volume's valid probes (Greger et al. 1998), any lmax up to 4, each probe
+// also weighted by its visibility of the point where the volume holds
+// distance maps (volume_visibility.wgsl, a module of its own).
 //
 // At a point p with unit normal n, over the eight probes k around p with
 // trilinear weights w_k and validity v_k (0 or 1):

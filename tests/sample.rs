@@ -385,8 +385,8 @@ fn sampling_equals_the_gpus_volume_pass() {
     // reads first (a unit vector normalised again may move by a rounding),
     // so the pass gets that. Where every probe is all but shut out (points
     // inside the blocks) the weights are ratios of crushed Chebyshev
-    // factors, and a rounding of the normal there moves the light by some
-    // 1e-5 of the largest.
+    // factors, and that rounding of the normal moved the light by 8e-6 of
+    // the largest at one point (3e-7 with the same normal).
     let unit: Vec<(Vec3, Vec3)> = queries.iter().map(|&(p, n)| (p, n.normalize())).collect();
     let gpu = renderer.irradiance_at(&ctx, &shading, &unit).unwrap();
     let scale = got.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
