@@ -1,6 +1,8 @@
 // Irradiance-volume shading (shaders/README.md, docs/shvol.md "Shading"):
 // meshes lit per fragment by trilinear interpolation of an irradiance
-// volume's valid probes (Greger et al. 1998), any lmax up to 4.
+// volume's valid probes (Greger et al. 1998), any lmax up to 4, each probe
+// also weighted by its visibility of the point where the volume holds
+// distance maps (volume_visibility.wgsl, a module of its own).
 //
 // At a point p with unit normal n, over the eight probes k around p with
 // trilinear weights w_k and validity v_k (0 or 1):
@@ -29,14 +31,20 @@
 //   E(p, n) = sum_i y_i (sum_k w_k v_k L_k,i) / sum_k w_k v_k
 //
 // with y_i = A_l w_l Y_i(n): the coefficients are interpolated first and
-// dotted with the basis once. Two ways to interpolate, one per pipeline:
+// dotted with the basis once. Three ways to weigh, one module each:
 //
 // - filtered (the adapter filters Rgba32Float): one trilinear sample per
 //   texel, the point clamped to the grid's first and last probe centres on
 //   every axis (clamp-to-edge within the block; probes sit at cell centres,
 //   which are texel centres);
 // - loads: eight textureLoads per texel, weighted in the shader exactly as
-//   shlight-volume's Grid::trilinear weighs them.
+//   shlight-baked's ProbeGrid::trilinear weighs them;
+// - visibility (a volume with probe distance maps): the same eight loads,
+//   each probe's trilinear weight multiplied by its visibility of the
+//   point (volume_visibility.wgsl, appended to this file in that module
+//   only), the lookup of shlight-baked's visibility.rs. The weights then
+//   differ per probe, so the sampler's filter cannot apply them; a volume
+//   without maps keeps one of the two above, with no trace of this one.
 //
 // ShBasis / sh_basis, volume_sum and probe_sum (the texel dot products) are
 // written out per lmax and variant and appended
@@ -66,6 +74,13 @@ struct Volume {
     // Per texel j < T, where block j starts: x, y its first probe layer in
     // y and z as normalised texture coordinates; z, w the same in texels.
     blocks: array<vec4<f32>, VOLUME_MAX_TEXELS>,
+    // The visibility variant's constants (volume_visibility.wgsl; 0 in the
+    // others): x the normal bias b, y the least Chebyshev factor, z the
+    // weight below which weights are crushed, w its square (each the f32
+    // value shlight-baked's visibility.rs computes with).
+    visibility: vec4<f32>,
+    // x texels per side of a probe's distance map, y texels per map.
+    map: vec4<u32>,
 }
 
 @group(0) @binding(2) var probe_texels: texture_3d<f32>;
@@ -166,10 +181,12 @@ fn probe_load(a: vec3<u32>, j: u32) -> vec4<f32> {
 }
 
 // sum_k w_k v_k E_k(n) / sum_k w_k v_k in rgb, sum_k w_k v_k in a (rgb 0
-// when the sum is 0). volume_sum(p, y) returns
-// (sum_i y_i sum_k w_k v_k L_k,i, sum_k w_k v_k).
+// when the sum is 0). volume_sum(p, n, y) returns
+// (sum_i y_i sum_k w_k v_k L_k,i, sum_k w_k v_k); w_k is the trilinear
+// weight, times the probe's visibility of p in the visibility variant
+// (volume_visibility.wgsl), which alone reads n.
 fn volume_irradiance(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    let s = volume_sum(p, sh_basis(n, frame.irradiance_band));
+    let s = volume_sum(p, n, sh_basis(n, frame.irradiance_band));
     if s.w > 0.0 {
         return vec4<f32>(s.xyz / s.w, s.w);
     }

@@ -7,7 +7,12 @@
 //! (`VolumeFetch::Filtered` where the adapter filters `Rgba32Float`,
 //! `VolumeFetch::Loads` always); an invalid probe takes no weight; a volume
 //! of higher lmax is shaded to lmax 4; probe spheres (their own pipeline)
-//! show their own probe beside an interpolated object in one frame.
+//! show their own probe beside an interpolated object in one frame. A
+//! volume with distance maps (`shaders/volume_visibility.wgsl`) equals
+//! shlight-volume's `irradiance_at` with `Lookup::Shlight` beside a thin
+//! wall, where trilinear interpolation is far off; `render-mesh --volume`
+//! shades the Cornell box as that lookup does and keeps the dark side of a
+//! wall between two sealed rooms dark.
 
 use glam::{DVec3, Vec3};
 use shlight_baked::{ProbeGrid, VolumeView};
@@ -434,6 +439,7 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     use crate::util::{s, shlight_ok, temp_dir, write_obj, write_radiance_rows};
     use shlight_core::sh::ShRotation;
     use shlight_format::ShvolFile;
+    use shlight_volume::{Lookup, irradiance_at};
 
     if gpu_context("render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box").is_none() {
         return;
@@ -513,12 +519,10 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     let turned =
         ShRotation::from_mat3(2, glam::DMat3::from_rotation_y(60f64.to_radians())).apply(&sky);
     shlight_volume::relight_file(&mut file, &turned).unwrap();
-    let grid = ProbeGrid::new(
-        file.resolution,
-        Vec3::from_array(file.bounds.0),
-        Vec3::from_array(file.bounds.1),
-    )
-    .unwrap();
+    // Baked with distance maps (the default): the pass weighs the probes
+    // by visibility, as `shlight sample`'s shlight lookup does.
+    let view = file.view();
+    assert!(view.visibility.is_some() && view.offsets.is_some());
     let scene = shlight_mesh::load(std::path::Path::new("meshes/cornell_box.obj")).unwrap();
     let mut boxed = shlight_mesh::generate::cuboid(Vec3::ONE);
     let scale = size / (2.0 * 3f32.sqrt());
@@ -538,6 +542,9 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
         (eye, (far - eye).normalize())
     };
     let (mut object_pixels, mut scene_pixels, mut worst) = (0, 0, 0.0f64);
+    // Pixels where trilinear interpolation (a pass that ignored the maps)
+    // is off by more than ten times the tolerance.
+    let mut not_trilinear = 0;
     for j in 1..h - 1 {
         for i in 1..w - 1 {
             // Only pixels well inside one triangle (pixel_hit).
@@ -566,11 +573,18 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
                 Some(c) => (0..3).map(|t| c[corners[t]] * bary[t]).sum(),
                 None => Vec3::new(0.6, 0.5, 0.4),
             };
-            let l = sample(&grid, &file.valid, &file.radiance, 2, p).expect("a lit point");
-            let e = shlight_core::sh::irradiance(&l).eval(normal.as_dvec3());
+            let e = irradiance_at(&view, Lookup::Shlight, 2, p, normal);
             let want = albedo.as_dvec3() * e / std::f64::consts::PI;
             let got = Vec3::from_array(frame.pixels()[j * w + i]).as_dvec3();
             let err = ((got - want).abs() / (want.abs() + PIXEL_FLOOR)).max_element();
+            let trilinear = albedo.as_dvec3()
+                * irradiance_at(&view, Lookup::Trilinear, 2, p, normal)
+                / std::f64::consts::PI;
+            if ((trilinear - want).abs() / (want.abs() + PIXEL_FLOOR)).max_element()
+                > 10.0 * PIXEL_TOL
+            {
+                not_trilinear += 1;
+            }
             worst = worst.max(err);
             assert!(
                 err < PIXEL_TOL,
@@ -584,7 +598,12 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
             }
         }
     }
-    eprintln!("{object_pixels} object and {scene_pixels} scene pixels, worst {worst:.2e}");
+    eprintln!(
+        "{object_pixels} object and {scene_pixels} scene pixels, worst {worst:.2e}; trilinear \
+         interpolation off by more than {:.0e} at {not_trilinear}",
+        10.0 * PIXEL_TOL
+    );
+    assert!(not_trilinear >= 20, "{not_trilinear}");
     assert!(
         object_pixels >= 20,
         "only {object_pixels} object pixels checked"
@@ -867,4 +886,439 @@ fn bad_volume_options_are_clear_errors() {
         "{note}"
     );
     assert!(out.exists());
+}
+
+/// The GPU's visibility-weighted lookup (a volume with distance maps)
+/// against shlight-volume's `irradiance_at` with `Lookup::Shlight`, the one
+/// definition: each irradiance within this fraction of the largest among
+/// the queries. Both weigh every probe in f32 by the same operations
+/// (shlight-baked's `visibility_weights`, `shaders/volume_visibility.wgsl`);
+/// what is left is the rounding of the trilinear weights (as for
+/// [`VOLUME_TOL`]) and of sums in another order: measured 3e-7 on
+/// lavapipe. Where every probe around a point is all but shut out (inside
+/// geometry) the weights are ratios of crushed Chebyshev factors, and a
+/// rounding of the point or the normal moves the light by up to about
+/// 1e-5 of the largest (a normal normalised twice did so in
+/// `tests/sample.rs`), which is what this leaves room for.
+const VISIBILITY_TOL: f64 = 1e-5;
+
+/// `parts` (each a mesh moved by an offset) as one mesh.
+fn merged(name: &str, parts: &[(shlight_mesh::Mesh, Vec3)]) -> shlight_mesh::Mesh {
+    let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    for (mesh, at) in parts {
+        let base = positions.len() as u32;
+        positions.extend(mesh.positions.iter().map(|p| *p + *at));
+        normals.extend_from_slice(&mesh.normals);
+        triangles.extend(mesh.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+    shlight_mesh::Mesh::new(name, positions, triangles, Some(normals), None).unwrap()
+}
+
+/// x of the thin wall's centre in [`walled_volume`]: between the probe
+/// columns at -0.25 and 0.25, nearer the second.
+const WALL_X: f32 = 0.1;
+
+/// A wall 4 cm thick across a 6x3x3 grid of 0.5 m cells over
+/// (-1.5, 0, 0)..(1.5, 1.5, 1.5), at [`WALL_X`] (beyond the grid in y and
+/// z), and a block of side 0.2 around the probe at (0.75, 0.75, 0.75),
+/// which relocation moves out, baked with the default options (relocation
+/// and 16x16 distance maps) and relit by a sky bright towards +x: the
+/// probes behind the wall (-x) see its shaded side.
+fn walled_volume() -> (shlight_volume::ProbeVolume, Vec<f32>) {
+    use shlight_mesh::generate::cuboid;
+    let grid = ProbeGrid::new([6, 3, 3], Vec3::new(-1.5, 0.0, 0.0), Vec3::splat(1.5)).unwrap();
+    let scene = merged(
+        "a wall and a block",
+        &[
+            (
+                cuboid(Vec3::new(0.02, 3.0, 3.0)),
+                Vec3::new(WALL_X, 0.75, 0.75),
+            ),
+            (cuboid(Vec3::splat(0.1)), Vec3::splat(0.75)),
+        ],
+    );
+    let volume = shlight_volume::bake(
+        Some(&scene),
+        &grid,
+        &shlight_volume::VolumeOptions::default(),
+        &|_, _, _| {},
+    )
+    .unwrap();
+    assert!(volume.visibility.is_some(), "maps by default");
+    assert!(
+        volume.relocated_count() >= 1,
+        "the probe in the block moves"
+    );
+    // L_00, and L_1,1 < 0 (Y_1,1 is -x): brighter towards +x, and a little
+    // towards +y; positive everywhere.
+    let mut rows = vec![DVec3::ZERO; 9];
+    rows[0] = DVec3::new(2.0, 2.0, 2.2);
+    rows[1] = DVec3::splat(-0.3);
+    rows[3] = DVec3::new(-0.9, -0.8, -0.7);
+    let sky = shlight_core::sh::ShCoeffs::from_vec(rows).unwrap();
+    let radiance = volume.relight(&sky);
+    (volume, radiance)
+}
+
+fn view_of<'a>(volume: &'a shlight_volume::ProbeVolume, radiance: &'a [f32]) -> VolumeView<'a> {
+    VolumeView {
+        grid: volume.grid,
+        lmax: volume.lmax,
+        valid: &volume.valid,
+        radiance,
+        offsets: volume.offsets.as_deref(),
+        visibility: volume.visibility.as_ref().map(|v| v.view()),
+    }
+}
+
+#[test]
+fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
+    use shlight_volume::{Lookup, irradiance_at};
+
+    let Some(ctx) = gpu_context("gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall")
+    else {
+        return;
+    };
+    let (volume, radiance) = walled_volume();
+    let view = view_of(&volume, &radiance);
+    // Random points in and around the grid box, and as many between the
+    // probe columns on either side of the wall (x in -0.25..0.25, outside
+    // the wall), where four of the eight probes are behind it.
+    let mut rng = Lcg(41);
+    let unit = |rng: &mut Lcg| loop {
+        let v = Vec3::new(
+            rng.range(-1.0..1.0),
+            rng.range(-1.0..1.0),
+            rng.range(-1.0..1.0),
+        );
+        if v.length() > 0.1 && v.length() < 1.0 {
+            break v.normalize();
+        }
+    };
+    let mut points = Vec::new();
+    for k in 0..800 {
+        let p = if k % 2 == 0 {
+            Vec3::new(
+                rng.range(-1.7..1.7),
+                rng.range(-0.2..1.7),
+                rng.range(-0.2..1.7),
+            )
+        } else {
+            let x = loop {
+                let x = rng.range(-0.25..0.25);
+                if (x - WALL_X).abs() > 0.025 {
+                    break x;
+                }
+            };
+            Vec3::new(x, rng.range(0.0..1.5), rng.range(0.0..1.5))
+        };
+        points.push((p, unit(&mut rng)));
+    }
+    // The pass takes unit normals as given; irradiance_at normalises its
+    // normal first (a unit vector normalised again may move by a
+    // rounding), so the pass gets that normal.
+    let unit: Vec<(Vec3, Vec3)> = points.iter().map(|&(p, n)| (p, n.normalize())).collect();
+    for fetch in fetches(&ctx) {
+        let renderer = VolumeRenderer::with_fetch(&ctx, HEADLESS_FORMAT, &view, fetch).unwrap();
+        assert!(renderer.visibility());
+        // Per-probe weights: loads, whatever was asked.
+        assert_eq!(renderer.fetch(), VolumeFetch::Loads);
+        for lmax in 0..=2 {
+            let shading = Shading {
+                lmax,
+                ..Shading::default()
+            };
+            let got = renderer.irradiance_at(&ctx, &shading, &unit).unwrap();
+            let want: Vec<DVec3> = points
+                .iter()
+                .map(|&(p, n)| irradiance_at(&view, Lookup::Shlight, lmax, p, n))
+                .collect();
+            let scale = want
+                .iter()
+                .map(|e| e.abs().max_element())
+                .fold(0.0, f64::max);
+            let (mut worst, mut far_from_trilinear, mut trilinear_worst) = (0.0f64, 0, 0.0f64);
+            for ((g, w), &(p, n)) in got.iter().zip(&want).zip(&points) {
+                let g = Vec3::new(g[0], g[1], g[2]).as_dvec3();
+                let err = (g - *w).abs().max_element() / scale;
+                worst = worst.max(err);
+                assert!(
+                    err < VISIBILITY_TOL,
+                    "{fetch:?} lmax {lmax} at {p} facing {n}: GPU {g}, CPU {w} ({err:.2e} of \
+                     {scale})"
+                );
+                // What a shader that ignored the maps would give.
+                let t = irradiance_at(&view, Lookup::Trilinear, lmax, p, n);
+                let off = (t - *w).abs().max_element() / scale;
+                trilinear_worst = trilinear_worst.max(off);
+                if off > 100.0 * VISIBILITY_TOL {
+                    far_from_trilinear += 1;
+                }
+            }
+            eprintln!(
+                "{fetch:?} requested, lmax {lmax}: worst {worst:.2e} of the largest irradiance \
+                 {scale:.3}; trilinear differs by more than {:.0e} at {far_from_trilinear} of \
+                 {} points (at most {trilinear_worst:.2e})",
+                100.0 * VISIBILITY_TOL,
+                points.len()
+            );
+            // The wall changes the weights a lot at many points (lmax 0
+            // included: the sides differ in brightness).
+            assert!(
+                far_from_trilinear >= 100 && trilinear_worst > 0.05,
+                "{far_from_trilinear} {trilinear_worst}"
+            );
+        }
+    }
+    // The same probes without their maps (as a version 1 file holds them)
+    // take the trilinear pass, the probes at their moved positions or not.
+    let plain = VolumeView {
+        visibility: None,
+        ..view
+    };
+    for fetch in fetches(&ctx) {
+        let renderer = VolumeRenderer::with_fetch(&ctx, HEADLESS_FORMAT, &plain, fetch).unwrap();
+        assert!(!renderer.visibility());
+        assert_eq!(renderer.fetch(), fetch);
+        let shading = Shading {
+            lmax: 2,
+            ..Shading::default()
+        };
+        let got = renderer.irradiance_at(&ctx, &shading, &points).unwrap();
+        let want: Vec<DVec3> = points
+            .iter()
+            .map(|&(p, n)| irradiance_at(&plain, Lookup::Shlight, 2, p, n))
+            .collect();
+        let scale = want
+            .iter()
+            .map(|e| e.abs().max_element())
+            .fold(0.0, f64::max);
+        for (g, w) in got.iter().zip(&want) {
+            let g = Vec3::new(g[0], g[1], g[2]).as_dvec3();
+            let tol = if fetch == VolumeFetch::Filtered
+                && ctx.adapter.get_info().device_type != wgpu::DeviceType::Cpu
+            {
+                FILTERED_GPU_TOL
+            } else {
+                VOLUME_TOL
+            };
+            assert!((g - *w).abs().max_element() / scale < tol, "{g} {w}");
+        }
+    }
+}
+
+/// Two sealed rooms side by side (x 0..4, 1.5 high, 2 deep), split by a
+/// wall 4 cm thick centred at x = 2.1, a lamp under the left room's
+/// ceiling facing down: every face towards the inside of its room, as an
+/// OBJ with its MTL (white walls, the lamp emitting).
+fn write_two_rooms(obj: &std::path::Path) {
+    let mut quads: Vec<([Vec3; 4], &str)> = Vec::new();
+    let c = Vec3::new;
+    let mut room = |a: Vec3, b: Vec3| {
+        for q in [
+            [
+                c(a.x, a.y, a.z),
+                c(a.x, a.y, b.z),
+                c(b.x, a.y, b.z),
+                c(b.x, a.y, a.z),
+            ],
+            [
+                c(a.x, b.y, a.z),
+                c(b.x, b.y, a.z),
+                c(b.x, b.y, b.z),
+                c(a.x, b.y, b.z),
+            ],
+            [
+                c(a.x, a.y, a.z),
+                c(a.x, b.y, a.z),
+                c(a.x, b.y, b.z),
+                c(a.x, a.y, b.z),
+            ],
+            [
+                c(b.x, a.y, a.z),
+                c(b.x, a.y, b.z),
+                c(b.x, b.y, b.z),
+                c(b.x, b.y, a.z),
+            ],
+            [
+                c(a.x, a.y, a.z),
+                c(b.x, a.y, a.z),
+                c(b.x, b.y, a.z),
+                c(a.x, b.y, a.z),
+            ],
+            [
+                c(a.x, a.y, b.z),
+                c(a.x, b.y, b.z),
+                c(b.x, b.y, b.z),
+                c(b.x, a.y, b.z),
+            ],
+        ] {
+            quads.push((q, "wall"));
+        }
+    };
+    room(Vec3::ZERO, c(2.08, 1.5, 2.0));
+    room(c(2.12, 0.0, 0.0), c(4.0, 1.5, 2.0));
+    let y = 1.45;
+    quads.push((
+        [
+            c(0.4, y, 0.5),
+            c(1.68, y, 0.5),
+            c(1.68, y, 1.5),
+            c(0.4, y, 1.5),
+        ],
+        "lamp",
+    ));
+    let mut text = String::from("mtllib rooms.mtl\n");
+    for (k, (q, material)) in quads.iter().enumerate() {
+        text += &format!("usemtl {material}\n");
+        for p in q {
+            text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+        let v = 4 * k + 1;
+        text += &format!("f {} {} {}\nf {} {} {}\n", v, v + 1, v + 2, v, v + 2, v + 3);
+    }
+    std::fs::write(obj, text).unwrap();
+    std::fs::write(
+        obj.with_file_name("rooms.mtl"),
+        "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0.8 0.8 0.8\nKe 4 4 4\n",
+    )
+    .unwrap();
+}
+
+/// `render-mesh --volume` of a volume with distance maps: looking at the
+/// wall between two sealed rooms from the dark one, every pixel is as dark
+/// as the visibility-weighted lookup makes it (the truth is 0: no light
+/// reaches the dark room), at most 2% of the lit room's pixels seen from
+/// inside it, and equal to the CPU's lookup along each pixel's ray;
+/// trilinear interpolation would put far more light there, so a pass that
+/// ignored the maps would fail.
+#[test]
+fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
+    use crate::util::{s, shlight_ok, temp_dir, write_radiance_rows};
+    use shlight_format::ShvolFile;
+    use shlight_volume::{Lookup, irradiance_at};
+
+    if gpu_context("render_mesh_volume_keeps_the_dark_side_of_a_wall_dark").is_none() {
+        return;
+    }
+    let dir = temp_dir("volume-render-wall");
+    let rooms = dir.join("rooms.obj");
+    write_two_rooms(&rooms);
+    let env = dir.join("sky.json");
+    let mut sky = [[0.0; 3]; 9];
+    sky[0] = [1.0; 3];
+    sky[2] = [0.5; 3];
+    write_radiance_rows(&env, &sky);
+    let volume = dir.join("rooms.shvol");
+    shlight_ok(&[
+        "volume",
+        s(&rooms),
+        "--env",
+        s(&env),
+        "--resolution",
+        "8x3x4",
+        "--bounds",
+        "0,0,0:4,1.5,2",
+        "--samples",
+        "512",
+        "--surface-samples",
+        "64",
+        "-o",
+        s(&volume),
+    ]);
+    let file = ShvolFile::read(&volume).unwrap();
+    let view = file.view();
+    assert!(view.visibility.is_some());
+    let (w, h) = (64usize, 48usize);
+    let render = |name: &str, eye: Vec3, target: Vec3| {
+        let image = dir.join(name);
+        let at = |v: Vec3| format!("{},{},{}", v.x, v.y, v.z);
+        shlight_ok(&[
+            "render-mesh",
+            s(&rooms),
+            "--volume",
+            s(&volume),
+            "--env",
+            s(&env),
+            // The object (the bundled bunny) in the lit room, out of the
+            // dark room's sight.
+            "--at",
+            "1,0.3,1",
+            "--object-size",
+            "0.3",
+            "--camera",
+            &at(eye),
+            "--target",
+            &at(target),
+            "--size",
+            &format!("{w}x{h}"),
+            "-o",
+            s(&image),
+        ]);
+        shlight_io::read_image(&image, &Default::default()).unwrap()
+    };
+    // From each room towards the wall's middle.
+    let dark_eye = Vec3::new(3.7, 0.75, 1.0);
+    let dark = render("dark.exr", dark_eye, Vec3::new(2.12, 0.75, 1.0));
+    let lit = render(
+        "lit.exr",
+        Vec3::new(0.3, 0.75, 1.0),
+        Vec3::new(2.08, 0.75, 1.0),
+    );
+    let grey = |p: &[f32; 3]| f64::from(p[0] + p[1] + p[2]) / 3.0;
+    let lit_mean = lit.pixels().iter().map(grey).sum::<f64>() / (w * h) as f64;
+    assert!(lit_mean > 0.05, "the lamp lights its room: {lit_mean}");
+    let dark_max = dark.pixels().iter().map(grey).fold(0.0, f64::max);
+    // The pixels against the CPU's lookup, and what trilinear
+    // interpolation would show there.
+    let scene = shlight_mesh::load(&rooms).unwrap();
+    let bvh = shlight_prt::bvh::Bvh::new(&scene.positions, &scene.triangles);
+    let meshes = [(&scene, &bvh)];
+    let camera = shlight_gpu::Camera::looking_at(
+        dark_eye,
+        Vec3::new(2.12, 0.75, 1.0),
+        1.0,
+        35f32.to_radians(),
+    );
+    let inverse = camera.view_proj(w as f32 / h as f32).inverse();
+    let ray = |x: f32, y: f32| {
+        let ndc = glam::Vec2::new(x / w as f32 * 2.0 - 1.0, 1.0 - y / h as f32 * 2.0);
+        let far = inverse.project_point3(ndc.extend(1.0));
+        (dark_eye, (far - dark_eye).normalize())
+    };
+    let (mut checked, mut trilinear_max, mut worst) = (0, 0.0f64, 0.0f64);
+    for j in 1..h - 1 {
+        for i in 1..w - 1 {
+            let Some(hit) = pixel_hit(&meshes, ray, i, j) else {
+                continue;
+            };
+            if !hit.inside || hit.normal.dot(hit.direction).abs() < GRAZING {
+                continue;
+            }
+            let albedo = Vec3::splat(0.8).as_dvec3() / std::f64::consts::PI;
+            let want = albedo * irradiance_at(&view, Lookup::Shlight, 2, hit.point, hit.normal);
+            let trilinear =
+                albedo * irradiance_at(&view, Lookup::Trilinear, 2, hit.point, hit.normal);
+            let got = Vec3::from_array(dark.pixels()[j * w + i]).as_dvec3();
+            let err = (got - want).abs().max_element() / lit_mean;
+            worst = worst.max(err);
+            assert!(
+                err < PIXEL_TOL,
+                "pixel ({i}, {j}) at {}: GPU {got}, CPU {want}",
+                hit.point
+            );
+            trilinear_max = trilinear_max.max(trilinear.element_sum() / 3.0);
+            checked += 1;
+        }
+    }
+    eprintln!(
+        "dark side of the wall: brightest pixel {:.2}% of the lit room's mean pixel \
+         ({lit_mean:.3}); trilinear interpolation would show {:.1}%; {checked} pixels within \
+         {worst:.1e} of the lit mean of the CPU's lookup",
+        100.0 * dark_max / lit_mean,
+        100.0 * trilinear_max / lit_mean
+    );
+    assert!(checked >= 500, "only {checked} pixels checked");
+    assert!(dark_max <= 0.02 * lit_mean, "{dark_max} of {lit_mean}");
+    assert!(trilinear_max > 0.1 * lit_mean, "{trilinear_max}");
 }

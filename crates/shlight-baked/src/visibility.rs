@@ -92,9 +92,11 @@ pub const BACKFACE_DISTANCE: f32 = 0.2;
 pub const NORMAL_BIAS: f32 = 0.25;
 
 /// The least the Chebyshev factor multiplies a weight by.
-const CHEBYSHEV_FLOOR: f32 = 0.05;
-/// Weights below this are crushed, `w^3 / CRUSH^2`.
-const CRUSH: f32 = 0.2;
+pub const CHEBYSHEV_FLOOR: f32 = 0.05;
+/// Weights below this are crushed, `w^3 / CRUSH^2` (DDGI's crushing of
+/// small weights). The GPU's volume pass takes this and
+/// [`CHEBYSHEV_FLOOR`] from here, `CRUSH * CRUSH` as the f32 product.
+pub const CRUSH: f32 = 0.2;
 /// Lobe weights below this are left out of a texel's sums.
 const LOBE_CUTOFF: f32 = 1e-3;
 

@@ -24,6 +24,13 @@
 //! - `frame_bunny_volume_loads`: the same with `VolumeFetch::Loads`, the
 //!   path of hardware GPUs and of adapters that cannot filter `Rgba32Float` (eight
 //!   `textureLoad`s per texel, weighted in the shader);
+//! - `frame_bunny_volume_visibility`: the same volume with 16x16 distance
+//!   maps per probe (as a default bake stores them) and probe offsets: the
+//!   eight loads per texel weighted by each probe's visibility of the
+//!   fragment (per probe its position and four texels of its map, from
+//!   storage buffers). The maps say every probe sees past every point (as
+//!   in open space), so the picture is the loads' one; llvmpipe runs every
+//!   instruction whatever the values, so the time is that of any maps;
 //! - `frame_sphere_normals`: the sphere in normals mode, the floor every
 //!   frame pays for (vertex work, rasterisation, depth, a trivial fragment);
 //! - `frame_sphere_readback`: `frame_sphere_sh` at lmax 2 with the frame
@@ -41,7 +48,7 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
-use shlight_baked::{ProbeGrid, TransferView, VolumeView};
+use shlight_baked::{ProbeGrid, TransferView, Visibility, VolumeView};
 use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::sh::closed_form;
 use shlight_gpu::{
@@ -166,8 +173,26 @@ fn frame_bunny_volume_loads(bencher: divan::Bencher, lmax: usize) {
     bench_volume(bencher, ctx, lmax, VolumeFetch::Loads);
 }
 
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_bunny_volume_visibility(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    bench_volume_with(bencher, ctx, lmax, VolumeFetch::best(ctx), true);
+}
+
 /// `frame_bunny_volume` with the probes interpolated by `fetch`.
 fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: VolumeFetch) {
+    bench_volume_with(bencher, ctx, lmax, fetch, false);
+}
+
+/// `frame_bunny_volume` with the probes interpolated by `fetch`, or with
+/// `visibility` weighted by 16x16 distance maps (read by loads).
+fn bench_volume_with(
+    bencher: divan::Bencher,
+    ctx: &GpuContext,
+    lmax: usize,
+    fetch: VolumeFetch,
+    visibility: bool,
+) {
     let mesh = bunny();
     let resolution = [16, 8, 16];
     let count = 16 * 8 * 16;
@@ -177,22 +202,38 @@ fn bench_volume(bencher: divan::Bencher, ctx: &GpuContext, lmax: usize, fetch: V
         .collect();
     let valid: Vec<bool> = (0..count).map(|k| k % 10 != 0).collect();
     let (min, max) = mesh.bounds();
+    let grid = ProbeGrid {
+        resolution,
+        min: min - 0.01,
+        max: max + 0.01,
+    };
+    // Offsets of up to a tenth of a cell, and maps at the largest distance
+    // (1.5 cell diagonals) in every direction.
+    let cell = grid.cell();
+    let offsets: Vec<f32> = pseudo_random(count * 3)
+        .chunks_exact(3)
+        .flat_map(|o| (Vec3::from_slice(o) * cell * 0.1).to_array())
+        .collect();
+    let size = shlight_baked::visibility::VISIBILITY_SIZE;
+    let r = shlight_baked::visibility::max_distance(&grid);
+    let moments: Vec<f32> = (0..count * size * size).flat_map(|_| [r, r * r]).collect();
     let probes = VolumeView {
-        grid: ProbeGrid {
-            resolution,
-            min: min - 0.01,
-            max: max + 0.01,
-        },
+        grid,
         lmax,
         valid: &valid,
         radiance: &radiance,
-        offsets: None,
-        visibility: None,
+        offsets: visibility.then_some(&offsets[..]),
+        visibility: visibility.then_some(Visibility {
+            size,
+            max_distance: r,
+            moments: &moments,
+        }),
     };
     // The plain renderer only clears (no mesh, no background); the volume
     // pass draws the bunny in place.
     let background = Renderer::new(ctx, HEADLESS_FORMAT);
     let mut volume = VolumeRenderer::with_fetch(ctx, HEADLESS_FORMAT, &probes, fetch).unwrap();
+    assert_eq!(volume.visibility(), visibility);
     volume.set_object(
         ctx,
         &mesh,

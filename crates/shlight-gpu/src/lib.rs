@@ -9,7 +9,9 @@
 //!   environment map or its SH reconstruction behind;
 //! - [`VolumeRenderer`]: a scene and a dynamic object lit per fragment by
 //!   trilinear interpolation of an irradiance volume's valid probes (any
-//!   lmax up to [`shlight_baked::SHADED_MAX_LMAX`]), and the probes as spheres;
+//!   lmax up to [`shlight_baked::SHADED_MAX_LMAX`]), each weighted by its
+//!   visibility of the point where the volume holds distance maps, and the
+//!   probes as spheres;
 //! - [`Offscreen`] / [`render_frame`]: frames read back as linear `f32` RGBA;
 //!   [`read_srgb8_texture`]: a window's 8-bit sRGB texture as linear RGB;
 //! - [`Camera`] (a look-at perspective camera; [`Camera::framing`] and
@@ -48,8 +50,8 @@ pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, Renderer};
 pub use shading::{Background, MAX_LMAX, Mode, Shading};
 pub use volume::{
-    PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, pack_texels, place,
-    probe_sphere_instances,
+    PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, check_visibility_limits,
+    pack_texels, place, probe_sphere_instances,
 };
 pub use volume_fetch::VolumeFetch;
 /// wgpu, as this crate uses it (for windows and surfaces).

@@ -15,19 +15,20 @@
 use crate::MAX_LMAX;
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
-use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads};
+use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads, volume_wgsl_visibility};
 
 /// A shader file: its name in `shaders/` and its text.
 pub type ShaderFile = (&'static str, &'static str);
 
 /// Every WGSL file in `shaders/`, by name.
-pub const FILES: [ShaderFile; 7] = [
+pub const FILES: [ShaderFile; 8] = [
     ("sh.wgsl", SH),
     ("scene.wgsl", SCENE),
     ("mesh.wgsl", MESH),
     ("background.wgsl", BACKGROUND),
     ("project.wgsl", PROJECT),
     ("volume.wgsl", VOLUME),
+    ("volume_visibility.wgsl", VOLUME_VISIBILITY),
     ("encoded.wgsl", ENCODED),
 ];
 
@@ -37,6 +38,7 @@ const MESH: &str = include_str!("../shaders/mesh.wgsl");
 const BACKGROUND: &str = include_str!("../shaders/background.wgsl");
 const PROJECT: &str = include_str!("../shaders/project.wgsl");
 const VOLUME: &str = include_str!("../shaders/volume.wgsl");
+const VOLUME_VISIBILITY: &str = include_str!("../shaders/volume_visibility.wgsl");
 const ENCODED: &str = include_str!("../shaders/encoded.wgsl");
 
 /// A compiled unit: a name and its files in order.
@@ -123,6 +125,21 @@ pub const VOLUME_LOADS_MODULE: ShaderModuleSource = ShaderModuleSource {
     files: &["sh.wgsl", "scene.wgsl", "volume.wgsl"],
     generated: Some(volume_wgsl_loads),
 };
+/// [`VOLUME_LOADS_MODULE`] with each probe's trilinear weight multiplied
+/// by its visibility of the shaded point (`volume_visibility.wgsl`: the
+/// probes' positions and distance maps in storage buffers), for a volume
+/// that holds distance maps; the same lookup as shlight-volume's
+/// `irradiance_at` with `Lookup::Shlight`.
+pub const VOLUME_VISIBILITY_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume visibility",
+    files: &[
+        "sh.wgsl",
+        "scene.wgsl",
+        "volume.wgsl",
+        "volume_visibility.wgsl",
+    ],
+    generated: Some(volume_wgsl_visibility),
+};
 /// Shading with an encoding other than plain SH: `mesh.wgsl`'s vertex
 /// stage, `encoded.wgsl`'s fragment stage, and the encoding's WGSL snippet
 /// (`shlight_irradiance`) appended by the caller ([`encoded_source`]).
@@ -171,13 +188,14 @@ pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
-pub const MODULES: [ShaderModuleSource; 7] = [
+pub const MODULES: [ShaderModuleSource; 8] = [
     SH_MODULE,
     MESH_MODULE,
     BACKGROUND_MODULE,
     PROJECT_MODULE,
     VOLUME_MODULE,
     VOLUME_LOADS_MODULE,
+    VOLUME_VISIBILITY_MODULE,
     ENCODED_MODULE,
 ];
 

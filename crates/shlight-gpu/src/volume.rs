@@ -25,6 +25,20 @@
 //! else by eight `textureLoad`s per texel weighted in the shader (hardware
 //! GPUs round the sampler's weights to 8 bits).
 //!
+//! A volume that holds probe distance maps ([`VolumeView::visibility`]) is
+//! shaded by a module of its own (`shaders/volume_visibility.wgsl`): the
+//! eight loads per texel, each probe weighted by its trilinear weight times
+//! its visibility of the point, the lookup of
+//! [`shlight_baked::visibility::visibility_weights`] (shlight-volume's
+//! `irradiance_at` with `Lookup::Shlight`). The weights differ per probe,
+//! so the sampler cannot apply them. The probes' positions (cell centre
+//! plus offset, as [`VolumeView::position`] computes them) and their maps
+//! go to the GPU as two storage buffers, read exactly (f32 as stored, the
+//! octahedral map's bilinear lookup and its folded edges done in the
+//! shader, four loads per probe): a filtering texture would round its
+//! weights on GPUs and could not fold the edges. A volume without maps is
+//! shaded as before, by a module with no trace of them.
+//!
 //! [`Renderer`]: crate::Renderer
 
 use std::sync::OnceLock;
@@ -34,12 +48,13 @@ use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
 use crate::renderer::{Pass, READ, UNIFORM, WRITE, buffer_entry, pipeline_layout, pipeline_of};
-use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE};
+use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE, VOLUME_VISIBILITY_MODULE};
 use crate::shading::{FrameInputs, FrameUniform, Shading, shader_encodes_srgb};
 use crate::volume_expansion::{volume_coefficients, volume_texels};
 use crate::volume_fetch::VolumeFetch;
 use crate::{Camera, GpuContext, GpuError};
-use shlight_baked::{ProbeGrid, SHADED_MAX_LMAX, VolumeView};
+use shlight_baked::visibility::{CHEBYSHEV_FLOOR, CRUSH, NORMAL_BIAS};
+use shlight_baked::{ProbeGrid, SHADED_MAX_LMAX, Visibility, VolumeView};
 
 /// Texels per probe at [`SHADED_MAX_LMAX`]: `ceil((3 * 18 + 1) / 4)`.
 const MAX_TEXELS: usize = 14;
@@ -231,6 +246,8 @@ struct VolumeUniform {
     resolution: [u32; 4],
     inv_size: [f32; 4],
     blocks: [[f32; 4]; MAX_TEXELS],
+    visibility: [f32; 4],
+    map: [u32; 4],
 }
 
 impl VolumeUniform {
@@ -244,13 +261,156 @@ impl VolumeUniform {
             let (oy, oz) = (oy as f32, oz as f32);
             *b = [oy / h, oz / d, oy, oz];
         }
+        // The visibility module's constants as shlight-baked's
+        // visibility_weights computes them, in f32.
+        let (visibility, map) = match &probes.visibility {
+            Some(v) => (
+                [
+                    NORMAL_BIAS * probes.grid.cell().min_element(),
+                    CHEBYSHEV_FLOOR,
+                    CRUSH,
+                    CRUSH * CRUSH,
+                ],
+                [v.size as u32, pair_count(v.size) as u32, 0, 0],
+            ),
+            None => ([0.0; 4], [0; 4]),
+        };
         Self {
             min: probes.grid.min.extend(0.0).to_array(),
             inv_cell: inv_cell.extend(0.0).to_array(),
             resolution: [nx, ny, nz, texels.per_probe as u32],
             inv_size: [1.0 / w, 1.0 / h, 1.0 / d, 0.0],
             blocks,
+            visibility,
+            map,
         }
+    }
+}
+
+/// Entries of a probe's map in the pass's storage buffer ([`pair_texels`]):
+/// `(size + 1) (size + 2)`.
+fn pair_count(size: usize) -> usize {
+    (size + 1) * (size + 2)
+}
+
+/// Bytes of the two storage buffers of a volume with distance maps: the
+/// probes' positions (a `vec4<f32>` each) and their maps
+/// ([`pair_texels`]: [`pair_count`] `vec4<f32>` each).
+fn visibility_bytes(probes: usize, maps: &Visibility<'_>) -> (u64, u64) {
+    let probes = probes as u64;
+    let pairs = pair_count(maps.size) as u64;
+    (probes * 16, probes.saturating_mul(pairs).saturating_mul(16))
+}
+
+/// The probes' distance maps as the pass reads them: per probe, for rows
+/// `b` in `0..=size + 1` and columns `a` in `0..=size` (column fastest),
+/// the texels `(a - 1, b - 1)` and `(a, b - 1)` of its map, each wrapped
+/// into the map across the folded edges (shlight-baked's
+/// [`wrap`](shlight_baked::octahedral::wrap)), as `[mean, mean_sq, mean,
+/// mean_sq]`. A bilinear lookup with lower left texel `(i0, j0)` then reads
+/// the entries `(i0 + 1, j0 + 1)` and `(i0 + 1, j0 + 2)`: two loads of
+/// exactly the stored values, where four of single texels and the wrap
+/// cost llvmpipe a third more per frame.
+fn pair_texels(maps: &Visibility<'_>, probes: usize) -> Vec<[f32; 4]> {
+    use shlight_baked::octahedral::wrap;
+    let size = maps.size;
+    let per_probe = Visibility::floats_per_probe(size);
+    let mut out = Vec::with_capacity(probes * pair_count(size));
+    for map in maps.moments.chunks_exact(per_probe).take(probes) {
+        let texel = |i: i32, j: i32| {
+            let (i, j) = wrap(i, j, size);
+            let t = 2 * (j * size + i);
+            [map[t], map[t + 1]]
+        };
+        for b in 0..=size as i32 + 1 {
+            for a in 0..=size as i32 {
+                let [m0, s0] = texel(a - 1, b - 1);
+                let [m1, s1] = texel(a, b - 1);
+                out.push([m0, s0, m1, s1]);
+            }
+        }
+    }
+    out
+}
+
+/// Checks that a volume's positions and distance maps fit in storage
+/// buffers under `limits` (the largest storage buffer binding and the
+/// largest buffer).
+///
+/// # Errors
+/// [`GpuError::Invalid`] naming the volume's size and the adapter's limit.
+pub fn check_visibility_limits(
+    probes: &VolumeView<'_>,
+    limits: &wgpu::Limits,
+) -> Result<(), GpuError> {
+    let Some(maps) = &probes.visibility else {
+        return Ok(());
+    };
+    let (positions, moments) = visibility_bytes(probes.probe_count(), maps);
+    let most = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
+    for (what, bytes) in [("positions", positions), ("distance maps", moments)] {
+        if bytes > most {
+            return Err(GpuError::Invalid(format!(
+                "volume resolution {:?} with {size}x{size} distance maps: the probes' {what} \
+                 take {bytes} bytes, more than the {most} bytes of the largest storage buffer \
+                 the adapter binds; bake fewer probes, or no maps (shlight volume \
+                 --no-visibility)",
+                probes.grid.resolution,
+                size = maps.size,
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The storage buffers of a volume with distance maps: per probe its
+/// position (`xyz`, cell centre plus offset; `w` 0) and its map of
+/// `(mean, mean_sq)` texels as stored, in pairs ([`pair_texels`]).
+struct VisibilityBuffers {
+    positions: wgpu::Buffer,
+    moments: wgpu::Buffer,
+}
+
+impl VisibilityBuffers {
+    /// The buffers of `probes`, `None` without distance maps.
+    fn new(ctx: &GpuContext, probes: &VolumeView<'_>) -> Result<Option<Self>, GpuError> {
+        let Some(maps) = &probes.visibility else {
+            return Ok(None);
+        };
+        check_visibility_limits(probes, &ctx.device.limits())?;
+        let positions: Vec<[f32; 4]> = (0..probes.probe_count())
+            .map(|k| probes.position(k).extend(0.0).to_array())
+            .collect();
+        let pairs = pair_texels(maps, probes.probe_count());
+        let init = |label, contents: &[u8]| {
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+        };
+        let buffers = ctx.checked(|| Self {
+            positions: init("volume probe positions", bytemuck::cast_slice(&positions)),
+            moments: init("volume distance maps", bytemuck::cast_slice(&pairs)),
+        })?;
+        Ok(Some(buffers))
+    }
+
+    /// Bindings 7 (positions) and 8 (maps).
+    fn entries(&self) -> [wgpu::BindGroupEntry<'_>; 2] {
+        [
+            wgpu::BindGroupEntry {
+                binding: 7,
+                resource: self.positions.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 8,
+                resource: self.moments.as_entire_binding(),
+            },
+        ]
     }
 }
 
@@ -343,8 +503,12 @@ const PROBE_PASS: Pass = Pass {
 pub struct VolumeRenderer {
     color_format: wgpu::TextureFormat,
     fetch: VolumeFetch,
+    /// The probes' positions and distance maps, for a volume that has
+    /// maps: then the texels are read by loads and weighted by visibility.
+    visibility: Option<VisibilityBuffers>,
     /// Per shading lmax, compiled on first use: `volume.wgsl` as `fetch`
-    /// reads the texels, one module for the three pipelines below.
+    /// reads the texels (with `volume_visibility.wgsl` for a volume with
+    /// maps), one module for the three pipelines below.
     modules: [OnceLock<wgpu::ShaderModule>; SHADED_MAX_LMAX + 1],
     /// Per shading lmax, built on first use: meshes lit by interpolation
     /// (`VOLUME_PASS`), probe spheres (`PROBE_PASS`) and the interpolation
@@ -375,6 +539,7 @@ impl std::fmt::Debug for VolumeRenderer {
         f.debug_struct("VolumeRenderer")
             .field("color_format", &self.color_format)
             .field("fetch", &self.fetch)
+            .field("visibility", &self.visibility.is_some())
             .field("resolution", &self.resolution)
             .field("lmax", &self.lmax)
             .finish_non_exhaustive()
@@ -444,12 +609,15 @@ fn probe_bindings<'a>(
 impl VolumeRenderer {
     /// A volume pass for colour targets of `color_format` over `probes`
     /// (clipped to lmax [`SHADED_MAX_LMAX`]), with no scene and no object
-    /// yet, interpolating as [`VolumeFetch::best`] says.
+    /// yet, interpolating as [`VolumeFetch::best`] says; a volume with
+    /// distance maps by loads weighted by visibility
+    /// ([`VolumeRenderer::visibility`]).
     ///
     /// # Errors
     /// [`GpuError::Invalid`] for an empty grid, bad bounds, arrays of the
-    /// wrong length, or a grid too large for the device's 3D textures
-    /// ([`pack_texels`]).
+    /// wrong length, a grid too large for the device's 3D textures
+    /// ([`pack_texels`]), or distance maps larger than the device's largest
+    /// storage buffer ([`check_visibility_limits`]).
     pub fn new(
         ctx: &GpuContext,
         color_format: wgpu::TextureFormat,
@@ -458,7 +626,10 @@ impl VolumeRenderer {
         Self::with_fetch(ctx, color_format, probes, VolumeFetch::best(ctx))
     }
 
-    /// [`VolumeRenderer::new`] interpolating by `fetch`.
+    /// [`VolumeRenderer::new`] interpolating by `fetch`. A volume with
+    /// distance maps is read by loads whatever `fetch` says (the sampler
+    /// cannot weigh each probe by its own visibility); [`VolumeRenderer::fetch`]
+    /// tells.
     ///
     /// # Errors
     /// As [`VolumeRenderer::new`], and [`GpuError::Invalid`] for
@@ -479,6 +650,12 @@ impl VolumeRenderer {
         }
         let device = &ctx.device;
         let texels = pack_texels(probes, device.limits().max_texture_dimension_3d)?;
+        let visibility = VisibilityBuffers::new(ctx, probes)?;
+        let fetch = if visibility.is_some() {
+            VolumeFetch::Loads
+        } else {
+            fetch
+        };
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let mut entries = vec![
@@ -486,6 +663,12 @@ impl VolumeRenderer {
             buffer_entry(3, fragment, UNIFORM),
         ];
         entries.extend(texture_entries(fragment, fetch));
+        if visibility.is_some() {
+            entries.extend([
+                buffer_entry(7, fragment, READ),
+                buffer_entry(8, fragment, READ),
+            ]);
+        }
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume"),
             entries: &entries,
@@ -498,6 +681,12 @@ impl VolumeRenderer {
             buffer_entry(5, compute, WRITE),
         ];
         entries.extend(texture_entries(compute, fetch));
+        if visibility.is_some() {
+            entries.extend([
+                buffer_entry(7, compute, READ),
+                buffer_entry(8, compute, READ),
+            ]);
+        }
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("volume compute"),
             entries: &entries,
@@ -540,16 +729,19 @@ impl VolumeRenderer {
             mipmap_filter: wgpu::MipmapFilterMode::Nearest,
             ..Default::default()
         });
+        let mut entries = probe_bindings(&frame, &texture_view, &volume, &sampler, fetch);
+        entries.extend(visibility.iter().flat_map(VisibilityBuffers::entries));
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("volume"),
             layout: &layout,
-            entries: &probe_bindings(&frame, &texture_view, &volume, &sampler, fetch),
+            entries: &entries,
         });
         let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
         let spheres = VolumeMesh::new(ctx, &sphere, [1.0; 3], &probe_sphere_instances(probes));
         Ok(Self {
             color_format,
             fetch,
+            visibility,
             modules: Default::default(),
             pipelines: Default::default(),
             probe_pipelines: Default::default(),
@@ -580,10 +772,20 @@ impl VolumeRenderer {
         self.lmax
     }
 
-    /// How this pass interpolates the probes.
+    /// How this pass reads the probes' texels ([`VolumeFetch::Loads`] for
+    /// a volume with distance maps).
     #[must_use]
     pub fn fetch(&self) -> VolumeFetch {
         self.fetch
+    }
+
+    /// Whether this pass weighs each probe by its visibility of the shaded
+    /// point (the volume holds distance maps), as shlight-volume's
+    /// `irradiance_at` does with `Lookup::Shlight`; else by its trilinear
+    /// weight alone.
+    #[must_use]
+    pub fn visibility(&self) -> bool {
+        self.visibility.is_some()
     }
 
     /// Uploads new radiance for the same probes (e.g. relit after the
@@ -753,12 +955,14 @@ impl VolumeRenderer {
     }
 
     /// The module at `lmax`, compiled on first use: `volume.wgsl` with its
-    /// generated code for `lmax` and this pass's [`VolumeFetch`].
+    /// generated code for `lmax` and this pass's [`VolumeFetch`], or with
+    /// `volume_visibility.wgsl` for a volume with distance maps.
     fn module(&self, ctx: &GpuContext, lmax: usize) -> &wgpu::ShaderModule {
         self.modules[lmax].get_or_init(|| {
-            let source = match self.fetch {
-                VolumeFetch::Filtered => VOLUME_MODULE,
-                VolumeFetch::Loads => VOLUME_LOADS_MODULE,
+            let source = match (self.visibility.is_some(), self.fetch) {
+                (true, _) => VOLUME_VISIBILITY_MODULE,
+                (false, VolumeFetch::Filtered) => VOLUME_MODULE,
+                (false, VolumeFetch::Loads) => VOLUME_LOADS_MODULE,
             };
             shaders::create(&ctx.device, source, lmax)
         })
@@ -781,7 +985,9 @@ impl VolumeRenderer {
     /// `[E_r, E_g, E_b, W]` with `E` the renormalised interpolation of the
     /// valid probes' irradiance (windowed by `shading.window`, to
     /// `shading.lmax` at most [`VolumeRenderer::lmax`]) and `W` the summed
-    /// trilinear weight of the valid probes (`E = 0` where `W = 0`).
+    /// weight of the valid probes (`E = 0` where `W = 0`): their trilinear
+    /// weights, each times the probe's visibility factor for a volume with
+    /// distance maps ([`VolumeRenderer::visibility`]).
     ///
     /// # Errors
     /// GPU errors while running or reading back.
@@ -836,6 +1042,7 @@ impl VolumeRenderer {
             &self.sampler,
             self.fetch,
         );
+        entries.extend(self.visibility.iter().flat_map(VisibilityBuffers::entries));
         entries.extend([
             wgpu::BindGroupEntry {
                 binding: 4,
@@ -878,8 +1085,8 @@ mod tests {
     #[test]
     fn the_uniform_block_has_the_wgsl_size() {
         // Volume in volume.wgsl: vec4<f32> x 2, vec4<u32>, vec4<f32>, then
-        // array<vec4<f32>, 14>.
-        assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 14 * 16);
+        // array<vec4<f32>, 14>, vec4<f32>, vec4<u32>.
+        assert_eq!(std::mem::size_of::<VolumeUniform>(), 64 + 14 * 16 + 32);
         assert_eq!(MAX_TEXELS, volume_texels(SHADED_MAX_LMAX));
         // Instances: vec4 then u32, padded to 32 bytes.
         assert_eq!(std::mem::size_of::<VolumeInstance>(), 32);
@@ -942,6 +1149,135 @@ mod tests {
         // Too large for the device: an error naming the resolution.
         let e = pack_texels(&probes, 8).unwrap_err().to_string();
         assert!(e.contains("[2, 1, 1]") && e.contains("side 8"), "{e}");
+    }
+
+    #[test]
+    fn distance_maps_beyond_the_largest_storage_buffer_are_refused() {
+        let valid = [true, false];
+        let radiance = [0.0f32; 2 * 3];
+        let maps = vec![1.0f32; 2 * 2 * 16 * 16];
+        let probes = VolumeView {
+            grid: ProbeGrid {
+                resolution: [2, 1, 1],
+                min: Vec3::ZERO,
+                max: Vec3::ONE,
+            },
+            lmax: 0,
+            valid: &valid,
+            radiance: &radiance,
+            offsets: None,
+            visibility: Some(Visibility {
+                size: 16,
+                max_distance: 1.0,
+                moments: &maps,
+            }),
+        };
+        // 2 probes of 17 x 18 pairs of texels of 16 bytes: 9792 bytes of
+        // maps, 32 of positions.
+        let limits = |binding: u64, buffer: u64| wgpu::Limits {
+            max_storage_buffer_binding_size: binding,
+            max_buffer_size: buffer,
+            ..wgpu::Limits::default()
+        };
+        assert!(check_visibility_limits(&probes, &limits(9792, 9792)).is_ok());
+        for (binding, buffer) in [(9791, 1 << 20), (1 << 20, 9791)] {
+            let e = check_visibility_limits(&probes, &limits(binding, buffer))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("[2, 1, 1]")
+                    && e.contains("16x16 distance maps")
+                    && e.contains("9792 bytes")
+                    && e.contains("9791 bytes")
+                    && e.contains("--no-visibility"),
+                "{e}"
+            );
+        }
+        let e = check_visibility_limits(&probes, &limits(31, 31))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("positions take 32 bytes"), "{e}");
+        // Without maps there is nothing to hold.
+        let plain = VolumeView {
+            visibility: None,
+            ..probes
+        };
+        assert!(check_visibility_limits(&plain, &limits(1, 1)).is_ok());
+        // wgpu's default binding limit, 128 MiB, holds 16 x 16 maps of
+        // 27,413 probes (a 32 x 32 x 26 grid).
+        let per_probe = visibility_bytes(1, &probes.visibility.unwrap()).1;
+        assert_eq!(
+            wgpu::Limits::default().max_storage_buffer_binding_size / per_probe,
+            27_413
+        );
+    }
+
+    /// The shader's lookup of the paired texels, written out here, gives
+    /// exactly shlight-baked's `Visibility::moments_at`: the same texels
+    /// with the same weights summed in the same order, across the folded
+    /// edges too.
+    #[test]
+    fn paired_texels_give_the_bilinear_moments_exactly() {
+        use shlight_baked::octahedral::oct_encode;
+        let size = 8;
+        let probes = 3;
+        let moments: Vec<f32> = (0..probes * 2 * size * size)
+            .map(|k| ((k * 7919) % 1000) as f32 / 100.0)
+            .collect();
+        let maps = Visibility {
+            size,
+            max_distance: 10.0,
+            moments: &moments,
+        };
+        let pairs = pair_texels(&maps, probes);
+        assert_eq!(pairs.len(), probes * pair_count(size));
+        let mut dirs = Vec::new();
+        for k in 0..2000 {
+            // A spiral over the sphere, and the folds' own directions.
+            let z = 1.0 - 2.0 * (k as f32 + 0.5) / 2000.0;
+            let phi = k as f32 * 2.399_963;
+            let r = (1.0 - z * z).sqrt();
+            dirs.push(Vec3::new(r * phi.cos(), r * phi.sin(), z));
+        }
+        dirs.extend([
+            Vec3::X,
+            Vec3::NEG_X,
+            Vec3::Y,
+            Vec3::NEG_Y,
+            Vec3::Z,
+            Vec3::NEG_Z,
+            Vec3::new(1e-4, 0.3, -1.0).normalize(),
+            Vec3::new(-1e-4, 0.3, -1.0).normalize(),
+            Vec3::new(0.5, -1e-4, -1.0).normalize(),
+        ]);
+        for k in 0..probes {
+            for &d in &dirs {
+                // volume_visibility.wgsl's probe_moments_at.
+                let e = oct_encode(d);
+                let s = (e + 1.0) * 0.5 * size as f32 - 0.5;
+                let base = s.floor();
+                let f = s - base;
+                let g = glam::Vec2::ONE - f;
+                let a = (base.x as i32 + 1).clamp(0, size as i32) as usize;
+                let b = (base.y as i32 + 1).clamp(0, size as i32) as usize;
+                let row = size + 1;
+                let at = k * pair_count(size) + b * row + a;
+                let (lower, upper) = (pairs[at], pairs[at + row]);
+                let mean = g.x * g.y * lower[0]
+                    + f.x * g.y * lower[2]
+                    + g.x * f.y * upper[0]
+                    + f.x * f.y * upper[2];
+                let mean_sq = g.x * g.y * lower[1]
+                    + f.x * g.y * lower[3]
+                    + g.x * f.y * upper[1]
+                    + f.x * f.y * upper[3];
+                assert_eq!(
+                    (mean, mean_sq),
+                    maps.moments_at(k, d),
+                    "probe {k} along {d}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -4,12 +4,14 @@
 //!
 //! ```text
 //! sh_basis(d, factors).y{i} = f_l Y_i(d),   f_l = factors[l / 4][l % 4]  (A_l w_l)
-//! volume_sum(p, y)          = (sum_i y{i} S_i, S_v)   S = the texels interpolated at p
+//! volume_sum(p, n, y)       = (sum_i y{i} S_i, S_v)   S = the texels weighted at p
 //! probe_sum(a, y)           = sum_i y{i} v L_i         the texels of the probe at a
 //! ```
 //!
 //! with `S_v = sum_k w_k v_k` and `S_i = sum_k w_k v_k L_k,i` over the eight
-//! probes around `p` (`shaders/volume.wgsl`: texel `j` holds floats
+//! probes around `p`, `w_k` the trilinear weight, times the probe's
+//! visibility of `p` (moved along `n`) in [`VolumeVariant::Visibility`]
+//! (`shaders/volume.wgsl`: texel `j` holds floats
 //! `4j..4j+3` of `v, v L_i0 (rgb), v L_i1, ...`), so that
 //! `volume_sum(p, sh_basis(n, irradiance_band))` divided by its `w` is the
 //! renormalised interpolation of the probes' irradiance
@@ -19,7 +21,9 @@
 //! nothing to `E`, so the texels leave them out (14 texels at lmax 4
 //! instead of 19). `volume_sum` reads its texels filtered
 //! (`volume_filtered`, one trilinear sample each) or by eight loads each
-//! (`volume_loads`), one text per [`VolumeFetch`]. The basis is
+//! (`volume_loads`), one text per [`VolumeFetch`], or by the same eight
+//! loads with the weights of `volume_visibility_at`
+//! (`shaders/volume_visibility.wgsl`). The basis is
 //! `sh_expansion.rs`'s: the recurrences of
 //! shlight-core's [`Legendre`] with `sin(theta)^m` carried by
 //! `C_m + i S_m = (x + i y)^m`, every factor an f32 literal, no loops and no
@@ -35,20 +39,39 @@ use crate::sh_expansion::{azimuth_power, literal};
 use crate::volume_fetch::VolumeFetch;
 use shlight_baked::SHADED_MAX_LMAX;
 
+/// How `volume_sum` reads and weighs the texels of the eight probes around
+/// a point: one shader module each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum VolumeVariant {
+    /// Trilinear weights (a volume without distance maps), the texels read
+    /// as the [`VolumeFetch`] says.
+    Trilinear(VolumeFetch),
+    /// Eight loads per texel, each probe's trilinear weight times its
+    /// visibility of the point (`volume_visibility_at`; a volume with
+    /// distance maps).
+    Visibility,
+}
+
 /// The volume module's generated WGSL for `lmax`, texels filtered.
 pub(crate) fn volume_wgsl_filtered(lmax: usize) -> String {
-    volume_wgsl(lmax, VolumeFetch::Filtered)
+    volume_wgsl(lmax, VolumeVariant::Trilinear(VolumeFetch::Filtered))
 }
 
 /// The volume module's generated WGSL for `lmax`, texels by eight loads.
 pub(crate) fn volume_wgsl_loads(lmax: usize) -> String {
-    volume_wgsl(lmax, VolumeFetch::Loads)
+    volume_wgsl(lmax, VolumeVariant::Trilinear(VolumeFetch::Loads))
+}
+
+/// The volume module's generated WGSL for `lmax`, texels by eight loads
+/// weighted by the probes' visibility.
+pub(crate) fn volume_wgsl_visibility(lmax: usize) -> String {
+    volume_wgsl(lmax, VolumeVariant::Visibility)
 }
 
 /// The WGSL text of `ShBasis`, `sh_basis`, `volume_sum` and `probe_sum`
-/// for `lmax` (clamped to [`SHADED_MAX_LMAX`]) and `fetch`.
+/// for `lmax` (clamped to [`SHADED_MAX_LMAX`]) and `variant`.
 #[must_use]
-pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
+pub(crate) fn volume_wgsl(lmax: usize, variant: VolumeVariant) -> String {
     let lmax = lmax.min(SHADED_MAX_LMAX);
     let count = (lmax + 1) * (lmax + 1);
     let kept = volume_coefficients(lmax);
@@ -125,15 +148,18 @@ pub(crate) fn volume_wgsl(lmax: usize, fetch: VolumeFetch) -> String {
     out.push_str("}\n\n");
     let texels = volume_texels(lmax);
     let dot = texel_dot(lmax);
-    let (at, fetch) = match fetch {
-        VolumeFetch::Filtered => ("volume_filtered_at(p)", "volume_filtered"),
-        VolumeFetch::Loads => ("volume_loads_at(p)", "volume_loads"),
+    let (at, fetch) = match variant {
+        VolumeVariant::Trilinear(VolumeFetch::Filtered) => {
+            ("volume_filtered_at(p)", "volume_filtered")
+        }
+        VolumeVariant::Trilinear(VolumeFetch::Loads) => ("volume_loads_at(p)", "volume_loads"),
+        VolumeVariant::Visibility => ("volume_visibility_at(p, n)", "volume_loads"),
     };
     out.push_str(
-        "// (sum_i y{i} S_i, S_v) with S the texels interpolated at p: S_v = sum_k w_k v_k,\n\
+        "// (sum_i y{i} S_i, S_v) with S the texels weighted at p: S_v = sum_k w_k v_k,\n\
          // S_i = sum_k w_k v_k L_k,i.\n",
     );
-    out.push_str("fn volume_sum(p: vec3<f32>, y: ShBasis) -> vec4<f32> {\n");
+    out.push_str("fn volume_sum(p: vec3<f32>, n: vec3<f32>, y: ShBasis) -> vec4<f32> {\n");
     let _ = writeln!(out, "    let at = {at};");
     for j in 0..texels {
         let _ = writeln!(out, "    let t{j} = {fetch}(at, {j}u);");
@@ -234,9 +260,13 @@ mod tests {
 
     #[test]
     fn every_coefficient_reads_its_own_three_floats_once() {
-        for fetch in [VolumeFetch::Filtered, VolumeFetch::Loads] {
+        for variant in [
+            VolumeVariant::Trilinear(VolumeFetch::Filtered),
+            VolumeVariant::Trilinear(VolumeFetch::Loads),
+            VolumeVariant::Visibility,
+        ] {
             for lmax in 0..=SHADED_MAX_LMAX {
-                let text = volume_wgsl(lmax, fetch);
+                let text = volume_wgsl(lmax, variant);
                 let count = (lmax + 1) * (lmax + 1);
                 let texels = volume_texels(lmax);
                 let kept = volume_coefficients(lmax);
@@ -264,14 +294,28 @@ mod tests {
                     assert!(text.contains(&format!("let t{j} = probe_load(a, {j}u);")));
                 }
                 assert!(!text.contains(&format!("let t{texels} ")), "{text}");
-                let other = match fetch {
-                    VolumeFetch::Filtered => "volume_loads",
-                    VolumeFetch::Loads => "volume_filtered",
+                let (own, others): (&str, &[&str]) = match variant {
+                    VolumeVariant::Trilinear(VolumeFetch::Filtered) => {
+                        ("volume_filtered_at(p)", &["volume_loads", "visibility"])
+                    }
+                    VolumeVariant::Trilinear(VolumeFetch::Loads) => {
+                        ("volume_loads_at(p)", &["volume_filtered", "visibility"])
+                    }
+                    VolumeVariant::Visibility => (
+                        "volume_visibility_at(p, n)",
+                        &["volume_filtered", "volume_loads_at"],
+                    ),
                 };
-                assert!(!text.contains(other), "{text}");
+                assert!(text.contains(&format!("let at = {own};")), "{text}");
+                for other in others {
+                    assert!(!text.contains(other), "{other} in {text}");
+                }
             }
             // Beyond the volume's highest degree the text is the clamped one's.
-            assert_eq!(volume_wgsl(8, fetch), volume_wgsl(SHADED_MAX_LMAX, fetch));
+            assert_eq!(
+                volume_wgsl(8, variant),
+                volume_wgsl(SHADED_MAX_LMAX, variant)
+            );
         }
     }
 }

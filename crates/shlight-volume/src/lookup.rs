@@ -12,10 +12,11 @@ use crate::sample;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lookup {
     /// The best lookup shlight has: the probes' trilinear weights times
-    /// DDGI's visibility term ([`shlight_baked::visibility`]), where the volume holds distance
-    /// maps; [`Lookup::Trilinear`] where it does not (a version 1 file, a
-    /// bake with `--no-visibility`). The volume pass of `render-mesh
-    /// --volume` and `view --volume` shades the same way.
+    /// DDGI's visibility term ([`shlight_baked::visibility`]), where the
+    /// volume holds distance maps; [`Lookup::Trilinear`] where it does not
+    /// (a version 1 file, a bake with `--no-visibility`). The volume pass
+    /// of `render-mesh --volume` and `view --volume` shades the same way
+    /// (shlight-gpu's `VolumeRenderer`, the same f32 arithmetic).
     Shlight,
     /// Trilinear interpolation of the valid probes among the eight around
     /// the point, weights renormalised ([`sample`]; docs/shvol.md,
