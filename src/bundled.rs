@@ -41,7 +41,7 @@ pub fn environment(up: Frame) -> Result<Environment> {
         Path::new(ENV_NAME),
         env_image()?,
         up,
-        shlight_gpu::MAX_LMAX,
+        shlight_baked::LIGHT_MAX_LMAX,
     )?)
 }
 

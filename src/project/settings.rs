@@ -108,10 +108,10 @@ impl<'a> Settings<'a> {
             if method != LibMethod::Quadrature {
                 bail!("--gpu computes the quadrature; it does not apply to --method montecarlo");
             }
-            if args.lmax > shlight_gpu::MAX_LMAX {
+            if args.lmax > shlight_baked::LIGHT_MAX_LMAX {
                 bail!(
                     "--gpu projects to lmax {} at most (asked: {})",
-                    shlight_gpu::MAX_LMAX,
+                    shlight_baked::LIGHT_MAX_LMAX,
                     args.lmax
                 );
             }

@@ -8,7 +8,8 @@
 //!   trilinear weights of a point, clamped to the grid.
 //! - [`VolumeView`]: a volume's probes borrowed (grid, lmax, validity,
 //!   radiance), checked for shape; [`MAX_LMAX`], the most a volume holds,
-//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades.
+//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades;
+//!   [`LIGHT_MAX_LMAX`], the most of a distant light the renderers shade.
 //! - [`TransferView`]: PRT transfer vectors borrowed (Sloan, Kautz &
 //!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex.
 //! - [`morton_code`] and [`morton_order`]: the Z-order that bakes
@@ -27,12 +28,14 @@
 //! **Architecture invariant:** a leaf (glam only): no I/O, no GPU, no
 //! mathematics of SH (that is shlight-core's).
 
+mod light_lmax;
 mod morton;
 mod probe_grid;
 mod shape_error;
 mod transfer_view;
 mod volume_view;
 
+pub use light_lmax::LIGHT_MAX_LMAX;
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;

@@ -46,7 +46,7 @@ pub use orbit_camera::OrbitCamera;
 pub use projector::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, Renderer};
-pub use shading::{Background, MAX_LMAX, Mode, Shading};
+pub use shading::{Background, Mode, Shading};
 pub use volume::{
     PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, pack_texels, place,
     probe_sphere_instances,
