@@ -9,7 +9,7 @@
 //! - [`bake()`]: each probe's incident radiance as a transfer matrix per
 //!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
 //!   through the scene's shadows and interreflections
-//!   ([`bake`](mod@bake) states the estimator).
+//!   ([`bake()`] states the estimator).
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
 //! - [`sample`]: trilinear interpolation of the valid probes;
@@ -38,13 +38,13 @@
 //! **Architecture invariant:** no GPU and no command line; files through
 //! shlight-format.
 
-pub mod bake;
+mod bake;
 mod error;
 mod lookup;
-pub mod probe_sheet;
+mod probe_sheet;
 mod probe_volume;
 
-pub use bake::{Stage, VolumeOptions, bake};
+pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake};
 pub use error::VolumeError;
 pub use lookup::{Lookup, irradiance_at, shaded_lmax};
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
