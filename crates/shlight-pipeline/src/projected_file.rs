@@ -29,6 +29,27 @@ pub struct MapInfo {
 }
 
 impl MapInfo {
+    /// The record of the map `name`, `size` texels of the layout named
+    /// `layout`, with the statistics `stats` of its values as read and what
+    /// sanitizing replaced.
+    #[must_use]
+    pub fn new(
+        name: &str,
+        layout: &str,
+        (width, height): (usize, usize),
+        stats: PixelStats,
+        sanitized: Option<SanitizeCounts>,
+    ) -> Self {
+        Self {
+            name: name.to_string(),
+            width,
+            height,
+            layout: layout.to_string(),
+            stats,
+            sanitized,
+        }
+    }
+
     /// The record of a contiguous map of `pixels` (statistics computed
     /// here, not sanitized).
     #[must_use]
@@ -39,14 +60,8 @@ impl MapInfo {
         height: usize,
         pixels: &[[f32; 3]],
     ) -> Self {
-        Self {
-            name: name.to_string(),
-            width,
-            height,
-            layout: layout.name().to_string(),
-            stats: PixelStats::of_pixels(pixels, width),
-            sanitized: None,
-        }
+        let stats = PixelStats::of_pixels(pixels, width);
+        Self::new(name, layout.name(), (width, height), stats, None)
     }
 }
 

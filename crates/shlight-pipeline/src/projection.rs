@@ -2,9 +2,10 @@
 
 use glam::DVec3;
 use shlight_core::map::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
-use shlight_core::map::{EnvMap, Layout, TexelSource};
+use shlight_core::map::{EnvMap, Layout, TexelSource, contiguous_pixels};
 use shlight_core::sh::ShCoeffs;
 
+use crate::load::env_map;
 use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 
@@ -83,8 +84,8 @@ pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
 /// source through [`shlight_core::map::project`], which gives the
 /// same coefficients bit for bit as a contiguous map of the same texels;
 /// Monte Carlo looks texels up bilinearly and needs them contiguous: it
-/// reads them in place where the source holds them so
-/// ([`TexelSource::pixels`]), and copies them otherwise.
+/// reads them in place where the source holds them so, and copies them
+/// otherwise ([`contiguous_pixels`]).
 ///
 /// # Errors
 /// The source's size does not fit its layout.
@@ -104,23 +105,8 @@ pub fn project_radiance_texels<S: TexelSource + ?Sized>(
                 .layout()
                 .check_size(w, h)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
-            let owned: Vec<[f32; 3]>;
-            let pixels = match source.pixels() {
-                Some(p) if p.len() == w * h => p,
-                _ => {
-                    let mut copy = Vec::with_capacity(w * h);
-                    for y in 0..h {
-                        match source.row(y) {
-                            Some(row) if row.len() == w => copy.extend_from_slice(row),
-                            _ => copy.extend((0..w).map(|x| source.texel(x, y))),
-                        }
-                    }
-                    owned = copy;
-                    &owned
-                }
-            };
-            let map = EnvMap::new(source.layout(), s.orientation, w, h, pixels)
-                .map_err(|e| PipelineError::new(e.to_string()))?;
+            let pixels = contiguous_pixels(source);
+            let map = env_map(source.layout(), s.orientation, (w, h), &pixels)?;
             Ok(project_radiance(&map, s))
         }
     }
