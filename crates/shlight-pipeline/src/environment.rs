@@ -14,10 +14,11 @@ use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
 use shlight_io::{Image, ReadOptions};
 
-use crate::encode_file::set_encoding;
+use crate::cpu_projector::CpuProjector;
+use crate::encoded_file::set_encoding;
 use crate::input_layout::InputLayout;
 use crate::load::{LoadedMap, env_map, load_map};
-use crate::project::{CpuProjector, Projector};
+use crate::projector::Projector;
 use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 

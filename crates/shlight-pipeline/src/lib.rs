@@ -23,7 +23,7 @@
 //! 3. [`choose_windows`]: the window asked for, or per colour channel the
 //!    weakest Hanning window that keeps the result non-negative.
 //! 4. [`write_preview`], when [`Settings::preview`] asks for one.
-//! 5. [`coefficient_file`]: windows, rotation, quantity, provenance (the
+//! 5. [`coeff_file_of`]: windows, rotation, quantity, provenance (the
 //!    coefficient file's own [`shlight_format::CoeffFile::windowed`],
 //!    [`rotated`](shlight_format::CoeffFile::rotated) and
 //!    [`to_irradiance`](shlight_format::CoeffFile::to_irradiance)); with
@@ -61,7 +61,10 @@
 
 #![deny(missing_docs)]
 
-mod encode_file;
+mod choose_windows;
+mod coeff_file_of;
+mod cpu_projector;
+mod encoded_file;
 mod environment;
 mod error;
 mod input_layout;
@@ -69,26 +72,25 @@ mod load;
 mod output_grid;
 mod preview;
 mod project;
-mod projected_file;
-mod projection;
+mod projector;
 mod render;
 mod rotation_spec;
 mod settings;
 mod source_stats;
 
-pub use encode_file::encode_file;
+pub use choose_windows::choose_windows;
+pub use coeff_file_of::{MapInfo, coeff_file_of};
+pub use cpu_projector::{CpuProjector, project_radiance, project_radiance_texels};
+pub use encoded_file::encode_file;
 pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
-pub use project::{
-    CpuProjector, Hooks, Preview, Projector, Settings, Source, project, project_with_warnings,
-};
-pub use projected_file::{MapInfo, choose_windows, coefficient_file};
-pub use projection::{Projection, project_radiance, project_radiance_texels};
+pub use project::{Hooks, Source, project, project_with_warnings};
+pub use projector::{Projection, Projector};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
-pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings, ReadSettings};
+pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
 pub use source_stats::source_stats;

@@ -1,22 +1,21 @@
 //! [`project`]: every step of `shlight project` on one map, in order, for
 //! every front end (the command line, the Python package).
 
-use std::path::PathBuf;
-
 use shlight_core::encoding::Encoding;
 use shlight_core::map::{EnvMap, TexelSource, contiguous_pixels};
 use shlight_core::sh::{Window, apply_channel_windows};
 use shlight_format::CoeffFile;
 use shlight_io::Image;
 
-use crate::encode_file::encode_file;
+use crate::choose_windows::choose_windows;
+use crate::coeff_file_of::{MapInfo, coeff_file_of};
+use crate::cpu_projector::CpuProjector;
+use crate::encoded_file::encode_file;
 use crate::input_layout::is_faces;
 use crate::load::{LoadedMap, check_values, env_map, load_map};
-use crate::preview::{PreviewOptions, write_preview};
-use crate::projected_file::{MapInfo, choose_windows, coefficient_file};
-use crate::projection::{Projection, project_radiance_texels};
-use crate::settings::ProjectSettings;
-use crate::settings::ReadSettings;
+use crate::preview::write_preview;
+use crate::projector::Projector;
+use crate::settings::Settings;
 use crate::source_stats::source_stats;
 use crate::{PipelineError, Result};
 
@@ -24,7 +23,7 @@ use crate::{PipelineError, Result};
 #[derive(Clone, Copy)]
 pub enum Source<'a> {
     /// A map file, or six `{face}` files ([`crate::load_map`], with the
-    /// settings' [`ReadSettings`]); the path as given names it everywhere.
+    /// settings' [`crate::ReadSettings`]); the path as given names it everywhere.
     Path(&'a std::path::Path),
     /// Texels already in memory (a numpy array, a readback), read in place.
     Texels {
@@ -35,67 +34,6 @@ pub enum Source<'a> {
         /// `provenance.layout` (`equirect`, ..., `faces`).
         layout_name: &'a str,
     },
-}
-
-/// `--preview`: the three-panel picture of a projection, and where it goes.
-#[derive(Clone, Debug)]
-pub struct Preview {
-    /// The image file written.
-    pub path: PathBuf,
-    /// Panel size, exposure, tone map.
-    pub options: PreviewOptions,
-}
-
-/// Everything [`project`] does with a map, decided before it is read.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// How files are read (layout, reader options, `--sanitize`); texels in
-    /// memory use only `sanitize`.
-    pub read: ReadSettings,
-    /// lmax, orientation, method, window, rotation, quantity.
-    pub project: ProjectSettings,
-    /// The light kept as this encoding of the map's texels
-    /// ([`Encoding::Sh`]: plain SH, the coefficients as projected).
-    pub encoding: Encoding,
-    /// A preview to write, if any.
-    pub preview: Option<Preview>,
-}
-
-impl Settings {
-    /// Plain SH by `project`'s settings, files read with the defaults, no
-    /// preview.
-    #[must_use]
-    pub fn new(project: ProjectSettings) -> Self {
-        Self {
-            read: ReadSettings::default(),
-            project,
-            encoding: Encoding::Sh,
-            preview: None,
-        }
-    }
-}
-
-/// The projection step, injected: the library's own on the CPU
-/// ([`CpuProjector`]), or another (the command line's GPU projector) that
-/// the pipeline need not know.
-pub trait Projector: Sync {
-    /// Radiance coefficients of `texels`, read in `s.orientation`, to
-    /// `s.lmax` by `s.method`.
-    ///
-    /// # Errors
-    /// The projector cannot project this map (its layout, size or method).
-    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection>;
-}
-
-/// The library's projection on the CPU ([`project_radiance_texels`]):
-/// quadrature or Monte Carlo, on every core.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CpuProjector;
-
-impl Projector for CpuProjector {
-    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
-        project_radiance_texels(texels, s)
-    }
 }
 
 /// What [`project`] calls as it goes: the projector, and where progress and
@@ -133,7 +71,7 @@ impl Default for Hooks<'static> {
 /// 2. The projector makes radiance coefficients ([`Projector`]).
 /// 3. The window of each channel ([`choose_windows`]).
 /// 4. The preview, if asked ([`write_preview`]), of the windowed radiance.
-/// 5. The coefficient file ([`coefficient_file`]: windows, rotation,
+/// 5. The coefficient file ([`coeff_file_of`]: windows, rotation,
 ///    quantity, provenance), then the encoding, if other than plain SH
 ///    ([`encode_file`]).
 ///
@@ -229,7 +167,7 @@ fn finish(
         )
         .map_err(|e| e.context(format!("{name}: preview")))?;
     }
-    let mut file = coefficient_file(&projection, windows, p, &info);
+    let mut file = coeff_file_of(&projection, windows, p, &info);
     if s.encoding != Encoding::Sh {
         (hooks.progress)(&format!("encoding {name} as {}", s.encoding));
         let (_, map) = contiguous.expect("an encoding copies the texels into an image");
@@ -268,7 +206,8 @@ pub fn project_with_warnings(source: Source<'_>, s: &Settings) -> Result<(CoeffF
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::Method;
+    use crate::projector::Projection;
+    use crate::settings::{Method, ProjectSettings};
     use glam::DVec3;
     use shlight_core::map::montecarlo::{McOptions, SamplerKind};
     use shlight_core::map::{Layout, MapOrientation, StridedImage};

@@ -1,41 +1,23 @@
-//! The projection step: the place where layouts and methods meet.
+//! [`CpuProjector`]: the library's projection step on the CPU, the place
+//! where layouts and methods meet ([`project_radiance`],
+//! [`project_radiance_texels`]).
 
-use glam::DVec3;
 use shlight_core::map::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
 use shlight_core::map::{EnvMap, Layout, TexelSource, contiguous_pixels};
-use shlight_core::sh::ShCoeffs;
 
 use crate::load::env_map;
+use crate::projector::{Projection, Projector};
 use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 
-/// Radiance coefficients of a map, and what the method reports about them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Projection {
-    /// Radiance coefficients to the settings' lmax, in the map's frame.
-    pub coeffs: ShCoeffs<DVec3>,
-    /// Standard error per coefficient (Monte Carlo).
-    pub std_error: Option<ShCoeffs<DVec3>>,
-    /// Monte Carlo directions used.
-    pub samples: Option<u64>,
-    /// Monte Carlo seed.
-    pub seed: Option<u64>,
-    /// Monte Carlo sampler name.
-    pub sampler: Option<String>,
-}
+/// The library's projection on the CPU ([`project_radiance_texels`]):
+/// quadrature or Monte Carlo, on every core.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CpuProjector;
 
-impl Projection {
-    /// The coefficients of an exact method (quadrature): no standard
-    /// errors, no samples.
-    #[must_use]
-    pub fn exact(coeffs: ShCoeffs<DVec3>) -> Self {
-        Self {
-            coeffs,
-            std_error: None,
-            samples: None,
-            seed: None,
-            sampler: None,
-        }
+impl Projector for CpuProjector {
+    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
+        project_radiance_texels(texels, s)
     }
 }
 
