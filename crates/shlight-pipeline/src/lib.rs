@@ -37,6 +37,8 @@
 //! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
 //! distant light of the commands that shade a scene (a map projected, or a
 //! coefficient file), with its encodings and their WGSL snippets.
+//! [`map_irradiance`] and [`compare_encodings`] measure a map's encodings
+//! against its exact irradiance (`shlight irradiance`, `shlight compare`).
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -61,6 +63,7 @@
 
 #![deny(missing_docs)]
 
+mod accuracy;
 mod choose_windows;
 mod coeff_file_of;
 mod cpu_projector;
@@ -78,6 +81,10 @@ mod rotation_spec;
 mod settings;
 mod source_stats;
 
+pub use accuracy::{
+    EncodedIrradiance, IrradianceReport, IrradianceSettings, compare_encodings, compare_name,
+    map_irradiance,
+};
 pub use choose_windows::choose_windows;
 pub use coeff_file_of::{MapInfo, coeff_file_of};
 pub use cpu_projector::{CpuProjector, project_radiance, project_radiance_texels};
