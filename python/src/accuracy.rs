@@ -13,19 +13,12 @@ use shlight_accuracy::compare::rows_json;
 use shlight_core::map::{Layout, MapOrientation};
 use shlight_io::ReadOptions;
 use shlight_pipeline::{
-    InputLayout, IrradianceSettings, ReadSettings, compare_encodings, map_irradiance, output_grid,
+    IrradianceSettings, ReadSettings, compare_encodings, map_irradiance, output_grid,
 };
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
-use crate::options::frame_of;
-
-/// `layout=` of a map read from a file.
-fn input_layout(layout: &str) -> PyResult<InputLayout> {
-    layout
-        .parse()
-        .map_err(|e: String| shlight_error(format!("layout={layout:?}: {e}")))
-}
+use crate::options::{frame_of, input_layout};
 
 /// irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False,
 /// sanitize=False, max_pixels=None) -> ndarray

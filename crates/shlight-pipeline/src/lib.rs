@@ -30,6 +30,9 @@
 //!    [`encode_file`], an encoding other than plain SH
 //!    ([`Settings::encoding`]).
 //!
+//! [`ProjectOptions::check`] makes its [`Settings`] from the options as a
+//! front end was given them, with the same refusals for every front end
+//! (each naming the options in the front end's [`Spelling`]).
 //! [`project_with_warnings`] runs it on the CPU and hands the warnings
 //! back. [`layout_for_size`] settles the layout of texels in memory.
 //! [`render_map`] evaluates coefficients at every texel centre of a map in
@@ -75,6 +78,7 @@ mod load;
 mod output_grid;
 mod preview;
 mod project;
+mod project_options;
 mod projector;
 mod render;
 mod rotation_spec;
@@ -96,6 +100,7 @@ pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_imag
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
 pub use project::{Hooks, Source, project, project_with_warnings};
+pub use project_options::{ProjectOptions, Spelling};
 pub use projector::{Projection, Projector};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
