@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use shlight_core::sh::Frame;
 use shlight_io::{Image, ReadOptions, read_image_bytes};
 use shlight_mesh::{Mesh, MeshFormat};
-use shlight_pipeline::Environment;
+use shlight_pipeline::{Environment, InputLayout, LoadedMap};
 
 /// The name the bundled mesh goes by (its path in the repository).
 pub const MESH_NAME: &str = "meshes/bunny.obj";
@@ -34,15 +34,20 @@ pub fn env_image() -> Result<Image> {
         .with_context(|| format!("reading the bundled {ENV_NAME}"))
 }
 
-/// The bundled map as the light of the GPU commands
-/// ([`Environment::from_map`], projected to the GPU's lmax).
+/// The bundled map as the light of the GPU commands: through the loader
+/// of every map ([`LoadedMap::from_image`]) and projected to the GPU's lmax
+/// ([`Environment::from_loaded`]). Its known negative texels are not
+/// reported: the user did not name the file.
 pub fn environment(up: Frame) -> Result<Environment> {
-    Ok(Environment::from_map(
+    let loaded = LoadedMap::from_image(ENV_NAME, env_image()?, InputLayout::Auto, false)?;
+    let mut env = Environment::from_loaded(
         Path::new(ENV_NAME),
-        env_image()?,
+        loaded,
         up,
-        shlight_gpu::MAX_LMAX,
-    )?)
+        shlight_baked::LIGHT_MAX_LMAX,
+    )?;
+    env.warnings.clear();
+    Ok(env)
 }
 
 #[cfg(test)]
@@ -64,5 +69,21 @@ mod tests {
             (disk.width(), disk.height())
         );
         assert_eq!(image.pixels(), disk.pixels());
+    }
+
+    /// The bundled light is the repository file's as `--env` loads it,
+    /// without the file's warnings.
+    #[test]
+    fn the_bundled_light_is_the_files() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let lmax = shlight_baked::LIGHT_MAX_LMAX;
+        for up in [Frame::YUp, Frame::ZUp] {
+            let bundled = environment(up).unwrap();
+            let file = Environment::load(&root.join(ENV_NAME), up, lmax).unwrap();
+            assert_eq!(bundled.radiance, file.radiance);
+            assert_eq!(bundled.orientation, file.orientation);
+            assert!(bundled.warnings.is_empty());
+            assert!(!file.warnings.is_empty(), "the file has negative texels");
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! `shlight compare`: every encoding on every map against the map's exact
-//! irradiance (`shlight_accuracy::compare`): the table on stdout; with
+//! irradiance (shlight-pipeline's `compare_encodings`, on
+//! `shlight_accuracy::compare`): the table on stdout; with
 //! `-o DIR`, `compare.json` and one plot of error against floats stored
 //! per map (`compare-MAP.svg`).
 
@@ -8,11 +9,11 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use shlight_accuracy::compare::{self, CompareRow};
-use shlight_core::encoding::DominantLightOptions;
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
+use shlight_pipeline::{ReadSettings, compare_encodings, compare_name};
 
-use crate::input::{InputLayout, load, parse_input_layout};
+use crate::input::{InputLayout, parse_input_layout};
 use crate::progress::Ui;
 use crate::values::parse_size;
 
@@ -53,23 +54,23 @@ pub fn run(args: &CompareArgs, ui: &Ui) -> Result<()> {
         frame: crate::input::frame_of(&args.up),
         mirror: false,
     };
-    let read = ReadOptions::default();
+    let read = ReadSettings {
+        layout: args.layout,
+        read: ReadOptions::default(),
+        sanitize: args.sanitize,
+    };
     let mut rows: Vec<CompareRow> = Vec::new();
     let mut names = Vec::new();
     for input in &args.inputs {
-        let name = input.file_stem().map_or_else(
-            || input.display().to_string(),
-            |s| s.to_string_lossy().into_owned(),
-        );
+        let name = compare_name(input);
         let bar = ui.spinner(&format!("comparing {name}"));
-        let loaded = load(input, args.layout, &read, args.sanitize, ui)?;
-        let map = loaded.map(orientation, &input.display().to_string())?;
-        rows.extend(compare::compare_map(
-            &name,
-            &map,
+        rows.extend(compare_encodings(
+            input,
+            &read,
+            orientation,
             args.normals,
-            &DominantLightOptions::default(),
-        ));
+            &|m| ui.warn(m),
+        )?);
         bar.finish_and_clear();
         names.push(name);
     }

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use shlight_format::export::gltf;
+use shlight_format::gltf;
 use shlight_format::{ExportFormat, ExportInput, export, read_coefficients};
 
 /// Arguments of `shlight convert`.

@@ -11,7 +11,7 @@
 //! prints the relative error of the SH irradiance's luminance over the
 //! sphere (area-weighted mean, and maximum): pointwise `|ΔE| / E(n)` and,
 //! as Ramamoorthi & Hanrahan measure it, `|ΔE| / max E`
-//! (`shlight_accuracy::map_irradiance`). `--encoding E`
+//! (shlight-pipeline's `map_irradiance`, on shlight-accuracy). `--encoding E`
 //! does the same for any encoding of `shlight_core::encoding` (dominant
 //! lights + SH, ZH3, non-linear L1, the ambient cube), writing
 //! `OUT-E.EXT` and `OUT-diff.EXT`; its SH part is `--sh LMAX` (default 2).
@@ -21,12 +21,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
-use shlight_accuracy::map_irradiance::MapIrradiance;
 use shlight_core::map::{Layout, MapOrientation};
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
-use shlight_pipeline::output_grid;
+use shlight_pipeline::{IrradianceSettings, ReadSettings, map_irradiance, output_grid};
 
-use crate::input::{InputLayout, load, parse_input_layout};
+use crate::input::{InputLayout, parse_input_layout};
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
 use crate::values::parse_size;
@@ -109,19 +108,28 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     for out in &outputs {
         refuse_overwriting(out, std::slice::from_ref(&args.input))?;
     }
-    let orientation = MapOrientation {
-        frame: crate::input::frame_of(&args.up),
-        mirror: args.mirror,
+    let settings = IrradianceSettings {
+        read: ReadSettings {
+            layout: args.layout,
+            read: ReadOptions {
+                layer: None,
+                max_pixels: args.max_pixels,
+            },
+            sanitize: args.sanitize,
+        },
+        orientation: MapOrientation {
+            frame: crate::input::frame_of(&args.up),
+            mirror: args.mirror,
+        },
+        size: (w, h),
+        encoding,
     };
-    let read = ReadOptions {
-        layer: None,
-        max_pixels: args.max_pixels,
-    };
-    let loaded = load(&args.input, args.layout, &read, args.sanitize, ui)?;
-    let map = loaded.map(orientation, &name)?;
     let bar = ui.bar((w * h) as u64, "irradiance");
-    let irradiance = MapIrradiance::on_equirect(&map, (w, h), orientation, &|n| bar.inc(n as u64))?;
+    let report = map_irradiance(&args.input, &settings, &|m| ui.warn(m), &|n| {
+        bar.inc(n as u64);
+    });
     bar.finish_and_clear();
+    let report = report?;
     let to_image = |values: &[DVec3]| {
         Image::new(
             w,
@@ -134,21 +142,15 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         write_image(path, &to_image(values), &WriteOptions::default())
             .with_context(|| format!("{name}: writing"))
     };
-    write(&args.output, &irradiance.exact)?;
+    write(&args.output, &report.exact.exact)?;
 
-    let Some((encoding, lmax)) = encoding else {
+    let Some(measured) = &report.encoded else {
         return Ok(());
     };
-    let encoded = shlight_core::encoding::encode_map(
-        &map,
-        encoding,
-        lmax,
-        &shlight_core::encoding::DominantLightOptions::default(),
-    );
-    let sh = irradiance.estimate(&encoded);
-    write(&outputs[1], &sh)?;
-    write(&outputs[2], &irradiance.difference(&sh))?;
-    let Some(errors) = irradiance.errors(&sh) else {
+    let (encoding, lmax) = (measured.encoding, measured.lmax);
+    write(&outputs[1], &measured.estimate)?;
+    write(&outputs[2], &measured.difference)?;
+    let Some(errors) = measured.errors else {
         bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
     };
     let (p, q) = (errors.pointwise, errors.peak_relative);
@@ -159,13 +161,13 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     };
     println!(
         "{name}: {what} against brute force over {} normals ({}x{} texels of input):",
-        irradiance.normals.len(),
-        map.width,
-        map.height
+        report.exact.normals.len(),
+        report.map_size.0,
+        report.map_size.1
     );
     if args.encoding.is_some() {
-        println!("  floats stored:      {}", encoded.floats(encoding));
-        for (i, l) in encoded.lights().iter().enumerate() {
+        println!("  floats stored:      {}", measured.light.floats(encoding));
+        for (i, l) in measured.light.lights().iter().enumerate() {
             println!(
                 "  light {i}: direction {:.4},{:.4},{:.4}  half-angle {:.3}°  power {:.4},{:.4},{:.4}",
                 l.direction.x,

@@ -17,9 +17,6 @@ use crate::input::frame_of;
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
 
-/// Highest lmax of the light read for a PRT file (the GPU's).
-const LIGHT_MAX_LMAX: usize = 8;
-
 /// Arguments of `shlight sample`.
 #[derive(Args, Debug)]
 pub struct SampleArgs {
@@ -175,12 +172,12 @@ fn transfer(args: &SampleArgs) -> Result<Samples> {
         }
     }
     let file = ShprtFile::read(&args.file)?;
-    let env = light(light_path, &args.up, LIGHT_MAX_LMAX)?;
+    let env = light(light_path, &args.up, shlight_baked::LIGHT_MAX_LMAX)?;
     let lmax = args
         .lmax
         .unwrap_or(file.lmax)
         .min(file.lmax)
-        .min(LIGHT_MAX_LMAX);
+        .min(shlight_baked::LIGHT_MAX_LMAX);
     let l = env.radiance.resized(lmax.min(env.radiance.lmax()));
     let values = file
         .view()?

@@ -42,7 +42,7 @@ fn every_file_in_shaders_is_compiled_and_as_on_disk() {
 #[test]
 fn every_module_validates() {
     for module in MODULES {
-        for lmax in 0..=shlight_gpu::MAX_LMAX {
+        for lmax in 0..=shlight_baked::LIGHT_MAX_LMAX {
             if let Err(e) = validate(&module.source_at(lmax)) {
                 panic!(
                     "shader module {} does not validate at lmax {lmax}:\n{e}",

@@ -1,44 +1,24 @@
 //! `shlight.irradiance` (the exact irradiance of a map, `shlight
 //! irradiance`) and `shlight.compare` (every encoding against it, `shlight
 //! compare`): the same library calls as the command line's
-//! (`shlight_pipeline::load_map`, `shlight_accuracy`).
+//! (shlight-pipeline's `map_irradiance` and `compare_encodings`).
 
+use std::cell::RefCell;
 use std::path::PathBuf;
 
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
-use shlight_accuracy::compare::{compare_map, rows_json};
-use shlight_accuracy::map_irradiance::MapIrradiance;
-use shlight_core::encoding::DominantLightOptions;
+use shlight_accuracy::compare::rows_json;
 use shlight_core::map::{Layout, MapOrientation};
 use shlight_io::ReadOptions;
-use shlight_pipeline::{InputLayout, LoadedMap, load_map, output_grid};
+use shlight_pipeline::{
+    IrradianceSettings, ReadSettings, compare_encodings, map_irradiance, output_grid,
+};
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
-use crate::options::frame_of;
-
-/// `layout=` of a map read from a file.
-fn input_layout(layout: &str) -> PyResult<InputLayout> {
-    layout
-        .parse()
-        .map_err(|e: String| shlight_error(format!("layout={layout:?}: {e}")))
-}
-
-/// Reads and checks a map as the command line does; its warnings are
-/// returned for the caller to issue once the GIL is held again.
-fn load(
-    path: &std::path::Path,
-    layout: InputLayout,
-    read: &ReadOptions,
-    sanitize: bool,
-    warnings: &mut Vec<String>,
-) -> PyResult<LoadedMap> {
-    let loaded = load_map(path, layout, read, sanitize).map_err(pipeline_error)?;
-    warnings.extend(loaded.warnings.iter().cloned());
-    Ok(loaded)
-}
+use crate::options::{frame_of, input_layout};
 
 /// irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False,
 /// sanitize=False, max_pixels=None) -> ndarray
@@ -66,19 +46,26 @@ pub fn irradiance<'py>(
     let (w, h) = size;
     output_grid(Layout::Equirect, size, MapOrientation::default())
         .map_err(|e| shlight_error(format!("size=({w}, {h}): {e}")))?;
-    let read = ReadOptions {
-        layer: None,
-        max_pixels: max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
+    let settings = IrradianceSettings {
+        read: ReadSettings {
+            layout,
+            read: ReadOptions {
+                layer: None,
+                max_pixels: max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
+            },
+            sanitize,
+        },
+        orientation,
+        size,
+        encoding: None,
     };
-    let mut warnings = Vec::new();
-    let exact = py.detach(|| {
+    let (exact, warnings) = py.detach(|| {
         guard(|| {
-            let name = source.display().to_string();
-            let loaded = load(&source, layout, &read, sanitize, &mut warnings)?;
-            let map = loaded.map(orientation, &name).map_err(pipeline_error)?;
-            MapIrradiance::on_equirect(&map, size, orientation, &|_| {})
-                .map(|m| m.exact)
-                .map_err(|e| shlight_error(format!("size=({w}, {h}): {e}")))
+            let warnings = RefCell::new(Vec::new());
+            let warn = |m: &str| warnings.borrow_mut().push(m.to_string());
+            let report =
+                map_irradiance(&source, &settings, &warn, &|_| {}).map_err(pipeline_error)?;
+            Ok((report.exact.exact, warnings.into_inner()))
         })
     })?;
     warn_all(py, &warnings, 2)?;
@@ -115,29 +102,23 @@ pub fn compare<'py>(
             "normals=({w}, {h}): the grid of normals needs at least one texel"
         )));
     }
-    let read = ReadOptions::default();
-    let mut warnings = Vec::new();
-    let text = py.detach(|| {
+    let read = ReadSettings {
+        layout,
+        read: ReadOptions::default(),
+        sanitize,
+    };
+    let (text, warnings) = py.detach(|| {
         guard(|| {
+            let warnings = RefCell::new(Vec::new());
+            let warn = |m: &str| warnings.borrow_mut().push(m.to_string());
             let mut rows = Vec::new();
             for path in &paths {
-                // The row's map is the file's stem, as `shlight compare` names it.
-                let name = path.file_stem().map_or_else(
-                    || path.display().to_string(),
-                    |s| s.to_string_lossy().into_owned(),
+                rows.extend(
+                    compare_encodings(path, &read, orientation, normals, &warn)
+                        .map_err(pipeline_error)?,
                 );
-                let loaded = load(path, layout, &read, sanitize, &mut warnings)?;
-                let map = loaded
-                    .map(orientation, &path.display().to_string())
-                    .map_err(pipeline_error)?;
-                rows.extend(compare_map(
-                    &name,
-                    &map,
-                    normals,
-                    &DominantLightOptions::default(),
-                ));
             }
-            Ok(rows_json(&rows).to_string())
+            Ok((rows_json(&rows).to_string(), warnings.into_inner()))
         })
     })?;
     warn_all(py, &warnings, 2)?;

@@ -1,17 +1,18 @@
 //! `shlight.project` and `shlight.project_many`.
 
+use std::borrow::Cow;
 use std::path::PathBuf;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use pyo3::prelude::*;
 use rayon::prelude::*;
-use shlight_core::map::{CubeFaces, Layout};
+use shlight_core::map::{CubeFaces, Layout, contiguous_pixels};
 use shlight_format::CoeffFile;
 use shlight_pipeline::{Settings, Source as MapSource, layout_for_size, project_with_warnings};
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::{guard, panic_text};
-use crate::options::{Options, RawOptions};
+use crate::options::RawOptions;
 use crate::sh::Sh;
 use crate::source::{ArrayMap, Source};
 
@@ -80,18 +81,9 @@ pub fn project(
     Ok(Sh::new(file))
 }
 
-/// The pipeline's settings of `o` (no preview).
-fn settings(o: &Options) -> Settings {
-    Settings {
-        read: o.read.clone(),
-        encoding: o.encoding,
-        ..Settings::new(o.settings.clone())
-    }
-}
-
 /// The projection of one file: every step of `shlight project`.
-fn project_one(path: &std::path::Path, o: &Options) -> PyResult<(CoeffFile, Vec<String>)> {
-    project_with_warnings(MapSource::Path(path), &settings(o)).map_err(pipeline_error)
+fn project_one(path: &std::path::Path, o: &Settings) -> PyResult<(CoeffFile, Vec<String>)> {
+    project_with_warnings(MapSource::Path(path), o).map_err(pipeline_error)
 }
 
 /// The projection of an `(H, W, 3)` array in the options' layout, read in
@@ -99,7 +91,7 @@ fn project_one(path: &std::path::Path, o: &Options) -> PyResult<(CoeffFile, Vec<
 fn project_array(
     py: Python<'_>,
     array: &ArrayMap<'_>,
-    o: &Options,
+    o: &Settings,
 ) -> PyResult<(CoeffFile, Vec<String>)> {
     let mut warnings = Vec::new();
     let layout = layout_for_size(
@@ -118,7 +110,7 @@ fn project_array(
                 name: ARRAY_NAME,
                 layout_name: layout.name(),
             };
-            project_with_warnings(source, &settings(o)).map_err(pipeline_error)
+            project_with_warnings(source, o).map_err(pipeline_error)
         })
     })?;
     warnings.extend(more);
@@ -130,7 +122,7 @@ fn project_array(
 fn project_faces(
     py: Python<'_>,
     faces: &[ArrayMap<'_>],
-    o: &Options,
+    o: &Settings,
 ) -> PyResult<(CoeffFile, Vec<String>)> {
     if !matches!(
         o.read.layout,
@@ -152,24 +144,14 @@ fn project_faces(
         }
     }
     let views: Vec<_> = faces.iter().map(|f| f.view(Layout::Strip)).collect();
-    let owned: Vec<Vec<[f32; 3]>>;
-    let slices: Vec<&[[f32; 3]]> = if views.iter().all(|v| v.contiguous().is_some()) {
-        views
-            .iter()
-            .map(|v| v.contiguous().expect("checked"))
-            .collect()
-    } else {
-        owned = views
-            .iter()
-            .map(|v| {
-                (0..v.height)
-                    .flat_map(|y| (0..v.width).map(move |x| (x, y)))
-                    .map(|(x, y)| shlight_core::map::TexelSource::texel(v, x, y))
-                    .collect()
-            })
-            .collect();
-        owned.iter().map(Vec::as_slice).collect()
-    };
+    let pixels: Vec<Cow<'_, [[f32; 3]]>> = views
+        .iter()
+        .map(|v| {
+            v.contiguous()
+                .map_or_else(|| contiguous_pixels(v), Cow::Borrowed)
+        })
+        .collect();
+    let slices: Vec<&[[f32; 3]]> = pixels.iter().map(|p| &p[..]).collect();
     let cube = CubeFaces::new(n, slices.try_into().expect("six faces"))
         .map_err(|e| shlight_error(format!("{ARRAY_NAME}: {e}")))?;
     py.detach(|| {
@@ -179,7 +161,7 @@ fn project_faces(
                 name: ARRAY_NAME,
                 layout_name: "faces",
             };
-            project_with_warnings(source, &settings(o)).map_err(pipeline_error)
+            project_with_warnings(source, o).map_err(pipeline_error)
         })
     })
 }
@@ -260,7 +242,7 @@ pub fn project_many(
             .par_iter()
             .map(|path| {
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    project_with_warnings(MapSource::Path(path), &settings(&options))
+                    project_with_warnings(MapSource::Path(path), &options)
                 }));
                 bar.inc(1);
                 match r {

@@ -122,9 +122,6 @@ pub enum Method {
     MonteCarlo,
 }
 
-/// Monte Carlo directions drawn when `--samples` is not given.
-pub const DEFAULT_SAMPLES: usize = 1 << 16;
-
 /// `--samples N`: a whole number of at least 1.
 fn parse_samples(s: &str) -> std::result::Result<usize, String> {
     match s.trim().parse::<usize>() {
@@ -146,6 +143,7 @@ fn sampler_parser() -> impl TypedValueParser<Value = SamplerKind> {
 mod tests {
     use super::*;
     use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions};
+    use shlight_pipeline::DEFAULT_SAMPLES;
 
     #[test]
     fn the_help_states_the_library_defaults() {

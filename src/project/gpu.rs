@@ -1,7 +1,7 @@
 //! `--gpu`: the GPU's projection ([`shlight_gpu::GpuProjector`]) as the
 //! pipeline's injected [`Projector`], so the pipeline stays free of wgpu.
 
-use shlight_core::map::{EquirectView, Layout, TexelSource};
+use shlight_core::map::{EquirectView, Layout, TexelSource, contiguous_pixels};
 use shlight_pipeline::{PipelineError, ProjectSettings, Projection, Projector};
 
 /// The device and pipelines of `--gpu`.
@@ -26,21 +26,11 @@ impl Projector for GpuProjection {
             )));
         }
         let (width, height) = texels.size();
-        let owned: Vec<[f32; 3]>;
-        let pixels = match texels.pixels() {
-            Some(p) if p.len() == width * height => p,
-            _ => {
-                owned = (0..height)
-                    .flat_map(|y| (0..width).map(move |x| (x, y)))
-                    .map(|(x, y)| texels.texel(x, y))
-                    .collect();
-                &owned
-            }
-        };
+        let pixels = contiguous_pixels(texels);
         let view = EquirectView {
             width,
             height,
-            pixels,
+            pixels: &pixels,
         };
         let coeffs = self
             .projector

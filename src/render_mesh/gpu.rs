@@ -10,7 +10,7 @@ use shlight_io::{Format, Image, WriteOptions, write_image};
 
 use crate::input::frame_of;
 use crate::progress::Ui;
-use shlight_gpu::MAX_LMAX;
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_pipeline::Environment;
 
 use super::{BackgroundArg, RenderMeshArgs, RenderMode};
@@ -51,7 +51,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         None => None,
     };
     bar.set_message("reading the environment");
-    let mut env = Environment::load(&args.env, frame_of(&args.up), MAX_LMAX)?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up), LIGHT_MAX_LMAX)?;
     env.warnings.iter().for_each(|w| ui.warn(w));
     // Encoded before the light is turned: the renderer turns the normal back.
     let snippet = match args.encoding {

@@ -33,7 +33,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
     let mesh = shlight_mesh::load(&args.mesh)?;
     let mut volume = crate::volume_shading::load_volume(&args.volume, &mesh, &args.mesh, ui)?;
     bar.set_message("reading the environment");
-    let mut env = Environment::load(&args.env, frame_of(&args.up), shlight_gpu::MAX_LMAX)?;
+    let mut env = Environment::load(&args.env, frame_of(&args.up), shlight_baked::LIGHT_MAX_LMAX)?;
     env.warnings.iter().for_each(|w| ui.warn(w));
     if args.background == BackgroundArg::Map && env.map.is_none() {
         bail!(

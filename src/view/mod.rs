@@ -136,7 +136,7 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
     };
     let up = frame_of(&args.up);
     let env = match &args.env {
-        Some(path) => Environment::load(path, up, shlight_gpu::MAX_LMAX)?,
+        Some(path) => Environment::load(path, up, shlight_baked::LIGHT_MAX_LMAX)?,
         None => crate::bundled::environment(up)?,
     };
     env.warnings.iter().for_each(|w| ui.warn(w));

@@ -8,8 +8,9 @@
 //!   trilinear weights of a point, clamped to the grid.
 //! - [`VolumeView`]: a volume's probes borrowed (grid, lmax, validity,
 //!   radiance), checked for shape; [`MAX_LMAX`], the most a volume holds,
-//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades; the
-//!   probes' offsets (where the bake moved them out of geometry) and
+//!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades;
+//!   [`LIGHT_MAX_LMAX`], the most of a distant light the renderers shade;
+//!   the probes' offsets (where the bake moved them out of geometry) and
 //!   [`Visibility`], their distance maps.
 //! - [`visibility`]: DDGI's probe visibility (Majercik et al. 2019), the one
 //!   definition of the distance moments a bake stores
@@ -37,6 +38,7 @@
 //! mathematics of SH (that is shlight-core's).
 
 mod dilate;
+mod light_lmax;
 mod morton;
 pub mod octahedral;
 mod probe_grid;
@@ -46,6 +48,7 @@ pub mod visibility;
 mod volume_view;
 
 pub use dilate::dilate;
+pub use light_lmax::LIGHT_MAX_LMAX;
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;

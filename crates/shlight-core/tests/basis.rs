@@ -188,7 +188,7 @@ fn azimuth_recurrence_matches_trigonometry_at_high_degree() {
 }
 
 #[test]
-fn hardcoded_forms_match_the_recurrence() {
+fn low_degree_forms_match_the_recurrence() {
     // ShBasis uses the hard-coded polynomials for lmax <= 4 and the general
     // recurrence above; compare the first 25 values.
     let hard64 = ShBasis::<f64>::new(4);

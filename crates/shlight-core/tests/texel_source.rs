@@ -373,3 +373,59 @@ fn projection_repeats_bit_for_bit_for_any_thread_count() {
         }
     }
 }
+
+/// The contiguous readers give a source's own texels: a map's rows and
+/// pixels borrowed in place, a strided image's rows in place and its
+/// pixels copied without the padding, and a source that stores nothing
+/// read texel by texel.
+#[test]
+fn rows_and_pixels_are_read_in_place_or_copied() {
+    use std::borrow::Cow;
+
+    use shlight_core::map::{contiguous_pixels, read_row};
+
+    let (w, h, stride) = (6, 3, 9);
+    let padded: Vec<[f32; 3]> = (0..stride * h)
+        .map(|k| [k as f32, (k % stride) as f32, -(k as f32)])
+        .collect();
+    let strided = StridedImage::new(Layout::Equirect, w, h, stride, &padded).unwrap();
+    let want: Vec<[f32; 3]> = (0..h)
+        .flat_map(|y| padded[y * stride..y * stride + w].to_vec())
+        .collect();
+    let mut buf = Vec::new();
+    let row = read_row(&strided, 1, &mut buf);
+    assert_eq!(row, &want[w..2 * w]);
+    assert!(buf.is_empty(), "the strided row is read in place");
+    let pixels = contiguous_pixels(&strided);
+    assert!(matches!(pixels, Cow::Owned(_)));
+    assert_eq!(&pixels[..], &want[..]);
+
+    let map = EnvMap::new(Layout::Equirect, MapOrientation::default(), w, h, &want).unwrap();
+    assert!(matches!(contiguous_pixels(&map), Cow::Borrowed(p) if p.as_ptr() == want.as_ptr()));
+
+    /// A source that stores nothing: every texel computed.
+    struct Computed;
+    impl TexelSource for Computed {
+        fn layout(&self) -> Layout {
+            Layout::Equirect
+        }
+        fn size(&self) -> (usize, usize) {
+            (4, 2)
+        }
+        fn texel(&self, x: usize, y: usize) -> [f32; 3] {
+            [x as f32, y as f32, 1.0]
+        }
+    }
+    assert_eq!(
+        read_row(&Computed, 1, &mut buf),
+        &[
+            [0.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [2.0, 1.0, 1.0],
+            [3.0, 1.0, 1.0]
+        ]
+    );
+    let all = contiguous_pixels(&Computed);
+    assert_eq!(all.len(), 8);
+    assert_eq!(all[5], [1.0, 1.0, 1.0]);
+}

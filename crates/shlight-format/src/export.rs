@@ -4,34 +4,21 @@
 //! Every exporter starts from an [`ExportInput`]: coefficients in shlight's
 //! basis (real orthonormal, Condon-Shortley phase, index `l(l+1)+m`), a
 //! quantity (radiance or irradiance) and a frame (y-up or z-up). Each target
-//! module states exactly what its numbers are and which source it follows:
-//!
-//! | format | numbers | phase | frame | lmax |
-//! |---|---|---|---|---|
-//! | [`txt`] | the file's quantity | none (R&H tables) | the file's | any |
-//! | [`threejs`] | radiance `L_lm` | none | y-up | 2 |
-//! | [`gltf`] | irradiance `E_lm = A_l L_lm` | CS | y-up (glTF) | 2 |
-//! | [`filament`] | `E_lm k_lm / pi` (shader-prescaled) | folded in | y-up | 2 |
-//! | [`unity`] | `E_lm k_lm / pi` (SphericalHarmonicsL2) | folded in | Unity: z flipped | 2 |
-//! | [`wgsl`], [`glsl`], [`hlsl`], [`c`] | the file's quantity + evaluator | CS | the file's | any |
-//!
-//! (`k_lm` is the constant of the basis polynomial, `Y_lm(n) = k_lm p_lm(n)`.)
-//! Formats limited to lmax 2 truncate a longer expansion (with a note on
-//! stderr) and pad a shorter one with zeros, which is exact: a degree-1
-//! expansion is the same function as the degree-2 one with zero band 2.
+//! module states exactly what its numbers are and which source it follows
+//! ([`ExportFormat`] tabulates them).
 
-pub mod c;
+mod c;
 mod encoded_snippet;
 mod engine;
-pub mod filament;
-pub mod glsl;
+pub(crate) mod filament;
+mod glsl;
 pub mod gltf;
-pub mod hlsl;
+mod hlsl;
 mod snippet;
-pub mod threejs;
-pub mod txt;
-pub mod unity;
-pub mod wgsl;
+pub(crate) mod threejs;
+mod txt;
+pub(crate) mod unity;
+mod wgsl;
 
 use std::path::Path;
 
@@ -61,6 +48,23 @@ pub struct ExportInput<'a> {
 }
 
 /// The formats coefficients can be written in (`--format`).
+///
+/// What each one holds (each exporter's file states its numbers and the
+/// source it follows; docs/exporters.md):
+///
+/// | format | numbers | phase | frame | lmax |
+/// |---|---|---|---|---|
+/// | `txt` | the file's quantity | none (R&H tables) | the file's | any |
+/// | `threejs` | radiance `L_lm` | none | y-up | 2 |
+/// | [`gltf`](crate::gltf) | irradiance `E_lm = A_l L_lm` | CS | y-up (glTF) | 2 |
+/// | `filament` | `E_lm k_lm / pi` (shader-prescaled) | folded in | y-up | 2 |
+/// | `unity` | `E_lm k_lm / pi` (SphericalHarmonicsL2) | folded in | Unity: z flipped | 2 |
+/// | `wgsl`, `glsl`, `hlsl`, `c` | the file's quantity + evaluator | CS | the file's | any |
+///
+/// (`k_lm` is the constant of the basis polynomial, `Y_lm(n) = k_lm p_lm(n)`.)
+/// Formats limited to lmax 2 truncate a longer expansion (with a note on
+/// stderr) and pad a shorter one with zeros, which is exact: a degree-1
+/// expansion is the same function as the degree-2 one with zero band 2.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ExportFormat {
     /// shlight's self-describing JSON coefficient file (written by the caller).

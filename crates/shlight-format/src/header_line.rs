@@ -44,6 +44,32 @@ pub(crate) fn split<'a>(
     Ok((header, &bytes[end + 1..]))
 }
 
+/// The header's `key` as a whole number; the error names the file
+/// `name` and the key.
+pub(crate) fn uint(header: &Value, key: &str, name: &str) -> Result<u64> {
+    header.get(key).and_then(Value::as_u64).ok_or_else(|| {
+        FormatError::invalid(
+            name,
+            format!("bad header (\"{key}\" is missing or not an integer)"),
+        )
+    })
+}
+
+/// The header's `key` as a string; the error names the file `name` and
+/// the key.
+pub(crate) fn text(header: &Value, key: &str, name: &str) -> Result<String> {
+    header
+        .get(key)
+        .and_then(Value::as_str)
+        .map(str::to_string)
+        .ok_or_else(|| {
+            FormatError::invalid(
+                name,
+                format!("bad header (\"{key}\" is missing or not a string)"),
+            )
+        })
+}
+
 /// The header's `key`, `fnv1a64:` and 16 hex digits, as a number.
 pub(crate) fn hash(header: &Value, key: &str, name: &str) -> Result<u64> {
     header

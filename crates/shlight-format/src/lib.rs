@@ -13,8 +13,9 @@
 //! - [`export()`] and [`ExportFormat`]: the same file as a Ramamoorthi-Hanrahan
 //!   table, a three.js LightProbe, a glTF asset, Filament's sh.txt, Unity's
 //!   SphericalHarmonicsL2, or WGSL / GLSL / HLSL / C code with an
-//!   evaluator; each exporter's module states exactly what its numbers are
-//!   and which engine source it follows (docs/exporters.md).
+//!   evaluator; [`ExportFormat`] says what each one's numbers are, and
+//!   docs/exporters.md which engine source each follows. [`gltf`] adds a
+//!   light to a glTF asset (`shlight convert --into`).
 //! - [`read_coefficients`]: any file `shlight convert` reads (a coefficient
 //!   file or an engine format that keeps enough), as a [`CoeffFile`].
 //! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
@@ -53,21 +54,24 @@
 #![deny(missing_docs)]
 
 pub mod bevy_volume;
-pub mod coeff_file;
+mod coeff_file;
 mod error;
-pub mod export;
+mod export;
 mod file_encoding;
 mod header_line;
 mod import;
 mod light_transforms;
 mod quantity;
 mod samples;
-pub mod shprt;
-pub mod shvol;
+mod shprt;
+mod shvol;
 
-pub use coeff_file::{CoeffFile, Provenance, RotationRecord, SanitizeCounts};
+pub use coeff_file::{
+    BINARY_MIN_LMAX, CoeffFile, MINIMUM_MAX_LMAX, PRETTY_MAX_LMAX, Provenance, RotationRecord,
+    SanitizeCounts,
+};
 pub use error::{FormatError, Result};
-pub use export::{ExportFormat, ExportInput, Exported, export, export_coeffs};
+pub use export::{ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, gltf};
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};

@@ -142,13 +142,7 @@ impl ShprtFile {
         let name = path.display().to_string();
         let bad = |message: String| FormatError::invalid(&name, message);
         let (header, data) = header_line::split(bytes, &name, FORMAT, ".shprt", MAX_HEADER)?;
-        let uint = |key: &str| {
-            header.get(key).and_then(Value::as_u64).ok_or_else(|| {
-                bad(format!(
-                    "bad header (\"{key}\" is missing or not an integer)"
-                ))
-            })
-        };
+        let uint = |key: &str| header_line::uint(&header, key, &name);
         let version = uint("format_version")?;
         if version == 0 || version > FORMAT_VERSION {
             return Err(bad(format!(

@@ -370,20 +370,8 @@ impl ShvolFile {
         let name = path.display().to_string();
         let bad = |message: String| FormatError::invalid(&name, message);
         let (header, data) = header_line::split(bytes, &name, FORMAT, ".shvol", MAX_HEADER)?;
-        let uint = |key: &str| {
-            header.get(key).and_then(Value::as_u64).ok_or_else(|| {
-                bad(format!(
-                    "bad header (\"{key}\" is missing or not an integer)"
-                ))
-            })
-        };
-        let text = |key: &str| {
-            header
-                .get(key)
-                .and_then(Value::as_str)
-                .map(str::to_string)
-                .ok_or_else(|| bad(format!("bad header (\"{key}\" is missing or not a string)")))
-        };
+        let uint = |key: &str| header_line::uint(&header, key, &name);
+        let text = |key: &str| header_line::text(&header, key, &name);
         let version = uint("format_version")?;
         if version == 0 || version > FORMAT_VERSION {
             return Err(bad(format!(

@@ -37,8 +37,8 @@ use wgpu::util::DeviceExt;
 
 use crate::ring_sums::ring_slots;
 use crate::shaders::{self, PROJECT_MODULE};
-use crate::shading::MAX_LMAX;
 use crate::{GpuContext, GpuError};
+use shlight_baked::LIGHT_MAX_LMAX;
 
 /// `ProjectParams` of `shaders/project.wgsl`.
 #[repr(C)]
@@ -57,11 +57,11 @@ struct Pipelines {
     reduce: wgpu::ComputePipeline,
 }
 
-/// The projection's compute pipelines, one pair per lmax (0..=[`MAX_LMAX`]),
+/// The projection's compute pipelines, one pair per lmax (0..=[`LIGHT_MAX_LMAX`]),
 /// each built on first use.
 #[derive(Debug, Default)]
 pub struct GpuProjector {
-    pipelines: [OnceLock<Pipelines>; MAX_LMAX + 1],
+    pipelines: [OnceLock<Pipelines>; LIGHT_MAX_LMAX + 1],
 }
 
 impl Pipelines {
@@ -111,9 +111,9 @@ impl GpuProjector {
         o: MapOrientation,
     ) -> Result<ShCoeffs<DVec3>, GpuError> {
         let (w, h) = (map.width, map.height);
-        if lmax > MAX_LMAX {
+        if lmax > LIGHT_MAX_LMAX {
             return Err(GpuError::Invalid(format!(
-                "GPU projection goes to lmax {MAX_LMAX}; lmax {lmax} needs the CPU path"
+                "GPU projection goes to lmax {LIGHT_MAX_LMAX}; lmax {lmax} needs the CPU path"
             )));
         }
         if w == 0 || h == 0 || map.pixels.len() != w * h {

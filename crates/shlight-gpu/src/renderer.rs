@@ -12,7 +12,8 @@ use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
 use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE};
-use crate::shading::{FrameInputs, FrameUniform, MAX_LMAX, Mode, Shading, shader_encodes_srgb};
+use crate::shading::{FrameInputs, FrameUniform, Mode, Shading, shader_encodes_srgb};
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_baked::TransferView;
 
 use crate::{Camera, GpuContext, GpuError};
@@ -20,8 +21,8 @@ use crate::{Camera, GpuContext, GpuError};
 /// Depth buffer format of every frame.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// Coefficients the light buffer holds: `(MAX_LMAX + 1)^2`.
-const LIGHT_SLOTS: usize = (MAX_LMAX + 1) * (MAX_LMAX + 1);
+/// Coefficients the light buffer holds: `(LIGHT_MAX_LMAX + 1)^2`.
+const LIGHT_SLOTS: usize = (LIGHT_MAX_LMAX + 1) * (LIGHT_MAX_LMAX + 1);
 
 /// A mesh on the GPU.
 struct GpuMesh {
@@ -35,8 +36,8 @@ struct GpuMesh {
 pub struct Renderer {
     color_format: wgpu::TextureFormat,
     /// Per lmax, built on first use (each compiles its own `sh_reconstruct`).
-    mesh_pipelines: [OnceLock<wgpu::RenderPipeline>; MAX_LMAX + 1],
-    background_pipelines: [OnceLock<wgpu::RenderPipeline>; MAX_LMAX + 1],
+    mesh_pipelines: [OnceLock<wgpu::RenderPipeline>; LIGHT_MAX_LMAX + 1],
+    background_pipelines: [OnceLock<wgpu::RenderPipeline>; LIGHT_MAX_LMAX + 1],
     mesh_pipeline_layout: wgpu::PipelineLayout,
     background_pipeline_layout: wgpu::PipelineLayout,
     mesh_layout: wgpu::BindGroupLayout,
@@ -48,7 +49,7 @@ pub struct Renderer {
     mesh_bind: wgpu::BindGroup,
     background_bind: wgpu::BindGroup,
     mesh: Option<GpuMesh>,
-    /// The light's lmax as uploaded (at most [`MAX_LMAX`]).
+    /// The light's lmax as uploaded (at most [`LIGHT_MAX_LMAX`]).
     light_lmax: usize,
     prt: Option<(usize, usize)>,
     /// [`Mode::Encoded`]'s pipeline, compiled with the encoding's snippet.
@@ -234,9 +235,9 @@ impl Renderer {
     }
 
     /// Uploads radiance coefficients (linear RGB, world frame, shlight's
-    /// basis), kept to lmax [`MAX_LMAX`].
+    /// basis), kept to lmax [`LIGHT_MAX_LMAX`].
     pub fn set_light(&mut self, ctx: &GpuContext, radiance: &ShCoeffs<DVec3>) {
-        let lmax = radiance.lmax().min(MAX_LMAX);
+        let lmax = radiance.lmax().min(LIGHT_MAX_LMAX);
         let mut slots = [[0.0f32; 4]; LIGHT_SLOTS];
         for (slot, c) in slots.iter_mut().zip(radiance.as_slice()) {
             *slot = [c.x as f32, c.y as f32, c.z as f32, 0.0];

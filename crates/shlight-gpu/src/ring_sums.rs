@@ -46,8 +46,8 @@ use std::fmt::Write;
 
 use shlight_core::sh::legendre_count;
 
-use crate::MAX_LMAX;
 use crate::sh_expansion::azimuth_power;
+use shlight_baked::LIGHT_MAX_LMAX;
 
 /// Invocations per row in the first pass (the workgroup size; a GPU's
 /// 32-wide warp, and few partial sums for llvmpipe to reduce).
@@ -72,10 +72,10 @@ pub(crate) const fn ring_slot(m: usize, sine: bool) -> usize {
 }
 
 /// The WGSL text of the first pass's constants, workgroup memory and
-/// `ring_sums` for `lmax` (clamped to [`MAX_LMAX`]).
+/// `ring_sums` for `lmax` (clamped to [`LIGHT_MAX_LMAX`]).
 #[must_use]
 pub(crate) fn ring_sums_wgsl(lmax: usize) -> String {
-    let lmax = lmax.min(MAX_LMAX);
+    let lmax = lmax.min(LIGHT_MAX_LMAX);
     let slots = ring_slots(lmax);
     let n = ROW_THREADS;
     let mut out = String::new();
@@ -187,7 +187,7 @@ mod tests {
 
     #[test]
     fn slots_are_a_bijection_onto_0_to_2_lmax() {
-        for lmax in 0..=MAX_LMAX {
+        for lmax in 0..=LIGHT_MAX_LMAX {
             let mut seen = vec![false; ring_slots(lmax)];
             for m in 0..=lmax {
                 for sine in if m == 0 {
@@ -206,7 +206,7 @@ mod tests {
 
     #[test]
     fn every_slot_sums_each_texel_of_a_quad_once_and_is_reduced_once() {
-        for lmax in 0..=MAX_LMAX {
+        for lmax in 0..=LIGHT_MAX_LMAX {
             let text = ring_sums_wgsl(lmax);
             let slots = ring_slots(lmax);
             for slot in 0..slots {

@@ -26,13 +26,13 @@
 //! variables, which CPU rasterisers such as Mesa's llvmpipe keep in memory,
 //! lane by lane; written out for a fixed lmax, every value stays in
 //! registers and every factor is a literal. The renderer builds one pipeline
-//! per lmax (0..=[`MAX_LMAX`]) on first use.
+//! per lmax (0..=[`LIGHT_MAX_LMAX`]) on first use.
 
 use std::fmt::Write;
 
 use shlight_core::sh::Legendre;
 
-use crate::MAX_LMAX;
+use shlight_baked::LIGHT_MAX_LMAX;
 
 /// A WGSL float literal holding `x` rounded to f32 (shortest round trip).
 pub(crate) fn literal(x: f64) -> String {
@@ -54,29 +54,30 @@ pub(crate) fn azimuth_power(m: usize, x: &str, y: &str) -> [String; 2] {
     ]
 }
 
-/// The WGSL text of `sh_reconstruct` for `lmax` (clamped to [`MAX_LMAX`]).
-#[must_use]
-pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
-    let lmax = lmax.min(MAX_LMAX);
+/// The straight-line WGSL statements of the basis to `lmax` (the module
+/// docs' recurrences), for the render passes and the volume pass alike:
+/// `z`, `q0_0`, `g{l} = sqrt2 f_l` for `l >= 1`, then for each `m` the
+/// azimuth's `c{m}`, `s{m}` and each `q{l}_{m}`, and for `m > 0` the pair's
+/// weight `t{l}_{m} = g{l} q{l}_{m}`, so that `f_l Y_l^m = t{l}_{m} c{m}`
+/// and `f_l Y_l^-m = t{l}_{m} s{m}` (`f_l Y_l^0 = factors[l / 4][l % 4]
+/// q{l}_0`).
+///
+/// `term(l, m, lines)` adds the caller's statements for `(l, m)` (`m >= 0`)
+/// as soon as those values are defined: `(0, 0)` right after `q0_0`,
+/// before the `g{l}`; every other pair after its `q` (and `t`) line.
+pub(crate) fn basis_statements(
+    lmax: usize,
+    mut term: impl FnMut(usize, usize, &mut Vec<String>),
+) -> Vec<String> {
     let legendre = Legendre::<f64>::new(lmax);
-    let mut s = String::new();
-    let mut line = |text: String| {
-        s.push_str("    ");
-        s.push_str(&text);
-        s.push('\n');
-    };
-    line(format!(
-        "// Generated for lmax {lmax} (crates/shlight-gpu/src/sh_expansion.rs)."
-    ));
-    line("let z = d.z;".into());
-    line(format!(
-        "let q0_0 = {};",
-        literal(0.5 / std::f64::consts::PI.sqrt())
-    ));
-    line("var sum = (factors[0][0] * q0_0) * light[0].rgb;".into());
+    let mut lines = vec![
+        "let z = d.z;".to_string(),
+        format!("let q0_0 = {};", literal(0.5 / std::f64::consts::PI.sqrt())),
+    ];
+    term(0, 0, &mut lines);
     // g_l = sqrt2 f_l, the weight of the m != 0 terms of band l.
     for l in 1..=lmax {
-        line(format!(
+        lines.push(format!(
             "let g{l} = SH_SQRT2 * factors[{}][{}];",
             l / 4,
             l % 4
@@ -84,24 +85,22 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
     }
     for m in 0..=lmax {
         if m > 0 {
-            for text in azimuth_power(m, "d.x", "d.y") {
-                line(text);
-            }
-            line(format!(
+            lines.extend(azimuth_power(m, "d.x", "d.y"));
+            lines.push(format!(
                 "let q{m}_{m} = {} * q{p}_{p};",
                 literal(legendre.sectoral_factor(m)),
                 p = m - 1
             ));
         }
-        for l in m..=lmax {
+        for l in m.max(1)..=lmax {
             if l == m + 1 {
-                line(format!(
+                lines.push(format!(
                     "let q{l}_{m} = {} * z * q{m}_{m};",
                     literal(legendre.diagonal_factor(m))
                 ));
             } else if l > m + 1 {
                 let [a, ab] = legendre.column_factors(m)[l - m - 2];
-                line(format!(
+                lines.push(format!(
                     "let q{l}_{m} = {} * z * q{}_{m} - {} * q{}_{m};",
                     literal(a),
                     l - 1,
@@ -109,27 +108,39 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
                     l - 2
                 ));
             }
-            let centre = l * (l + 1);
-            if m == 0 {
-                if l > 0 {
-                    line(format!(
-                        "sum += (factors[{}][{}] * q{l}_0) * light[{centre}].rgb;",
-                        l / 4,
-                        l % 4
-                    ));
-                }
-            } else {
-                // Two scalars, then one multiply-add per colour channel
-                // for each of the pair's coefficients.
-                line(format!("let t{l}_{m} = g{l} * q{l}_{m};"));
-                line(format!(
-                    "sum += (t{l}_{m} * c{m}) * light[{}].rgb + (t{l}_{m} * s{m}) * light[{}].rgb;",
-                    centre + m,
-                    centre - m
-                ));
+            if m > 0 {
+                lines.push(format!("let t{l}_{m} = g{l} * q{l}_{m};"));
             }
+            term(l, m, &mut lines);
         }
     }
+    lines
+}
+
+/// The WGSL text of `sh_reconstruct` for `lmax` (clamped to [`LIGHT_MAX_LMAX`]).
+#[must_use]
+pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
+    let lmax = lmax.min(LIGHT_MAX_LMAX);
+    let body = basis_statements(lmax, |l, m, lines| {
+        let centre = l * (l + 1);
+        if l == 0 {
+            lines.push("var sum = (factors[0][0] * q0_0) * light[0].rgb;".into());
+        } else if m == 0 {
+            lines.push(format!(
+                "sum += (factors[{}][{}] * q{l}_0) * light[{centre}].rgb;",
+                l / 4,
+                l % 4
+            ));
+        } else {
+            // One multiply-add per colour channel for each of the pair's
+            // coefficients.
+            lines.push(format!(
+                "sum += (t{l}_{m} * c{m}) * light[{}].rgb + (t{l}_{m} * s{m}) * light[{}].rgb;",
+                centre + m,
+                centre - m
+            ));
+        }
+    });
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -139,7 +150,13 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
         out,
         "fn sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32> {{"
     );
-    out.push_str(&s);
+    let _ = writeln!(
+        out,
+        "    // Generated for lmax {lmax} (crates/shlight-gpu/src/sh_expansion.rs)."
+    );
+    for line in body {
+        let _ = writeln!(out, "    {line}");
+    }
     out.push_str("    return sum;\n}\n");
     out
 }
@@ -150,7 +167,7 @@ mod tests {
 
     #[test]
     fn every_coefficient_is_summed_once() {
-        for lmax in 0..=MAX_LMAX {
+        for lmax in 0..=LIGHT_MAX_LMAX {
             let text = sh_reconstruct_wgsl(lmax);
             for i in 0..(lmax + 1) * (lmax + 1) {
                 assert_eq!(

@@ -12,10 +12,10 @@
 //! file in the directory belongs to a module and that each module validates
 //! at every lmax.
 
-use crate::MAX_LMAX;
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
 use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads, volume_wgsl_visibility};
+use shlight_baked::LIGHT_MAX_LMAX;
 
 /// A shader file: its name in `shaders/` and its text.
 pub type ShaderFile = (&'static str, &'static str);
@@ -55,20 +55,20 @@ pub struct ShaderModuleSource {
 }
 
 impl ShaderModuleSource {
-    /// The concatenated WGSL text at lmax [`MAX_LMAX`].
+    /// The concatenated WGSL text at lmax [`LIGHT_MAX_LMAX`].
     #[must_use]
     pub fn source(&self) -> String {
-        self.source_at(MAX_LMAX)
+        self.source_at(LIGHT_MAX_LMAX)
     }
 
     /// The concatenated WGSL text, then the module's generated code written
-    /// out for `lmax` (at most [`MAX_LMAX`]) when it has some.
+    /// out for `lmax` (at most [`LIGHT_MAX_LMAX`]) when it has some.
     #[must_use]
     pub fn source_at(&self, lmax: usize) -> String {
         let mut text = self.files_text();
         if let Some(generate) = self.generated {
             text.push('\n');
-            text.push_str(&generate(lmax.min(MAX_LMAX)));
+            text.push_str(&generate(lmax.min(LIGHT_MAX_LMAX)));
         }
         text
     }

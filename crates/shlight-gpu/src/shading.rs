@@ -2,11 +2,9 @@
 //! shaders read (`Frame` in `shaders/scene.wgsl`).
 
 use glam::{DMat3, Mat4};
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::sh::{Window, clamped_cosine_eigenvalue};
 use shlight_io::ToneMap;
-
-/// Highest SH degree the shaders evaluate.
-pub const MAX_LMAX: usize = 8;
 
 /// What the mesh shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -84,7 +82,7 @@ impl Background {
 pub struct Shading {
     /// What the mesh shows.
     pub mode: Mode,
-    /// Highest degree of the light used (at most [`MAX_LMAX`] and the light's own).
+    /// Highest degree of the light used (at most [`LIGHT_MAX_LMAX`] and the light's own).
     pub lmax: usize,
     /// Ringing window applied per band at run time.
     pub window: Window,
@@ -171,7 +169,7 @@ impl FrameUniform {
     pub(crate) fn new(f: &FrameInputs<'_>) -> Self {
         let mut irradiance_band = [[0.0f32; 4]; 3];
         let mut radiance_band = [[0.0f32; 4]; 3];
-        for l in 0..=MAX_LMAX {
+        for l in 0..=LIGHT_MAX_LMAX {
             let w = f.shading.window.factor(l);
             irradiance_band[l / 4][l % 4] = (clamped_cosine_eigenvalue(l) * w) as f32;
             radiance_band[l / 4][l % 4] = w as f32;

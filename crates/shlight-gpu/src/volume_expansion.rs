@@ -23,9 +23,9 @@
 //! (`volume_filtered`, one trilinear sample each) or by eight loads each
 //! (`volume_loads`), one text per [`VolumeFetch`], or by the same eight
 //! loads with the weights of `volume_visibility_at`
-//! (`shaders/volume_visibility.wgsl`). The basis is
-//! `sh_expansion.rs`'s: the recurrences of
-//! shlight-core's [`Legendre`] with `sin(theta)^m` carried by
+//! (`shaders/volume_visibility.wgsl`). The basis's statements are the
+//! render passes' ([`basis_statements`]): the recurrences of
+//! shlight-core's [`Legendre`](shlight_core::sh::Legendre) with `sin(theta)^m` carried by
 //! `C_m + i S_m = (x + i y)^m`, every factor an f32 literal, no loops and no
 //! local array (a struct of named scalars stays in registers; an array
 //! indexed at run time is what Mesa's llvmpipe keeps in memory lane by
@@ -33,9 +33,9 @@
 
 use std::fmt::Write;
 
-use shlight_core::sh::{Legendre, clamped_cosine_eigenvalue};
+use shlight_core::sh::clamped_cosine_eigenvalue;
 
-use crate::sh_expansion::{azimuth_power, literal};
+use crate::sh_expansion::basis_statements;
 use crate::volume_fetch::VolumeFetch;
 use shlight_baked::SHADED_MAX_LMAX;
 
@@ -75,7 +75,6 @@ pub(crate) fn volume_wgsl(lmax: usize, variant: VolumeVariant) -> String {
     let lmax = lmax.min(SHADED_MAX_LMAX);
     let count = (lmax + 1) * (lmax + 1);
     let kept = volume_coefficients(lmax);
-    let legendre = Legendre::<f64>::new(lmax);
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -91,55 +90,16 @@ pub(crate) fn volume_wgsl(lmax: usize, variant: VolumeVariant) -> String {
     }
     out.push_str("}\n\n");
     out.push_str("fn sh_basis(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> ShBasis {\n");
-    let mut body = Vec::<String>::new();
     let mut fields = vec![String::new(); count];
-    body.push("let z = d.z;".into());
-    body.push(format!(
-        "let q0_0 = {};",
-        literal(0.5 / std::f64::consts::PI.sqrt())
-    ));
-    for l in 1..=lmax {
-        body.push(format!(
-            "let g{l} = SH_SQRT2 * factors[{}][{}];",
-            l / 4,
-            l % 4
-        ));
-    }
-    for m in 0..=lmax {
-        if m > 0 {
-            body.extend(azimuth_power(m, "d.x", "d.y"));
-            body.push(format!(
-                "let q{m}_{m} = {} * q{p}_{p};",
-                literal(legendre.sectoral_factor(m)),
-                p = m - 1
-            ));
+    let body = basis_statements(lmax, |l, m, _| {
+        let centre = l * (l + 1);
+        if m == 0 {
+            fields[centre] = format!("factors[{}][{}] * q{l}_0", l / 4, l % 4);
+        } else {
+            fields[centre + m] = format!("t{l}_{m} * c{m}");
+            fields[centre - m] = format!("t{l}_{m} * s{m}");
         }
-        for l in m..=lmax {
-            if l == m + 1 {
-                body.push(format!(
-                    "let q{l}_{m} = {} * z * q{m}_{m};",
-                    literal(legendre.diagonal_factor(m))
-                ));
-            } else if l > m + 1 {
-                let [a, ab] = legendre.column_factors(m)[l - m - 2];
-                body.push(format!(
-                    "let q{l}_{m} = {} * z * q{}_{m} - {} * q{}_{m};",
-                    literal(a),
-                    l - 1,
-                    literal(ab),
-                    l - 2
-                ));
-            }
-            let centre = l * (l + 1);
-            if m == 0 {
-                fields[centre] = format!("factors[{}][{}] * q{l}_0", l / 4, l % 4);
-            } else {
-                body.push(format!("let t{l}_{m} = g{l} * q{l}_{m};"));
-                fields[centre + m] = format!("t{l}_{m} * c{m}");
-                fields[centre - m] = format!("t{l}_{m} * s{m}");
-            }
-        }
-    }
+    });
     for line in body {
         let _ = writeln!(out, "    {line}");
     }

@@ -9,15 +9,17 @@ use glam::DVec3;
 use shlight_core::encoding::{
     DominantLightOptions, Encoded, Encoding, encode_coefficients, encode_map,
 };
-use shlight_core::map::{EnvMap, EquirectView, Layout, MapOrientation, project_equirect};
+use shlight_core::map::{Layout, MapOrientation};
 use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
 use shlight_io::{Image, ReadOptions};
 
+use crate::cpu_projector::CpuProjector;
+use crate::encoded_file::set_encoding;
 use crate::input_layout::InputLayout;
-use crate::load::load_map;
-
-use crate::encode_file::set_encoding;
+use crate::load::{LoadedMap, env_map, load_map};
+use crate::projector::Projector;
+use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 
 /// A light read from a file.
@@ -43,7 +45,7 @@ impl Environment {
     /// `lmax` at most), or an equirect map in any format shlight reads,
     /// read and checked by [`crate::load_map`] (the loader of every map)
     /// and projected by quadrature to `lmax` with its top row facing `up`
-    /// ([`Environment::from_map`]).
+    /// ([`Environment::from_loaded`]).
     ///
     /// # Errors
     /// An unreadable file, a map that is not 2:1 or holds non-finite
@@ -69,49 +71,42 @@ impl Environment {
             });
         }
         let loaded = load_map(path, InputLayout::Auto, &ReadOptions::default(), false)?;
-        let mut env = Self::from_map(path, loaded.image, up, lmax)?;
-        env.warnings = loaded.warnings;
-        Ok(env)
+        Self::from_loaded(path, loaded, up, lmax)
     }
 
-    /// An equirect map read from `path` (or built in), checked (2:1, every
-    /// texel finite) and projected by the ring transform's quadrature
-    /// ([`project_equirect`]) to `lmax`, its top row facing `up`, not
-    /// mirrored.
+    /// A map read and checked by the loader ([`crate::load_map`], or
+    /// [`LoadedMap::from_image`] for one decoded from memory, as the
+    /// bundled map is), named by `path`, projected as `shlight project`
+    /// projects it ([`CpuProjector`]: quadrature) to `lmax`, its top row
+    /// facing `up`, not mirrored; the loader's warnings kept.
     ///
     /// # Errors
-    /// A map that is not 2:1 (other layouts are projected first, to a
-    /// coefficient file) or that holds a non-finite texel.
-    pub fn from_map(path: &Path, image: Image, up: Frame, lmax: usize) -> Result<Self> {
+    /// A map that is not equirect (2:1; other layouts are projected first,
+    /// to a coefficient file).
+    pub fn from_loaded(path: &Path, loaded: LoadedMap, up: Frame, lmax: usize) -> Result<Self> {
         let name = path.display().to_string();
-        let (w, h) = (image.width(), image.height());
+        let (w, h) = (loaded.image.width(), loaded.image.height());
         if Layout::detect(w, h) != Some(Layout::Equirect) {
             return Err(PipelineError::new(format!(
                 "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
                  (shlight project {name} --lmax {lmax} -o light.json) and pass the JSON file"
             )));
         }
-        if let Some((x, y)) = image.stats().first_non_finite {
-            return Err(PipelineError::new(format!(
-                "{name}: non-finite texel at ({x}, {y}); shlight project --sanitize can fix it"
-            )));
-        }
         let orientation = MapOrientation {
             frame: up,
             mirror: false,
         };
-        let view = EquirectView {
-            width: w,
-            height: h,
-            pixels: image.pixels(),
-        };
-        let radiance = project_equirect(view, lmax, orientation);
+        let settings =
+            ProjectSettings::new(lmax, orientation, Method::Quadrature, Quantity::Radiance);
+        let radiance = CpuProjector
+            .project(&loaded.map(orientation, &name)?, &settings)?
+            .coeffs;
         Ok(Self {
             path: path.to_path_buf(),
             radiance,
-            map: Some(image),
+            map: Some(loaded.image),
             orientation,
-            warnings: Vec::new(),
+            warnings: loaded.warnings,
         })
     }
 
@@ -140,14 +135,9 @@ impl Environment {
         let name = self.path.display();
         match &self.map {
             Some(image) => {
-                let map = EnvMap::new(
-                    Layout::Equirect,
-                    self.orientation,
-                    image.width(),
-                    image.height(),
-                    image.pixels(),
-                )
-                .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
+                let size = (image.width(), image.height());
+                let map = env_map(Layout::Equirect, self.orientation, size, image.pixels())
+                    .map_err(|e| e.context(&name))?;
                 Ok(encode_map(
                     &map,
                     encoding,
@@ -201,7 +191,15 @@ impl Environment {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shlight_core::map::EnvMap;
     use shlight_core::sh::closed_form;
+
+    /// `image` named `name` through the loader, as the bundled map comes
+    /// in.
+    fn from_image(name: &str, image: Image, up: Frame, lmax: usize) -> Result<Environment> {
+        let loaded = LoadedMap::from_image(name, image, InputLayout::Auto, false)?;
+        Environment::from_loaded(Path::new(name), loaded, up, lmax)
+    }
 
     fn temp_dir(name: &str) -> PathBuf {
         let dir =
@@ -218,7 +216,7 @@ mod tests {
     fn maps_project_and_files_keep_their_frame() {
         let c = [0.5f32, 1.0, 2.0];
         let image = Image::from_fn(64, 32, |_, _| c);
-        let env = Environment::from_map(Path::new("sky.exr"), image, Frame::YUp, 4).unwrap();
+        let env = from_image("sky.exr", image, Frame::YUp, 4).unwrap();
         assert_eq!(env.radiance.lmax(), 4);
         let want = closed_form::constant(4, DVec3::from(c.map(f64::from)));
         assert!((env.radiance[0] - want[0]).abs().max_element() < 1e-12);
@@ -255,8 +253,8 @@ mod tests {
 
     #[test]
     fn bad_maps_and_missing_texels_are_refused() {
-        let e = Environment::from_map(
-            Path::new("square.exr"),
+        let e = from_image(
+            "square.exr",
             Image::from_fn(16, 16, |_, _| [1.0; 3]),
             Frame::YUp,
             8,
@@ -270,8 +268,12 @@ mod tests {
         assert!(e.message().contains("--lmax 8"), "{e}");
         let mut image = Image::from_fn(16, 8, |_, _| [1.0; 3]);
         image.set(3, 2, [f32::NAN, 0.0, 0.0]);
-        let e = Environment::from_map(Path::new("nan.exr"), image, Frame::YUp, 2).unwrap_err();
-        assert!(e.message().contains("non-finite texel at (3, 2)"), "{e}");
+        let e = from_image("nan.exr", image, Frame::YUp, 2).unwrap_err();
+        assert!(
+            e.message()
+                .starts_with("nan.exr: 1 texels are NaN or infinite (the first at x=3, y=2)"),
+            "{e}"
+        );
         // dominant+sh needs texels.
         let env = Environment {
             path: "light.json".into(),
@@ -326,8 +328,7 @@ mod tests {
     #[test]
     fn the_encoded_light_and_its_snippet() {
         let image = Image::from_fn(32, 16, |x, y| [0.1 + 0.01 * x as f32, 0.2, 0.05 * y as f32]);
-        let env =
-            Environment::from_map(Path::new("sky.exr"), image.clone(), Frame::YUp, 8).unwrap();
+        let env = from_image("sky.exr", image.clone(), Frame::YUp, 8).unwrap();
         let (encoded, snippet) = env.encoded_light(Encoding::Zh3, 2).unwrap();
         assert!(snippet.contains("fn shlight_irradiance"), "{snippet}");
         let map = EnvMap::new(Layout::Equirect, env.orientation, 32, 16, image.pixels()).unwrap();

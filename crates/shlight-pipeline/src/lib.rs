@@ -23,13 +23,16 @@
 //! 3. [`choose_windows`]: the window asked for, or per colour channel the
 //!    weakest Hanning window that keeps the result non-negative.
 //! 4. [`write_preview`], when [`Settings::preview`] asks for one.
-//! 5. [`coefficient_file`]: windows, rotation, quantity, provenance (the
+//! 5. [`coeff_file_of`]: windows, rotation, quantity, provenance (the
 //!    coefficient file's own [`shlight_format::CoeffFile::windowed`],
 //!    [`rotated`](shlight_format::CoeffFile::rotated) and
 //!    [`to_irradiance`](shlight_format::CoeffFile::to_irradiance)); with
 //!    [`encode_file`], an encoding other than plain SH
 //!    ([`Settings::encoding`]).
 //!
+//! [`ProjectOptions::check`] makes its [`Settings`] from the options as a
+//! front end was given them, with the same refusals for every front end
+//! (each naming the options in the front end's [`Spelling`]).
 //! [`project_with_warnings`] runs it on the CPU and hands the warnings
 //! back. [`layout_for_size`] settles the layout of texels in memory.
 //! [`render_map`] evaluates coefficients at every texel centre of a map in
@@ -37,6 +40,8 @@
 //! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
 //! distant light of the commands that shade a scene (a map projected, or a
 //! coefficient file), with its encodings and their WGSL snippets.
+//! [`map_irradiance`] and [`compare_encodings`] measure a map's encodings
+//! against its exact irradiance (`shlight irradiance`, `shlight compare`).
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -61,7 +66,11 @@
 
 #![deny(missing_docs)]
 
-mod encode_file;
+mod accuracy;
+mod choose_windows;
+mod coeff_file_of;
+mod cpu_projector;
+mod encoded_file;
 mod environment;
 mod error;
 mod input_layout;
@@ -69,26 +78,31 @@ mod load;
 mod output_grid;
 mod preview;
 mod project;
-mod projected_file;
-mod projection;
+mod project_options;
+mod projector;
 mod render;
 mod rotation_spec;
 mod settings;
 mod source_stats;
 
-pub use encode_file::encode_file;
+pub use accuracy::{
+    EncodedIrradiance, IrradianceReport, IrradianceSettings, compare_encodings, compare_name,
+    map_irradiance,
+};
+pub use choose_windows::choose_windows;
+pub use coeff_file_of::{MapInfo, coeff_file_of};
+pub use cpu_projector::{CpuProjector, project_radiance, project_radiance_texels};
+pub use encoded_file::encode_file;
 pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
-pub use project::{
-    CpuProjector, Hooks, Preview, Projector, Settings, Source, project, project_with_warnings,
-};
-pub use projected_file::{MapInfo, choose_windows, coefficient_file};
-pub use projection::{Projection, project_radiance, project_radiance_texels};
+pub use project::{Hooks, Source, project, project_with_warnings};
+pub use project_options::{ProjectOptions, Spelling};
+pub use projector::{Projection, Projector};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
-pub use settings::{DEFAULT_SAMPLES, Method, ProjectSettings, ReadSettings};
+pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
 pub use source_stats::source_stats;

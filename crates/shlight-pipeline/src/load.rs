@@ -7,8 +7,26 @@ use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::SanitizeCounts;
 use shlight_io::{Image, PixelStats, ReadOptions, read_image};
 
+use crate::coeff_file_of::MapInfo;
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 use crate::{PipelineError, Result};
+
+/// `width x height` texels of `layout`, row after row, as a map read in
+/// `orientation`: the one place the pipeline makes an [`EnvMap`]; the
+/// other steps are handed it.
+///
+/// # Errors
+/// The size does not fit `layout`, or `pixels` is not `width * height`
+/// texels; the message is the layout's.
+pub(crate) fn env_map(
+    layout: Layout,
+    orientation: MapOrientation,
+    (width, height): (usize, usize),
+    pixels: &[[f32; 3]],
+) -> Result<EnvMap<'_>> {
+    EnvMap::new(layout, orientation, width, height, pixels)
+        .map_err(|e| PipelineError::new(e.to_string()))
+}
 
 /// A map read and checked by [`load_map`].
 #[derive(Debug)]
@@ -33,14 +51,62 @@ impl LoadedMap {
     /// None in practice ([`load_map`] settled a layout the size fits); the
     /// message would name `name`.
     pub fn map(&self, orientation: MapOrientation, name: &str) -> Result<EnvMap<'_>> {
-        EnvMap::new(
-            self.layout,
-            orientation,
-            self.image.width(),
-            self.image.height(),
-            self.image.pixels(),
-        )
-        .map_err(|e| PipelineError::new(format!("{name}: {e}")))
+        let size = (self.image.width(), self.image.height());
+        env_map(self.layout, orientation, size, self.image.pixels()).map_err(|e| e.context(name))
+    }
+
+    /// What the coefficient file records of this map ([`MapInfo`]): named
+    /// `name`, its layout named `layout`.
+    #[must_use]
+    pub fn info(&self, name: &str, layout: &str) -> MapInfo {
+        let size = (self.image.width(), self.image.height());
+        MapInfo::new(name, layout, size, self.stats, self.sanitized)
+    }
+
+    /// A map decoded elsewhere (from memory, say), checked as [`load_map`]
+    /// checks a file: its layout settled from its size ([`layout_for_size`])
+    /// and its values refused, kept with a warning, or with `sanitize`
+    /// replaced. `name` names it in every message.
+    ///
+    /// # Errors
+    /// As [`load_map`] for a single image.
+    pub fn from_image(
+        name: &str,
+        image: Image,
+        layout: InputLayout,
+        sanitize: bool,
+    ) -> Result<Self> {
+        let mut warnings = Vec::new();
+        let layout = layout_for_size(name, layout, image.width(), image.height(), &mut warnings)?;
+        let stats = image.stats();
+        Self::checked(name, image, layout, stats, warnings, sanitize)
+    }
+
+    /// `image` of `layout`, whose values have the statistics `stats`,
+    /// refused (NaN or infinite texels) or kept with a warning added to
+    /// `warnings` ([`check_values`]), or with `sanitize` replaced
+    /// ([`sanitize_image`]).
+    pub(crate) fn checked(
+        name: &str,
+        mut image: Image,
+        layout: Layout,
+        stats: PixelStats,
+        mut warnings: Vec<String>,
+        sanitize: bool,
+    ) -> Result<Self> {
+        let sanitized = if sanitize {
+            Some(sanitize_image(name, &mut image, &mut warnings))
+        } else {
+            check_values(name, &stats, &mut warnings)?;
+            None
+        };
+        Ok(Self {
+            image,
+            layout,
+            stats,
+            sanitized,
+            warnings,
+        })
     }
 }
 
@@ -113,46 +179,29 @@ pub fn load_map(
     sanitize: bool,
 ) -> Result<LoadedMap> {
     let name = path.display();
-    let mut warnings = Vec::new();
-    let faces = is_faces(path);
-    let (mut image, layout) = match (faces, input_layout) {
-        (true, InputLayout::Auto | InputLayout::Faces) => (read_faces(path, read)?, Layout::Strip),
-        (true, InputLayout::Image(l)) => {
-            return Err(PipelineError::new(format!(
-                "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
-            )));
-        }
-        (false, InputLayout::Faces) => {
-            return Err(PipelineError::new(format!(
-                "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
-            )));
-        }
-        (false, layout) => {
-            let image = read_image(path, read)?;
-            let layout = layout_for_size(
+    match (is_faces(path), input_layout) {
+        (true, InputLayout::Auto | InputLayout::Faces) => {
+            let image = read_faces(path, read)?;
+            let stats = image.stats();
+            LoadedMap::checked(
                 &name.to_string(),
-                layout,
-                image.width(),
-                image.height(),
-                &mut warnings,
-            )?;
-            (image, layout)
+                image,
+                Layout::Strip,
+                stats,
+                Vec::new(),
+                sanitize,
+            )
         }
-    };
-    let stats = image.stats();
-    let sanitized = if sanitize {
-        Some(sanitize_image(&name.to_string(), &mut image, &mut warnings))
-    } else {
-        check_values(&name.to_string(), &stats, &mut warnings)?;
-        None
-    };
-    Ok(LoadedMap {
-        image,
-        layout,
-        stats,
-        sanitized,
-        warnings,
-    })
+        (true, InputLayout::Image(l)) => Err(PipelineError::new(format!(
+            "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
+        ))),
+        (false, InputLayout::Faces) => Err(PipelineError::new(format!(
+            "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
+        ))),
+        (false, layout) => {
+            LoadedMap::from_image(&name.to_string(), read_image(path, read)?, layout, sanitize)
+        }
+    }
 }
 
 /// The layout of a single `w x h` image named `name`: by aspect ratio for

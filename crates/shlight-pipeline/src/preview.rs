@@ -6,7 +6,7 @@
 //!
 //! 1. the input map: an equirect map box-filtered to the panel size
 //!    ([`Image::resample`]); another layout looked up bilinearly
-//!    ([`EnvMap::radiance_bilinear`]) at each panel texel's centre;
+//!    ([`shlight_core::map::EnvMap::radiance_bilinear`]) at each panel texel's centre;
 //! 2. the SH reconstruction of its radiance, `Σ L_l^m Y_l^m(d)` at each
 //!    texel centre ([`render_map`]): ringing and lost detail show here;
 //! 3. the SH irradiance divided by π, `Σ A_l L_l^m Y_l^m(n) / π`: the
@@ -20,10 +20,11 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use glam::DVec3;
-use shlight_core::map::{EnvMap, Layout, MapOrientation, luminance, render_map as draw};
+use shlight_core::map::{Layout, MapOrientation, luminance, render_map as draw};
 use shlight_core::sh::{ShCoeffs, irradiance};
 use shlight_io::{Image, ToneMap, WriteOptions, auto_exposure, write_image};
 
+use crate::load::env_map;
 use crate::output_grid::output_grid;
 use crate::render::render_map;
 use crate::{PipelineError, Result};
@@ -65,14 +66,8 @@ pub fn preview_image(
     let shown = match layout {
         Layout::Equirect => input.resample(pw, ph),
         other => {
-            let map = EnvMap::new(
-                other,
-                orientation,
-                input.width(),
-                input.height(),
-                input.pixels(),
-            )
-            .map_err(|e| PipelineError::new(e.to_string()))?;
+            let size = (input.width(), input.height());
+            let map = env_map(other, orientation, size, input.pixels())?;
             let pixels = draw(Layout::Equirect, orientation, pw, ph, |d| {
                 map.radiance_bilinear(d)
             })

@@ -1,22 +1,21 @@
 //! [`project`]: every step of `shlight project` on one map, in order, for
 //! every front end (the command line, the Python package).
 
-use std::path::PathBuf;
-
 use shlight_core::encoding::Encoding;
-use shlight_core::map::{EnvMap, TexelSource};
+use shlight_core::map::{EnvMap, TexelSource, contiguous_pixels};
 use shlight_core::sh::{Window, apply_channel_windows};
 use shlight_format::CoeffFile;
 use shlight_io::Image;
 
-use crate::encode_file::encode_file;
+use crate::choose_windows::choose_windows;
+use crate::coeff_file_of::{MapInfo, coeff_file_of};
+use crate::cpu_projector::CpuProjector;
+use crate::encoded_file::encode_file;
 use crate::input_layout::is_faces;
-use crate::load::{check_values, load_map, sanitize_image};
-use crate::preview::{PreviewOptions, write_preview};
-use crate::projected_file::{MapInfo, choose_windows, coefficient_file};
-use crate::projection::{Projection, project_radiance_texels};
-use crate::settings::ProjectSettings;
-use crate::settings::ReadSettings;
+use crate::load::{LoadedMap, check_values, env_map, load_map};
+use crate::preview::write_preview;
+use crate::projector::Projector;
+use crate::settings::Settings;
 use crate::source_stats::source_stats;
 use crate::{PipelineError, Result};
 
@@ -24,7 +23,7 @@ use crate::{PipelineError, Result};
 #[derive(Clone, Copy)]
 pub enum Source<'a> {
     /// A map file, or six `{face}` files ([`crate::load_map`], with the
-    /// settings' [`ReadSettings`]); the path as given names it everywhere.
+    /// settings' [`crate::ReadSettings`]); the path as given names it everywhere.
     Path(&'a std::path::Path),
     /// Texels already in memory (a numpy array, a readback), read in place.
     Texels {
@@ -35,67 +34,6 @@ pub enum Source<'a> {
         /// `provenance.layout` (`equirect`, ..., `faces`).
         layout_name: &'a str,
     },
-}
-
-/// `--preview`: the three-panel picture of a projection, and where it goes.
-#[derive(Clone, Debug)]
-pub struct Preview {
-    /// The image file written.
-    pub path: PathBuf,
-    /// Panel size, exposure, tone map.
-    pub options: PreviewOptions,
-}
-
-/// Everything [`project`] does with a map, decided before it is read.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// How files are read (layout, reader options, `--sanitize`); texels in
-    /// memory use only `sanitize`.
-    pub read: ReadSettings,
-    /// lmax, orientation, method, window, rotation, quantity.
-    pub project: ProjectSettings,
-    /// The light kept as this encoding of the map's texels
-    /// ([`Encoding::Sh`]: plain SH, the coefficients as projected).
-    pub encoding: Encoding,
-    /// A preview to write, if any.
-    pub preview: Option<Preview>,
-}
-
-impl Settings {
-    /// Plain SH by `project`'s settings, files read with the defaults, no
-    /// preview.
-    #[must_use]
-    pub fn new(project: ProjectSettings) -> Self {
-        Self {
-            read: ReadSettings::default(),
-            project,
-            encoding: Encoding::Sh,
-            preview: None,
-        }
-    }
-}
-
-/// The projection step, injected: the library's own on the CPU
-/// ([`CpuProjector`]), or another (the command line's GPU projector) that
-/// the pipeline need not know.
-pub trait Projector: Sync {
-    /// Radiance coefficients of `texels`, read in `s.orientation`, to
-    /// `s.lmax` by `s.method`.
-    ///
-    /// # Errors
-    /// The projector cannot project this map (its layout, size or method).
-    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection>;
-}
-
-/// The library's projection on the CPU ([`project_radiance_texels`]):
-/// quadrature or Monte Carlo, on every core.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CpuProjector;
-
-impl Projector for CpuProjector {
-    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
-        project_radiance_texels(texels, s)
-    }
 }
 
 /// What [`project`] calls as it goes: the projector, and where progress and
@@ -128,11 +66,12 @@ impl Default for Hooks<'static> {
 ///
 /// 1. A file is read by [`crate::load_map`] (layout settled, values
 ///    checked, or replaced with `sanitize`); texels in memory are checked
-///    ([`check_values`]) or copied and sanitized ([`sanitize_image`]).
+///    ([`check_values`]), or copied into one image and checked or
+///    sanitized as a file's are ([`crate::sanitize_image`]).
 /// 2. The projector makes radiance coefficients ([`Projector`]).
 /// 3. The window of each channel ([`choose_windows`]).
 /// 4. The preview, if asked ([`write_preview`]), of the windowed radiance.
-/// 5. The coefficient file ([`coefficient_file`]: windows, rotation,
+/// 5. The coefficient file ([`coeff_file_of`]: windows, rotation,
 ///    quantity, provenance), then the encoding, if other than plain SH
 ///    ([`encode_file`]).
 ///
@@ -142,96 +81,61 @@ impl Default for Hooks<'static> {
 /// # Errors
 /// Any step's error; every message names the map.
 pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<CoeffFile> {
+    let warn_all = |warnings: &[String]| warnings.iter().for_each(|w| (hooks.warn)(w));
+    let orientation = s.project.orientation;
     match source {
         Source::Path(path) => {
             let name = path.display().to_string();
             (hooks.progress)(&format!("reading {name}"));
             let loaded = load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?;
-            for w in &loaded.warnings {
-                (hooks.warn)(w);
-            }
-            let info = MapInfo {
-                name,
-                width: loaded.image.width(),
-                height: loaded.image.height(),
-                layout: if is_faces(path) {
-                    "faces".into()
-                } else {
-                    loaded.layout.name().into()
-                },
-                stats: loaded.stats,
-                sanitized: loaded.sanitized,
+            warn_all(&loaded.warnings);
+            let layout = if is_faces(path) {
+                "faces"
+            } else {
+                loaded.layout.name()
             };
-            let map = loaded.map(s.project.orientation, &info.name)?;
-            finish(&map, Some(&loaded.image), info, s, hooks)
+            let info = loaded.info(&name, layout);
+            let map = loaded.map(orientation, &name)?;
+            finish(&map, Some((&loaded.image, &map)), info, s, hooks)
         }
         Source::Texels {
             texels,
             name,
             layout_name,
         } => {
-            let (w, h) = texels.size();
+            let size = texels.size();
             let layout = texels.layout();
             layout
-                .check_size(w, h)
+                .check_size(size.0, size.1)
                 .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
             let stats = source_stats(texels);
-            let mut info = MapInfo {
-                name: name.to_string(),
-                width: w,
-                height: h,
-                layout: layout_name.to_string(),
-                stats,
-                sanitized: None,
-            };
             // The preview and the encodings read a contiguous image.
             let needs_copy = s.read.sanitize || s.preview.is_some() || s.encoding != Encoding::Sh;
             if !needs_copy {
                 let mut warnings = Vec::new();
-                check_values(name, &info.stats, &mut warnings)?;
-                for w in &warnings {
-                    (hooks.warn)(w);
-                }
+                check_values(name, &stats, &mut warnings)?;
+                warn_all(&warnings);
+                let info = MapInfo::new(name, layout_name, size, stats, None);
                 return finish(texels, None, info, s, hooks);
             }
-            let mut image = Image::from_fn(w, h, |x, y| texels.texel(x, y));
-            let mut warnings = Vec::new();
-            if s.read.sanitize {
-                info.sanitized = Some(sanitize_image(name, &mut image, &mut warnings));
-            } else {
-                check_values(name, &info.stats, &mut warnings)?;
-            }
-            for w in &warnings {
-                (hooks.warn)(w);
-            }
-            let map = env_map(&image, layout, s, name)?;
-            finish(&map, Some(&image), info, s, hooks)
+            let image = Image::new(size.0, size.1, contiguous_pixels(texels).into_owned())
+                .expect("width * height texels");
+            let loaded =
+                LoadedMap::checked(name, image, layout, stats, Vec::new(), s.read.sanitize)?;
+            warn_all(&loaded.warnings);
+            let info = loaded.info(name, layout_name);
+            let map = env_map(layout, orientation, size, loaded.image.pixels())
+                .map_err(|e| e.context(format!("{name}: projecting")))?;
+            finish(&map, Some((&loaded.image, &map)), info, s, hooks)
         }
     }
 }
 
-/// `image` as a map in the settings' orientation.
-fn env_map<'a>(
-    image: &'a Image,
-    layout: shlight_core::map::Layout,
-    s: &Settings,
-    name: &str,
-) -> Result<EnvMap<'a>> {
-    EnvMap::new(
-        layout,
-        s.project.orientation,
-        image.width(),
-        image.height(),
-        image.pixels(),
-    )
-    .map_err(|e| PipelineError::new(e.to_string()).context(format!("{name}: projecting")))
-}
-
-/// Steps 2 to 5 of [`project`] on checked texels (`image`: the same texels
-/// as one image, for the preview and the encodings).
+/// Steps 2 to 5 of [`project`] on checked texels (`contiguous`: the same
+/// texels as one image and as a map, for the preview and the encodings).
 fn finish(
     texels: &dyn TexelSource,
-    image: Option<&Image>,
+    contiguous: Option<(&Image, &EnvMap<'_>)>,
     info: MapInfo,
     s: &Settings,
     hooks: &Hooks<'_>,
@@ -250,7 +154,7 @@ fn finish(
         (hooks.progress)(&format!("choosing windows for {name}"));
     }
     let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name)?;
-    if let (Some(preview), Some(image)) = (&s.preview, image) {
+    if let (Some(preview), Some((image, _))) = (&s.preview, contiguous) {
         (hooks.progress)(&format!("preview of {name}"));
         let radiance = apply_channel_windows(&windows, &projection.coeffs);
         write_preview(
@@ -263,12 +167,11 @@ fn finish(
         )
         .map_err(|e| e.context(format!("{name}: preview")))?;
     }
-    let mut file = coefficient_file(&projection, windows, p, &info);
+    let mut file = coeff_file_of(&projection, windows, p, &info);
     if s.encoding != Encoding::Sh {
         (hooks.progress)(&format!("encoding {name} as {}", s.encoding));
-        let image = image.expect("an encoding copies the texels into an image");
-        let map = env_map(image, texels.layout(), s, name)?;
-        encode_file(&mut file, &map, s.encoding, p.lmax);
+        let (_, map) = contiguous.expect("an encoding copies the texels into an image");
+        encode_file(&mut file, map, s.encoding, p.lmax);
     }
     Ok(file)
 }
@@ -303,7 +206,8 @@ pub fn project_with_warnings(source: Source<'_>, s: &Settings) -> Result<(CoeffF
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::Method;
+    use crate::projector::Projection;
+    use crate::settings::{Method, ProjectSettings};
     use glam::DVec3;
     use shlight_core::map::montecarlo::{McOptions, SamplerKind};
     use shlight_core::map::{Layout, MapOrientation, StridedImage};

@@ -1,8 +1,12 @@
-//! [`ProjectSettings`]: everything a projection decides before any input
-//! is read (lmax, orientation, method, window, rotation, quantity), and
-//! [`ReadSettings`]: how input files are read.
+//! [`Settings`]: everything [`crate::project`] does with a map, decided
+//! before it is read: [`ProjectSettings`] (lmax, orientation, method,
+//! window, rotation, quantity), [`ReadSettings`] (how input files are
+//! read), the encoding kept and the [`Preview`] written.
+
+use std::path::PathBuf;
 
 use glam::DMat3;
+use shlight_core::encoding::Encoding;
 use shlight_core::map::MapOrientation;
 use shlight_core::map::montecarlo::{McOptions, SamplerKind};
 use shlight_core::sh::Window;
@@ -10,6 +14,7 @@ use shlight_format::{Quantity, RotationRecord};
 use shlight_io::ReadOptions;
 
 use crate::input_layout::InputLayout;
+use crate::preview::PreviewOptions;
 
 /// Monte Carlo directions drawn when no count is given.
 pub const DEFAULT_SAMPLES: usize = 1 << 16;
@@ -93,4 +98,42 @@ pub struct ReadSettings {
     pub read: ReadOptions,
     /// Replace NaN, infinities and negatives ([`crate::sanitize_image`]).
     pub sanitize: bool,
+}
+
+/// `--preview`: the three-panel picture of a projection, and where it goes.
+#[derive(Clone, Debug)]
+pub struct Preview {
+    /// The image file written.
+    pub path: PathBuf,
+    /// Panel size, exposure, tone map.
+    pub options: PreviewOptions,
+}
+
+/// Everything [`crate::project`] does with a map, decided before it is read.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// How files are read (layout, reader options, `--sanitize`); texels in
+    /// memory use only `sanitize`.
+    pub read: ReadSettings,
+    /// lmax, orientation, method, window, rotation, quantity.
+    pub project: ProjectSettings,
+    /// The light kept as this encoding of the map's texels
+    /// ([`Encoding::Sh`]: plain SH, the coefficients as projected).
+    pub encoding: Encoding,
+    /// A preview to write, if any.
+    pub preview: Option<Preview>,
+}
+
+impl Settings {
+    /// Plain SH by `project`'s settings, files read with the defaults, no
+    /// preview.
+    #[must_use]
+    pub fn new(project: ProjectSettings) -> Self {
+        Self {
+            read: ReadSettings::default(),
+            project,
+            encoding: Encoding::Sh,
+            preview: None,
+        }
+    }
 }

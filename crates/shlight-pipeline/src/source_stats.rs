@@ -1,11 +1,11 @@
 //! [`source_stats`]: the value statistics of texels read in place.
 
-use shlight_core::map::TexelSource;
+use shlight_core::map::{TexelSource, read_row};
 use shlight_io::PixelStats;
 
 /// [`PixelStats`] of every texel of `source` (the whole image, texels the
 /// layout leaves unused included, as [`shlight_io::Image::stats`] counts
-/// them), read row by row through [`TexelSource::row`] or texel by texel.
+/// them), read row by row ([`read_row`]: in place, or texel by texel).
 #[must_use]
 pub fn source_stats<S: TexelSource + ?Sized>(source: &S) -> PixelStats {
     let (w, h) = source.size();
@@ -19,14 +19,7 @@ pub fn source_stats<S: TexelSource + ?Sized>(source: &S) -> PixelStats {
     let mut any_finite = false;
     let mut buf = Vec::with_capacity(w);
     for y in 0..h {
-        let row = match source.row(y) {
-            Some(row) if row.len() == w => row,
-            _ => {
-                buf.clear();
-                buf.extend((0..w).map(|x| source.texel(x, y)));
-                &buf[..]
-            }
-        };
+        let row = read_row(source, y, &mut buf);
         let part = PixelStats::of_pixels(row, w);
         total.non_finite += part.non_finite;
         total.negative += part.negative;

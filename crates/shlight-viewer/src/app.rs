@@ -6,11 +6,12 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::encoding::Encoding;
 use shlight_core::sh::{ShRotation, Window};
 use shlight_format::ShprtFile;
 use shlight_gpu::wgpu;
-use shlight_gpu::{Background, GpuContext, MAX_LMAX, Mode, OrbitCamera, Renderer, Shading};
+use shlight_gpu::{Background, GpuContext, Mode, OrbitCamera, Renderer, Shading};
 use shlight_io::ToneMap;
 use shlight_mesh::Mesh;
 use winit::application::ApplicationHandler;
@@ -457,7 +458,7 @@ impl<'a> App<'a> {
                 "h" => c.show_panel = !c.show_panel,
                 digit => {
                     if let Ok(l) = digit.parse::<usize>()
-                        && l <= MAX_LMAX
+                        && l <= LIGHT_MAX_LMAX
                     {
                         c.shading.lmax = l;
                     }

@@ -1,7 +1,8 @@
 //! The egui overlay panel of `shlight view`.
 
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::encoding::Encoding;
-use shlight_gpu::{Background, MAX_LMAX, Mode};
+use shlight_gpu::{Background, Mode};
 use shlight_io::ToneMap;
 
 use crate::controls::{Controls, WINDOWS};
@@ -30,7 +31,7 @@ pub fn draw_panel(ctx: &egui::Context, c: &mut Controls, info: &PanelInfo<'_>) -
         .show(ctx, |ui| {
             ui.label(format!("{:.0} fps ({:.2} ms)", info.fps, info.frame_ms));
             ui.label(info.adapter);
-            ui.add(egui::Slider::new(&mut c.shading.lmax, 0..=MAX_LMAX).text("lmax"));
+            ui.add(egui::Slider::new(&mut c.shading.lmax, 0..=LIGHT_MAX_LMAX).text("lmax"));
             ui.horizontal(|ui| {
                 ui.label("mode");
                 ui.radio_value(&mut c.shading.mode, Mode::Sh, "SH irradiance");

@@ -4,23 +4,24 @@
 //! lmax to shade at.
 
 use anyhow::{Result, bail};
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_format::ShprtFile;
-use shlight_gpu::{GpuContext, MAX_LMAX, Renderer, wgpu};
+use shlight_gpu::{GpuContext, Renderer, wgpu};
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
 
 /// Refuses an `--lmax` above what the GPU shades.
 pub fn check_lmax(lmax: Option<usize>) -> Result<()> {
-    if let Some(lmax) = lmax.filter(|&l| l > MAX_LMAX) {
-        bail!("--lmax {lmax}: the GPU shades to lmax {MAX_LMAX}");
+    if let Some(lmax) = lmax.filter(|&l| l > LIGHT_MAX_LMAX) {
+        bail!("--lmax {lmax}: the GPU shades to lmax {LIGHT_MAX_LMAX}");
     }
     Ok(())
 }
 
-/// The lmax to shade at: `--lmax`, else the transfer's (to [`MAX_LMAX`])
+/// The lmax to shade at: `--lmax`, else the transfer's (to [`LIGHT_MAX_LMAX`])
 /// when shading by PRT, else 2.
 pub fn shading_lmax(requested: Option<usize>, prt: Option<&ShprtFile>) -> usize {
-    requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(MAX_LMAX)))
+    requested.unwrap_or_else(|| prt.map_or(2, |t| t.lmax.min(LIGHT_MAX_LMAX)))
 }
 
 /// Gives `renderer` the light of `env` and its map, if it has one.

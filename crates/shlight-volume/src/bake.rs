@@ -1,75 +1,6 @@
-//! Baking a probe volume through a scene.
-//!
-//! # What a probe holds
-//! The SH projection of the radiance arriving at its position `x` from
-//! every direction `s`:
-//!
-//! ```text
-//! L(x, s) = L_env(s)                 where the ray from x along s escapes,
-//!         = T(q) . L_env + E(q)      where it first hits the front of a surface at q,
-//!         = 0                        where it hits the back of one,
-//! ```
-//!
-//! `T(q)` being the surface's interreflected diffuse transfer (shadowed
-//! direct light plus `bounces` bounces, [`shlight_prt::transfer`]) and
-//! `E(q)` its exit radiance due to emitters (their emission plus the same
-//! bounces). Both are linear in the environment's coefficients, so per
-//! probe and channel `c`
-//!
-//! ```text
-//! L_probe,c = M_c L_env,c + L_emitted,c
-//! M_c[i][k] = delta_ik - int_blocked Y_i(s) Y_k(s) ds + int_front Y_i(s) T_c,k(q(s)) ds
-//! L_emitted,c[i] = int_front Y_i(s) E_c(q(s)) ds
-//! ```
-//!
-//! # Estimator
-//! One jittered equal-area set of `N` directions
-//! ([`shlight_core::map::montecarlo::stratified_directions`], seeded) serves
-//! every probe, each with weight `4 pi / N`. The sky's part, `delta_ik -
-//! int_blocked Y_i Y_k`, is estimated from whichever of the escaping and the
-//! blocked rays are fewer: `w sum_escaped Y_i Y_k` when most rays are
-//! blocked, `delta_ik - w sum_blocked Y_i Y_k` (a control variate) when
-//! most escape. So a probe that sees no geometry equals the environment
-//! exactly, one in a closed room gets no sky light at all, and the variance
-//! comes from the smaller set. Surfaces are one-sided: a ray that meets the back of a
-//! triangle brings no light, and a probe for which more than
-//! [`VolumeOptions::invalid_backfaces`] of the rays do so is inside
-//! geometry and marked invalid. `T(q)` and `E(q)` are the barycentric
-//! interpolation of the surface's vertex values; long edges are first split
-//! ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
-//! shadows.
-//!
-//! # Casting and summing
-//! The probes' rays along one direction are parallel: the probes are taken
-//! eight at a time in Morton order of their grid cells and traced as one
-//! [`Packet`] ([`shlight_prt::packet::PacketBvh::closest`]) against the
-//! scene's own triangles, not the subdivided ones (the same surface; a room
-//! of large quads has a few dozen instead of a hundred thousand), and each
-//! front hit is found in the subdivided mesh by
-//! [`Subdivision::locate_each`]; the surfaces' transfer is cast the same
-//! way, against the same hierarchy ([`transfer::Occluder`],
-//! [`transfer::bake_against`]).
-//!
-//! The directions are cut into blocks of 64 that are small patches of the
-//! sphere (`direction_order`: halves across the widest axis, down to
-//! single blocks), cast in parallel for as many probes at a time as keep
-//! their hits within 256 MB (12 bytes a ray): within a block each packet
-//! of probes goes through the block's directions in turn, so its rays walk
-//! the same part of the hierarchy and meet the scene in one region, and
-//! its front hits in the block are located together. Then each probe sums
-//! its rays block by block, in `f32` within a block and `f64` across
-//! blocks: a row `v = (Y(s), T(q), E(q))` per ray (the transfer and the
-//! emitters' light interpolated at the hit from 64-byte vertex records;
-//! `(Y(s), 0)` at a back face, zeros for an escaped ray) and the block's
-//! `sum Y(s) v^T`, a small matrix product, giving the blocked `sum Y Y^T`,
-//! `sum Y T^T` and `sum Y E` together (a grey surface's transfer summed
-//! once for the three channels). With AVX2 and FMA (detected at run time)
-//! the product keeps 3 rows by 24 columns of the sums in registers;
-//! portable loops compute the same sums elsewhere. `sum_escaped Y Y^T` is
-//! `sum_all Y Y^T`, summed once the same way for every probe, less the
-//! blocked sum, so a probe that sees no sky gets exactly none. Every sum
-//! runs in a fixed order, so the result is the same bit for bit at any
-//! thread count for a seed.
+//! Baking a probe volume through a scene: [`bake`], whose documentation
+//! states what a probe holds, the estimator, and how the rays are cast and
+//! summed.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -162,6 +93,77 @@ pub enum Stage {
 ///
 /// `progress(stage, done, total)` is called from worker threads as work
 /// finishes.
+///
+/// # What a probe holds
+/// The SH projection of the radiance arriving at its position `x` from
+/// every direction `s`:
+///
+/// ```text
+/// L(x, s) = L_env(s)                 where the ray from x along s escapes,
+///         = T(q) . L_env + E(q)      where it first hits the front of a surface at q,
+///         = 0                        where it hits the back of one,
+/// ```
+///
+/// `T(q)` being the surface's interreflected diffuse transfer (shadowed
+/// direct light plus `bounces` bounces, [`shlight_prt::transfer`]) and
+/// `E(q)` its exit radiance due to emitters (their emission plus the same
+/// bounces). Both are linear in the environment's coefficients, so per
+/// probe and channel `c`
+///
+/// ```text
+/// L_probe,c = M_c L_env,c + L_emitted,c
+/// M_c[i][k] = delta_ik - int_blocked Y_i(s) Y_k(s) ds + int_front Y_i(s) T_c,k(q(s)) ds
+/// L_emitted,c[i] = int_front Y_i(s) E_c(q(s)) ds
+/// ```
+///
+/// # Estimator
+/// One jittered equal-area set of `N` directions
+/// ([`shlight_core::map::montecarlo::stratified_directions`], seeded) serves
+/// every probe, each with weight `4 pi / N`. The sky's part, `delta_ik -
+/// int_blocked Y_i Y_k`, is estimated from whichever of the escaping and the
+/// blocked rays are fewer: `w sum_escaped Y_i Y_k` when most rays are
+/// blocked, `delta_ik - w sum_blocked Y_i Y_k` (a control variate) when
+/// most escape. So a probe that sees no geometry equals the environment
+/// exactly, one in a closed room gets no sky light at all, and the variance
+/// comes from the smaller set. Surfaces are one-sided: a ray that meets the back of a
+/// triangle brings no light, and a probe for which more than
+/// [`VolumeOptions::invalid_backfaces`] of the rays do so is inside
+/// geometry and marked invalid. `T(q)` and `E(q)` are the barycentric
+/// interpolation of the surface's vertex values; long edges are first split
+/// ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
+/// shadows.
+///
+/// # Casting and summing
+/// The probes' rays along one direction are parallel: the probes are taken
+/// eight at a time in Morton order of their grid cells and traced as one
+/// [`Packet`] ([`shlight_prt::packet::PacketBvh::closest`]) against the
+/// scene's own triangles, not the subdivided ones (the same surface; a room
+/// of large quads has a few dozen instead of a hundred thousand), and each
+/// front hit is found in the subdivided mesh by
+/// [`Subdivision::locate_each`]; the surfaces' transfer is cast the same
+/// way, against the same hierarchy ([`transfer::Occluder`],
+/// [`transfer::bake_against`]).
+///
+/// The directions are cut into blocks of 64 that are small patches of the
+/// sphere (`direction_order`: halves across the widest axis, down to
+/// single blocks), cast in parallel for as many probes at a time as keep
+/// their hits within 256 MB (12 bytes a ray): within a block each packet
+/// of probes goes through the block's directions in turn, so its rays walk
+/// the same part of the hierarchy and meet the scene in one region, and
+/// its front hits in the block are located together. Then each probe sums
+/// its rays block by block, in `f32` within a block and `f64` across
+/// blocks: a row `v = (Y(s), T(q), E(q))` per ray (the transfer and the
+/// emitters' light interpolated at the hit from 64-byte vertex records;
+/// `(Y(s), 0)` at a back face, zeros for an escaped ray) and the block's
+/// `sum Y(s) v^T`, a small matrix product, giving the blocked `sum Y Y^T`,
+/// `sum Y T^T` and `sum Y E` together (a grey surface's transfer summed
+/// once for the three channels). With AVX2 and FMA (detected at run time)
+/// the product keeps 3 rows by 24 columns of the sums in registers;
+/// portable loops compute the same sums elsewhere. `sum_escaped Y Y^T` is
+/// `sum_all Y Y^T`, summed once the same way for every probe, less the
+/// blocked sum, so a probe that sees no sky gets exactly none. Every sum
+/// runs in a fixed order, so the result is the same bit for bit at any
+/// thread count for a seed.
 ///
 /// # Errors
 /// An lmax beyond [`shlight_baked::MAX_LMAX`], no samples, or an albedo or

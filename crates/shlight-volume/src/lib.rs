@@ -9,7 +9,7 @@
 //! - [`bake()`]: each probe's incident radiance as a transfer matrix per
 //!   channel and the emitters' light, `L_probe = M L_env + L_emitted`,
 //!   through the scene's shadows and interreflections
-//!   ([`bake`](mod@bake) states the estimator).
+//!   ([`bake()`] states the estimator).
 //! - [`bake_file()`]: a bake as a front end asks for it (`shlight volume`,
 //!   the Python package's `bake_volume`): a [`VolumeRequest`] over a scene
 //!   and an environment to the `.shvol` file.
@@ -50,17 +50,17 @@
 //! **Architecture invariant:** no GPU and no command line; files through
 //! shlight-format.
 
-pub mod bake;
-pub mod bake_file;
-pub mod bevy_lookup;
+mod bake;
+mod bake_file;
+mod bevy_lookup;
 mod error;
 mod lookup;
 mod prepared_lookup;
-pub mod probe_sheet;
+mod probe_sheet;
 mod probe_volume;
-pub mod threejs_lookup;
+mod threejs_lookup;
 
-pub use bake::{Stage, VolumeOptions, bake};
+pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake, relocate};
 pub use bake_file::{BakedVolume, VolumeRequest, bake_file, check_environment};
 pub use bevy_lookup::BevyLookup;
 pub use error::VolumeError;

@@ -8,7 +8,7 @@ use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 use shlight_baked::ProbeGrid;
 
 /// Shaded colour of invalid probes (a flat mid grey).
-pub const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
+pub(crate) const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
 
 /// The exposure in stops for a [`probe_sheet`]'s pixels: the mean
 /// luminance of the pixels that are not black (the balls, not the
@@ -32,7 +32,7 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
 /// exit radiance `E(n) / pi` for its normal `n`, `E` the probe's SH
 /// irradiance (R&H). The z layers are side by side from left to right
 /// (z = 0 first), each layer's probes at x across and y up, with a gap of a
-/// quarter ball. Invalid probes are flat [`INVALID`] discs. Background
+/// quarter ball. Invalid probes are flat mid-grey discs (0.18). Background
 /// black.
 #[must_use]
 pub fn probe_sheet(

@@ -180,7 +180,8 @@ mod tests {
     /// constant sky `c` gives `π c` to the map's quadrature error.
     #[test]
     fn a_maps_cube_is_a_suns_and_a_constant_skys_closed_form() {
-        use crate::encoding::{DominantLightOptions, Encoded, Encoding, encode_map};
+        use crate::encoding::dominant_lights::DominantLightOptions;
+        use crate::encoding::encoded::{Encoded, Encoding, encode_map};
         use crate::map::layout::env_map::EnvMap;
         use crate::map::layout::kind::Layout;
         use crate::map::orientation::MapOrientation;

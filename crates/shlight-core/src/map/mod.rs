@@ -29,7 +29,10 @@
 //! [`TexelSource`]: the texels of a map however they are stored, which is
 //! what projection reads: [`EnvMap`] and [`EquirectView`] (contiguous),
 //! [`StridedImage`] (rows a pitch apart), [`CubeFaces`] (six separate
-//! faces, seen as a strip), or a type of the caller's.
+//! faces, seen as a strip), or a type of the caller's. Readers that need
+//! rows or the whole image contiguous take them through [`read_row`] and
+//! [`contiguous_pixels`]: in place where the source stores them so, copied
+//! otherwise.
 //!
 //! # Projection
 //!
@@ -120,4 +123,4 @@ pub use radiance_map::{RadianceMap, luminance};
 pub use render::{render_coefficients, render_map};
 pub use strided_image::StridedImage;
 pub use texel_means::texel_means;
-pub use texel_source::TexelSource;
+pub use texel_source::{TexelSource, contiguous_pixels, read_row};

@@ -1,5 +1,8 @@
 //! [`TexelSource`]: an environment map's texels in one [`Layout`], as the
-//! projection reads them, whatever stores them.
+//! projection reads them, whatever stores them; [`read_row`] and
+//! [`contiguous_pixels`], its rows and its whole image in one slice.
+
+use std::borrow::Cow;
 
 use crate::map::equirect::EquirectView;
 use crate::map::layout::env_map::EnvMap;
@@ -75,9 +78,9 @@ pub trait TexelSource: Sync {
     }
 }
 
-/// Row `y` of `source`: its own slice when it has one of `width` texels,
-/// otherwise read texel by texel into `buf`.
-pub(crate) fn read_row<'a, S: TexelSource + ?Sized>(
+/// Row `y` of `source`: its own slice ([`TexelSource::row`]) when it has
+/// one of `width` texels, otherwise read texel by texel into `buf`.
+pub fn read_row<'a, S: TexelSource + ?Sized>(
     source: &'a S,
     y: usize,
     buf: &'a mut Vec<[f32; 3]>,
@@ -91,6 +94,23 @@ pub(crate) fn read_row<'a, S: TexelSource + ?Sized>(
             buf
         }
     }
+}
+
+/// Every texel of `source` as one slice of `width * height`, row after row
+/// from the top: borrowed where the source stores them so
+/// ([`TexelSource::pixels`]), otherwise copied row by row ([`read_row`]).
+#[must_use]
+pub fn contiguous_pixels<S: TexelSource + ?Sized>(source: &S) -> Cow<'_, [[f32; 3]]> {
+    let (w, h) = source.size();
+    if let Some(pixels) = source.pixels().filter(|p| p.len() == w * h) {
+        return Cow::Borrowed(pixels);
+    }
+    let mut copy = Vec::with_capacity(w * h);
+    let mut buf = Vec::new();
+    for y in 0..h {
+        copy.extend_from_slice(read_row(source, y, &mut buf));
+    }
+    Cow::Owned(copy)
 }
 
 /// A contiguous `width * height` image: its [`Layout`], rows straight from

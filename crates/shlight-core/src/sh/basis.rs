@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::sh::index::sh_count;
 use crate::sh::legendre::Legendre;
-use crate::sh::low_degree::{Lanes, QuadraticForm, eval_hardcoded, eval_hardcoded_with};
+use crate::sh::low_degree::{Lanes, QuadraticForm, eval_low_degree, eval_low_degree_with};
 use crate::sh::real::Real;
 
 /// Lanes the batch evaluator processes together (a multiple of every SIMD width).
@@ -76,7 +76,7 @@ impl<T: Real> ShBasis<T> {
     pub fn eval(&self, d: T::Vec3, out: &mut [T]) {
         let d: [T; 3] = d.into();
         if self.lmax <= 4 {
-            eval_hardcoded(self.lmax, d[0], d[1], d[2], out);
+            eval_low_degree(self.lmax, d[0], d[1], d[2], out);
         } else {
             let out = &mut out[..self.count()];
             self.general::<1>(&[d[0]], &[d[1]], &[d[2]], |i, v| out[i] = v[0]);
@@ -166,7 +166,7 @@ impl<T: Real> ShBasis<T> {
         mut emit: impl FnMut(usize, &[T; LANES]),
     ) {
         if self.lmax <= 4 {
-            eval_hardcoded_with(
+            eval_low_degree_with(
                 self.lmax,
                 Lanes(*x),
                 Lanes(*y),

@@ -109,9 +109,9 @@ const K40: f64 = 0.1875 * csqrt(1.0 / PI); // 35z^4 - 30z^2 + 3
 ///
 /// Panics if `lmax > 4` or `out` is shorter than `(lmax+1)^2`.
 #[inline(always)]
-pub fn eval_hardcoded<T: Arith>(lmax: usize, x: T, y: T, z: T, out: &mut [T]) {
+pub fn eval_low_degree<T: Arith>(lmax: usize, x: T, y: T, z: T, out: &mut [T]) {
     let out = &mut out[..(lmax + 1) * (lmax + 1)];
-    eval_hardcoded_with(
+    eval_low_degree_with(
         lmax,
         x,
         y,
@@ -127,7 +127,7 @@ pub fn eval_hardcoded<T: Arith>(lmax: usize, x: T, y: T, z: T, out: &mut [T]) {
 ///
 /// Panics if `lmax > 4`.
 #[inline(always)]
-pub fn eval_hardcoded_with<T: Arith>(
+pub fn eval_low_degree_with<T: Arith>(
     lmax: usize,
     x: T,
     y: T,
@@ -248,7 +248,7 @@ mod tests {
             [-1.0, 0.0, 0.0],
         ] {
             let mut y = [0.0; 9];
-            eval_hardcoded(2, d[0], d[1], d[2], &mut y);
+            eval_low_degree(2, d[0], d[1], d[2], &mut y);
             let want: f64 = y.iter().zip(&f).map(|(a, b)| a * b).sum();
             assert!((form.eval(d[0], d[1], d[2]) - want).abs() < 1e-14);
         }
@@ -265,11 +265,11 @@ mod tests {
     fn band_one_matches_the_reference_values() {
         // Y_1^-1 = -0.488603 y, Y_1^0 = 0.488603 z, Y_1^1 = -0.488603 x.
         let mut out = [0.0f64; 4];
-        eval_hardcoded(1, 0.0, 0.0, 1.0, &mut out);
+        eval_low_degree(1, 0.0, 0.0, 1.0, &mut out);
         assert!((out[2] - 0.488603).abs() < 1e-6);
-        eval_hardcoded(1, 1.0, 0.0, 0.0, &mut out);
+        eval_low_degree(1, 1.0, 0.0, 0.0, &mut out);
         assert!((out[3] + 0.488603).abs() < 1e-6);
-        eval_hardcoded(1, 0.0, 1.0, 0.0, &mut out);
+        eval_low_degree(1, 0.0, 1.0, 0.0, &mut out);
         assert!((out[1] + 0.488603).abs() < 1e-6);
         assert!((out[0] - 0.282095).abs() < 1e-6);
     }

@@ -7,7 +7,7 @@
 use core::f64::consts::PI;
 
 use crate::sh::glam_real::GlamReal;
-use crate::sh::low_degree::{K00, K1, K2_2, K20, K22, eval_hardcoded};
+use crate::sh::low_degree::{K00, K1, K2_2, K20, K22, eval_low_degree};
 
 /// `A_l` for `l = 0, 1, 2`: `pi, 2 pi / 3, pi / 4`, the Funk-Hecke
 /// eigenvalues of the clamped cosine (Ramamoorthi & Hanrahan 2001, eq. 8;
@@ -37,7 +37,7 @@ pub(crate) const fn lmax_of(n: usize) -> usize {
 pub(crate) fn basis<T: GlamReal, const N: usize>(d: T::Vec3) -> [T; N] {
     let [x, y, z] = T::vec3_to_array(d);
     let mut out = [<T as crate::sh::real::Real>::ZERO; N];
-    eval_hardcoded(lmax_of(N), x, y, z, &mut out);
+    eval_low_degree(lmax_of(N), x, y, z, &mut out);
     out
 }
 

@@ -265,14 +265,14 @@ pub(crate) fn rotated<T: GlamReal, const N: usize>(c: &[T; N], rot: &ShRotationL
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sh::low_degree::eval_hardcoded;
+    use crate::sh::low_degree::eval_low_degree;
 
     #[test]
     fn forms_reproduce_the_degree_two_basis() {
         let s = band2_forms();
         for d in [[0.6, 0.0, 0.8], [0.48, -0.6, 0.64], [0.0, 1.0, 0.0]] {
             let mut y = [0.0; 9];
-            eval_hardcoded(2, d[0], d[1], d[2], &mut y);
+            eval_low_degree(2, d[0], d[1], d[2], &mut y);
             for m in 0..5 {
                 let mut q = 0.0;
                 for i in 0..3 {

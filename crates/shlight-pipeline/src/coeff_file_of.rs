@@ -1,15 +1,14 @@
-//! The last steps of a projection: windows, rotation, quantity, and the
-//! coefficient file with its provenance.
+//! [`coeff_file_of`]: the coefficient file of a projection (windows,
+//! rotation, quantity, and its provenance: [`MapInfo`], what it records of
+//! the input map).
 
-use glam::DVec3;
 use shlight_core::map::Layout;
-use shlight_core::sh::{ShCoeffs, Window, WindowFamily, WindowTarget, auto_windows};
+use shlight_core::sh::Window;
 use shlight_format::{CoeffFile, Provenance, Quantity, SanitizeCounts};
 use shlight_io::PixelStats;
 
-use crate::projection::Projection;
+use crate::projector::Projection;
 use crate::settings::ProjectSettings;
-use crate::{PipelineError, Result};
 
 /// What the coefficient file records about the input map.
 #[derive(Clone, Debug)]
@@ -29,6 +28,27 @@ pub struct MapInfo {
 }
 
 impl MapInfo {
+    /// The record of the map `name`, `size` texels of the layout named
+    /// `layout`, with the statistics `stats` of its values as read and what
+    /// sanitizing replaced.
+    #[must_use]
+    pub fn new(
+        name: &str,
+        layout: &str,
+        (width, height): (usize, usize),
+        stats: PixelStats,
+        sanitized: Option<SanitizeCounts>,
+    ) -> Self {
+        Self {
+            name: name.to_string(),
+            width,
+            height,
+            layout: layout.to_string(),
+            stats,
+            sanitized,
+        }
+    }
+
     /// The record of a contiguous map of `pixels` (statistics computed
     /// here, not sanitized).
     #[must_use]
@@ -39,39 +59,8 @@ impl MapInfo {
         height: usize,
         pixels: &[[f32; 3]],
     ) -> Self {
-        Self {
-            name: name.to_string(),
-            width,
-            height,
-            layout: layout.name().to_string(),
-            stats: PixelStats::of_pixels(pixels, width),
-            sanitized: None,
-        }
-    }
-}
-
-/// The window of each colour channel: the settings' window for all three,
-/// or (`window: None`, `auto`) per channel the weakest Hanning window that
-/// makes that channel's result non-negative: the function itself for
-/// radiance, its irradiance for irradiance
-/// ([`shlight_core::sh::auto_windows`]).
-///
-/// # Errors
-/// No Hanning window makes a channel non-negative; the message names `name`.
-pub fn choose_windows(
-    radiance: &ShCoeffs<DVec3>,
-    s: &ProjectSettings,
-    name: &str,
-) -> Result<[Window; 3]> {
-    let target = match s.quantity {
-        Quantity::Radiance => WindowTarget::Function,
-        Quantity::Irradiance => WindowTarget::Irradiance,
-    };
-    match s.window {
-        Some(w) => Ok([w; 3]),
-        None => auto_windows(radiance, WindowFamily::Hanning, target).map_err(|e| {
-            PipelineError::new(crate::error_chain(&e)).context(format!("{name}: --window auto"))
-        }),
+        let stats = PixelStats::of_pixels(pixels, width);
+        Self::new(name, layout.name(), (width, height), stats, None)
     }
 }
 
@@ -82,7 +71,7 @@ pub fn choose_windows(
 /// `|A_l|`), with the provenance of the input, the method and every
 /// setting.
 #[must_use]
-pub fn coefficient_file(
+pub fn coeff_file_of(
     projection: &Projection,
     windows: [Window; 3],
     s: &ProjectSettings,

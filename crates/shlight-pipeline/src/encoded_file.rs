@@ -30,9 +30,10 @@ mod tests {
     use shlight_core::map::{Layout, MapOrientation};
     use shlight_format::Quantity;
 
-    use crate::{
-        MapInfo, Method, ProjectSettings, choose_windows, coefficient_file, project_radiance,
-    };
+    use crate::choose_windows::choose_windows;
+    use crate::coeff_file_of::{MapInfo, coeff_file_of};
+    use crate::cpu_projector::project_radiance;
+    use crate::settings::{Method, ProjectSettings};
 
     /// Every encoding recorded in the file evaluates (`CoeffFile::encoded`)
     /// to the irradiance of the encoding made from the map directly.
@@ -52,7 +53,7 @@ mod tests {
         let projection = project_radiance(&map, &s);
         let windows = choose_windows(&projection.coeffs, &s, "sky").unwrap();
         let info = MapInfo::of_pixels("sky", Layout::Equirect, w, h, &pixels);
-        let plain = coefficient_file(&projection, windows, &s, &info);
+        let plain = coeff_file_of(&projection, windows, &s, &info);
         let normals = [DVec3::Y, DVec3::X, DVec3::new(0.3, -0.8, 0.5).normalize()];
         for encoding in Encoding::ALL {
             let mut file = plain.clone();

@@ -1,40 +1,23 @@
-//! The projection step: the place where layouts and methods meet.
+//! [`CpuProjector`]: the library's projection step on the CPU, the place
+//! where layouts and methods meet ([`project_radiance`],
+//! [`project_radiance_texels`]).
 
-use glam::DVec3;
 use shlight_core::map::montecarlo::{ImportanceGrid, McOptions, project_montecarlo};
-use shlight_core::map::{EnvMap, Layout, TexelSource};
-use shlight_core::sh::ShCoeffs;
+use shlight_core::map::{EnvMap, Layout, TexelSource, contiguous_pixels};
 
+use crate::load::env_map;
+use crate::projector::{Projection, Projector};
 use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 
-/// Radiance coefficients of a map, and what the method reports about them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Projection {
-    /// Radiance coefficients to the settings' lmax, in the map's frame.
-    pub coeffs: ShCoeffs<DVec3>,
-    /// Standard error per coefficient (Monte Carlo).
-    pub std_error: Option<ShCoeffs<DVec3>>,
-    /// Monte Carlo directions used.
-    pub samples: Option<u64>,
-    /// Monte Carlo seed.
-    pub seed: Option<u64>,
-    /// Monte Carlo sampler name.
-    pub sampler: Option<String>,
-}
+/// The library's projection on the CPU ([`project_radiance_texels`]):
+/// quadrature or Monte Carlo, on every core.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CpuProjector;
 
-impl Projection {
-    /// The coefficients of an exact method (quadrature): no standard
-    /// errors, no samples.
-    #[must_use]
-    pub fn exact(coeffs: ShCoeffs<DVec3>) -> Self {
-        Self {
-            coeffs,
-            std_error: None,
-            samples: None,
-            seed: None,
-            sampler: None,
-        }
+impl Projector for CpuProjector {
+    fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
+        project_radiance_texels(texels, s)
     }
 }
 
@@ -83,8 +66,8 @@ pub fn project_radiance(map: &EnvMap<'_>, s: &ProjectSettings) -> Projection {
 /// source through [`shlight_core::map::project`], which gives the
 /// same coefficients bit for bit as a contiguous map of the same texels;
 /// Monte Carlo looks texels up bilinearly and needs them contiguous: it
-/// reads them in place where the source holds them so
-/// ([`TexelSource::pixels`]), and copies them otherwise.
+/// reads them in place where the source holds them so, and copies them
+/// otherwise ([`contiguous_pixels`]).
 ///
 /// # Errors
 /// The source's size does not fit its layout.
@@ -104,23 +87,8 @@ pub fn project_radiance_texels<S: TexelSource + ?Sized>(
                 .layout()
                 .check_size(w, h)
                 .map_err(|e| PipelineError::new(e.to_string()))?;
-            let owned: Vec<[f32; 3]>;
-            let pixels = match source.pixels() {
-                Some(p) if p.len() == w * h => p,
-                _ => {
-                    let mut copy = Vec::with_capacity(w * h);
-                    for y in 0..h {
-                        match source.row(y) {
-                            Some(row) if row.len() == w => copy.extend_from_slice(row),
-                            _ => copy.extend((0..w).map(|x| source.texel(x, y))),
-                        }
-                    }
-                    owned = copy;
-                    &owned
-                }
-            };
-            let map = EnvMap::new(source.layout(), s.orientation, w, h, pixels)
-                .map_err(|e| PipelineError::new(e.to_string()))?;
+            let pixels = contiguous_pixels(source);
+            let map = env_map(source.layout(), s.orientation, (w, h), &pixels)?;
             Ok(project_radiance(&map, s))
         }
     }
