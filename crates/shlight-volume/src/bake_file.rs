@@ -106,8 +106,8 @@ pub fn generator() -> String {
 /// ([`VolumeRequest::grid`]), [`bake()`] (`progress` as there), the probes
 /// relit under `env` (radiance coefficients in the y-up frame, read from
 /// `env_path`; [`ProbeVolume::relight`]), and [`ProbeVolume::to_shvol`]
-/// recording the frame, the inputs' [`input_name`]s and the
-/// [`generator`].
+/// recording the frame, the inputs' file names and the generator
+/// (`shlight VERSION`).
 ///
 /// # Errors
 /// An environment too short for the bake ([`check_environment`]), a bad

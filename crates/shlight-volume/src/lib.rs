@@ -19,9 +19,9 @@
 //!   [`irradiance_at`]: the irradiance a point facing a normal is shaded
 //!   with, by a [`Lookup`] (`shlight sample`): shlight's own, or an
 //!   engine's as the engine computes it from shlight's export —
-//!   [`bevy_lookup`] (Bevy's irradiance volume: the KTX2 export's
+//!   [`BevyLookup`] (Bevy's irradiance volume: the KTX2 export's
 //!   half-float ambient cubes, filtered and blended as its shader does) and
-//!   [`threejs_lookup`] (three.js r187's `LightProbeGrid`: the point offset
+//!   [`ThreeJsLookup`] (three.js r187's `LightProbeGrid`: the point offset
 //!   half a probe spacing along the normal, trilinear L2 SH, three.js's
 //!   constants); [`PreparedLookup`] makes one ready for many points and
 //!   [`lookup_lmax`] says which degrees each reads. The engines know no
@@ -68,4 +68,4 @@ pub use lookup::{Lookup, irradiance_at, shaded_lmax};
 pub use prepared_lookup::{LookupLmax, PreparedLookup, lookup_lmax};
 pub use probe_sheet::{probe_sheet, probe_sheet_exposure};
 pub use probe_volume::{FileMeta, ProbeVolume, relight_file, sample};
-pub use threejs_lookup::ThreeJsLookup;
+pub use threejs_lookup::{THREEJS_LMAX, ThreeJsLookup};

@@ -24,11 +24,11 @@ pub enum Lookup {
     Trilinear,
     /// Bevy's own lookup of the `--format bevy` export: ambient cubes of
     /// half floats, filtered and blended as bevy_pbr's
-    /// `irradiance_volume.wgsl` does ([`crate::bevy_lookup`]).
+    /// `irradiance_volume.wgsl` does ([`crate::BevyLookup`]).
     Bevy,
     /// three.js `LightProbeGrid`'s lookup: the point offset half a probe
     /// spacing along the normal, trilinear L2 SH of the dilated probes,
-    /// three.js's irradiance constants ([`crate::threejs_lookup`]).
+    /// three.js's irradiance constants ([`crate::ThreeJsLookup`]).
     ThreeJs,
 }
 

@@ -82,7 +82,7 @@ pub fn lookup_lmax(
 
 /// A lookup of one volume made ready for many points: the engines'
 /// lookups build their texture (Bevy) or dilated grid (three.js) once
-/// here; the others read the probes as [`irradiance_at`] does.
+/// here; the others read the probes as [`irradiance_at`](crate::irradiance_at) does.
 #[derive(Clone, Debug)]
 pub struct PreparedLookup<'a> {
     view: VolumeView<'a>,
@@ -192,7 +192,7 @@ impl<'a> PreparedLookup<'a> {
         }
     }
 
-    /// The irradiance at `p` facing `n`: [`irradiance_at`] with this
+    /// The irradiance at `p` facing `n`: [`irradiance_at`](crate::irradiance_at) with this
     /// lookup and lmax.
     #[must_use]
     pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
