@@ -7,7 +7,7 @@ use std::path::Path;
 use serde_json::Value;
 use shlight_format::ShvolFile;
 
-use crate::util::{shlight, shlight_ok, temp_dir};
+use crate::util::{shlight, shlight_ok, temp_dir, write_two_rooms};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -609,85 +609,6 @@ fn sampling_equals_the_gpus_volume_pass() {
     assert!(apart >= 10, "{apart}");
 }
 
-/// Two sealed rooms split by a wall 4 cm thick at x = 2, a lamp (an MTL
-/// emitter) under the left room's ceiling, as an OBJ file of quads facing
-/// into the rooms.
-fn two_rooms_obj(dir: &Path) -> std::path::PathBuf {
-    let quad = |q: [[f32; 3]; 4]| q;
-    let room = |a: [f32; 3], b: [f32; 3]| {
-        let c = |x: f32, y: f32, z: f32| [x, y, z];
-        vec![
-            quad([
-                c(a[0], a[1], a[2]),
-                c(a[0], a[1], b[2]),
-                c(b[0], a[1], b[2]),
-                c(b[0], a[1], a[2]),
-            ]),
-            quad([
-                c(a[0], b[1], a[2]),
-                c(b[0], b[1], a[2]),
-                c(b[0], b[1], b[2]),
-                c(a[0], b[1], b[2]),
-            ]),
-            quad([
-                c(a[0], a[1], a[2]),
-                c(a[0], b[1], a[2]),
-                c(a[0], b[1], b[2]),
-                c(a[0], a[1], b[2]),
-            ]),
-            quad([
-                c(b[0], a[1], a[2]),
-                c(b[0], a[1], b[2]),
-                c(b[0], b[1], b[2]),
-                c(b[0], b[1], a[2]),
-            ]),
-            quad([
-                c(a[0], a[1], a[2]),
-                c(b[0], a[1], a[2]),
-                c(b[0], b[1], a[2]),
-                c(a[0], b[1], a[2]),
-            ]),
-            quad([
-                c(a[0], a[1], b[2]),
-                c(a[0], b[1], b[2]),
-                c(b[0], b[1], b[2]),
-                c(b[0], a[1], b[2]),
-            ]),
-        ]
-    };
-    let mut walls = room([0.0, 0.0, 0.0], [1.98, 1.5, 2.0]);
-    walls.extend(room([2.02, 0.0, 0.0], [4.0, 1.5, 2.0]));
-    let lamp = [
-        [0.4, 1.45, 0.5],
-        [1.58, 1.45, 0.5],
-        [1.58, 1.45, 1.5],
-        [0.4, 1.45, 1.5],
-    ];
-    let mut obj = String::from("mtllib rooms.mtl\n");
-    let mut faces = String::new();
-    let mut v = 0;
-    for (i, q) in walls.iter().chain([&lamp]).enumerate() {
-        for p in q {
-            obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
-        }
-        if i == walls.len() {
-            faces.push_str("usemtl lamp\n");
-        } else if i == 0 {
-            faces.push_str("usemtl wall\n");
-        }
-        faces.push_str(&format!("f {} {} {} {}\n", v + 1, v + 2, v + 3, v + 4));
-        v += 4;
-    }
-    obj.push_str(&faces);
-    std::fs::write(dir.join("rooms.obj"), obj).unwrap();
-    std::fs::write(
-        dir.join("rooms.mtl"),
-        "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0.8 0.8 0.8\nKe 4 4 4\n",
-    )
-    .unwrap();
-    dir.join("rooms.obj")
-}
-
 /// `shlight volume` then `shlight sample`, as a user would: the dark room's
 /// floor next to the wall stays dark under the default lookup of the
 /// default bake, and leaks under trilinear interpolation, as it does in a
@@ -695,7 +616,8 @@ fn two_rooms_obj(dir: &Path) -> std::path::PathBuf {
 #[test]
 fn a_bake_of_two_rooms_does_not_leak_through_the_wall() {
     let dir = temp_dir("sample-rooms");
-    let scene = two_rooms_obj(&dir);
+    let scene = dir.join("rooms.obj");
+    write_two_rooms(&scene, 2.0);
     let sky = dir.join("black.exr");
     shlight_ok(&[
         "synth",

@@ -332,3 +332,82 @@ pub fn synth_sun_map(dir: &Path) -> PathBuf {
     ]);
     map
 }
+
+/// Two sealed rooms side by side (x 0..4, 1.5 high, 2 deep), split by a
+/// wall 4 cm thick centred at x = `wall`, a lamp under the left room's
+/// ceiling facing down (0.4 from its walls): every face towards the inside
+/// of its room, as an OBJ with its MTL `rooms.mtl` beside it (white walls,
+/// the lamp emitting 4).
+pub fn write_two_rooms(obj: &std::path::Path, wall: f32) {
+    let mut quads: Vec<([glam::Vec3; 4], &str)> = Vec::new();
+    let c = glam::Vec3::new;
+    let mut room = |a: glam::Vec3, b: glam::Vec3| {
+        for q in [
+            [
+                c(a.x, a.y, a.z),
+                c(a.x, a.y, b.z),
+                c(b.x, a.y, b.z),
+                c(b.x, a.y, a.z),
+            ],
+            [
+                c(a.x, b.y, a.z),
+                c(b.x, b.y, a.z),
+                c(b.x, b.y, b.z),
+                c(a.x, b.y, b.z),
+            ],
+            [
+                c(a.x, a.y, a.z),
+                c(a.x, b.y, a.z),
+                c(a.x, b.y, b.z),
+                c(a.x, a.y, b.z),
+            ],
+            [
+                c(b.x, a.y, a.z),
+                c(b.x, a.y, b.z),
+                c(b.x, b.y, b.z),
+                c(b.x, b.y, a.z),
+            ],
+            [
+                c(a.x, a.y, a.z),
+                c(b.x, a.y, a.z),
+                c(b.x, b.y, a.z),
+                c(a.x, b.y, a.z),
+            ],
+            [
+                c(a.x, a.y, b.z),
+                c(a.x, b.y, b.z),
+                c(b.x, b.y, b.z),
+                c(b.x, a.y, b.z),
+            ],
+        ] {
+            quads.push((q, "wall"));
+        }
+    };
+    room(glam::Vec3::ZERO, c(wall - 0.02, 1.5, 2.0));
+    room(c(wall + 0.02, 0.0, 0.0), c(4.0, 1.5, 2.0));
+    let y = 1.45;
+    quads.push((
+        [
+            c(0.4, y, 0.5),
+            c(wall - 0.42, y, 0.5),
+            c(wall - 0.42, y, 1.5),
+            c(0.4, y, 1.5),
+        ],
+        "lamp",
+    ));
+    let mut text = String::from("mtllib rooms.mtl\n");
+    for (k, (q, material)) in quads.iter().enumerate() {
+        text += &format!("usemtl {material}\n");
+        for p in q {
+            text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+        let v = 4 * k + 1;
+        text += &format!("f {} {} {}\nf {} {} {}\n", v, v + 1, v + 2, v, v + 2, v + 3);
+    }
+    std::fs::write(obj, text).unwrap();
+    std::fs::write(
+        obj.with_file_name("rooms.mtl"),
+        "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0.8 0.8 0.8\nKe 4 4 4\n",
+    )
+    .unwrap();
+}

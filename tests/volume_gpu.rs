@@ -1107,84 +1107,6 @@ fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
     }
 }
 
-/// Two sealed rooms side by side (x 0..4, 1.5 high, 2 deep), split by a
-/// wall 4 cm thick centred at x = 2.1, a lamp under the left room's
-/// ceiling facing down: every face towards the inside of its room, as an
-/// OBJ with its MTL (white walls, the lamp emitting).
-fn write_two_rooms(obj: &std::path::Path) {
-    let mut quads: Vec<([Vec3; 4], &str)> = Vec::new();
-    let c = Vec3::new;
-    let mut room = |a: Vec3, b: Vec3| {
-        for q in [
-            [
-                c(a.x, a.y, a.z),
-                c(a.x, a.y, b.z),
-                c(b.x, a.y, b.z),
-                c(b.x, a.y, a.z),
-            ],
-            [
-                c(a.x, b.y, a.z),
-                c(b.x, b.y, a.z),
-                c(b.x, b.y, b.z),
-                c(a.x, b.y, b.z),
-            ],
-            [
-                c(a.x, a.y, a.z),
-                c(a.x, b.y, a.z),
-                c(a.x, b.y, b.z),
-                c(a.x, a.y, b.z),
-            ],
-            [
-                c(b.x, a.y, a.z),
-                c(b.x, a.y, b.z),
-                c(b.x, b.y, b.z),
-                c(b.x, b.y, a.z),
-            ],
-            [
-                c(a.x, a.y, a.z),
-                c(b.x, a.y, a.z),
-                c(b.x, b.y, a.z),
-                c(a.x, b.y, a.z),
-            ],
-            [
-                c(a.x, a.y, b.z),
-                c(a.x, b.y, b.z),
-                c(b.x, b.y, b.z),
-                c(b.x, a.y, b.z),
-            ],
-        ] {
-            quads.push((q, "wall"));
-        }
-    };
-    room(Vec3::ZERO, c(2.08, 1.5, 2.0));
-    room(c(2.12, 0.0, 0.0), c(4.0, 1.5, 2.0));
-    let y = 1.45;
-    quads.push((
-        [
-            c(0.4, y, 0.5),
-            c(1.68, y, 0.5),
-            c(1.68, y, 1.5),
-            c(0.4, y, 1.5),
-        ],
-        "lamp",
-    ));
-    let mut text = String::from("mtllib rooms.mtl\n");
-    for (k, (q, material)) in quads.iter().enumerate() {
-        text += &format!("usemtl {material}\n");
-        for p in q {
-            text += &format!("v {} {} {}\n", p.x, p.y, p.z);
-        }
-        let v = 4 * k + 1;
-        text += &format!("f {} {} {}\nf {} {} {}\n", v, v + 1, v + 2, v, v + 2, v + 3);
-    }
-    std::fs::write(obj, text).unwrap();
-    std::fs::write(
-        obj.with_file_name("rooms.mtl"),
-        "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl lamp\nKd 0.8 0.8 0.8\nKe 4 4 4\n",
-    )
-    .unwrap();
-}
-
 /// `render-mesh --volume` of a volume with distance maps: looking at the
 /// wall between two sealed rooms from the dark one, every pixel is as dark
 /// as the visibility-weighted lookup makes it (the truth is 0: no light
@@ -1194,7 +1116,7 @@ fn write_two_rooms(obj: &std::path::Path) {
 /// ignored the maps would fail.
 #[test]
 fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
-    use crate::util::{s, shlight_ok, temp_dir, write_radiance_rows};
+    use crate::util::{s, shlight_ok, temp_dir, write_radiance_rows, write_two_rooms};
     use shlight_format::ShvolFile;
     use shlight_volume::{Lookup, irradiance_at};
 
@@ -1203,7 +1125,7 @@ fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
     }
     let dir = temp_dir("volume-render-wall");
     let rooms = dir.join("rooms.obj");
-    write_two_rooms(&rooms);
+    write_two_rooms(&rooms, 2.1);
     let env = dir.join("sky.json");
     let mut sky = [[0.0; 3]; 9];
     sky[0] = [1.0; 3];
