@@ -31,8 +31,9 @@ mod tests {
     use shlight_format::Quantity;
 
     use crate::choose_windows::choose_windows;
-    use crate::coeff_file_of::{MapInfo, coeff_file_of};
+    use crate::coeff_file_of::coeff_file_of;
     use crate::cpu_projector::project_radiance;
+    use crate::map_info::MapInfo;
     use crate::settings::{Method, ProjectSettings};
 
     /// Every encoding recorded in the file evaluates (`CoeffFile::encoded`)

@@ -75,6 +75,7 @@ mod environment;
 mod error;
 mod input_layout;
 mod load;
+mod map_info;
 mod output_grid;
 mod preview;
 mod project;
@@ -90,13 +91,14 @@ pub use accuracy::{
     map_irradiance,
 };
 pub use choose_windows::choose_windows;
-pub use coeff_file_of::{MapInfo, coeff_file_of};
+pub use coeff_file_of::coeff_file_of;
 pub use cpu_projector::{CpuProjector, project_radiance, project_radiance_texels};
 pub use encoded_file::encode_file;
 pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use map_info::MapInfo;
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
 pub use project::{Hooks, Source, project, project_with_warnings};

@@ -7,8 +7,8 @@ use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::SanitizeCounts;
 use shlight_io::{Image, PixelStats, ReadOptions, read_image};
 
-use crate::coeff_file_of::MapInfo;
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
+use crate::map_info::MapInfo;
 use crate::{PipelineError, Result};
 
 /// `width x height` texels of `layout`, row after row, as a map read in

@@ -8,11 +8,12 @@ use shlight_format::CoeffFile;
 use shlight_io::Image;
 
 use crate::choose_windows::choose_windows;
-use crate::coeff_file_of::{MapInfo, coeff_file_of};
+use crate::coeff_file_of::coeff_file_of;
 use crate::cpu_projector::CpuProjector;
 use crate::encoded_file::encode_file;
 use crate::input_layout::is_faces;
 use crate::load::{LoadedMap, check_values, env_map, load_map};
+use crate::map_info::MapInfo;
 use crate::preview::write_preview;
 use crate::projector::Projector;
 use crate::settings::Settings;
