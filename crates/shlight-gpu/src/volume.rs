@@ -205,19 +205,16 @@ impl VolumeInstance {
 
 /// The probe spheres: per probe, in probe order, a unit sphere scaled to
 /// [`PROBE_SPHERE_RADIUS`] times the grid's smallest cell extent and moved
-/// to the probe's centre, shaded by that probe's own SH (black when it is
-/// invalid).
+/// to where the probe is (its cell's centre plus its offset, where the
+/// bake moved it out of geometry), shaded by that probe's own SH (black
+/// when it is invalid).
 #[must_use]
 pub fn probe_sphere_instances(probes: &VolumeView<'_>) -> Vec<VolumeInstance> {
     let cell = probes.grid.cell();
     let radius = PROBE_SPHERE_RADIUS * cell.min_element();
     (0..probes.probe_count())
         .map(|k| VolumeInstance {
-            offset_scale: probes
-                .grid
-                .centre(probes.grid.grid_index(k))
-                .extend(radius)
-                .to_array(),
+            offset_scale: probes.position(k).extend(radius).to_array(),
             probe: k as u32,
             pad: [0; 3],
         })
@@ -1281,7 +1278,7 @@ mod tests {
     }
 
     #[test]
-    fn probe_spheres_sit_at_cell_centres_and_placement_centres_the_object() {
+    fn probe_spheres_sit_where_the_probes_are_and_placement_centres_the_object() {
         let valid = [true; 12];
         let radiance = [0.0; 12 * 3];
         let probes = VolumeView {
@@ -1305,6 +1302,15 @@ mod tests {
         assert_eq!(spheres[2].offset_scale[1], 1.5);
         assert_eq!(spheres[6].offset_scale[2], 3.0);
         assert_eq!(spheres[11].probe(), Some(11));
+        // A probe the bake moved is drawn where it went.
+        let mut offsets = [0.0f32; 36];
+        offsets[33..].copy_from_slice(&[0.25, -0.5, 0.125]);
+        let moved = probe_sphere_instances(&VolumeView {
+            offsets: Some(&offsets),
+            ..probes
+        });
+        assert_eq!(moved[11].offset_scale, [0.75, 2.0, 3.125, 0.15]);
+        assert_eq!(moved[0].offset_scale, spheres[0].offset_scale);
         // A box of diagonal 2 centred at (1, 1, 1), put at (5, 0, 0) 4 long.
         let p = place(
             (Vec3::ZERO, Vec3::splat(2.0)),
