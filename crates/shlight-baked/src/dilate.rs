@@ -37,7 +37,14 @@ use crate::VolumeView;
 /// // Three probes along x at lmax 0; the middle one is invalid.
 /// let grid = ProbeGrid::new([3, 1, 1], Vec3::ZERO, Vec3::ONE).unwrap();
 /// let radiance = [1.0, 1.0, 1.0, 7.0, 7.0, 7.0, 3.0, 5.0, 7.0];
-/// let view = VolumeView { grid, lmax: 0, valid: &[true, false, true], radiance: &radiance };
+/// let view = VolumeView {
+///     grid,
+///     lmax: 0,
+///     valid: &[true, false, true],
+///     radiance: &radiance,
+///     offsets: None,
+///     visibility: None,
+/// };
 /// assert_eq!(dilate(&view)[3..6], [2.0, 3.0, 4.0]);
 /// ```
 #[must_use]
