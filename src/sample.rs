@@ -128,12 +128,7 @@ fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
         about: json!({
             "file": args.file.display().to_string(),
             "points": points_path.display().to_string(),
-            "lookup": match args.lookup {
-                // A file without distance maps is shaded by trilinear
-                // interpolation, by the GPU too.
-                Lookup::Shlight if file.visibility.is_none() => Lookup::Trilinear.name(),
-                l => l.name(),
-            },
+            "lookup": args.lookup.effective(&file.view()).name(),
             "visibility": file.visibility.is_some(),
             "relocated": file.relocated().len(),
             "lmax": lmax,

@@ -205,18 +205,12 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     bars.finish();
     let seconds = start.elapsed().as_secs_f64();
     let invalid = volume.invalid_count();
-    let moved = volume.offsets.as_ref().map_or(0.0f32, |o| {
-        let cell = grid.cell();
-        o.chunks_exact(3)
-            .map(|d| (glam::Vec3::from_slice(d) / cell).abs().max_element())
-            .fold(0.0, f32::max)
-    });
     ui.note(format!(
         "{} probes ({} invalid: inside geometry; {} moved out of geometry, at most {:.2} of a cell), {} rays in {seconds:.2} s ({:.1} M rays/s)",
         volume.probe_count(),
         invalid,
         volume.relocated_count(),
-        moved,
+        volume.largest_move(),
         volume.rays,
         volume.rays as f64 / seconds.max(1e-9) / 1e6
     ));

@@ -54,4 +54,4 @@ pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};
 pub use shape_error::ShapeError;
 pub use transfer_view::TransferView;
 pub use visibility::{ProbeVisibility, Visibility};
-pub use volume_view::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView};
+pub use volume_view::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView, largest_move, moved_probes};

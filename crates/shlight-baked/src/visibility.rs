@@ -58,18 +58,15 @@
 //!
 //! DDGI also weighs each probe by a smooth backface term,
 //! `((normalize(q_k - p) . n + 1) / 2)^2 + 0.2`, and takes the trilinear
-//! weights at `p'`. Both tilt the light where nothing is in the way: in
-//! shlight's sealed-rooms test (crates/shlight-volume/tests/leaks.rs),
-//! DDGI's form moved open-space points by 5 to 16% against trilinear
-//! interpolation, the backface term alone (behind the tangent plane only)
-//! by 5 to 8%, and neither changed what crosses the wall (the dark side at
-//! 0.14% of the lit room's mean with and without). So shlight leaves both
-//! out.
+//! weights at `p'`. Both tilt the light where nothing is in the way (where
+//! the light varies with direction, against trilinear interpolation), and
+//! in shlight's sealed rooms (crates/shlight-volume/tests/leaks.rs) they
+//! changed nothing of what crosses the wall. So shlight leaves both out.
 
 use glam::Vec3;
 
 use crate::octahedral::{bilinear, texel_direction};
-use crate::{ProbeGrid, ShapeError};
+use crate::{ProbeGrid, ShapeError, VolumeView};
 
 /// Texels per side of a probe's distance map, by default.
 pub const VISIBILITY_SIZE: usize = 16;
@@ -286,19 +283,15 @@ impl MomentFilter {
     }
 }
 
-/// The weights of the probes around the point `p` with unit normal `n`
-/// (`(probe, weight)`, summing to 1; empty when no valid probe is around):
-/// the module's formula, with `positions` the probes' positions (cell
-/// centre plus offset) and `valid` their validity.
+/// The weights of the probes of `view` around the point `p` with unit
+/// normal `n` (`(probe, weight)`, summing to 1; empty when no valid probe
+/// is around): the module's formula, the probes where
+/// [`VolumeView::position`] puts them. `None` when `view` holds no
+/// distance maps.
 #[must_use]
-pub fn visibility_weights(
-    grid: &ProbeGrid,
-    valid: &[bool],
-    positions: &dyn Fn(usize) -> Vec3,
-    visibility: &Visibility<'_>,
-    p: Vec3,
-    n: Vec3,
-) -> Vec<(usize, f32)> {
+pub fn visibility_weights(view: &VolumeView<'_>, p: Vec3, n: Vec3) -> Option<Vec<(usize, f32)>> {
+    let visibility = view.visibility.as_ref()?;
+    let (grid, valid) = (&view.grid, view.valid);
     let bias = NORMAL_BIAS * grid.cell().min_element();
     let biased = p + n * bias;
     let mut out: Vec<(usize, f32)> = Vec::with_capacity(8);
@@ -306,7 +299,7 @@ pub fn visibility_weights(
         if !valid[k] {
             continue;
         }
-        let v = biased - positions(k);
+        let v = biased - view.position(k);
         let d = v.length();
         let cheb = if d > 0.0 {
             let (mean, mean_sq) = visibility.moments_at(k, v / d);
@@ -335,7 +328,7 @@ pub fn visibility_weights(
     } else {
         out.clear();
     }
-    out
+    Some(out)
 }
 
 #[cfg(test)]
@@ -402,15 +395,22 @@ mod tests {
         for t in open.chunks_mut(2) {
             t.copy_from_slice(&[max, max * max]);
         }
-        let positions = |k: usize| grid.centres()[k];
         let valid = [true, true];
         let vis = Visibility {
             size,
             max_distance: max,
             moments: &open,
         };
+        let view = VolumeView {
+            grid,
+            lmax: 0,
+            valid: &valid,
+            radiance: &[0.0; 6],
+            offsets: None,
+            visibility: Some(vis),
+        };
         let p = Vec3::new(0.9, 0.5, 0.5);
-        let w = visibility_weights(&grid, &valid, &positions, &vis, p, Vec3::Y);
+        let w = visibility_weights(&view, p, Vec3::Y).unwrap();
         // Open space: the trilinear weights at p, to the bit.
         let tri = grid.trilinear(p);
         for ((k, a), (j, b)) in w.iter().zip(&tri) {
@@ -425,16 +425,28 @@ mod tests {
         for t in walled[per..].chunks_mut(2) {
             t.copy_from_slice(&[0.3, 0.09]);
         }
-        let vis = Visibility {
-            moments: &walled,
-            ..vis
+        let walled_view = VolumeView {
+            visibility: Some(Visibility {
+                moments: &walled,
+                ..vis
+            }),
+            ..view
         };
-        let w = visibility_weights(&grid, &valid, &positions, &vis, p, Vec3::Y);
+        let w = visibility_weights(&walled_view, p, Vec3::Y).unwrap();
         assert_eq!(w[0].0, 0);
         let want = 0.4 * 0.05f32.powi(3) / 0.04 / (0.6 + 0.4 * 0.05f32.powi(3) / 0.04);
         assert!((w[1].1 - want).abs() < 1e-6, "{w:?} {want}");
         // None valid: no weights.
-        let w = visibility_weights(&grid, &[false, false], &positions, &vis, p, Vec3::Y);
-        assert!(w.is_empty());
+        let none_valid = VolumeView {
+            valid: &[false, false],
+            ..walled_view
+        };
+        assert_eq!(visibility_weights(&none_valid, p, Vec3::Y), Some(vec![]));
+        // No maps: no visibility weights.
+        let blind = VolumeView {
+            visibility: None,
+            ..view
+        };
+        assert_eq!(visibility_weights(&blind, p, Vec3::Y), None);
     }
 }

@@ -37,6 +37,29 @@ pub struct VolumeView<'a> {
     pub visibility: Option<Visibility<'a>>,
 }
 
+/// The probes a bake moved (a non-zero offset in `offsets`, per probe
+/// `[dx, dy, dz]`), in probe order.
+#[must_use]
+pub fn moved_probes(offsets: &[f32]) -> Vec<usize> {
+    offsets
+        .chunks_exact(3)
+        .enumerate()
+        .filter(|(_, d)| d.iter().any(|&x| x != 0.0))
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// The farthest any probe was moved along an axis, as a fraction of that
+/// axis's cell side (relocation keeps it at most 0.45).
+#[must_use]
+pub fn largest_move(grid: &ProbeGrid, offsets: &[f32]) -> f32 {
+    let cell = grid.cell();
+    offsets
+        .chunks_exact(3)
+        .map(|d| (Vec3::from_slice(d) / cell).abs().max_element())
+        .fold(0.0, f32::max)
+}
+
 impl VolumeView<'_> {
     /// Number of probes.
     #[must_use]
@@ -157,6 +180,12 @@ mod tests {
         assert!(moved.check().is_ok());
         assert_eq!(moved.position(0), Vec3::new(0.25, 1.0, 0.5));
         assert_eq!(moved.position(1), Vec3::new(0.75, 0.5, 0.25));
+        // Both probes moved; the farthest is 0.5 of the unit y side
+        // (cells are 0.5 x 1 x 1: 0.25 along z is a quarter).
+        assert_eq!(moved_probes(&offsets), vec![0, 1]);
+        assert_eq!(moved_probes(&[0.0; 6]), Vec::<usize>::new());
+        assert_eq!(largest_move(&grid, &offsets), 0.5);
+        assert_eq!(largest_move(&grid, &[0.0, 0.0, 0.0, 0.2, 0.0, 0.0]), 0.4);
         assert_eq!(v.position(1), Vec3::new(0.75, 0.5, 0.5));
         let short = VolumeView {
             offsets: Some(&offsets[1..]),

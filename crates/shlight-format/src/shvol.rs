@@ -152,13 +152,9 @@ impl ShvolFile {
     /// The probes the bake moved (a non-zero offset), in probe order.
     #[must_use]
     pub fn relocated(&self) -> Vec<usize> {
-        self.offsets.as_ref().map_or_else(Vec::new, |o| {
-            o.chunks_exact(3)
-                .enumerate()
-                .filter(|(_, d)| d.iter().any(|&x| x != 0.0))
-                .map(|(i, _)| i)
-                .collect()
-        })
+        self.offsets
+            .as_deref()
+            .map_or_else(Vec::new, shlight_baked::moved_probes)
     }
 
     /// Where each probe is: its cell's centre plus its offset, in probe

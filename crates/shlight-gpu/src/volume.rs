@@ -71,8 +71,10 @@ fn check(probes: &VolumeView<'_>) -> Result<(), GpuError> {
     probes.check().map_err(|e| GpuError::Invalid(e.0))?;
     if probes.probe_count() > u32::MAX as usize / 32 {
         return Err(GpuError::Invalid(format!(
-            "volume resolution {:?}: each count must be at least 1",
-            probes.grid.resolution
+            "volume resolution {:?}: {} probes, more than the volume pass can index ({})",
+            probes.grid.resolution,
+            probes.probe_count(),
+            u32::MAX as usize / 32
         )));
     }
     Ok(())

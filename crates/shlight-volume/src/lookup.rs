@@ -4,9 +4,9 @@
 use glam::{DVec3, Vec3};
 use shlight_baked::visibility::visibility_weights;
 use shlight_baked::{SHADED_MAX_LMAX, VolumeView};
-use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
+use shlight_core::sh::irradiance;
 
-use crate::sample;
+use crate::probe_volume::{valid_trilinear, weighted_radiance};
 
 /// How the light at a point is read off a volume's probes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,7 +19,7 @@ pub enum Lookup {
     /// (shlight-gpu's `VolumeRenderer`, the same f32 arithmetic).
     Shlight,
     /// Trilinear interpolation of the valid probes among the eight around
-    /// the point, weights renormalised ([`sample`]; docs/shvol.md,
+    /// the point, weights renormalised ([`crate::sample`]; docs/shvol.md,
     /// "Lookups").
     Trilinear,
     /// Bevy's own lookup of the `--format bevy` export: ambient cubes of
@@ -40,6 +40,17 @@ impl Lookup {
         Lookup::Bevy,
         Lookup::ThreeJs,
     ];
+
+    /// The lookup that runs for `view`: [`Lookup::Trilinear`] for
+    /// [`Lookup::Shlight`] where the volume holds no distance maps (as on
+    /// the GPU), else `self`.
+    #[must_use]
+    pub fn effective(self, view: &VolumeView<'_>) -> Lookup {
+        match self {
+            Lookup::Shlight if view.visibility.is_none() => Lookup::Trilinear,
+            l => l,
+        }
+    }
 
     /// The name on the command line and in files.
     #[must_use]
@@ -99,22 +110,11 @@ pub fn irradiance_at(
     p: Vec3,
     n: Vec3,
 ) -> DVec3 {
-    let light = match (lookup, &view.visibility) {
-        (Lookup::Bevy, _) => return crate::bevy_lookup::irradiance_at(view, lmax, p, n),
-        (Lookup::ThreeJs, _) => return crate::threejs_lookup::irradiance_at(view, lmax, p, n),
-        (Lookup::Shlight, Some(visibility)) => {
-            let weights = visibility_weights(
-                &view.grid,
-                view.valid,
-                &|k| view.position(k),
-                visibility,
-                p,
-                n.normalize(),
-            );
-            weighted(view, &weights)
-        }
-        (Lookup::Shlight | Lookup::Trilinear, _) => {
-            sample(&view.grid, view.valid, view.radiance, view.lmax, p)
+    let light = match lookup {
+        Lookup::Bevy => return crate::bevy_lookup::irradiance_at(view, lmax, p, n),
+        Lookup::ThreeJs => return crate::threejs_lookup::irradiance_at(view, lmax, p, n),
+        Lookup::Shlight | Lookup::Trilinear => {
+            weighted_radiance(view.radiance, view.lmax, &probe_weights(view, lookup, p, n))
         }
     };
     light.map_or(DVec3::ZERO, |l| {
@@ -122,23 +122,25 @@ pub fn irradiance_at(
     })
 }
 
-/// The probes' radiance summed with `weights` (`None` when there are none).
-fn weighted(view: &VolumeView<'_>, weights: &[(usize, f32)]) -> Option<ShCoeffs<DVec3>> {
-    if weights.is_empty() {
-        return None;
+/// The weights of the probes around `p` (unit normal `n`, any length but
+/// 0) for the `shlight` and `trilinear` lookups, summing to 1 (empty where
+/// no valid probe is around): shlight-baked's visibility weights where the
+/// lookup is `shlight` and the volume has distance maps, else the valid
+/// probes' trilinear weights renormalised.
+pub(crate) fn probe_weights(
+    view: &VolumeView<'_>,
+    lookup: Lookup,
+    p: Vec3,
+    n: Vec3,
+) -> Vec<(usize, f64)> {
+    match lookup.effective(view) {
+        Lookup::Shlight => visibility_weights(view, p, n.normalize())
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(k, w)| (k, f64::from(w)))
+            .collect(),
+        _ => valid_trilinear(&view.grid, view.valid, p),
     }
-    let nc = sh_count(view.lmax);
-    let mut out = ShCoeffs::<DVec3>::zeros(view.lmax);
-    for &(k, w) in weights {
-        for (o, rgb) in out
-            .as_mut_slice()
-            .iter_mut()
-            .zip(view.radiance[k * 3 * nc..][..3 * nc].chunks_exact(3))
-        {
-            *o += f64::from(w) * Vec3::from_slice(rgb).as_dvec3();
-        }
-    }
-    Some(out)
 }
 
 #[cfg(test)]
@@ -201,6 +203,20 @@ mod tests {
             irradiance_at(&view0, Lookup::Trilinear, 1, p, Vec3::X),
             DVec3::ZERO
         );
+        // Without distance maps the shlight lookup is trilinear; with
+        // them it is itself.
+        assert_eq!(Lookup::Shlight.effective(&view), Lookup::Trilinear);
+        assert_eq!(Lookup::Bevy.effective(&view), Lookup::Bevy);
+        let maps = vec![1.0f32; 2 * 2];
+        let seen = VolumeView {
+            visibility: Some(shlight_baked::Visibility {
+                size: 1,
+                max_distance: 1.0,
+                moments: &maps,
+            }),
+            ..view
+        };
+        assert_eq!(Lookup::Shlight.effective(&seen), Lookup::Shlight);
         assert_eq!(shaded_lmax(&view, None), 1);
         assert_eq!(shaded_lmax(&view, Some(0)), 0);
         assert_eq!("trilinear".parse::<Lookup>(), Ok(Lookup::Trilinear));

@@ -3,11 +3,11 @@
 //! [`lookup_lmax`], the lmax each lookup reads a volume to.
 
 use glam::{DVec3, Vec3};
-use shlight_baked::visibility::visibility_weights;
 use shlight_baked::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView};
 use shlight_core::sh::{ShBasis, ShCoeffs, ZonalKernel, sh_count};
 
 use crate::bevy_lookup::BevyLookup;
+use crate::lookup::probe_weights;
 use crate::threejs_lookup::{THREEJS_LMAX, ThreeJsLookup};
 use crate::{Lookup, VolumeError, shaded_lmax};
 
@@ -107,35 +107,7 @@ impl PreparedLookup<'_> {
     /// another order of sums).
     fn probes_at(&self, e: &[DVec3], basis: &ShBasis<f64>, p: Vec3, n: Vec3) -> DVec3 {
         let view = &self.view;
-        let weights: Vec<(usize, f64)> = match (self.lookup, &view.visibility) {
-            (Lookup::Shlight, Some(visibility)) => visibility_weights(
-                &view.grid,
-                view.valid,
-                &|k| view.position(k),
-                visibility,
-                p,
-                n.normalize(),
-            )
-            .into_iter()
-            .map(|(k, w)| (k, f64::from(w)))
-            .collect(),
-            _ => {
-                let corners: Vec<(usize, f32)> = view
-                    .grid
-                    .trilinear(p)
-                    .into_iter()
-                    .filter(|&(k, _)| view.valid[k])
-                    .collect();
-                let total: f64 = corners.iter().map(|&(_, w)| f64::from(w)).sum();
-                if total <= 0.0 {
-                    return DVec3::ZERO;
-                }
-                corners
-                    .into_iter()
-                    .map(|(k, w)| (k, f64::from(w) / total))
-                    .collect()
-            }
-        };
+        let weights = probe_weights(view, self.lookup, p, n);
         if weights.is_empty() {
             return DVec3::ZERO;
         }
@@ -164,15 +136,15 @@ impl<'a> PreparedLookup<'a> {
             Lookup::Bevy => Engine::Bevy(BevyLookup::new(view, lmax)),
             Lookup::ThreeJs => Engine::ThreeJs(ThreeJsLookup::new(view, lmax)),
             _ => {
-                let nc = view.lmax.min(lmax);
+                let shaded = view.lmax.min(lmax);
                 let per = sh_count(view.lmax);
-                let kernel = ZonalKernel::clamped_cosine(nc);
+                let kernel = ZonalKernel::clamped_cosine(shaded);
                 let e = view
                     .radiance
                     .chunks_exact(3 * per)
                     .flat_map(|probe| {
                         let l = ShCoeffs::from_vec(
-                            probe[..3 * sh_count(nc)]
+                            probe[..3 * sh_count(shaded)]
                                 .chunks_exact(3)
                                 .map(|c| Vec3::from_slice(c).as_dvec3())
                                 .collect(),
@@ -181,7 +153,7 @@ impl<'a> PreparedLookup<'a> {
                         kernel.apply(&l).as_slice().to_vec()
                     })
                     .collect();
-                Engine::Probes(e, ShBasis::new(nc))
+                Engine::Probes(e, ShBasis::new(shaded))
             }
         };
         Self {

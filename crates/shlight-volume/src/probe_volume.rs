@@ -53,11 +53,18 @@ impl ProbeVolume {
     /// Number of probes the bake moved out of geometry.
     #[must_use]
     pub fn relocated_count(&self) -> usize {
-        self.offsets.as_ref().map_or(0, |o| {
-            o.chunks_exact(3)
-                .filter(|d| d.iter().any(|&x| x != 0.0))
-                .count()
-        })
+        self.offsets
+            .as_deref()
+            .map_or(0, |o| shlight_baked::moved_probes(o).len())
+    }
+
+    /// The farthest the bake moved a probe along an axis, as a fraction of
+    /// that axis's cell side (0 without relocation).
+    #[must_use]
+    pub fn largest_move(&self) -> f32 {
+        self.offsets
+            .as_deref()
+            .map_or(0.0, |o| shlight_baked::largest_move(&self.grid, o))
     }
 
     /// Number of probes marked invalid.
@@ -180,7 +187,12 @@ pub fn sample(
     lmax: usize,
     p: Vec3,
 ) -> Option<ShCoeffs<DVec3>> {
-    let nc = sh_count(lmax);
+    weighted_radiance(radiance, lmax, &valid_trilinear(grid, valid, p))
+}
+
+/// The trilinear weights of the valid probes among the eight around `p`,
+/// renormalised to sum to 1 (empty when none is valid).
+pub(crate) fn valid_trilinear(grid: &ProbeGrid, valid: &[bool], p: Vec3) -> Vec<(usize, f64)> {
     let corners: Vec<(usize, f32)> = grid
         .trilinear(p)
         .into_iter()
@@ -188,11 +200,27 @@ pub fn sample(
         .collect();
     let total: f64 = corners.iter().map(|&(_, w)| f64::from(w)).sum();
     if total <= 0.0 {
+        return Vec::new();
+    }
+    corners
+        .into_iter()
+        .map(|(i, w)| (i, f64::from(w) / total))
+        .collect()
+}
+
+/// `sum_k w_k L_k` of the probes' `radiance` (as in
+/// [`ShvolFile::radiance`]) with `weights` (`None` when there are none).
+pub(crate) fn weighted_radiance(
+    radiance: &[f32],
+    lmax: usize,
+    weights: &[(usize, f64)],
+) -> Option<ShCoeffs<DVec3>> {
+    if weights.is_empty() {
         return None;
     }
+    let nc = sh_count(lmax);
     let mut out = ShCoeffs::<DVec3>::zeros(lmax);
-    for (i, w) in corners {
-        let w = f64::from(w) / total;
+    for &(i, w) in weights {
         for (o, rgb) in out
             .as_mut_slice()
             .iter_mut()
