@@ -37,6 +37,40 @@ pub struct ConvertArgs {
     pub into: Option<PathBuf>,
 }
 
+/// An irradiance volume (.shvol) for engines' shaders: the WGSL or GLSL
+/// snippet of the visibility-weighted lookup at `-o`, its textures beside
+/// it (shlight-format's `volume_shader`; docs/shvol.md, "Engines' shaders").
+fn volume(args: &ConvertArgs, format: ExportFormat) -> Result<()> {
+    use shlight_format::{ShaderLanguage, write_volume_shader};
+    let language = match format {
+        ExportFormat::Wgsl => ShaderLanguage::Wgsl,
+        ExportFormat::Glsl => ShaderLanguage::Glsl,
+        other => bail!(
+            "{}: an irradiance volume converts to wgsl or glsl (a shader snippet and its \
+             textures), not {}; `shlight volume --format` writes json and bevy",
+            args.input.display(),
+            other.name()
+        ),
+    };
+    let Some(output) = &args.output else {
+        bail!(
+            "{}: a volume's snippet comes with texture files: give -o FILE.wgsl or FILE.glsl",
+            args.input.display()
+        );
+    };
+    crate::output_path::refuse_overwriting(output, std::slice::from_ref(&args.input))?;
+    let file = shlight_format::ShvolFile::read(&args.input)?;
+    let written = write_volume_shader(&file, language, output)
+        .with_context(|| format!("{}: converting", args.input.display()))?;
+    for note in &written.notes {
+        eprintln!("note: {note}");
+    }
+    for path in &written.paths {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
     if let Some(scene) = &args.into {
@@ -65,6 +99,13 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         (None, Some(path)) => ExportFormat::from_path(path)?,
         (None, None) => bail!("writing to stdout needs --format (or give -o FILE)"),
     };
+    if args
+        .input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("shvol"))
+    {
+        return volume(args, format);
+    }
     let file = read_coefficients(&args.input)?;
     let out =
         export(&file, format).with_context(|| format!("{}: converting", args.input.display()))?;

@@ -27,3 +27,5 @@ mod util;
 mod volume;
 #[cfg(feature = "gpu")]
 mod volume_gpu;
+#[cfg(feature = "gpu")]
+mod volume_snippets;

@@ -22,7 +22,10 @@
 //! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
 //!   (docs/shprt.md).
 //! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
-//!   and transfer matrices, and its JSON form (docs/shvol.md).
+//!   and transfer matrices, and its JSON form (docs/shvol.md);
+//!   [`volume_shader`]: a volume as textures and a WGSL or GLSL snippet of
+//!   its visibility-weighted lookup, for engines' shaders
+//!   ([`write_volume_shader`] writes them, KTX2 by [`write_ktx2`]).
 //!
 //! # Conventions
 //! Coefficients are in shlight's basis (real orthonormal SH with the
@@ -60,11 +63,13 @@ mod export;
 mod file_encoding;
 mod header_line;
 mod import;
+mod ktx2;
 mod light_transforms;
 mod quantity;
 mod samples;
 mod shprt;
 mod shvol;
+mod volume_shader;
 
 pub use coeff_file::{
     BINARY_MIN_LMAX, CoeffFile, MINIMUM_MAX_LMAX, PRETTY_MAX_LMAX, Provenance, RotationRecord,
@@ -74,7 +79,12 @@ pub use error::{FormatError, Result};
 pub use export::{ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, gltf};
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
+pub use ktx2::{Ktx2Format, write_ktx2};
 pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
 pub use shprt::ShprtFile;
 pub use shvol::ShvolFile;
+pub use volume_shader::{
+    ShaderLanguage, VolumeShader, VolumeTexture, WrittenVolumeShader, volume_shader,
+    write_volume_shader,
+};
