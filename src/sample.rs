@@ -6,8 +6,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
 use clap::Args;
-use glam::Vec3;
-use rayon::prelude::*;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
 use shlight_pipeline::Environment;
@@ -99,29 +97,29 @@ fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
         bail!("--light is the light of a .shprt file; a volume is relit by --env");
     }
     let mut file = ShvolFile::read(&args.file)?;
-    let LookupLmax { lmax, note } = lookup_lmax(&file.view(), args.lookup, args.lmax)
-        .map_err(|e| anyhow::anyhow!("{}: --lookup {}: {e}", args.file.display(), args.lookup))?;
+    let LookupLmax { lmax, note } =
+        lookup_lmax(&file.view(), args.lookup, args.lmax).map_err(|e| {
+            let lmax = args
+                .lmax
+                .map(|l| format!("--lmax {l}: "))
+                .unwrap_or_default();
+            anyhow::anyhow!(
+                "{}: --lookup {}: {lmax}{e}",
+                args.file.display(),
+                args.lookup
+            )
+        })?;
     let points = SamplePoints::read(points_path)?;
     if let Some(env) = &args.env {
         let env = light(env, &args.up, shlight_baked::MAX_LMAX)?;
-        let env = env.radiance.resized(file.lmax);
-        shlight_volume::relight_file(&mut file, &env)
+        shlight_volume::relight_file(&mut file, &env.radiance)
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
     }
     if let Some(note) = &note {
         ui.note(format!("{}: {note}", args.file.display()));
     }
     let lookup = PreparedLookup::new(&file.view(), args.lookup, lmax);
-    let values: Vec<[f64; 3]> = points
-        .points
-        .par_iter()
-        .zip(&points.normals)
-        .map(|(p, n)| {
-            lookup
-                .irradiance_at(Vec3::from_array(*p), Vec3::from_array(*n))
-                .to_array()
-        })
-        .collect();
+    let values = lookup.irradiance_all(&points.points, &points.normals);
     Ok(Samples {
         quantity: "irradiance",
         values,

@@ -7,7 +7,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use glam::DVec3;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::Layout;
-use shlight_format::{ExportFormat, Quantity};
+use shlight_format::{ExportFormat, Quantity, VolumeFormat};
 
 /// A parser accepting exactly the names of `all`, with their help lines.
 fn one_of<T: Copy + Send + Sync + 'static>(
@@ -32,6 +32,15 @@ pub fn export_format() -> impl TypedValueParser<Value = ExportFormat> {
         &ExportFormat::ALL,
         ExportFormat::name,
         ExportFormat::description,
+    )
+}
+
+/// `shlight volume --format NAME`.
+pub fn volume_format() -> impl TypedValueParser<Value = VolumeFormat> {
+    one_of(
+        &VolumeFormat::ALL,
+        VolumeFormat::name,
+        VolumeFormat::description,
     )
 }
 

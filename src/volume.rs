@@ -12,28 +12,17 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Result, bail};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use glam::DVec3;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
+use shlight_format::VolumeFormat;
 use shlight_pipeline::Environment;
 use shlight_volume::{
     BakedVolume, Stage, VolumeOptions, VolumeRequest, bake_file, check_environment,
 };
 
 use crate::progress::{StageBars, Ui};
-
-/// What `-o` receives.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum VolumeFormat {
-    /// shlight's own binary file (header JSON + f32 data; docs/shvol.md).
-    Shvol,
-    /// The same as one JSON document, for other tools.
-    Json,
-    /// A KTX2 3D texture of ambient cubes for Bevy's `IrradianceVolume`
-    /// (docs/shvol.md, "Bevy").
-    Bevy,
-}
 
 /// Arguments of `shlight volume`.
 #[derive(Args, Debug)]
@@ -47,7 +36,7 @@ pub struct VolumeArgs {
     pub output: PathBuf,
     /// Output format [default: json for a .json name, bevy for .ktx2, else
     /// shvol].
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = crate::values::volume_format())]
     pub format: Option<VolumeFormat>,
     /// The distant light: an equirect map (projected to --lmax, its top row
     /// facing +Y) or a radiance coefficient file (`shlight project -o
@@ -118,15 +107,9 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         .as_deref()
         .map(ProbeGrid::parse_bounds)
         .transpose()?;
-    let extension = args
-        .output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let format = args.format.unwrap_or(match extension.as_deref() {
-        Some("json") => VolumeFormat::Json,
-        Some("ktx2") => VolumeFormat::Bevy,
-        _ => VolumeFormat::Shvol,
-    });
+    let format = args
+        .format
+        .unwrap_or_else(|| VolumeFormat::from_path(&args.output));
     for out in std::iter::once(&args.output).chain(&args.preview) {
         crate::output_path::refuse_overwriting(out, &[args.scene.clone(), args.env.clone()])?;
     }
@@ -231,18 +214,8 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         };
         shlight_io::write_image(path, &image, &options)?;
     }
-    match format {
-        VolumeFormat::Shvol => file.write(&args.output)?,
-        VolumeFormat::Json => file.write_json(&args.output)?,
-        VolumeFormat::Bevy => {
-            let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &file.generator);
-            shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;
-            let ([tx, ty, tz], [sx, sy, sz]) =
-                shlight_format::bevy_volume::light_probe_transform(file.bounds);
-            ui.note(format!(
-                "Bevy: put the IrradianceVolume on a LightProbe with Transform::from_translation(Vec3::new({tx}, {ty}, {tz})).with_scale(Vec3::new({sx}, {sy}, {sz}))"
-            ));
-        }
+    for note in file.write_as(&args.output, format)? {
+        ui.note(note);
     }
     Ok(())
 }

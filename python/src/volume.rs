@@ -13,10 +13,9 @@ use numpy::{
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rayon::prelude::*;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
-use shlight_format::{Quantity, SamplePoints, ShvolFile};
+use shlight_format::{Quantity, SamplePoints, ShvolFile, VolumeFormat};
 use shlight_pipeline::Environment;
 use shlight_volume::{
     BakedVolume, Lookup, LookupLmax, PreparedLookup, VolumeOptions, VolumeRequest, bake_file,
@@ -43,17 +42,9 @@ pub struct Volume {
 /// Writes `file` to `path` as `shlight volume -o PATH` does: JSON for a
 /// `.json` name, Bevy's KTX2 for `.ktx2`, else the `.shvol` file; atomically.
 fn write_file(file: &ShvolFile, path: &Path) -> PyResult<()> {
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match extension.as_deref() {
-        Some("json") => file.write_json(path).map_err(|e| chained(&e)),
-        Some("ktx2") => {
-            let bytes = shlight_format::bevy_volume::bevy_ktx2(file, &file.generator);
-            shlight_io::write_atomically(path, |w| w.write_all(&bytes)).map_err(|e| chained(&e))
-        }
-        _ => file.write(path).map_err(|e| chained(&e)),
-    }
+    file.write_as(path, VolumeFormat::from_path(path))
+        .map(|_| ())
+        .map_err(|e| chained(&e))
 }
 
 /// An `(N, 3)` array of `what` from Python, each value rounded to f32 as a
@@ -255,10 +246,7 @@ impl Volume {
         warn_all(py, &warnings, 2)?;
         let mut file = self.file.clone();
         py.detach(|| {
-            guard(|| {
-                let light = light.resized(file.lmax);
-                relight_file(&mut file, &light).map_err(|e| chained(&e))
-            })
+            guard(|| relight_file(&mut file, &light).map_err(|e| chained(&e)))
         })?;
         Ok(Volume { file })
     }
@@ -299,12 +287,8 @@ impl Volume {
             .map_err(|e: String| shlight_error(format!("lookup: {e}")))?;
         let view = self.file.view();
         let LookupLmax { lmax, note } = lookup_lmax(&view, lookup, lmax).map_err(|e| {
-            let text = e.to_string();
-            let text = match lmax {
-                Some(l) => text.replacen(&format!("--lmax {l}"), &format!("lmax={l}"), 1),
-                None => text,
-            };
-            shlight_error(format!("lookup={lookup}: {text}"))
+            let lmax = lmax.map(|l| format!("lmax={l}: ")).unwrap_or_default();
+            shlight_error(format!("lookup={lookup}: {lmax}{e}"))
         })?;
         let at = SamplePoints::new(
             rows3(points, "points")?,
@@ -316,16 +300,7 @@ impl Volume {
         let values: Vec<f64> = py.detach(|| {
             guard(|| {
                 let prepared = PreparedLookup::new(&view, lookup, lmax);
-                let values: Vec<[f64; 3]> = at
-                    .points
-                    .par_iter()
-                    .zip(&at.normals)
-                    .map(|(p, n)| {
-                        prepared
-                            .irradiance_at(Vec3::from_array(*p), Vec3::from_array(*n))
-                            .to_array()
-                    })
-                    .collect();
+                let values = prepared.irradiance_all(&at.points, &at.normals);
                 Ok(values.into_iter().flatten().collect())
             })
         })?;

@@ -69,6 +69,7 @@ mod quantity;
 mod samples;
 mod shprt;
 mod shvol;
+mod volume_format;
 mod volume_shader;
 
 pub use coeff_file::{
@@ -84,6 +85,7 @@ pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
 pub use shprt::ShprtFile;
 pub use shvol::ShvolFile;
+pub use volume_format::VolumeFormat;
 pub use volume_shader::{
     ShaderLanguage, VolumeShader, VolumeTexture, WrittenVolumeShader, volume_shader,
     write_volume_shader,

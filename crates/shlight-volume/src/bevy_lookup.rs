@@ -44,6 +44,8 @@ use shlight_baked::VolumeView;
 use shlight_core::sh::sh_count;
 use shlight_format::bevy_volume::{BevyTexture, light_probe_transform};
 
+use crate::lookup::texel_corners;
+
 /// A volume's Bevy export in memory, ready to be looked up as Bevy does.
 #[derive(Clone, Debug)]
 pub struct BevyLookup {
@@ -125,16 +127,7 @@ impl BevyLookup {
         let f = (t - base).as_dvec3();
         let clamp = |i: f32, a: usize| (i.max(0.0) as usize).min(size[a] - 1);
         let mut sum = DVec3::ZERO;
-        for corner in 0..8 {
-            let d = [corner & 1, corner >> 1 & 1, corner >> 2 & 1];
-            let w = [f.x, f.y, f.z]
-                .iter()
-                .zip(d)
-                .map(|(f, d)| if d == 1 { *f } else { 1.0 - f })
-                .product::<f64>();
-            if w == 0.0 {
-                continue;
-            }
+        for (d, w) in texel_corners(f) {
             let texel = [
                 clamp(base.x + d[0] as f32, 0),
                 clamp(base.y + d[1] as f32, 1),

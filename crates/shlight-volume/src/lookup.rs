@@ -143,6 +143,23 @@ pub(crate) fn probe_weights(
     }
 }
 
+/// The eight corners of a texel-space cell with fractions `f` (each in
+/// `[0, 1]`) and their trilinear weights, corner `d` (per axis 0 for the
+/// lower, 1 for the upper texel) weighing `prod f_a` or `1 - f_a`; corners
+/// of weight 0 left out. The engines' lookups (Bevy's sampler, three.js's)
+/// filter their textures with it.
+pub(crate) fn texel_corners(f: DVec3) -> impl Iterator<Item = ([usize; 3], f64)> {
+    (0..8usize).filter_map(move |corner| {
+        let d = [corner & 1, corner >> 1 & 1, corner >> 2 & 1];
+        let w = [f.x, f.y, f.z]
+            .iter()
+            .zip(d)
+            .map(|(f, d)| if d == 1 { *f } else { 1.0 - f })
+            .product::<f64>();
+        (w != 0.0).then_some((d, w))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -33,7 +33,9 @@ pub struct LookupLmax {
 ///
 /// # Errors
 /// A `requested` lmax the lookup cannot shade: above [`SHADED_MAX_LMAX`]
-/// for shlight's lookups, above 2 for three.js's.
+/// for shlight's lookups, above 2 for three.js's. The message says why;
+/// the caller names the option as its users spell it (`--lmax 5`,
+/// `lmax=5`).
 pub fn lookup_lmax(
     view: &VolumeView<'_>,
     lookup: Lookup,
@@ -41,9 +43,7 @@ pub fn lookup_lmax(
 ) -> Result<LookupLmax, VolumeError> {
     let refuse = |most: usize, why: &str| -> Result<(), VolumeError> {
         match requested.filter(|&l| l > most) {
-            Some(l) => Err(VolumeError::Options(format!(
-                "--lmax {l}: {why} lmax {most} at most"
-            ))),
+            Some(_) => Err(VolumeError::Options(format!("{why} lmax {most} at most"))),
             None => Ok(()),
         }
     };
@@ -162,6 +162,26 @@ impl<'a> PreparedLookup<'a> {
             lmax,
             engine,
         }
+    }
+
+    /// [`PreparedLookup::irradiance_at`] of every point facing its normal
+    /// (as many of each), on every core: what `shlight sample` and the
+    /// Python package's `Volume.irradiance` report.
+    ///
+    /// # Panics
+    /// If the two slices differ in length.
+    #[must_use]
+    pub fn irradiance_all(&self, points: &[[f32; 3]], normals: &[[f32; 3]]) -> Vec<[f64; 3]> {
+        use rayon::prelude::*;
+        assert_eq!(points.len(), normals.len(), "a normal per point");
+        points
+            .par_iter()
+            .zip(normals)
+            .map(|(p, n)| {
+                self.irradiance_at(Vec3::from_array(*p), Vec3::from_array(*n))
+                    .to_array()
+            })
+            .collect()
     }
 
     /// The irradiance at `p` facing `n`: [`irradiance_at`](crate::irradiance_at) with this

@@ -133,7 +133,8 @@ pub struct FileMeta {
 }
 
 /// Relights a `.shvol` file's probes for a new environment (its
-/// `radiance` replaced), e.g. after rotating the environment.
+/// `radiance` replaced), e.g. after rotating the environment: `env` of any
+/// lmax, kept to the file's (degrees it lacks are zero).
 ///
 /// # Errors
 /// A static file (no transfer matrices).

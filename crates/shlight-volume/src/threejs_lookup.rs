@@ -50,6 +50,8 @@ use glam::{DVec3, Vec3};
 use shlight_baked::{ProbeGrid, VolumeView, dilate};
 use shlight_core::sh::{ShCoeffs, sh_count};
 
+use crate::lookup::texel_corners;
+
 /// The highest lmax three.js's grid holds (`SphericalHarmonics3`).
 pub const THREEJS_LMAX: usize = 2;
 
@@ -118,16 +120,7 @@ impl ThreeJsLookup {
         let [nx, ny, nz] = self.grid.resolution;
         let i0 = [base.x as usize, base.y as usize, base.z as usize];
         let mut c = [DVec3::ZERO; 9];
-        for corner in 0..8 {
-            let d = [corner & 1, corner >> 1 & 1, corner >> 2 & 1];
-            let w = [f.x, f.y, f.z]
-                .iter()
-                .zip(d)
-                .map(|(f, d)| if d == 1 { *f } else { 1.0 - f })
-                .product::<f64>();
-            if w == 0.0 {
-                continue;
-            }
+        for (d, w) in texel_corners(f) {
             let [x, y, z] = [
                 (i0[0] + d[0]).min(nx - 1),
                 (i0[1] + d[1]).min(ny - 1),
