@@ -411,3 +411,34 @@ pub fn write_two_rooms(obj: &std::path::Path, wall: f32) {
     )
     .unwrap();
 }
+
+/// [`write_two_rooms`] (`dir/rooms.obj`, the wall at `wall`) baked into
+/// `dir/rooms.shvol` by `shlight volume` under a sky of the lmax-2
+/// radiance rows `sky` (`dir/sky.json`), probes at `resolution` over the
+/// rooms' box, 512 rays a probe and 64 directions a surface vertex, with
+/// the defaults otherwise (visibility and relocation on); returns the
+/// volume's path.
+pub fn bake_two_rooms(dir: &Path, wall: f32, sky: &[[f64; 3]; 9], resolution: &str) -> PathBuf {
+    let rooms = dir.join("rooms.obj");
+    write_two_rooms(&rooms, wall);
+    let env = dir.join("sky.json");
+    write_radiance_rows(&env, sky);
+    let volume = dir.join("rooms.shvol");
+    shlight_ok(&[
+        "volume",
+        s(&rooms),
+        "--env",
+        s(&env),
+        "--resolution",
+        resolution,
+        "--bounds",
+        "0,0,0:4,1.5,2",
+        "--samples",
+        "512",
+        "--surface-samples",
+        "64",
+        "-o",
+        s(&volume),
+    ]);
+    volume
+}

@@ -1116,7 +1116,7 @@ fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
 /// ignored the maps would fail.
 #[test]
 fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
-    use crate::util::{s, shlight_ok, temp_dir, write_radiance_rows, write_two_rooms};
+    use crate::util::{bake_two_rooms, s, shlight_ok, temp_dir};
     use shlight_format::ShvolFile;
     use shlight_volume::{Lookup, irradiance_at};
 
@@ -1124,30 +1124,11 @@ fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
         return;
     }
     let dir = temp_dir("volume-render-wall");
-    let rooms = dir.join("rooms.obj");
-    write_two_rooms(&rooms, 2.1);
-    let env = dir.join("sky.json");
     let mut sky = [[0.0; 3]; 9];
     sky[0] = [1.0; 3];
     sky[2] = [0.5; 3];
-    write_radiance_rows(&env, &sky);
-    let volume = dir.join("rooms.shvol");
-    shlight_ok(&[
-        "volume",
-        s(&rooms),
-        "--env",
-        s(&env),
-        "--resolution",
-        "8x3x4",
-        "--bounds",
-        "0,0,0:4,1.5,2",
-        "--samples",
-        "512",
-        "--surface-samples",
-        "64",
-        "-o",
-        s(&volume),
-    ]);
+    let volume = bake_two_rooms(&dir, 2.1, &sky, "8x3x4");
+    let (rooms, env) = (dir.join("rooms.obj"), dir.join("sky.json"));
     let file = ShvolFile::read(&volume).unwrap();
     let view = file.view();
     assert!(view.visibility.is_some());

@@ -19,9 +19,7 @@ use shlight_gpu::{GpuContext, wgpu};
 use wgpu::util::DeviceExt as _;
 
 use crate::export_shaders::{naga_glsl, naga_wgsl};
-use crate::util::{
-    gpu_context, have_tool, s, shlight, shlight_ok, temp_dir, write_radiance_rows, write_two_rooms,
-};
+use crate::util::{bake_two_rooms, gpu_context, have_tool, s, shlight, shlight_ok, temp_dir};
 
 /// Queries per run: a whole number of 64-wide workgroups.
 const QUERIES: usize = 16 * 64;
@@ -52,29 +50,9 @@ const WALL: f32 = 2.1;
 /// relocation on, as by default), `n` random points and normals written
 /// as POINTS.json, and `shlight sample`'s irradiance at them.
 fn baked(dir: &Path) -> (PathBuf, Vec<(Vec3, Vec3)>, Vec<[f64; 3]>) {
-    let rooms = dir.join("rooms.obj");
-    write_two_rooms(&rooms, WALL);
-    let env = dir.join("sky.json");
     let mut sky = [[0.0; 3]; 9];
     sky[0] = [1.0; 3];
-    write_radiance_rows(&env, &sky);
-    let volume = dir.join("rooms.shvol");
-    shlight_ok(&[
-        "volume",
-        s(&rooms),
-        "--env",
-        s(&env),
-        "--resolution",
-        "8x3x4",
-        "--bounds",
-        "0,0,0:4,1.5,2",
-        "--samples",
-        "512",
-        "--surface-samples",
-        "64",
-        "-o",
-        s(&volume),
-    ]);
+    let volume = bake_two_rooms(dir, WALL, &sky, "8x3x4");
     // Half anywhere in (and a little beyond) the box, half within 0.3 of
     // the wall on either side, where the visibility weights matter most.
     let mut rng = Lcg(7);
@@ -453,31 +431,9 @@ fn the_glsl_volume_snippet_compiles_for_webgl2_and_desktop() {
         return;
     }
     let dir = temp_dir("volume-snippet-glslang");
-    let rooms = dir.join("rooms.obj");
-    write_two_rooms(&rooms, WALL);
-    let env = dir.join("sky.json");
-    write_radiance_rows(
-        &env,
-        &[
-            [1.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3],
-            [0.0; 3],
-        ],
-    );
-    let volume = dir.join("rooms.shvol");
-    shlight_ok(&[
-        "volume",
-        s(&rooms),
-        "--env",
-        s(&env),
-        "--resolution",
-        "4x2x2",
-        "--samples",
-        "64",
-        "--surface-samples",
-        "16",
-        "-o",
-        s(&volume),
-    ]);
+    let mut sky = [[0.0; 3]; 9];
+    sky[0] = [1.0; 3];
+    let volume = bake_two_rooms(&dir, WALL, &sky, "4x2x2");
     let out = dir.join("rooms.glsl");
     shlight_ok(&["convert", s(&volume), "-o", s(&out)]);
     let snippet = std::fs::read_to_string(&out).unwrap();
@@ -514,31 +470,9 @@ fn the_glsl_volume_snippet_compiles_for_webgl2_and_desktop() {
 #[test]
 fn a_volume_converts_only_to_wgsl_or_glsl_with_an_output() {
     let dir = temp_dir("volume-snippet-errors");
-    let rooms = dir.join("rooms.obj");
-    write_two_rooms(&rooms, WALL);
-    let env = dir.join("sky.json");
-    write_radiance_rows(
-        &env,
-        &[
-            [1.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3],
-            [0.0; 3],
-        ],
-    );
-    let volume = dir.join("rooms.shvol");
-    shlight_ok(&[
-        "volume",
-        s(&rooms),
-        "--env",
-        s(&env),
-        "--resolution",
-        "2x1x1",
-        "--samples",
-        "64",
-        "--surface-samples",
-        "16",
-        "-o",
-        s(&volume),
-    ]);
+    let mut sky = [[0.0; 3]; 9];
+    sky[0] = [1.0; 3];
+    let volume = bake_two_rooms(&dir, WALL, &sky, "2x1x1");
     for (args, message) in [
         (
             vec!["convert", s(&volume), "--format", "unity", "-o", "x.json"],
