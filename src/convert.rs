@@ -14,6 +14,8 @@ use clap::Args;
 use shlight_format::gltf;
 use shlight_format::{ExportFormat, ExportInput, export, read_coefficients};
 
+use crate::volume::{PrecisionArg, write_threejs};
+
 /// Arguments of `shlight convert`.
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
@@ -35,10 +37,21 @@ pub struct ConvertArgs {
     /// else in the asset changes.
     #[arg(long, value_name = "SCENE.gltf|glb", conflicts_with_all = ["output", "format"])]
     pub into: Option<PathBuf>,
+    /// Numbers of the atlas when a volume (.shvol) is converted to
+    /// --format threejs.
+    #[arg(long, value_enum, default_value = "half")]
+    pub precision: PrecisionArg,
 }
 
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
+    let is_volume = args
+        .input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("shvol"));
+    if is_volume {
+        return volume(args);
+    }
     if let Some(scene) = &args.into {
         crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
@@ -81,6 +94,32 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
                 .and_then(|()| out.flush())
                 .context("writing to stdout")?;
         }
+    }
+    Ok(())
+}
+
+/// `shlight convert VOLUME.shvol --format threejs -o grid.json`: the
+/// volume as three.js's `LightProbeGridWebGL` document.
+fn volume(args: &ConvertArgs) -> Result<()> {
+    let input = args.input.display();
+    if args.into.is_some() {
+        bail!("{input}: --into adds a light to a glTF asset; a volume is not one light");
+    }
+    match args.format {
+        Some(ExportFormat::Threejs) => {}
+        Some(f) => bail!(
+            "{input}: a volume converts to --format threejs (three.js's LightProbeGrid) only, not {}",
+            f.name()
+        ),
+        None => bail!("{input}: converting a volume needs --format threejs"),
+    }
+    let Some(output) = &args.output else {
+        bail!("{input}: converting a volume needs -o FILE.json");
+    };
+    crate::output_path::refuse_overwriting(output, std::slice::from_ref(&args.input))?;
+    let file = shlight_format::ShvolFile::read(&args.input)?;
+    for note in write_threejs(&file, output, args.precision.into())? {
+        eprintln!("note: {}: {note}", output.display());
     }
     Ok(())
 }

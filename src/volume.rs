@@ -16,6 +16,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec3;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
+use shlight_format::threejs_volume::{Precision, threejs_grid};
 use shlight_pipeline::Environment;
 use shlight_volume::{
     BakedVolume, Stage, VolumeOptions, VolumeRequest, bake_file, check_environment,
@@ -33,6 +34,41 @@ pub enum VolumeFormat {
     /// A KTX2 3D texture of ambient cubes for Bevy's `IrradianceVolume`
     /// (docs/shvol.md, "Bevy").
     Bevy,
+    /// A JSON document of three.js's `LightProbeGridWebGL` atlas (lmax 2,
+    /// invalid probes dilated), for web/shlight-three.js's
+    /// `loadLightProbeGrid` (docs/shvol.md, "three.js").
+    Threejs,
+}
+
+/// `--precision` of the three.js export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PrecisionArg {
+    /// Half floats (HalfFloatType).
+    Half,
+    /// 32-bit floats (FloatType).
+    F32,
+}
+
+impl From<PrecisionArg> for Precision {
+    fn from(p: PrecisionArg) -> Self {
+        match p {
+            PrecisionArg::Half => Precision::Half,
+            PrecisionArg::F32 => Precision::F32,
+        }
+    }
+}
+
+/// Writes `file` as the three.js grid document at `path` (atomically);
+/// returns the export's notes (lmax clipped, probes dilated) for stderr.
+pub fn write_threejs(
+    file: &shlight_format::ShvolFile,
+    path: &Path,
+    precision: Precision,
+) -> Result<Vec<String>> {
+    let grid = threejs_grid(file, precision)
+        .map_err(|e| anyhow::anyhow!("{}: three.js export: {e}", path.display()))?;
+    shlight_io::write_atomically(path, |w| w.write_all(grid.text.as_bytes()))?;
+    Ok(grid.notes)
 }
 
 /// Arguments of `shlight volume`.
@@ -42,13 +78,17 @@ pub struct VolumeArgs {
     /// or .glb (baseColorFactor x COLOR_0 albedo, emissiveFactor x
     /// KHR_materials_emissive_strength emission).
     pub scene: PathBuf,
-    /// Output file (.shvol, or .json with --format json).
+    /// Output file (.shvol, .json with --format json or threejs, .ktx2
+    /// with --format bevy).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Output format [default: json for a .json name, bevy for .ktx2, else
     /// shvol].
     #[arg(long, value_enum)]
     pub format: Option<VolumeFormat>,
+    /// Numbers of the --format threejs atlas.
+    #[arg(long, value_enum, default_value = "half")]
+    pub precision: PrecisionArg,
     /// The distant light: an equirect map (projected to --lmax, its top row
     /// facing +Y) or a radiance coefficient file (`shlight project -o
     /// FILE.json`).
@@ -234,6 +274,11 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     match format {
         VolumeFormat::Shvol => file.write(&args.output)?,
         VolumeFormat::Json => file.write_json(&args.output)?,
+        VolumeFormat::Threejs => {
+            for note in write_threejs(&file, &args.output, args.precision.into())? {
+                ui.note(format!("{}: {note}", args.output.display()));
+            }
+        }
         VolumeFormat::Bevy => {
             let bytes = shlight_format::bevy_volume::bevy_ktx2(&file, &file.generator);
             shlight_io::write_atomically(&args.output, |w| w.write_all(&bytes))?;

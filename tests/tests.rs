@@ -27,3 +27,4 @@ mod util;
 mod volume;
 #[cfg(feature = "gpu")]
 mod volume_gpu;
+mod web;

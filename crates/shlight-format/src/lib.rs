@@ -23,6 +23,8 @@
 //!   (docs/shprt.md).
 //! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
 //!   and transfer matrices, and its JSON form (docs/shvol.md).
+//! - [`bevy_volume`] and [`threejs_volume`]: a volume as the textures Bevy's
+//!   `IrradianceVolume` and three.js's `LightProbeGridWebGL` sample.
 //!
 //! # Conventions
 //! Coefficients are in shlight's basis (real orthonormal SH with the
@@ -65,6 +67,7 @@ mod quantity;
 mod samples;
 mod shprt;
 mod shvol;
+pub mod threejs_volume;
 
 pub use coeff_file::{
     BINARY_MIN_LMAX, CoeffFile, MINIMUM_MAX_LMAX, PRETTY_MAX_LMAX, Provenance, RotationRecord,

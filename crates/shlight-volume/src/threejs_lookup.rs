@@ -47,11 +47,9 @@
 //! them; the interpolation and the irradiance in `f64`.
 
 use glam::{DVec3, Vec3};
-use shlight_baked::{ProbeGrid, VolumeView, dilate};
-use shlight_core::sh::{ShCoeffs, sh_count};
-
-/// The highest lmax three.js's grid holds (`SphericalHarmonics3`).
-pub const THREEJS_LMAX: usize = 2;
+use shlight_baked::{ProbeGrid, VolumeView};
+pub use shlight_format::threejs_volume::THREEJS_LMAX;
+use shlight_format::threejs_volume::threejs_probes;
 
 /// A volume's probes as three.js's `LightProbeGrid` holds them, ready to
 /// be looked up as three.js does.
@@ -65,32 +63,13 @@ pub struct ThreeJsLookup {
 impl ThreeJsLookup {
     /// The grid of `view`'s probes: dilated, kept to `lmax` (at most
     /// [`THREEJS_LMAX`] and the volume's; the rest of the nine coefficients
-    /// zero), in three.js's basis.
+    /// zero), in three.js's basis: the numbers the `--format threejs`
+    /// export's atlas holds ([`threejs_probes`]).
     #[must_use]
     pub fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
-        let lmax = lmax.min(THREEJS_LMAX).min(view.lmax);
-        let radiance = dilate(view);
-        let nc = sh_count(view.lmax);
-        let probes = radiance
-            .chunks_exact(3 * nc)
-            .map(|p| {
-                let shlight = ShCoeffs::from_vec(
-                    p.chunks_exact(3)
-                        .take(sh_count(lmax))
-                        .map(Vec3::from_slice)
-                        .collect(),
-                )
-                .expect("(lmax+1)^2 rows");
-                let mut out = [[0.0f32; 3]; 9];
-                for (o, c) in out.iter_mut().zip(shlight.toggled_cs_phase().as_slice()) {
-                    *o = c.to_array();
-                }
-                out
-            })
-            .collect();
         Self {
             grid: view.grid,
-            probes,
+            probes: threejs_probes(view, lmax),
         }
     }
 

@@ -1,0 +1,310 @@
+//! shlight's web exports in a real browser: headless Chromium (WebGL 2
+//! through SwiftShader) runs three.js r187 from npm and shlight's
+//! `web/shlight-three.js` on pages under `tests/web/`, served from
+//! 127.0.0.1 by a small server in the test; each page renders into
+//! `FloatType` targets, reads the pixels back (`readRenderTargetPixels`)
+//! and POSTs them as JSON to the server's `/result`, which the test
+//! compares with shlight's own numbers.
+//!
+//! Needs Chromium (`chromium` on the PATH, or `SHLIGHT_CHROMIUM`) and
+//! three.js (`.ci/run` installs `three@0.187.0` into `target/web-deps`, or
+//! `SHLIGHT_THREEJS` names its folder); without either a test prints a
+//! SKIPPED line, and fails under `SHLIGHT_REQUIRE_ALL=1`. One browser runs
+//! at a time (two cores).
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::time::Duration;
+
+use glam::DVec3;
+use serde_json::{Value, json};
+use shlight_core::sh::{Frame, irradiance};
+use shlight_format::{CoeffFile, Quantity};
+
+use crate::util::{s, shlight, shlight_ok, skip, temp_dir, write_coefficient_rows};
+
+/// One browser at a time.
+static BROWSER: Mutex<()> = Mutex::new(());
+
+/// How long a page may take to report.
+const PAGE_TIMEOUT: Duration = Duration::from_secs(90);
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Chromium: `SHLIGHT_CHROMIUM`, else `chromium` or `chromium-browser` on
+/// the PATH.
+fn chromium() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("SHLIGHT_CHROMIUM") {
+        return Some(PathBuf::from(p));
+    }
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .flat_map(|d| ["chromium", "chromium-browser"].map(|n| d.join(n)))
+        .find(|p| p.is_file())
+}
+
+/// The npm package `three`: `SHLIGHT_THREEJS`, else where `.ci/run`
+/// installs it.
+fn three_dir() -> PathBuf {
+    std::env::var_os("SHLIGHT_THREEJS").map_or_else(
+        || repo().join("target/web-deps/node_modules/three"),
+        PathBuf::from,
+    )
+}
+
+/// What the server maps URL prefixes to.
+#[derive(Clone)]
+struct Roots {
+    three: PathBuf,
+    data: PathBuf,
+}
+
+impl Roots {
+    fn file(&self, url_path: &str) -> Option<PathBuf> {
+        let path = url_path.split(['?', '#']).next()?;
+        if path.split('/').any(|p| p == "..") {
+            return None;
+        }
+        let (root, rest) = if let Some(r) = path.strip_prefix("/three/") {
+            (self.three.clone(), r)
+        } else if let Some(r) = path.strip_prefix("/web/") {
+            (repo().join("web"), r)
+        } else if let Some(r) = path.strip_prefix("/tests/web/") {
+            (repo().join("tests/web"), r)
+        } else if let Some(r) = path.strip_prefix("/data/") {
+            (self.data.clone(), r)
+        } else {
+            return None;
+        };
+        Some(root.join(rest))
+    }
+}
+
+fn content_type(path: &Path) -> &'static str {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("html") => "text/html; charset=utf-8",
+        Some("js") => "text/javascript",
+        Some("json") => "application/json",
+        Some("glb") => "model/gltf-binary",
+        _ => "application/octet-stream",
+    }
+}
+
+/// Serves one HTTP/1.1 request on `stream`: GET of a file under the roots,
+/// or POST `/result`, whose body goes to `results`.
+fn handle(stream: TcpStream, roots: &Roots, results: &Sender<Vec<u8>>) -> std::io::Result<()> {
+    let mut reader = BufReader::new(stream.try_clone()?);
+    let mut line = String::new();
+    reader.read_line(&mut line)?;
+    let mut parts = line.split_whitespace();
+    let (method, target) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
+    let mut length = 0usize;
+    loop {
+        let mut header = String::new();
+        if reader.read_line(&mut header)? == 0 || header.trim().is_empty() {
+            break;
+        }
+        if let Some((k, v)) = header.split_once(':')
+            && k.eq_ignore_ascii_case("content-length")
+        {
+            length = v.trim().parse().unwrap_or(0);
+        }
+    }
+    let mut stream = stream;
+    if method == "POST" && target == "/result" {
+        let mut body = vec![0; length];
+        reader.read_exact(&mut body)?;
+        let _ = results.send(body);
+        return stream.write_all(
+            b"HTTP/1.1 204 No Content\r\nConnection: close\r\nContent-Length: 0\r\n\r\n",
+        );
+    }
+    match roots.file(target).and_then(|p| Some((std::fs::read(&p).ok()?, p))) {
+        Some((bytes, path)) => {
+            write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n",
+                content_type(&path),
+                bytes.len()
+            )?;
+            stream.write_all(&bytes)
+        }
+        None => stream.write_all(
+            b"HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 9\r\n\r\nnot found",
+        ),
+    }
+}
+
+/// Starts the server on 127.0.0.1 (a free port): its port and the channel
+/// the pages' results arrive on. The thread ends with the test binary.
+fn serve(roots: Roots) -> (u16, Receiver<Vec<u8>>) {
+    let listener = TcpListener::bind("127.0.0.1:0").expect("a loopback port");
+    let port = listener.local_addr().unwrap().port();
+    let (tx, rx) = channel();
+    std::thread::spawn(move || {
+        for stream in listener.incoming().flatten() {
+            let (roots, tx) = (roots.clone(), tx.clone());
+            std::thread::spawn(move || {
+                let _ = handle(stream, &roots, &tx);
+            });
+        }
+    });
+    (port, rx)
+}
+
+/// Loads `page` (a path with its query, e.g.
+/// `/tests/web/probe.html?probe=/data/p.json`) in headless Chromium with
+/// `data` served under `/data/`, and returns what the page reported; `None`
+/// after a SKIPPED line when Chromium or three.js is missing. Panics on a
+/// page's `error` report, or when it reports nothing in time (Chromium's
+/// log shown).
+fn run_page(test: &str, data: &Path, page: &str) -> Option<Value> {
+    let _one = BROWSER.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let Some(chromium) = chromium() else {
+        skip(test, "Chromium is not installed (apt-get install chromium)");
+        return None;
+    };
+    let three = three_dir();
+    if !three.join("examples/jsm/lighting/LightProbeGridWebGL.js").is_file() {
+        skip(
+            test,
+            &format!(
+                "three.js r187 is not at {} (npm install --prefix target/web-deps three@0.187.0)",
+                three.display()
+            ),
+        );
+        return None;
+    }
+    let (port, results) = serve(Roots {
+        three,
+        data: data.to_path_buf(),
+    });
+    let profile = data.join("chromium-profile");
+    let log_path = data.join("chromium.log");
+    let log = std::fs::File::create(&log_path).unwrap();
+    let mut child = Command::new(&chromium)
+        .args([
+            "--headless=new",
+            "--no-sandbox",
+            "--use-angle=swiftshader",
+            "--enable-unsafe-swiftshader",
+            "--ignore-gpu-blocklist",
+            "--no-first-run",
+            "--no-default-browser-check",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--disable-quic",
+            "--disable-default-apps",
+            "--disable-extensions",
+            "--enable-logging=stderr",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(format!("http://127.0.0.1:{port}{page}"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(log)
+        .spawn()
+        .unwrap_or_else(|e| panic!("{test}: cannot start {}: {e}", chromium.display()));
+    let got = results.recv_timeout(PAGE_TIMEOUT);
+    let _ = child.kill();
+    let _ = child.wait();
+    let body = got.unwrap_or_else(|_| {
+        let log = std::fs::read_to_string(&log_path).unwrap_or_default();
+        let tail: String = log
+            .lines()
+            .rev()
+            .take(40)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect::<Vec<_>>()
+            .join("\n");
+        panic!("{test}: {page} reported nothing in {PAGE_TIMEOUT:?}; Chromium's log:\n{tail}")
+    });
+    let v: Value = serde_json::from_slice(&body).expect("the page reports JSON");
+    if let Some(e) = v.get("error") {
+        panic!("{test}: {page} failed: {e}");
+    }
+    Some(v)
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("an array of numbers")
+        .iter()
+        .map(|x| x.as_f64().expect("a number"))
+        .collect()
+}
+
+/// The RGBA pixels of a report's `key`, as `[f64; 4]`.
+fn pixels(v: &Value, key: &str) -> Vec<[f64; 4]> {
+    floats(&v[key])
+        .chunks_exact(4)
+        .map(|p| [p[0], p[1], p[2], p[3]])
+        .collect()
+}
+
+/// three.js's `LightProbe` from shlight's `--format threejs` export of a
+/// bundled map lights a white Lambert sphere with shlight's irradiance:
+/// every covered pixel equals `E(n) / pi`, `E` computed here from the
+/// coefficient file by shlight-core (the radiance times the clamped
+/// cosine's `A_l`, the SH evaluated at the pixel's own interpolated normal,
+/// which the page reads back too). Fails on any basis, phase, frame or
+/// normalisation slip in the export (a sign on `L1-1` alone moves pixels by
+/// a tenth of the maximum).
+#[test]
+fn threejs_light_probe_lights_a_sphere_with_shlights_irradiance() {
+    let test = "web::threejs_light_probe_lights_a_sphere_with_shlights_irradiance";
+    let dir = temp_dir("web-probe");
+    let coeffs = dir.join("studio.json");
+    shlight_ok(&[
+        "project",
+        "envmaps/studio.exr",
+        "--lmax",
+        "2",
+        "-o",
+        s(&coeffs),
+    ]);
+    shlight_ok(&[
+        "convert",
+        s(&coeffs),
+        "--format",
+        "threejs",
+        "-o",
+        s(&dir.join("probe.json")),
+    ]);
+    let Some(r) = run_page(test, &dir, "/tests/web/probe.html?probe=/data/probe.json") else {
+        return;
+    };
+    assert_eq!(r["three"], "187");
+    let file = CoeffFile::read(&coeffs).unwrap();
+    assert_eq!((file.frame, file.quantity), (Frame::YUp, Quantity::Radiance));
+    let e = irradiance(&file.coeffs);
+    let (lit, normal) = (pixels(&r, "lit"), pixels(&r, "normal"));
+    let mut worst = 0.0f64;
+    let mut peak = 0.0f64;
+    let mut covered = 0;
+    for (l, n) in lit.iter().zip(&normal) {
+        if n[3] == 0.0 {
+            assert_eq!(l[3], 0.0, "the two passes cover the same pixels");
+            continue;
+        }
+        covered += 1;
+        let want = e.eval(DVec3::new(n[0], n[1], n[2]).normalize()) / std::f64::consts::PI;
+        for c in 0..3 {
+            worst = worst.max((l[c] - want[c]).abs());
+            peak = peak.max(want[c].abs());
+        }
+    }
+    assert!(covered > 1000, "the sphere covers {covered} pixels");
+    let rel = worst / peak;
+    eprintln!("{test}: {covered} pixels, worst |three.js - E/pi| = {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
+    assert!(rel < 1e-5, "worst {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
+}
