@@ -308,3 +308,170 @@ fn threejs_light_probe_lights_a_sphere_with_shlights_irradiance() {
     eprintln!("{test}: {covered} pixels, worst |three.js - E/pi| = {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
     assert!(rel < 1e-5, "worst {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
 }
+
+/// The Cornell box's volume, baked small, and its three.js grid documents
+/// (`half`, `f32`); returns the `.shvol`.
+fn cornell_volume(dir: &Path) -> PathBuf {
+    let sky = dir.join("sky.json");
+    let mut rows = vec![[0.0; 3]; 9];
+    rows[0] = [2.0, 2.2, 2.6];
+    rows[2] = [0.8, 0.9, 1.1];
+    rows[3] = [0.3, -0.2, 0.1];
+    rows[6] = [0.1, 0.05, 0.0];
+    write_coefficient_rows(&sky, &rows, "radiance");
+    let vol = dir.join("box.shvol");
+    shlight_ok(&[
+        "volume",
+        "meshes/cornell_box.obj",
+        "--env",
+        s(&sky),
+        "--resolution",
+        "5x4x3",
+        "--samples",
+        "256",
+        "--surface-samples",
+        "64",
+        "--bounces",
+        "1",
+        "-o",
+        s(&vol),
+    ]);
+    shlight_ok(&[
+        "convert",
+        s(&vol),
+        "--format",
+        "threejs",
+        "-o",
+        s(&dir.join("grid-half.json")),
+    ]);
+    shlight_ok(&[
+        "convert",
+        s(&vol),
+        "--format",
+        "threejs",
+        "--precision",
+        "f32",
+        "-o",
+        s(&dir.join("grid-f32.json")),
+    ]);
+    vol
+}
+
+/// three.js's `LightProbeGridWebGL`, made by `loadLightProbeGrid` from
+/// shlight's export of a baked Cornell-box volume, lights a tilted white
+/// Lambert plane inside the box: every pixel equals `shlight sample
+/// --lookup threejs` at that pixel's world position (read back from the
+/// page) and the plane's normal, over pi. The `f32` atlas to within the
+/// GPU's filtering; the `half` atlas within what rounding each of the
+/// probes' 27 numbers to a half float can move the irradiance (bounded
+/// here from the probes' largest coefficient). Fails on any slip in the
+/// atlas layout (a probe in the wrong texel, a missing padding slice, a
+/// coefficient in the wrong channel), the box, or the basis.
+#[test]
+fn threejs_light_probe_grid_lights_a_plane_as_sample_lookup_threejs_says() {
+    let test = "web::threejs_light_probe_grid_lights_a_plane_as_sample_lookup_threejs_says";
+    let dir = temp_dir("web-grid");
+    let vol = cornell_volume(&dir);
+    let file = shlight_format::ShvolFile::read(&vol).unwrap();
+    // A half float rounds a number by at most 2^-11 of itself, so an
+    // interpolated coefficient k moves by at most 2^-11 max |c_k| over the
+    // probes, and the irradiance by that times |three.js's weight of k at
+    // the normal|, summed over k.
+    let nc = file.coeffs_per_channel();
+    let mut cmax = [[0.0f64; 3]; 9];
+    for probe in file.radiance.chunks_exact(3 * nc) {
+        for (k, row) in probe.chunks_exact(3).take(9).enumerate() {
+            for c in 0..3 {
+                cmax[k][c] = cmax[k][c].max(f64::from(row[c]).abs());
+            }
+        }
+    }
+    let half_bound = |n: DVec3| -> f64 {
+        let n = n.normalize();
+        let (x, y, z) = (n.x, n.y, n.z);
+        let w = [
+            0.886227,
+            1.023328 * y.abs(),
+            1.023328 * z.abs(),
+            1.023328 * x.abs(),
+            0.858086 * (x * y).abs(),
+            0.858086 * (y * z).abs(),
+            (0.743125 * z * z - 0.247708).abs(),
+            0.858086 * (x * z).abs(),
+            0.429043 * (x * x - y * y).abs(),
+        ];
+        (0..3)
+            .map(|c| (0..9).map(|k| w[k] * cmax[k][c]).sum::<f64>())
+            .fold(0.0, f64::max)
+            * 2f64.powi(-11)
+            / std::f64::consts::PI
+    };
+    let tilt = DVec3::new(0.35, 1.0, -0.45);
+    // The middle of the box, and a corner where the lookup clamps to the
+    // outermost probes (the atlas's padding slices).
+    let views = [([0.29, 0.26, 0.3], 0.16), ([0.07, 0.49, 0.5], 0.06)];
+    let runs = views.iter().flat_map(|v| {
+        [("grid-f32.json", 0.0), ("grid-half.json", half_bound(tilt))].map(move |d| (v, d))
+    });
+    for (&([cx, cy, cz], extent), (doc, bound)) in runs {
+        let page = format!(
+            "/tests/web/grid.html?grid=/data/{doc}&centre=[{cx},{cy},{cz}]&normal=[{},{},{}]&extent={extent}",
+            tilt.x, tilt.y, tilt.z
+        );
+        let Some(r) = run_page(test, &dir, &page) else {
+            return;
+        };
+        let (lit, position) = (pixels(&r, "lit"), pixels(&r, "position"));
+        let normal = floats(&r["normal"]);
+        let covered: Vec<usize> = (0..lit.len()).filter(|&i| position[i][3] == 1.0).collect();
+        assert_eq!(covered.len(), lit.len(), "the plane fills the view");
+        let points = dir.join("points.json");
+        std::fs::write(
+            &points,
+            json!({
+                "points": covered.iter().map(|&i| &position[i][..3]).collect::<Vec<_>>(),
+                "normals": vec![&normal; covered.len()],
+            })
+            .to_string(),
+        )
+        .unwrap();
+        let out = dir.join("sampled.json");
+        shlight_ok(&[
+            "sample",
+            s(&vol),
+            "--points",
+            s(&points),
+            "--lookup",
+            "threejs",
+            "-o",
+            s(&out),
+        ]);
+        let sampled: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        let want: Vec<Vec<f64>> = sampled["irradiance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(floats)
+            .collect();
+        let mut worst = 0.0f64;
+        let mut peak = 0.0f64;
+        for (&i, w) in covered.iter().zip(&want) {
+            for c in 0..3 {
+                let w = w[c] / std::f64::consts::PI;
+                worst = worst.max((lit[i][c] - w).abs());
+                peak = peak.max(w);
+            }
+        }
+        // The GPU's trilinear filter and f32 arithmetic, on top of the
+        // atlas's own rounding.
+        let allowed = bound + 2e-5 * peak;
+        eprintln!(
+            "{test}: {doc} around [{cx}, {cy}, {cz}]: {} pixels, worst |three.js - sample/pi| = {worst:.3e} ({:.2e} of the peak {peak:.4}; allowed {allowed:.3e}); loadLightProbeGrid {:.1} ms",
+            covered.len(),
+            worst / peak,
+            r["loadMs"].as_f64().unwrap_or(f64::NAN)
+        );
+        assert!(peak > 0.05, "the plane is lit ({peak})");
+        assert!(worst <= allowed, "{doc}: worst {worst:.3e} beyond {allowed:.3e}");
+    }
+}
