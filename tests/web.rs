@@ -125,7 +125,10 @@ fn handle(stream: TcpStream, roots: &Roots, results: &Sender<Vec<u8>>) -> std::i
             b"HTTP/1.1 204 No Content\r\nConnection: close\r\nContent-Length: 0\r\n\r\n",
         );
     }
-    match roots.file(target).and_then(|p| Some((std::fs::read(&p).ok()?, p))) {
+    match roots
+        .file(target)
+        .and_then(|p| Some((std::fs::read(&p).ok()?, p)))
+    {
         Some((bytes, path)) => {
             write!(
                 stream,
@@ -165,13 +168,18 @@ fn serve(roots: Roots) -> (u16, Receiver<Vec<u8>>) {
 /// page's `error` report, or when it reports nothing in time (Chromium's
 /// log shown).
 fn run_page(test: &str, data: &Path, page: &str) -> Option<Value> {
-    let _one = BROWSER.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _one = BROWSER
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let Some(chromium) = chromium() else {
         skip(test, "Chromium is not installed (apt-get install chromium)");
         return None;
     };
     let three = three_dir();
-    if !three.join("examples/jsm/lighting/LightProbeGridWebGL.js").is_file() {
+    if !three
+        .join("examples/jsm/lighting/LightProbeGridWebGL.js")
+        .is_file()
+    {
         skip(
             test,
             &format!(
@@ -285,7 +293,10 @@ fn threejs_light_probe_lights_a_sphere_with_shlights_irradiance() {
     };
     assert_eq!(r["three"], "187");
     let file = CoeffFile::read(&coeffs).unwrap();
-    assert_eq!((file.frame, file.quantity), (Frame::YUp, Quantity::Radiance));
+    assert_eq!(
+        (file.frame, file.quantity),
+        (Frame::YUp, Quantity::Radiance)
+    );
     let e = irradiance(&file.coeffs);
     let (lit, normal) = (pixels(&r, "lit"), pixels(&r, "normal"));
     let mut worst = 0.0f64;
@@ -305,8 +316,13 @@ fn threejs_light_probe_lights_a_sphere_with_shlights_irradiance() {
     }
     assert!(covered > 1000, "the sphere covers {covered} pixels");
     let rel = worst / peak;
-    eprintln!("{test}: {covered} pixels, worst |three.js - E/pi| = {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
-    assert!(rel < 1e-5, "worst {worst:.3e} ({rel:.2e} of the peak {peak:.4})");
+    eprintln!(
+        "{test}: {covered} pixels, worst |three.js - E/pi| = {worst:.3e} ({rel:.2e} of the peak {peak:.4})"
+    );
+    assert!(
+        rel < 1e-5,
+        "worst {worst:.3e} ({rel:.2e} of the peak {peak:.4})"
+    );
 }
 
 /// The Cornell box's volume, baked small, and its three.js grid documents
@@ -472,6 +488,168 @@ fn threejs_light_probe_grid_lights_a_plane_as_sample_lookup_threejs_says() {
             r["loadMs"].as_f64().unwrap_or(f64::NAN)
         );
         assert!(peak > 0.05, "the plane is lit ({peak})");
-        assert!(worst <= allowed, "{doc}: worst {worst:.3e} beyond {allowed:.3e}");
+        assert!(
+            worst <= allowed,
+            "{doc}: worst {worst:.3e} beyond {allowed:.3e}"
+        );
+    }
+}
+
+/// A PRT bake written as glTF (`shlight prt ... -o X.glb`) loads in
+/// three.js's own `GLTFLoader` with its vertex colours intact: the loader's
+/// `color` attribute holds the mesh's linear colours (the Cornell box's
+/// material albedos, as shlight-mesh reads the OBJ) at every vertex, at
+/// the positions shlight-mesh reads, and the material shows them. Fails
+/// if the colours are dropped, re-encoded (sRGB), normalised to integers,
+/// or moved to other vertices.
+#[test]
+fn a_prt_glb_loads_in_gltfloader_with_its_vertex_colours() {
+    let test = "web::a_prt_glb_loads_in_gltfloader_with_its_vertex_colours";
+    let dir = temp_dir("web-prt");
+    shlight_ok(&[
+        "prt",
+        "meshes/cornell_box.obj",
+        "--lmax",
+        "2",
+        "--samples",
+        "64",
+        "-q",
+        "-o",
+        s(&dir.join("box.glb")),
+    ]);
+    let Some(r) = run_page(test, &dir, "/tests/web/prt.html?glb=/data/box.glb") else {
+        return;
+    };
+    let mesh = shlight_mesh::load(Path::new("meshes/cornell_box.obj")).unwrap();
+    let colours = mesh.colors.as_ref().expect("the Cornell box has colours");
+    let meshes = r["meshes"].as_array().unwrap();
+    assert_eq!(meshes.len(), 1, "{r}");
+    let m = &meshes[0];
+    assert_eq!(m["vertexColors"], true, "the material uses the colours");
+    assert_eq!(m["colorItemSize"], 3);
+    let (got, pos) = (floats(&m["color"]), floats(&m["position"]));
+    assert_eq!(got.len(), 3 * colours.len(), "one colour per vertex");
+    let mut worst = 0.0f64;
+    for (v, (c, p)) in colours.iter().zip(&mesh.positions).enumerate() {
+        for a in 0..3 {
+            assert_eq!(pos[3 * v + a], f64::from(p[a]), "vertex {v}'s position");
+            worst = worst.max((got[3 * v + a] - f64::from(c[a])).abs());
+        }
+    }
+    eprintln!(
+        "{test}: {} vertices, worst colour difference {worst:e}",
+        colours.len()
+    );
+    assert_eq!(worst, 0.0, "the colours arrive as written (f32)");
+    // Not all one colour: red, green and white walls.
+    assert!(colours.iter().any(|c| c.x > 2.0 * c.y) && colours.iter().any(|c| c.y > 2.0 * c.x));
+}
+
+/// A broken export gives the page an error naming the file and the
+/// problem, not a black scene: a grid cut short (not JSON any more), a grid
+/// whose atlas lost bytes but is still JSON, a missing file, a LightProbe
+/// given to `loadLightProbeGrid` and a grid to `loadLightProbe`, a
+/// LightProbe with 26 numbers, a LightProbe cut short. The whole grid and
+/// LightProbe load (so the errors come from the damage).
+#[test]
+fn broken_exports_give_the_page_a_clear_error() {
+    let test = "web::broken_exports_give_the_page_a_clear_error";
+    let dir = temp_dir("web-broken");
+    let vol = dir.join("box.shvol");
+    shlight_ok(&[
+        "volume",
+        "meshes/cornell_box.obj",
+        "--env",
+        "envmaps/sky.exr",
+        "--resolution",
+        "3x2x2",
+        "--samples",
+        "64",
+        "--surface-samples",
+        "32",
+        "--bounces",
+        "0",
+        "-q",
+        "-o",
+        s(&vol),
+    ]);
+    shlight_ok(&[
+        "convert",
+        s(&vol),
+        "--format",
+        "threejs",
+        "-o",
+        s(&dir.join("grid.json")),
+    ]);
+    let coeffs = dir.join("sky.json");
+    shlight_ok(&[
+        "project",
+        "envmaps/sky.exr",
+        "--lmax",
+        "2",
+        "-q",
+        "-o",
+        s(&coeffs),
+    ]);
+    shlight_ok(&[
+        "convert",
+        s(&coeffs),
+        "--format",
+        "threejs",
+        "-o",
+        s(&dir.join("probe.json")),
+    ]);
+    let grid = std::fs::read_to_string(dir.join("grid.json")).unwrap();
+    let probe = std::fs::read_to_string(dir.join("probe.json")).unwrap();
+    std::fs::write(dir.join("cut.json"), &grid[..grid.len() / 2]).unwrap();
+    let mut doc: Value = serde_json::from_str(&grid).unwrap();
+    let data = doc["atlas"]["data"].as_str().unwrap().to_string();
+    doc["atlas"]["data"] = json!(data[..data.len() - 400]);
+    std::fs::write(dir.join("short-atlas.json"), doc.to_string()).unwrap();
+    let mut p: Value = serde_json::from_str(&probe).unwrap();
+    p["object"]["sh"].as_array_mut().unwrap().pop();
+    std::fs::write(dir.join("probe-26.json"), p.to_string()).unwrap();
+    std::fs::write(dir.join("probe-cut.json"), &probe[..probe.len() - 30]).unwrap();
+    let page = "/tests/web/broken.html?grid=/data/grid.json&grid=/data/cut.json\
+        &grid=/data/short-atlas.json&grid=/data/missing.json&grid=/data/probe.json\
+        &probe=/data/probe.json&probe=/data/grid.json&probe=/data/probe-26.json\
+        &probe=/data/probe-cut.json";
+    let Some(r) = run_page(test, &dir, page) else {
+        return;
+    };
+    let results = r["results"].as_array().unwrap();
+    let want: [(&str, Option<&str>); 9] = [
+        ("/data/grid.json", None),
+        ("/data/cut.json", Some("not a JSON document")),
+        (
+            "/data/short-atlas.json",
+            Some("the file is truncated or damaged"),
+        ),
+        ("/data/missing.json", Some("HTTP 404")),
+        (
+            "/data/probe.json",
+            Some("is a LightProbe (load it with loadLightProbe)"),
+        ),
+        ("/data/probe.json", None),
+        (
+            "/data/grid.json",
+            Some("is a volume (load it with loadLightProbeGrid)"),
+        ),
+        ("/data/probe-26.json", Some("not 27 finite numbers")),
+        ("/data/probe-cut.json", Some("not a JSON document")),
+    ];
+    assert_eq!(results.len(), want.len(), "{r}");
+    for (got, (url, problem)) in results.iter().zip(want) {
+        assert_eq!(got["url"], url);
+        match problem {
+            None => assert_eq!(got["loaded"], true, "{got}"),
+            Some(p) => {
+                assert_eq!(got["loaded"], false, "{got}");
+                assert_eq!(got["name"], "ShlightLoadError", "{got}");
+                let m = got["message"].as_str().unwrap();
+                assert!(m.starts_with(url) && m.contains(p), "{url}: {m}");
+                eprintln!("{test}: {m}");
+            }
+        }
     }
 }

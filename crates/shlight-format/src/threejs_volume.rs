@@ -388,7 +388,9 @@ mod tests {
         let res = [3, 2, 4];
         let n: usize = res.iter().product();
         let probes: Vec<[[f32; 3]; 9]> = (0..n)
-            .map(|k| std::array::from_fn(|c| std::array::from_fn(|ch| (1000 * k + 3 * c + ch) as f32)))
+            .map(|k| {
+                std::array::from_fn(|c| std::array::from_fn(|ch| (1000 * k + 3 * c + ch) as f32))
+            })
             .collect();
         let atlas = ThreeJsAtlas::from_probes(res, &probes);
         let [nx, ny, nz] = res;
