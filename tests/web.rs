@@ -25,7 +25,7 @@ use serde_json::{Value, json};
 use shlight_core::sh::{Frame, irradiance};
 use shlight_format::{CoeffFile, Quantity};
 
-use crate::util::{s, shlight, shlight_ok, skip, temp_dir, write_coefficient_rows};
+use crate::util::{s, shlight_err, shlight_ok, skip, temp_dir, write_coefficient_rows};
 
 /// One browser at a time.
 static BROWSER: Mutex<()> = Mutex::new(());
@@ -652,4 +652,131 @@ fn broken_exports_give_the_page_a_clear_error() {
             }
         }
     }
+}
+
+/// `shlight volume --format threejs` and `shlight convert VOLUME.shvol
+/// --format threejs` write the same document; its atlas holds, at the
+/// texel three.js's `LightProbeGridWebGL` reads (slice `t (nz + 2) + 1 +
+/// z`, number `3 i + c` of the probe at `4 t + channel`; the padding slices
+/// copies of the edge layers), the probe's coefficient `i` with odd `m`
+/// negated (three.js's basis has no Condon-Shortley phase), from the
+/// dilated probes (three.js knows no validity), clipped from lmax 3 to 2
+/// with a note on stderr and in the file; `--precision half` holds those
+/// numbers rounded to half floats. Bad requests are errors naming the file.
+#[test]
+fn threejs_volume_export_holds_the_probes_where_threejs_reads_them() {
+    use shlight_format::threejs_volume::{Precision, read_threejs_grid};
+    let dir = temp_dir("web-export");
+    let (vol, direct) = (dir.join("box.shvol"), dir.join("direct.json"));
+    let bake = |out: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "volume",
+            "meshes/cornell_box.obj",
+            "--env",
+            "envmaps/sky.exr",
+            "--resolution",
+            "4x3x4",
+            "--samples",
+            "64",
+            "--surface-samples",
+            "32",
+            "--bounces",
+            "0",
+            "--no-relocate",
+            "--lmax",
+            "3",
+            "-o",
+            s(out),
+        ];
+        args.extend(extra);
+        String::from_utf8_lossy(&shlight_ok(&args).stderr).into_owned()
+    };
+    bake(&vol, &[]);
+    let stderr = bake(&direct, &["--format", "threejs", "--precision", "f32"]);
+    assert!(stderr.contains("lmax 3 clipped to 2"), "{stderr}");
+    assert!(stderr.contains("3 invalid probes"), "{stderr}");
+    let converted = dir.join("converted.json");
+    let o = shlight_ok(&[
+        "convert",
+        s(&vol),
+        "--format",
+        "threejs",
+        "--precision",
+        "f32",
+        "-o",
+        s(&converted),
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("lmax 3 clipped to 2"));
+    let text = std::fs::read_to_string(&converted).unwrap();
+    assert_eq!(text, std::fs::read_to_string(&direct).unwrap());
+    let doc: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        (doc["lmax"].as_u64(), doc["sourceLmax"].as_u64()),
+        (Some(2), Some(3))
+    );
+    assert!(
+        doc["notes"][0].as_str().unwrap().contains("clipped"),
+        "{}",
+        doc["notes"]
+    );
+
+    let file = shlight_format::ShvolFile::read(&vol).unwrap();
+    assert_eq!(doc["resolution"], json!(file.resolution));
+    assert_eq!(doc["boundingBox"]["min"], json!(file.bounds.0));
+    assert_eq!(doc["boundingBox"]["max"], json!(file.bounds.1));
+    assert_eq!(file.valid.iter().filter(|v| !**v).count(), 3);
+    let radiance = shlight_baked::dilate(&file.view());
+    let atlas = read_threejs_grid(&text, "converted.json").unwrap();
+    let [nx, ny, nz] = file.resolution;
+    assert_eq!(atlas.size, [nx, ny, 7 * (nz + 2)]);
+    for s in 0..atlas.size[2] {
+        let t = s / (nz + 2);
+        let z = (s % (nz + 2)).clamp(1, nz) - 1;
+        for y in 0..ny {
+            for x in 0..nx {
+                let k = x + nx * (y + ny * z);
+                for ch in 0..4 {
+                    let j = 4 * t + ch;
+                    let want = if j < 27 {
+                        let (i, c) = (j / 3, j % 3);
+                        let sign = if [1, 3, 5, 7].contains(&i) { -1.0 } else { 1.0 };
+                        sign * radiance[k * 16 * 3 + 3 * i + c]
+                    } else {
+                        0.0
+                    };
+                    assert_eq!(
+                        atlas.texels[x + nx * (y + ny * s)][ch],
+                        want,
+                        "slice {s} ({x}, {y}) {ch}"
+                    );
+                }
+            }
+        }
+    }
+    // Half floats: the same numbers rounded.
+    let half = dir.join("half.json");
+    shlight_ok(&["convert", s(&vol), "--format", "threejs", "-o", s(&half)]);
+    let half_doc = std::fs::read_to_string(&half).unwrap();
+    assert!(half_doc.contains("\"HalfFloatType\""));
+    let h = read_threejs_grid(&half_doc, "half.json").unwrap();
+    for (a, b) in h.texels.iter().flatten().zip(atlas.texels.iter().flatten()) {
+        assert_eq!(*a, half::f16::from_f32(*b).to_f32());
+    }
+    assert_eq!(Precision::default(), Precision::Half);
+
+    // Bad requests.
+    let out = dir.join("x.json");
+    let e = shlight_err(&["convert", s(&vol), "--format", "gltf", "-o", s(&out)]);
+    assert!(
+        e.contains("box.shvol") && e.contains("--format threejs"),
+        "{e}"
+    );
+    let e = shlight_err(&["convert", s(&vol), "-o", s(&out)]);
+    assert!(e.contains("needs --format threejs"), "{e}");
+    let cut = dir.join("cut.shvol");
+    let bytes = std::fs::read(&vol).unwrap();
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    let e = shlight_err(&["convert", s(&cut), "--format", "threejs", "-o", s(&out)]);
+    assert!(e.contains("cut.shvol"), "{e}");
+    assert!(!out.exists(), "nothing written");
 }
