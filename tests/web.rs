@@ -73,6 +73,9 @@ impl Roots {
         }
         let (root, rest) = if let Some(r) = path.strip_prefix("/three/") {
             (self.three.clone(), r)
+        } else if let Some(r) = path.strip_prefix("/web/node_modules/three/") {
+            // Where web/index.html's import map looks.
+            (self.three.clone(), r)
         } else if let Some(r) = path.strip_prefix("/web/") {
             (repo().join("web"), r)
         } else if let Some(r) = path.strip_prefix("/tests/web/") {
@@ -779,4 +782,98 @@ fn threejs_volume_export_holds_the_probes_where_threejs_reads_them() {
     let e = shlight_err(&["convert", s(&cut), "--format", "threejs", "-o", s(&out)]);
     assert!(e.contains("cut.shvol"), "{e}");
     assert!(!out.exists(), "nothing written");
+}
+
+/// The bundled examples of `web/` are what the README's commands write
+/// today (so the viewer's test below shows the current export).
+#[test]
+fn the_bundled_web_examples_are_todays_exports() {
+    let dir = temp_dir("web-examples");
+    let (grid, probe) = (dir.join("cornell-grid.json"), dir.join("park-probe.json"));
+    shlight_ok(&[
+        "volume",
+        "meshes/cornell_box.obj",
+        "--env",
+        "envmaps/park.exr",
+        "--resolution",
+        "4x4x4",
+        "--samples",
+        "256",
+        "--format",
+        "threejs",
+        "-q",
+        "-o",
+        s(&grid),
+    ]);
+    shlight_ok(&[
+        "project",
+        "envmaps/park.exr",
+        "--lmax",
+        "2",
+        "--format",
+        "threejs",
+        "-q",
+        "-o",
+        s(&probe),
+    ]);
+    for (made, bundled) in [
+        (&grid, "web/examples/cornell-grid.json"),
+        (&probe, "web/examples/park-probe.json"),
+    ] {
+        assert!(
+            std::fs::read_to_string(made).unwrap() == std::fs::read_to_string(bundled).unwrap(),
+            "{bundled} is not what the README's command writes now: regenerate it"
+        );
+    }
+}
+
+/// `web/index.html` opens each bundled example (`?src=`), draws it
+/// (probe spheres in the volume's box, or a sphere for the LightProbe) and
+/// reports no error or warning on the console; the drawn pixels are not
+/// the background alone and not black. A broken file shows its error.
+#[test]
+fn the_viewer_page_draws_the_bundled_examples_without_console_errors() {
+    let test = "web::the_viewer_page_draws_the_bundled_examples_without_console_errors";
+    let dir = temp_dir("web-viewer");
+    std::fs::write(
+        dir.join("cut.json"),
+        "{\"metadata\": {\"type\": \"shlight.Light",
+    )
+    .unwrap();
+    for (src, kind, probes) in [
+        ("examples/cornell-grid.json", "grid", 64),
+        ("examples/park-probe.json", "probe", 0),
+        ("/data/cut.json", "", 0),
+    ] {
+        let page = format!("/web/index.html?src={src}&report=/result");
+        let Some(r) = run_page(test, &dir, &page) else {
+            return;
+        };
+        eprintln!(
+            "{test}: {src}: drawn {:.3} of the pixels, brightest {}, status {}",
+            r["drawnShare"], r["brightest"], r["status"]
+        );
+        if kind.is_empty() {
+            assert_eq!(r["kind"], Value::Null, "{r}");
+            assert!(
+                r["status"]
+                    .as_str()
+                    .unwrap()
+                    .contains("/data/cut.json: not a JSON document"),
+                "{r}"
+            );
+            continue;
+        }
+        assert_eq!(r["errors"], json!([]), "{src}: {r}");
+        assert_eq!(r["kind"], kind, "{r}");
+        assert_eq!(r["probes"], probes, "{r}");
+        assert!(
+            r["drawnShare"].as_f64().unwrap() > 0.01,
+            "{src}: nothing drawn: {r}"
+        );
+        assert!(
+            r["brightest"].as_u64().unwrap() > 100,
+            "{src}: drawn black: {r}"
+        );
+    }
 }
