@@ -123,7 +123,9 @@ fn volume_32x16x32() -> shlight_format::ShvolFile {
         bounds: ([0.0; 3], [4.0, 2.0, 4.0]),
         frame: "y-up".into(),
         valid: (0..n).map(|k| k % 10 != 3).collect(),
-        radiance: (0..n * 27).map(|i| ((i * 7919) % 1000) as f32 / 500.0 - 0.5).collect(),
+        radiance: (0..n * 27)
+            .map(|i| ((i * 7919) % 1000) as f32 / 500.0 - 0.5)
+            .collect(),
         emitted: None,
         transfer: None,
         offsets: None,
