@@ -4,7 +4,9 @@
 //! Reads a shlight coefficient file (JSON), or a file written by an exporter
 //! that keeps enough to recover the coefficients (shlight-format's
 //! `read_coefficients`), and writes any `--format`; `json` writes a shlight
-//! coefficient file.
+//! coefficient file. A `.shvol` volume converts to `--format threejs`, the
+//! atlas of three.js's `LightProbeGridWebGL` (shlight-format's
+//! `threejs_volume`).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -21,7 +23,8 @@ use crate::volume::{PrecisionArg, write_threejs};
 pub struct ConvertArgs {
     /// Input: a shlight coefficient file (JSON), three.js LightProbe JSON, a
     /// glTF or GLB with EXT_lights_image_based, shlight's Unity JSON, or
-    /// a Filament sh.txt.
+    /// a Filament sh.txt; or an irradiance volume (.shvol), which converts
+    /// to --format threejs (three.js's LightProbeGridWebGL).
     pub input: PathBuf,
     /// Output file (written atomically); without it the result goes to
     /// stdout and --format is needed.

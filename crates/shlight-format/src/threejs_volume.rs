@@ -60,7 +60,7 @@
 
 use base64::Engine as _;
 use glam::Vec3;
-use serde_json::{Value, json};
+use serde_json::json;
 use shlight_baked::{VolumeView, dilate};
 use shlight_core::sh::{ShCoeffs, sh_count};
 
@@ -318,60 +318,6 @@ pub fn threejs_grid(file: &ShvolFile, precision: Precision) -> Result<ThreeJsGri
     let text = serde_json::to_string_pretty(&doc).expect("JSON values serialise") + "\n";
     let text = text.replacen("@DATA@", &data, 1);
     Ok(ThreeJsGrid { text, notes })
-}
-
-/// Reads the atlas back from a document `threejs_grid` wrote, as `f32`
-/// (half floats widened exactly): its size and texels.
-pub fn read_threejs_grid(text: &str, name: &str) -> Result<ThreeJsAtlas> {
-    let doc: Value = serde_json::from_str(text)
-        .map_err(|e| FormatError::invalid(name, format!("not JSON ({e})")))?;
-    if doc["metadata"]["type"] != DOCUMENT_TYPE {
-        return Err(FormatError::invalid(
-            name,
-            format!("not a {DOCUMENT_TYPE} document"),
-        ));
-    }
-    let atlas = &doc["atlas"];
-    let dim = |k: &str| {
-        atlas[k]
-            .as_u64()
-            .map(|v| v as usize)
-            .ok_or_else(|| FormatError::invalid(name, format!("atlas.{k} is not a count")))
-    };
-    let size = [dim("width")?, dim("height")?, dim("depth")?];
-    let bytes = base64::engine::general_purpose::STANDARD
-        .decode(atlas["data"].as_str().unwrap_or_default())
-        .map_err(|e| FormatError::invalid(name, format!("atlas.data is not base64 ({e})")))?;
-    let texels = size.iter().product::<usize>();
-    let values: Vec<f32> = match atlas["type"].as_str() {
-        Some("HalfFloatType") if bytes.len() == texels * 8 => bytes
-            .chunks_exact(2)
-            .map(|b| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32())
-            .collect(),
-        Some("FloatType") if bytes.len() == texels * 16 => bytes
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect(),
-        t => {
-            return Err(FormatError::invalid(
-                name,
-                format!(
-                    "atlas of type {t:?} holds {} bytes, not what {}x{}x{} RGBA texels need",
-                    bytes.len(),
-                    size[0],
-                    size[1],
-                    size[2]
-                ),
-            ));
-        }
-    };
-    Ok(ThreeJsAtlas {
-        size,
-        texels: values
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect(),
-    })
 }
 
 #[cfg(test)]
