@@ -738,7 +738,8 @@ fn threejs_volume_export_holds_the_probes_where_threejs_reads_them() {
         for y in 0..ny {
             for x in 0..nx {
                 let k = x + nx * (y + ny * z);
-                for ch in 0..4 {
+                let texel = texels[x + nx * (y + ny * s)];
+                for (ch, got) in texel.into_iter().enumerate() {
                     let j = 4 * t + ch;
                     let want = if j < 27 {
                         let (i, c) = (j / 3, j % 3);
@@ -747,11 +748,7 @@ fn threejs_volume_export_holds_the_probes_where_threejs_reads_them() {
                     } else {
                         0.0
                     };
-                    assert_eq!(
-                        texels[x + nx * (y + ny * s)][ch],
-                        want,
-                        "slice {s} ({x}, {y}) {ch}"
-                    );
+                    assert_eq!(got, want, "slice {s} ({x}, {y}) {ch}");
                 }
             }
         }
