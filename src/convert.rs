@@ -4,7 +4,10 @@
 //! Reads a shlight coefficient file (JSON), or a file written by an exporter
 //! that keeps enough to recover the coefficients (shlight-format's
 //! `read_coefficients`), and writes any `--format`; `json` writes a shlight
-//! coefficient file.
+//! coefficient file. A `.shvol` volume converts to `--format threejs`, the
+//! atlas of three.js's `LightProbeGridWebGL` (shlight-format's
+//! `threejs_volume`), or to a WGSL or GLSL snippet of its lookup with its
+//! textures (`volume_shader`).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -14,12 +17,16 @@ use clap::Args;
 use shlight_format::gltf;
 use shlight_format::{ExportFormat, ExportInput, export, read_coefficients};
 
+use crate::volume::PrecisionArg;
+
 /// Arguments of `shlight convert`.
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
     /// Input: a shlight coefficient file (JSON), three.js LightProbe JSON, a
     /// glTF or GLB with EXT_lights_image_based, shlight's Unity JSON, or
-    /// a Filament sh.txt.
+    /// a Filament sh.txt; or an irradiance volume (.shvol), which converts
+    /// to --format threejs (three.js's LightProbeGridWebGL), wgsl or glsl
+    /// (a snippet of its lookup, its textures beside it).
     pub input: PathBuf,
     /// Output file (written atomically); without it the result goes to
     /// stdout and --format is needed.
@@ -35,44 +42,21 @@ pub struct ConvertArgs {
     /// else in the asset changes.
     #[arg(long, value_name = "SCENE.gltf|glb", conflicts_with_all = ["output", "format"])]
     pub into: Option<PathBuf>,
-}
-
-/// An irradiance volume (.shvol) for engines' shaders: the WGSL or GLSL
-/// snippet of the visibility-weighted lookup at `-o`, its textures beside
-/// it (shlight-format's `volume_shader`; docs/shvol.md, "Engines' shaders").
-fn volume(args: &ConvertArgs, format: ExportFormat) -> Result<()> {
-    use shlight_format::{ShaderLanguage, write_volume_shader};
-    let language = match format {
-        ExportFormat::Wgsl => ShaderLanguage::Wgsl,
-        ExportFormat::Glsl => ShaderLanguage::Glsl,
-        other => bail!(
-            "{}: an irradiance volume converts to wgsl or glsl (a shader snippet and its \
-             textures), not {}; `shlight volume --format` writes json and bevy",
-            args.input.display(),
-            other.name()
-        ),
-    };
-    let Some(output) = &args.output else {
-        bail!(
-            "{}: a volume's snippet comes with texture files: give -o FILE.wgsl or FILE.glsl",
-            args.input.display()
-        );
-    };
-    crate::output_path::refuse_overwriting(output, std::slice::from_ref(&args.input))?;
-    let file = shlight_format::ShvolFile::read(&args.input)?;
-    let written = write_volume_shader(&file, language, output)
-        .with_context(|| format!("{}: converting", args.input.display()))?;
-    for note in &written.notes {
-        eprintln!("note: {note}");
-    }
-    for path in &written.paths {
-        eprintln!("wrote {}", path.display());
-    }
-    Ok(())
+    /// Numbers of the atlas when a volume (.shvol) is converted to
+    /// --format threejs.
+    #[arg(long, value_enum, default_value = "half")]
+    pub precision: PrecisionArg,
 }
 
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
+    let is_volume = args
+        .input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("shvol"));
+    if is_volume {
+        return volume(args);
+    }
     if let Some(scene) = &args.into {
         crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
@@ -99,13 +83,6 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         (None, Some(path)) => ExportFormat::from_path(path)?,
         (None, None) => bail!("writing to stdout needs --format (or give -o FILE)"),
     };
-    if args
-        .input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("shvol"))
-    {
-        return volume(args, format);
-    }
     let file = read_coefficients(&args.input)?;
     let out =
         export(&file, format).with_context(|| format!("{}: converting", args.input.display()))?;
@@ -122,6 +99,58 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
                 .and_then(|()| out.flush())
                 .context("writing to stdout")?;
         }
+    }
+    Ok(())
+}
+
+/// `shlight convert VOLUME.shvol --format threejs -o grid.json`: the
+/// volume as three.js's `LightProbeGridWebGL` document; `-o NAME.wgsl` or
+/// `NAME.glsl`: the visibility-weighted lookup as a shader snippet, its
+/// textures beside it (shlight-format's `volume_shader`; docs/shvol.md,
+/// "Engines' shaders").
+fn volume(args: &ConvertArgs) -> Result<()> {
+    use shlight_format::{ShaderLanguage, VolumeFormat, write_volume_shader};
+    let input = args.input.display();
+    if args.into.is_some() {
+        bail!("{input}: --into adds a light to a glTF asset; a volume is not one light");
+    }
+    let Some(output) = &args.output else {
+        bail!(
+            "{input}: converting a volume needs -o (FILE.json with --format threejs, or FILE.wgsl / FILE.glsl)"
+        );
+    };
+    let format = match args.format {
+        Some(f) => f,
+        None => match ExportFormat::from_path(output) {
+            Ok(f @ (ExportFormat::Wgsl | ExportFormat::Glsl)) => f,
+            _ => bail!("{input}: converting a volume needs --format threejs, or -o FILE.wgsl|glsl"),
+        },
+    };
+    let language = match format {
+        ExportFormat::Threejs => None,
+        ExportFormat::Wgsl => Some(ShaderLanguage::Wgsl),
+        ExportFormat::Glsl => Some(ShaderLanguage::Glsl),
+        f => bail!(
+            "{input}: a volume converts to --format threejs (three.js's LightProbeGrid), wgsl or \
+             glsl (a shader snippet and its textures), not {}",
+            f.name()
+        ),
+    };
+    crate::output_path::refuse_overwriting(output, std::slice::from_ref(&args.input))?;
+    let file = shlight_format::ShvolFile::read(&args.input)?;
+    let Some(language) = language else {
+        for note in file.write_as(output, VolumeFormat::Threejs, args.precision.into())? {
+            eprintln!("note: {note}");
+        }
+        return Ok(());
+    };
+    let written = write_volume_shader(&file, language, output)
+        .with_context(|| format!("{input}: converting"))?;
+    for note in &written.notes {
+        eprintln!("note: {note}");
+    }
+    for path in &written.paths {
+        eprintln!("wrote {}", path.display());
     }
     Ok(())
 }

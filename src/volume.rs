@@ -12,17 +12,36 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Result, bail};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use glam::DVec3;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::VolumeFormat;
+use shlight_format::threejs_volume::Precision;
 use shlight_pipeline::Environment;
 use shlight_volume::{
     BakedVolume, Stage, VolumeOptions, VolumeRequest, bake_file, check_environment,
 };
 
 use crate::progress::{StageBars, Ui};
+
+/// `--precision` of the three.js export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PrecisionArg {
+    /// Half floats (HalfFloatType).
+    Half,
+    /// 32-bit floats (FloatType).
+    F32,
+}
+
+impl From<PrecisionArg> for Precision {
+    fn from(p: PrecisionArg) -> Self {
+        match p {
+            PrecisionArg::Half => Precision::Half,
+            PrecisionArg::F32 => Precision::F32,
+        }
+    }
+}
 
 /// Arguments of `shlight volume`.
 #[derive(Args, Debug)]
@@ -31,13 +50,17 @@ pub struct VolumeArgs {
     /// or .glb (baseColorFactor x COLOR_0 albedo, emissiveFactor x
     /// KHR_materials_emissive_strength emission).
     pub scene: PathBuf,
-    /// Output file (.shvol, or .json with --format json).
+    /// Output file (.shvol, .json with --format json or threejs, .ktx2
+    /// with --format bevy).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Output format [default: json for a .json name, bevy for .ktx2, else
     /// shvol].
     #[arg(long, value_parser = crate::values::volume_format())]
     pub format: Option<VolumeFormat>,
+    /// Numbers of the --format threejs atlas.
+    #[arg(long, value_enum, default_value = "half")]
+    pub precision: PrecisionArg,
     /// The distant light: an equirect map (projected to --lmax, its top row
     /// facing +Y) or a radiance coefficient file (`shlight project -o
     /// FILE.json`).
@@ -214,7 +237,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
         };
         shlight_io::write_image(path, &image, &options)?;
     }
-    for note in file.write_as(&args.output, format)? {
+    for note in file.write_as(&args.output, format, args.precision.into())? {
         ui.note(note);
     }
     Ok(())

@@ -29,3 +29,4 @@ mod volume;
 mod volume_gpu;
 #[cfg(feature = "gpu")]
 mod volume_snippets;
+mod web;

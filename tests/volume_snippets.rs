@@ -476,12 +476,9 @@ fn a_volume_converts_only_to_wgsl_or_glsl_with_an_output() {
     for (args, message) in [
         (
             vec!["convert", s(&volume), "--format", "unity", "-o", "x.json"],
-            "converts to wgsl or glsl",
+            "converts to --format threejs (three.js's LightProbeGrid), wgsl or glsl",
         ),
-        (
-            vec!["convert", s(&volume), "--format", "wgsl"],
-            "give -o FILE.wgsl",
-        ),
+        (vec!["convert", s(&volume), "--format", "wgsl"], "needs -o"),
     ] {
         let out = shlight(&args);
         let err = String::from_utf8_lossy(&out.stderr);

@@ -42,7 +42,11 @@ pub struct Volume {
 /// Writes `file` to `path` as `shlight volume -o PATH` does: JSON for a
 /// `.json` name, Bevy's KTX2 for `.ktx2`, else the `.shvol` file; atomically.
 fn write_file(file: &ShvolFile, path: &Path) -> PyResult<()> {
-    file.write_as(path, VolumeFormat::from_path(path))
+    file.write_as(
+        path,
+        VolumeFormat::from_path(path),
+        shlight_format::threejs_volume::Precision::default(),
+    )
         .map(|_| ())
         .map_err(|e| chained(&e))
 }

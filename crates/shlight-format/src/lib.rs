@@ -22,8 +22,10 @@
 //! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
 //!   (docs/shprt.md).
 //! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
-//!   and transfer matrices, and its JSON form (docs/shvol.md);
-//!   [`volume_shader`]: a volume as textures and a WGSL or GLSL snippet of
+//!   and transfer matrices, and its JSON form (docs/shvol.md).
+//! - [`bevy_volume`] and [`threejs_volume`]: a volume as the textures Bevy's
+//!   `IrradianceVolume` and three.js's `LightProbeGridWebGL` sample.
+//! - [`volume_shader`]: a volume as textures and a WGSL or GLSL snippet of
 //!   its visibility-weighted lookup, for engines' shaders
 //!   ([`write_volume_shader`] writes them, KTX2 by [`write_ktx2`]).
 //!
@@ -69,6 +71,7 @@ mod quantity;
 mod samples;
 mod shprt;
 mod shvol;
+pub mod threejs_volume;
 mod volume_format;
 mod volume_shader;
 

@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use crate::threejs_volume::{Precision, threejs_grid};
 use crate::{Result, ShvolFile, bevy_volume};
 
 /// What a volume is written as.
@@ -17,12 +18,20 @@ pub enum VolumeFormat {
     /// A KTX2 3D texture of ambient cubes for Bevy's `IrradianceVolume`
     /// (docs/shvol.md, "Bevy").
     Bevy,
+    /// A JSON document of three.js's `LightProbeGridWebGL` atlas (lmax 2,
+    /// invalid probes dilated), for web/shlight-three.js's
+    /// `loadLightProbeGrid` (docs/shvol.md, "three.js").
+    Threejs,
 }
 
 impl VolumeFormat {
     /// Every format, in the order the help lists them.
-    pub const ALL: [VolumeFormat; 3] =
-        [VolumeFormat::Shvol, VolumeFormat::Json, VolumeFormat::Bevy];
+    pub const ALL: [VolumeFormat; 4] = [
+        VolumeFormat::Shvol,
+        VolumeFormat::Json,
+        VolumeFormat::Bevy,
+        VolumeFormat::Threejs,
+    ];
 
     /// The name `--format` takes.
     #[must_use]
@@ -31,6 +40,7 @@ impl VolumeFormat {
             VolumeFormat::Shvol => "shvol",
             VolumeFormat::Json => "json",
             VolumeFormat::Bevy => "bevy",
+            VolumeFormat::Threejs => "threejs",
         }
     }
 
@@ -45,11 +55,14 @@ impl VolumeFormat {
             VolumeFormat::Bevy => {
                 "a KTX2 3D texture of ambient cubes for Bevy's IrradianceVolume (docs/shvol.md, \"Bevy\")"
             }
+            VolumeFormat::Threejs => {
+                "three.js's LightProbeGridWebGL atlas as JSON, for web/shlight-three.js (docs/shvol.md, \"three.js\")"
+            }
         }
     }
 
     /// The format a name ends in: `json` for `.json`, `bevy` for `.ktx2`,
-    /// else `shvol`.
+    /// else `shvol` (`threejs`, also JSON, is only ever asked for by name).
     #[must_use]
     pub fn from_path(path: &Path) -> Self {
         let extension = path
@@ -64,14 +77,33 @@ impl VolumeFormat {
 }
 
 impl ShvolFile {
-    /// Writes the volume to `path` as `format`, atomically, and returns
-    /// what the user needs to know to load it (for Bevy: the
-    /// `LightProbe`'s transform that puts the texture on the volume's box).
+    /// Writes the volume to `path` as `format` (the three.js atlas's
+    /// numbers in `precision`), atomically, and returns what the user needs
+    /// to know of it, each note naming the file: for Bevy the
+    /// `LightProbe`'s transform that puts the texture on the volume's box,
+    /// for three.js what the export clipped, dilated or moved.
     ///
     /// # Errors
-    /// [`crate::FormatError::Write`] naming the file.
-    pub fn write_as(&self, path: &Path, format: VolumeFormat) -> Result<Vec<String>> {
+    /// [`crate::FormatError::Write`] naming the file; for three.js, a value
+    /// beyond half floats' range in `Precision::Half`.
+    pub fn write_as(
+        &self,
+        path: &Path,
+        format: VolumeFormat,
+        precision: Precision,
+    ) -> Result<Vec<String>> {
         match format {
+            VolumeFormat::Threejs => {
+                let grid = threejs_grid(self, precision).map_err(|e| {
+                    crate::FormatError::Export(format!("{}: three.js export: {e}", path.display()))
+                })?;
+                shlight_io::write_atomically(path, |w| w.write_all(grid.text.as_bytes()))?;
+                return Ok(grid
+                    .notes
+                    .into_iter()
+                    .map(|n| format!("{}: {n}", path.display()))
+                    .collect());
+            }
             VolumeFormat::Shvol => self.write(path)?,
             VolumeFormat::Json => self.write_json(path)?,
             VolumeFormat::Bevy => {
@@ -103,6 +135,6 @@ mod tests {
             assert_eq!(VolumeFormat::from_path(Path::new(name)), format, "{name}");
         }
         let names: Vec<&str> = VolumeFormat::ALL.iter().map(|f| f.name()).collect();
-        assert_eq!(names, ["shvol", "json", "bevy"]);
+        assert_eq!(names, ["shvol", "json", "bevy", "threejs"]);
     }
 }

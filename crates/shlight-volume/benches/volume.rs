@@ -9,6 +9,10 @@
 //! with the default relocation and distance maps and without either, so
 //! their cost shows as the ratio of the two.
 //!
+//! The three.js export of a 32x16x32 volume (16,384 probes, lmax 2, a
+//! tenth invalid, so dilation works) to its JSON document, half and f32:
+//! items/s is probes per second.
+//!
 //! `cargo bench -p shlight-volume --bench volume`
 
 use divan::Bencher;
@@ -107,4 +111,45 @@ fn relight_2048_probes_after_a_rotation(bencher: Bencher) {
             let rotated = ShRotation::from_quat(2, DQuat::from_rotation_y(angle)).apply(&sky);
             volume.relight_into(&rotated, &mut out);
         });
+}
+
+/// A 32x16x32 lmax 2 volume's file, every tenth probe invalid.
+fn volume_32x16x32() -> shlight_format::ShvolFile {
+    let resolution = [32, 16, 32];
+    let n: usize = resolution.iter().product();
+    shlight_format::ShvolFile {
+        lmax: 2,
+        resolution,
+        bounds: ([0.0; 3], [4.0, 2.0, 4.0]),
+        frame: "y-up".into(),
+        valid: (0..n).map(|k| k % 10 != 3).collect(),
+        radiance: (0..n * 27)
+            .map(|i| ((i * 7919) % 1000) as f32 / 500.0 - 0.5)
+            .collect(),
+        emitted: None,
+        transfer: None,
+        offsets: None,
+        visibility: None,
+        samples: 1,
+        bounces: 0,
+        seed: 0,
+        scene: "bench".into(),
+        scene_hash: 0,
+        environment: "bench".into(),
+        generator: "bench".into(),
+    }
+}
+
+#[divan::bench(args = ["half", "f32"])]
+fn threejs_export_32x16x32(bencher: Bencher, precision: &str) {
+    use shlight_format::threejs_volume::{Precision, threejs_grid};
+    let file = volume_32x16x32();
+    let precision = if precision == "half" {
+        Precision::Half
+    } else {
+        Precision::F32
+    };
+    bencher
+        .counter(ItemsCount::new(file.probe_count()))
+        .bench_local(|| threejs_grid(&file, precision).unwrap().text.len());
 }

@@ -19,7 +19,8 @@
 //!    shlight's with the Condon-Shortley phase removed, odd `|m|` negated),
 //!    lmax 2: a volume of lower lmax is zero-padded, one of higher lmax
 //!    clipped to 2. Invalid probes are dilated first
-//!    ([`shlight_baked::dilate`]): the grid knows no validity.
+//!    ([`shlight_baked::dilate`]): the grid knows no validity. Both come from
+//!    [`shlight_format::threejs_volume::threejs_probes`], as the export's.
 //! 2. **The offset**: `spacing = (max - min) / n`; the point is moved half
 //!    a probe spacing along the normal, `s = p + n spacing / 2`
 //!    (per axis).
@@ -33,9 +34,11 @@
 //!    keeps the filter between texel centres, so each read is the
 //!    trilinear interpolation of the probes at grid coordinates
 //!    `uvw n - 1/2`, clamped to the grid, nothing more (exact weights here;
-//!    a GPU rounds them to its sub-texel precision). The WebGL grid's atlas
-//!    is `FloatType`, which holds shlight's `f32` coefficients exactly, so no
-//!    rounding is modelled (the WebGPU grid's is `HalfFloatType`).
+//!    a GPU rounds them to its sub-texel precision). The probes are the
+//!    `f32` numbers the `--format threejs --precision f32` export's atlas
+//!    holds ([`shlight_format::threejs_volume`]; three.js's own bake renders
+//!    a `FloatType` atlas too); the default half-float export differs by
+//!    the rounding of each coefficient, which is not modelled.
 //! 5. **Irradiance** of the interpolated coefficients `c0..c8` at the unit
 //!    normal `(x, y, z)`, with three.js's constants:
 //!    `0.886227 c0 + 2 0.511664 (c1 y + c2 z + c3 x) + 2 0.429043 (c4 xy +
@@ -47,13 +50,11 @@
 //! them; the interpolation and the irradiance in `f64`.
 
 use glam::{DVec3, Vec3};
-use shlight_baked::{ProbeGrid, VolumeView, dilate};
-use shlight_core::sh::{ShCoeffs, sh_count};
+use shlight_baked::{ProbeGrid, VolumeView};
+pub use shlight_format::threejs_volume::THREEJS_LMAX;
+use shlight_format::threejs_volume::threejs_probes;
 
 use crate::lookup::texel_corners;
-
-/// The highest lmax three.js's grid holds (`SphericalHarmonics3`).
-pub const THREEJS_LMAX: usize = 2;
 
 /// A volume's probes as three.js's `LightProbeGrid` holds them, ready to
 /// be looked up as three.js does.
@@ -67,32 +68,13 @@ pub struct ThreeJsLookup {
 impl ThreeJsLookup {
     /// The grid of `view`'s probes: dilated, kept to `lmax` (at most
     /// [`THREEJS_LMAX`] and the volume's; the rest of the nine coefficients
-    /// zero), in three.js's basis.
+    /// zero), in three.js's basis: the numbers the `--format threejs`
+    /// export's atlas holds ([`threejs_probes`]).
     #[must_use]
     pub fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
-        let lmax = lmax.min(THREEJS_LMAX).min(view.lmax);
-        let radiance = dilate(view);
-        let nc = sh_count(view.lmax);
-        let probes = radiance
-            .chunks_exact(3 * nc)
-            .map(|p| {
-                let shlight = ShCoeffs::from_vec(
-                    p.chunks_exact(3)
-                        .take(sh_count(lmax))
-                        .map(Vec3::from_slice)
-                        .collect(),
-                )
-                .expect("(lmax+1)^2 rows");
-                let mut out = [[0.0f32; 3]; 9];
-                for (o, c) in out.iter_mut().zip(shlight.toggled_cs_phase().as_slice()) {
-                    *o = c.to_array();
-                }
-                out
-            })
-            .collect();
         Self {
             grid: view.grid,
-            probes,
+            probes: threejs_probes(view, lmax),
         }
     }
 
