@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# make.sh [--quick]: regenerates every figure (docs/guide/img/) and prints
+# every number of the guide by running the ```sh blocks of the chapters
+# (docs/guide/0*.md), in page order, from the repository root, with the
+# freshly built `shlight` first on PATH. Each block's output is printed
+# under it, to paste into the page's ```text block that follows it.
+# --quick skips the blocks marked `<!-- guide: slow -->`.
+# tests/guide.rs runs the quick version and checks the printed numbers.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+quick=0
+[ "${1:-}" = "--quick" ] && quick=1
+cargo build --release --bin shlight
+export PATH="$PWD/target/release:$PATH"
+rm -rf guide-out
+mkdir -p guide-out docs/guide/img
+for page in docs/guide/0*.md; do
+    echo "=== $page"
+    # One record per ```sh block: slow flag, NUL, the block, NUL.
+    awk -v quick="$quick" '
+        /^<!-- guide: slow -->/ { slow = 1; next }
+        /^```sh$/ { inblock = 1; block = ""; next }
+        inblock && /^```$/ {
+            inblock = 0
+            if (!(quick && slow)) printf "%s%c", block, 0
+            slow = 0
+            next
+        }
+        inblock { block = block $0 "\n"; next }
+        /^```/ { slow = 0 }
+    ' "$page" | while IFS= read -r -d '' block; do
+        printf '$ %s' "$block"
+        start=$(date +%s.%N)
+        bash -euo pipefail -c "$block"
+        echo "($(echo "$(date +%s.%N) - $start" | bc) s)" >&2
+    done
+done
+rm -rf guide-out
+du -ch docs/guide/img/* | tail -1 >&2
