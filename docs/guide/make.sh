@@ -30,9 +30,9 @@ for page in docs/guide/0*.md; do
         /^```/ { slow = 0 }
     ' "$page" | while IFS= read -r -d '' block; do
         printf '$ %s' "$block"
-        start=$(date +%s.%N)
+        start=$(date +%s%N)
         bash -euo pipefail -c "$block"
-        echo "($(echo "$(date +%s.%N) - $start" | bc) s)" >&2
+        echo "($(( ($(date +%s%N) - start) / 1000000 )) ms)" >&2
     done
 done
 rm -rf guide-out
