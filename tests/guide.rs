@@ -13,7 +13,8 @@
 //! - every figure a page shows (`](img/...)`) is in the repository and was
 //!   written again by the commands.
 //!
-//! Blocks after `<!-- guide: slow -->` are skipped (make.sh runs them).
+//! Blocks after `<!-- guide: slow -->` are skipped (make.sh runs them);
+//! `make.sh --list` must list the same blocks as this test reads.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -221,6 +222,35 @@ fn numbers_match_to_the_digits_printed() {
     assert_eq!(mismatch("mean 0.1606", "mean 0.1609", 1e-3), None);
     assert_eq!(mismatch("p 2.500e3", "p 2.502e3", 1e-3), None);
     assert!(mismatch("p 2.500e3", "p 2.51e3", 1e-3).is_some());
+}
+
+/// make.sh runs the very blocks this test checks: its own parser (awk)
+/// lists the same scripts, in the same order.
+#[test]
+fn make_sh_runs_the_blocks_this_test_reads() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new("bash")
+        .args(["docs/guide/make.sh", "--list"])
+        .current_dir(root)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let listed: Vec<String> = String::from_utf8(out.stdout)
+        .unwrap()
+        .split_terminator('\0')
+        .map(str::to_string)
+        .collect();
+    let read: Vec<String> = chapters(root)
+        .iter()
+        .flat_map(|p| blocks(&std::fs::read_to_string(p).unwrap()))
+        .map(|b| b.script)
+        .collect();
+    assert!(read.len() > 10, "blocks read: {}", read.len());
+    assert_eq!(listed, read);
 }
 
 #[test]
