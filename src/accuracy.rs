@@ -3,12 +3,14 @@
 //! Prints one row per case (oracle, method, resolution or samples, lmax,
 //! mean / max relative irradiance error, bound, fitted slope, pass) as a
 //! table, or with `--json` as a JSON array; `-o DIR` also writes the
-//! pictures. The exit status is non-zero when any row fails.
+//! pictures. The exit status is non-zero when any row fails. `--legendre`
+//! prints the Legendre study instead (Rodrigues against the recurrence).
 
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use shlight_accuracy::legendre_study::{DEGREES, legendre_study, legendre_table};
 use shlight_accuracy::report_table::report_table;
 use shlight_accuracy::suite::{self, Row, SuiteOptions};
 
@@ -28,10 +30,20 @@ pub struct AccuracyArgs {
     /// error-vs-lmax plots (SVG), error maps over the sphere (PNG).
     #[arg(short, long, value_name = "DIR")]
     pub output: Option<PathBuf>,
+    /// Instead of the suite: Legendre polynomials by Rodrigues' formula
+    /// against the recurrence shlight uses, degrees 1 to 2800, and the
+    /// addition theorem's check near a pole.
+    #[arg(long, conflicts_with_all = ["quick", "json", "output"])]
+    pub legendre: bool,
 }
 
 /// Runs `shlight accuracy`.
 pub fn run(args: &AccuracyArgs, ui: &Ui) -> Result<()> {
+    if args.legendre {
+        let rows = legendre_study(&DEGREES);
+        print!("{}", legendre_table(&rows));
+        return Ok(());
+    }
     if let Some(dir) = &args.output {
         if dir.exists() && !dir.is_dir() {
             bail!("{}: exists and is not a directory", dir.display());

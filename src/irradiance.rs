@@ -15,12 +15,15 @@
 //! does the same for any encoding of `shlight_core::encoding` (dominant
 //! lights + SH, ZH3, non-linear L1, the ambient cube), writing
 //! `OUT-E.EXT` and `OUT-diff.EXT`; its SH part is `--sh LMAX` (default 2).
+//! `--error-map FILE.png` draws the peak-relative error over the sphere on
+//! a fixed 0-10% colour scale (shlight-accuracy's error maps).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use glam::DVec3;
+use shlight_accuracy::plot::{error_map_values, write_error_map};
 use shlight_core::map::{Layout, MapOrientation};
 use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
 use shlight_pipeline::{IrradianceSettings, ReadSettings, map_irradiance, output_grid};
@@ -29,6 +32,10 @@ use crate::input::{InputLayout, parse_input_layout};
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
 use crate::values::parse_size;
+
+/// Top of `--error-map`'s colour scale: 10% of the peak irradiance, about
+/// the worst Ramamoorthi & Hanrahan allow for nine terms (9%).
+const ERROR_MAP_TOP: f64 = 0.1;
 
 /// Arguments of `shlight irradiance`.
 #[derive(Args, Debug)]
@@ -53,6 +60,13 @@ pub struct IrradianceArgs {
     /// residual for dominant+sh).
     #[arg(long, value_parser = crate::values::encoding())]
     pub encoding: Option<shlight_core::encoding::Encoding>,
+    /// With --sh or --encoding: also write an error map (PNG) of the
+    /// estimate's luminance error relative to the peak irradiance,
+    /// `|Ŷ(n) - Y(n)| / Y_peak` (what the `relative to max E` line
+    /// summarises), on a fixed colour scale from 0 to 10% with its colour
+    /// bar underneath, so the maps of different lights compare.
+    #[arg(long, value_name = "FILE.png")]
+    pub error_map: Option<PathBuf>,
     /// Layout of the input (as for `shlight project`): auto, equirect,
     /// cross-h, cross-v, strip, angular, mirror-ball, faces.
     #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
@@ -105,7 +119,15 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
             beside(&args.output, "-diff"),
         ],
     };
-    for out in &outputs {
+    if let Some(map) = &args.error_map {
+        if encoding.is_none() {
+            bail!("--error-map needs --sh or --encoding: it maps an estimate's error");
+        }
+        if map.extension().and_then(|e| e.to_str()) != Some("png") {
+            bail!("{}: --error-map writes a PNG (.png)", map.display());
+        }
+    }
+    for out in outputs.iter().chain(&args.error_map) {
         refuse_overwriting(out, std::slice::from_ref(&args.input))?;
     }
     let settings = IrradianceSettings {
@@ -153,6 +175,14 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
     let Some(errors) = measured.errors else {
         bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
     };
+    if let Some(path) = &args.error_map {
+        let values = report
+            .exact
+            .peak_relative_map(&measured.estimate)
+            .expect("the map has light: its errors exist");
+        let (image, _) = error_map_values(w, h, Some(ERROR_MAP_TOP), &values);
+        write_error_map(path, &image).with_context(|| format!("{name}: writing"))?;
+    }
     let (p, q) = (errors.pointwise, errors.peak_relative);
     let what = match (args.encoding, encoding.takes_lmax()) {
         (None, _) => format!("SH irradiance (lmax {lmax})"),

@@ -358,6 +358,89 @@ fn irradiance_cli_matches_closed_forms() {
     }
 }
 
+/// `--error-map`: a sun straight up, nine terms: the error follows R&H's
+/// closed form row by row (1/16 of the peak facing the sun, 17/16 against
+/// 1; 3/32 on its horizon), drawn on the fixed 0-10% scale with the colour
+/// bar underneath.
+#[test]
+fn irradiance_error_map_shows_the_nine_term_errors_of_a_sun() {
+    let dir = temp_dir("accuracy_irradiance_error_map");
+    let sun = dir.join("sun.exr");
+    shlight_ok(&[
+        "synth",
+        "directional",
+        "-o",
+        s(&sun),
+        "--size",
+        "256x128",
+        "--direction",
+        "0,1,0",
+    ]);
+    let map = dir.join("sun-error.png");
+    shlight_ok(&[
+        "irradiance",
+        s(&sun),
+        "-o",
+        s(&dir.join("e.exr")),
+        "--size",
+        "64x32",
+        "--sh",
+        "2",
+        "--error-map",
+        s(&map),
+    ]);
+    let image = read_image(&map, &ReadOptions::default()).unwrap();
+    assert_eq!((image.width(), image.height()), (64, 32 + 36));
+    let linear = |c: f64| {
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let near = |x: usize, y: usize, error: f64| {
+        let want = shlight_accuracy::plot::colour_scale(error / 0.1).map(linear);
+        let got = image.get(x, y);
+        for c in 0..3 {
+            assert!(
+                (f64::from(got[c]) - want[c]).abs() < 0.03,
+                "({x}, {y}): {got:?} vs {want:?} for {error}"
+            );
+        }
+    };
+    // R&H's nine-term irradiance of a unit sun at angle t from the normal,
+    // against the truth max(cos t, 0), at each row's centre.
+    let nine_term_error = |y: usize| {
+        let c = ((y as f64 + 0.5) / 32.0 * PI).cos();
+        (0.25 + c / 2.0 + 5.0 / 32.0 * (3.0 * c * c - 1.0) - c.max(0.0)).abs()
+    };
+    // Rows away from the horizon, where the error changes slowly.
+    for y in [0, 4, 8, 23, 27, 31] {
+        near(32, y, nine_term_error(y));
+    }
+    assert!((nine_term_error(0) - 1.0 / 16.0).abs() < 2e-3);
+    let err = shlight_err(&[
+        "irradiance",
+        s(&sun),
+        "-o",
+        s(&dir.join("f.exr")),
+        "--error-map",
+        s(&map),
+    ]);
+    assert!(err.contains("--error-map needs --sh"), "{err}");
+    let err = shlight_err(&[
+        "irradiance",
+        s(&sun),
+        "-o",
+        s(&dir.join("f.exr")),
+        "--sh",
+        "2",
+        "--error-map",
+        s(&dir.join("m.exr")),
+    ]);
+    assert!(err.contains("m.exr") && err.contains("PNG"), "{err}");
+}
+
 /// Any layout and frame: a 40° cap drawn in a z-up cube cross, whose
 /// brute-force irradiance must follow Snyder's closed form
 /// (`shlight_accuracy::oracle::cap_irradiance`) at every output texel.

@@ -11,6 +11,7 @@ mod export_shaders;
 mod gltf_asset;
 #[cfg(feature = "gpu")]
 mod gpu;
+mod guide;
 mod layouts_cli;
 #[cfg(not(feature = "gpu"))]
 mod lean;

@@ -24,6 +24,8 @@
 //!   it (`shlight irradiance`).
 //! - [`error`]: the relative error (to the peak irradiance, as Ramamoorthi
 //!   & Hanrahan 2001) and log-log slopes.
+//! - [`legendre_study`]: Legendre polynomials by Rodrigues' formula
+//!   against the recurrence, to lmax 2800 (`shlight accuracy --legendre`).
 //! - [`plot`]: error-vs-samples and error-vs-lmax plots (SVG) and error
 //!   maps over the sphere (equirect PNG with a colour scale).
 //!
@@ -50,6 +52,7 @@
 pub mod compare;
 pub mod error;
 pub mod lambert;
+pub mod legendre_study;
 pub mod map_irradiance;
 pub mod oracle;
 pub mod plot;

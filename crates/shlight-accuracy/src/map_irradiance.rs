@@ -96,6 +96,16 @@ impl MapIrradiance {
             .collect()
     }
 
+    /// `|Ŷ(n) - Y(n)| / Y_peak` at each normal (the values
+    /// [`IrradianceErrors::peak_relative`] summarises, for an error map);
+    /// `None` when the map has no light.
+    #[must_use]
+    pub fn peak_relative_map(&self, estimate: &[DVec3]) -> Option<Vec<f64>> {
+        let reference: Vec<f64> = self.exact.iter().map(|e| luminance(*e)).collect();
+        let estimate: Vec<f64> = estimate.iter().map(|e| luminance(*e)).collect();
+        (error::peak(&reference) > 0.0).then(|| error::peak_relative_errors(&estimate, &reference))
+    }
+
     /// The errors of `estimate` (one value per normal); `None` when the map
     /// has no light (the exact luminance is nowhere positive), where no
     /// relative error exists.
@@ -183,10 +193,21 @@ mod tests {
         assert!((errors.pointwise.mean - 0.01).abs() < 1e-12, "{errors:?}");
         assert!((errors.pointwise.max - 0.01).abs() < 1e-12, "{errors:?}");
         assert!(errors.peak_relative.max <= 0.01 + 1e-12 && errors.peak_relative.max > 0.005);
+        // The error map holds the values the statistics summarise: 1% of
+        // each normal's luminance over the peak's.
+        let map_values = m.peak_relative_map(&brighter).unwrap();
+        let lum: Vec<f64> = m.exact.iter().map(|e| luminance(*e)).collect();
+        let peak = lum.iter().copied().fold(0.0, f64::max);
+        for (v, l) in map_values.iter().zip(&lum) {
+            assert!((v - 0.01 * l / peak).abs() < 1e-12);
+        }
+        let max = map_values.iter().copied().fold(0.0, f64::max);
+        assert!((max - errors.peak_relative.max).abs() < 1e-15);
         let dark = vec![[0.0f32; 3]; w * h];
         let map = EnvMap::new(Layout::Equirect, o, w, h, &dark).unwrap();
         let m = MapIrradiance::on_equirect(&map, (8, 4), o, &|_| {}).unwrap();
         assert_eq!(m.errors(&m.exact.clone()), None);
+        assert_eq!(m.peak_relative_map(&m.exact.clone()), None);
         assert!(MapIrradiance::on_equirect(&map, (0, 4), o, &|_| {}).is_err());
     }
 }

@@ -373,6 +373,16 @@ pub fn error_map(
     let values: Vec<f64> = (0..w * h)
         .map(|k| error(shlight_core::map::equirect_direction(k % w, k / w, w, h, o)))
         .collect();
+    error_map_values(w, h, max, &values)
+}
+
+/// [`error_map`] of values already computed, one per texel of the `w x h`
+/// map, row-major (top row first).
+///
+/// Panics if `values.len() != w * h`.
+#[must_use]
+pub fn error_map_values(w: usize, h: usize, max: Option<f64>, values: &[f64]) -> (Image, f64) {
+    assert_eq!(values.len(), w * h, "one value per texel");
     let top = max
         .unwrap_or_else(|| values.iter().copied().fold(0.0, f64::max))
         .max(f64::MIN_POSITIVE);
@@ -476,6 +486,18 @@ mod tests {
         assert!((0..64).any(|x| image.get(x, 32 + 22) == [0.0; 3]));
         assert_eq!(format_error(0.09375), "9.38%");
         assert_eq!(format_error(3.2e-5), "3.2e-5");
+    }
+
+    #[test]
+    fn error_maps_of_values_use_a_fixed_scale_when_given() {
+        // Row 0 at 0, row 1 at half the scale, row 2 above it (clamped).
+        let values: Vec<f64> = (0..12).map(|k| [0.0, 0.05, 0.3][k / 4]).collect();
+        let (image, top) = error_map_values(4, 3, Some(0.1), &values);
+        assert_eq!(top, 0.1);
+        let want = |t| colour_scale(t).map(|c| srgb_to_linear(c as f32));
+        assert_eq!(image.get(1, 0), want(0.0));
+        assert_eq!(image.get(2, 1), want(0.5));
+        assert_eq!(image.get(3, 2), want(1.0));
     }
 
     #[test]
