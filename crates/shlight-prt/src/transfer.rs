@@ -350,9 +350,29 @@ pub fn cast_rays(mesh: &Mesh, dirs: &[Vec3]) -> Vec<(Vec3, Vec<Vec3>)> {
 /// times the bounding-box diagonal, `c` the unit vector in the tangent plane
 /// from `p` towards the mean centroid of the triangles that use it (zero
 /// for a vertex no triangle uses, or one whose mean lies along its normal,
-/// like a sphere's pole).
+/// like a sphere's pole) — unless the segment from `p` to that point
+/// crosses the mesh, which an origin must never do: a vertex just inside
+/// another part of a self-intersecting mesh would have its rays start on
+/// the far side of the surface it is inside, and be lit where every ray from
+/// it meets a back face. Then the first of `p + eps n`, `p + eps n / 4`,
+/// `p + eps n / 16`, ... ([`SHORTER_OFFSETS`] of them) whose segment from
+/// `p` crosses nothing is taken, and the shortest when every one crosses.
 #[must_use]
 pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
+    ray_origins_against(mesh, &Bvh::new(&mesh.positions, &mesh.triangles))
+}
+
+/// Normal-only offsets tried, each a quarter of the last, when the
+/// concave-edge offset of [`ray_origins`] would cross the mesh.
+pub const SHORTER_OFFSETS: usize = 8;
+
+/// Hits on a segment from `p` nearer than this fraction of its length are
+/// the triangles through `p` itself (its own), which it leaves, not crosses.
+const OWN_TRIANGLES: f32 = 1e-3;
+
+/// [`ray_origins`], the segments from each `p` tested against `bvh` (the
+/// mesh's surface, or the surface it was subdivided from).
+fn ray_origins_against(mesh: &Mesh, bvh: &Bvh) -> Vec<Vec3> {
     let bounds = mesh.bounds();
     let eps = OFFSET * (bounds.1 - bounds.0).length();
     let mut centroids = vec![(DVec3::ZERO, 0u32); mesh.vertex_count()];
@@ -368,8 +388,14 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
             e.1 += 1;
         }
     }
+    // Whether the segment from `p` to `p + offset` crosses a triangle
+    // other than those through `p`.
+    let crosses = |p: Vec3, offset: Vec3| {
+        let start = p + OWN_TRIANGLES * offset;
+        bvh.occluded(&crate::bvh::Ray::new(start, offset, 1.0 - OWN_TRIANGLES))
+    };
     mesh.positions
-        .iter()
+        .par_iter()
         .zip(&mesh.normals)
         .zip(&centroids)
         .map(|((p, n), &(sum, count))| {
@@ -382,7 +408,18 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
                     .try_normalize()
                     .map_or(Vec3::ZERO, |c| c.as_vec3())
             };
-            *p + eps * (*n + inward)
+            let offset = eps * (*n + inward);
+            if !crosses(*p, offset) {
+                return *p + offset;
+            }
+            let mut offset = eps * *n;
+            for _ in 1..SHORTER_OFFSETS {
+                if !crosses(*p, offset) {
+                    break;
+                }
+                offset *= 0.25;
+            }
+            *p + offset
         })
         .collect()
 }
@@ -794,7 +831,7 @@ fn bake_with(
         };
         let (cast_positions, bvh) = (occluder.positions(), occluder.bvh());
         // Where the rays start, by rank.
-        let origins = ray_origins(mesh);
+        let origins = ray_origins_against(mesh, bvh.bvh());
         let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
         let done = AtomicUsize::new(0);
         visible
