@@ -134,6 +134,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     let bars = StageBars::new(ui, |stage| match stage {
         Stage::Rays => "directions".to_string(),
         Stage::Bounce(k) => format!("bounce {k}"),
+        Stage::Matrices => "matrices".to_string(),
     });
     let start = Instant::now();
     let (transfer, file) = bake_file(&mesh, &args.mesh, &request, &|stage, done, total| {
