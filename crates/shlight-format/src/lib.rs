@@ -19,7 +19,8 @@
 //! - [`read_coefficients`]: any file `shlight convert` reads (a coefficient
 //!   file or an engine format that keeps enough), as a [`CoeffFile`].
 //! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
-//! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
+//! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer (vectors,
+//!   or glossy matrices with [`GlossyData`], format version 2)
 //!   (docs/shprt.md).
 //! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
 //!   and transfer matrices, and its JSON form (docs/shvol.md).
