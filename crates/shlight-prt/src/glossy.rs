@@ -424,17 +424,16 @@ pub fn file_exit_radiance(
                 .into(),
         );
     };
-    if let View::Direction(d) = view {
-        if !(d.length_squared() > 0.0 && d.is_finite()) {
+    match view {
+        View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
             return Err(format!(
                 "the view direction {d} has zero length (or is not finite)"
             ));
         }
-    }
-    if let View::Eye(e) = view {
-        if !e.is_finite() {
+        View::Eye(e) if !e.is_finite() => {
             return Err(format!("the eye {e} is not finite"));
         }
+        _ => {}
     }
     let brdf = Brdf::parse(&glossy.brdf)?;
     let positions: Vec<Vec3> = glossy.positions.iter().map(|p| Vec3::from(*p)).collect();
