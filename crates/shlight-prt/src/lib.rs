@@ -15,6 +15,8 @@
 //!   with diffuse interreflections), and [`glossy::exit_radiance`], the
 //!   view-dependent exit radiance of a [`brdf::Brdf`] lobe ([`glossy`]
 //!   states the definition).
+//! - [`cpca::compress`]: clustered PCA of glossy matrices (Sloan, Hall,
+//!   Hart & Snyder 2003), and [`cpca::Cpca::reconstruct`].
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
 //!   ([`shlight_format::ShprtFile`], docs/shprt.md).
 //! - [`bake_file::bake_file`]: a bake as a front end asks for it
@@ -52,6 +54,7 @@ pub mod bake_file;
 pub mod brdf;
 pub mod brute_force;
 pub mod bvh;
+pub mod cpca;
 mod error;
 pub mod glossy;
 pub mod gltf_export;

@@ -403,3 +403,44 @@ fn glossy_bakes_are_the_same_at_any_thread_count() {
     }
     assert!(b < r, "{b} vs {r}");
 }
+
+#[test]
+fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
+    let mesh = generate::plane_under_sphere(1.0, 10, 5, 3.0, 4);
+    let t = bake_glossy(&mesh, &options(2, 256, Mode::Shadowed, 0.8), &|_, _, _| {});
+    let dim = sh_count(2) * sh_count(2);
+    let n = t.vertex_count;
+    let peak = t.matrices.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+    let worst = |c: usize, k: usize| {
+        let z = shlight_prt::cpca::compress(&t.matrices, dim, c, k, 3).unwrap();
+        z.reconstruct()
+            .iter()
+            .zip(&t.matrices)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max)
+    };
+    // A cluster per vertex, or every direction of a few clusters.
+    assert_eq!(worst(n, 0), 0.0);
+    assert!(worst(4, dim) < 1e-5 * peak, "{}", worst(4, dim));
+    // Compressed harder, it errs more.
+    let (k8, k2) = (worst(4, 8), worst(4, 2));
+    assert!(k2 > k8 && k8 > 1e-5 * peak, "{k2} {k8}");
+    // And the exit radiance of the reproduced matrices is the bake's.
+    let z = shlight_prt::cpca::compress(&t.matrices, dim, n, 0, 3).unwrap();
+    let brdf = Brdf::Phong { exponent: 8.0 };
+    let light = test_light();
+    let view = View::Direction(DVec3::new(0.1, 1.0, 0.4));
+    let exit = |m: &[f32]| {
+        exit_radiance(
+            m,
+            2,
+            1,
+            &mesh.positions,
+            &mesh.normals,
+            &brdf.lambda(2),
+            light.as_slice(),
+            view,
+        )
+    };
+    assert_eq!(exit(&z.reconstruct()), exit(&t.matrices));
+}
