@@ -63,6 +63,10 @@ pub struct PrtArgs {
     /// of exponent S (e.g. phong:32).
     #[arg(long)]
     pub brdf: Option<String>,
+    /// Compress --mode glossy's matrices: cpca:C,K, clustered PCA with C
+    /// clusters of K basis vectors each (e.g. cpca:64,8).
+    #[arg(long)]
+    pub compress: Option<String>,
     /// Diffuse albedo, linear: one value or R,G,B [default: the mesh's vertex
     /// colours if it has them, otherwise 0.8].
     #[arg(long, value_parser = parse_albedo)]
@@ -110,6 +114,13 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         (None, true) => bail!("--mode glossy needs --brdf phong:S (e.g. --brdf phong:32)"),
         (Some(_), false) => bail!("--brdf is the BRDF of --mode glossy"),
         (None, false) => None,
+    };
+    let compress = match (&args.compress, glossy) {
+        (Some(text), true) => Some(
+            shlight_prt::cpca::parse_cpca(text).map_err(|e| anyhow::anyhow!("--compress: {e}"))?,
+        ),
+        (Some(_), false) => bail!("--compress compresses the matrices of --mode glossy"),
+        (None, _) => None,
     };
     if glossy && args.preview.is_some() {
         bail!(
@@ -167,7 +178,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         ui.note(format!("{name}: albedo from the mesh's vertex colours"));
     }
     if let Some(brdf) = brdf {
-        return glossy_bake(args, ui, &mesh, &request, brdf);
+        return glossy_bake(args, ui, &mesh, &request, brdf, compress);
     }
     let bars = StageBars::new(ui, |stage| match stage {
         Stage::Rays => "directions".to_string(),
@@ -210,6 +221,7 @@ fn glossy_bake(
     mesh: &Mesh,
     request: &BakeRequest,
     brdf: Brdf,
+    compress: Option<(usize, usize)>,
 ) -> Result<()> {
     let name = args.mesh.display().to_string();
     let (albedo, _) = request.albedo(mesh);
@@ -238,6 +250,14 @@ fn glossy_bake(
             ))
         );
     }
+    let dim = channels * (args.lmax + 1).pow(4);
+    if let Some((_, vectors)) = compress.filter(|&(_, k)| k > dim) {
+        bail!(
+            "--compress: a vertex's matrices hold {dim} values at --lmax {}: at most {dim} basis \
+             vectors per cluster, not {vectors}",
+            args.lmax
+        );
+    }
     ui.note(format!(
         "{name}: glossy matrices take {:.1} MiB ({} vertices x {channels} channel{} x {}^2 floats, with positions and normals)",
         mib(bytes),
@@ -251,7 +271,7 @@ fn glossy_bake(
         Stage::Matrices => "matrices".to_string(),
     });
     let start = Instant::now();
-    let (transfer, file) =
+    let (transfer, mut file) =
         bake_glossy_file(mesh, &args.mesh, request, brdf, &|stage, done, total| {
             bars.update(stage, done, total)
         });
@@ -266,6 +286,19 @@ fn glossy_bake(
         transfer.samples,
         transfer.rays,
     ));
+    if let Some((clusters, vectors)) = compress {
+        let bar = ui.spinner("compressing (CPCA)");
+        let e = shlight_prt::cpca::compress_file(&mut file, clusters, vectors, args.seed)
+            .map_err(|e| anyhow::anyhow!("--compress: {e}"))?;
+        bar.finish_and_clear();
+        ui.note(format!(
+            "{name}: cpca:{clusters},{vectors}: {:.1} MiB of matrices in {:.1} MiB; RMS error {:.3e} ({:.2}% of the entries' RMS)",
+            mib(e.bytes_before),
+            mib(e.bytes_after),
+            e.rms,
+            100.0 * e.rms / e.rms_entries.max(f64::MIN_POSITIVE),
+        ));
+    }
     if let Some(out) = &args.output {
         file.write(out)?;
     }

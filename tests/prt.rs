@@ -328,6 +328,113 @@ fn glossy_files_are_sampled_toward_a_view_and_bad_glossy_input_is_refused() {
     ]);
     assert!(err.contains("glTF cannot carry glossy transfer"), "{err}");
     assert!(!keep.exists());
+    // Compressed by CPCA: with a cluster per vertex the same radiance; with
+    // few clusters and vectors a smaller file, near it.
+    let n = mesh.vertex_count();
+    let compressed = |spec: &str, name: &str| {
+        let path = dir.join(name);
+        shlight_ok(&[
+            "prt",
+            s(&obj),
+            "--mode",
+            "glossy",
+            "--brdf",
+            "phong:50",
+            "--lmax",
+            "3",
+            "--samples",
+            "256",
+            "--compress",
+            spec,
+            "-o",
+            s(&path),
+        ]);
+        path
+    };
+    let exact = compressed(&format!("cpca:{n},0"), "exact.shprt");
+    let small = compressed("cpca:4,6", "small.shprt");
+    let sample_of = |path: &Path, name: &str| {
+        let json = dir.join(name);
+        shlight_ok(&[
+            "sample",
+            s(path),
+            "--light",
+            s(&light),
+            "--view",
+            "-0.5,0.2,0.8",
+            "-o",
+            s(&json),
+        ]);
+        crate::util::read_json(&json)["radiance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r[0].as_f64().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    let peak = by_view.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in sample_of(&exact, "exact.json").iter().zip(&by_view) {
+        assert!((a - b).abs() < 1e-9 * peak, "{a} vs {b}");
+    }
+    let near = sample_of(&small, "small.json");
+    let worst = near
+        .iter()
+        .zip(&by_view)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f64, f64::max);
+    assert!(worst > 0.0 && worst < 0.25 * peak, "{worst} of {peak}");
+    let size = |p: &Path| std::fs::metadata(p).unwrap().len();
+    assert!(
+        size(&small) < size(&out) / 4,
+        "{} vs {}",
+        size(&small),
+        size(&out)
+    );
+    for (args, what) in [
+        (
+            vec!["--brdf", "phong:8", "--compress", "cpca:0,2"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec!["--brdf", "phong:8", "--compress", "pca:2,2"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec!["--brdf", "phong:8", "--compress", "cpca:4"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec![
+                "--brdf",
+                "phong:8",
+                "--lmax",
+                "1",
+                "--compress",
+                "cpca:2,17",
+            ],
+            "at most 16",
+        ),
+    ] {
+        let mut all = vec![
+            "prt",
+            s(&obj),
+            "--mode",
+            "glossy",
+            "--samples",
+            "64",
+            "-o",
+            s(&keep),
+        ];
+        all.extend(args);
+        let err = shlight_err(&all);
+        assert!(err.contains(what), "{all:?}: {err}");
+    }
+    let err = shlight_err(&["prt", s(&obj), "--compress", "cpca:2,2", "-o", s(&keep)]);
+    assert!(
+        err.contains("--compress compresses the matrices of --mode glossy"),
+        "{err}"
+    );
+    assert!(!keep.exists());
     // The GPU commands refuse a glossy file before they look for a GPU.
     let png = dir.join("x.png");
     let err = shlight_err(&[

@@ -88,14 +88,19 @@ impl Transfer {
 
     /// A glossy file's matrices, (vertex_count, channels, n, n) float32 with
     /// n = (lmax+1)**2: the transferred radiance is `matrices[v, c] @ L[:n,
-    /// c]`. None for diffuse transfer.
+    /// c]` (a CPCA-compressed file's reconstructed). None for diffuse
+    /// transfer.
     #[getter]
     fn matrices<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray4<f32>>> {
         let f = &self.file;
-        f.glossy.as_ref()?;
+        let g = f.glossy.as_ref()?;
         let n = (f.lmax + 1) * (f.lmax + 1);
+        let values = match &g.cpca {
+            None => f.transfer.clone(),
+            Some(z) => shlight_prt::cpca::reconstruct_data(z, f.channels * n * n),
+        };
         Some(
-            Array4::from_shape_vec((f.vertex_count, f.channels, n, n), f.transfer.clone())
+            Array4::from_shape_vec((f.vertex_count, f.channels, n, n), values)
                 .expect("vertex_count x channels x n x n values")
                 .into_pyarray(py),
         )

@@ -77,5 +77,5 @@ pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
-pub use shprt::{GlossyData, ShprtFile};
+pub use shprt::{CpcaData, GlossyData, ShprtFile};
 pub use shvol::ShvolFile;

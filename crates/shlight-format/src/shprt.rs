@@ -15,7 +15,10 @@
 //! Glossy transfer (`"mode":"glossy"`) is format version 2: the data is the
 //! vertices' positions (`3 * vertex_count` `f32`), their normals (as many),
 //! then `vertex_count * channels * (lmax+1)^4` matrix entries, vertex-major,
-//! then channel, then row, then column. Diffuse files stay version 1.
+//! then channel, then row, then column; compressed by clustered PCA
+//! (`"compression":"cpca:C,K"`), the cluster means, bases, each vertex's
+//! cluster index and weights instead of the matrices. Diffuse files stay
+//! version 1.
 
 use std::path::Path;
 
@@ -80,6 +83,28 @@ pub struct GlossyData {
     pub positions: Vec<[f32; 3]>,
     /// Each vertex's unit normal.
     pub normals: Vec<[f32; 3]>,
+    /// The matrices compressed by clustered PCA (`"compression":
+    /// "cpca:C,K"`); the file's `transfer` is then empty.
+    pub cpca: Option<CpcaData>,
+}
+
+/// Glossy matrices compressed by clustered PCA (Sloan, Hall, Hart & Snyder
+/// 2003): vertex `v`'s matrix (all its channels, `dim` values) is
+/// `means[c] + sum_k weights[v][k] bases[c][k]`, `c = cluster[v]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CpcaData {
+    /// Clusters `C`.
+    pub clusters: usize,
+    /// Basis vectors per cluster `K`.
+    pub vectors: usize,
+    /// `C x dim` means.
+    pub means: Vec<f32>,
+    /// `C x K x dim` basis vectors.
+    pub bases: Vec<f32>,
+    /// Each vertex's cluster, below `C`.
+    pub cluster: Vec<u32>,
+    /// `vertex_count x K` weights.
+    pub weights: Vec<f32>,
 }
 
 impl ShprtFile {
@@ -115,7 +140,7 @@ impl ShprtFile {
     }
 
     /// The transfer of vertex `v`, channel `c` (a glossy file's matrix,
-    /// row by row).
+    /// row by row; not for a compressed file, whose `transfer` is empty).
     #[must_use]
     pub fn vertex(&self, v: usize, c: usize) -> &[f32] {
         let nc = self.coeffs_per_channel();
@@ -152,6 +177,15 @@ impl ShprtFile {
                  matrices vertex-major, then channel, then row i (transferred radiance), then \
                  column j (light), T_i = sum_j M_ij L_j, SH index l(l+1)+m"
             );
+            if let Some(z) = &g.cpca {
+                header["compression"] = json!(format!("cpca:{},{}", z.clusters, z.vectors));
+                header["data"] = json!(
+                    "f32 little-endian: positions (x, y, z per vertex), normals (likewise), \
+                     cluster means (C x dim), basis vectors (C x K x dim), each vertex's \
+                     cluster index, each vertex's K weights; dim = channels x rows x columns \
+                     of a vertex's matrices, as uncompressed"
+                );
+            }
         }
         header
     }
@@ -165,7 +199,15 @@ impl ShprtFile {
                 let mut data = Vec::with_capacity(6 * self.vertex_count + self.transfer.len());
                 data.extend(g.positions.iter().flatten());
                 data.extend(g.normals.iter().flatten());
-                data.extend(&self.transfer);
+                match &g.cpca {
+                    None => data.extend(&self.transfer),
+                    Some(z) => {
+                        data.extend(&z.means);
+                        data.extend(&z.bases);
+                        data.extend(z.cluster.iter().map(|&c| c as f32));
+                        data.extend(&z.weights);
+                    }
+                }
                 header_line::to_bytes(&self.header(), &data)
             }
         }
@@ -242,18 +284,47 @@ impl ShprtFile {
         let nc = sh_count(lmax);
         let per_channel = if glossy { nc * nc } else { nc };
         let vectors = if glossy { 6 * vertex_count } else { 0 };
-        let count = vertex_count
-            .checked_mul(channels * per_channel)
-            .and_then(|c| c.checked_add(vectors))
-            .filter(|c| c.checked_mul(4).is_some())
-            .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
+        // A compressed glossy file: its clusters and vectors per cluster.
+        let compression = match header.get("compression") {
+            None => None,
+            Some(v) if glossy => {
+                let text = v.as_str().unwrap_or_default();
+                let parsed = text
+                    .strip_prefix("cpca:")
+                    .and_then(|r| r.split_once(','))
+                    .and_then(|(c, k)| Some((c.parse::<usize>().ok()?, k.parse::<usize>().ok()?)));
+                match parsed {
+                    Some((c, k)) if c >= 1 && k <= channels * per_channel => Some((c, k)),
+                    _ => {
+                        return Err(bad(format!(
+                            "bad header (\"compression\" {v} is not cpca:C,K with C >= 1 and K at most {})",
+                            channels * per_channel
+                        )));
+                    }
+                }
+            }
+            Some(_) => {
+                return Err(bad("bad header (\"compression\" in a diffuse file)".into()));
+            }
+        };
+        let dim = channels * per_channel;
+        let count = match compression {
+            None => vertex_count.checked_mul(dim),
+            Some((c, k)) => c
+                .checked_mul(k + 1)
+                .and_then(|x| x.checked_mul(dim))
+                .and_then(|x| x.checked_add(vertex_count.checked_mul(k + 1)?)),
+        }
+        .and_then(|c| c.checked_add(vectors))
+        .filter(|c| c.checked_mul(4).is_some())
+        .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
         if data.len() < 4 * count {
             return Err(bad(format!(
                 "truncated: {vertex_count} vertices x {channels} channels x {per_channel} {} need {} bytes of data, the file has {}",
-                if glossy {
-                    "matrix entries (with positions and normals)"
-                } else {
-                    "coefficients"
+                match (glossy, compression) {
+                    (false, _) => "coefficients",
+                    (true, None) => "matrix entries (with positions and normals)",
+                    (true, Some(_)) => "matrix entries, compressed (with positions and normals)",
                 },
                 4 * count,
                 data.len()
@@ -275,13 +346,40 @@ impl ShprtFile {
                 v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
             };
             let (positions, normals) = transfer.split_at(3 * vertex_count);
-            let data = GlossyData {
+            let mut data = GlossyData {
                 brdf,
                 transport,
                 positions: triples(positions),
                 normals: triples(normals),
+                cpca: None,
             };
             transfer = rest;
+            if let Some((c, k)) = compression {
+                let mut rest = std::mem::take(&mut transfer);
+                let weights = rest.split_off(c * (k + 1) * dim + vertex_count);
+                let indices = rest.split_off(c * (k + 1) * dim);
+                let bases = rest.split_off(c * dim);
+                let cluster = indices
+                    .iter()
+                    .map(|&x| {
+                        if x >= 0.0 && x < c as f32 && x.fract() == 0.0 {
+                            Ok(x as u32)
+                        } else {
+                            Err(bad(format!(
+                                "a vertex's cluster index {x} is not one of the {c} clusters"
+                            )))
+                        }
+                    })
+                    .collect::<Result<Vec<u32>>>()?;
+                data.cpca = Some(CpcaData {
+                    clusters: c,
+                    vectors: k,
+                    means: rest,
+                    bases,
+                    cluster,
+                    weights,
+                });
+            }
             Some(data)
         } else {
             None
@@ -342,6 +440,7 @@ mod tests {
                 transport: "shadowed".into(),
                 positions: vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]],
                 normals: vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+                cpca: None,
             }),
             ..sample()
         }
@@ -390,6 +489,35 @@ mod tests {
         );
         assert!(e(swap("\"brdf\"", "\"bdrf\"")).contains("\"brdf\""));
         assert!(e(bytes[..bytes.len() - 4].to_vec()).contains("truncated"));
+        // Compressed: 2 clusters of 1 vector over the 16 entries.
+        let mut z = glossy_sample();
+        z.transfer.clear();
+        z.glossy.as_mut().unwrap().cpca = Some(CpcaData {
+            clusters: 2,
+            vectors: 1,
+            means: (0..32).map(|i| i as f32).collect(),
+            bases: (0..32).map(|i| -(i as f32)).collect(),
+            cluster: vec![1, 0],
+            weights: vec![0.5, -0.25],
+        });
+        let zb = z.to_bytes();
+        let znl = zb.iter().position(|&b| b == b'\n').unwrap();
+        assert_eq!(zb.len(), znl + 1 + (12 + 64 + 2 + 2) * 4);
+        assert_eq!(ShprtFile::from_bytes(&zb, Path::new("z.shprt")).unwrap(), z);
+        let zheader = String::from_utf8_lossy(&zb[..znl]).into_owned();
+        assert!(
+            zheader.contains("\"compression\":\"cpca:2,1\""),
+            "{zheader}"
+        );
+        // A cluster index out of range, and a compression beyond the
+        // matrices' size, are refused.
+        let mut bad_index = zb.clone();
+        let at = znl + 1 + (12 + 64) * 4;
+        bad_index[at..at + 4].copy_from_slice(&2.0f32.to_le_bytes());
+        assert!(e(bad_index).contains("cluster index 2"));
+        let mut big = zheader.replace("cpca:2,1", "cpca:2,17").into_bytes();
+        big.extend_from_slice(&zb[znl..]);
+        assert!(e(big).contains("K at most 16"));
     }
 
     #[test]

@@ -12,7 +12,7 @@
 //! with the `b_ck` orthonormal: a renderer computes `m_c L` and `b_ck L`
 //! once per cluster and light, and each vertex sums `K + 1` of them. This is
 //! the paper's static CPCA: clusters by k-means (Lloyd's iteration, from
-//! the vertices `i n / C` as seeds, until no vertex changes cluster or 32
+//! the vertices `i n / C` as seeds, until no vertex changes cluster or 16
 //! passes), then per cluster the `K` leading principal directions of its
 //! members by subspace iteration (`X^T X V`, orthonormalised, from a seeded
 //! start; exact once `K` reaches the cluster's rank, since `X^T X V` then
@@ -21,14 +21,15 @@
 //! With `C` the vertex count, or `K` at least each cluster's member count
 //! (or `dim`), the matrices are reproduced but for `f32` rounding.
 //!
-//! Not yet wired to `shlight prt --compress cpca:C,K` nor to the `.shprt`
-//! file.
+//! [`compress_file`] compresses a glossy `.shprt` file's matrices in place
+//! (`shlight prt --compress cpca:C,K`); the file then keeps the means, bases,
+//! cluster indices and weights (docs/shprt.md).
 
 use rand::{Rng, SeedableRng, rngs::StdRng};
 use rayon::prelude::*;
 
 /// Passes of Lloyd's iteration at most.
-const KMEANS_PASSES: usize = 32;
+const KMEANS_PASSES: usize = 16;
 
 /// Subspace iterations per cluster.
 const SUBSPACE_PASSES: usize = 24;
@@ -89,6 +90,114 @@ impl Cpca {
     pub fn stored_floats(&self) -> usize {
         self.means.len() + self.bases.len() + self.cluster.len() * (1 + self.vectors)
     }
+}
+
+/// Parses `cpca:C,K` (`C >= 1` clusters, `K >= 0` vectors each).
+///
+/// # Errors
+/// A message saying what `cpca:C,K` takes.
+pub fn parse_cpca(text: &str) -> Result<(usize, usize), String> {
+    let parsed = text
+        .trim()
+        .strip_prefix("cpca:")
+        .and_then(|r| r.split_once(','))
+        .and_then(|(c, k)| {
+            Some((
+                c.trim().parse::<usize>().ok()?,
+                k.trim().parse::<usize>().ok()?,
+            ))
+        });
+    match parsed {
+        Some((c, k)) if c >= 1 => Ok((c, k)),
+        _ => Err(format!(
+            "compression \"{text}\" is not cpca:C,K (C >= 1 clusters of K basis vectors, e.g. cpca:64,8)"
+        )),
+    }
+}
+
+/// How far a compression is from the matrices it replaced.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompressionError {
+    /// Root mean square of the entries' errors.
+    pub rms: f64,
+    /// Root mean square of the entries themselves.
+    pub rms_entries: f64,
+    /// Bytes of the matrices before.
+    pub bytes_before: u64,
+    /// Bytes of the compressed form.
+    pub bytes_after: u64,
+}
+
+/// Compresses a glossy file's matrices in place into `clusters` clusters
+/// of `vectors` basis vectors ([`compress`], the vectors being each
+/// vertex's matrices, all channels), and says how far the compression is
+/// from them.
+///
+/// # Errors
+/// A diffuse or already compressed file, or `vectors` beyond a vertex's
+/// matrix entries.
+pub fn compress_file(
+    file: &mut shlight_format::ShprtFile,
+    clusters: usize,
+    vectors: usize,
+    seed: u64,
+) -> Result<CompressionError, String> {
+    let dim = file.channels * file.coeffs_per_channel();
+    let Some(glossy) = file.glossy.as_mut() else {
+        return Err("only glossy transfer matrices are compressed (--mode glossy)".into());
+    };
+    if glossy.cpca.is_some() {
+        return Err("the matrices are compressed already".into());
+    }
+    let z = compress(&file.transfer, dim, clusters, vectors, seed)?;
+    let back = z.reconstruct();
+    let n = file.transfer.len().max(1) as f64;
+    let rms = (back
+        .iter()
+        .zip(&file.transfer)
+        .map(|(a, b)| (f64::from(*a) - f64::from(*b)).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    let rms_entries = (file
+        .transfer
+        .iter()
+        .map(|x| f64::from(*x).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    let error = CompressionError {
+        rms,
+        rms_entries,
+        bytes_before: 4 * file.transfer.len() as u64,
+        bytes_after: 4 * z.stored_floats() as u64,
+    };
+    glossy.cpca = Some(shlight_format::CpcaData {
+        clusters: z.clusters,
+        vectors: z.vectors,
+        means: z.means,
+        bases: z.bases,
+        cluster: z.cluster,
+        weights: z.weights,
+    });
+    file.transfer = Vec::new();
+    Ok(error)
+}
+
+/// The matrices a file's compressed form gives back (`dim` values per
+/// vertex: its channels' matrices).
+#[must_use]
+pub fn reconstruct_data(z: &shlight_format::CpcaData, dim: usize) -> Vec<f32> {
+    Cpca {
+        dim,
+        clusters: z.clusters,
+        vectors: z.vectors,
+        means: z.means.clone(),
+        bases: z.bases.clone(),
+        cluster: z.cluster.clone(),
+        weights: z.weights.clone(),
+    }
+    .reconstruct()
 }
 
 /// Squared distance in `f64`.

@@ -288,6 +288,7 @@ impl GlossyTransfer {
                 transport: self.transport.name().to_string(),
                 positions: mesh.positions.iter().map(|p| p.to_array()).collect(),
                 normals: mesh.normals.iter().map(|n| n.to_array()).collect(),
+                cpca: None,
             }),
         }
     }
@@ -438,6 +439,18 @@ pub fn file_exit_radiance(
     let brdf = Brdf::parse(&glossy.brdf)?;
     let positions: Vec<Vec3> = glossy.positions.iter().map(|p| Vec3::from(*p)).collect();
     let normals: Vec<Vec3> = glossy.normals.iter().map(|n| Vec3::from(*n)).collect();
+    if let Some(z) = &glossy.cpca {
+        return Ok(compressed_exit_radiance(
+            z,
+            file.lmax,
+            file.channels,
+            &positions,
+            &normals,
+            &brdf.lambda(file.lmax),
+            light,
+            view,
+        ));
+    }
     Ok(exit_radiance(
         &file.transfer,
         file.lmax,
@@ -448,4 +461,79 @@ pub fn file_exit_radiance(
         light,
         view,
     ))
+}
+
+/// [`exit_radiance`] of CPCA-compressed matrices, as a renderer of them
+/// computes it (Sloan, Hall, Hart & Snyder 2003): per cluster the mean's
+/// and each basis matrix's transferred radiance `m_c L`, `b_ck L` once,
+/// then per vertex `T = m_c L + sum_k w_k (b_ck L)`.
+#[allow(clippy::too_many_arguments)]
+fn compressed_exit_radiance(
+    z: &shlight_format::CpcaData,
+    lmax: usize,
+    channels: usize,
+    positions: &[Vec3],
+    normals: &[Vec3],
+    lambda: &[f64],
+    light: &[DVec3],
+    view: View,
+) -> Vec<DVec3> {
+    let nc = sh_count(lmax);
+    let nn = nc * nc;
+    let dim = channels * nn;
+    let used = nc.min(light.len());
+    let k = z.vectors;
+    // (K + 1) transferred radiances per cluster, each `channels x nc` of
+    // RGB: row `i` of channel `ch` applied to the light's colour `c`.
+    let apply = |m: &[f32]| -> Vec<DVec3> {
+        let mut t = vec![DVec3::ZERO; channels * nc];
+        for ch in 0..channels {
+            for i in 0..nc {
+                let row = &m[ch * nn + i * nc..][..used];
+                t[ch * nc + i] = row
+                    .iter()
+                    .zip(light)
+                    .map(|(mij, lj)| f64::from(*mij) * *lj)
+                    .sum();
+            }
+        }
+        t
+    };
+    let per_cluster: Vec<Vec<Vec<DVec3>>> = (0..z.clusters)
+        .into_par_iter()
+        .map(|c| {
+            std::iter::once(apply(&z.means[c * dim..][..dim]))
+                .chain((0..k).map(|j| apply(&z.bases[(c * k + j) * dim..][..dim])))
+                .collect()
+        })
+        .collect();
+    let basis = ShBasis::<f64>::new(lmax);
+    (0..positions.len())
+        .into_par_iter()
+        .map_init(
+            || vec![0.0f64; nc],
+            |y, v| {
+                let n = normals[v].as_dvec3().normalize_or_zero();
+                let w_o = view.towards_eye(positions[v].as_dvec3(), n);
+                let r = 2.0 * n.dot(w_o) * n - w_o;
+                basis.eval(r.normalize_or(n), y);
+                let parts = &per_cluster[z.cluster[v] as usize];
+                let w = &z.weights[v * k..][..k];
+                let mut out = DVec3::ZERO;
+                for c in 0..3 {
+                    let ch = c % channels;
+                    out[c] = (0..nc)
+                        .map(|i| {
+                            let mut t = parts[0][ch * nc + i][c];
+                            for (j, wj) in w.iter().enumerate() {
+                                t += f64::from(*wj) * parts[j + 1][ch * nc + i][c];
+                            }
+                            lambda[shlight_core::sh::lm_from_index(i).0] * y[i] * t
+                        })
+                        .sum();
+                }
+                out
+            },
+        )
+        .collect()
 }

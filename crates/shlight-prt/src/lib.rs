@@ -16,7 +16,8 @@
 //!   view-dependent exit radiance of a [`brdf::Brdf`] lobe ([`glossy`]
 //!   states the definition).
 //! - [`cpca::compress`]: clustered PCA of glossy matrices (Sloan, Hall,
-//!   Hart & Snyder 2003), and [`cpca::Cpca::reconstruct`].
+//!   Hart & Snyder 2003), [`cpca::Cpca::reconstruct`], and
+//!   [`cpca::compress_file`], a glossy `.shprt` file compressed.
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
 //!   ([`shlight_format::ShprtFile`], docs/shprt.md).
 //! - [`bake_file::bake_file`]: a bake as a front end asks for it
