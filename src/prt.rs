@@ -15,7 +15,11 @@ use glam::DVec3;
 use shlight_format::ShprtFile;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
-use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
+use shlight_prt::bake_file::{
+    BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
+};
+use shlight_prt::brdf::Brdf;
+use shlight_prt::glossy::{MAX_GLOSSY_BYTES, glossy_bytes, glossy_channels};
 use shlight_prt::transfer::{Albedo, Mode, Stage};
 
 use crate::progress::{StageBars, Ui};
@@ -31,6 +35,9 @@ pub enum ModeArg {
     Shadowed,
     /// With self-shadowing and `--bounces` bounces of diffuse interreflection.
     Interreflected,
+    /// Glossy transfer matrices (shadowed, with `--bounces` diffuse
+    /// bounces when given) for the view-dependent `--brdf`; .shprt only.
+    Glossy,
 }
 
 /// Arguments of `shlight prt`.
@@ -48,9 +55,18 @@ pub struct PrtArgs {
     /// Light transport.
     #[arg(long, value_enum, default_value_t = ModeArg::Shadowed)]
     pub mode: ModeArg,
-    /// Bounces of interreflection (with --mode interreflected) [default: 2].
+    /// Bounces of interreflection (with --mode interreflected [default: 2],
+    /// or --mode glossy [default: 0]).
     #[arg(long)]
     pub bounces: Option<u32>,
+    /// The glossy BRDF of --mode glossy: phong:S, the normalised Phong lobe
+    /// of exponent S (e.g. phong:32).
+    #[arg(long)]
+    pub brdf: Option<String>,
+    /// Compress --mode glossy's matrices: cpca:C,K, clustered PCA with C
+    /// clusters of K basis vectors each (e.g. cpca:64,8).
+    #[arg(long)]
+    pub compress: Option<String>,
     /// Diffuse albedo, linear: one value or R,G,B [default: the mesh's vertex
     /// colours if it has them, otherwise 0.8].
     #[arg(long, value_parser = parse_albedo)]
@@ -86,10 +102,32 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         (ModeArg::Interreflected, b) => Mode::Interreflected {
             bounces: b.unwrap_or(DEFAULT_BOUNCES),
         },
-        (_, Some(_)) => bail!("--bounces needs --mode interreflected"),
+        (ModeArg::Glossy, None | Some(0)) => Mode::Shadowed,
+        (ModeArg::Glossy, Some(bounces)) => Mode::Interreflected { bounces },
+        (_, Some(_)) => bail!("--bounces needs --mode interreflected or --mode glossy"),
         (ModeArg::Unshadowed, None) => Mode::Unshadowed,
         (ModeArg::Shadowed, None) => Mode::Shadowed,
     };
+    let glossy = args.mode == ModeArg::Glossy;
+    let brdf = match (&args.brdf, glossy) {
+        (Some(text), true) => Some(Brdf::parse(text).map_err(|e| anyhow::anyhow!("--brdf: {e}"))?),
+        (None, true) => bail!("--mode glossy needs --brdf phong:S (e.g. --brdf phong:32)"),
+        (Some(_), false) => bail!("--brdf is the BRDF of --mode glossy"),
+        (None, false) => None,
+    };
+    let compress = match (&args.compress, glossy) {
+        (Some(text), true) => Some(
+            shlight_prt::cpca::parse_cpca(text).map_err(|e| anyhow::anyhow!("--compress: {e}"))?,
+        ),
+        (Some(_), false) => bail!("--compress compresses the matrices of --mode glossy"),
+        (None, _) => None,
+    };
+    if glossy && args.preview.is_some() {
+        bail!(
+            "--preview shades diffuse transfer; a glossy file is shaded view by view: \
+             shlight sample FILE.shprt --light LIGHT --view X,Y,Z"
+        );
+    }
     if args.samples == 0 {
         bail!("--samples must be at least 1");
     }
@@ -100,6 +138,14 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         );
     }
     let output_kind = args.output.as_deref().map(output_kind).transpose()?;
+    if let (Some(brdf), Some(Output::Gltf), Some(out)) = (brdf, output_kind, &args.output) {
+        bail!(
+            "{}: glTF cannot carry glossy transfer ({brdf}): a matrix per vertex is beyond \
+             what glTF vertex attributes hold; write a .shprt file, or bake without \
+             --mode glossy for glTF's transfer vectors",
+            out.display()
+        );
+    }
     for out in args.output.iter().chain(&args.preview) {
         crate::output_path::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
     }
@@ -131,9 +177,13 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     if matches!(request.albedo(&mesh).0, Albedo::PerVertex(_)) {
         ui.note(format!("{name}: albedo from the mesh's vertex colours"));
     }
+    if let Some(brdf) = brdf {
+        return glossy_bake(args, ui, &mesh, &request, brdf, compress);
+    }
     let bars = StageBars::new(ui, |stage| match stage {
         Stage::Rays => "directions".to_string(),
         Stage::Bounce(k) => format!("bounce {k}"),
+        Stage::Matrices => "matrices".to_string(),
     });
     let start = Instant::now();
     let (transfer, file) = bake_file(&mesh, &args.mesh, &request, &|stage, done, total| {
@@ -159,6 +209,98 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     }
     if let (Some(path), Some(light)) = (&args.preview, &light) {
         write_preview(path, &mesh, &file, light, args)?;
+    }
+    Ok(())
+}
+
+/// `--mode glossy`: says the matrices' bytes (refusing more than shlight
+/// bakes), bakes them and writes the `.shprt` file.
+fn glossy_bake(
+    args: &PrtArgs,
+    ui: &Ui,
+    mesh: &Mesh,
+    request: &BakeRequest,
+    brdf: Brdf,
+    compress: Option<(usize, usize)>,
+) -> Result<()> {
+    let name = args.mesh.display().to_string();
+    let (albedo, _) = request.albedo(mesh);
+    let channels = glossy_channels(&shlight_prt::transfer::BakeOptions {
+        mode: request.mode,
+        albedo,
+        ..Default::default()
+    });
+    let size = |lmax| glossy_bytes(mesh.vertex_count(), channels, lmax).unwrap_or(u64::MAX);
+    let bytes = size(args.lmax);
+    let mib = |b: u64| b as f64 / f64::from(1u32 << 20);
+    if bytes > MAX_GLOSSY_BYTES {
+        let fits = (0..args.lmax).rev().find(|&l| size(l) <= MAX_GLOSSY_BYTES);
+        bail!(
+            "{name}: --lmax {}: glossy matrices of {} vertices x {channels} channel{} x {}^2 \
+             floats would take {:.0} MiB, beyond the {:.0} MiB shlight bakes{}",
+            args.lmax,
+            mesh.vertex_count(),
+            if channels == 1 { "" } else { "s" },
+            (args.lmax + 1) * (args.lmax + 1),
+            mib(bytes),
+            mib(MAX_GLOSSY_BYTES),
+            fits.map_or(String::new(), |l| format!(
+                " (--lmax {l} takes {:.0} MiB)",
+                mib(size(l))
+            ))
+        );
+    }
+    let dim = channels * (args.lmax + 1).pow(4);
+    if let Some((_, vectors)) = compress.filter(|&(_, k)| k > dim) {
+        bail!(
+            "--compress: a vertex's matrices hold {dim} values at --lmax {}: at most {dim} basis \
+             vectors per cluster, not {vectors}",
+            args.lmax
+        );
+    }
+    ui.note(format!(
+        "{name}: glossy matrices take {:.1} MiB ({} vertices x {channels} channel{} x {}^2 floats, with positions and normals)",
+        mib(bytes),
+        mesh.vertex_count(),
+        if channels == 1 { "" } else { "s" },
+        (args.lmax + 1) * (args.lmax + 1),
+    ));
+    let bars = StageBars::new(ui, |stage| match stage {
+        Stage::Rays => "directions".to_string(),
+        Stage::Bounce(k) => format!("bounce {k}"),
+        Stage::Matrices => "matrices".to_string(),
+    });
+    let start = Instant::now();
+    let (transfer, mut file) =
+        bake_glossy_file(mesh, &args.mesh, request, brdf, &|stage, done, total| {
+            bars.update(stage, done, total)
+        });
+    bars.finish();
+    let seconds = start.elapsed().as_secs_f64();
+    ui.note(format!(
+        "{name}: {} vertices, {} triangles, glossy {} transfer for {brdf}, lmax {}, {} directions; {} rays in {seconds:.2} s",
+        mesh.vertex_count(),
+        mesh.triangle_count(),
+        request.mode.name(),
+        args.lmax,
+        transfer.samples,
+        transfer.rays,
+    ));
+    if let Some((clusters, vectors)) = compress {
+        let bar = ui.spinner("compressing (CPCA)");
+        let e = shlight_prt::cpca::compress_file(&mut file, clusters, vectors, args.seed)
+            .map_err(|e| anyhow::anyhow!("--compress: {e}"))?;
+        bar.finish_and_clear();
+        ui.note(format!(
+            "{name}: cpca:{clusters},{vectors}: {:.1} MiB of matrices in {:.1} MiB; RMS error {:.3e} ({:.2}% of the entries' RMS)",
+            mib(e.bytes_before),
+            mib(e.bytes_after),
+            e.rms,
+            100.0 * e.rms / e.rms_entries.max(f64::MIN_POSITIVE),
+        ));
+    }
+    if let Some(out) = &args.output {
+        file.write(out)?;
     }
     Ok(())
 }

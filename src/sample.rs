@@ -6,14 +6,17 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
 use clap::Args;
+use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
 use shlight_pipeline::Environment;
+use shlight_prt::glossy::{View, file_exit_radiance};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax};
 
 use crate::input::frame_of;
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
+use crate::values::parse_vec3;
 
 /// Arguments of `shlight sample`.
 #[derive(Args, Debug)]
@@ -52,6 +55,15 @@ pub struct SampleArgs {
     /// read invalid probes dilated from their valid neighbours.
     #[arg(long, default_value = "shlight")]
     pub lookup: Lookup,
+    /// The view of a glossy .shprt file: one direction X,Y,Z for every
+    /// vertex, from the vertex towards the eye (an orthographic camera
+    /// looking along -X,-Y,-Z); ignored for a diffuse file.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, conflicts_with = "eye")]
+    pub view: Option<DVec3>,
+    /// The view of a glossy .shprt file as a camera position X,Y,Z: each
+    /// vertex seen from there; ignored for a diffuse file.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<DVec3>,
     /// Highest degree shaded [default: a volume's lmax, at most 4 (what the
     /// GPU shades) for shlight and trilinear, all of it for bevy, at most 2
     /// for threejs; a PRT file's lmax, at most 8].
@@ -73,7 +85,7 @@ pub fn run(args: &SampleArgs, ui: &Ui) -> Result<()> {
         .map(str::to_ascii_lowercase);
     let samples = match ext.as_deref() {
         Some("shvol") => volume(args, ui)?,
-        Some("shprt") => transfer(args)?,
+        Some("shprt") => transfer(args, ui)?,
         _ => bail!(
             "{}: sample reads irradiance volumes (.shvol) and PRT transfer (.shprt)",
             args.file.display()
@@ -147,8 +159,9 @@ fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
     })
 }
 
-/// A PRT file's exit radiance per vertex.
-fn transfer(args: &SampleArgs) -> Result<Samples> {
+/// A PRT file's exit radiance per vertex (toward `--view` or `--eye` for
+/// a glossy file).
+fn transfer(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
     let Some(light_path) = &args.light else {
         bail!(
             "sampling a .shprt file needs --light LIGHT (an equirect map or a radiance coefficient file)"
@@ -172,9 +185,33 @@ fn transfer(args: &SampleArgs) -> Result<Samples> {
         .min(file.lmax)
         .min(shlight_baked::LIGHT_MAX_LMAX);
     let l = env.radiance.resized(lmax.min(env.radiance.lmax()));
-    let values = file
-        .view()?
-        .exit_radiance(l.as_slice())
+    let view = match (args.view, args.eye) {
+        (Some(d), _) => Some(View::Direction(d)),
+        (None, Some(e)) => Some(View::Eye(e)),
+        (None, None) => None,
+    };
+    if let Some(glossy) = &file.glossy {
+        if view.is_none() {
+            bail!(
+                "{}: glossy transfer ({}) is seen from somewhere: give --view X,Y,Z (from the \
+                 vertices towards the eye) or --eye X,Y,Z",
+                args.file.display(),
+                glossy.brdf
+            );
+        }
+        if args.view.is_some_and(|d| d.length_squared() == 0.0) {
+            bail!(
+                "--view 0,0,0 has zero length: give the direction from the vertices towards the eye"
+            );
+        }
+    } else if view.is_some() {
+        ui.note(format!(
+            "{}: diffuse transfer looks the same from everywhere; --view and --eye are ignored",
+            args.file.display()
+        ));
+    }
+    let values = file_exit_radiance(&file, l.as_slice(), view)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?
         .into_iter()
         .map(|v| v.to_array())
         .collect();
@@ -185,8 +222,12 @@ fn transfer(args: &SampleArgs) -> Result<Samples> {
             "file": args.file.display().to_string(),
             "lmax": lmax,
             "light": light_path.display().to_string(),
+            "view": file.glossy.as_ref().and(args.view).map(|d| d.normalize().to_array()),
+            "eye": file.glossy.as_ref().and(args.eye).map(|e| e.to_array()),
+            "brdf": file.glossy.as_ref().map(|g| g.brdf.clone()),
             "provenance": {
                 "mode": file.mode,
+                "transport": file.glossy.as_ref().map(|g| g.transport.clone()),
                 "samples": file.samples,
                 "bounces": file.bounces,
                 "seed": file.seed,

@@ -193,3 +193,259 @@ fn bad_meshes_and_arguments_are_errors_and_leave_outputs_alone() {
     }
     assert_eq!(std::fs::read(&out).unwrap(), b"keep");
 }
+
+#[test]
+fn glossy_files_are_sampled_toward_a_view_and_bad_glossy_input_is_refused() {
+    let dir = temp_dir("prt_glossy");
+    let obj = dir.join("ball.obj");
+    write_obj(&obj, &generate::uv_sphere(1.0, 24, 12));
+    let out = dir.join("ball.shprt");
+    shlight_ok(&[
+        "prt",
+        s(&obj),
+        "--mode",
+        "glossy",
+        "--brdf",
+        "phong:50",
+        "--lmax",
+        "3",
+        "--samples",
+        "256",
+        "-o",
+        s(&out),
+    ]);
+    let file = ShprtFile::read(&out).unwrap();
+    let mesh = shlight_mesh::load(&obj).unwrap();
+    let glossy = file.glossy.as_ref().expect("a glossy file");
+    assert_eq!((file.mode.as_str(), file.lmax), ("glossy", 3));
+    assert_eq!(
+        (glossy.brdf.as_str(), glossy.transport.as_str()),
+        ("phong:50", "shadowed")
+    );
+    assert_eq!(file.transfer.len(), mesh.vertex_count() * 16 * 16);
+    assert_eq!(glossy.normals[5], mesh.normals[5].to_array());
+    // A sun: the vertex that shines brightest toward the view is the one
+    // whose mirror of the view direction (from the vertex to the eye) is
+    // the sun's direction.
+    let sun = DVec3::new(0.3, 0.9, 0.2).normalize();
+    let light = dir.join("sun.json");
+    let rows: Vec<[f64; 3]> = closed_form::directional(3, sun, 1.0)
+        .as_slice()
+        .iter()
+        .map(|c| [*c; 3])
+        .collect();
+    crate::util::write_radiance_rows(&light, &rows);
+    let view = DVec3::new(-0.5, 0.2, 0.8).normalize();
+    let sample = |extra: &[&str], name: &str| {
+        let json = dir.join(name);
+        let mut args = vec!["sample", s(&out), "--light", s(&light), "-o", s(&json)];
+        args.extend(extra);
+        shlight_ok(&args);
+        let v = crate::util::read_json(&json);
+        v["radiance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r[0].as_f64().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    let by_view = sample(&["--view", "-0.5,0.2,0.8"], "view.json");
+    let brightest = (0..by_view.len())
+        .max_by(|&a, &b| by_view[a].total_cmp(&by_view[b]))
+        .unwrap();
+    let n = mesh.normals[brightest].as_dvec3();
+    let r = 2.0 * n.dot(view) * n - view;
+    assert!(
+        r.dot(sun) > 0.97,
+        "brightest vertex mirrors the view to {r}, the sun is at {sun}"
+    );
+    // An eye far along the view sees (nearly) the same.
+    let far = view * 1e5;
+    let by_eye = sample(
+        &["--eye", &format!("{},{},{}", far.x, far.y, far.z)],
+        "eye.json",
+    );
+    for (a, b) in by_view.iter().zip(&by_eye) {
+        assert!((a - b).abs() < 1e-3 * (1.0 + a.abs()), "{a} vs {b}");
+    }
+    // A diffuse file looks the same from everywhere: --view is ignored.
+    let diffuse = dir.join("diffuse.shprt");
+    shlight_ok(&["prt", s(&obj), "--samples", "64", "-o", s(&diffuse)]);
+    let plain = dir.join("plain.json");
+    let viewed = dir.join("viewed.json");
+    shlight_ok(&["sample", s(&diffuse), "--light", s(&light), "-o", s(&plain)]);
+    shlight_ok(&[
+        "sample",
+        s(&diffuse),
+        "--light",
+        s(&light),
+        "--view",
+        "1,2,3",
+        "-o",
+        s(&viewed),
+    ]);
+    assert_eq!(
+        crate::util::read_json(&plain)["radiance"],
+        crate::util::read_json(&viewed)["radiance"]
+    );
+    // Bad input.
+    let json = dir.join("bad.json");
+    for (args, what) in [
+        (vec!["--view", "0,0,0"], "zero length"),
+        (vec![], "give --view"),
+    ] {
+        let mut all = vec!["sample", s(&out), "--light", s(&light), "-o", s(&json)];
+        all.extend(args);
+        let err = shlight_err(&all);
+        assert!(err.contains(what), "{all:?}: {err}");
+    }
+    let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/bunny.obj");
+    let keep = dir.join("keep.shprt");
+    for (mesh, args, what) in [
+        (&obj, vec!["--brdf", "phong:shiny"], "not a number"),
+        (&obj, vec!["--brdf", "blinn:3"], "unknown BRDF \"blinn\""),
+        (&obj, vec![], "needs --brdf"),
+        (
+            &bunny,
+            vec!["--brdf", "phong:8", "--lmax", "30"],
+            "would take 6479 MiB",
+        ),
+    ] {
+        let mut all = vec!["prt", s(mesh), "--mode", "glossy", "-o", s(&keep)];
+        all.extend(args);
+        let err = shlight_err(&all);
+        assert!(err.contains(what), "{all:?}: {err}");
+    }
+    let err = shlight_err(&[
+        "prt",
+        s(&obj),
+        "--mode",
+        "glossy",
+        "--brdf",
+        "phong:8",
+        "-o",
+        "x.glb",
+    ]);
+    assert!(err.contains("glTF cannot carry glossy transfer"), "{err}");
+    assert!(!keep.exists());
+    // Compressed by CPCA: with a cluster per vertex the same radiance; with
+    // few clusters and vectors a smaller file, near it.
+    let n = mesh.vertex_count();
+    let compressed = |spec: &str, name: &str| {
+        let path = dir.join(name);
+        shlight_ok(&[
+            "prt",
+            s(&obj),
+            "--mode",
+            "glossy",
+            "--brdf",
+            "phong:50",
+            "--lmax",
+            "3",
+            "--samples",
+            "256",
+            "--compress",
+            spec,
+            "-o",
+            s(&path),
+        ]);
+        path
+    };
+    let exact = compressed(&format!("cpca:{n},0"), "exact.shprt");
+    let small = compressed("cpca:4,6", "small.shprt");
+    let sample_of = |path: &Path, name: &str| {
+        let json = dir.join(name);
+        shlight_ok(&[
+            "sample",
+            s(path),
+            "--light",
+            s(&light),
+            "--view",
+            "-0.5,0.2,0.8",
+            "-o",
+            s(&json),
+        ]);
+        crate::util::read_json(&json)["radiance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r[0].as_f64().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    let peak = by_view.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in sample_of(&exact, "exact.json").iter().zip(&by_view) {
+        assert!((a - b).abs() < 1e-9 * peak, "{a} vs {b}");
+    }
+    let near = sample_of(&small, "small.json");
+    let worst = near
+        .iter()
+        .zip(&by_view)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f64, f64::max);
+    assert!(worst > 0.0 && worst < 0.25 * peak, "{worst} of {peak}");
+    let size = |p: &Path| std::fs::metadata(p).unwrap().len();
+    assert!(
+        size(&small) < size(&out) / 4,
+        "{} vs {}",
+        size(&small),
+        size(&out)
+    );
+    for (args, what) in [
+        (
+            vec!["--brdf", "phong:8", "--compress", "cpca:0,2"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec!["--brdf", "phong:8", "--compress", "pca:2,2"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec!["--brdf", "phong:8", "--compress", "cpca:4"],
+            "is not cpca:C,K",
+        ),
+        (
+            vec![
+                "--brdf",
+                "phong:8",
+                "--lmax",
+                "1",
+                "--compress",
+                "cpca:2,17",
+            ],
+            "at most 16",
+        ),
+    ] {
+        let mut all = vec![
+            "prt",
+            s(&obj),
+            "--mode",
+            "glossy",
+            "--samples",
+            "64",
+            "-o",
+            s(&keep),
+        ];
+        all.extend(args);
+        let err = shlight_err(&all);
+        assert!(err.contains(what), "{all:?}: {err}");
+    }
+    let err = shlight_err(&["prt", s(&obj), "--compress", "cpca:2,2", "-o", s(&keep)]);
+    assert!(
+        err.contains("--compress compresses the matrices of --mode glossy"),
+        "{err}"
+    );
+    assert!(!keep.exists());
+    // The GPU commands refuse a glossy file before they look for a GPU.
+    let png = dir.join("x.png");
+    let err = shlight_err(&[
+        "render-mesh",
+        s(&obj),
+        "--prt",
+        s(&out),
+        "--env",
+        s(&light),
+        "-o",
+        s(&png),
+    ]);
+    assert!(err.contains("not shaded on the GPU yet"), "{err}");
+}

@@ -1,7 +1,7 @@
 """Type stubs of shlight (conventions: see the package docstring)."""
 
 import os
-from typing import Any, Literal, Optional, Sequence, Union
+from typing import Any, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -65,8 +65,37 @@ class SH:
         """An SH from a coefficient file's JSON text (pickling uses it)."""
 
 class Transfer:
-    """Per-vertex diffuse transfer of a mesh (a .shprt file): exit radiance
-    of vertex v under radiance SH L is coefficients[v, c] @ L[:n, c]."""
+    """Per-vertex transfer of a mesh (a .shprt file): diffuse, whose exit
+    radiance of vertex v under radiance SH L is coefficients[v, c] @ L[:n, c],
+    or glossy matrices shaded toward a view by exit_radiance."""
+
+    @staticmethod
+    def load(path: PathLike) -> "Transfer":
+        """Reads a .shprt file (diffuse version 1, glossy version 2)."""
+    @property
+    def brdf(self) -> Optional[str]:
+        """A glossy file's BRDF ("phong:32"); None for diffuse transfer."""
+    @property
+    def matrices(self) -> Optional[npt.NDArray[np.float32]]:
+        """A glossy file's (vertex_count, channels, n, n) float32 matrices,
+        n = (lmax+1)**2; None for diffuse transfer."""
+    @property
+    def positions(self) -> Optional[npt.NDArray[np.float32]]:
+        """A glossy file's (vertex_count, 3) vertex positions; None for diffuse."""
+    @property
+    def normals(self) -> Optional[npt.NDArray[np.float32]]:
+        """A glossy file's (vertex_count, 3) unit normals; None for diffuse."""
+    def exit_radiance(
+        self,
+        light: Union[PathLike, SH],
+        view: Optional[Tuple[float, float, float]] = None,
+        eye: Optional[Tuple[float, float, float]] = None,
+    ) -> npt.NDArray[np.float64]:
+        """(vertex_count, 3) exit radiance under light (a map or radiance
+        coefficient file, y up, or an SH of radiance), as shlight sample
+        gives it: view is one direction from every vertex toward the eye,
+        eye a camera position (a glossy file needs one; a diffuse file
+        ignores both)."""
 
     @property
     def lmax(self) -> int:
@@ -75,7 +104,7 @@ class Transfer:
     def channels(self) -> Literal[1, 3]:
         """1 (grey albedo) or 3 (RGB)."""
     @property
-    def mode(self) -> Literal["unshadowed", "shadowed", "interreflected"]:
+    def mode(self) -> Literal["unshadowed", "shadowed", "interreflected", "glossy"]:
         """The light transport baked."""
     @property
     def bounces(self) -> int:
@@ -88,7 +117,7 @@ class Transfer:
         """Vertices, in the mesh file's order."""
     @property
     def coefficients(self) -> npt.NDArray[np.float32]:
-        """(vertex_count, channels, (lmax+1)**2) float32."""
+        """(vertex_count, channels, (lmax+1)**2) float32 (raises for a glossy file)."""
     def save(self, path: PathLike) -> None:
         """Writes the .shprt file (as the CLI's shlight prt -o FILE.shprt)."""
 

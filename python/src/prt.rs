@@ -4,19 +4,22 @@
 
 use std::path::PathBuf;
 
-use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray3};
+use glam::DVec3;
+use numpy::ndarray::{Array2, Array3, Array4};
+use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
+use shlight_prt::glossy::{View, file_exit_radiance};
 use shlight_prt::transfer::Mode;
 
 use crate::errors::{chained, shlight_error, warn_all};
 use crate::guard::guard;
 
-/// Per-vertex diffuse transfer vectors of a mesh (a `.shprt` file): the
-/// exit radiance of a vertex under distant radiance SH `L` is
-/// `coefficients[v] @ L[:(lmax+1)**2]` per channel. See
+/// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
+/// vectors, whose exit radiance under distant radiance SH `L` is
+/// `coefficients[v] @ L[:(lmax+1)**2]` per channel, or glossy transfer
+/// matrices, shaded toward a view by `exit_radiance`. See
 /// help(shlight.Transfer).
 #[pyclass(name = "Transfer", module = "shlight", frozen)]
 pub struct Transfer {
@@ -37,10 +40,123 @@ impl Transfer {
         self.file.channels
     }
 
-    /// "unshadowed", "shadowed" or "interreflected".
+    /// "unshadowed", "shadowed", "interreflected" or "glossy".
     #[getter]
     fn mode(&self) -> &str {
         &self.file.mode
+    }
+
+    /// Reads a `.shprt` file (docs/shprt.md; diffuse version 1, glossy
+    /// version 2). Raises ShlightError for a missing or malformed file.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Transfer> {
+        let file = py.detach(|| guard(|| ShprtFile::read(&path).map_err(|e| chained(&e))))?;
+        Ok(Transfer { file })
+    }
+
+    /// A glossy file's vertex positions, (vertex_count, 3) float32; None for
+    /// diffuse transfer (which does not keep them).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f32>>> {
+        let g = self.file.glossy.as_ref()?;
+        let flat: Vec<f32> = g.positions.iter().flatten().copied().collect();
+        Some(
+            Array2::from_shape_vec((g.positions.len(), 3), flat)
+                .expect("N x 3 positions")
+                .into_pyarray(py),
+        )
+    }
+
+    /// A glossy file's unit vertex normals, (vertex_count, 3) float32; None
+    /// for diffuse transfer.
+    #[getter]
+    fn normals<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f32>>> {
+        let g = self.file.glossy.as_ref()?;
+        let flat: Vec<f32> = g.normals.iter().flatten().copied().collect();
+        Some(
+            Array2::from_shape_vec((g.normals.len(), 3), flat)
+                .expect("N x 3 normals")
+                .into_pyarray(py),
+        )
+    }
+
+    /// A glossy file's BRDF ("phong:32"); None for diffuse transfer.
+    #[getter]
+    fn brdf(&self) -> Option<&str> {
+        self.file.glossy.as_ref().map(|g| g.brdf.as_str())
+    }
+
+    /// A glossy file's matrices, (vertex_count, channels, n, n) float32 with
+    /// n = (lmax+1)**2: the transferred radiance is `matrices[v, c] @ L[:n,
+    /// c]` (a CPCA-compressed file's reconstructed). None for diffuse
+    /// transfer.
+    #[getter]
+    fn matrices<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray4<f32>>> {
+        let f = &self.file;
+        let g = f.glossy.as_ref()?;
+        let n = (f.lmax + 1) * (f.lmax + 1);
+        let values = match &g.cpca {
+            None => f.transfer.clone(),
+            Some(z) => shlight_prt::cpca::reconstruct_data(z, f.channels * n * n),
+        };
+        Some(
+            Array4::from_shape_vec((f.vertex_count, f.channels, n, n), values)
+                .expect("vertex_count x channels x n x n values")
+                .into_pyarray(py),
+        )
+    }
+
+    /// exit_radiance(light, view=None, eye=None) -> (vertex_count, 3)
+    /// float64
+    /// --
+    ///
+    /// Each vertex's exit radiance [r, g, b] under `light` (a path to an
+    /// equirect map or a radiance coefficient file, y up, or an SH of
+    /// radiance), as `shlight sample FILE --light LIGHT` gives it: a diffuse
+    /// file's `T . L` (view and eye ignored); a glossy file's
+    /// `sum Lambda_l (M L)_lm Y_lm(R)` with `R` the mirror about the
+    /// vertex normal of `w_o`: `view` (x, y, z), one direction from every
+    /// vertex toward the eye, or from each vertex to the point `eye`.
+    #[pyo3(signature = (light, view=None, eye=None))]
+    fn exit_radiance<'py>(
+        &self,
+        py: Python<'py>,
+        light: &Bound<'py, PyAny>,
+        view: Option<[f64; 3]>,
+        eye: Option<[f64; 3]>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let f = &self.file;
+        let view = match (view, eye) {
+            (Some(_), Some(_)) => {
+                return Err(shlight_error("give view or eye, not both"));
+            }
+            (Some(d), None) => Some(View::Direction(DVec3::from_array(d))),
+            (None, Some(e)) => Some(View::Eye(DVec3::from_array(e))),
+            (None, None) => None,
+        };
+        let diffuse = f.glossy.is_none();
+        let view = if diffuse { None } else { view };
+        if !diffuse && view.is_none() {
+            return Err(shlight_error(format!(
+                "glossy transfer ({}) is seen from somewhere: give view=(x, y, z) (from the \
+                 vertices toward the eye) or eye=(x, y, z)",
+                f.glossy.as_ref().map_or("", |g| g.brdf.as_str())
+            )));
+        }
+        let (light, warnings) = crate::volume::light_of(py, light, "y")?;
+        warn_all(py, &warnings, 2)?;
+        let lmax = f.lmax.min(shlight_baked::LIGHT_MAX_LMAX).min(light.lmax());
+        let light = light.resized(lmax);
+        let values = py.detach(|| {
+            guard(|| {
+                file_exit_radiance(f, light.as_slice(), view)
+                    .map_err(|e| shlight_error(format!("{}: {e}", f.mesh)))
+            })
+        })?;
+        let flat: Vec<f64> = values.iter().flat_map(|v| v.to_array()).collect();
+        Ok(Array2::from_shape_vec((values.len(), 3), flat)
+            .expect("vertex_count x 3 values")
+            .into_pyarray(py))
     }
 
     /// Bounces of interreflection gathered (0 unless interreflected).
@@ -63,13 +179,22 @@ impl Transfer {
 
     /// (vertex_count, channels, (lmax+1)**2) float32: row l*(l+1)+m of a
     /// channel is the transfer of Y_l^m, albedo / pi folded in.
+    /// Raises ShlightError for a glossy file (see `matrices`).
     #[getter]
-    fn coefficients<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f32>> {
+    fn coefficients<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
         let f = &self.file;
+        if let Some(g) = &f.glossy {
+            return Err(shlight_error(format!(
+                "glossy transfer ({}) holds matrices, not coefficient vectors: read .matrices",
+                g.brdf
+            )));
+        }
         let n = (f.lmax + 1) * (f.lmax + 1);
-        Array3::from_shape_vec((f.vertex_count, f.channels, n), f.transfer.clone())
-            .expect("vertex_count x channels x (lmax+1)^2 values")
-            .into_pyarray(py)
+        Ok(
+            Array3::from_shape_vec((f.vertex_count, f.channels, n), f.transfer.clone())
+                .expect("vertex_count x channels x (lmax+1)^2 values")
+                .into_pyarray(py),
+        )
     }
 
     /// Writes the `.shprt` file (docs/shprt.md), atomically: the same bytes

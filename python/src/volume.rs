@@ -74,7 +74,7 @@ fn rows3(array: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f32; 3]>> {
 /// coefficient file, read as `shlight sample --env` reads it) or an `SH` of
 /// plain radiance; radiance coefficients in the volume's frame, and the
 /// warnings of reading them.
-fn light_of(
+pub(crate) fn light_of(
     py: Python<'_>,
     env: &Bound<'_, PyAny>,
     up: &str,

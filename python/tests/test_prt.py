@@ -7,6 +7,7 @@ import pytest
 import shlight
 
 from conftest import ROOT, cli_error, run_cli
+from reference import sh_basis_l2
 
 BUNNY = ROOT / "meshes" / "bunny.obj"
 BOX = ROOT / "meshes" / "cornell_box.obj"
@@ -60,3 +61,93 @@ def test_bake_refusals_are_the_clis(cli, tmp_path):
     with pytest.raises(shlight.ShlightError) as e:
         shlight.bake_transfer(missing)
     assert str(e.value) == cli_error(err)
+
+
+def test_glossy_exit_radiance_is_the_clis_and_the_formula(cli, tmp_path):
+    """Transfer.load reads a glossy .shprt file; exit_radiance gives what
+    `shlight sample --view/--eye` gives, and the definition written out
+    here: sum_lm Lambda_l (M L)_lm Y_lm(R), R the mirror of the view
+    about the normal, Lambda = 1, (S+1)/(S+2), S/(S+3)."""
+    glossy = tmp_path / "g.shprt"
+    code, _, err = run_cli(
+        cli, "prt", BUNNY, "--mode", "glossy", "--brdf", "phong:20", "--lmax", "2",
+        "--samples", "64", "-o", glossy,
+    )
+    assert code == 0, err
+    light = tmp_path / "park.json"
+    code, _, err = run_cli(cli, "project", ROOT / "envmaps" / "park.exr", "--lmax", "2", "-o", light)
+    assert code == 0, err
+    t = shlight.Transfer.load(glossy)
+    assert (t.mode, t.brdf, t.lmax, t.channels) == ("glossy", "phong:20", 2, 1)
+    m = t.matrices
+    assert m.shape == (t.vertex_count, 1, 9, 9)
+    with pytest.raises(shlight.ShlightError, match="matrices"):
+        t.coefficients
+    view = np.array([0.2, 0.4, 1.0])
+    got = t.exit_radiance(str(light), view=tuple(view))
+    assert got.shape == (t.vertex_count, 3)
+    # The CLI's sample, on the same file, light and view.
+    out = tmp_path / "s.json"
+    code, _, err = run_cli(cli, "sample", glossy, "--light", light, "--view", "0.2,0.4,1", "-o", out)
+    assert code == 0, err
+    import json
+    assert np.allclose(got, np.array(json.loads(out.read_text())["radiance"]), rtol=1e-12, atol=1e-12)
+    # The formula, in numpy.
+    L = shlight.load(light).coefficients
+    n = t.normals.astype(np.float64)
+    w = view / np.linalg.norm(view)
+    r = 2 * (n @ w)[:, None] * n - w
+    y = sh_basis_l2(r / np.linalg.norm(r, axis=1)[:, None])
+    s = 20.0
+    lam = np.array([1.0] + [(s + 1) / (s + 2)] * 3 + [s / (s + 3)] * 5)
+    tr = np.einsum("vij,jc->vic", m[:, 0].astype(np.float64), L)
+    want = np.einsum("vic,vi->vc", tr, y * lam)
+    assert np.allclose(got, want, rtol=1e-5, atol=1e-5 * np.abs(want).max())
+    # An eye: each vertex's own direction to it.
+    eye = np.array([0.0, 1.0, 5.0])
+    by_eye = t.exit_radiance(str(light), eye=tuple(eye))
+    w = eye - t.positions.astype(np.float64)
+    w /= np.linalg.norm(w, axis=1)[:, None]
+    r = 2 * np.sum(n * w, axis=1)[:, None] * n - w
+    want = np.einsum("vic,vi->vc", tr, sh_basis_l2(r / np.linalg.norm(r, axis=1)[:, None]) * lam)
+    assert np.allclose(by_eye, want, rtol=1e-5, atol=1e-5 * np.abs(want).max())
+    # Refusals.
+    with pytest.raises(shlight.ShlightError, match="seen from somewhere"):
+        t.exit_radiance(str(light))
+    with pytest.raises(shlight.ShlightError, match="zero length"):
+        t.exit_radiance(str(light), view=(0, 0, 0))
+    with pytest.raises(shlight.ShlightError, match="not both"):
+        t.exit_radiance(str(light), view=(0, 0, 1), eye=(0, 0, 1))
+    # A diffuse file ignores the view.
+    d = shlight.bake_transfer(BUNNY, lmax=2, samples=64)
+    assert d.brdf is None and d.matrices is None
+    assert np.array_equal(d.exit_radiance(str(light)), d.exit_radiance(str(light), view=(1, 2, 3)))
+
+
+def test_a_compressed_glossy_file_shades_as_the_cli_and_reconstructs(cli, tmp_path):
+    """A CPCA-compressed glossy file (shlight prt --compress): exit_radiance
+    gives what shlight sample gives; with a cluster per vertex its matrices
+    are the uncompressed file's."""
+    files = {}
+    for name, extra in [("plain", []), ("each", ["--compress", "cpca:5000,0"]), ("small", ["--compress", "cpca:8,4"])]:
+        files[name] = tmp_path / f"{name}.shprt"
+        code, _, err = run_cli(
+            cli, "prt", BUNNY, "--mode", "glossy", "--brdf", "phong:10", "--lmax", "2",
+            "--samples", "64", *extra, "-o", files[name],
+        )
+        assert code == 0, err
+    light = tmp_path / "park.json"
+    code, _, err = run_cli(cli, "project", ROOT / "envmaps" / "park.exr", "--lmax", "2", "-o", light)
+    assert code == 0, err
+    plain, each, small = (shlight.Transfer.load(files[n]) for n in ("plain", "each", "small"))
+    assert np.array_equal(each.matrices, plain.matrices)
+    assert small.matrices.shape == plain.matrices.shape
+    assert not np.array_equal(small.matrices, plain.matrices)
+    out = tmp_path / "s.json"
+    code, _, err = run_cli(cli, "sample", files["small"], "--light", light, "--eye", "0,1,4", "-o", out)
+    assert code == 0, err
+    import json
+    want = np.array(json.loads(out.read_text())["radiance"])
+    got = small.exit_radiance(str(light), eye=(0, 1, 4))
+    assert np.allclose(got, want, rtol=1e-12, atol=1e-12)
+    assert np.allclose(each.exit_radiance(str(light), eye=(0, 1, 4)), plain.exit_radiance(str(light), eye=(0, 1, 4)), rtol=1e-9, atol=1e-12)

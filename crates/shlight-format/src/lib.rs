@@ -19,7 +19,8 @@
 //! - [`read_coefficients`]: any file `shlight convert` reads (a coefficient
 //!   file or an engine format that keeps enough), as a [`CoeffFile`].
 //! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
-//! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer
+//! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer (vectors,
+//!   or glossy matrices with [`GlossyData`], format version 2)
 //!   (docs/shprt.md).
 //! - [`ShvolFile`]: the `.shvol` file of an irradiance volume's SH probes
 //!   and transfer matrices, and its JSON form (docs/shvol.md).
@@ -86,7 +87,7 @@ pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use ktx2::{Ktx2Format, write_ktx2};
 pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
-pub use shprt::ShprtFile;
+pub use shprt::{CpcaData, GlossyData, ShprtFile};
 pub use shvol::ShvolFile;
 pub use volume_format::VolumeFormat;
 pub use volume_shader::{

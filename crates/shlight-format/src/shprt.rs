@@ -11,6 +11,14 @@
 //! little-endian `f32`, vertex-major: all of vertex 0 (channel 0's
 //! coefficients in SH index order `l(l+1)+m`, then channel 1's, ...), then
 //! vertex 1, and so on, the vertices in the mesh's order after loading.
+//!
+//! Glossy transfer (`"mode":"glossy"`) is format version 2: the data is the
+//! vertices' positions (`3 * vertex_count` `f32`), their normals (as many),
+//! then `vertex_count * channels * (lmax+1)^4` matrix entries, vertex-major,
+//! then channel, then row, then column; compressed by clustered PCA
+//! (`"compression":"cpca:C,K"`), the cluster means, bases, each vertex's
+//! cluster index and weights instead of the matrices. Diffuse files stay
+//! version 1.
 
 use std::path::Path;
 
@@ -21,8 +29,11 @@ use crate::{FormatError, Result, header_line};
 
 /// The `format` key's value.
 pub const FORMAT: &str = "shlight-prt";
-/// The layout version this build writes (and the newest it reads).
+/// The layout version this build writes for diffuse transfer vectors.
 pub const FORMAT_VERSION: u64 = 1;
+/// The layout version of glossy transfer matrices (and the newest this
+/// build reads).
+pub const GLOSSY_FORMAT_VERSION: u64 = 2;
 /// Longest header a reader accepts, in bytes.
 pub const MAX_HEADER: usize = 1 << 20;
 
@@ -53,6 +64,47 @@ pub struct ShprtFile {
     pub mesh_hash: u64,
     /// The mesh as named on the command line (informational).
     pub mesh: String,
+    /// For glossy transfer (`mode` `glossy`, format version 2): `transfer`
+    /// holds a matrix per vertex and channel, `(lmax+1)^2` rows (the
+    /// transferred radiance's coefficients) of `(lmax+1)^2` columns (the
+    /// light's), and this what shading it needs besides.
+    pub glossy: Option<GlossyData>,
+}
+
+/// What a glossy `.shprt` file holds besides its matrices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlossyData {
+    /// The BRDF, as `--brdf` names it (`phong:32`).
+    pub brdf: String,
+    /// The transport the matrices hold: `unshadowed`, `shadowed` or
+    /// `interreflected` (with the file's `bounces`).
+    pub transport: String,
+    /// Each vertex's position, in the mesh's frame.
+    pub positions: Vec<[f32; 3]>,
+    /// Each vertex's unit normal.
+    pub normals: Vec<[f32; 3]>,
+    /// The matrices compressed by clustered PCA (`"compression":
+    /// "cpca:C,K"`); the file's `transfer` is then empty.
+    pub cpca: Option<CpcaData>,
+}
+
+/// Glossy matrices compressed by clustered PCA (Sloan, Hall, Hart & Snyder
+/// 2003): vertex `v`'s matrix (all its channels, `dim` values) is
+/// `means[c] + sum_k weights[v][k] bases[c][k]`, `c = cluster[v]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CpcaData {
+    /// Clusters `C`.
+    pub clusters: usize,
+    /// Basis vectors per cluster `K`.
+    pub vectors: usize,
+    /// `C x dim` means.
+    pub means: Vec<f32>,
+    /// `C x K x dim` basis vectors.
+    pub bases: Vec<f32>,
+    /// Each vertex's cluster, below `C`.
+    pub cluster: Vec<u32>,
+    /// `vertex_count x K` weights.
+    pub weights: Vec<f32>,
 }
 
 impl ShprtFile {
@@ -64,6 +116,13 @@ impl ShprtFile {
     pub fn view(
         &self,
     ) -> std::result::Result<shlight_baked::TransferView<'_>, shlight_baked::ShapeError> {
+        if let Some(g) = &self.glossy {
+            return Err(shlight_baked::ShapeError(format!(
+                "glossy transfer ({}) holds a matrix per vertex, not a transfer vector: \
+                 it is shaded view by view (shlight sample --view or --eye)",
+                g.brdf
+            )));
+        }
         shlight_baked::TransferView::new(
             self.lmax,
             self.channels,
@@ -72,13 +131,16 @@ impl ShprtFile {
         )
     }
 
-    /// Coefficients per vertex and channel, `(lmax+1)^2`.
+    /// Values per vertex and channel: `(lmax+1)^2`, or `(lmax+1)^4` for
+    /// glossy matrices.
     #[must_use]
     pub fn coeffs_per_channel(&self) -> usize {
-        sh_count(self.lmax)
+        let nc = sh_count(self.lmax);
+        if self.glossy.is_some() { nc * nc } else { nc }
     }
 
-    /// The transfer of vertex `v`, channel `c`.
+    /// The transfer of vertex `v`, channel `c` (a glossy file's matrix,
+    /// row by row; not for a compressed file, whose `transfer` is empty).
     #[must_use]
     pub fn vertex(&self, v: usize, c: usize) -> &[f32] {
         let nc = self.coeffs_per_channel();
@@ -88,9 +150,9 @@ impl ShprtFile {
     /// The header line's JSON object.
     #[must_use]
     pub fn header(&self) -> Value {
-        json!({
+        let mut header = json!({
             "format": FORMAT,
-            "format_version": FORMAT_VERSION,
+            "format_version": if self.glossy.is_some() { GLOSSY_FORMAT_VERSION } else { FORMAT_VERSION },
             "lmax": self.lmax,
             "vertex_count": self.vertex_count,
             "channels": self.channels,
@@ -105,13 +167,50 @@ impl ShprtFile {
             "mesh_hash": header_line::hash_text(self.mesh_hash),
             "mesh": self.mesh,
             "data": "f32 little-endian, vertex-major, then channel, then SH index l(l+1)+m",
-        })
+        });
+        if let Some(g) = &self.glossy {
+            header["brdf"] = json!(g.brdf);
+            header["transport"] = json!(g.transport);
+            header["frame"] = json!("the mesh's");
+            header["data"] = json!(
+                "f32 little-endian: positions (x, y, z per vertex), normals (likewise), then \
+                 matrices vertex-major, then channel, then row i (transferred radiance), then \
+                 column j (light), T_i = sum_j M_ij L_j, SH index l(l+1)+m"
+            );
+            if let Some(z) = &g.cpca {
+                header["compression"] = json!(format!("cpca:{},{}", z.clusters, z.vectors));
+                header["data"] = json!(
+                    "f32 little-endian: positions (x, y, z per vertex), normals (likewise), \
+                     cluster means (C x dim), basis vectors (C x K x dim), each vertex's \
+                     cluster index, each vertex's K weights; dim = channels x rows x columns \
+                     of a vertex's matrices, as uncompressed"
+                );
+            }
+        }
+        header
     }
 
     /// The whole file as bytes.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
-        header_line::to_bytes(&self.header(), &self.transfer)
+        match &self.glossy {
+            None => header_line::to_bytes(&self.header(), &self.transfer),
+            Some(g) => {
+                let mut data = Vec::with_capacity(6 * self.vertex_count + self.transfer.len());
+                data.extend(g.positions.iter().flatten());
+                data.extend(g.normals.iter().flatten());
+                match &g.cpca {
+                    None => data.extend(&self.transfer),
+                    Some(z) => {
+                        data.extend(&z.means);
+                        data.extend(&z.bases);
+                        data.extend(z.cluster.iter().map(|&c| c as f32));
+                        data.extend(&z.weights);
+                    }
+                }
+                header_line::to_bytes(&self.header(), &data)
+            }
+        }
     }
 
     /// Writes the file atomically (a temporary file renamed into place).
@@ -144,9 +243,9 @@ impl ShprtFile {
         let (header, data) = header_line::split(bytes, &name, FORMAT, ".shprt", MAX_HEADER)?;
         let uint = |key: &str| header_line::uint(&header, key, &name);
         let version = uint("format_version")?;
-        if version == 0 || version > FORMAT_VERSION {
+        if version == 0 || version > GLOSSY_FORMAT_VERSION {
             return Err(bad(format!(
-                "format_version {version} is not supported (this build reads 1..={FORMAT_VERSION})"
+                "format_version {version} is not supported (this build reads 1..={GLOSSY_FORMAT_VERSION})"
             )));
         }
         let lmax = uint("lmax")? as usize;
@@ -175,14 +274,58 @@ impl ShprtFile {
             }
         };
         let mesh_hash = header_line::hash(&header, "mesh_hash", &name)?;
-        let count = vertex_count
-            .checked_mul(channels * sh_count(lmax))
-            .filter(|c| c.checked_mul(4).is_some())
-            .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
+        let glossy = (mode == "glossy") != (version == GLOSSY_FORMAT_VERSION);
+        if glossy {
+            return Err(bad(format!(
+                "bad header (mode \"{mode}\" in format_version {version}: glossy transfer is version {GLOSSY_FORMAT_VERSION}, diffuse version {FORMAT_VERSION})"
+            )));
+        }
+        let glossy = version == GLOSSY_FORMAT_VERSION;
+        let nc = sh_count(lmax);
+        let per_channel = if glossy { nc * nc } else { nc };
+        let vectors = if glossy { 6 * vertex_count } else { 0 };
+        // A compressed glossy file: its clusters and vectors per cluster.
+        let compression = match header.get("compression") {
+            None => None,
+            Some(v) if glossy => {
+                let text = v.as_str().unwrap_or_default();
+                let parsed = text
+                    .strip_prefix("cpca:")
+                    .and_then(|r| r.split_once(','))
+                    .and_then(|(c, k)| Some((c.parse::<usize>().ok()?, k.parse::<usize>().ok()?)));
+                match parsed {
+                    Some((c, k)) if c >= 1 && k <= channels * per_channel => Some((c, k)),
+                    _ => {
+                        return Err(bad(format!(
+                            "bad header (\"compression\" {v} is not cpca:C,K with C >= 1 and K at most {})",
+                            channels * per_channel
+                        )));
+                    }
+                }
+            }
+            Some(_) => {
+                return Err(bad("bad header (\"compression\" in a diffuse file)".into()));
+            }
+        };
+        let dim = channels * per_channel;
+        let count = match compression {
+            None => vertex_count.checked_mul(dim),
+            Some((c, k)) => c
+                .checked_mul(k + 1)
+                .and_then(|x| x.checked_mul(dim))
+                .and_then(|x| x.checked_add(vertex_count.checked_mul(k + 1)?)),
+        }
+        .and_then(|c| c.checked_add(vectors))
+        .filter(|c| c.checked_mul(4).is_some())
+        .ok_or_else(|| bad("bad header (the sizes overflow)".into()))?;
         if data.len() < 4 * count {
             return Err(bad(format!(
-                "truncated: {vertex_count} vertices x {channels} channels x {} coefficients need {} bytes of data, the file has {}",
-                sh_count(lmax),
+                "truncated: {vertex_count} vertices x {channels} channels x {per_channel} {} need {} bytes of data, the file has {}",
+                match (glossy, compression) {
+                    (false, _) => "coefficients",
+                    (true, None) => "matrix entries (with positions and normals)",
+                    (true, Some(_)) => "matrix entries, compressed (with positions and normals)",
+                },
                 4 * count,
                 data.len()
             )));
@@ -194,8 +337,55 @@ impl ShprtFile {
                 4 * count
             )));
         }
-        let transfer = header_line::f32s(data);
+        let mut transfer = header_line::f32s(data);
+        let glossy = if glossy {
+            let text = |key: &str| header_line::text(&header, key, &name);
+            let (brdf, transport) = (text("brdf")?, text("transport")?);
+            let rest = transfer.split_off(vectors);
+            let triples = |v: &[f32]| -> Vec<[f32; 3]> {
+                v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+            };
+            let (positions, normals) = transfer.split_at(3 * vertex_count);
+            let mut data = GlossyData {
+                brdf,
+                transport,
+                positions: triples(positions),
+                normals: triples(normals),
+                cpca: None,
+            };
+            transfer = rest;
+            if let Some((c, k)) = compression {
+                let mut rest = std::mem::take(&mut transfer);
+                let weights = rest.split_off(c * (k + 1) * dim + vertex_count);
+                let indices = rest.split_off(c * (k + 1) * dim);
+                let bases = rest.split_off(c * dim);
+                let cluster = indices
+                    .iter()
+                    .map(|&x| {
+                        if x >= 0.0 && x < c as f32 && x.fract() == 0.0 {
+                            Ok(x as u32)
+                        } else {
+                            Err(bad(format!(
+                                "a vertex's cluster index {x} is not one of the {c} clusters"
+                            )))
+                        }
+                    })
+                    .collect::<Result<Vec<u32>>>()?;
+                data.cpca = Some(CpcaData {
+                    clusters: c,
+                    vectors: k,
+                    means: rest,
+                    bases,
+                    cluster,
+                    weights,
+                });
+            }
+            Some(data)
+        } else {
+            None
+        };
         Ok(Self {
+            glossy,
             lmax,
             channels,
             vertex_count,
@@ -232,7 +422,102 @@ mod tests {
             albedo: Some([0.5, 0.25, 1.0]),
             mesh_hash: 0x0123_4567_89ab_cdef,
             mesh: "m.obj".into(),
+            glossy: None,
         }
+    }
+
+    fn glossy_sample() -> ShprtFile {
+        ShprtFile {
+            lmax: 1,
+            channels: 1,
+            vertex_count: 2,
+            transfer: (0..32).map(|i| i as f32 * 0.25 - 1.0).collect(),
+            mode: "glossy".into(),
+            bounces: 0,
+            albedo: Some([0.8; 3]),
+            glossy: Some(GlossyData {
+                brdf: "phong:32".into(),
+                transport: "shadowed".into(),
+                positions: vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]],
+                normals: vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+                cpca: None,
+            }),
+            ..sample()
+        }
+    }
+
+    #[test]
+    fn glossy_files_are_version_2_and_round_trip() {
+        let f = glossy_sample();
+        let bytes = f.to_bytes();
+        let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+        // Positions, normals, then 2 vertices x 4 x 4 entries.
+        assert_eq!(bytes.len(), nl + 1 + (12 + 32) * 4);
+        let header = String::from_utf8_lossy(&bytes[..nl]).into_owned();
+        assert!(header.contains("\"format_version\":2"), "{header}");
+        assert!(header.contains("\"brdf\":\"phong:32\""), "{header}");
+        // The first value after the header is vertex 0's x; the last, the
+        // last matrix entry.
+        assert_eq!(&bytes[nl + 1..nl + 5], &1.0f32.to_le_bytes());
+        assert_eq!(
+            &bytes[bytes.len() - 4..],
+            &(31.0f32 * 0.25 - 1.0).to_le_bytes()
+        );
+        assert_eq!(f.vertex(1, 0)[15], 31.0 * 0.25 - 1.0);
+        let back = ShprtFile::from_bytes(&bytes, Path::new("g.shprt")).unwrap();
+        assert_eq!(back, f);
+        // Not a transfer vector: the renderer's view refuses it.
+        assert!(f.view().unwrap_err().to_string().contains("glossy"));
+        // A version 2 header that is not glossy, or a version 1 that is,
+        // is refused; so is a glossy file without its BRDF.
+        let e = |b: Vec<u8>| {
+            ShprtFile::from_bytes(&b, Path::new("g.shprt"))
+                .unwrap_err()
+                .to_string()
+        };
+        let swap = |from: &str, to: &str| {
+            let mut b = header.replace(from, to).into_bytes();
+            b.extend_from_slice(&bytes[nl..]);
+            b
+        };
+        assert!(
+            e(swap("\"format_version\":2", "\"format_version\":1"))
+                .contains("glossy transfer is version 2")
+        );
+        assert!(
+            e(swap("\"mode\":\"glossy\"", "\"mode\":\"shadowed\"")).contains("mode \"shadowed\"")
+        );
+        assert!(e(swap("\"brdf\"", "\"bdrf\"")).contains("\"brdf\""));
+        assert!(e(bytes[..bytes.len() - 4].to_vec()).contains("truncated"));
+        // Compressed: 2 clusters of 1 vector over the 16 entries.
+        let mut z = glossy_sample();
+        z.transfer.clear();
+        z.glossy.as_mut().unwrap().cpca = Some(CpcaData {
+            clusters: 2,
+            vectors: 1,
+            means: (0..32).map(|i| i as f32).collect(),
+            bases: (0..32).map(|i| -(i as f32)).collect(),
+            cluster: vec![1, 0],
+            weights: vec![0.5, -0.25],
+        });
+        let zb = z.to_bytes();
+        let znl = zb.iter().position(|&b| b == b'\n').unwrap();
+        assert_eq!(zb.len(), znl + 1 + (12 + 64 + 2 + 2) * 4);
+        assert_eq!(ShprtFile::from_bytes(&zb, Path::new("z.shprt")).unwrap(), z);
+        let zheader = String::from_utf8_lossy(&zb[..znl]).into_owned();
+        assert!(
+            zheader.contains("\"compression\":\"cpca:2,1\""),
+            "{zheader}"
+        );
+        // A cluster index out of range, and a compression beyond the
+        // matrices' size, are refused.
+        let mut bad_index = zb.clone();
+        let at = znl + 1 + (12 + 64) * 4;
+        bad_index[at..at + 4].copy_from_slice(&2.0f32.to_le_bytes());
+        assert!(e(bad_index).contains("cluster index 2"));
+        let mut big = zheader.replace("cpca:2,1", "cpca:2,17").into_bytes();
+        big.extend_from_slice(&zb[znl..]);
+        assert!(e(big).contains("K at most 16"));
     }
 
     #[test]

@@ -7,6 +7,8 @@ use std::path::Path;
 use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 
+use crate::brdf::Brdf;
+use crate::glossy::{GlossyTransfer, bake_glossy};
 use crate::transfer::{Albedo, BakeOptions, Mode, Stage, Transfer, bake};
 
 /// The albedo of a mesh without vertex colours baked with no albedo given.
@@ -89,6 +91,34 @@ pub fn bake_file(
         mesh.content_hash(),
         &mesh_name(mesh_path),
     );
+    (transfer, file)
+}
+
+/// [`bake_file`] for glossy transfer: `request.mode` is the transport
+/// (its bounces the diffuse bounces the matrices gather), `brdf` the lobe
+/// the file records ([`bake_glossy`], [`GlossyTransfer::to_shprt`]).
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_glossy_file(
+    mesh: &Mesh,
+    mesh_path: &Path,
+    request: &BakeRequest,
+    brdf: Brdf,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> (GlossyTransfer, ShprtFile) {
+    let (albedo, recorded) = request.albedo(mesh);
+    let options = BakeOptions {
+        lmax: request.lmax,
+        samples: request.samples,
+        mode: request.mode,
+        albedo,
+        seed: request.seed,
+        emission: None,
+    };
+    let transfer = bake_glossy(mesh, &options, progress);
+    let file = transfer.to_shprt(mesh, brdf, request.seed, recorded, &mesh_name(mesh_path));
     (transfer, file)
 }
 

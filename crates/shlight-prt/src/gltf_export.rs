@@ -37,10 +37,31 @@ pub fn attribute_count(values: usize) -> usize {
 /// Writes `mesh` and `prt` to `path`: binary glTF for `.glb`, JSON with a
 /// base64 buffer otherwise. Atomic.
 ///
+/// Glossy transfer is refused: a matrix per vertex, `(lmax+1)^4` floats
+/// per channel (625 at lmax 4, 157 `VEC4` attributes), is beyond what
+/// glTF loaders take as vertex attributes (WebGL guarantees 16), and an
+/// engine would need shlight's view-dependent shading besides.
+///
 /// # Errors
 /// [`PrtError::Mismatch`] when the transfer has another vertex count than
-/// the mesh; [`PrtError::Write`] when writing fails.
+/// the mesh, or is glossy; [`PrtError::Write`] when writing fails.
 pub fn write_gltf(path: &Path, mesh: &Mesh, prt: &ShprtFile) -> Result<(), PrtError> {
+    if let Some(g) = &prt.glossy {
+        return Err(PrtError::Mismatch(format!(
+            "{}: glTF cannot carry glossy transfer ({}): a {}x{} matrix per vertex{} is \
+             beyond what glTF vertex attributes hold; write a .shprt file, or bake the \
+             diffuse transfer (without --mode glossy) for glTF",
+            path.display(),
+            g.brdf,
+            prt.coeffs_per_channel().isqrt(),
+            prt.coeffs_per_channel().isqrt(),
+            if prt.channels == 3 {
+                " and channel"
+            } else {
+                ""
+            }
+        )));
+    }
     if prt.vertex_count != mesh.vertex_count() {
         return Err(PrtError::Mismatch(format!(
             "{}: the transfer has {} vertices, the mesh {}",
@@ -204,6 +225,7 @@ mod tests {
             albedo: Some([0.8; 3]),
             mesh_hash: mesh.content_hash(),
             mesh: "torus".into(),
+            glossy: None,
         }
     }
 

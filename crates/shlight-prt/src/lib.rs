@@ -11,6 +11,13 @@
 //! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
 //!   to any lmax, constant or per-vertex albedo, in parallel and
 //!   deterministic for a seed ([`transfer`] states the estimator).
+//! - [`glossy::bake_glossy`]: glossy transfer matrices `M_p` (shadowed or
+//!   with diffuse interreflections), and [`glossy::exit_radiance`], the
+//!   view-dependent exit radiance of a [`brdf::Brdf`] lobe ([`glossy`]
+//!   states the definition).
+//! - [`cpca::compress`]: clustered PCA of glossy matrices (Sloan, Hall,
+//!   Hart & Snyder 2003), [`cpca::Cpca::reconstruct`], and
+//!   [`cpca::compress_file`], a glossy `.shprt` file compressed.
 //! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
 //!   ([`shlight_format::ShprtFile`], docs/shprt.md).
 //! - [`bake_file::bake_file`]: a bake as a front end asks for it
@@ -45,9 +52,12 @@
 //! written through shlight-io's atomic writer.
 
 pub mod bake_file;
+pub mod brdf;
 pub mod brute_force;
 pub mod bvh;
+pub mod cpca;
 mod error;
+pub mod glossy;
 pub mod gltf_export;
 pub mod packet;
 pub mod preview;

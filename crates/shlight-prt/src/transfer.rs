@@ -175,6 +175,8 @@ pub enum Stage {
     Rays,
     /// Gathering bounce `k` (1-based).
     Bounce(u32),
+    /// Summing glossy transfer matrices, in vertices.
+    Matrices,
 }
 
 /// Per-vertex transfer vectors and what produced them.
@@ -237,6 +239,7 @@ impl Transfer {
             albedo,
             mesh_hash,
             mesh: mesh.to_string(),
+            glossy: None,
         }
     }
 
@@ -281,11 +284,11 @@ pub fn exit_radiance(
 /// vertex's rank (Morton order), the triangle and the barycentric weights
 /// of corners 1 and 2.
 #[derive(Clone, Copy, Debug)]
-struct FrontHit {
-    rank: u32,
-    triangle: u32,
-    b1: f32,
-    b2: f32,
+pub(crate) struct FrontHit {
+    pub(crate) rank: u32,
+    pub(crate) triangle: u32,
+    pub(crate) b1: f32,
+    pub(crate) b2: f32,
 }
 
 const CHUNK: usize = 64;
@@ -350,9 +353,29 @@ pub fn cast_rays(mesh: &Mesh, dirs: &[Vec3]) -> Vec<(Vec3, Vec<Vec3>)> {
 /// times the bounding-box diagonal, `c` the unit vector in the tangent plane
 /// from `p` towards the mean centroid of the triangles that use it (zero
 /// for a vertex no triangle uses, or one whose mean lies along its normal,
-/// like a sphere's pole).
+/// like a sphere's pole) — unless the segment from `p` to that point
+/// crosses the mesh, which an origin must never do: a vertex just inside
+/// another part of a self-intersecting mesh would have its rays start on
+/// the far side of the surface it is inside, and be lit where every ray from
+/// it meets a back face. Then the first of `p + eps n`, `p + eps n / 4`,
+/// `p + eps n / 16`, ... ([`SHORTER_OFFSETS`] of them) whose segment from
+/// `p` crosses nothing is taken, and the shortest when every one crosses.
 #[must_use]
 pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
+    ray_origins_against(mesh, &Bvh::new(&mesh.positions, &mesh.triangles))
+}
+
+/// Normal-only offsets tried, each a quarter of the last, when the
+/// concave-edge offset of [`ray_origins`] would cross the mesh.
+pub const SHORTER_OFFSETS: usize = 8;
+
+/// Hits on a segment from `p` nearer than this fraction of its length are
+/// the triangles through `p` itself (its own), which it leaves, not crosses.
+const OWN_TRIANGLES: f32 = 1e-3;
+
+/// [`ray_origins`], the segments from each `p` tested against `bvh` (the
+/// mesh's surface, or the surface it was subdivided from).
+fn ray_origins_against(mesh: &Mesh, bvh: &Bvh) -> Vec<Vec3> {
     let bounds = mesh.bounds();
     let eps = OFFSET * (bounds.1 - bounds.0).length();
     let mut centroids = vec![(DVec3::ZERO, 0u32); mesh.vertex_count()];
@@ -368,8 +391,14 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
             e.1 += 1;
         }
     }
+    // Whether the segment from `p` to `p + offset` crosses a triangle
+    // other than those through `p`.
+    let crosses = |p: Vec3, offset: Vec3| {
+        let start = p + OWN_TRIANGLES * offset;
+        bvh.occluded(&crate::bvh::Ray::new(start, offset, 1.0 - OWN_TRIANGLES))
+    };
     mesh.positions
-        .iter()
+        .par_iter()
         .zip(&mesh.normals)
         .zip(&centroids)
         .map(|((p, n), &(sum, count))| {
@@ -382,7 +411,18 @@ pub fn ray_origins(mesh: &Mesh) -> Vec<Vec3> {
                     .try_normalize()
                     .map_or(Vec3::ZERO, |c| c.as_vec3())
             };
-            *p + eps * (*n + inward)
+            let offset = eps * (*n + inward);
+            if !crosses(*p, offset) {
+                return *p + offset;
+            }
+            let mut offset = eps * *n;
+            for _ in 1..SHORTER_OFFSETS {
+                if !crosses(*p, offset) {
+                    break;
+                }
+                offset *= 0.25;
+            }
+            *p + offset
         })
         .collect()
 }
@@ -736,248 +776,335 @@ fn bake_with(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     kernels: Kernels,
 ) -> Transfer {
-    let n_vertices = mesh.vertex_count();
-    if let Albedo::PerVertex(a) = &options.albedo {
-        assert_eq!(a.len(), n_vertices, "one albedo per vertex");
-    }
-    if let Some(e) = &options.emission {
-        assert_eq!(e.len(), n_vertices, "one emission per vertex");
-    }
-    let lmax = options.lmax;
-    let nc = sh_count(lmax);
-    let channels = options.albedo.channels();
-    let dirs: Vec<Vec3> = stratified_directions(options.samples.max(1), options.seed)
-        .iter()
-        .map(|d| d.as_vec3())
-        .collect();
-    let basis = ShBasis::<f64>::new(lmax);
-    let mut ylm = vec![0.0f64; dirs.len() * nc];
-    for (d, row) in dirs.iter().zip(ylm.chunks_exact_mut(nc)) {
-        basis.eval(d.as_dvec3(), row);
-    }
-
     let shadowed = options.mode != Mode::Unshadowed;
-    let keep_hits = matches!(options.mode, Mode::Interreflected { bounces } if bounces > 0);
-    // The mesh with its vertices in Morton order: `order[s]` is the vertex
-    // at rank `s`, so the vertices facing a direction, taken in rank order,
-    // make coherent packets and every pass reads memory in sequence.
-    let bounds = mesh.bounds();
-    let order = vertex_order(&mesh.positions, bounds);
-    // The triangles with their corners by rank: what the bounces read, and
-    // what the rays are cast against when there is no occluder.
-    let triangles = if keep_hits || shadowed && occluder.is_none() {
-        ranked_triangles(mesh, &ranks(&order))
-    } else {
-        Vec::new()
-    };
-    let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
-    // sum_j max(n.s_j, 0) per vertex, by rank: the weights' denominators.
-    let totals: Vec<f64> = normals
-        .par_iter()
-        .map(|n| dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum())
-        .collect();
-    let words = n_vertices.div_ceil(64);
-    // Bit s of row j: the ray from the vertex of rank s along direction j
-    // escapes.
-    let mut visible = vec![0u64; if shadowed { dirs.len() * words } else { 0 }];
-    let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
-    let rays = AtomicU64::new(0);
-    if shadowed {
-        // What the rays are cast against: `mesh`, or the occluder.
-        let own;
-        let (occluder, map) = match occluder {
-            Some((o, m)) => (o, Some(m)),
-            None => {
-                own = Occluder::from_ranked(mesh, &order, &triangles);
-                (&own, None)
-            }
-        };
-        let (cast_positions, bvh) = (occluder.positions(), occluder.bvh());
-        // Where the rays start, by rank.
-        let origins = ray_origins(mesh);
-        let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
-        let done = AtomicUsize::new(0);
-        visible
-            .par_chunks_mut(words.max(1))
-            .zip(front_hits.par_iter_mut())
-            .enumerate()
-            .for_each_init(
-                || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                |(local, facing, pending, coarse, located), (j, (row, hits))| {
-                    let d = dirs[j];
-                    let dir = Direction::new(d);
-                    local.clear();
-                    local.extend(cast_positions.iter().map(|p| dir.to_ray_space(*p)));
-                    facing.clear();
-                    facing.extend(
-                        normals
-                            .iter()
-                            .enumerate()
-                            .filter(|(_, n)| n.dot(d) > 0.0)
-                            .map(|(s, _)| s as u32),
-                    );
-                    for eight in facing.chunks(LANES) {
-                        let mut origins = [Vec3::ZERO; LANES];
-                        for (o, &s) in origins.iter_mut().zip(eight) {
-                            *o = start[s as usize];
-                        }
-                        let packet = Packet::new(&dir, &origins[..eight.len()]);
-                        let escaped = if keep_hits {
-                            let found = bvh.closest(&dir, local, &packet);
-                            for (k, &s) in eight.iter().enumerate() {
-                                if found.mask >> k & 1 == 0 {
-                                    continue;
-                                }
-                                let triangle = found.triangle[k];
-                                if !occluder.is_front(triangle, d) {
-                                    continue;
-                                }
-                                match map {
-                                    None => {
-                                        let [_, b1, b2] = found.barycentrics[k];
-                                        hits.push(FrontHit {
-                                            rank: s,
-                                            triangle,
-                                            b1,
-                                            b2,
-                                        });
-                                    }
-                                    Some(_) => {
-                                        pending.push(s);
-                                        coarse.push((triangle, found.barycentrics[k]));
-                                    }
-                                }
-                            }
-                            !found.mask
-                        } else {
-                            !bvh.occluded(&dir, local, &packet)
-                        };
-                        for (k, &s) in eight.iter().enumerate() {
-                            if escaped >> k & 1 == 1 {
-                                row[s as usize / 64] |= 1 << (s % 64);
-                            }
-                        }
-                    }
-                    // The direction's hits on the occluder, found in `mesh`
-                    // together (their memory reads overlap).
-                    if let Some(m) = map {
-                        m.locate_each(coarse, located);
-                        for (&s, l) in pending.iter().zip(located.iter()) {
-                            if let Some((triangle, [_, b1, b2])) = *l {
-                                hits.push(FrontHit {
-                                    rank: s,
-                                    triangle,
-                                    b1,
-                                    b2,
-                                });
-                            }
-                        }
-                        pending.clear();
-                        coarse.clear();
-                    }
-                    rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
-                    progress(
-                        Stage::Rays,
-                        done.fetch_add(1, Ordering::Relaxed) + 1,
-                        dirs.len(),
-                    );
-                },
-            );
-    }
-
-    // Geometric transfer (no albedo) per vertex, in rank order: the sum over
-    // the escaping directions above the tangent plane of w_j Y(s_j),
-    // w_j = n.s_j / total.
-    let mut ranked = vec![0.0f32; n_vertices * nc];
-    ranked
-        .par_chunks_mut(CHUNK * nc)
-        .enumerate()
-        .for_each(|(chunk, out)| {
-            let mut acc = vec![0.0f64; nc];
-            for (k, t) in out.chunks_exact_mut(nc).enumerate() {
-                let s = chunk * CHUNK + k;
-                let (n, total) = (normals[s], totals[s]);
-                acc.fill(0.0);
-                if total > 0.0 {
-                    for (j, d) in dirs.iter().enumerate() {
-                        let cos = n.dot(*d);
-                        if cos <= 0.0
-                            || shadowed && visible[j * words + s / 64] >> (s % 64) & 1 == 0
-                        {
-                            continue;
-                        }
-                        let w = f64::from(cos) / total;
-                        let y = &ylm[j * nc..][..nc];
-                        for (a, yi) in acc.iter_mut().zip(y) {
-                            *a += w * yi;
-                        }
-                    }
-                }
-                for (ti, a) in t.iter_mut().zip(&acc) {
-                    *ti = *a as f32;
-                }
-            }
-        });
-    drop(visible);
-
-    // T^0 = albedo x geometric transfer, per channel, by rank.
-    let stride = channels * nc;
-    let mut total = vec![0.0f32; n_vertices * stride];
-    for ((t, g), &v) in total
-        .chunks_exact_mut(stride)
-        .zip(ranked.chunks_exact(nc))
-        .zip(&order)
-    {
-        for c in 0..channels {
-            let rho = options.albedo.get(v as usize, c);
-            for (o, gi) in t[c * nc..][..nc].iter_mut().zip(g) {
-                *o = rho * gi;
-            }
-        }
-    }
-    drop(ranked);
-
-    // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
-    // the same for the emitters' light E (E^0 = Le, by rank), both in one
-    // pass over the hits.
-    let mut emitted: Option<Vec<Vec3>> = options
-        .emission
-        .as_ref()
-        .map(|e| order.iter().map(|&v| e[v as usize]).collect());
     let bounces = options.mode.bounces();
-    if bounces > 0 {
-        let gather = Gather::new(
-            &order,
-            &normals,
-            &totals,
-            &triangles,
-            &dirs,
-            &front_hits,
-            options,
-        );
-        let mut previous = records::build(&total, stride, emitted.as_deref());
-        for bounce in 1..=bounces {
+    let cast = Cast::new(mesh, occluder, options, shadowed, bounces > 0, progress);
+    let (total, emitted) = cast.diffuse(options, bounces, kernels, progress);
+    let stride = cast.channels * cast.nc;
+    Transfer {
+        lmax: options.lmax,
+        channels: cast.channels,
+        vertex_count: cast.order.len(),
+        coeffs: by_vertex(&total, stride, &cast.order),
+        samples: cast.dirs.len(),
+        rays: cast.rays,
+        emitted: emitted.map(|e| by_vertex(&e, 1, &cast.order)),
+    }
+}
+
+/// The rays of a bake, cast: the shared directions and their basis
+/// values, the vertices in Morton order, which rays escape and where the
+/// others met the front of a triangle.
+pub(crate) struct Cast {
+    /// `order[s]`: the vertex at rank `s`.
+    pub(crate) order: Vec<u32>,
+    /// The mesh's triangles with their corners by rank (empty when no
+    /// bounce or cast needed them).
+    pub(crate) triangles: Vec<[u32; 3]>,
+    /// Normals by rank.
+    pub(crate) normals: Vec<Vec3>,
+    /// `sum_j max(n.s_j, 0)` per vertex, by rank.
+    totals: Vec<f64>,
+    /// The shared directions.
+    pub(crate) dirs: Vec<Vec3>,
+    /// `Y_i(s_j)`, `nc` per direction.
+    pub(crate) ylm: Vec<f64>,
+    /// `(lmax+1)^2`.
+    pub(crate) nc: usize,
+    /// The albedo's channels.
+    pub(crate) channels: usize,
+    /// Bit `s` of row `j` (`words` per row): the ray from the vertex of
+    /// rank `s` along direction `j` escapes (empty when unshadowed).
+    pub(crate) visible: Vec<u64>,
+    pub(crate) words: usize,
+    /// Per direction, its rays' front hits in rank order (empty unless
+    /// kept).
+    pub(crate) front_hits: Vec<Vec<FrontHit>>,
+    /// Rays cast.
+    pub(crate) rays: u64,
+}
+
+impl Cast {
+    /// Casts the rays of `options` (its lmax, samples, seed and albedo)
+    /// when `shadowed`, keeping the front hits when `keep_hits`.
+    ///
+    /// # Panics
+    /// If a per-vertex albedo or the emission has another length than the
+    /// mesh's vertices.
+    pub(crate) fn new(
+        mesh: &Mesh,
+        occluder: Option<(&Occluder, &Subdivision)>,
+        options: &BakeOptions,
+        shadowed: bool,
+        keep_hits: bool,
+        progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    ) -> Self {
+        let n_vertices = mesh.vertex_count();
+        if let Albedo::PerVertex(a) = &options.albedo {
+            assert_eq!(a.len(), n_vertices, "one albedo per vertex");
+        }
+        if let Some(e) = &options.emission {
+            assert_eq!(e.len(), n_vertices, "one emission per vertex");
+        }
+        let lmax = options.lmax;
+        let nc = sh_count(lmax);
+        let channels = options.albedo.channels();
+        let dirs: Vec<Vec3> = stratified_directions(options.samples.max(1), options.seed)
+            .iter()
+            .map(|d| d.as_vec3())
+            .collect();
+        let basis = ShBasis::<f64>::new(lmax);
+        let mut ylm = vec![0.0f64; dirs.len() * nc];
+        for (d, row) in dirs.iter().zip(ylm.chunks_exact_mut(nc)) {
+            basis.eval(d.as_dvec3(), row);
+        }
+
+        // The mesh with its vertices in Morton order: `order[s]` is the vertex
+        // at rank `s`, so the vertices facing a direction, taken in rank order,
+        // make coherent packets and every pass reads memory in sequence.
+        let bounds = mesh.bounds();
+        let order = vertex_order(&mesh.positions, bounds);
+        // The triangles with their corners by rank: what the bounces read, and
+        // what the rays are cast against when there is no occluder.
+        let triangles = if keep_hits || shadowed && occluder.is_none() {
+            ranked_triangles(mesh, &ranks(&order))
+        } else {
+            Vec::new()
+        };
+        let normals: Vec<Vec3> = order.iter().map(|&v| mesh.normals[v as usize]).collect();
+        // sum_j max(n.s_j, 0) per vertex, by rank: the weights' denominators.
+        let totals: Vec<f64> = normals
+            .par_iter()
+            .map(|n| dirs.iter().map(|d| f64::from(n.dot(*d).max(0.0))).sum())
+            .collect();
+        let words = n_vertices.div_ceil(64);
+        // Bit s of row j: the ray from the vertex of rank s along direction j
+        // escapes.
+        let mut visible = vec![0u64; if shadowed { dirs.len() * words } else { 0 }];
+        let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
+        let rays = AtomicU64::new(0);
+        if shadowed {
+            // What the rays are cast against: `mesh`, or the occluder.
+            let own;
+            let (occluder, map) = match occluder {
+                Some((o, m)) => (o, Some(m)),
+                None => {
+                    own = Occluder::from_ranked(mesh, &order, &triangles);
+                    (&own, None)
+                }
+            };
+            let (cast_positions, bvh) = (occluder.positions(), occluder.bvh());
+            // Where the rays start, by rank.
+            let origins = ray_origins_against(mesh, bvh.bvh());
+            let start: Vec<Vec3> = order.iter().map(|&v| origins[v as usize]).collect();
             let done = AtomicUsize::new(0);
-            let next = gather.bounce(kernels, &previous, &|n| {
-                progress(
-                    Stage::Bounce(bounce),
-                    done.fetch_add(n, Ordering::Relaxed) + n,
-                    n_vertices,
+            visible
+                .par_chunks_mut(words.max(1))
+                .zip(front_hits.par_iter_mut())
+                .enumerate()
+                .for_each_init(
+                    || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                    |(local, facing, pending, coarse, located), (j, (row, hits))| {
+                        let d = dirs[j];
+                        let dir = Direction::new(d);
+                        local.clear();
+                        local.extend(cast_positions.iter().map(|p| dir.to_ray_space(*p)));
+                        facing.clear();
+                        facing.extend(
+                            normals
+                                .iter()
+                                .enumerate()
+                                .filter(|(_, n)| n.dot(d) > 0.0)
+                                .map(|(s, _)| s as u32),
+                        );
+                        for eight in facing.chunks(LANES) {
+                            let mut origins = [Vec3::ZERO; LANES];
+                            for (o, &s) in origins.iter_mut().zip(eight) {
+                                *o = start[s as usize];
+                            }
+                            let packet = Packet::new(&dir, &origins[..eight.len()]);
+                            let escaped = if keep_hits {
+                                let found = bvh.closest(&dir, local, &packet);
+                                for (k, &s) in eight.iter().enumerate() {
+                                    if found.mask >> k & 1 == 0 {
+                                        continue;
+                                    }
+                                    let triangle = found.triangle[k];
+                                    if !occluder.is_front(triangle, d) {
+                                        continue;
+                                    }
+                                    match map {
+                                        None => {
+                                            let [_, b1, b2] = found.barycentrics[k];
+                                            hits.push(FrontHit {
+                                                rank: s,
+                                                triangle,
+                                                b1,
+                                                b2,
+                                            });
+                                        }
+                                        Some(_) => {
+                                            pending.push(s);
+                                            coarse.push((triangle, found.barycentrics[k]));
+                                        }
+                                    }
+                                }
+                                !found.mask
+                            } else {
+                                !bvh.occluded(&dir, local, &packet)
+                            };
+                            for (k, &s) in eight.iter().enumerate() {
+                                if escaped >> k & 1 == 1 {
+                                    row[s as usize / 64] |= 1 << (s % 64);
+                                }
+                            }
+                        }
+                        // The direction's hits on the occluder, found in `mesh`
+                        // together (their memory reads overlap).
+                        if let Some(m) = map {
+                            m.locate_each(coarse, located);
+                            for (&s, l) in pending.iter().zip(located.iter()) {
+                                if let Some((triangle, [_, b1, b2])) = *l {
+                                    hits.push(FrontHit {
+                                        rank: s,
+                                        triangle,
+                                        b1,
+                                        b2,
+                                    });
+                                }
+                            }
+                            pending.clear();
+                            coarse.clear();
+                        }
+                        rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
+                        progress(
+                            Stage::Rays,
+                            done.fetch_add(1, Ordering::Relaxed) + 1,
+                            dirs.len(),
+                        );
+                    },
                 );
-            });
-            gather.add(&next, &mut total, emitted.as_deref_mut());
-            previous = next;
+        }
+
+        Self {
+            order,
+            triangles,
+            normals,
+            totals,
+            dirs,
+            ylm,
+            nc,
+            channels,
+            visible,
+            words,
+            front_hits,
+            rays: rays.into_inner(),
         }
     }
 
-    Transfer {
-        lmax,
-        channels,
-        vertex_count: n_vertices,
-        coeffs: by_vertex(&total, stride, &order),
-        samples: dirs.len(),
-        rays: rays.into_inner(),
-        emitted: emitted.map(|e| by_vertex(&e, 1, &order)),
+    /// The diffuse transfer of `options` with `bounces` bounces gathered
+    /// (its rays cast by [`Cast::new`], shadowed unless `visible` is empty,
+    /// front hits kept when `bounces > 0`), and the emitters' light: both
+    /// by rank.
+    pub(crate) fn diffuse(
+        &self,
+        options: &BakeOptions,
+        bounces: u32,
+        kernels: Kernels,
+        progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    ) -> (Vec<f32>, Option<Vec<Vec3>>) {
+        let Self {
+            order,
+            triangles,
+            normals,
+            totals,
+            dirs,
+            ylm,
+            nc,
+            channels,
+            visible,
+            words,
+            front_hits,
+            ..
+        } = self;
+        let (nc, channels, words) = (*nc, *channels, *words);
+        let n_vertices = order.len();
+        let shadowed = !visible.is_empty();
+        // Geometric transfer (no albedo) per vertex, in rank order: the sum over
+        // the escaping directions above the tangent plane of w_j Y(s_j),
+        // w_j = n.s_j / total.
+        let mut ranked = vec![0.0f32; n_vertices * nc];
+        ranked
+            .par_chunks_mut(CHUNK * nc)
+            .enumerate()
+            .for_each(|(chunk, out)| {
+                let mut acc = vec![0.0f64; nc];
+                for (k, t) in out.chunks_exact_mut(nc).enumerate() {
+                    let s = chunk * CHUNK + k;
+                    let (n, total) = (normals[s], totals[s]);
+                    acc.fill(0.0);
+                    if total > 0.0 {
+                        for (j, d) in dirs.iter().enumerate() {
+                            let cos = n.dot(*d);
+                            if cos <= 0.0
+                                || shadowed && visible[j * words + s / 64] >> (s % 64) & 1 == 0
+                            {
+                                continue;
+                            }
+                            let w = f64::from(cos) / total;
+                            let y = &ylm[j * nc..][..nc];
+                            for (a, yi) in acc.iter_mut().zip(y) {
+                                *a += w * yi;
+                            }
+                        }
+                    }
+                    for (ti, a) in t.iter_mut().zip(&acc) {
+                        *ti = *a as f32;
+                    }
+                }
+            });
+
+        // T^0 = albedo x geometric transfer, per channel, by rank.
+        let stride = channels * nc;
+        let mut total = vec![0.0f32; n_vertices * stride];
+        for ((t, g), &v) in total
+            .chunks_exact_mut(stride)
+            .zip(ranked.chunks_exact(nc))
+            .zip(order.iter())
+        {
+            for c in 0..channels {
+                let rho = options.albedo.get(v as usize, c);
+                for (o, gi) in t[c * nc..][..nc].iter_mut().zip(g) {
+                    *o = rho * gi;
+                }
+            }
+        }
+
+        // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
+        // the same for the emitters' light E (E^0 = Le, by rank), both in one
+        // pass over the hits.
+        let mut emitted: Option<Vec<Vec3>> = options
+            .emission
+            .as_ref()
+            .map(|e| order.iter().map(|&v| e[v as usize]).collect());
+        if bounces > 0 {
+            let gather = Gather::new(order, normals, totals, triangles, dirs, front_hits, options);
+            let mut previous = records::build(&total, stride, emitted.as_deref());
+            for bounce in 1..=bounces {
+                let done = AtomicUsize::new(0);
+                let next = gather.bounce(kernels, &previous, &|n| {
+                    progress(
+                        Stage::Bounce(bounce),
+                        done.fetch_add(n, Ordering::Relaxed) + n,
+                        n_vertices,
+                    );
+                });
+                gather.add(&next, &mut total, emitted.as_deref_mut());
+                previous = next;
+            }
+        }
+
+        (total, emitted)
     }
 }
 

@@ -1,0 +1,66 @@
+//! The error of CPCA-compressed glossy transfer against the uncompressed
+//! matrices, over the clusters `C` and the basis vectors per cluster `K`,
+//! on the bundled meshes: a markdown table per mesh of the RMS error of the
+//! matrix entries relative to their RMS, and the bytes stored.
+//!
+//! `cargo run --release -p shlight-prt --example cpca_curve`
+//!
+//! The bake: `shlight prt MESH --mode glossy --brdf phong:32 --lmax 4
+//! --samples 512` (shadowed, grey); docs/shprt.md shows the tables.
+
+use std::path::Path;
+
+use shlight_prt::bake_file::{BakeRequest, bake_glossy_file};
+use shlight_prt::brdf::Brdf;
+use shlight_prt::cpca::compress_file;
+use shlight_prt::transfer::Mode;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let request = BakeRequest {
+        lmax: 4,
+        samples: 512,
+        mode: Mode::Shadowed,
+        albedo: None,
+        seed: 0,
+    };
+    let clusters = [1usize, 4, 16, 64, 256];
+    let vectors = [0usize, 1, 2, 4, 8, 16];
+    for name in ["bunny.obj", "teapot.obj"] {
+        let path = root.join("meshes").join(name);
+        let mesh = shlight_mesh::load(&path).expect("a bundled mesh");
+        let (_, file) = bake_glossy_file(
+            &mesh,
+            &path,
+            &request,
+            Brdf::Phong { exponent: 32.0 },
+            &|_, _, _| {},
+        );
+        let before = 4 * file.transfer.len();
+        println!(
+            "{name} ({} vertices; uncompressed {:.2} MiB): RMS error / RMS entry, and MiB stored\n",
+            mesh.vertex_count(),
+            before as f64 / f64::from(1u32 << 20)
+        );
+        print!("| C \\ K |");
+        for k in vectors {
+            print!(" {k} |");
+        }
+        println!();
+        println!("|---|{}", "---|".repeat(vectors.len()));
+        for c in clusters {
+            print!("| {c} |");
+            for k in vectors {
+                let mut f = file.clone();
+                let e = compress_file(&mut f, c, k, 0).expect("compresses");
+                print!(
+                    " {:.1}% ({:.2}) |",
+                    100.0 * e.rms / e.rms_entries,
+                    e.bytes_after as f64 / f64::from(1u32 << 20)
+                );
+            }
+            println!();
+        }
+        println!();
+    }
+}
