@@ -16,7 +16,11 @@ fn sky(w: usize, h: usize) -> Vec<[f32; 3]> {
         .map(|(x, y)| {
             let d = equirect_direction(x, y, w, h, MapOrientation::default());
             let s = if d.dot(sun) > 0.9995 { 5000.0 } else { 0.0 };
-            [(0.3 + 0.5 * d.y.max(0.0) + s) as f32, (0.4 + s) as f32, (0.6 + s) as f32]
+            [
+                (0.3 + 0.5 * d.y.max(0.0) + s) as f32,
+                (0.4 + s) as f32,
+                (0.6 + s) as f32,
+            ]
         })
         .collect()
 }

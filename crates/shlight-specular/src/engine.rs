@@ -212,7 +212,13 @@ mod tests {
     fn the_cube_frames_are_rotations_or_the_bevy_mirror() {
         for e in Engine::ALL {
             let m = e.world_from_cube();
-            assert!((m * m.transpose() - DMat3::IDENTITY).abs().to_cols_array().iter().all(|v| *v < 1e-12));
+            assert!(
+                (m * m.transpose() - DMat3::IDENTITY)
+                    .abs()
+                    .to_cols_array()
+                    .iter()
+                    .all(|v| *v < 1e-12)
+            );
         }
         // Filament: the world's +X is at the cube's +Z.
         let d = Engine::Filament.world_from_cube() * DVec3::Z;

@@ -110,7 +110,10 @@ mod tests {
                     c * d_ggx(c, alpha) * c * std::f64::consts::TAU / m as f64
                 })
                 .sum();
-            assert!((mean - want).abs() < 2e-3, "alpha {alpha}: {mean} vs {want}");
+            assert!(
+                (mean - want).abs() < 2e-3,
+                "alpha {alpha}: {mean} vs {want}"
+            );
         }
     }
 }

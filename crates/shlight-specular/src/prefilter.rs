@@ -202,7 +202,11 @@ fn lobe_samples(alpha: f64, count: u32, base: usize, max_lod: f64) -> Vec<LobeSa
 /// An orthonormal frame whose third axis is `n` (Filament's choice of
 /// helper axis: `+Z` unless `n` is within 2.6° of it, then `+X`).
 fn frame_about(n: DVec3) -> DMat3 {
-    let up = if n.z.abs() < 0.999 { DVec3::Z } else { DVec3::X };
+    let up = if n.z.abs() < 0.999 {
+        DVec3::Z
+    } else {
+        DVec3::X
+    };
     let t = up.cross(n).normalize();
     DMat3::from_cols(t, n.cross(t), n)
 }

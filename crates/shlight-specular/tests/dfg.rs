@@ -66,7 +66,11 @@ fn the_limits_are_the_closed_forms() {
         // At grazing 1024 samples are 0.7% off; 16384 converge.
         let [a, b] = dfg(n_dot_v, 1.0, Visibility::HeightCorrelated, 16384);
         let want = 1.0 - n_dot_v * ((1.0 + n_dot_v) / n_dot_v).ln();
-        assert!((a + b - want).abs() < 2e-3, "n.v {n_dot_v}: {} vs {want}", a + b);
+        assert!(
+            (a + b - want).abs() < 2e-3,
+            "n.v {n_dot_v}: {} vs {want}",
+            a + b
+        );
     }
 }
 
@@ -85,7 +89,10 @@ fn karis_fit_follows_the_table() {
             let got = table.values[y * 16 + x];
             let fit = dfg_karis_approx(table.n_dot_v(x), table.perceptual(y));
             for c in 0..2 {
-                assert!((got[c] - fit[c]).abs() < LOOSE, "({x},{y}): {got:?} vs {fit:?}");
+                assert!(
+                    (got[c] - fit[c]).abs() < LOOSE,
+                    "({x},{y}): {got:?} vs {fit:?}"
+                );
                 sum += (got[c] - fit[c]).abs();
             }
         }

@@ -3,9 +3,7 @@
 //! over every texel of the source map.
 
 use glam::DVec3;
-use shlight_core::map::{
-    CubeFace, EnvMap, Layout, MapOrientation, equirect_direction,
-};
+use shlight_core::map::{CubeFace, EnvMap, Layout, MapOrientation, equirect_direction};
 use shlight_specular::ggx::d_ggx;
 use shlight_specular::{Engine, PrefilterSettings, prefilter};
 
@@ -15,7 +13,11 @@ const H: usize = 128;
 fn draw(f: impl Fn(DVec3) -> DVec3) -> Vec<[f32; 3]> {
     (0..H)
         .flat_map(|y| (0..W).map(move |x| (x, y)))
-        .map(|(x, y)| f(equirect_direction(x, y, W, H, MapOrientation::default())).as_vec3().to_array())
+        .map(|(x, y)| {
+            f(equirect_direction(x, y, W, H, MapOrientation::default()))
+                .as_vec3()
+                .to_array()
+        })
         .collect()
 }
 
@@ -90,7 +92,10 @@ fn roughness_zero_is_the_map_itself() {
         }
         assert!(worst < TOLERANCE, "{engine}: {worst}");
         // The cube's axes matter: read in shlight's own axes it differs.
-        assert!(worst_unturned > 10.0 * TOLERANCE, "{engine}: {worst_unturned}");
+        assert!(
+            worst_unturned > 10.0 * TOLERANCE,
+            "{engine}: {worst_unturned}"
+        );
     }
 }
 
@@ -100,7 +105,14 @@ fn roughness_zero_is_the_map_itself() {
 fn a_constant_map_stays_constant_at_every_roughness() {
     let pixels = vec![[0.25f32, 1.5, 3.0]; W * H];
     let cross = vec![[0.25f32, 1.5, 3.0]; 64 * 48];
-    let cross = EnvMap::new(Layout::CrossHorizontal, MapOrientation::default(), 64, 48, &cross).unwrap();
+    let cross = EnvMap::new(
+        Layout::CrossHorizontal,
+        MapOrientation::default(),
+        64,
+        48,
+        &cross,
+    )
+    .unwrap();
     for m in [map(&pixels), cross] {
         for engine in [Engine::Filament, Engine::Unreal] {
             let settings = PrefilterSettings {
@@ -151,10 +163,17 @@ fn every_mip_matches_the_brute_force_integral() {
             let want = brute_force(&map, world * c, level.alpha);
             let err = (got - want).abs().max_element() / peak;
             worst = worst.max(err);
-            assert!(err < TOLERANCE, "mip {k} alpha {} {face}: {got} vs {want}", level.alpha);
+            assert!(
+                err < TOLERANCE,
+                "mip {k} alpha {} {face}: {got} vs {want}",
+                level.alpha
+            );
         }
     }
-    eprintln!("smooth map: worst difference {:.3}% of the peak", 100.0 * worst);
+    eprintln!(
+        "smooth map: worst difference {:.3}% of the peak",
+        100.0 * worst
+    );
 }
 
 /// A small bright sun spreads into the GGX lobe's shape: the prefiltered
@@ -209,7 +228,10 @@ fn a_small_sun_spreads_into_the_lobe() {
             }
         }
     }
-    eprintln!("sun: worst difference {:.2}% of the lobe's peak", 100.0 * worst);
+    eprintln!(
+        "sun: worst difference {:.2}% of the lobe's peak",
+        100.0 * worst
+    );
 }
 
 /// The same settings give the same bits, whatever rayon's thread count.
@@ -223,7 +245,10 @@ fn results_repeat_bit_for_bit() {
         ..PrefilterSettings::new(Engine::Babylon)
     };
     let a = prefilter(&map, &settings, &|_| {}).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
     let b = pool.install(|| prefilter(&map, &settings, &|_| {}).unwrap());
     for (x, y) in a.levels.iter().zip(&b.levels) {
         assert_eq!(x.cube, y.cube);
@@ -238,8 +263,20 @@ fn bad_settings_are_refused() {
     for (s, needle) in [
         (PrefilterSettings { size: 48, ..base }, "power of two"),
         (PrefilterSettings { samples: 0, ..base }, "--samples"),
-        (PrefilterSettings { mips: Some(10), ..base }, "at most 9"),
-        (PrefilterSettings { mips: Some(0), ..base }, "--mips"),
+        (
+            PrefilterSettings {
+                mips: Some(10),
+                ..base
+            },
+            "at most 9",
+        ),
+        (
+            PrefilterSettings {
+                mips: Some(0),
+                ..base
+            },
+            "--mips",
+        ),
     ] {
         let e = prefilter(&map, &s, &|_| {}).unwrap_err();
         assert!(e.to_string().contains(needle), "{e}");
