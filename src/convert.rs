@@ -35,11 +35,20 @@ pub struct ConvertArgs {
     /// else in the asset changes.
     #[arg(long, value_name = "SCENE.gltf|glb", conflicts_with_all = ["output", "format"])]
     pub into: Option<PathBuf>,
+    /// Write a glTF light (--format gltf, --into) from the coefficients
+    /// alone, without the specularImages the extension requires (a
+    /// coefficient file holds no map to prefilter; `shlight project MAP
+    /// --format gltf` writes them).
+    #[arg(long)]
+    pub irradiance_only: bool,
 }
 
 /// Runs `shlight convert`.
 pub fn run(args: &ConvertArgs) -> Result<()> {
     if let Some(scene) = &args.into {
+        if !args.irradiance_only {
+            bail!("{}: {}", args.input.display(), gltf::MISSING_SPECULAR);
+        }
         crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
         if file.encoding != shlight_format::FileEncoding::Sh {
@@ -66,8 +75,13 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         (None, None) => bail!("writing to stdout needs --format (or give -o FILE)"),
     };
     let file = read_coefficients(&args.input)?;
-    let out =
-        export(&file, format).with_context(|| format!("{}: converting", args.input.display()))?;
+    let out = match format {
+        // Without the flag, export refuses a glTF light (after the checks
+        // every format shares).
+        ExportFormat::Gltf if args.irradiance_only => shlight_format::export_gltf(&file, None),
+        _ => export(&file, format),
+    }
+    .with_context(|| format!("{}: converting", args.input.display()))?;
     for note in &out.notes {
         eprintln!("note: {note}");
     }

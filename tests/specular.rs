@@ -240,3 +240,79 @@ fn prefilter_refuses_what_it_cannot_write() {
     ]);
     assert!(err.contains("missing.exr"), "{err}");
 }
+
+/// The glTF light's specular images hold what Babylon.js reads: decoded
+/// from RGBD (Babylon's `fromRGBD`), mip 0 is the map itself in the glTF
+/// world (shlight's `(x, y, z)` at glTF `(-z, y, x)`), faces in the order
+/// `+X -X +Y -Y +Z -Z`, upright; every mip halves down to one pixel.
+#[test]
+fn gltf_specular_images_are_the_map_in_rgbd() {
+    use base64::Engine as _;
+    use glam::DVec3;
+    use shlight_core::map::{CubeFace, MapOrientation, equirect_direction};
+    /// RGBD's 8 bits (0.5% above 1) and the bilinear resampling of a smooth
+    /// map at 4 map texels per cube texel.
+    const TOLERANCE: f64 = 0.03;
+    let dir = temp_dir("specular_gltf");
+    let f = |d: DVec3| {
+        let v = 1.5 + 0.8 * d.x + 0.4 * d.y * d.y - 0.6 * d.z;
+        DVec3::new(v, 0.7 * v + 0.3, 2.5 - 0.5 * d.y)
+    };
+    let (w, h) = (256, 128);
+    let map = dir.join("smooth.exr");
+    crate::util::write_map(&map, w, h, |x, y| {
+        f(equirect_direction(x, y, w, h, MapOrientation::default()))
+            .as_vec3()
+            .to_array()
+    });
+    let out = dir.join("l.gltf");
+    shlight_ok(&[
+        "project",
+        s(&map),
+        "--format",
+        "gltf",
+        "-o",
+        s(&out),
+        "--specular-size",
+        "16",
+        "--specular-samples",
+        "64",
+        "-q",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let light = &v["extensions"]["EXT_lights_image_based"]["lights"][0];
+    let png = |index: &serde_json::Value| {
+        let uri = v["images"][index.as_u64().unwrap() as usize]["uri"]
+            .as_str()
+            .unwrap();
+        let b64 = uri.strip_prefix("data:image/png;base64,").unwrap();
+        let bytes = base64::engine::general_purpose::STANDARD
+            .decode(b64)
+            .unwrap();
+        image::load_from_memory(&bytes).unwrap().to_rgba8()
+    };
+    let mips = light["specularImages"].as_array().unwrap();
+    for (k, mip) in mips.iter().enumerate() {
+        for face in mip.as_array().unwrap() {
+            assert_eq!(png(face).width(), 16 >> k);
+        }
+    }
+    let (mut worst, mut worst_unturned) = (0.0f64, 0.0f64);
+    for (face_index, face) in CubeFace::ALL.into_iter().enumerate() {
+        let img = png(&mips[0][face_index]);
+        for j in 0..16 {
+            for i in 0..16 {
+                let rgbd = img.get_pixel(i as u32, j as u32).0;
+                let got = DVec3::from(shlight_specular::rgbd_decode(rgbd).map(f64::from));
+                let c = |k: usize| (2.0 * k as f64 + 1.0) / 16.0 - 1.0;
+                let g = face.point(c(i), c(j)).normalize();
+                // glTF (-z, y, x) is shlight's (x, y, z).
+                let want = f(DVec3::new(g.z, g.y, -g.x));
+                worst = worst.max(((got - want).abs() / want).max_element());
+                worst_unturned = worst_unturned.max(((got - f(g)).abs() / f(g)).max_element());
+            }
+        }
+    }
+    assert!(worst < TOLERANCE, "{worst}");
+    assert!(worst_unturned > 5.0 * TOLERANCE, "{worst_unturned}");
+}

@@ -71,7 +71,9 @@ pub use coeff_file::{
     SanitizeCounts,
 };
 pub use error::{FormatError, Result};
-pub use export::{ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, gltf};
+pub use export::{
+    ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, export_gltf, gltf,
+};
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
 pub use quantity::{Quantity, convert_quantity};

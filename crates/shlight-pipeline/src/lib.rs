@@ -114,6 +114,6 @@ pub use rotation_spec::parse_rotation;
 pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
 pub use source_stats::source_stats;
 pub use specular::{
-    CMGEN_FACE_NAMES, PrefilterRequest, cmgen_face_file, prefilter_map, write_dfg,
-    write_prefiltered_faces,
+    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, PrefilterRequest, cmgen_face_file, gltf_specular_images,
+    prefilter_map, write_dfg, write_prefiltered_faces,
 };

@@ -2,13 +2,18 @@
 //! loader and prefiltered by shlight-specular ([`prefilter_map`]), written
 //! as one float EXR per mip and face named as cmgen's `--ibl-ld` names
 //! them ([`write_prefiltered_faces`]); the DFG table as EXR or PNG
-//! ([`write_dfg`]).
+//! ([`write_dfg`]); a glTF light's RGBD specular images
+//! ([`gltf_specular_images`]).
 
 use std::path::{Path, PathBuf};
 
 use shlight_core::map::{CubeFace, MapOrientation};
-use shlight_io::{Image, WriteOptions, srgb_to_linear, write_image};
-use shlight_specular::{DfgTable, PrefilterSettings, Prefiltered, prefilter};
+use shlight_core::sh::Frame;
+use shlight_io::{Image, WriteOptions, encode_png_rgba8, srgb_to_linear, write_image};
+use shlight_specular::{
+    DfgTable, Engine, PrefilterSettings, Prefiltered, SourceMips, prefilter, prefilter_source,
+    rgbd_encode,
+};
 
 use crate::load::load_map;
 use crate::settings::ReadSettings;
@@ -129,4 +134,81 @@ pub fn write_dfg(table: &DfgTable, path: &Path) -> Result<()> {
     let image = Image::new(table.size, table.size, pixels).expect("size x size texels");
     write_image(path, &image, &WriteOptions::default())?;
     Ok(())
+}
+
+/// The face size of a glTF light's specular cube when none is asked for.
+pub const GLTF_SPECULAR_SIZE: usize = 128;
+
+/// The specular images of a glTF light (shlight-format's
+/// `gltf::SpecularImages`) from the map at `path`: read as `read` says in
+/// `orientation`, turned by `rotation` (the coefficient file's `--rotate`:
+/// a light from `a` comes from `R a`), prefiltered for Babylon.js (its
+/// roughness per mip, the full chain from `size` down to 1 pixel,
+/// `samples` per texel, faces in the glTF world), each face RGBD-encoded
+/// (Babylon's `toRGBD`) as an 8-bit RGBA PNG. `progress(rows)` as
+/// [`prefilter_map`]'s.
+///
+/// # Errors
+/// The loader's, refused settings, or a PNG that cannot be encoded, naming
+/// the input.
+pub fn gltf_specular_images(
+    path: &Path,
+    read: &ReadSettings,
+    orientation: MapOrientation,
+    rotation: Option<glam::DMat3>,
+    size: usize,
+    samples: u32,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<shlight_format::gltf::SpecularImages> {
+    let name = path.display().to_string();
+    let settings = PrefilterSettings {
+        size,
+        samples,
+        ..PrefilterSettings::new(Engine::Babylon)
+    };
+    settings
+        .check()
+        .map_err(|e| PipelineError::new(format!("{name}: specular images: {e}")))?;
+    let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
+    let map = loaded.map(orientation, &name)?;
+    // Cube direction c (glTF world) -> shlight's y-up -> the file's frame
+    // -> back through the rotation: where the map is read.
+    let to_file = Frame::YUp.rotation_to(orientation.frame);
+    let undo = rotation.map_or(glam::DMat3::IDENTITY, |r| r.transpose());
+    let world_from_cube = undo * to_file * Engine::Babylon.world_from_cube();
+    let source = SourceMips::new(
+        &map,
+        world_from_cube,
+        SourceMips::base_size(&map, settings.size),
+    );
+    let cube = prefilter_source(&source, &settings, progress);
+    let mut mips = Vec::new();
+    for (k, level) in cube.levels.iter().enumerate() {
+        let size = level.cube.size();
+        let face = |f: CubeFace| -> Result<Vec<u8>> {
+            let rgba: Vec<u8> = level
+                .cube
+                .face(f)
+                .iter()
+                .flat_map(|p| rgbd_encode(*p))
+                .collect();
+            let label = format!(
+                "{name}: specular mip {k} face {}",
+                CMGEN_FACE_NAMES[f.index()]
+            );
+            Ok(encode_png_rgba8(&label, size, size, &rgba)?)
+        };
+        mips.push([
+            face(CubeFace::PosX)?,
+            face(CubeFace::NegX)?,
+            face(CubeFace::PosY)?,
+            face(CubeFace::NegY)?,
+            face(CubeFace::PosZ)?,
+            face(CubeFace::NegZ)?,
+        ]);
+    }
+    Ok(shlight_format::gltf::SpecularImages {
+        size: settings.size,
+        mips,
+    })
 }

@@ -15,7 +15,9 @@
 //!   density (Colbert & Krivanek 2007), as Filament's cmgen does;
 //! - [`DfgTable`], [`dfg`]: the table, as scale and bias of `F0` or
 //!   Filament's multiscatter form; [`dfg_karis_approx`] Karis' fit;
-//! - [`ggx`]: the lobe, its sampling, Hammersley points.
+//! - [`ggx`]: the lobe, its sampling, Hammersley points;
+//! - [`rgbd`]: Babylon's RGBD encoding of HDR texels in 8-bit RGBA, what
+//!   glTF's `EXT_lights_image_based` specular images hold.
 //!
 //! Everything is deterministic (fixed Hammersley points, independent
 //! texels, `f64` sums) and parallel over rows (rayon).
@@ -42,6 +44,7 @@ pub mod dfg;
 pub mod engine;
 pub mod ggx;
 pub mod prefilter;
+pub mod rgbd;
 pub mod source_mips;
 
 pub use cube_image::CubeImage;
@@ -51,4 +54,5 @@ pub use ggx::Visibility;
 pub use prefilter::{
     PrefilterError, PrefilterSettings, Prefiltered, PrefilteredLevel, prefilter, prefilter_source,
 };
+pub use rgbd::{rgbd_decode, rgbd_encode};
 pub use source_mips::SourceMips;
