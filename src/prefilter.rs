@@ -8,7 +8,9 @@ use anyhow::{Result, bail};
 use clap::Args;
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
-use shlight_pipeline::{PrefilterRequest, ReadSettings, prefilter_map, write_prefiltered_faces};
+use shlight_pipeline::{
+    PrefilterRequest, ReadSettings, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx2,
+};
 use shlight_specular::{Engine, PrefilterSettings};
 
 use crate::input::{InputLayout, frame_of, parse_input_layout};
@@ -21,7 +23,8 @@ pub struct PrefilterArgs {
     /// The environment map (OpenEXR, Radiance .hdr, PNG, JPEG), any layout.
     pub input: PathBuf,
     /// A directory (`DIR/`): one float EXR per mip and face, named as cmgen's
-    /// --ibl-ld names them, m0_px.exr ... m<N>_nz.exr.
+    /// --ibl-ld names them, m0_px.exr ... m<N>_nz.exr; or FILE.ktx2: a KTX2
+    /// cube with its mips (RGBA16F), Bevy's EnvironmentMapLight specular map.
     #[arg(short, long)]
     pub output: PathBuf,
     /// The engine whose roughness per mip and cube axes to use.
@@ -56,9 +59,13 @@ pub struct PrefilterArgs {
 
 /// Runs `shlight prefilter`.
 pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
-    if !names_dir(&args.output) {
+    let ktx2 = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ktx2"));
+    if !ktx2 && !names_dir(&args.output) {
         bail!(
-            "{}: -o names a directory for the faces (end it with /), e.g. -o ld/",
+            "{}: -o names a directory for the faces (end it with /, e.g. -o ld/) or a .ktx2 file",
             args.output.display()
         );
     }
@@ -91,7 +98,11 @@ pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
     });
     bar.finish_and_clear();
     let cube = cube?;
-    write_prefiltered_faces(&cube, &args.output)?;
+    if ktx2 {
+        write_prefiltered_ktx2(&cube, &args.output)?;
+    } else {
+        write_prefiltered_faces(&cube, &args.output)?;
+    }
     for (k, level) in cube.levels.iter().enumerate() {
         ui.note(format!(
             "mip {k}: {0}x{0}, roughness {1:.4} (perceptual {2:.4}), {3} samples",

@@ -316,3 +316,63 @@ fn gltf_specular_images_are_the_map_in_rgbd() {
     assert!(worst < TOLERANCE, "{worst}");
     assert!(worst_unturned > 5.0 * TOLERANCE, "{worst_unturned}");
 }
+
+/// IEEE half to f32, written out (normal and subnormal numbers).
+fn half_to_f32(h: u16) -> f32 {
+    let sign = if h >> 15 == 1 { -1.0 } else { 1.0 };
+    let exp = i32::from((h >> 10) & 0x1f);
+    let frac = f32::from(h & 0x3ff);
+    match exp {
+        0 => sign * frac * 2f32.powi(-24),
+        31 => f32::NAN,
+        e => sign * (1.0 + frac / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+/// `-o FILE.ktx2` holds, per the KTX2 layout read by hand here, the same
+/// mips as the faces `-o DIR/` writes, in half floats: six faces per level
+/// in the order `+X -X +Y -Y +Z -Z`, every level at its level index.
+#[test]
+fn prefilter_writes_a_ktx2_cube_with_its_mips() {
+    let dir = temp_dir("specular_ktx2");
+    let map = bundled_hdr("sky", &dir);
+    let ktx2 = dir.join("sky.ktx2");
+    let faces = dir.join("faces");
+    let common = ["--for", "bevy", "--size", "8", "--samples", "64", "-q"];
+    let mut args = vec!["prefilter", s(&map), "-o", s(&ktx2)];
+    args.extend(common);
+    shlight_ok(&args);
+    let faces_dir = format!("{}/", s(&faces));
+    let mut args = vec!["prefilter", s(&map), "-o", &faces_dir];
+    args.extend(common);
+    shlight_ok(&args);
+    let bytes = std::fs::read(&ktx2).unwrap();
+    let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap()) as usize;
+    let u64_at = |o: usize| u64::from_le_bytes(bytes[o..o + 8].try_into().unwrap()) as usize;
+    assert_eq!(&bytes[..12], b"\xABKTX 20\xBB\r\n\x1A\n");
+    assert_eq!(u32_at(12), 97, "VK_FORMAT_R16G16B16A16_SFLOAT");
+    assert_eq!((u32_at(20), u32_at(24)), (8, 8));
+    let (faces_n, levels) = (u32_at(36), u32_at(40));
+    assert_eq!((faces_n, levels), (6, 4));
+    for k in 0..levels {
+        let index = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 24 * k;
+        let (offset, len) = (u64_at(index), u64_at(index + 8));
+        let s_k = 8 >> k;
+        assert_eq!(len, 6 * s_k * s_k * 8);
+        for (f, name) in FACES.iter().enumerate() {
+            let exr = read(&faces.join(format!("m{k}_{name}.exr")));
+            for (i, want) in exr.pixels().iter().enumerate() {
+                let t = offset + (f * s_k * s_k + i) * 8;
+                for c in 0..4 {
+                    let got =
+                        half_to_f32(u16::from_le_bytes([bytes[t + 2 * c], bytes[t + 2 * c + 1]]));
+                    let want = if c == 3 { 1.0 } else { want[c] };
+                    assert!(
+                        (got - want).abs() <= 1e-3 * want.abs() + 1e-6,
+                        "mip {k} {name} {i}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -153,7 +153,7 @@ impl BevyTexture {
             .flatten()
             .flat_map(|v| v.to_le_bytes())
             .collect();
-        write_ktx2(self.size, &data, writer)
+        crate::ktx2_file::write_ktx2(self.size, 1, &[data], writer)
     }
 }
 
@@ -162,76 +162,6 @@ impl BevyTexture {
 #[must_use]
 pub fn bevy_ktx2(file: &ShvolFile, writer: &str) -> Vec<u8> {
     BevyTexture::from_view(&file.view()).ktx2(writer)
-}
-
-/// A KTX2 file of one level of RGBA16F texels (`size` = width, height,
-/// depth; a depth above 1 makes a 3D texture).
-fn write_ktx2(size: [usize; 3], data: &[u8], writer: &str) -> Vec<u8> {
-    const IDENTIFIER: [u8; 12] = [
-        0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A,
-    ];
-    // Data format descriptor: total size, then one basic block of 24 bytes
-    // plus 16 per sample (R, G, B, A).
-    let mut dfd = Vec::new();
-    let block_size: u16 = 24 + 16 * 4;
-    dfd.extend((4 + u32::from(block_size)).to_le_bytes());
-    dfd.extend(0u32.to_le_bytes()); // vendor 0 (Khronos), descriptor type 0 (basic)
-    dfd.extend(2u16.to_le_bytes()); // version 1.3 of the descriptor
-    dfd.extend(block_size.to_le_bytes());
-    dfd.extend([1, 1, 1, 0]); // RGBSDA model, BT.709 primaries, linear transfer, straight alpha
-    dfd.extend([0, 0, 0, 0]); // texel block 1 x 1 x 1 x 1
-    dfd.extend([8, 0, 0, 0, 0, 0, 0, 0]); // 8 bytes per texel, one plane
-    for (k, channel) in [0u8, 1, 2, 15].into_iter().enumerate() {
-        dfd.extend((16 * k as u16).to_le_bytes()); // bit offset
-        dfd.push(15); // bit length - 1
-        dfd.push(channel | 0x80 | 0x40); // float, signed
-        dfd.extend([0, 0, 0, 0]); // sample position
-        dfd.extend((-1.0f32).to_bits().to_le_bytes()); // sample lower
-        dfd.extend(1.0f32.to_bits().to_le_bytes()); // sample upper
-    }
-    let mut kvd = Vec::new();
-    let entry = [b"KTXwriter\0".as_slice(), writer.as_bytes(), b"\0"].concat();
-    kvd.extend((entry.len() as u32).to_le_bytes());
-    kvd.extend(&entry);
-    while kvd.len() % 4 != 0 {
-        kvd.push(0);
-    }
-    // Layout: identifier, header (9 u32), index (4 u32 + 2 u64), level index
-    // (3 u64), the descriptor, the key/values, then the level, 8-aligned.
-    let header_len = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 3 * 8;
-    let dfd_offset = header_len;
-    let kvd_offset = dfd_offset + dfd.len();
-    let mut level_offset = kvd_offset + kvd.len();
-    level_offset = level_offset.div_ceil(8) * 8;
-    let mut out = Vec::with_capacity(level_offset + data.len());
-    out.extend(IDENTIFIER);
-    for v in [
-        VK_FORMAT,
-        2, // typeSize: 16-bit components
-        size[0] as u32,
-        size[1] as u32,
-        if size[2] > 1 { size[2] as u32 } else { 0 },
-        0, // layers: not an array
-        1, // faces
-        1, // levels
-        0, // no supercompression
-    ] {
-        out.extend(v.to_le_bytes());
-    }
-    out.extend((dfd_offset as u32).to_le_bytes());
-    out.extend((dfd.len() as u32).to_le_bytes());
-    out.extend((kvd_offset as u32).to_le_bytes());
-    out.extend((kvd.len() as u32).to_le_bytes());
-    out.extend(0u64.to_le_bytes()); // no supercompression global data
-    out.extend(0u64.to_le_bytes());
-    out.extend((level_offset as u64).to_le_bytes());
-    out.extend((data.len() as u64).to_le_bytes());
-    out.extend((data.len() as u64).to_le_bytes());
-    out.extend(&dfd);
-    out.extend(&kvd);
-    out.resize(level_offset, 0);
-    out.extend(data);
-    out
 }
 
 #[cfg(test)]

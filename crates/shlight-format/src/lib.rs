@@ -60,6 +60,7 @@ mod export;
 mod file_encoding;
 mod header_line;
 mod import;
+mod ktx2_file;
 mod light_transforms;
 mod quantity;
 mod samples;
@@ -76,6 +77,7 @@ pub use export::{
 };
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
+pub use ktx2_file::cube_map_ktx2;
 pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};
 pub use shprt::ShprtFile;

@@ -5,6 +5,7 @@
 //! ([`write_dfg`]); a glTF light's RGBD specular images
 //! ([`gltf_specular_images`]).
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use shlight_core::map::{CubeFace, MapOrientation};
@@ -211,4 +212,24 @@ pub fn gltf_specular_images(
         size: settings.size,
         mips,
     })
+}
+
+/// Writes `cube` to `path` as a KTX2 cube map with its mips (shlight-format's
+/// `cube_map_ktx2`: RGBA16F, linear, faces `+X -X +Y -Y +Z -Z` in the
+/// engine's cube axes): what Bevy's `EnvironmentMapLight` takes as its
+/// specular map. Written atomically.
+///
+/// # Errors
+/// The file cannot be written, naming it.
+pub fn write_prefiltered_ktx2(cube: &Prefiltered, path: &Path) -> Result<()> {
+    let levels: Vec<[Vec<[f32; 3]>; 6]> = cube
+        .levels
+        .iter()
+        .map(|l| CubeFace::ALL.map(|f| l.cube.face(f)))
+        .collect();
+    let size = cube.levels.first().map_or(1, |l| l.cube.size());
+    let writer = concat!("shlight ", env!("CARGO_PKG_VERSION"));
+    let bytes = shlight_format::cube_map_ktx2(size, &levels, writer);
+    shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
+    Ok(())
 }

@@ -39,6 +39,7 @@
 //!
 //! **Invariant:** no I/O, no GPU; files are written by shlight-pipeline.
 
+pub mod bordered_cube;
 pub mod cube_image;
 pub mod dfg;
 pub mod engine;

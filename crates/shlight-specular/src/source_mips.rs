@@ -6,6 +6,7 @@
 use glam::{DMat3, DVec3};
 use shlight_core::map::{CubeFace, EnvMap};
 
+use crate::bordered_cube::BorderedCube;
 use crate::cube_image::CubeImage;
 
 /// The largest face the source cube is resampled to.
@@ -14,7 +15,7 @@ pub const MAX_SOURCE_SIZE: usize = 2048;
 /// A map as a cube with mips, in the axes of the cube being made.
 #[derive(Clone, Debug)]
 pub struct SourceMips {
-    levels: Vec<CubeImage>,
+    levels: Vec<BorderedCube>,
 }
 
 impl SourceMips {
@@ -55,9 +56,11 @@ impl SourceMips {
     /// A cube and its box-filtered mips.
     #[must_use]
     pub fn from_cube(cube: CubeImage) -> Self {
-        let mut levels = vec![cube];
-        while let Some(next) = levels.last().and_then(CubeImage::halved) {
-            levels.push(next);
+        let mut levels = vec![BorderedCube::new(&cube)];
+        let mut current = cube;
+        while let Some(next) = current.halved() {
+            levels.push(BorderedCube::new(&next));
+            current = next;
         }
         Self { levels }
     }
@@ -75,17 +78,18 @@ impl SourceMips {
     }
 
     /// Radiance in cube direction `c` at level of detail `lod` (clamped to
-    /// the chain): bilinear in the two mips around it, blended linearly.
+    /// the chain): bilinear in the two mips around it (each face bordered
+    /// by its neighbours' texels, [`BorderedCube`]), blended linearly.
     #[must_use]
     pub fn trilinear(&self, c: DVec3, lod: f64) -> DVec3 {
         let lod = lod.clamp(0.0, self.max_level() as f64);
         let l0 = lod.floor() as usize;
         let t = lod - l0 as f64;
-        let a = self.levels[l0].as_env_map().radiance_bilinear(c);
+        let a = self.levels[l0].bilinear(c);
         if t <= 0.0 || l0 == self.max_level() {
             return a;
         }
-        let b = self.levels[l0 + 1].as_env_map().radiance_bilinear(c);
+        let b = self.levels[l0 + 1].bilinear(c);
         a + (b - a) * t
     }
 }
