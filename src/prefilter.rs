@@ -23,7 +23,7 @@ pub struct PrefilterArgs {
     /// The environment map (OpenEXR, Radiance .hdr, PNG, JPEG), any layout.
     pub input: PathBuf,
     /// A directory (`DIR/`): one float EXR per mip and face, named as cmgen's
-    /// --ibl-ld names them, m0_px.exr ... m<N>_nz.exr; or FILE.ktx2: a KTX2
+    /// --ibl-ld names them (m0_px.exr, m0_nx.exr, ... per mip); or FILE.ktx2: a KTX2
     /// cube with its mips (RGBA16F), Bevy's EnvironmentMapLight specular map.
     #[arg(short, long)]
     pub output: PathBuf,

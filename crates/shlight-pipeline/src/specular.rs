@@ -5,7 +5,6 @@
 //! ([`write_dfg`]); a glTF light's RGBD specular images
 //! ([`gltf_specular_images`]).
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use shlight_core::map::{CubeFace, MapOrientation};

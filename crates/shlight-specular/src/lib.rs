@@ -8,15 +8,16 @@
 //! each, times a table of the BRDF's directional albedo (DFG). This crate
 //! makes the second half:
 //!
-//! - [`prefilter`]: a map ([`shlight_core::map::EnvMap`], any layout) into
+//! - [`prefilter()`]: a map ([`shlight_core::map::EnvMap`], any layout) into
 //!   a [`Prefiltered`] cube, mip `k` at the roughness the target
 //!   [`Engine`]'s shader reads it at, in that engine's cube axes; GGX
 //!   importance sampling with source-mip filtering by each sample's
 //!   density (Colbert & Krivanek 2007), as Filament's cmgen does;
-//! - [`DfgTable`], [`dfg`]: the table, as scale and bias of `F0` or
+//! - [`DfgTable`], [`dfg()`]: the table, as scale and bias of `F0` or
 //!   Filament's multiscatter form; [`dfg_karis_approx`] Karis' fit;
-//! - [`ggx`]: the lobe, its sampling, Hammersley points;
-//! - [`rgbd`]: Babylon's RGBD encoding of HDR texels in 8-bit RGBA, what
+//! - [`d_ggx`], [`sample_ggx_half`], [`hammersley`], [`Visibility`]: the
+//!   lobe, its sampling, the Hammersley points, masking and shadowing;
+//! - [`rgbd_encode`], [`rgbd_decode`]: Babylon's RGBD encoding of HDR texels in 8-bit RGBA, what
 //!   glTF's `EXT_lights_image_based` specular images hold.
 //!
 //! Everything is deterministic (fixed Hammersley points, independent
@@ -39,21 +40,22 @@
 //!
 //! **Invariant:** no I/O, no GPU; files are written by shlight-pipeline.
 
-pub mod bordered_cube;
-pub mod cube_image;
-pub mod dfg;
-pub mod engine;
-pub mod ggx;
-pub mod prefilter;
-pub mod rgbd;
-pub mod source_mips;
+mod bordered_cube;
+mod cube_image;
+mod dfg;
+mod engine;
+mod ggx;
+mod prefilter;
+mod rgbd;
+mod source_mips;
 
+pub use bordered_cube::BorderedCube;
 pub use cube_image::CubeImage;
 pub use dfg::{DfgForm, DfgTable, dfg, dfg_karis_approx};
 pub use engine::{Engine, ParseEngineError};
-pub use ggx::Visibility;
+pub use ggx::{Visibility, d_ggx, hammersley, sample_ggx_half};
 pub use prefilter::{
     PrefilterError, PrefilterSettings, Prefiltered, PrefilteredLevel, prefilter, prefilter_source,
 };
 pub use rgbd::{rgbd_decode, rgbd_encode};
-pub use source_mips::SourceMips;
+pub use source_mips::{MAX_SOURCE_SIZE, SourceMips};

@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use shlight_specular::ggx::d_ggx;
+use shlight_specular::d_ggx;
 use shlight_specular::{DfgForm, DfgTable, Engine, Visibility, dfg, dfg_karis_approx};
 
 /// `(A, B)` by the midpoint rule over `l` in `(θ, φ)`: `∫ D V (1 - Fc)

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use shlight_core::map::{CubeFace, EnvMap, Layout, MapOrientation, equirect_direction};
-use shlight_specular::ggx::d_ggx;
+use shlight_specular::d_ggx;
 use shlight_specular::{Engine, PrefilterSettings, prefilter};
 
 const W: usize = 256;
