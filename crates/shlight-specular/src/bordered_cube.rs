@@ -55,6 +55,44 @@ impl BorderedCube {
         self.size
     }
 
+    /// [`BorderedCube::bilinear`] in `f32` throughout (the face chosen by
+    /// the same rule as shlight-core's `CubeFace::from_direction`): the
+    /// prefilter's inner loop.
+    #[inline]
+    #[must_use]
+    pub fn bilinear_f32(&self, c: Vec3) -> Vec3 {
+        let a = c.abs();
+        let (face, s, t) = if a.x >= a.y && a.x >= a.z {
+            if c.x >= 0.0 {
+                (0, -c.z / a.x, -c.y / a.x)
+            } else {
+                (1, c.z / a.x, -c.y / a.x)
+            }
+        } else if a.y >= a.z {
+            if c.y >= 0.0 {
+                (2, c.x / a.y, c.z / a.y)
+            } else {
+                (3, c.x / a.y, -c.z / a.y)
+            }
+        } else if c.z >= 0.0 {
+            (4, c.x / a.z, -c.y / a.z)
+        } else {
+            (5, -c.x / a.z, -c.y / a.z)
+        };
+        let n = self.size;
+        let w = n + 2;
+        let f = n as f32;
+        let x = ((s + 1.0) * 0.5 * f + 1.0).clamp(0.5, f + 1.5) - 0.5;
+        let y = ((t + 1.0) * 0.5 * f + 1.0).clamp(0.5, f + 1.5) - 0.5;
+        let (x0, y0) = ((x as usize).min(n), (y as usize).min(n));
+        let (tx, ty) = (x - x0 as f32, y - y0 as f32);
+        let base = face * w * w + y0 * w + x0;
+        let p = &self.texels;
+        let top = p[base] * (1.0 - tx) + p[base + 1] * tx;
+        let bottom = p[base + w] * (1.0 - tx) + p[base + w + 1] * tx;
+        top * (1.0 - ty) + bottom * ty
+    }
+
     /// Bilinear radiance in direction `c` (finite, non-zero).
     #[inline]
     #[must_use]
@@ -110,6 +148,8 @@ mod tests {
             let a = bordered.bilinear(d);
             let b = env.radiance_bilinear(d);
             worst = worst.max((a - b).abs().max_element());
+            let c = bordered.bilinear_f32(d.as_vec3()).as_dvec3();
+            assert!((a - c).abs().max_element() < 1e-5, "{a} {c}");
         }
         assert!(worst < 0.02, "{worst}");
     }

@@ -34,7 +34,7 @@
 
 use core::fmt;
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, Vec3};
 use shlight_core::map::{CubeFace, EnvMap};
 
 use crate::cube_image::CubeImage;
@@ -161,12 +161,14 @@ pub struct Prefiltered {
 }
 
 /// One GGX sample as every texel of a level reads it: its direction about
-/// `+Z`, its normalised weight `(n·l) / Σ (n·l)`, and its level of detail.
+/// `+Z`, its normalised weight `(n·l) / Σ (n·l)`, and its level of detail
+/// (`l0 + t`).
 #[derive(Clone, Copy, Debug)]
 struct LobeSample {
-    l: DVec3,
+    l: Vec3,
     weight: f64,
-    lod: f64,
+    l0: usize,
+    t: f32,
 }
 
 /// The samples of a level of roughness `alpha` (`count` Hammersley points,
@@ -186,9 +188,10 @@ fn lobe_samples(alpha: f64, count: u32, base: usize, max_lod: f64) -> Vec<LobeSa
             let omega_s = 1.0 / (f64::from(count) * pdf);
             let lod = (0.5 * (omega_s / omega_p).log2() + 1.0).clamp(0.0, max_lod);
             Some(LobeSample {
-                l,
+                l: l.as_vec3(),
                 weight: n_dot_l,
-                lod,
+                l0: lod.floor() as usize,
+                t: (lod - lod.floor()) as f32,
             })
         })
         .collect();
@@ -250,9 +253,10 @@ pub fn prefilter_source(
             } else {
                 let lobe = lobe_samples(alpha, samples, base, source.max_level() as f64);
                 filter_rows(size, progress, |n| {
-                    let frame = frame_about(n);
+                    // Directions in f32, sums in f64.
+                    let frame = frame_about(n).as_mat3();
                     lobe.iter()
-                        .map(|s| source.trilinear(frame * s.l, s.lod) * s.weight)
+                        .map(|s| source.trilinear_f32(frame * s.l, s.l0, s.t).as_dvec3() * s.weight)
                         .sum()
                 })
             };

@@ -3,7 +3,7 @@
 //! prefilter's samples read, each at the mip whose texels match its share
 //! of the sphere (Colbert & Krivanek 2007).
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, Vec3};
 use shlight_core::map::{CubeFace, EnvMap};
 
 use crate::bordered_cube::BorderedCube;
@@ -75,6 +75,19 @@ impl SourceMips {
     #[must_use]
     pub fn max_level(&self) -> usize {
         self.levels.len() - 1
+    }
+
+    /// [`SourceMips::trilinear`] in `f32` (the prefilter's inner loop):
+    /// mip `l0` blended with `l0 + 1` by `t`.
+    #[inline]
+    #[must_use]
+    pub fn trilinear_f32(&self, c: Vec3, l0: usize, t: f32) -> Vec3 {
+        let a = self.levels[l0].bilinear_f32(c);
+        if t <= 0.0 || l0 >= self.max_level() {
+            return a;
+        }
+        let b = self.levels[l0 + 1].bilinear_f32(c);
+        a + (b - a) * t
     }
 
     /// Radiance in cube direction `c` at level of detail `lod` (clamped to
