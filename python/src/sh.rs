@@ -313,7 +313,9 @@ impl Sh {
             match f {
                 // Coefficients hold no map for the specular images: only
                 // asked for knowingly.
-                ExportFormat::Gltf if irradiance_only => shlight_format::export_gltf(&self.file, None),
+                ExportFormat::Gltf if irradiance_only => {
+                    shlight_format::export_gltf(&self.file, None)
+                }
                 _ => shlight_format::export(&self.file, f),
             }
             .map_err(|e| chained(&e))

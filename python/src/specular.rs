@@ -80,10 +80,7 @@ pub fn prefilter(
         })
     });
     warn_all(py, &warnings.into_inner().unwrap(), 1)?;
-    Ok(written?
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect())
+    Ok(written?.iter().map(|p| p.display().to_string()).collect())
 }
 
 /// dfg(output, engine="filament", size=128, samples=1024) -> None
@@ -92,7 +89,13 @@ pub fn prefilter(
 /// See the package documentation (`help(shlight.dfg)`).
 #[pyfunction]
 #[pyo3(signature = (output, engine="filament".to_string(), size=128, samples=1024))]
-pub fn dfg(py: Python<'_>, output: PathBuf, engine: String, size: usize, samples: u32) -> PyResult<()> {
+pub fn dfg(
+    py: Python<'_>,
+    output: PathBuf,
+    engine: String,
+    size: usize,
+    samples: u32,
+) -> PyResult<()> {
     let engine = engine_of(&engine)?;
     if size == 0 || size > 4096 || samples == 0 {
         return Err(shlight_error(format!(
