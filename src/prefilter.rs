@@ -9,7 +9,8 @@ use clap::Args;
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
 use shlight_pipeline::{
-    PrefilterRequest, ReadSettings, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx2,
+    PrefilterRequest, ReadSettings, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx1,
+    write_prefiltered_ktx2,
 };
 use shlight_specular::{Engine, PrefilterSettings};
 
@@ -23,8 +24,10 @@ pub struct PrefilterArgs {
     /// The environment map (OpenEXR, Radiance .hdr, PNG, JPEG), any layout.
     pub input: PathBuf,
     /// A directory (`DIR/`): one float EXR per mip and face, named as cmgen's
-    /// --ibl-ld names them (m0_px.exr, m0_nx.exr, ... per mip); or FILE.ktx2: a KTX2
-    /// cube with its mips (RGBA16F), Bevy's EnvironmentMapLight specular map.
+    /// --ibl-ld names them (m0_px.exr, m0_nx.exr, ... per mip); FILE.ktx: the
+    /// KTX 1.1 cube Filament's KtxBundle reads (R11F_G11F_B10F, as cmgen
+    /// --format=ktx); or FILE.ktx2: a KTX2 cube with its mips (RGBA16F),
+    /// Bevy's EnvironmentMapLight specular map.
     #[arg(short, long)]
     pub output: PathBuf,
     /// The engine whose roughness per mip and cube axes to use.
@@ -59,13 +62,17 @@ pub struct PrefilterArgs {
 
 /// Runs `shlight prefilter`.
 pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
-    let ktx2 = args
+    let ext = args
         .output
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("ktx2"));
-    if !ktx2 && !names_dir(&args.output) {
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let (ktx1, ktx2) = (
+        ext.as_deref() == Some("ktx"),
+        ext.as_deref() == Some("ktx2"),
+    );
+    if !ktx1 && !ktx2 && !names_dir(&args.output) {
         bail!(
-            "{}: -o names a directory for the faces (end it with /, e.g. -o ld/) or a .ktx2 file",
+            "{}: -o names a directory for the faces (end it with /, e.g. -o ld/), a .ktx or a .ktx2 file",
             args.output.display()
         );
     }
@@ -98,7 +105,9 @@ pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
     });
     bar.finish_and_clear();
     let cube = cube?;
-    if ktx2 {
+    if ktx1 {
+        write_prefiltered_ktx1(&cube, &args.output)?;
+    } else if ktx2 {
         write_prefiltered_ktx2(&cube, &args.output)?;
     } else {
         write_prefiltered_faces(&cube, &args.output)?;

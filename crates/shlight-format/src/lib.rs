@@ -60,6 +60,7 @@ mod export;
 mod file_encoding;
 mod header_line;
 mod import;
+mod ktx1_file;
 mod ktx2_file;
 mod light_transforms;
 mod quantity;
@@ -77,6 +78,7 @@ pub use export::{
 };
 pub use file_encoding::FileEncoding;
 pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
+pub use ktx1_file::{GL_R11F_G11F_B10F, filament_ktx1, pack_r11g11b10, unpack_r11g11b10};
 pub use ktx2_file::cube_map_ktx2;
 pub use quantity::{Quantity, convert_quantity};
 pub use samples::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, Samples};

@@ -115,5 +115,6 @@ pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettin
 pub use source_stats::source_stats;
 pub use specular::{
     CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, PrefilterRequest, cmgen_face_file, gltf_specular_images,
-    prefilter_map, write_dfg, write_prefiltered_faces, write_prefiltered_ktx2,
+    prefilter_map, write_dfg, write_prefiltered_faces, write_prefiltered_ktx1,
+    write_prefiltered_ktx2,
 };

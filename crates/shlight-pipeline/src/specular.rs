@@ -232,3 +232,21 @@ pub fn write_prefiltered_ktx2(cube: &Prefiltered, path: &Path) -> Result<()> {
     shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
     Ok(())
 }
+
+/// Writes `cube` to `path` as the KTX 1.1 cube map Filament's `KtxBundle`
+/// reads (shlight-format's `filament_ktx1`: `R11F_G11F_B10F`, laid out as
+/// `cmgen --format=ktx --ibl-ld` writes it). Written atomically.
+///
+/// # Errors
+/// The file cannot be written, naming it.
+pub fn write_prefiltered_ktx1(cube: &Prefiltered, path: &Path) -> Result<()> {
+    let levels: Vec<[Vec<[f32; 3]>; 6]> = cube
+        .levels
+        .iter()
+        .map(|l| CubeFace::ALL.map(|f| l.cube.face(f)))
+        .collect();
+    let size = cube.levels.first().map_or(1, |l| l.cube.size());
+    let bytes = shlight_format::filament_ktx1(size, &levels);
+    shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
+    Ok(())
+}
