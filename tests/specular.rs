@@ -378,12 +378,12 @@ fn prefilter_writes_a_ktx2_cube_with_its_mips() {
 }
 
 /// One mip of a cube: six faces of texels.
-type Levels = Vec<Vec<[f32; 3]>>;
+type Mip = Vec<Vec<[f32; 3]>>;
 
 /// The levels of a KTX 1.1 cube map as Filament's `KtxBundle` lays them
 /// out, read by hand: (header's 13 words after the identifier, per level
 /// the six faces' texels unpacked from `R11F_G11F_B10F`).
-fn read_ktx1(bytes: &[u8]) -> (Vec<u32>, Vec<Levels>) {
+fn read_ktx1(bytes: &[u8]) -> (Vec<u32>, Vec<Mip>) {
     assert_eq!(&bytes[..12], b"\xABKTX 11\xBB\r\n\x1A\n");
     let word = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
     let header: Vec<u32> = (0..13).map(|k| word(12 + 4 * k)).collect();
