@@ -46,6 +46,12 @@ pub struct ConvertArgs {
     /// --format threejs.
     #[arg(long, value_enum, default_value = "half")]
     pub precision: PrecisionArg,
+    /// Write a glTF light (--format gltf, --into) from the coefficients
+    /// alone, without the specularImages the extension requires (a
+    /// coefficient file holds no map to prefilter; `shlight project MAP
+    /// --format gltf` writes them).
+    #[arg(long)]
+    pub irradiance_only: bool,
 }
 
 /// Runs `shlight convert`.
@@ -58,6 +64,9 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         return volume(args);
     }
     if let Some(scene) = &args.into {
+        if !args.irradiance_only {
+            bail!("{}: {}", args.input.display(), gltf::MISSING_SPECULAR);
+        }
         crate::output_path::refuse_overwriting(scene, std::slice::from_ref(&args.input))?;
         let file = read_coefficients(&args.input)?;
         if file.encoding != shlight_format::FileEncoding::Sh {
@@ -84,8 +93,13 @@ pub fn run(args: &ConvertArgs) -> Result<()> {
         (None, None) => bail!("writing to stdout needs --format (or give -o FILE)"),
     };
     let file = read_coefficients(&args.input)?;
-    let out =
-        export(&file, format).with_context(|| format!("{}: converting", args.input.display()))?;
+    let out = match format {
+        // Without the flag, export refuses a glTF light (after the checks
+        // every format shares).
+        ExportFormat::Gltf if args.irradiance_only => shlight_format::export_gltf(&file, None),
+        _ => export(&file, format),
+    }
+    .with_context(|| format!("{}: converting", args.input.display()))?;
     for note in &out.notes {
         eprintln!("note: {note}");
     }

@@ -10,12 +10,14 @@ mod accuracy;
 mod bundled;
 mod compare;
 mod convert;
+mod dfg;
 #[cfg(not(feature = "gpu"))]
 mod gpu_feature;
 mod heap;
 mod input;
 mod irradiance;
 mod output_path;
+mod prefilter;
 mod progress;
 mod project;
 mod prt;
@@ -76,6 +78,11 @@ enum Command {
     /// What a baked file shades with: a volume's irradiance at points, a
     /// PRT file's exit radiance per vertex.
     Sample(sample::SampleArgs),
+    /// GGX-prefilter an environment map into cube mips for an engine's
+    /// specular lighting (cmgen's --ibl-ld files).
+    Prefilter(prefilter::PrefilterArgs),
+    /// Write the DFG (split-sum BRDF) table an engine reads.
+    Dfg(dfg::DfgArgs),
     /// Print a coefficient file (JSON) as a readable table.
     Show {
         /// A file written by `shlight project -o FILE.json`.
@@ -133,6 +140,8 @@ fn main() -> ExitCode {
         Command::Prt(args) => prt::run(&args, &ui),
         Command::Volume(args) => volume::run(&args, &ui),
         Command::Sample(args) => sample::run(&args, &ui),
+        Command::Prefilter(args) => prefilter::run(&args, &ui),
+        Command::Dfg(args) => dfg::run(&args, &ui),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -8,6 +8,7 @@ use glam::DVec3;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::Layout;
 use shlight_format::{ExportFormat, Quantity, VolumeFormat};
+use shlight_specular::Engine;
 
 /// A parser accepting exactly the names of `all`, with their help lines.
 fn one_of<T: Copy + Send + Sync + 'static>(
@@ -42,6 +43,16 @@ pub fn volume_format() -> impl TypedValueParser<Value = VolumeFormat> {
         VolumeFormat::name,
         VolumeFormat::description,
     )
+}
+
+/// `--for ENGINE` of `prefilter` and `dfg`.
+pub fn engine() -> impl TypedValueParser<Value = Engine> {
+    one_of(&Engine::ALL, Engine::name, |e| match e {
+        Engine::Filament => "Filament / cmgen: 16-pixel smallest mip, multiscatter DFG",
+        Engine::Babylon => "Babylon.js (EXT_lights_image_based): full mip chain",
+        Engine::Bevy => "Bevy EnvironmentMapLight: roughness linear in the mip",
+        Engine::Unreal => "Unreal Engine 4 reflection captures",
+    })
 }
 
 /// `--encoding NAME`.

@@ -81,7 +81,19 @@ fn export(dir: &Path, spot: (usize, usize), format: &str, ext: &str) -> String {
     let map = dir.join(format!("spot-{}-{}.exr", spot.0, spot.1));
     write_spot(&map, spot);
     let out = dir.join(format!("{format}-{}-{}.{ext}", spot.0, spot.1));
-    shlight_ok(&["project", s(&map), "--format", format, "-o", s(&out), "-q"]);
+    shlight_ok(&[
+        "project",
+        s(&map),
+        "--format",
+        format,
+        "-o",
+        s(&out),
+        "-q",
+        "--specular-size",
+        "4",
+        "--specular-samples",
+        "16",
+    ]);
     std::fs::read_to_string(out).unwrap()
 }
 

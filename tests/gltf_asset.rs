@@ -149,7 +149,13 @@ fn into_a_gltf_adds_the_light_and_changes_nothing_else() {
         base64::engine::general_purpose::STANDARD.encode(positions())
     ));
     std::fs::write(&scene, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
-    shlight_ok(&["convert", s(&light), "--into", s(&scene)]);
+    shlight_ok(&[
+        "convert",
+        s(&light),
+        "--into",
+        s(&scene),
+        "--irradiance-only",
+    ]);
     let after: Value = serde_json::from_slice(&std::fs::read(&scene).unwrap()).unwrap();
     assert_only_the_light_was_added(&doc, &after);
     crate::util::assert_rows_near(
@@ -159,7 +165,14 @@ fn into_a_gltf_adds_the_light_and_changes_nothing_else() {
         "light read back",
     );
     // Twice gives one light, replaced.
-    shlight_ok(&["convert", s(&light), "--into", s(&scene), "-q"]);
+    shlight_ok(&[
+        "convert",
+        s(&light),
+        "--into",
+        s(&scene),
+        "-q",
+        "--irradiance-only",
+    ]);
     let again: Value = serde_json::from_slice(&std::fs::read(&scene).unwrap()).unwrap();
     assert_eq!(again, after);
     validate(
@@ -179,7 +192,13 @@ fn into_a_glb_keeps_the_binary_chunk_byte_for_byte() {
     bin.extend([7, 7, 7, 7]);
     doc["buffers"][0]["byteLength"] = json!(bin.len());
     std::fs::write(&scene, glb(&doc, &bin)).unwrap();
-    shlight_ok(&["convert", s(&light), "--into", s(&scene)]);
+    shlight_ok(&[
+        "convert",
+        s(&light),
+        "--into",
+        s(&scene),
+        "--irradiance-only",
+    ]);
     let (after, after_bin) = glb_parts(&std::fs::read(&scene).unwrap());
     assert_eq!(after_bin, bin);
     assert_only_the_light_was_added(&doc, &after);
@@ -206,7 +225,13 @@ fn into_refuses_what_is_not_a_gltf_2_asset_and_leaves_it_alone() {
     ] {
         let path = dir.join(name);
         std::fs::write(&path, content).unwrap();
-        let err = shlight_err(&["convert", s(&light), "--into", s(&path)]);
+        let err = shlight_err(&[
+            "convert",
+            s(&light),
+            "--into",
+            s(&path),
+            "--irradiance-only",
+        ]);
         assert!(err.contains(name), "{err}");
         assert_eq!(std::fs::read_to_string(&path).unwrap(), content);
     }
@@ -214,24 +239,74 @@ fn into_refuses_what_is_not_a_gltf_2_asset_and_leaves_it_alone() {
     let mut bytes = glb(&scene_json(), &positions());
     bytes.truncate(bytes.len() - 5);
     std::fs::write(&glb_path, &bytes).unwrap();
-    let err = shlight_err(&["convert", s(&light), "--into", s(&glb_path)]);
+    let err = shlight_err(&[
+        "convert",
+        s(&light),
+        "--into",
+        s(&glb_path),
+        "--irradiance-only",
+    ]);
     assert!(err.contains("short.glb") && err.contains("GLB"), "{err}");
     assert_eq!(std::fs::read(&glb_path).unwrap(), bytes);
 }
 
+/// `project MAP --format gltf` writes the light whole (coefficients and
+/// specular images); the validator finds no error in it, nor in the light
+/// `convert --irradiance-only` writes from coefficients, which plain
+/// `convert` refuses, naming what is missing.
 #[test]
 fn format_gltf_is_a_valid_gltf_2_asset() {
     let dir = temp_dir("gltf_format");
-    let light = light_file(&dir);
+    let map = dir.join("sky.exr");
+    crate::util::write_map(&map, 64, 32, |x, y| {
+        [1.0 + x as f32 / 64.0, 0.5 + y as f32 / 32.0, 0.25]
+    });
     let out = dir.join("light.gltf");
-    shlight_ok(&["convert", s(&light), "-o", s(&out), "-q"]);
+    shlight_ok(&[
+        "project",
+        s(&map),
+        "--format",
+        "gltf",
+        "-o",
+        s(&out),
+        "--specular-size",
+        "16",
+        "-q",
+    ]);
     let v: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     assert_eq!(v["asset"]["version"], "2.0");
     assert_eq!(
         v["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"],
         0
     );
+    let light = &v["extensions"]["EXT_lights_image_based"]["lights"][0];
+    assert_eq!(light["specularImageSize"], 16);
+    // 16, 8, 4, 2, 1: five mips of six faces, each an image.
+    let mips = light["specularImages"].as_array().unwrap();
+    assert_eq!(mips.len(), 5);
+    assert!(mips.iter().all(|m| m.as_array().unwrap().len() == 6));
+    assert_eq!(v["images"].as_array().unwrap().len(), 30);
     validate(&out, "gltf_asset::format_gltf_is_a_valid_gltf_2_asset");
+
+    let light_file = light_file(&dir);
+    let err = shlight_err(&["convert", s(&light_file), "-o", s(&dir.join("c.gltf"))]);
+    assert!(
+        err.contains("light.json") && err.contains("specularImages"),
+        "{err}"
+    );
+    let irradiance_only = dir.join("irradiance-only.gltf");
+    shlight_ok(&[
+        "convert",
+        s(&light_file),
+        "-o",
+        s(&irradiance_only),
+        "--irradiance-only",
+        "-q",
+    ]);
+    validate(
+        &irradiance_only,
+        "gltf_asset::format_gltf_is_a_valid_gltf_2_asset",
+    );
 }
 
 /// Where `.ci/run` installs the Khronos glTF validator (npm

@@ -23,6 +23,7 @@ mod render;
 mod sample;
 #[cfg(feature = "gpu")]
 mod shaders;
+mod specular;
 mod synth;
 mod util;
 mod volume;

@@ -40,7 +40,9 @@ from ._shlight import (
 from ._shlight import bake_transfer as _bake_transfer
 from ._shlight import bake_volume as _bake_volume
 from ._shlight import compare as _compare
+from ._shlight import dfg as _dfg
 from ._shlight import irradiance as _irradiance
+from ._shlight import prefilter as _prefilter
 from ._shlight import project as _project
 from ._shlight import project_many as _project_many
 
@@ -53,8 +55,10 @@ __all__ = [
     "bake_transfer",
     "bake_volume",
     "compare",
+    "dfg",
     "irradiance",
     "load",
+    "prefilter",
     "project",
     "project_many",
     "read_image",
@@ -424,3 +428,87 @@ def bake_volume(
         static_only=static,
         output=None if output is None else str(output),
     )
+
+
+def prefilter(
+    source,
+    output,
+    engine="filament",
+    size=256,
+    mips=None,
+    samples=1024,
+    *,
+    up="y",
+    layout="auto",
+    mirror=False,
+    sanitize=False,
+    max_pixels=None,
+):
+    """A map GGX-prefiltered into cube mips (``shlight prefilter MAP -o DIR/``).
+
+    The specular half of image-based lighting: mip ``k`` holds the map
+    convolved with the GGX lobe (``n = v = r``, Karis 2013) at the
+    roughness ``engine``'s shader reads mip ``k`` at (docs/exporters.md),
+    by GGX importance sampling with source-mip filtering (Colbert &
+    Krivanek 2007), as Filament's cmgen does; deterministic, on every core.
+
+    Parameters
+    ----------
+    source : str | os.PathLike
+        A map file in any layout ``project`` reads.
+    output : str | os.PathLike
+        A directory (made if missing): one float OpenEXR per mip and face,
+        ``m0_px.exr`` ... ``m<N>_nz.exr``, named and oriented as cmgen's
+        ``--ibl-ld`` writes them.
+    engine : {"filament", "babylon", "bevy", "unreal"}
+        Whose roughness per mip and cube axes.
+    size : int
+        Face size of mip 0, a power of two.
+    mips : int | None
+        The mip count (default: Filament's 16-pixel smallest mip, the full
+        chain for the others).
+    samples : int
+        GGX samples per texel of mips 0 and 1, doubled per mip after.
+    up, layout, mirror, sanitize, max_pixels :
+        As for ``project``.
+
+    Returns
+    -------
+    list[str]
+        The files written, mip 0 first, faces ``px nx py ny pz nz``.
+
+    Raises
+    ------
+    ShlightError
+        An unreadable map, bad settings; the CLI's messages.
+    """
+    return _prefilter(
+        source,
+        output,
+        engine,
+        size,
+        mips,
+        samples,
+        up=up,
+        layout=layout,
+        mirror=mirror,
+        sanitize=sanitize,
+        max_pixels=max_pixels,
+    )
+
+
+def dfg(output, engine="filament", size=128, samples=1024):
+    """The DFG (split-sum BRDF) table (``shlight dfg -o LUT``).
+
+    ``size x size`` texels, ``n.v`` left to right, perceptual roughness
+    from 1 (top row) to 0. ``engine="filament"`` writes Filament's
+    multiscatter form (red: bias ``B``, green: ``A + B``); the others Karis'
+    scale and bias of F0 (red ``A``, green ``B``). ``output`` ends in
+    ``.exr`` (float) or ``.png`` (8-bit values, not sRGB-encoded).
+
+    Raises
+    ------
+    ShlightError
+        Another extension, a size outside 1..4096, no samples.
+    """
+    _dfg(output, engine, size, samples)

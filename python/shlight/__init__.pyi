@@ -56,8 +56,10 @@ class SH:
         """none, hanning:W, lanczos:W, laplacian:LAMBDA or auto."""
     def save(self, path: PathLike) -> None:
         """Writes shlight's JSON coefficient file (as the CLI's -o FILE.json)."""
-    def export(self, format: str) -> str:
-        """The coefficients in an engine or shader format (EXPORT_FORMATS)."""
+    def export(self, format: str, irradiance_only: bool = False) -> str:
+        """The coefficients in an engine or shader format (EXPORT_FORMATS).
+        A glTF light needs the map's specular images: refused, unless
+        irradiance_only asks for the coefficients alone."""
     def to_json(self) -> str:
         """The coefficient file as JSON text."""
     @staticmethod
@@ -310,3 +312,23 @@ def bake_volume(
     output: Optional[PathLike] = None,
 ) -> Volume:
     """An irradiance volume as shlight volume bakes it."""
+
+Engine = Literal["filament", "babylon", "bevy", "unreal"]
+
+def prefilter(
+    source: PathLike,
+    output: PathLike,
+    engine: Engine = "filament",
+    size: int = 256,
+    mips: Optional[int] = None,
+    samples: int = 1024,
+    *,
+    up: Literal["y", "z"] = "y",
+    layout: str = "auto",
+    mirror: bool = False,
+    sanitize: bool = False,
+    max_pixels: Optional[int] = None,
+) -> list[str]:
+    """GGX-prefiltered cube mips as cmgen --ibl-ld files (shlight prefilter)."""
+def dfg(output: PathLike, engine: Engine = "filament", size: int = 128, samples: int = 1024) -> None:
+    """The DFG table as .exr or .png (shlight dfg)."""

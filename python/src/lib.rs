@@ -5,7 +5,7 @@
 //! exceptions, warnings) and shlight's libraries. Every step of a
 //! projection, render, export, measurement or bake is a library call
 //! (`shlight_pipeline`, `shlight_core`, `shlight_io`, `shlight_format`,
-//! `shlight_accuracy`, `shlight_prt`, `shlight_volume`);
+//! `shlight_accuracy`, `shlight_prt`, `shlight_volume`, `shlight_specular`);
 //! nothing here computes lighting. Work runs with the GIL released, and no
 //! Rust panic reaches Python ([`guard::guard`] turns one into a
 //! `shlight.ShlightError`).
@@ -19,6 +19,7 @@ mod project;
 mod prt;
 mod sh;
 mod source;
+mod specular;
 mod volume;
 
 use pyo3::prelude::*;
@@ -41,6 +42,8 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
     m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add_function(wrap_pyfunction!(volume::bake_volume, m)?)?;
+    m.add_function(wrap_pyfunction!(specular::prefilter, m)?)?;
+    m.add_function(wrap_pyfunction!(specular::dfg, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;
     Ok(())
 }

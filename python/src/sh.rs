@@ -304,11 +304,22 @@ impl Sh {
     /// The coefficients in an engine or shader format, as `shlight project
     /// --format NAME` writes them (shlight.EXPORT_FORMATS lists the names).
     /// The exporter's notes come as warnings.
-    fn export(&self, py: Python<'_>, format: &str) -> PyResult<String> {
+    #[pyo3(signature = (format, irradiance_only=false))]
+    fn export(&self, py: Python<'_>, format: &str, irradiance_only: bool) -> PyResult<String> {
         let f: ExportFormat = format
             .parse()
             .map_err(|e: String| shlight_error(format!("format={format:?}: {e}")))?;
-        let out = guard(|| shlight_format::export(&self.file, f).map_err(|e| chained(&e)))?;
+        let out = guard(|| {
+            match f {
+                // Coefficients hold no map for the specular images: only
+                // asked for knowingly.
+                ExportFormat::Gltf if irradiance_only => {
+                    shlight_format::export_gltf(&self.file, None)
+                }
+                _ => shlight_format::export(&self.file, f),
+            }
+            .map_err(|e| chained(&e))
+        })?;
         let notes: Vec<String> = out
             .notes
             .iter()

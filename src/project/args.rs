@@ -95,6 +95,14 @@ pub struct ProjectArgs {
     /// engine or shader format (docs/exporters.md).
     #[arg(long, value_parser = crate::values::export_format())]
     pub format: Option<ExportFormat>,
+    /// With --format gltf: the face size of the light's specular cube (a
+    /// power of two; its mips run down to 1 pixel).
+    #[arg(long, default_value_t = shlight_pipeline::GLTF_SPECULAR_SIZE)]
+    pub specular_size: usize,
+    /// With --format gltf: GGX samples per texel of the specular cube's mips
+    /// 0 and 1, doubled per mip after.
+    #[arg(long, default_value_t = shlight_specular::PrefilterSettings::DEFAULT_SAMPLES)]
+    pub specular_samples: u32,
     /// Write a preview image: input | SH radiance | SH irradiance/π, side
     /// by side. With several inputs, a directory for one NAME.png each.
     #[arg(long, value_name = "FILE.png")]

@@ -22,6 +22,7 @@ mod write;
 use anyhow::{Result, bail};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
+use shlight_format::ExportFormat;
 use shlight_pipeline::{Hooks, Preview, Source, project};
 
 use crate::progress::Ui;
@@ -93,5 +94,19 @@ fn process(job: &Job, s: &Settings<'_>, ui: &Ui, bar: &ProgressBar) -> Result<()
     } else {
         bar.set_message(format!("writing {}", job.input.display()));
     }
-    write_output(&file, s.args.format, &job.output, ui)
+    let specular = if s.args.format == Some(ExportFormat::Gltf) {
+        bar.set_message(format!("specular images of {}", job.input.display()));
+        Some(shlight_pipeline::gltf_specular_images(
+            &job.input,
+            &s.pipeline.read,
+            s.pipeline.project.orientation,
+            s.pipeline.project.rotation.as_ref().map(|(_, m)| *m),
+            s.args.specular_size,
+            s.args.specular_samples,
+            &|_| {},
+        )?)
+    } else {
+        None
+    };
+    write_output(&file, s.args.format, specular.as_ref(), &job.output, ui)
 }

@@ -5,6 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use shlight_format::gltf::SpecularImages;
 use shlight_format::{CoeffFile, ExportFormat, Exported};
 
 use crate::progress::Ui;
@@ -19,13 +20,14 @@ pub enum Dest {
     File(PathBuf),
 }
 
-/// Writes `file` in `format` to `dest` (atomically for files), with the
+/// Writes `file` in `format` (a glTF light with `specular`'s images) to `dest` (atomically for files), with the
 /// exporter's notes through `ui` (silenced by `--quiet`), naming the input.
 /// Without `--format`, a terminal gets the readable table of `shlight show`
 /// and everything else JSON.
 pub fn write_output(
     file: &CoeffFile,
     format: Option<ExportFormat>,
+    specular: Option<&SpecularImages>,
     dest: &Dest,
     ui: &Ui,
 ) -> Result<()> {
@@ -40,6 +42,7 @@ pub fn write_output(
             text: file.to_table(),
             notes: Vec::new(),
         },
+        (Some(ExportFormat::Gltf), _) => shlight_format::export_gltf(file, specular)?,
         (f, _) => shlight_format::export(file, f.unwrap_or(ExportFormat::Json))?,
     };
     for note in &out.notes {

@@ -255,6 +255,27 @@ pub struct Exported {
 /// # Errors
 /// As [`export_coeffs`], the message naming the file's input.
 pub fn export(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
+    export_with(file, format, None)
+}
+
+/// [`export`] as a glTF asset whose light carries `specular` (the map's
+/// prefiltered cube; [`gltf`]), or, with `None`, the irradiance
+/// coefficients alone (a light the extension's schema does not accept;
+/// a note says so).
+///
+/// # Errors
+/// As [`export`].
+pub fn export_gltf(file: &CoeffFile, specular: Option<&gltf::SpecularImages>) -> Result<Exported> {
+    export_with(file, ExportFormat::Gltf, Some(specular))
+}
+
+/// [`export`], and for glTF the specular images (`Some(None)`: knowingly
+/// without them).
+fn export_with(
+    file: &CoeffFile,
+    format: ExportFormat,
+    gltf_specular: Option<Option<&gltf::SpecularImages>>,
+) -> Result<Exported> {
     if format == ExportFormat::Json {
         return Ok(Exported {
             text: file.to_json_string() + "\n",
@@ -284,7 +305,13 @@ pub fn export(file: &CoeffFile, format: ExportFormat) -> Result<Exported> {
         quantity: file.quantity,
         frame: file.frame,
     };
-    let mut out = export_coeffs(&input, format).map_err(|e| {
+    let rendered = match (format, gltf_specular) {
+        (ExportFormat::Gltf, Some(specular)) => {
+            check_finite(input.coeffs).and_then(|()| gltf::render(&input, specular))
+        }
+        _ => export_coeffs(&input, format),
+    };
+    let mut out = rendered.map_err(|e| {
         FormatError::Export(format!(
             "{}: exporting as {}: {e}",
             file.provenance.input,
@@ -316,7 +343,7 @@ pub fn export_coeffs(input: &ExportInput<'_>, format: ExportFormat) -> Result<Ex
         )),
         ExportFormat::Txt => Ok(txt::render(input)),
         ExportFormat::Threejs => threejs::render(input),
-        ExportFormat::Gltf => gltf::render(input),
+        ExportFormat::Gltf => Err(FormatError::Export(gltf::MISSING_SPECULAR.to_owned())),
         ExportFormat::Filament => filament::render(input),
         ExportFormat::Unity => unity::render(input),
         ExportFormat::Wgsl => wgsl::render(input),

@@ -218,3 +218,35 @@ fn encode_error(error: ImageError) -> IoErrorKind {
         other => IoErrorKind::Write(std::io::Error::other(other.to_string())),
     }
 }
+
+/// An 8-bit RGBA PNG of `width x height` texels (`rgba`, 4 bytes a texel,
+/// row-major from the top-left, written as they are: no sRGB or tone
+/// curve), in memory. `name` names the image in errors.
+///
+/// # Errors
+/// [`IoErrorKind::Unsupported`] when `rgba` is not `4 width height` bytes
+/// or a side exceeds `u32`; [`IoErrorKind::Write`] when encoding fails.
+pub fn encode_png_rgba8(
+    name: &str,
+    width: usize,
+    height: usize,
+    rgba: &[u8],
+) -> Result<Vec<u8>, crate::IoError> {
+    let error = |kind| crate::IoError::new(name, kind);
+    let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
+        return Err(error(IoErrorKind::Unsupported(format!(
+            "a {width}x{height} PNG"
+        ))));
+    };
+    if rgba.len() != 4 * width * height {
+        return Err(error(IoErrorKind::Unsupported(format!(
+            "{} bytes for a {width}x{height} RGBA image",
+            rgba.len()
+        ))));
+    }
+    let mut bytes = Vec::new();
+    PngEncoder::new_with_quality(&mut bytes, CompressionType::Default, FilterType::Adaptive)
+        .write_image(rgba, w, h, ExtendedColorType::Rgba8)
+        .map_err(|e| error(encode_error(e)))?;
+    Ok(bytes)
+}

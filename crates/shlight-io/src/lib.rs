@@ -95,6 +95,7 @@ pub use crate::exposure::auto_exposure;
 pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
+pub use crate::image_codecs::encode_png_rgba8;
 pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};

@@ -42,6 +42,10 @@
 //! coefficient file), with its encodings and their WGSL snippets.
 //! [`map_irradiance`] and [`compare_encodings`] measure a map's encodings
 //! against its exact irradiance (`shlight irradiance`, `shlight compare`).
+//! [`prefilter_map`] prefilters a map for an engine's specular lighting
+//! (shlight-specular), [`write_prefiltered_faces`] writes its mips as
+//! cmgen names them and [`write_dfg`] the DFG table (`shlight prefilter`,
+//! `shlight dfg`).
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -85,6 +89,7 @@ mod render;
 mod rotation_spec;
 mod settings;
 mod source_stats;
+mod specular;
 
 pub use accuracy::{
     EncodedIrradiance, IrradianceReport, IrradianceSettings, compare_encodings, compare_name,
@@ -108,3 +113,8 @@ pub use render::render_map;
 pub use rotation_spec::parse_rotation;
 pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
 pub use source_stats::source_stats;
+pub use specular::{
+    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, PrefilterRequest, cmgen_face_file, gltf_specular_images,
+    prefilter_map, write_dfg, write_prefiltered_faces, write_prefiltered_ktx1,
+    write_prefiltered_ktx2,
+};

@@ -41,12 +41,25 @@
 //!   `rotation` is the identity, `intensity` 1.
 //! - **lmax 2** exactly.
 //!
-//! The extension also requires `specularImages` and `specularImageSize`
-//! (the prefiltered cube map), which shlight does not make: the light is
-//! written without them and a note says so.
+//! # The specular images
+//!
+//! The extension also requires `specularImageSize` and `specularImages`:
+//! the environment prefiltered with the GGX lobe, `specularImages[k][f]`
+//! the image of face `f` of mip `k`, faces in the order `+X -X +Y -Y +Z -Z`.
+//! [`render`] writes them from [`SpecularImages`] (made by shlight-pipeline
+//! from the map: shlight-specular's prefilter for Babylon.js, its
+//! roughness per mip, each face RGBD-encoded, Babylon's `toRGBD`, as an
+//! 8-bit RGBA PNG) as `images` with `data:image/png;base64,` URIs:
+//! `specularImageSize` is the face size of mip 0 and the mips run down to
+//! one pixel (`size >> k`). Faces are in glTF's world (the frame of the
+//! coefficients), in the OpenGL cube-map convention, row 0 at the top.
+//! Without them ([`render`] with `None`, `shlight convert
+//! --irradiance-only`) the light lacks what the extension requires and a
+//! note says so; [`super::export`] refuses to write such a light.
 
 use std::path::Path;
 
+use base64::Engine as _;
 use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs};
@@ -65,6 +78,23 @@ const SPECULAR_NOTE: &str = "EXT_lights_image_based also requires specularImages
      specularImageSize (the prefiltered cube map); shlight writes only the irradiance \
      coefficients, so a loader lights diffuse surfaces from them and needs its own \
      specular environment";
+
+/// The prefiltered specular cube of an `EXT_lights_image_based` light:
+/// per mip, six PNG files (RGBD, faces `+X -X +Y -Y +Z -Z`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpecularImages {
+    /// Face size of mip 0 (`specularImageSize`).
+    pub size: usize,
+    /// Mip 0 first, each `size >> k` pixels a side; the PNG bytes of each
+    /// face.
+    pub mips: Vec<[Vec<u8>; 6]>,
+}
+
+/// Why a glTF light cannot be written from coefficients alone.
+pub const MISSING_SPECULAR: &str = "a glTF EXT_lights_image_based light requires \
+     specularImages and specularImageSize (the environment prefiltered into cube mips), \
+     which coefficients cannot give: write it from the map (shlight project MAP --format gltf), \
+     or pass --irradiance-only to write the light without them";
 
 /// The light object: `irradianceCoefficients` of `input`, and what they
 /// are in words under `extras.shlight`.
@@ -89,13 +119,46 @@ fn light(input: &ExportInput<'_>) -> Result<(Value, Vec<String>)> {
     Ok((light, notes))
 }
 
-/// Renders the glTF asset.
+/// Renders the glTF asset, with `specular`'s images when given (module
+/// docs), else the irradiance coefficients alone with a note.
 ///
 /// # Errors
 /// As [`super::export_coeffs`].
-pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
-    let (light, notes) = light(input)?;
-    let doc = json!({
+pub fn render(input: &ExportInput<'_>, specular: Option<&SpecularImages>) -> Result<Exported> {
+    let (mut light, mut notes) = light(input)?;
+    let mut images = Vec::new();
+    if let Some(spec) = specular {
+        notes.retain(|n| n != SPECULAR_NOTE);
+        let extras = &mut light["extras"]["shlight"];
+        if let Some(o) = extras.as_object_mut() {
+            o.remove("missing");
+            o.insert(
+                "specularImages".into(),
+                json!(format!(
+                    "the environment GGX-prefiltered for Babylon.js (mip k at alphaG = {}^(k/{} - 1), mip 0 a mirror), {} mips of {}x{} down to 1x1, faces +X -X +Y -Y +Z -Z in the glTF world (OpenGL cube-map convention, row 0 at the top), RGBD as Babylon's toRGBD (rgb = (c D)^(1/2.2), alpha = D), 8-bit RGBA PNG",
+                    spec.size,
+                    spec.mips.len().saturating_sub(1).max(1),
+                    spec.mips.len(),
+                    spec.size,
+                    spec.size
+                )),
+            );
+        }
+        let mut mips = Vec::new();
+        for faces in &spec.mips {
+            let mut row = Vec::new();
+            for png in faces {
+                row.push(images.len());
+                images.push(json!({
+                    "uri": format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(png)),
+                }));
+            }
+            mips.push(row);
+        }
+        light["specularImageSize"] = json!(spec.size);
+        light["specularImages"] = json!(mips);
+    }
+    let mut doc = json!({
         "asset": {
             "version": "2.0",
             "generator": concat!("shlight ", env!("CARGO_PKG_VERSION")),
@@ -108,6 +171,9 @@ pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
             "extensions": { EXTENSION: { "light": 0 } },
         }],
     });
+    if !images.is_empty() {
+        doc["images"] = json!(images);
+    }
     Ok(Exported {
         text: serde_json::to_string_pretty(&doc).expect("JSON values serialise") + "\n",
         notes,
@@ -510,11 +576,14 @@ mod tests {
         let radiance =
             &shlight_core::sh::closed_form::directional(2, DVec3::new(0.0, 0.6, 0.8), DVec3::ONE)
                 + &shlight_core::sh::closed_form::constant(2, DVec3::splat(0.3));
-        let out = render(&ExportInput {
-            coeffs: &radiance,
-            quantity: Quantity::Radiance,
-            frame: Frame::YUp,
-        })
+        let out = render(
+            &ExportInput {
+                coeffs: &radiance,
+                quantity: Quantity::Radiance,
+                frame: Frame::YUp,
+            },
+            None,
+        )
         .unwrap();
         let v: Value = serde_json::from_str(&out.text).unwrap();
         let e = shlight_core::sh::irradiance(&radiance);
