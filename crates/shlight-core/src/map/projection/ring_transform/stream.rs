@@ -178,7 +178,11 @@ impl RingAccumulator {
             return;
         };
         // `a` is always the upper row's, `b` the lower's.
-        let (a, b) = if y == p { (&ring, &other) } else { (&other, &ring) };
+        let (a, b) = if y == p {
+            (&ring, &other)
+        } else {
+            (&other, &ring)
+        };
         let cols = g.lmax + 1;
         let (block, lane) = (p / LANES, p % LANES);
         let sums = &mut state.sums;
