@@ -85,6 +85,7 @@ mod render;
 mod rotation_spec;
 mod settings;
 mod source_stats;
+mod stream_project;
 
 pub use accuracy::{
     EncodedIrradiance, IrradianceReport, IrradianceSettings, compare_encodings, compare_name,
