@@ -22,6 +22,7 @@ mod render;
 mod sample;
 #[cfg(feature = "gpu")]
 mod shaders;
+mod stream;
 mod synth;
 mod util;
 mod volume;

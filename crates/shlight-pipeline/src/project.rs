@@ -16,9 +16,9 @@ use crate::load::{LoadedMap, check_values, env_map, load_map};
 use crate::map_info::MapInfo;
 use crate::preview::write_preview;
 use crate::projector::{Projection, Projector};
-use crate::stream_project::project_streaming;
 use crate::settings::Settings;
 use crate::source_stats::source_stats;
+use crate::stream_project::project_streaming;
 use crate::{PipelineError, Result};
 
 /// Where a map comes from.

@@ -234,7 +234,11 @@ mod tests {
         let mut negative = base.clone();
         negative.set(3, 3, [-1.0, 2.0, 3.0]);
         let mut maps = Vec::new();
-        for (name, image) in [("clean", &base), ("special", &special), ("negative", &negative)] {
+        for (name, image) in [
+            ("clean", &base),
+            ("special", &special),
+            ("negative", &negative),
+        ] {
             let path = dir.join(format!("{name}.exr"));
             write_image(&path, image, &WriteOptions::default()).unwrap();
             maps.push(path);
@@ -278,7 +282,10 @@ mod tests {
         ));
         s.read.layout = crate::InputLayout::Image(Layout::Equirect);
         let (special_error, _) = run(&maps[1], &s, &CpuProjector);
-        assert!(special_error.contains("texels are NaN or infinite (the first at x=4, y=2)"), "{special_error}");
+        assert!(
+            special_error.contains("texels are NaN or infinite (the first at x=4, y=2)"),
+            "{special_error}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
