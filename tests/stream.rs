@@ -130,3 +130,35 @@ fn an_8k_map_projects_under_a_memory_cap_as_in_memory() {
 fn a_16k_map_projects_under_a_memory_cap_as_in_memory() {
     projects_under_a_memory_cap("stream-16k", 16384, 8192);
 }
+
+/// Writes the maps `benches/stream.sh` times into `$SHLIGHT_BENCH_DIR`:
+/// `envmaps/park.exr` resized to 2048x1024 and 8192x4096 with a small
+/// texel-by-texel ripple added (so that the float values compress as a
+/// photographed map's do, not as runs), as float ZIP OpenEXR, and the
+/// patchy maps of [`write_large_exr`] at 8192x4096 and 16384x8192.
+#[test]
+#[ignore = "writes benchmark inputs (about 600 MB) for benches/stream.sh"]
+fn write_benchmark_maps() {
+    let Ok(dir) = std::env::var("SHLIGHT_BENCH_DIR") else {
+        panic!("set SHLIGHT_BENCH_DIR to the directory to write the maps into");
+    };
+    let dir = Path::new(&dir);
+    std::fs::create_dir_all(dir).unwrap();
+    let park = shlight_io::read_image(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps/park.exr"),
+        &shlight_io::ReadOptions::default(),
+    )
+    .unwrap();
+    for (w, h) in [(2048, 1024), (8192, 4096)] {
+        let mut map = park.resample(w, h);
+        for (i, p) in map.pixels_mut().iter_mut().enumerate() {
+            let ripple = ((i * 7919) % 101) as f32 * 1e-3;
+            p.iter_mut().for_each(|v| *v += ripple);
+        }
+        let path = dir.join(format!("park-{w}.exr"));
+        shlight_io::write_image(&path, &map, &shlight_io::WriteOptions::default()).unwrap();
+    }
+    for (w, h) in [(8192, 4096), (16384, 8192)] {
+        write_large_exr(&dir.join(format!("patches-{w}.exr")), w, h);
+    }
+}

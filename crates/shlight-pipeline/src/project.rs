@@ -18,7 +18,7 @@ use crate::preview::write_preview;
 use crate::projector::{Projection, Projector};
 use crate::settings::Settings;
 use crate::source_stats::source_stats;
-use crate::stream_project::project_streaming;
+use crate::stream_project::{Streamed, project_streaming};
 use crate::{PipelineError, Result};
 
 /// Where a map comes from.
@@ -89,13 +89,27 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
         Source::Path(path) => {
             let name = path.display().to_string();
             (hooks.progress)(&format!("reading {name}"));
-            if streams(path, s, hooks)
-                && let Some(streamed) = project_streaming(path, &name, s, hooks.progress)?
-            {
-                warn_all(&streamed.warnings);
-                return complete(streamed.projection, None, streamed.info, s, hooks);
-            }
-            let loaded = load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?;
+            let streamed = if streams(path, s, hooks) {
+                project_streaming(path, &name, s, hooks.progress)?
+            } else {
+                Streamed::NotEquirect
+            };
+            let loaded = match streamed {
+                Streamed::Projected {
+                    projection,
+                    info,
+                    warnings,
+                } => {
+                    warn_all(&warnings);
+                    return complete(projection, None, info, s, hooks);
+                }
+                Streamed::Whole(image) => {
+                    LoadedMap::from_image(&name, image, s.read.layout, s.read.sanitize)?
+                }
+                Streamed::NotEquirect => {
+                    load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?
+                }
+            };
             warn_all(&loaded.warnings);
             let layout = if is_faces(path) {
                 "faces"

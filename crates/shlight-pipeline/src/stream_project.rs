@@ -16,18 +16,26 @@ use crate::map_info::MapInfo;
 use crate::projector::Projection;
 use crate::settings::Settings;
 
-/// What streaming a map gave: the coefficients, the file's record of the
-/// map, and the warnings for the user.
-pub(crate) struct Streamed {
-    pub(crate) projection: Projection,
-    pub(crate) info: MapInfo,
-    pub(crate) warnings: Vec<String>,
+/// What [`project_streaming`] did with a map.
+pub(crate) enum Streamed {
+    /// Projected: the coefficients, the file's record of the map, and the
+    /// warnings for the user.
+    Projected {
+        projection: Projection,
+        info: MapInfo,
+        warnings: Vec<String>,
+    },
+    /// A file the reader read whole (see [`shlight_io::open_rows`]): the
+    /// image, for the in-memory route.
+    Whole(shlight_io::Image),
+    /// Not equirect: for the in-memory route, which reads the file.
+    NotEquirect,
 }
 
 /// Projects the map file at `path` (named `name`) by quadrature as its rows
-/// are decoded: `Ok(None)` when it is not one this route takes (a layout
-/// other than equirect, or a file the reader must hold whole: see
-/// [`shlight_io::open_rows`]), for the caller's in-memory route.
+/// are decoded; a map this route does not take (a layout other than
+/// equirect, or a file the reader must hold whole: see
+/// [`shlight_io::open_rows`]) is left to the caller's in-memory route.
 ///
 /// The coefficients, statistics, warnings and errors are those of the
 /// in-memory route bit for bit: every row's sums are the ring transform's
@@ -44,16 +52,19 @@ pub(crate) fn project_streaming(
     name: &str,
     s: &Settings,
     progress: &(dyn Fn(&str) + Sync),
-) -> Result<Option<Streamed>> {
+) -> Result<Streamed> {
     let rows = open_rows(path, &s.read.read)?;
     if !rows.streams() {
-        return Ok(None);
+        let image = rows
+            .into_image()
+            .expect("a source that does not stream holds its image");
+        return Ok(Streamed::Whole(image));
     }
     let (w, h) = rows.size();
     let mut warnings = Vec::new();
     let layout = layout_for_size(name, s.read.layout, w, h, &mut warnings)?;
     if layout != Layout::Equirect {
-        return Ok(None);
+        return Ok(Streamed::NotEquirect);
     }
     let p = &s.project;
     progress(&format!("projecting {name} ({w}x{h}, lmax {})", p.lmax));
@@ -78,11 +89,11 @@ pub(crate) fn project_streaming(
     let coeffs = acc
         .finish()
         .map_err(|e| crate::PipelineError::new(format!("{name}: {e}")))?;
-    Ok(Some(Streamed {
+    Ok(Streamed::Projected {
         projection: Projection::exact(coeffs),
         info: MapInfo::new(name, layout.name(), (w, h), stats, sanitized),
         warnings,
-    }))
+    })
 }
 
 /// One read of the rows into a fresh accumulator, with the statistics of
@@ -267,7 +278,7 @@ mod tests {
                 s.read.layout = crate::InputLayout::Image(Layout::Equirect);
                 let name = path.display().to_string();
                 let streamed = project_streaming(path, &name, &s, &|_| {});
-                streamed_any |= matches!(streamed, Ok(Some(_)));
+                streamed_any |= matches!(streamed, Ok(Streamed::Projected { .. }));
                 let want = run(path, &s, &InMemory);
                 let got = run(path, &s, &CpuProjector);
                 assert_eq!(got, want, "{name} lmax {lmax} {frame} sanitize {sanitize}");

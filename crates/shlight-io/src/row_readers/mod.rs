@@ -47,6 +47,13 @@ pub trait RowSource: Send + Sync {
     /// Whether rows are decoded as they are read (memory bounded by a few
     /// blocks), rather than the image read whole first.
     fn streams(&self) -> bool;
+
+    /// The whole image, where the source already holds it (a file read
+    /// whole: [`RowSource::streams`] is false), so that a caller that
+    /// wants it after all need not read the file again.
+    fn into_image(self: Box<Self>) -> Option<Image> {
+        None
+    }
 }
 
 /// An image in memory, handed out in bands of rows.
@@ -69,6 +76,10 @@ impl RowSource for Image {
 
     fn streams(&self) -> bool {
         false
+    }
+
+    fn into_image(self: Box<Self>) -> Option<Image> {
+        Some(*self)
     }
 }
 
