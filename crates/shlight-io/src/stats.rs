@@ -185,7 +185,7 @@ impl Image {
 /// by [`crate::open_rows`]), `+inf` replaced by `infinity_replacement`
 /// (the whole image's largest finite value, or 0 when that is negative or
 /// there is none). Reports of the bands of an image add up
-/// ([`SanitizeReport::add`]) to the whole image's.
+/// ([`SanitizeReport::combined`]) to the whole image's.
 pub fn sanitize_pixels(pixels: &mut [[f32; 3]], infinity_replacement: f32) -> SanitizeReport {
     let mut report = SanitizeReport {
         nan: 0,
@@ -216,7 +216,7 @@ impl SanitizeReport {
     /// The counts of `self` and `other` added (the replacement is
     /// `self`'s): the report of two parts of one image.
     #[must_use]
-    pub fn add(self, other: SanitizeReport) -> SanitizeReport {
+    pub fn combined(self, other: SanitizeReport) -> SanitizeReport {
         SanitizeReport {
             nan: self.nan + other.nan,
             positive_infinite: self.positive_infinite + other.positive_infinite,

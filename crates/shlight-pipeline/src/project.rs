@@ -95,13 +95,9 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
                 Streamed::NotEquirect
             };
             let loaded = match streamed {
-                Streamed::Projected {
-                    projection,
-                    info,
-                    warnings,
-                } => {
-                    warn_all(&warnings);
-                    return complete(projection, None, info, s, hooks);
+                Streamed::Projected(done) => {
+                    warn_all(&done.warnings);
+                    return complete(done.projection, None, done.info, s, hooks);
                 }
                 Streamed::Whole(image) => {
                     LoadedMap::from_image(&name, image, s.read.layout, s.read.sanitize)?

@@ -16,15 +16,18 @@ use crate::map_info::MapInfo;
 use crate::projector::Projection;
 use crate::settings::Settings;
 
+/// A map projected by [`project_streaming`]: the coefficients, the file's
+/// record of the map, and the warnings for the user.
+pub(crate) struct Projected {
+    pub(crate) projection: Projection,
+    pub(crate) info: MapInfo,
+    pub(crate) warnings: Vec<String>,
+}
+
 /// What [`project_streaming`] did with a map.
 pub(crate) enum Streamed {
-    /// Projected: the coefficients, the file's record of the map, and the
-    /// warnings for the user.
-    Projected {
-        projection: Projection,
-        info: MapInfo,
-        warnings: Vec<String>,
-    },
+    /// Projected.
+    Projected(Box<Projected>),
     /// A file the reader read whole (see [`shlight_io::open_rows`]): the
     /// image, for the in-memory route.
     Whole(shlight_io::Image),
@@ -89,11 +92,11 @@ pub(crate) fn project_streaming(
     let coeffs = acc
         .finish()
         .map_err(|e| crate::PipelineError::new(format!("{name}: {e}")))?;
-    Ok(Streamed::Projected {
+    Ok(Streamed::Projected(Box::new(Projected {
         projection: Projection::exact(coeffs),
         info: MapInfo::new(name, layout.name(), (w, h), stats, sanitized),
         warnings,
-    })
+    })))
 }
 
 /// One read of the rows into a fresh accumulator, with the statistics of
@@ -120,7 +123,7 @@ fn pass(
                 let mut copy = band.to_vec();
                 let r = sanitize_pixels(&mut copy, largest);
                 let mut total = report.lock().unwrap_or_else(PoisonError::into_inner);
-                *total = Some(total.map_or(r, |t| t.add(r)));
+                *total = Some(total.map_or(r, |t| t.combined(r)));
                 drop(total);
                 acc.add_rows(first, &copy);
             }
@@ -278,7 +281,7 @@ mod tests {
                 s.read.layout = crate::InputLayout::Image(Layout::Equirect);
                 let name = path.display().to_string();
                 let streamed = project_streaming(path, &name, &s, &|_| {});
-                streamed_any |= matches!(streamed, Ok(Streamed::Projected { .. }));
+                streamed_any |= matches!(streamed, Ok(Streamed::Projected(_)));
                 let want = run(path, &s, &InMemory);
                 let got = run(path, &s, &CpuProjector);
                 assert_eq!(got, want, "{name} lmax {lmax} {frame} sanitize {sanitize}");

@@ -123,8 +123,11 @@ struct Bands {
     /// Blocks already seen, by position.
     seen: Mutex<HashSet<(usize, usize)>>,
     /// Tile bands still open: their rows and the pixels they have.
-    open: Mutex<HashMap<usize, (Vec<[f32; 3]>, usize)>>,
+    open: Mutex<HashMap<usize, OpenBand>>,
 }
+
+/// A band of rows being filled by tiles: its texels and how many it has.
+type OpenBand = (Vec<[f32; 3]>, usize);
 
 impl Bands {
     fn new(header: &exr::meta::header::Header, width: usize, height: usize) -> Self {
