@@ -117,15 +117,26 @@ fn pass(
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
             .add(first, part, 3 * band.len());
+        // From a decoder's own threads, each band on the thread that
+        // decoded it (summing on rayon's pool could wait forever on
+        // workers that wait for this read, in a batch); from the calling
+        // thread, on the pool.
+        let add = |first, band: &[[f32; 3]]| {
+            if rows.calls_from_many_threads() {
+                acc.add_rows(first, band);
+            } else {
+                acc.add_rows_parallel(first, band);
+            }
+        };
         match replace_infinity {
-            None => acc.add_rows(first, band),
+            None => add(first, band),
             Some(largest) => {
                 let mut copy = band.to_vec();
                 let r = sanitize_pixels(&mut copy, largest);
                 let mut total = report.lock().unwrap_or_else(PoisonError::into_inner);
                 *total = Some(total.map_or(r, |t| t.combined(r)));
                 drop(total);
-                acc.add_rows(first, &copy);
+                add(first, &copy);
             }
         }
     })?;

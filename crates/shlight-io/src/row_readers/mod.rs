@@ -48,6 +48,15 @@ pub trait RowSource: Send + Sync {
     /// blocks), rather than the image read whole first.
     fn streams(&self) -> bool;
 
+    /// Whether [`RowSource::read_rows`] calls the sink from threads of its
+    /// own, several at once (OpenEXR, decoded on every core), rather than
+    /// from the calling thread alone. A sink called from such threads must
+    /// not wait on work it hands to a thread pool whose workers may be
+    /// waiting on the read (a read started from a pool task).
+    fn calls_from_many_threads(&self) -> bool {
+        false
+    }
+
     /// The whole image, where the source already holds it (a file read
     /// whole: [`RowSource::streams`] is false), so that a caller that
     /// wants it after all need not read the file again.
@@ -117,6 +126,10 @@ impl RowSource for FileRows {
 
     fn streams(&self) -> bool {
         true
+    }
+
+    fn calls_from_many_threads(&self) -> bool {
+        matches!(self.reader, Streaming::Exr(_))
     }
 }
 

@@ -25,7 +25,8 @@ use crate::sh::sh_coeffs::ShCoeffs;
 /// width but the scratch.
 ///
 /// Rows may come in any order and from several threads at once
-/// ([`RingAccumulator::add_rows`] takes `&self`); the coefficients are the
+/// ([`RingAccumulator::add_rows`] takes `&self`; a reader on one thread
+/// calls [`RingAccumulator::add_rows_parallel`]); the coefficients are the
 /// same bit for bit as [`crate::map::project`]'s of the same texels,
 /// whatever the order, because every row's sums and every pair's
 /// combination are computed by the same code from the same values.
@@ -118,33 +119,61 @@ impl RingAccumulator {
     }
 
     /// Folds in rows `first_row..`, `rows` holding whole rows of `width`
-    /// texels one after another. Rows of one call are summed in parallel
-    /// (with the `rayon` feature); calls may come from several threads.
+    /// texels one after another, on the calling thread. Calls may come
+    /// from several threads at once (a decoder on every core).
     ///
     /// # Panics
     /// If `rows` is not a whole number of rows, runs past the last row, or
     /// holds a row already added (a reader's bug: files that repeat or
     /// miss blocks are refused by the reader).
     pub fn add_rows(&self, first_row: usize, rows: &[[f32; 3]]) {
+        let n = self.check_rows(first_row, rows);
+        let mut s = self.take_scratch();
+        for (k, row) in rows.chunks(self.geometry.w).take(n).enumerate() {
+            self.add_row(first_row + k, row, &mut s);
+        }
+        self.put_scratch(s);
+    }
+
+    /// [`RingAccumulator::add_rows`] with the rows of the call summed in
+    /// parallel on rayon's pool (with the `rayon` feature), for a reader
+    /// that hands rows from one thread. Not to be called from a thread
+    /// that a rayon worker is blocked on (a decoding thread a pool task
+    /// spawned and waits for): the pool's workers could all be waiting,
+    /// and the rows never summed.
+    pub fn add_rows_parallel(&self, first_row: usize, rows: &[[f32; 3]]) {
+        #[cfg(feature = "rayon")]
+        {
+            use rayon::prelude::*;
+            let n = self.check_rows(first_row, rows);
+            rows.par_chunks(self.geometry.w)
+                .take(n)
+                .enumerate()
+                .for_each(|(k, row)| {
+                    let mut s = self.take_scratch();
+                    self.add_row(first_row + k, row, &mut s);
+                    self.put_scratch(s);
+                });
+        }
+        #[cfg(not(feature = "rayon"))]
+        self.add_rows(first_row, rows);
+    }
+
+    /// The number of rows in `rows`, checked (see the panics of
+    /// [`RingAccumulator::add_rows`]).
+    fn check_rows(&self, first_row: usize, rows: &[[f32; 3]]) -> usize {
         let w = self.geometry.w;
         assert!(rows.len().is_multiple_of(w), "whole rows of {w} texels");
         let n = rows.len() / w;
         assert!(first_row + n <= self.geometry.h, "rows past the map");
-        let one = |(k, row): (usize, &[[f32; 3]])| {
-            let mut s = self.take_scratch();
-            self.add_row(first_row + k, row, &mut s);
-            self.scratch
-                .lock()
-                .unwrap_or_else(PoisonError::into_inner)
-                .push(s);
-        };
-        #[cfg(feature = "rayon")]
-        {
-            use rayon::prelude::*;
-            rows.par_chunks(w).enumerate().for_each(one);
-        }
-        #[cfg(not(feature = "rayon"))]
-        rows.chunks(w).enumerate().for_each(one);
+        n
+    }
+
+    fn put_scratch(&self, s: Scratch) {
+        self.scratch
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .push(s);
     }
 
     fn take_scratch(&self) -> Scratch {
@@ -269,7 +298,7 @@ mod tests {
                         if i % 2 == 1 {
                             scope.spawn(move || acc.add_rows(y, &px[y * w..end * w]));
                         } else {
-                            acc.add_rows(y, &px[y * w..end * w]);
+                            acc.add_rows_parallel(y, &px[y * w..end * w]);
                         }
                     }
                 });
