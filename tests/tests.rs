@@ -24,6 +24,7 @@ mod sample;
 #[cfg(feature = "gpu")]
 mod shaders;
 mod specular;
+mod stream;
 mod synth;
 mod util;
 mod volume;

@@ -15,6 +15,11 @@
 //! - [`read_image`] with [`ReadOptions`] (OpenEXR layer, pixel-count limit):
 //!   the format is recognised by the file's first bytes;
 //!   [`read_image_bytes`] reads the same from bytes in memory.
+//! - [`open_rows`]: the same image handed out as bands of whole rows while
+//!   it is decoded ([`RowSource`]: OpenEXR scan lines and tiles, Radiance,
+//!   PNG stream; other files are read whole first), with [`read_image`]'s
+//!   values and errors, for callers that fold rows into sums without
+//!   holding the image; [`sanitize_pixels`] sanitizes such a band.
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
 //!   the format is named by the extension; [`auto_exposure`] picks the
 //!   exposure that brings a mean luminance to a grey.
@@ -25,7 +30,8 @@
 //!   file and the problem in plain words.
 //!
 //! # Design
-//! Files are read whole into memory and decoded from there: the signature,
+//! Files are read whole into memory (except by [`open_rows`]) and decoded
+//! from there: the signature,
 //! the header's size (checked against [`ReadOptions::max_pixels`] before
 //! pixels are allocated) and the completeness checks that tell a truncated
 //! file from a corrupt one all look at the same bytes. 8- and 16-bit values
@@ -83,6 +89,7 @@ mod panic_message;
 mod read;
 mod read_options;
 mod resample;
+mod row_readers;
 mod srgb;
 mod stats;
 mod tone_map;
@@ -98,7 +105,8 @@ pub use crate::image::{Image, PixelCountError};
 pub use crate::image_codecs::encode_png_rgba8;
 pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
+pub use crate::row_readers::{RowSink, RowSource, open_rows};
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};
-pub use crate::stats::{PixelStats, SanitizeReport};
+pub use crate::stats::{PixelStats, SanitizeReport, sanitize_pixels};
 pub use crate::tone_map::{ParseToneMapError, ToneMap};
 pub use crate::write::{WriteOptions, write_image};

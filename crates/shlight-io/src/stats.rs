@@ -177,29 +177,53 @@ impl Image {
     /// negatives 0. Returns what was replaced.
     pub fn sanitize(&mut self) -> SanitizeReport {
         let largest = self.stats().max_value.max(0.0);
-        let mut report = SanitizeReport {
-            nan: 0,
-            positive_infinite: 0,
-            negative_infinite: 0,
-            negative: 0,
-            infinity_replacement: largest,
-        };
-        for v in self.pixels_mut().iter_mut().flatten() {
-            if v.is_nan() {
-                report.nan += 1;
-                *v = 0.0;
-            } else if *v == f32::INFINITY {
-                report.positive_infinite += 1;
-                *v = largest;
-            } else if *v == f32::NEG_INFINITY {
-                report.negative_infinite += 1;
-                *v = 0.0;
-            } else if *v < 0.0 {
-                report.negative += 1;
-                *v = 0.0;
-            }
+        sanitize_pixels(self.pixels_mut(), largest)
+    }
+}
+
+/// [`Image::sanitize`] of some of an image's pixels (a band of rows read
+/// by [`crate::open_rows`]), `+inf` replaced by `infinity_replacement`
+/// (the whole image's largest finite value, or 0 when that is negative or
+/// there is none). Reports of the bands of an image add up
+/// ([`SanitizeReport::combined`]) to the whole image's.
+pub fn sanitize_pixels(pixels: &mut [[f32; 3]], infinity_replacement: f32) -> SanitizeReport {
+    let mut report = SanitizeReport {
+        nan: 0,
+        positive_infinite: 0,
+        negative_infinite: 0,
+        negative: 0,
+        infinity_replacement,
+    };
+    for v in pixels.iter_mut().flatten() {
+        if v.is_nan() {
+            report.nan += 1;
+            *v = 0.0;
+        } else if *v == f32::INFINITY {
+            report.positive_infinite += 1;
+            *v = infinity_replacement;
+        } else if *v == f32::NEG_INFINITY {
+            report.negative_infinite += 1;
+            *v = 0.0;
+        } else if *v < 0.0 {
+            report.negative += 1;
+            *v = 0.0;
         }
-        report
+    }
+    report
+}
+
+impl SanitizeReport {
+    /// The counts of `self` and `other` added (the replacement is
+    /// `self`'s): the report of two parts of one image.
+    #[must_use]
+    pub fn combined(self, other: SanitizeReport) -> SanitizeReport {
+        SanitizeReport {
+            nan: self.nan + other.nan,
+            positive_infinite: self.positive_infinite + other.positive_infinite,
+            negative_infinite: self.negative_infinite + other.negative_infinite,
+            negative: self.negative + other.negative,
+            infinity_replacement: self.infinity_replacement,
+        }
     }
 }
 

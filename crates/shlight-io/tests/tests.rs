@@ -17,6 +17,8 @@ mod openexr;
 mod radiance;
 // PNG and JPEG: sRGB decoding, bit depths, grey, writing.
 mod png_jpeg;
+// Reading by rows: the streaming readers against the whole-image reader.
+mod row_readers;
 // Broken inputs: truncated, corrupted, empty, not images, missing, too large.
 mod bad_files;
 // Inputs that once stopped a fuzz target (fuzz/).

@@ -19,6 +19,12 @@ impl Projector for CpuProjector {
     fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection> {
         project_radiance_texels(texels, s)
     }
+
+    /// Quadrature: the ring sums fed rows give
+    /// [`shlight_core::map::project`]'s coefficients bit for bit.
+    fn projects_rows(&self, s: &ProjectSettings) -> bool {
+        s.method == Method::Quadrature
+    }
 }
 
 /// Projects `map` by the settings' method to radiance coefficients.

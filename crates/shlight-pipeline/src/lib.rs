@@ -90,6 +90,7 @@ mod rotation_spec;
 mod settings;
 mod source_stats;
 mod specular;
+mod stream_project;
 
 pub use accuracy::{
     EncodedIrradiance, IrradianceReport, IrradianceSettings, compare_encodings, compare_name,

@@ -275,6 +275,13 @@ pub fn check_values(name: &str, stats: &PixelStats, warnings: &mut Vec<String>) 
 /// names `name` and counts what was replaced, if anything was.
 pub fn sanitize_image(name: &str, image: &mut Image, warnings: &mut Vec<String>) -> SanitizeCounts {
     let counts = SanitizeCounts::from(image.sanitize());
+    sanitize_warning(name, &counts, warnings);
+    counts
+}
+
+/// The warning of [`sanitize_image`] for `counts`, pushed to `warnings`
+/// when anything was replaced.
+pub(crate) fn sanitize_warning(name: &str, counts: &SanitizeCounts, warnings: &mut Vec<String>) {
     if counts.total() > 0 {
         warnings.push(format!(
             "{name}: --sanitize replaced {} values: {} NaN and {} -inf by 0, {} +inf by {}, {} negative by 0",
@@ -286,5 +293,4 @@ pub fn sanitize_image(name: &str, image: &mut Image, warnings: &mut Vec<String>)
             counts.negative
         ));
     }
-    counts
 }

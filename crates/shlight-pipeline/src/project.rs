@@ -15,9 +15,10 @@ use crate::input_layout::is_faces;
 use crate::load::{LoadedMap, check_values, env_map, load_map};
 use crate::map_info::MapInfo;
 use crate::preview::write_preview;
-use crate::projector::Projector;
+use crate::projector::{Projection, Projector};
 use crate::settings::Settings;
 use crate::source_stats::source_stats;
+use crate::stream_project::{Streamed, project_streaming};
 use crate::{PipelineError, Result};
 
 /// Where a map comes from.
@@ -88,7 +89,23 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
         Source::Path(path) => {
             let name = path.display().to_string();
             (hooks.progress)(&format!("reading {name}"));
-            let loaded = load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?;
+            let streamed = if streams(path, s, hooks) {
+                project_streaming(path, &name, s, hooks.progress)?
+            } else {
+                Streamed::NotEquirect
+            };
+            let loaded = match streamed {
+                Streamed::Projected(done) => {
+                    warn_all(&done.warnings);
+                    return complete(done.projection, None, done.info, s, hooks);
+                }
+                Streamed::Whole(image) => {
+                    LoadedMap::from_image(&name, image, s.read.layout, s.read.sanitize)?
+                }
+                Streamed::NotEquirect => {
+                    load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?
+                }
+            };
             warn_all(&loaded.warnings);
             let layout = if is_faces(path) {
                 "faces"
@@ -132,6 +149,17 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
     }
 }
 
+/// Whether [`project`] reads the map at `path` by rows into the ring sums
+/// ([`project_streaming`]): a single file (not six faces), projected by a
+/// projector that allows it ([`Projector::projects_rows`]), with no step
+/// that needs the whole map (a preview, an encoding other than plain SH).
+fn streams(path: &std::path::Path, s: &Settings, hooks: &Hooks<'_>) -> bool {
+    !is_faces(path)
+        && s.preview.is_none()
+        && s.encoding == Encoding::Sh
+        && hooks.projector.projects_rows(&s.project)
+}
+
 /// Steps 2 to 5 of [`project`] on checked texels (`contiguous`: the same
 /// texels as one image and as a map, for the preview and the encodings).
 fn finish(
@@ -151,17 +179,30 @@ fn finish(
         .projector
         .project(texels, p)
         .map_err(|e| e.context(format!("{name}: projecting")))?;
+    complete(projection, contiguous, info, s, hooks)
+}
+
+/// Steps 3 to 5 of [`project`] on a map's radiance coefficients.
+fn complete(
+    projection: Projection,
+    contiguous: Option<(&Image, &EnvMap<'_>)>,
+    info: MapInfo,
+    s: &Settings,
+    hooks: &Hooks<'_>,
+) -> Result<CoeffFile> {
+    let name = &info.name;
+    let p = &s.project;
     if p.window.is_none() {
         (hooks.progress)(&format!("choosing windows for {name}"));
     }
     let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name)?;
-    if let (Some(preview), Some((image, _))) = (&s.preview, contiguous) {
+    if let (Some(preview), Some((image, map))) = (&s.preview, contiguous) {
         (hooks.progress)(&format!("preview of {name}"));
         let radiance = apply_channel_windows(&windows, &projection.coeffs);
         write_preview(
             &preview.path,
             image,
-            texels.layout(),
+            map.layout,
             &radiance,
             p.orientation,
             &preview.options,
@@ -207,7 +248,6 @@ pub fn project_with_warnings(source: Source<'_>, s: &Settings) -> Result<(CoeffF
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::projector::Projection;
     use crate::settings::{Method, ProjectSettings};
     use glam::DVec3;
     use shlight_core::map::montecarlo::{McOptions, SamplerKind};

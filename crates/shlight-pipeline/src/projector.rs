@@ -18,6 +18,16 @@ pub trait Projector: Sync {
     /// # Errors
     /// The projector cannot project this map (its layout, size or method).
     fn project(&self, texels: &dyn TexelSource, s: &ProjectSettings) -> Result<Projection>;
+
+    /// Whether [`crate::project`] may compute this projection itself from
+    /// an equirect map file's rows as they are decoded, with no image
+    /// buffer, instead of calling [`Projector::project`] on the whole map:
+    /// true only where that gives this projector's result bit for bit.
+    /// `false` by default.
+    fn projects_rows(&self, s: &ProjectSettings) -> bool {
+        let _ = s;
+        false
+    }
 }
 
 /// Radiance coefficients of a map, and what the method reports about them.

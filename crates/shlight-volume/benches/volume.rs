@@ -9,6 +9,10 @@
 //! with the default relocation and distance maps and without either, so
 //! their cost shows as the ratio of the two.
 //!
+//! A third bake is of a scanned scene's size (`scan_scene`: a room and two
+//! dense surfaces, about 145k triangles and 73k vertices), whose own
+//! vertices the bake samples.
+//!
 //! The three.js export of a 32x16x32 volume (16,384 probes, lmax 2, a
 //! tenth invalid, so dilation works) to its JSON document, half and f32:
 //! items/s is probes per second.
@@ -68,6 +72,68 @@ fn cornell_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
     let fine = room.subdivided(0.0088);
     eprintln!("{} triangles after subdivision", fine.triangle_count());
     bench_bake(bencher, &room, visibility);
+}
+
+/// A room with two scans in it, the size of a scanned scene: the Cornell
+/// box subdivided to about 14,000 triangles, and on its floor two dense
+/// closed surfaces standing for scans (a torus and a sphere of about
+/// 65,000 triangles each, generated): about 145,000 triangles and 73,000
+/// vertices in all, every one of them a surface point the bake samples.
+fn scan_scene() -> shlight_mesh::Mesh {
+    let room = generate::cornell_box().subdivided(0.0257);
+    let (lo, hi) = room.bounds();
+    let size = hi - lo;
+    let floor = lo.y + 0.15 * size.y;
+    let place = |m: shlight_mesh::Mesh, x: f32| {
+        let at = Vec3::new(lo.x + x * size.x, floor, lo.z + 0.5 * size.z);
+        (m.positions.iter().map(|&p| p + at).collect::<Vec<_>>(), m)
+    };
+    let r = 0.12 * size.x;
+    let scans = [
+        place(generate::torus(r, 0.4 * r, 256, 128), 0.3),
+        place(generate::uv_sphere(r, 256, 128), 0.7),
+    ];
+    let mut positions = room.positions.clone();
+    let mut normals = room.normals.clone();
+    let mut triangles = room.triangles.clone();
+    let mut colors = room
+        .colors
+        .clone()
+        .unwrap_or_else(|| vec![Vec3::splat(0.7); positions.len()]);
+    let mut emission = room
+        .emission
+        .clone()
+        .unwrap_or_else(|| vec![Vec3::ZERO; positions.len()]);
+    for (moved, mesh) in scans {
+        let offset = positions.len() as u32;
+        triangles.extend(mesh.triangles.iter().map(|t| t.map(|i| i + offset)));
+        colors.extend(std::iter::repeat_n(Vec3::splat(0.7), moved.len()));
+        emission.extend(std::iter::repeat_n(Vec3::ZERO, moved.len()));
+        normals.extend(&mesh.normals);
+        positions.extend(moved);
+    }
+    shlight_mesh::Mesh::new(
+        "scan scene",
+        positions,
+        triangles,
+        Some(normals),
+        Some(colors),
+    )
+    .and_then(|m| m.with_emission("scan scene", emission))
+    .unwrap()
+}
+
+/// The scanned scene ([`scan_scene`]) baked on the same grid: the
+/// cost of a scene whose own vertices are many.
+#[divan::bench(sample_count = 1, sample_size = 1)]
+fn scan_scene_145k_16x8x16_4096_rays(bencher: Bencher) {
+    let scene = scan_scene();
+    eprintln!(
+        "{} triangles, {} vertices",
+        scene.triangle_count(),
+        scene.vertex_count()
+    );
+    bench_bake(bencher, &scene, true);
 }
 
 /// The same bake with the scene dense to begin with: the 119,808

@@ -49,6 +49,9 @@
 //! [`project`] for the crate's own maps; [`project_equirect_simple`] is the
 //! plain equirect sum the ring transform is tested against. Rows are summed
 //! in fixed bands, so a result repeats bit for bit for any thread count.
+//! [`RingAccumulator`] is the same ring transform fed rows as a file is
+//! decoded (any order, any thread), without an image buffer, and equal to
+//! [`project`]'s result bit for bit.
 //!
 //! # Monte Carlo
 //!
@@ -118,6 +121,7 @@ pub use layout::texel_grid::TexelGrid;
 pub use orientation::MapOrientation;
 pub use projection::equirect_simple::project_equirect_simple;
 pub use projection::pole::to_frame;
+pub use projection::ring_transform::stream::{MissingRows, RingAccumulator};
 pub use projection::{project, project_equirect, project_map};
 pub use radiance_map::{RadianceMap, luminance};
 pub use render::{render_coefficients, render_map};

@@ -100,12 +100,12 @@ fn decode_layer(bytes: &[u8], options: &ReadOptions) -> Result<Image, IoErrorKin
 
 /// A decompressed block, converted to RGB: its rectangle in the data
 /// window and its pixels, row-major.
-struct RgbBlock {
-    x: usize,
-    y: usize,
-    width: usize,
-    height: usize,
-    pixels: Vec<[f32; 3]>,
+pub(super) struct RgbBlock {
+    pub(super) x: usize,
+    pub(super) y: usize,
+    pub(super) width: usize,
+    pub(super) height: usize,
+    pub(super) pixels: Vec<[f32; 3]>,
 }
 
 /// The threads that decompress, and `chunks` dealt out to them in turn.
@@ -181,7 +181,7 @@ fn decompress(
     Ok(data)
 }
 
-fn check_covered(covered: usize, pixels: usize) -> Result<(), IoErrorKind> {
+pub(super) fn check_covered(covered: usize, pixels: usize) -> Result<(), IoErrorKind> {
     if covered != pixels {
         return Err(IoErrorKind::Corrupt(format!(
             "blocks cover {covered} of the {pixels} pixels"
@@ -311,7 +311,7 @@ struct BandGeometry<'a, 'd> {
 
 /// A chunk's pixels: ZIP and ZIPS blocks through libdeflate into `zip`'s
 /// buffers, every other compression through the exr crate.
-fn decompress_chunk(
+pub(super) fn decompress_chunk(
     chunk: Chunk,
     meta: &MetaData,
     zip: Option<&mut ZipScratch>,
@@ -381,7 +381,7 @@ fn decode_scan_block(
 /// Decompresses one chunk (ZIP and ZIPS blocks through `zip`, the others
 /// by the `exr` crate) and converts its pixels to RGB; a panic in the
 /// decoder is returned as an error.
-fn decode_block(
+pub(super) fn decode_block(
     chunk: Chunk,
     meta: &MetaData,
     part: usize,
@@ -424,7 +424,7 @@ fn decode_block(
 /// Converts the colour channels of a decompressed block into `pixels`, the
 /// block's rectangle row-major (channels it does not hold stay as they
 /// are).
-fn convert_block(
+pub(super) fn convert_block(
     block: &UncompressedBlock,
     header: &exr::meta::header::Header,
     colour: Colour,
@@ -479,7 +479,11 @@ fn write_component(bytes: &[u8], sample_type: SampleType, out: &mut [[f32; 3]], 
     }
 }
 
-fn check_size(width: usize, height: usize, max_pixels: usize) -> Result<(), IoErrorKind> {
+pub(super) fn check_size(
+    width: usize,
+    height: usize,
+    max_pixels: usize,
+) -> Result<(), IoErrorKind> {
     match width.checked_mul(height) {
         Some(n) if n <= max_pixels => Ok(()),
         _ => Err(IoErrorKind::TooLarge {
@@ -490,7 +494,7 @@ fn check_size(width: usize, height: usize, max_pixels: usize) -> Result<(), IoEr
     }
 }
 
-fn map_error(error: exr::error::Error) -> IoErrorKind {
+pub(super) fn map_error(error: exr::error::Error) -> IoErrorKind {
     use exr::error::Error;
     match error {
         Error::NotSupported(what) => IoErrorKind::Unsupported(format!("OpenEXR {what}")),

@@ -19,7 +19,9 @@ mod decode;
 mod encode;
 mod inspect;
 mod layers;
+mod stream;
 mod zip_block;
 
 pub(crate) use decode::decode;
 pub(crate) use encode::encode;
+pub(crate) use stream::ExrRows;

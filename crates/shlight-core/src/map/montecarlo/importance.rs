@@ -50,10 +50,11 @@ pub struct ImportanceGrid {
     orientation: MapOrientation,
     /// `R_j`, `j = 0..=H`: marginal CDF of the rows, `R_0 = 0`, `R_H = 1`.
     row_cdf: Vec<f64>,
-    /// Row `j` holds `C_j(i)`, `i = 0..=W`, the conditional CDF of the columns.
+    /// Row `j` holds `C_j(i)`, `i = 0..=W`, the conditional CDF of the
+    /// columns. `P_ij` is not stored: it is the CDF differences that
+    /// sampling realises, `(R_{j+1} - R_j)(C_j(i+1) - C_j(i))`, computed
+    /// where needed (8 bytes a cell in all, besides the map).
     col_cdf: Vec<f64>,
-    /// `P_ij` as the CDF differences that sampling realises.
-    cell_p: Vec<f64>,
     /// `Ω_j`, solid angle of one cell of row `j`.
     row_omega: Vec<f64>,
     /// `1 - cos(jπ/H)`, `j = 0..=H`, without cancellation.
@@ -129,35 +130,12 @@ impl ImportanceGrid {
         let (w, h) = (width, height);
         assert!(w > 0 && h > 0, "grid must have cells");
         assert_eq!(pixels.len(), w * h, "pixel count must be width * height");
-        let lum: Vec<f64> = pixels
-            .iter()
-            .map(|p| {
-                let y = luminance(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
-                if y.is_nan() { f64::NEG_INFINITY } else { y }
-            })
-            .collect();
-        // Separable 3x3 maximum: along rows (wrapping), then along columns.
-        let mut rows = vec![0.0; w * h];
-        for j in 0..h {
-            for i in 0..w {
-                let r = &lum[j * w..(j + 1) * w];
-                rows[j * w + i] = r[(i + w - 1) % w].max(r[i]).max(r[(i + 1) % w]);
-            }
-        }
-        let mut out = vec![0.0; w * h];
-        for j in 0..h {
-            for i in 0..w {
-                let mut v = rows[j * w + i];
-                if j > 0 {
-                    v = v.max(rows[(j - 1) * w + i]);
-                }
-                if j + 1 < h {
-                    v = v.max(rows[(j + 1) * w + i]);
-                }
-                out[j * w + i] = v;
-            }
-        }
-        Self::from_cell_luminance(w, h, orientation, &out)
+        // The 3x3 maximum row by row, from three rows of the luminance's
+        // maximum along rows: no table the size of the map.
+        let mut window = MaxWindow::new(w);
+        Self::from_rows(w, h, orientation, |j, out| {
+            window.cell_row(pixels, h, j, out);
+        })
     }
 
     /// A grid from the luminance of `map` ([`ImportanceGrid::from_fn`] with
@@ -187,16 +165,29 @@ impl ImportanceGrid {
     ) -> Self {
         assert!(width > 0 && height > 0, "grid must have cells");
         assert_eq!(lum.len(), width * height, "one luminance per cell");
+        Self::from_rows(width, height, orientation, |j, out| {
+            out.copy_from_slice(&lum[j * width..(j + 1) * width]);
+        })
+    }
+
+    /// [`ImportanceGrid::from_cell_luminance`] with the luminance of row
+    /// `j` written by `cell_row(j, row)`, called for every row in order,
+    /// twice (once for the total weight, once for the CDFs), so that no
+    /// table of luminance the size of the grid is kept.
+    fn from_rows(
+        width: usize,
+        height: usize,
+        orientation: MapOrientation,
+        mut cell_row: impl FnMut(usize, &mut [f64]),
+    ) -> Self {
         let (w, h) = (width, height);
         let row_omega: Vec<f64> = (0..h).map(|j| equirect_row_solid_angle(j, w, h)).collect();
         let clean = |v: f64| if v.is_finite() && v > 0.0 { v } else { 0.0 };
+        let mut lum = vec![0.0; w];
         let total: f64 = (0..h)
             .map(|j| {
-                row_omega[j]
-                    * lum[j * w..(j + 1) * w]
-                        .iter()
-                        .map(|&v| clean(v))
-                        .sum::<f64>()
+                cell_row(j, &mut lum);
+                row_omega[j] * lum.iter().map(|&v| clean(v)).sum::<f64>()
             })
             .sum();
         let (a, b) = if total > 0.0 && total.is_finite() {
@@ -211,10 +202,11 @@ impl ImportanceGrid {
         let mut col_cdf = vec![0.0; h * (w + 1)];
         let mut row_mass = vec![0.0; h];
         for j in 0..h {
+            cell_row(j, &mut lum);
             let c = &mut col_cdf[j * (w + 1)..(j + 1) * (w + 1)];
             let mut acc = 0.0;
             for i in 0..w {
-                acc += row_omega[j] * (a * clean(lum[j * w + i]) + b);
+                acc += row_omega[j] * (a * clean(lum[i]) + b);
                 c[i + 1] = acc;
             }
             row_mass[j] = acc;
@@ -233,14 +225,6 @@ impl ImportanceGrid {
             *v /= acc;
         }
         row_cdf[h] = 1.0;
-        let mut cell_p = vec![0.0; w * h];
-        for j in 0..h {
-            let pr = row_cdf[j + 1] - row_cdf[j];
-            let c = &col_cdf[j * (w + 1)..(j + 1) * (w + 1)];
-            for i in 0..w {
-                cell_p[j * w + i] = pr * (c[i + 1] - c[i]);
-            }
-        }
         let row_omz = (0..=h)
             .map(|j| {
                 let s = (PI * j as f64 / h as f64 / 2.0).sin();
@@ -253,7 +237,6 @@ impl ImportanceGrid {
             orientation,
             row_cdf,
             col_cdf,
-            cell_p,
             row_omega,
             row_omz,
         }
@@ -280,7 +263,8 @@ impl ImportanceGrid {
     /// Probability `P_ij` of cell `(i, j)` (column, row); they sum to 1.
     #[must_use]
     pub fn cell_probability(&self, i: usize, j: usize) -> f64 {
-        self.cell_p[j * self.width + i]
+        let c = &self.col_cdf[j * (self.width + 1)..];
+        (self.row_cdf[j + 1] - self.row_cdf[j]) * (c[i + 1] - c[i])
     }
 
     /// Maps four uniforms in `[0, 1)` to a direction and its density:
@@ -302,7 +286,7 @@ impl ImportanceGrid {
         let s = (omz * opz).max(0.0).sqrt();
         let phi = 2.0 * PI * ((i as f64 + u[3]) / w as f64 - 0.5);
         let d = self.direction(z, s, phi);
-        (d, self.cell_p[j * w + i] / self.row_omega[j])
+        (d, self.cell_probability(i, j) / self.row_omega[j])
     }
 
     /// World direction of `(cos θ, sin θ, φ)` in the grid's frame: the y-up
@@ -320,7 +304,7 @@ impl ImportanceGrid {
     #[must_use]
     pub fn pdf(&self, d: DVec3) -> f64 {
         let (i, j) = self.cell_of(d);
-        self.cell_p[j * self.width + i] / self.row_omega[j]
+        self.cell_probability(i, j) / self.row_omega[j]
     }
 
     /// The cell `(column, row)` holding the unit direction `d`.
@@ -333,6 +317,76 @@ impl ImportanceGrid {
         let i = ((u * w as f64) as usize).min(w - 1);
         let j = ((theta / PI * h as f64) as usize).min(h - 1);
         (i, j)
+    }
+}
+
+/// The 3x3 maximum of an equirect map's luminance, row by row
+/// ([`ImportanceGrid::from_equirect`]): the maximum along each row
+/// (columns wrapping) of the rows `j - 1`, `j`, `j + 1`, kept as they slide
+/// down the map, then their maximum (rows stopping at the poles).
+struct MaxWindow {
+    w: usize,
+    /// Maxima along rows `j - 1`, `j`, `j + 1` (those that exist) of the
+    /// last row `j` asked for, row `r` in slot `r mod 3`.
+    rows: [Vec<f64>; 3],
+    /// The last row asked for, `None` before any.
+    last: Option<usize>,
+    lum: Vec<f64>,
+}
+
+impl MaxWindow {
+    fn new(w: usize) -> Self {
+        Self {
+            w,
+            rows: core::array::from_fn(|_| vec![0.0; w]),
+            last: None,
+            lum: vec![0.0; w],
+        }
+    }
+
+    /// The maximum along row `j` of `pixels`' luminance (NaN as `-inf`)
+    /// into slot `k`.
+    fn row_max(&mut self, pixels: &[[f32; 3]], j: usize, k: usize) {
+        let w = self.w;
+        for (l, p) in self.lum.iter_mut().zip(&pixels[j * w..(j + 1) * w]) {
+            let y = luminance(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            *l = if y.is_nan() { f64::NEG_INFINITY } else { y };
+        }
+        let r = &self.lum;
+        for (i, o) in self.rows[k].iter_mut().enumerate() {
+            *o = r[(i + w - 1) % w].max(r[i]).max(r[(i + 1) % w]);
+        }
+    }
+
+    /// Row `j` of the 3x3 maximum into `out`; rows must come in order
+    /// (from 0 again to start over).
+    fn cell_row(&mut self, pixels: &[[f32; 3]], h: usize, j: usize, out: &mut [f64]) {
+        // Row r sits in slot r mod 3. One row down from the last call,
+        // row j + 1 is the only new one.
+        if j > 0 && self.last == Some(j - 1) {
+            if j + 1 < h {
+                self.row_max(pixels, j + 1, (j + 1) % 3);
+            }
+        } else {
+            for r in j.saturating_sub(1)..(j + 2).min(h) {
+                self.row_max(pixels, r, r % 3);
+            }
+        }
+        self.last = Some(j);
+        let mid = &self.rows[j % 3];
+        out.copy_from_slice(mid);
+        if j > 0 {
+            let up = &self.rows[(j - 1) % 3];
+            for (o, &u) in out.iter_mut().zip(up) {
+                *o = o.max(u);
+            }
+        }
+        if j + 1 < h {
+            let down = &self.rows[(j + 1) % 3];
+            for (o, &d) in out.iter_mut().zip(down) {
+                *o = o.max(d);
+            }
+        }
     }
 }
 
@@ -456,13 +510,61 @@ mod tests {
                 hits[j.min(h - 1) * w + i.min(w - 1)] += 1;
             }
             for k in 0..w * h {
-                let p = g.cell_p[k];
+                let p = g.cell_probability(k % w, k / w);
                 let sd = (n as f64 * p * (1.0 - p)).sqrt();
                 assert!(
                     (hits[k] as f64 - n as f64 * p).abs() < 5.0 * sd + 1.0,
                     "{o:?} cell {k}"
                 );
             }
+        }
+    }
+
+    /// The grid over a map's texels, built row by row, equals the grid of
+    /// the 3x3 maximum computed over the whole map at once (the brute-force
+    /// route: a table of luminance, the maximum of each texel's nine
+    /// neighbours, columns wrapping, rows stopping at the poles), table for
+    /// table, with NaN, infinite and negative texels, on every size from
+    /// one row and one column up.
+    #[test]
+    fn the_rolling_maximum_gives_the_whole_table_grid() {
+        for (w, h) in [(1, 1), (3, 1), (1, 4), (2, 2), (7, 5), (16, 9)] {
+            let mut pixels: Vec<[f32; 3]> = (0..w * h)
+                .map(|k| [((k * 37) % 11) as f32, ((k * 13) % 7) as f32 * 0.5, 1.0])
+                .collect();
+            if w * h > 5 {
+                pixels[2] = [f32::NAN, 1.0, 1.0];
+                pixels[w * h - 1] = [f32::INFINITY, 0.0, 0.0];
+                pixels[w * h / 2] = [-40.0, 0.0, 0.0];
+            }
+            let lum: Vec<f64> = pixels
+                .iter()
+                .map(|p| {
+                    let y = luminance(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+                    if y.is_nan() { f64::NEG_INFINITY } else { y }
+                })
+                .collect();
+            let mut max = vec![f64::NEG_INFINITY; w * h];
+            for j in 0..h {
+                for i in 0..w {
+                    for dj in [-1_isize, 0, 1] {
+                        let jj = j as isize + dj;
+                        if jj < 0 || jj >= h as isize {
+                            continue;
+                        }
+                        for di in [w - 1, 0, 1] {
+                            let v = lum[jj as usize * w + (i + di) % w];
+                            max[j * w + i] = max[j * w + i].max(v);
+                        }
+                    }
+                }
+            }
+            let o = MapOrientation::default();
+            assert_eq!(
+                ImportanceGrid::from_equirect(w, h, &pixels, o),
+                ImportanceGrid::from_cell_luminance(w, h, o, &max),
+                "{w}x{h}"
+            );
         }
     }
 }

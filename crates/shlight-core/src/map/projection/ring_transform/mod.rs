@@ -55,6 +55,144 @@ mod blocks;
 mod column_pass;
 mod kernels;
 mod row_pass;
+pub(crate) mod stream;
+
+/// What the row pass needs about the map, shared by the in-memory route
+/// ([`project_rings`]) and the streaming one ([`RingAccumulator`]).
+pub(crate) struct RingGeometry {
+    pub(crate) w: usize,
+    pub(crate) h: usize,
+    pub(crate) lmax: usize,
+    pub(crate) leg: Legendre<f64>,
+    pub(crate) azimuth: Azimuth,
+}
+
+/// The row pass's output for every block of row pairs: weights and
+/// sectoral start values `[block][m]`, and `cos θ` per lane. Lanes past the
+/// last pair stay zero.
+pub(crate) struct PairSums {
+    pub(crate) weights: Vec<BlockWeights>,
+    pub(crate) starts: Vec<BlockStart>,
+    pub(crate) xs: Vec<[f64; LANES]>,
+}
+
+impl RingGeometry {
+    pub(crate) fn new(w: usize, h: usize, lmax: usize, sign: f64) -> Self {
+        Self {
+            w,
+            h,
+            lmax,
+            leg: Legendre::<f64>::new(lmax),
+            azimuth: Azimuth::new(w, lmax, sign),
+        }
+    }
+
+    pub(crate) fn pairs(&self) -> usize {
+        self.h.div_ceil(2)
+    }
+
+    pub(crate) fn blocks(&self) -> usize {
+        self.pairs().div_ceil(LANES)
+    }
+
+    pub(crate) fn scratch(&self) -> Scratch {
+        Scratch::new(self.w, self.lmax, &self.azimuth)
+    }
+
+    pub(crate) fn zero_sums(&self) -> PairSums {
+        let (blocks, cols) = (self.blocks(), self.lmax + 1);
+        let zero_start = BlockStart {
+            value: [0.0; LANES],
+            exponent: [0.0; LANES],
+        };
+        PairSums {
+            weights: vec![[[[0.0; LANES]; 6]; 2]; blocks * cols],
+            starts: vec![zero_start; blocks * cols],
+            xs: vec![[0.0; LANES]; blocks],
+        }
+    }
+
+    /// Lane `lane` of a block (`wts`, `st`, `x` that block's slices) from
+    /// the azimuthal sums `a` of row `p` and `b` of row `H-1-p` (zero for
+    /// the middle row of an odd height): the one formula both routes use,
+    /// so they agree bit for bit.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn fill_pair(
+        &self,
+        p: usize,
+        lane: usize,
+        a: &[[f64; 6]],
+        b: &[[f64; 6]],
+        sectoral: &mut [[f64; 2]],
+        wts: &mut [BlockWeights],
+        st: &mut [BlockStart],
+        x: &mut [f64; LANES],
+    ) {
+        let (w, h) = (self.w, self.h);
+        let omega = equirect_row_solid_angle(p, w, h);
+        let theta = PI * (p as f64 + 0.5) / h as f64;
+        x[lane] = theta.cos();
+        sectoral_values(&self.leg, theta.sin(), sectoral);
+        for m in 0..=self.lmax {
+            let f = omega * if m == 0 { 1.0 } else { 2f64.sqrt() };
+            let (a, b) = (a[m], b[m]);
+            for c in 0..6 {
+                wts[m][0][c][lane] = f * (a[c] + b[c]);
+                wts[m][1][c][lane] = f * (a[c] - b[c]);
+            }
+            [st[m].value[lane], st[m].exponent[lane]] = sectoral[m];
+        }
+    }
+
+    /// Phase 2 on the row pass's sums: the coefficients about the pole.
+    pub(crate) fn columns(&self, sums: PairSums) -> ShCoeffs<DVec3> {
+        let lmax = self.lmax;
+        let cols = lmax + 1;
+        let input = ColumnInput {
+            leg: &self.leg,
+            lmax,
+            xs: &sums.xs,
+            weights: &sums.weights,
+            starts: &sums.starts,
+        };
+        // Long columns (small m) and short ones interleaved for load balance.
+        let order = |i: usize| {
+            if i.is_multiple_of(2) {
+                i / 2
+            } else {
+                lmax - i / 2
+            }
+        };
+        #[cfg(feature = "rayon")]
+        let columns: Vec<(usize, Vec<[f64; 6]>)> = {
+            use rayon::prelude::*;
+            (0..cols)
+                .into_par_iter()
+                .with_max_len(1)
+                .map(|i| (order(i), column(&input, order(i))))
+                .collect()
+        };
+        #[cfg(not(feature = "rayon"))]
+        let columns: Vec<(usize, Vec<[f64; 6]>)> = (0..cols)
+            .map(|i| (order(i), column(&input, order(i))))
+            .collect();
+
+        // The phases' buffers (tens of MB at high lmax) go back before the
+        // coefficients are allocated, which can then reuse their memory.
+        drop(sums);
+        let mut out = ShCoeffs::<DVec3>::zeros(lmax);
+        for (m, col) in columns {
+            for (i, v) in col.iter().enumerate() {
+                let l = m + i;
+                out[sh_index(l, m as isize)] = DVec3::new(v[0], v[1], v[2]);
+                if m > 0 {
+                    out[sh_index(l, -(m as isize))] = DVec3::new(v[3], v[4], v[5]);
+                }
+            }
+        }
+        out
+    }
+}
 
 /// Radiance coefficients of an equirect map about its own pole (z-up), the
 /// azimuth of texel column `i` being `sign * φ_i`. Rows are read through
@@ -65,21 +203,12 @@ pub(crate) fn project_rings<S: TexelSource + ?Sized>(
     sign: f64,
 ) -> ShCoeffs<DVec3> {
     let (w, h) = map.size();
-    let pairs = h.div_ceil(2);
-    let blocks = pairs.div_ceil(LANES);
+    let g = RingGeometry::new(w, h, lmax, sign);
+    let pairs = g.pairs();
     let cols = lmax + 1;
-    let leg = Legendre::<f64>::new(lmax);
-    let azimuth = Azimuth::new(w, lmax, sign);
+    let mut sums = g.zero_sums();
 
-    // Phase 1, per block of row pairs: weights and sectoral start values
-    // `[block][m]`, and `cos θ` per lane. Lanes past the last pair stay zero.
-    let zero_start = BlockStart {
-        value: [0.0; LANES],
-        exponent: [0.0; LANES],
-    };
-    let mut weights = vec![[[[0.0; LANES]; 6]; 2]; blocks * cols];
-    let mut starts = vec![zero_start; blocks * cols];
-    let mut xs = vec![[0.0; LANES]; blocks];
+    // Phase 1, per block of row pairs.
     let phase1 = |b: usize,
                   wts: &mut [BlockWeights],
                   st: &mut [BlockStart],
@@ -89,36 +218,24 @@ pub(crate) fn project_rings<S: TexelSource + ?Sized>(
             let p = b * LANES + lane;
             let j2 = h - 1 - p;
             let row = read_row(map, p, &mut s.texels);
-            azimuth.row(row, &mut s.ring_a, &mut s.bufs);
+            g.azimuth.row(row, &mut s.ring_a, &mut s.bufs);
             if j2 != p {
                 let row = read_row(map, j2, &mut s.texels);
-                azimuth.row(row, &mut s.ring_b, &mut s.bufs);
+                g.azimuth.row(row, &mut s.ring_b, &mut s.bufs);
             } else {
                 s.ring_b.iter_mut().for_each(|r| *r = [0.0; 6]);
             }
-            let omega = equirect_row_solid_angle(p, w, h);
-            let theta = PI * (p as f64 + 0.5) / h as f64;
-            x[lane] = theta.cos();
-            sectoral_values(&leg, theta.sin(), &mut s.sectoral);
-            for m in 0..cols {
-                let f = omega * if m == 0 { 1.0 } else { 2f64.sqrt() };
-                let (a, b) = (s.ring_a[m], s.ring_b[m]);
-                for c in 0..6 {
-                    wts[m][0][c][lane] = f * (a[c] + b[c]);
-                    wts[m][1][c][lane] = f * (a[c] - b[c]);
-                }
-                [st[m].value[lane], st[m].exponent[lane]] = s.sectoral[m];
-            }
+            g.fill_pair(p, lane, &s.ring_a, &s.ring_b, &mut s.sectoral, wts, st, x);
         }
     };
-    let new_scratch = || Scratch::new(w, lmax, &azimuth);
+    let new_scratch = || g.scratch();
     #[cfg(feature = "rayon")]
     {
         use rayon::prelude::*;
-        weights
+        sums.weights
             .par_chunks_mut(cols)
-            .zip(starts.par_chunks_mut(cols))
-            .zip(xs.par_iter_mut())
+            .zip(sums.starts.par_chunks_mut(cols))
+            .zip(sums.xs.par_iter_mut())
             .enumerate()
             .for_each_init(new_scratch, |s, (b, ((wts, st), x))| {
                 phase1(b, wts, st, x, s)
@@ -127,60 +244,17 @@ pub(crate) fn project_rings<S: TexelSource + ?Sized>(
     #[cfg(not(feature = "rayon"))]
     {
         let mut s = new_scratch();
-        for (b, ((wts, st), x)) in weights
+        for (b, ((wts, st), x)) in sums
+            .weights
             .chunks_mut(cols)
-            .zip(starts.chunks_mut(cols))
-            .zip(xs.iter_mut())
+            .zip(sums.starts.chunks_mut(cols))
+            .zip(sums.xs.iter_mut())
             .enumerate()
         {
             phase1(b, wts, st, x, &mut s);
         }
     }
-
-    // Phase 2: one column m at a time.
-    let input = ColumnInput {
-        leg: &leg,
-        lmax,
-        xs: &xs,
-        weights: &weights,
-        starts: &starts,
-    };
-    // Long columns (small m) and short ones interleaved for load balance.
-    let order = |i: usize| {
-        if i.is_multiple_of(2) {
-            i / 2
-        } else {
-            lmax - i / 2
-        }
-    };
-    #[cfg(feature = "rayon")]
-    let sums: Vec<(usize, Vec<[f64; 6]>)> = {
-        use rayon::prelude::*;
-        (0..cols)
-            .into_par_iter()
-            .with_max_len(1)
-            .map(|i| (order(i), column(&input, order(i))))
-            .collect()
-    };
-    #[cfg(not(feature = "rayon"))]
-    let sums: Vec<(usize, Vec<[f64; 6]>)> = (0..cols)
-        .map(|i| (order(i), column(&input, order(i))))
-        .collect();
-
-    // The phases' buffers (tens of MB at high lmax) go back before the
-    // coefficients are allocated, which can then reuse their memory.
-    drop((weights, starts, xs));
-    let mut out = ShCoeffs::<DVec3>::zeros(lmax);
-    for (m, col) in sums {
-        for (i, v) in col.iter().enumerate() {
-            let l = m + i;
-            out[sh_index(l, m as isize)] = DVec3::new(v[0], v[1], v[2]);
-            if m > 0 {
-                out[sh_index(l, -(m as isize))] = DVec3::new(v[3], v[4], v[5]);
-            }
-        }
-    }
-    out
+    g.columns(sums)
 }
 
 /// `Pbar_m^m(sin θ)` for every `m`, as `(mantissa, exponent count k <= 0)`
