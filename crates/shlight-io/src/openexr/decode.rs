@@ -207,11 +207,6 @@ fn decompress_scan_lines(
     let lines = header.compression.scan_lines_per_block();
     let mut data = vec![[0.0_f32; 3]; width * height];
     let zip = zip_block::handles(header.compression);
-    let threads = std::thread::available_parallelism()
-        .map_or(1, usize::from)
-        .min(count)
-        .max(1);
-    let failed = AtomicBool::new(false);
     let covered = {
         let bands: Vec<Mutex<Option<&mut [[f32; 3]]>>> = data
             .chunks_mut((width * lines).max(1))
@@ -223,81 +218,94 @@ fn decompress_scan_lines(
             lines,
             bands: &bands,
         };
-        let (read, decoded) = std::thread::scope(|scope| {
-            let mut senders = Vec::with_capacity(threads);
-            let mut handles = Vec::with_capacity(threads);
-            for _ in 0..threads {
-                let (send, receive) = mpsc::channel::<Chunk>();
-                senders.push(send);
-                let (failed, geometry) = (&failed, &geometry);
-                handles.push(scope.spawn(move || {
-                    let mut scratch = zip.then(ZipScratch::new);
-                    let mut covered = 0;
-                    for chunk in receive {
-                        let block = decode_scan_block(
-                            chunk,
-                            meta,
-                            part,
-                            colour,
-                            scratch.as_mut(),
-                            geometry,
-                        );
-                        match block {
-                            Ok(n) => covered += n,
-                            Err(e) => {
-                                // Ends the reading, and the other threads.
-                                failed.store(true, Ordering::Relaxed);
-                                return Err(e);
-                            }
-                        }
-                        if failed.load(Ordering::Relaxed) {
-                            break;
-                        }
-                    }
-                    Ok(covered)
-                }));
-            }
-            let mut read = Ok(());
-            for (i, chunk) in chunks.enumerate() {
-                if failed.load(Ordering::Relaxed) {
-                    break;
-                }
-                match chunk {
-                    // A thread that stopped on an error has set `failed`.
-                    Ok(chunk) => {
-                        let _ = senders[i % threads].send(chunk);
-                    }
-                    Err(e) => {
-                        failed.store(true, Ordering::Relaxed);
-                        read = Err(e);
-                        break;
-                    }
-                }
-            }
-            drop(senders);
-            let decoded: Vec<Result<usize, IoErrorKind>> = handles
-                .into_iter()
-                .map(|h| {
-                    h.join().unwrap_or_else(|payload| {
-                        Err(IoErrorKind::Corrupt(format!(
-                            "the OpenEXR decoder failed: {}",
-                            panic_message(payload.as_ref())
-                        )))
-                    })
-                })
-                .collect();
-            (read, decoded)
-        });
-        // An error reading the file comes first: it explains the others.
-        read?;
-        let mut covered = 0;
-        for r in decoded {
-            covered += r?;
-        }
-        covered
+        decode_on_threads(chunks, count, zip, |chunk, scratch| {
+            decode_scan_block(chunk, meta, part, colour, scratch, &geometry)
+        })?
     };
     check_covered(covered, width * height)?;
     Ok(data)
+}
+
+/// Compressed blocks that may wait for each decoding thread.
+const QUEUE_PER_THREAD: usize = 2;
+
+/// Deals `chunks` out to one thread per core in turn, through bounded
+/// queues, and runs `decode` on each; returns the sum of what `decode`
+/// returned. The first error (reading before decoding) stops every thread.
+pub(super) fn decode_on_threads(
+    chunks: impl Iterator<Item = Result<Chunk, IoErrorKind>>,
+    count: usize,
+    zip: bool,
+    decode: impl Fn(Chunk, Option<&mut ZipScratch>) -> Result<usize, IoErrorKind> + Sync,
+) -> Result<usize, IoErrorKind> {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(count)
+        .max(1);
+    let failed = AtomicBool::new(false);
+    let decode = &decode;
+    let (read, decoded) = std::thread::scope(|scope| {
+        let mut senders = Vec::with_capacity(threads);
+        let mut handles = Vec::with_capacity(threads);
+        for _ in 0..threads {
+            let (send, receive) = mpsc::sync_channel::<Chunk>(QUEUE_PER_THREAD);
+            senders.push(send);
+            let failed = &failed;
+            handles.push(scope.spawn(move || {
+                let mut scratch = zip.then(ZipScratch::new);
+                let mut covered = 0;
+                for chunk in receive {
+                    match decode(chunk, scratch.as_mut()) {
+                        Ok(n) => covered += n,
+                        Err(e) => {
+                            failed.store(true, Ordering::Relaxed);
+                            return Err(e);
+                        }
+                    }
+                    if failed.load(Ordering::Relaxed) {
+                        break;
+                    }
+                }
+                Ok(covered)
+            }));
+        }
+        let mut read = Ok(());
+        for (i, chunk) in chunks.enumerate() {
+            if failed.load(Ordering::Relaxed) {
+                break;
+            }
+            match chunk {
+                Ok(chunk) => {
+                    let _ = senders[i % threads].send(chunk);
+                }
+                Err(e) => {
+                    failed.store(true, Ordering::Relaxed);
+                    read = Err(e);
+                    break;
+                }
+            }
+        }
+        drop(senders);
+        let decoded: Vec<Result<usize, IoErrorKind>> = handles
+            .into_iter()
+            .map(|h| {
+                h.join().unwrap_or_else(|payload| {
+                    Err(IoErrorKind::Corrupt(format!(
+                        "the OpenEXR decoder failed: {}",
+                        panic_message(payload.as_ref())
+                    )))
+                })
+            })
+            .collect();
+        (read, decoded)
+    });
+    // An error reading the file comes first: it explains the others.
+    read?;
+    let mut covered = 0;
+    for r in decoded {
+        covered += r?;
+    }
+    Ok(covered)
 }
 
 /// Where the blocks of a scan-line part go: the data window's size, the

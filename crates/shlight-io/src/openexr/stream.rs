@@ -13,23 +13,18 @@ use std::collections::{HashMap, HashSet};
 use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, PoisonError, mpsc};
+use std::sync::{Mutex, PoisonError};
 
 use exr::block::chunk::Chunk;
 use exr::block::reader::ChunksReader;
 use exr::math::Vec2;
 use exr::meta::{BlockDescription, MetaData};
 
-use super::decode::{check_covered, check_size, decode_block, map_error};
+use super::decode::{check_covered, check_size, decode_block, decode_on_threads, map_error};
 use super::inspect;
 use super::layers::{self, Colour};
 use super::zip_block::{self, ZipScratch};
-use crate::panic_message::panic_message;
 use crate::{IoErrorKind, ReadOptions};
-
-/// Compressed blocks that may wait for each decoding thread.
-const QUEUE_PER_THREAD: usize = 2;
 
 /// An OpenEXR file's chosen layer, ready to be read as rows.
 pub(crate) struct ExrRows {
@@ -208,82 +203,4 @@ impl Bands {
         }
         Ok(w * h)
     }
-}
-
-/// Deals `chunks` out to one thread per core in turn, through bounded
-/// queues, and runs `decode` on each; returns the sum of what `decode`
-/// returned. The first error (reading before decoding) stops every thread.
-fn decode_on_threads(
-    chunks: impl Iterator<Item = Result<Chunk, IoErrorKind>>,
-    count: usize,
-    zip: bool,
-    decode: impl Fn(Chunk, Option<&mut ZipScratch>) -> Result<usize, IoErrorKind> + Sync,
-) -> Result<usize, IoErrorKind> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, usize::from)
-        .min(count)
-        .max(1);
-    let failed = AtomicBool::new(false);
-    let decode = &decode;
-    let (read, decoded) = std::thread::scope(|scope| {
-        let mut senders = Vec::with_capacity(threads);
-        let mut handles = Vec::with_capacity(threads);
-        for _ in 0..threads {
-            let (send, receive) = mpsc::sync_channel::<Chunk>(QUEUE_PER_THREAD);
-            senders.push(send);
-            let failed = &failed;
-            handles.push(scope.spawn(move || {
-                let mut scratch = zip.then(ZipScratch::new);
-                let mut covered = 0;
-                for chunk in receive {
-                    match decode(chunk, scratch.as_mut()) {
-                        Ok(n) => covered += n,
-                        Err(e) => {
-                            failed.store(true, Ordering::Relaxed);
-                            return Err(e);
-                        }
-                    }
-                    if failed.load(Ordering::Relaxed) {
-                        break;
-                    }
-                }
-                Ok(covered)
-            }));
-        }
-        let mut read = Ok(());
-        for (i, chunk) in chunks.enumerate() {
-            if failed.load(Ordering::Relaxed) {
-                break;
-            }
-            match chunk {
-                Ok(chunk) => {
-                    let _ = senders[i % threads].send(chunk);
-                }
-                Err(e) => {
-                    failed.store(true, Ordering::Relaxed);
-                    read = Err(e);
-                    break;
-                }
-            }
-        }
-        drop(senders);
-        let decoded: Vec<Result<usize, IoErrorKind>> = handles
-            .into_iter()
-            .map(|h| {
-                h.join().unwrap_or_else(|payload| {
-                    Err(IoErrorKind::Corrupt(format!(
-                        "the OpenEXR decoder failed: {}",
-                        panic_message(payload.as_ref())
-                    )))
-                })
-            })
-            .collect();
-        (read, decoded)
-    });
-    read?;
-    let mut covered = 0;
-    for r in decoded {
-        covered += r?;
-    }
-    Ok(covered)
 }
