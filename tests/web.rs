@@ -516,9 +516,9 @@ impl BabylonCube {
 /// fixes it fails this test), then sets `gammaSpace = false`.
 ///
 /// Each check is shown able to fail: the same pixels against the light
-/// read in the glTF world (x mirrored back: where shlight wrote it before
-/// this test), against the coefficients without the Condon-Shortley phase,
-/// and against the PNGs read upright, are off by far more than allowed.
+/// read in the glTF world (x mirrored back: the Sample Viewer's frame),
+/// against the coefficients without the Condon-Shortley phase, and against
+/// the PNGs read upright, are off by far more than allowed.
 #[test]
 fn babylon_loads_the_gltf_light_with_shlights_irradiance_and_specular_mips() {
     let test = "web::babylon_loads_the_gltf_light_with_shlights_irradiance_and_specular_mips";
