@@ -694,6 +694,86 @@ fn babylon_loads_the_gltf_light_with_shlights_irradiance_and_specular_mips() {
     }
 }
 
+/// Babylon.js's own picture of an equirect map (an `HDRCubeTexture` of the
+/// same image: `PanoramaToCubeMapTools`, then harmonics from that cube)
+/// lights a surface as the glTF light `shlight project MAP --format gltf`
+/// writes does, in Babylon's default left-handed scene: the two
+/// `sphericalPolynomial`s Babylon evaluates agree as functions, to 2% of
+/// the peak (Babylon resamples the RGBE map into a 128-pixel cube), on a
+/// smooth map with a broad lobe off the axes; the light mirrored into the
+/// glTF world (the Sample Viewer's frame) does not agree.
+#[test]
+fn babylon_lights_with_the_gltf_light_as_with_its_own_picture_of_the_map() {
+    let test = "web::babylon_lights_with_the_gltf_light_as_with_its_own_picture_of_the_map";
+    let dir = temp_dir("web-babylon-hdr");
+    let lobe = DVec3::new(0.3, 0.5, -0.8).normalize();
+    crate::util::write_map(&dir.join("smooth.hdr"), 512, 256, |x, y| {
+        let (u, v) = ((x as f64 + 0.5) / 512.0, (y as f64 + 0.5) / 256.0);
+        let (t, p) = (
+            std::f64::consts::PI * v,
+            2.0 * std::f64::consts::PI * (u - 0.5),
+        );
+        let d = DVec3::new(t.sin() * p.cos(), t.cos(), t.sin() * p.sin());
+        let value = 0.3 + 0.2 * d.y.max(0.0) + 4.0 * d.dot(lobe).max(0.0).powi(6);
+        [value as f32, (0.8 * value) as f32, (0.6 * value) as f32]
+    });
+    shlight_ok(&[
+        "project",
+        s(&dir.join("smooth.hdr")),
+        "--format",
+        "gltf",
+        "--specular-size",
+        "16",
+        "--specular-samples",
+        "64",
+        "-q",
+        "-o",
+        s(&dir.join("light.gltf")),
+    ]);
+    let page = "/tests/web/babylon.html?gltf=/data/light.gltf&hdr=/data/smooth.hdr";
+    let Some(r) = run_babylon_page(test, &dir, page) else {
+        return;
+    };
+    assert_eq!(r["babylon"], BABYLON_VERSION);
+    let sh = |key: &str| {
+        let rows: Vec<DVec3> = r[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| DVec3::from_slice(&floats(v)))
+            .collect();
+        assert_eq!(rows.len(), 9, "{key}");
+        shlight_core::sh::ShCoeffs::from_vec(rows).unwrap()
+    };
+    // Babylon's SH3ylmBasisConstants are the real orthonormal basis with
+    // the Condon-Shortley phase, shlight's own.
+    let (gltf, own) = (sh("gltf"), sh("own"));
+    let (mut worst, mut worst_mirrored, mut peak) = (0.0f64, 0.0f64, 0.0f64);
+    let count = 2000;
+    for i in 0..count {
+        // A Fibonacci sphere.
+        let z = 1.0 - (2.0 * i as f64 + 1.0) / count as f64;
+        let phi = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let n = DVec3::new(
+            (1.0 - z * z).sqrt() * phi.cos(),
+            (1.0 - z * z).sqrt() * phi.sin(),
+            z,
+        );
+        let want = own.eval(n);
+        peak = peak.max(want.max_element());
+        worst = worst.max((gltf.eval(n) - want).abs().max_element());
+        let mirrored = DVec3::new(-n.x, n.y, n.z);
+        worst_mirrored = worst_mirrored.max((gltf.eval(mirrored) - want).abs().max_element());
+    }
+    eprintln!(
+        "{test}: Babylon's harmonics of the glTF light against those of its own HDRCubeTexture of the map: worst {:.2e} of the peak {peak:.4}; the light in the glTF world: {:.2e}",
+        worst / peak,
+        worst_mirrored / peak
+    );
+    assert!(worst < 0.02 * peak, "worst {worst:.3e}, peak {peak:.4}");
+    assert!(worst_mirrored > 0.2 * peak, "{worst_mirrored:.3e}");
+}
+
 /// The Cornell box's volume, baked small, and its three.js grid documents
 /// (`half`, `f32`); returns the `.shvol`.
 fn cornell_volume(dir: &Path) -> PathBuf {
