@@ -235,13 +235,17 @@ fn unity_export_peaks_where_the_panoramic_skybox_puts_the_texel() {
     );
 }
 
-/// Where the Khronos glTF Sample Viewer shows the texel `(x, y)` in the
-/// glTF world: `panorama_to_cubemap`'s `dirToUV`
+/// Where Babylon.js, reading the glTF light in its default left-handed
+/// scene, shows the texel `(x, y)` in its world: where the Khronos glTF
+/// Sample Viewer puts it around a glTF asset, carried through the root node
+/// Babylon's glTF loader adds (glTF `(x, y, z)` is Babylon `(-x, y, z)`).
+/// The Sample Viewer: `panorama_to_cubemap`'s `dirToUV`
 /// (`u = 0.5 + 0.5 atan(g.z, g.x) / pi`, `v = 1 - acos(g.y) / pi` with the
 /// image's top row at `v = 0` after its `uvToXYZ` face flips) gives the
 /// cube-lookup direction `g`; the viewer looks world direction `w` up at
-/// `g = rotateY(environmentRotation = 90 deg) w = (w.z, w.y, -w.x)`.
-fn sample_viewer_direction(x: usize, y: usize) -> Dir {
+/// `g = rotateY(environmentRotation = 90 deg) w = (w.z, w.y, -w.x)`, so the
+/// texel is at glTF `w = (-g.z, g.y, g.x)` and at Babylon `(g.z, g.y, g.x)`.
+fn babylon_direction(x: usize, y: usize) -> Dir {
     let (u, v_top) = uv(x, y);
     let azimuth = (u - 0.5) * 2.0 * PI;
     let polar = v_top * PI;
@@ -250,15 +254,15 @@ fn sample_viewer_direction(x: usize, y: usize) -> Dir {
         polar.cos(),
         polar.sin() * azimuth.sin(),
     ];
-    [-g[2], g[1], g[0]]
+    [g[2], g[1], g[0]]
 }
 
 #[test]
-fn gltf_export_peaks_where_the_sample_viewer_puts_the_texel() {
+fn gltf_export_peaks_where_babylon_shows_the_sample_viewers_texel() {
     assert_peaks_at_the_engines_texels(
         "gltf",
         "gltf",
-        "the Sample Viewer",
+        "Babylon.js",
         |text| {
             let v = json(text);
             let scene_light = v["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"]
@@ -267,7 +271,7 @@ fn gltf_export_peaks_where_the_sample_viewer_puts_the_texel() {
             v["extensions"]["EXT_lights_image_based"]["lights"][scene_light].clone()
         },
         |light, n| babylon_lambertian_radiance(light, DVec3::from(n)).x,
-        sample_viewer_direction,
+        babylon_direction,
     );
 }
 

@@ -415,11 +415,12 @@ fn gltf_irradiance_coefficients_read_by_babylon_give_irradiance_over_pi() {
         assert_eq!(v["extensionsUsed"][0], "EXT_lights_image_based");
         let light = &v["extensions"]["EXT_lights_image_based"]["lights"][0];
         assert_eq!(floats(&light["rotation"]), [0.0, 0.0, 0.0, 1.0]);
-        // The glTF Sample Viewer shows the texel shlight reads at n at
-        // (-n.z, n.y, n.x) of the glTF world (docs/exporters.md).
+        // Babylon looks the texel shlight reads at n up at (n.z, n.y, n.x)
+        // of its left-handed world (docs/exporters.md; tests/web.rs renders
+        // it in Babylon).
         assert_matches(
             &format!("gltf (Babylon.js), {}", case.name),
-            |n| babylon_lambertian_radiance(light, DVec3::new(-n.z, n.y, n.x)),
+            |n| babylon_lambertian_radiance(light, DVec3::new(n.z, n.y, n.x)),
             |n| case.irradiance_at(2, n, false) / PI,
             1e-9,
         );

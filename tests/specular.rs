@@ -242,9 +242,13 @@ fn prefilter_refuses_what_it_cannot_write() {
 }
 
 /// The glTF light's specular images hold what Babylon.js reads: decoded
-/// from RGBD (Babylon's `fromRGBD`), mip 0 is the map itself in the glTF
-/// world (shlight's `(x, y, z)` at glTF `(-z, y, x)`), faces in the order
-/// `+X -X +Y -Y +Z -Z`, upright; every mip halves down to one pixel.
+/// from RGBD (Babylon's `fromRGBD`), mip 0 is the map itself in the
+/// light's frame, Babylon's world (shlight's `(x, y, z)` at `(z, y, x)`),
+/// faces in the order `+X -X +Y -Y +Z -Z`, each PNG's rows bottom first
+/// (row `j` of the PNG is row `S - 1 - j` of the OpenGL cube-map
+/// convention: Babylon's loader puts a PNG's first row at the bottom of
+/// the face, which tests/web.rs measures); every mip halves down to one
+/// pixel.
 #[test]
 fn gltf_specular_images_are_the_map_in_rgbd() {
     use base64::Engine as _;
@@ -297,24 +301,29 @@ fn gltf_specular_images_are_the_map_in_rgbd() {
             assert_eq!(png(face).width(), 16 >> k);
         }
     }
-    let (mut worst, mut worst_unturned) = (0.0f64, 0.0f64);
+    let (mut worst, mut worst_unturned, mut worst_upright) = (0.0f64, 0.0f64, 0.0f64);
     for (face_index, face) in CubeFace::ALL.into_iter().enumerate() {
         let img = png(&mips[0][face_index]);
         for j in 0..16 {
             for i in 0..16 {
-                let rgbd = img.get_pixel(i as u32, j as u32).0;
+                let rgbd = img.get_pixel(i as u32, 15 - j as u32).0;
                 let got = DVec3::from(shlight_specular::rgbd_decode(rgbd).map(f64::from));
                 let c = |k: usize| (2.0 * k as f64 + 1.0) / 16.0 - 1.0;
                 let g = face.point(c(i), c(j)).normalize();
-                // glTF (-z, y, x) is shlight's (x, y, z).
-                let want = f(DVec3::new(g.z, g.y, -g.x));
-                worst = worst.max(((got - want).abs() / want).max_element());
-                worst_unturned = worst_unturned.max(((got - f(g)).abs() / f(g)).max_element());
+                // Babylon's (z, y, x) is shlight's (x, y, z).
+                let want = f(DVec3::new(g.z, g.y, g.x));
+                let rel = |w: DVec3| ((got - w).abs() / w).max_element();
+                worst = worst.max(rel(want));
+                worst_unturned = worst_unturned.max(rel(f(g)));
+                // The same texel read upright (row j at the top).
+                let up = face.point(c(i), c(15 - j)).normalize();
+                worst_upright = worst_upright.max(rel(f(DVec3::new(up.z, up.y, up.x))));
             }
         }
     }
     assert!(worst < TOLERANCE, "{worst}");
     assert!(worst_unturned > 5.0 * TOLERANCE, "{worst_unturned}");
+    assert!(worst_upright > 5.0 * TOLERANCE, "{worst_upright}");
 }
 
 /// IEEE half to f32, written out (normal and subnormal numbers).

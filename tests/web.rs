@@ -6,11 +6,19 @@
 //! and POSTs them as JSON to the server's `/result`, which the test
 //! compares with shlight's own numbers.
 //!
-//! Needs Chromium (`chromium` on the PATH, or `SHLIGHT_CHROMIUM`) and
-//! three.js (`.ci/run` installs `three@0.187.0` into `target/web-deps`, or
-//! `SHLIGHT_THREEJS` names its folder); without either a test prints a
-//! SKIPPED line, and fails under `SHLIGHT_REQUIRE_ALL=1`. One browser runs
-//! at a time (two cores).
+//! The same harness runs Babylon.js 8.56.2 (its UMD builds, npm
+//! `babylonjs` and `babylonjs-loaders`) on `tests/web/babylon.html`, which
+//! loads shlight's `EXT_lights_image_based` glTF with Babylon's own glTF
+//! loader.
+//!
+//! Needs Chromium (`chromium` on the PATH, or `SHLIGHT_CHROMIUM`), three.js
+//! (`.ci/run` installs `three@0.187.0` into `target/web-deps`, or
+//! `SHLIGHT_THREEJS` names its folder) and, for the Babylon test,
+//! Babylon.js (`.ci/run` installs `babylonjs@8.56.2` and
+//! `babylonjs-loaders@8.56.2` into `target/web-deps`, or
+//! `SHLIGHT_BABYLONJS` names the `node_modules` folder holding both);
+//! without them a test prints a SKIPPED line, and fails under
+//! `SHLIGHT_REQUIRE_ALL=1`. One browser runs at a time (two cores).
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
@@ -58,10 +66,25 @@ fn three_dir() -> PathBuf {
     )
 }
 
+/// The Babylon.js version the Babylon test is written against (`.ci/run`
+/// installs it).
+const BABYLON_VERSION: &str = "8.56.2";
+
+/// The `node_modules` folder holding the npm packages `babylonjs` and
+/// `babylonjs-loaders`: `SHLIGHT_BABYLONJS`, else where `.ci/run` installs
+/// them.
+fn babylon_dir() -> PathBuf {
+    std::env::var_os("SHLIGHT_BABYLONJS").map_or_else(
+        || repo().join("target/web-deps/node_modules"),
+        PathBuf::from,
+    )
+}
+
 /// What the server maps URL prefixes to.
 #[derive(Clone)]
 struct Roots {
     three: PathBuf,
+    babylon: PathBuf,
     data: PathBuf,
 }
 
@@ -76,6 +99,8 @@ impl Roots {
         } else if let Some(r) = path.strip_prefix("/web/node_modules/three/") {
             // Where web/index.html's import map looks.
             (self.three.clone(), r)
+        } else if let Some(r) = path.strip_prefix("/babylon/") {
+            (self.babylon.clone(), r)
         } else if let Some(r) = path.strip_prefix("/web/") {
             (repo().join("web"), r)
         } else if let Some(r) = path.strip_prefix("/tests/web/") {
@@ -95,6 +120,8 @@ fn content_type(path: &Path) -> &'static str {
         Some("js") => "text/javascript",
         Some("json") => "application/json",
         Some("glb") => "model/gltf-binary",
+        Some("gltf") => "model/gltf+json",
+        Some("png") => "image/png",
         _ => "application/octet-stream",
     }
 }
@@ -164,6 +191,13 @@ fn serve(roots: Roots) -> (u16, Receiver<Vec<u8>>) {
     (port, rx)
 }
 
+/// The library a page runs.
+#[derive(Clone, Copy, PartialEq)]
+enum Library {
+    Three,
+    Babylon,
+}
+
 /// Loads `page` (a path with its query, e.g.
 /// `/tests/web/probe.html?probe=/data/p.json`) in headless Chromium with
 /// `data` served under `/data/`, and returns what the page reported; `None`
@@ -171,6 +205,15 @@ fn serve(roots: Roots) -> (u16, Receiver<Vec<u8>>) {
 /// page's `error` report, or when it reports nothing in time (Chromium's
 /// log shown).
 fn run_page(test: &str, data: &Path, page: &str) -> Option<Value> {
+    run_library_page(test, data, page, Library::Three)
+}
+
+/// [`run_page`] for a page that runs Babylon.js (skipped without it).
+fn run_babylon_page(test: &str, data: &Path, page: &str) -> Option<Value> {
+    run_library_page(test, data, page, Library::Babylon)
+}
+
+fn run_library_page(test: &str, data: &Path, page: &str, library: Library) -> Option<Value> {
     let _one = BROWSER
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -178,10 +221,11 @@ fn run_page(test: &str, data: &Path, page: &str) -> Option<Value> {
         skip(test, "Chromium is not installed (apt-get install chromium)");
         return None;
     };
-    let three = three_dir();
-    if !three
-        .join("examples/jsm/lighting/LightProbeGridWebGL.js")
-        .is_file()
+    let (three, babylon) = (three_dir(), babylon_dir());
+    if library == Library::Three
+        && !three
+            .join("examples/jsm/lighting/LightProbeGridWebGL.js")
+            .is_file()
     {
         skip(
             test,
@@ -192,8 +236,27 @@ fn run_page(test: &str, data: &Path, page: &str) -> Option<Value> {
         );
         return None;
     }
+    if library == Library::Babylon {
+        let version = |package: &str| -> Option<String> {
+            let text = std::fs::read_to_string(babylon.join(package).join("package.json")).ok()?;
+            let v: Value = serde_json::from_str(&text).ok()?;
+            v["version"].as_str().map(str::to_string)
+        };
+        let want = Some(BABYLON_VERSION.to_string());
+        if version("babylonjs") != want || version("babylonjs-loaders") != want {
+            skip(
+                test,
+                &format!(
+                    "Babylon.js {BABYLON_VERSION} is not in {} (npm install --prefix target/web-deps babylonjs@{BABYLON_VERSION} babylonjs-loaders@{BABYLON_VERSION})",
+                    babylon.display()
+                ),
+            );
+            return None;
+        }
+    }
     let (port, results) = serve(Roots {
         three,
+        babylon,
         data: data.to_path_buf(),
     });
     let profile = data.join("chromium-profile");
@@ -326,6 +389,389 @@ fn threejs_light_probe_lights_a_sphere_with_shlights_irradiance() {
         rel < 1e-5,
         "worst {worst:.3e} ({rel:.2e} of the peak {peak:.4})"
     );
+}
+
+/// The specular cube as Babylon.js holds it after its glTF loader's
+/// `updateRGBDAsync`: every face texel decoded from RGBD (`fromRGBD`:
+/// `rgb^2.2 / a`) into a half-float cube (what `UploadLevelsAsync` does
+/// where the GPU renders to and filters half floats), read here from the
+/// glTF's PNGs with the `image` crate (not shlight's code).
+struct BabylonCube {
+    size: usize,
+    /// `mips[k][face]`: `(size >> k)^2` texels, rows as in the PNG.
+    mips: Vec<Vec<Vec<DVec3>>>,
+}
+
+impl BabylonCube {
+    fn read(doc: &Value, light: &Value, half_floats: bool) -> Self {
+        use base64::Engine as _;
+        let size = light["specularImageSize"].as_u64().unwrap() as usize;
+        let mips = light["specularImages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|faces| {
+                faces
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|index| {
+                        let uri = doc["images"][index.as_u64().unwrap() as usize]["uri"]
+                            .as_str()
+                            .unwrap();
+                        let bytes = base64::engine::general_purpose::STANDARD
+                            .decode(uri.strip_prefix("data:image/png;base64,").unwrap())
+                            .unwrap();
+                        let img = image::load_from_memory(&bytes).unwrap().to_rgba8();
+                        img.pixels()
+                            .map(|p| {
+                                let a = f64::from(p.0[3]) / 255.0;
+                                let c = |i: usize| {
+                                    let v = (f64::from(p.0[i]) / 255.0).powf(2.2) / a;
+                                    if half_floats {
+                                        half::f16::from_f64(v).to_f64()
+                                    } else {
+                                        v
+                                    }
+                                };
+                                DVec3::new(c(0), c(1), c(2))
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect();
+        BabylonCube { size, mips }
+    }
+
+    /// WebGL 2's bilinear lookup of mip `k` at direction `r`: OpenGL's
+    /// face selection and `(s, t)` (the cube-map table of the GL spec), the
+    /// PNG's first row at `t = 1` when `png_row0_at_bottom` (else at `t =
+    /// 0`). Returns the value and, per channel, the largest of the four
+    /// texels it mixes; `None` where the four texels are not on one face.
+    fn sample(&self, k: usize, r: DVec3, png_row0_at_bottom: bool) -> Option<(DVec3, DVec3)> {
+        let a = r.abs();
+        let (face, sc, tc, ma) = if a.x >= a.y && a.x >= a.z {
+            if r.x > 0.0 {
+                (0, -r.z, -r.y, a.x)
+            } else {
+                (1, r.z, -r.y, a.x)
+            }
+        } else if a.y >= a.z {
+            if r.y > 0.0 {
+                (2, r.x, r.z, a.y)
+            } else {
+                (3, r.x, -r.z, a.y)
+            }
+        } else if r.z > 0.0 {
+            (4, r.x, -r.y, a.z)
+        } else {
+            (5, -r.x, -r.y, a.z)
+        };
+        let n = self.size >> k;
+        let (s, t) = ((sc / ma + 1.0) / 2.0, (tc / ma + 1.0) / 2.0);
+        let t = if png_row0_at_bottom { 1.0 - t } else { t };
+        let (u, v) = (s * n as f64 - 0.5, t * n as f64 - 0.5);
+        if u < 0.0 || v < 0.0 || u >= (n - 1) as f64 || v >= (n - 1) as f64 {
+            return None;
+        }
+        let (i, j) = (u.floor() as usize, v.floor() as usize);
+        let (fu, fv) = (u - i as f64, v - j as f64);
+        let texels = &self.mips[k][face];
+        let at = |i: usize, j: usize| texels[j * n + i];
+        let (t00, t10, t01, t11) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
+        let value = t00 * ((1.0 - fu) * (1.0 - fv))
+            + t10 * (fu * (1.0 - fv))
+            + t01 * ((1.0 - fu) * fv)
+            + t11 * (fu * fv);
+        Some((value, t00.max(t10).max(t01).max(t11)))
+    }
+}
+
+/// Babylon.js 8.56.2's own glTF loader reads shlight's
+/// `EXT_lights_image_based` export of a bundled map (`shlight project MAP
+/// --format gltf`), in a default left-handed scene and in a right-handed
+/// one (`useRightHandedSystem`), and lights three white spheres
+/// (`PBRMaterial`, linear output) with it:
+///
+/// - a rough dielectric without a specular lobe (`metallicF0Factor` 0, so
+///   F0 = F90 = 0: the irradiance term alone) shows shlight-core's
+///   `max(E(d) / pi, 0)`, `E` from shlight's own coefficient file of the
+///   map, at each pixel's normal `n` (read back) taken to shlight's frame
+///   as `d = (n.z, n.y, n.x)`, with `n.z` negated first in the right-handed
+///   scene (Babylon flips z on every environment lookup there). Babylon
+///   evaluates the coefficients in its own world: the glTF root node's
+///   mirror of x is not undone. Within 1e-5 of the peak (f32 shading of an
+///   exact polynomial form; the `max` is Babylon's `max(finalColor, 0)`).
+/// - a mirror (metallic 1, roughness 0) shows mip 0 at the reflected view
+///   direction, and a metal at roughness `sqrt(4/S - 0.0005)` (Babylon's
+///   `alphaG = r^2 + 0.0005`, so `lod = log2(S alphaG) = 2`) shows mip 2:
+///   each pixel the bilinear mix of the four half-float texels decoded from
+///   the PNGs, the PNG's first row at the bottom of each face, within a
+///   half-float step of the largest (2^-10) plus 2e-5 of the peak.
+///
+/// Babylon's loader leaves the cube's `gammaSpace` at its default (true),
+/// so as loaded the shader raises the decoded radiance to the power 2.2;
+/// the page renders the mirror that way too (checked here: a Babylon that
+/// fixes it fails this test), then sets `gammaSpace = false`.
+///
+/// Each check is shown able to fail: the same pixels against the light
+/// read in the glTF world (x mirrored back: the Sample Viewer's frame),
+/// against the coefficients without the Condon-Shortley phase, and against
+/// the PNGs read upright, are off by far more than allowed.
+#[test]
+fn babylon_loads_the_gltf_light_with_shlights_irradiance_and_specular_mips() {
+    let test = "web::babylon_loads_the_gltf_light_with_shlights_irradiance_and_specular_mips";
+    let dir = temp_dir("web-babylon");
+    let (size, rough_mip) = (64usize, 2usize);
+    let gltf = dir.join("light.gltf");
+    let coeffs = dir.join("studio.json");
+    shlight_ok(&[
+        "project",
+        "envmaps/studio.exr",
+        "--format",
+        "gltf",
+        "--specular-size",
+        &size.to_string(),
+        "--specular-samples",
+        "256",
+        "-q",
+        "-o",
+        s(&gltf),
+    ]);
+    shlight_ok(&[
+        "project",
+        "envmaps/studio.exr",
+        "--lmax",
+        "2",
+        "-q",
+        "-o",
+        s(&coeffs),
+    ]);
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(&gltf).unwrap()).unwrap();
+    let light = &doc["extensions"]["EXT_lights_image_based"]["lights"][0];
+    let file = CoeffFile::read(&coeffs).unwrap();
+    assert_eq!(
+        (file.frame, file.quantity),
+        (Frame::YUp, Quantity::Radiance)
+    );
+    let e = irradiance(&file.coeffs);
+    // The same irradiance without the Condon-Shortley phase (odd m negated).
+    let e_no_phase = shlight_core::sh::ShCoeffs::from_vec(
+        e.as_slice()
+            .iter()
+            .enumerate()
+            .map(|(i, c)| if [1, 3, 5, 7].contains(&i) { -*c } else { *c })
+            .collect(),
+    )
+    .unwrap();
+    let alpha = 2f64.powi(rough_mip as i32) / size as f64;
+    let roughness = (alpha - 0.0005).sqrt();
+    for right_handed in [false, true] {
+        let page = format!(
+            "/tests/web/babylon.html?gltf=/data/light.gltf&roughness={roughness}&rh={}",
+            u8::from(right_handed)
+        );
+        let Some(r) = run_babylon_page(test, &dir, &page) else {
+            return;
+        };
+        let hand = if right_handed { "right" } else { "left" };
+        assert_eq!(r["babylon"], BABYLON_VERSION);
+        assert_eq!(r["rightHanded"], right_handed);
+        let env = &r["environment"];
+        assert_eq!(env["size"].as_u64(), Some(size as u64), "{env}");
+        assert_eq!(env["lodGenerationScale"].as_f64(), Some(1.0), "{env}");
+        assert_eq!(env["gammaSpace"], true, "{env}");
+        assert_eq!(
+            floats(&env["reflectionMatrix"]),
+            glam::DMat4::IDENTITY.to_cols_array()
+        );
+        assert_eq!(
+            env["isRGBD"], false,
+            "Babylon kept the cube RGBD-packed (no half-float render targets); this test models the decoded cube: {env}"
+        );
+        // Babylon's TEXTURETYPE_HALF_FLOAT (2) or FLOAT (1).
+        let half_floats = match env["textureType"].as_u64() {
+            Some(2) => true,
+            Some(1) => false,
+            t => panic!("cube texture type {t:?}"),
+        };
+        let cube = BabylonCube::read(&doc, light, half_floats);
+        // Babylon's lookup direction for a world direction.
+        let lookup = |w: DVec3| {
+            if right_handed {
+                DVec3::new(w.x, w.y, -w.z)
+            } else {
+                w
+            }
+        };
+        // Babylon's world (the light's frame) to shlight's y-up frame.
+        let shlight_dir = |c: DVec3| DVec3::new(c.z, c.y, c.x);
+        let gltf_world = |c: DVec3| DVec3::new(-c.x, c.y, c.z);
+        let (normal, position) = (pixels(&r, "normal"), pixels(&r, "position"));
+        let eye = DVec3::from_slice(&floats(&r["eye"]));
+        let covered: Vec<usize> = (0..normal.len()).filter(|&i| normal[i][3] != 0.0).collect();
+        assert!(
+            covered.len() > 1000,
+            "the sphere covers {} pixels",
+            covered.len()
+        );
+
+        // The irradiance term.
+        let diffuse = pixels(&r, "diffuse");
+        let (mut worst, mut peak) = (0.0f64, 0.0f64);
+        let (mut worst_gltf_world, mut worst_no_phase) = (0.0f64, 0.0f64);
+        for &i in &covered {
+            let n = DVec3::new(normal[i][0], normal[i][1], normal[i][2]).normalize();
+            let c = lookup(n);
+            let want = |e: &shlight_core::sh::ShCoeffs<DVec3>, c: DVec3| {
+                (e.eval(shlight_dir(c)) / std::f64::consts::PI).max(DVec3::ZERO)
+            };
+            let got = DVec3::new(diffuse[i][0], diffuse[i][1], diffuse[i][2]);
+            let w = want(&e, c);
+            worst = worst.max((got - w).abs().max_element());
+            peak = peak.max(w.max_element());
+            worst_gltf_world =
+                worst_gltf_world.max((got - want(&e, gltf_world(c))).abs().max_element());
+            worst_no_phase = worst_no_phase.max((got - want(&e_no_phase, c)).abs().max_element());
+        }
+        eprintln!(
+            "{test}: {hand}-handed: irradiance over {} pixels: worst |Babylon - max(E/pi, 0)| = {worst:.3e} ({:.2e} of the peak {peak:.4}); read in the glTF world {:.3}, without the CS phase {:.3} of the peak",
+            covered.len(),
+            worst / peak,
+            worst_gltf_world / peak,
+            worst_no_phase / peak
+        );
+        assert!(
+            worst < 1e-5 * peak,
+            "{hand}-handed: worst {worst:.3e}, peak {peak:.4}"
+        );
+        assert!(worst_gltf_world > 0.1 * peak && worst_no_phase > 0.1 * peak);
+
+        // The specular mips: the mirror (mip 0) and the rough metal.
+        let sphere = |key: &str, mip: usize, power: f64| {
+            let lit = pixels(&r, key);
+            let (mut excess, mut worst, mut peak, mut compared) = (0.0f64, 0.0f64, 0.0f64, 0);
+            let (mut worst_gltf_world, mut worst_upright) = (0.0f64, 0.0f64);
+            for &i in &covered {
+                let n = DVec3::new(normal[i][0], normal[i][1], normal[i][2]).normalize();
+                let p = DVec3::new(position[i][0], position[i][1], position[i][2]);
+                let v = (p - eye).normalize();
+                let c = lookup(v - 2.0 * v.dot(n) * n);
+                let Some((want, largest)) = cube.sample(mip, c, true) else {
+                    continue;
+                };
+                compared += 1;
+                // As loaded, Babylon shows want^2.2: compare its 2.2th root.
+                let got = DVec3::new(lit[i][0], lit[i][1], lit[i][2]).powf(1.0 / power);
+                let d = (got - want).abs();
+                worst = worst.max(d.max_element());
+                peak = peak.max(want.max_element());
+                excess = excess.max((d - largest * 2f64.powi(-10)).max_element());
+                if let Some((w, _)) = cube.sample(mip, gltf_world(c), true) {
+                    worst_gltf_world = worst_gltf_world.max((got - w).abs().max_element());
+                }
+                if let Some((w, _)) = cube.sample(mip, c, false) {
+                    worst_upright = worst_upright.max((got - w).abs().max_element());
+                }
+            }
+            eprintln!(
+                "{test}: {hand}-handed: {key} (mip {mip}) over {compared} pixels: worst |Babylon - mip| = {worst:.3e} ({:.2e} of the peak {peak:.1}); read in the glTF world {:.3}, upright {:.3} of the peak",
+                worst / peak,
+                worst_gltf_world / peak,
+                worst_upright / peak
+            );
+            assert!(compared > 500, "{key}: {compared} pixels compared");
+            assert!(
+                excess <= 2e-5 * peak,
+                "{hand}-handed {key}: beyond a half-float step by {excess:.3e} (peak {peak:.1})"
+            );
+            assert!(worst_gltf_world > 0.1 * peak && worst_upright > 0.1 * peak);
+        };
+        sphere("mirrorAsLoaded", 0, 2.2);
+        sphere("mirror", 0, 1.0);
+        sphere("rough", rough_mip, 1.0);
+    }
+}
+
+/// Babylon.js's own picture of an equirect map (an `HDRCubeTexture` of the
+/// same image: `PanoramaToCubeMapTools`, then harmonics from that cube)
+/// lights a surface as the glTF light `shlight project MAP --format gltf`
+/// writes does, in Babylon's default left-handed scene: the two
+/// `sphericalPolynomial`s Babylon evaluates agree as functions, to 2% of
+/// the peak (Babylon resamples the RGBE map into a 128-pixel cube), on a
+/// smooth map with a broad lobe off the axes; the light mirrored into the
+/// glTF world (the Sample Viewer's frame) does not agree.
+#[test]
+fn babylon_lights_with_the_gltf_light_as_with_its_own_picture_of_the_map() {
+    let test = "web::babylon_lights_with_the_gltf_light_as_with_its_own_picture_of_the_map";
+    let dir = temp_dir("web-babylon-hdr");
+    let lobe = DVec3::new(0.3, 0.5, -0.8).normalize();
+    crate::util::write_map(&dir.join("smooth.hdr"), 512, 256, |x, y| {
+        let (u, v) = ((x as f64 + 0.5) / 512.0, (y as f64 + 0.5) / 256.0);
+        let (t, p) = (
+            std::f64::consts::PI * v,
+            2.0 * std::f64::consts::PI * (u - 0.5),
+        );
+        let d = DVec3::new(t.sin() * p.cos(), t.cos(), t.sin() * p.sin());
+        let value = 0.3 + 0.2 * d.y.max(0.0) + 4.0 * d.dot(lobe).max(0.0).powi(6);
+        [value as f32, (0.8 * value) as f32, (0.6 * value) as f32]
+    });
+    shlight_ok(&[
+        "project",
+        s(&dir.join("smooth.hdr")),
+        "--format",
+        "gltf",
+        "--specular-size",
+        "16",
+        "--specular-samples",
+        "64",
+        "-q",
+        "-o",
+        s(&dir.join("light.gltf")),
+    ]);
+    let page = "/tests/web/babylon.html?gltf=/data/light.gltf&hdr=/data/smooth.hdr";
+    let Some(r) = run_babylon_page(test, &dir, page) else {
+        return;
+    };
+    assert_eq!(r["babylon"], BABYLON_VERSION);
+    let sh = |key: &str| {
+        let rows: Vec<DVec3> = r[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| DVec3::from_slice(&floats(v)))
+            .collect();
+        assert_eq!(rows.len(), 9, "{key}");
+        shlight_core::sh::ShCoeffs::from_vec(rows).unwrap()
+    };
+    // Babylon's SH3ylmBasisConstants are the real orthonormal basis with
+    // the Condon-Shortley phase, shlight's own.
+    let (gltf, own) = (sh("gltf"), sh("own"));
+    let (mut worst, mut worst_mirrored, mut peak) = (0.0f64, 0.0f64, 0.0f64);
+    let count = 2000;
+    for i in 0..count {
+        // A Fibonacci sphere.
+        let z = 1.0 - (2.0 * i as f64 + 1.0) / count as f64;
+        let phi = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let n = DVec3::new(
+            (1.0 - z * z).sqrt() * phi.cos(),
+            (1.0 - z * z).sqrt() * phi.sin(),
+            z,
+        );
+        let want = own.eval(n);
+        peak = peak.max(want.max_element());
+        worst = worst.max((gltf.eval(n) - want).abs().max_element());
+        let mirrored = DVec3::new(-n.x, n.y, n.z);
+        worst_mirrored = worst_mirrored.max((gltf.eval(mirrored) - want).abs().max_element());
+    }
+    eprintln!(
+        "{test}: Babylon's harmonics of the glTF light against those of its own HDRCubeTexture of the map: worst {:.2e} of the peak {peak:.4}; the light in the glTF world: {:.2e}",
+        worst / peak,
+        worst_mirrored / peak
+    );
+    assert!(worst < 0.02 * peak, "worst {worst:.3e}, peak {peak:.4}");
+    assert!(worst_mirrored > 0.2 * peak, "{worst_mirrored:.3e}");
 }
 
 /// The Cornell box's volume, baked small, and its three.js grid documents

@@ -1,28 +1,9 @@
-// What every browser test page shares: reporting to the test's server,
-// and rendering into a float render target read back as numbers.
+// What every three.js test page shares: reporting to the test's server
+// (report.js), and rendering into a float render target read back as numbers.
 
 import * as THREE from 'three';
 
-/** Sends `result` (JSON) to the test, once. */
-let reported = false;
-export async function report( result ) {
-
-	if ( reported ) return;
-	reported = true;
-	await fetch( '/result', { method: 'POST', body: JSON.stringify( result ) } );
-
-}
-
-// Anything thrown and not caught fails the test with its message.
-window.addEventListener( 'error', ( e ) => report( { error: `uncaught: ${e.message}` } ) );
-window.addEventListener( 'unhandledrejection', ( e ) => report( { error: `unhandled rejection: ${e.reason?.message ?? e.reason}` } ) );
-
-/** The page's query parameter `name` (a URL of a file the test wrote). */
-export function param( name ) {
-
-	return new URLSearchParams( location.search ).get( name );
-
-}
+export { report, param } from '/tests/web/report.js';
 
 /** A WebGL 2 renderer on an off-screen canvas. */
 export function makeRenderer() {

@@ -144,8 +144,9 @@ pub const GLTF_SPECULAR_SIZE: usize = 128;
 /// `orientation`, turned by `rotation` (the coefficient file's `--rotate`:
 /// a light from `a` comes from `R a`), prefiltered for Babylon.js (its
 /// roughness per mip, the full chain from `size` down to 1 pixel,
-/// `samples` per texel, faces in the glTF world), each face RGBD-encoded
-/// (Babylon's `toRGBD`) as an 8-bit RGBA PNG. `progress(rows)` as
+/// `samples` per texel, faces in the light's frame, Babylon's world), each
+/// face RGBD-encoded (Babylon's `toRGBD`) as an 8-bit RGBA PNG, its rows
+/// bottom first. `progress(rows)` as
 /// [`prefilter_map`]'s.
 ///
 /// # Errors
@@ -171,7 +172,7 @@ pub fn gltf_specular_images(
         .map_err(|e| PipelineError::new(format!("{name}: specular images: {e}")))?;
     let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
     let map = loaded.map(orientation, &name)?;
-    // Cube direction c (glTF world) -> shlight's y-up -> the file's frame
+    // Cube direction c (the light's frame) -> shlight's y-up -> the file's frame
     // -> back through the rotation: where the map is read.
     let to_file = Frame::YUp.rotation_to(orientation.frame);
     let undo = rotation.map_or(glam::DMat3::IDENTITY, |r| r.transpose());
@@ -185,11 +186,15 @@ pub fn gltf_specular_images(
     let mut mips = Vec::new();
     for (k, level) in cube.levels.iter().enumerate() {
         let size = level.cube.size();
+        // Rows bottom first: Babylon's loader puts a PNG's first row at the
+        // bottom of the face (t = 1 of the OpenGL cube-map convention), the
+        // flip the extension's text asks for (measured in tests/web.rs).
         let face = |f: CubeFace| -> Result<Vec<u8>> {
-            let rgba: Vec<u8> = level
-                .cube
-                .face(f)
-                .iter()
+            let texels = level.cube.face(f);
+            let rgba: Vec<u8> = texels
+                .chunks_exact(size)
+                .rev()
+                .flatten()
                 .flat_map(|p| rgbd_encode(*p))
                 .collect();
             let label = format!(

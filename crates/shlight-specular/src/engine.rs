@@ -102,8 +102,9 @@ impl Engine {
     ///   `equirectangularToCubemap` and default `mirrorCubemap`), the frame
     ///   of shlight's Filament export: the world direction `d` is at
     ///   `c = (-d.z, d.y, d.x)`.
-    /// - Babylon: the glTF frame of shlight's `--format gltf` light, the
-    ///   same turn as Filament's.
+    /// - Babylon: the frame of shlight's `--format gltf` light, Babylon's
+    ///   left-handed world as its glTF loader and shaders look the cube up:
+    ///   `c = (d.z, d.y, d.x)`, a mirror (docs/exporters.md).
     /// - Bevy: shlight's world as Bevy's world, seen through Bevy's lookup
     ///   `textureSampleLevel(specular, R * (1, 1, -1))`: `c = (d.x, d.y, -d.z)`.
     /// - Unreal: shlight's own y-up frame, unchanged.
@@ -111,9 +112,9 @@ impl Engine {
     pub fn world_from_cube(self) -> DMat3 {
         match self {
             // c = (-z, y, x)  =>  d = (c.z, c.y, -c.x)
-            Engine::Filament | Engine::Babylon => {
-                DMat3::from_cols(DVec3::NEG_Z, DVec3::Y, DVec3::X)
-            }
+            Engine::Filament => DMat3::from_cols(DVec3::NEG_Z, DVec3::Y, DVec3::X),
+            // c = (z, y, x)  =>  d = (c.z, c.y, c.x)
+            Engine::Babylon => DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::X),
             Engine::Bevy => DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0)),
             Engine::Unreal => DMat3::IDENTITY,
         }
@@ -209,7 +210,7 @@ mod tests {
     }
 
     #[test]
-    fn the_cube_frames_are_rotations_or_the_bevy_mirror() {
+    fn the_cube_frames_are_rotations_or_mirrors() {
         for e in Engine::ALL {
             let m = e.world_from_cube();
             assert!(
@@ -223,5 +224,11 @@ mod tests {
         // Filament: the world's +X is at the cube's +Z.
         let d = Engine::Filament.world_from_cube() * DVec3::Z;
         assert!((d - DVec3::X).length() < 1e-12);
+        // Babylon: the same, and the world's -Z at the cube's +X (a mirror
+        // of Filament's +Z there).
+        let m = Engine::Babylon.world_from_cube();
+        assert!((m * DVec3::Z - DVec3::X).length() < 1e-12);
+        assert!((m * DVec3::X - DVec3::Z).length() < 1e-12);
+        assert!((m.determinant() + 1.0).abs() < 1e-12);
     }
 }

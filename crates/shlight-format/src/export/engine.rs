@@ -18,10 +18,10 @@ use crate::{Quantity, Result};
 /// |---|---|---|
 /// | `threejs` | three.js `equirectUv` (backgrounds, PMREM, `LightProbeGenerator`) | `(x, y, z)` |
 /// | `filament` | Filament `cmgen` (`equirectangularToCubemap`, then its default `mirrorCubemap`) | `(-z, y, x)`: a quarter turn, `yaw:-90` |
-/// | `gltf` | Khronos glTF Sample Viewer (`panorama_to_cubemap`, default `environmentRotation` 90) | `(-z, y, x)` |
+/// | `gltf` | Babylon.js, the extension's reference loader, in its default left-handed scene: its own panorama mapping (`PanoramaToCubeMapTools`), and the Khronos glTF Sample Viewer's picture (`panorama_to_cubemap`, `environmentRotation` 90) carried through the loader's root node | `(z, y, x)`: a mirror |
 /// | `unity` | Unity `Skybox/Panoramic` (`ToRadialCoords`), left-handed world | `(x, y, -z)`: a mirror |
 ///
-/// Exporting rotates (or, for Unity, mirrors) the coefficients by `M`, so
+/// Exporting rotates (or, for Unity and glTF, mirrors) the coefficients by `M`, so
 /// the light lines up with the engine's own skybox of the same map; reading
 /// a file back applies `M^T`. Sources and measurements: docs/exporters.md.
 #[must_use]
@@ -29,9 +29,10 @@ pub fn engine_frame(format: ExportFormat) -> Option<DMat3> {
     match format {
         ExportFormat::Threejs => Some(DMat3::IDENTITY),
         // (x, y, z) -> (-z, y, x): +X (the image centre) to +Z.
-        ExportFormat::Filament | ExportFormat::Gltf => {
-            Some(DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::NEG_X))
-        }
+        ExportFormat::Filament => Some(DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::NEG_X)),
+        // (x, y, z) -> (z, y, x): the image centre to +Z of Babylon's
+        // left-handed world, which is the glTF world with x mirrored.
+        ExportFormat::Gltf => Some(DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::X)),
         ExportFormat::Unity => Some(DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0))),
         _ => None,
     }

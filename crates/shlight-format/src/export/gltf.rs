@@ -33,12 +33,18 @@
 //!   them as irradiance `E_lm` in the phase-carrying basis, which is what
 //!   this writes; Babylon's own `CubeMapToSphericalPolynomialTools`
 //!   computes its harmonics the same way (`convertIncidentRadianceToIrradiance`).
-//! - **Frame**: glTF's world, right-handed, +Y up (glTF 2.0 spec, "Coordinate
-//!   System and Units"), with the map where the Khronos glTF Sample Viewer
-//!   shows it (default `environmentRotation` 90: the image centre at +Z):
-//!   shlight's y-up `(x, y, z)` is glTF `(-z, y, x)`
-//!   ([`super::engine_frame`]). A z-up file is turned to y-up first.
-//!   `rotation` is the identity, `intensity` 1.
+//! - **Frame**: the world Babylon.js looks the light up in. Babylon's
+//!   loader puts the asset into its left-handed world through a root node
+//!   that mirrors glTF's x, but evaluates `irradianceCoefficients` and
+//!   looks `specularImages` up at its own world directions, undoing no
+//!   mirror (tests/web.rs renders it). So shlight writes the light in
+//!   Babylon's world: shlight's y-up `(x, y, z)` is `(z, y, x)`
+//!   ([`super::engine_frame`]), where Babylon's own panorama mapping puts
+//!   the map, and where the Khronos glTF Sample Viewer's picture of it
+//!   (glTF `(-z, y, x)`) lands once the root node has mirrored it: the
+//!   light sits around the asset as the Sample Viewer would show the map.
+//!   A z-up file is turned to y-up first. `rotation` is the identity,
+//!   `intensity` 1.
 //! - **lmax 2** exactly.
 //!
 //! # The specular images
@@ -51,8 +57,10 @@
 //! roughness per mip, each face RGBD-encoded, Babylon's `toRGBD`, as an
 //! 8-bit RGBA PNG) as `images` with `data:image/png;base64,` URIs:
 //! `specularImageSize` is the face size of mip 0 and the mips run down to
-//! one pixel (`size >> k`). Faces are in glTF's world (the frame of the
-//! coefficients), in the OpenGL cube-map convention, row 0 at the top.
+//! one pixel (`size >> k`). Faces are in the frame of the coefficients,
+//! in the OpenGL cube-map convention, each PNG's rows bottom first
+//! (Babylon puts a PNG's first row at the bottom of the face; the
+//! extension's text asks for the images flipped).
 //! Without them ([`render`] with `None`, `shlight convert
 //! --irradiance-only`) the light lacks what the extension requires and a
 //! note says so; [`super::export`] refuses to write such a light.
@@ -111,7 +119,7 @@ fn light(input: &ExportInput<'_>) -> Result<(Value, Vec<String>)> {
             "shlight": {
                 "irradianceCoefficients": "irradiance E_lm = A_l L_lm (A = pi, 2pi/3, pi/4), order L00 L1-1 L10 L11 L2-2 L2-1 L20 L21 L22, [r, g, b] linear Rec.709",
                 "basis": "real orthonormal SH with the Condon-Shortley phase (as Babylon.js's SH3ylmBasisConstants)",
-                "frame": "glTF world: right-handed, +Y up",
+                "frame": "Babylon.js's world, as its glTF loader reads the light (left-handed, +Y up: the glTF world with x mirrored); the map's centre at +Z",
                 "missing": "specularImages and specularImageSize (required by the extension) are not written",
             }
         },
@@ -135,7 +143,7 @@ pub fn render(input: &ExportInput<'_>, specular: Option<&SpecularImages>) -> Res
             o.insert(
                 "specularImages".into(),
                 json!(format!(
-                    "the environment GGX-prefiltered for Babylon.js (mip k at alphaG = {}^(k/{} - 1), mip 0 a mirror), {} mips of {}x{} down to 1x1, faces +X -X +Y -Y +Z -Z in the glTF world (OpenGL cube-map convention, row 0 at the top), RGBD as Babylon's toRGBD (rgb = (c D)^(1/2.2), alpha = D), 8-bit RGBA PNG",
+                    "the environment GGX-prefiltered for Babylon.js (mip k at alphaG = {}^(k/{} - 1), mip 0 a mirror), {} mips of {}x{} down to 1x1, faces +X -X +Y -Y +Z -Z in the frame of the coefficients (OpenGL cube-map convention, each PNG's rows bottom first, as Babylon's loader reads them), RGBD as Babylon's toRGBD (rgb = (c D)^(1/2.2), alpha = D), 8-bit RGBA PNG",
                     spec.size,
                     spec.mips.len().saturating_sub(1).max(1),
                     spec.mips.len(),
@@ -517,7 +525,7 @@ pub fn read(v: &Value, name: &str) -> Result<Imported> {
             }
         }
     }
-    // Back from the glTF world of the Sample Viewer's picture of the map.
+    // Back from Babylon's world, the light's frame.
     let m = engine_frame(ExportFormat::Gltf).expect("an engine");
     let coeffs = ShCoeffs::from_vec(coeffs).expect("9 coefficients");
     Ok(Imported {
@@ -588,10 +596,10 @@ mod tests {
         let v: Value = serde_json::from_str(&out.text).unwrap();
         let e = shlight_core::sh::irradiance(&radiance);
         for n in [[0.0, 0.6, 0.8], [1.0, 0.0, 0.0], [0.0, -0.8, 0.6]] {
-            // The Sample Viewer shows the texel shlight reads at (x, y, z)
-            // at (-z, y, x) of the glTF world.
+            // Babylon looks the texel shlight reads at (x, y, z) up at
+            // (z, y, x) of its world.
             let [x, y, z] = n;
-            let got = babylon_lambertian_radiance(&v, [-z, y, x]);
+            let got = babylon_lambertian_radiance(&v, [z, y, x]);
             let want = e.eval(DVec3::from(n)).x / std::f64::consts::PI;
             assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         }
