@@ -3,10 +3,52 @@
 //! of one face with no case at the edges (Filament's
 //! `Cubemap::makeSeamless` does the same): the prefilter's inner loop.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec3A};
 use shlight_core::map::CubeFace;
 
 use crate::cube_image::CubeImage;
+
+/// A direction placed on a cube face: the face's index
+/// ([`CubeFace::index`]) and its coordinates `s, t` in `[-1, 1]`, as
+/// [`CubeFace::from_direction`] gives them, in `f32`.
+#[derive(Clone, Copy, Debug)]
+pub struct FacePoint {
+    face: usize,
+    s: f32,
+    t: f32,
+}
+
+impl FacePoint {
+    /// Where `c` (any length but zero) meets the cube.
+    #[inline(always)]
+    #[must_use]
+    pub fn of(c: Vec3) -> Self {
+        let a = c.abs();
+        let (face, s, t, major) = if a.x >= a.y && a.x >= a.z {
+            if c.x >= 0.0 {
+                (0, -c.z, -c.y, a.x)
+            } else {
+                (1, c.z, -c.y, a.x)
+            }
+        } else if a.y >= a.z {
+            if c.y >= 0.0 {
+                (2, c.x, c.z, a.y)
+            } else {
+                (3, c.x, -c.z, a.y)
+            }
+        } else if c.z >= 0.0 {
+            (4, c.x, -c.y, a.z)
+        } else {
+            (5, -c.x, -c.y, a.z)
+        };
+        let inv = 1.0 / major;
+        Self {
+            face,
+            s: s * inv,
+            t: t * inv,
+        }
+    }
+}
 
 /// A cube whose faces are `(n + 2) x (n + 2)`: texel `(i, j)` of a face at
 /// `(i + 1, j + 1)`, the border holding the nearest texel of the
@@ -15,7 +57,7 @@ use crate::cube_image::CubeImage;
 pub struct BorderedCube {
     size: usize,
     /// Six faces of `(size + 2)^2` texels, `+X -X +Y -Y +Z -Z`.
-    texels: Vec<Vec3>,
+    texels: Vec<Vec3A>,
 }
 
 impl BorderedCube {
@@ -42,7 +84,7 @@ impl BorderedCube {
                         let idx = |v: f64| (((v + 1.0) * 0.5 * f) as usize).min(n - 1);
                         cube.get(other, idx(s), idx(t))
                     };
-                    texels.push(Vec3::from(p));
+                    texels.push(Vec3A::from(p));
                 }
             }
         }
@@ -61,36 +103,32 @@ impl BorderedCube {
     #[inline]
     #[must_use]
     pub fn bilinear_f32(&self, c: Vec3) -> Vec3 {
-        let a = c.abs();
-        let (face, s, t) = if a.x >= a.y && a.x >= a.z {
-            if c.x >= 0.0 {
-                (0, -c.z / a.x, -c.y / a.x)
-            } else {
-                (1, c.z / a.x, -c.y / a.x)
-            }
-        } else if a.y >= a.z {
-            if c.y >= 0.0 {
-                (2, c.x / a.y, c.z / a.y)
-            } else {
-                (3, c.x / a.y, -c.z / a.y)
-            }
-        } else if c.z >= 0.0 {
-            (4, c.x / a.z, -c.y / a.z)
-        } else {
-            (5, -c.x / a.z, -c.y / a.z)
-        };
+        self.bilinear_at(FacePoint::of(c)).into()
+    }
+
+    /// The bilinear lookup at a point already placed on its face
+    /// ([`FacePoint::of`]), so that the mips of one cube share the work.
+    #[inline(always)]
+    #[must_use]
+    pub fn bilinear_at(&self, p: FacePoint) -> Vec3A {
         let n = self.size;
         let w = n + 2;
-        let f = n as f32;
-        let x = ((s + 1.0) * 0.5 * f + 1.0).clamp(0.5, f + 1.5) - 0.5;
-        let y = ((t + 1.0) * 0.5 * f + 1.0).clamp(0.5, f + 1.5) - 0.5;
-        let (x0, y0) = ((x as usize).min(n), (y as usize).min(n));
+        let half = 0.5 * n as f32;
+        // Texel coordinates with the border: (s + 1) / 2 n + 1, less the
+        // half texel to the centres, kept within the border.
+        // (`max`, `min` rather than `clamp`, and through `i32`: the
+        // conversions to `usize` cost more than the lookup's arithmetic.)
+        let far = n as f32 + 1.0;
+        let x = (p.s * half + half + 0.5).max(0.0).min(far);
+        let y = (p.t * half + half + 0.5).max(0.0).min(far);
+        let (x0, y0) = ((x as i32).min(n as i32), (y as i32).min(n as i32));
         let (tx, ty) = (x - x0 as f32, y - y0 as f32);
-        let base = face * w * w + y0 * w + x0;
-        let p = &self.texels;
-        let top = p[base] * (1.0 - tx) + p[base + 1] * tx;
-        let bottom = p[base + w] * (1.0 - tx) + p[base + w + 1] * tx;
-        top * (1.0 - ty) + bottom * ty
+        let (x0, y0) = (x0 as usize, y0 as usize);
+        let base = p.face * w * w + y0 * w + x0;
+        let t = &self.texels[base..base + w + 2];
+        let top = t[0] + (t[1] - t[0]) * tx;
+        let bottom = t[w] + (t[w + 1] - t[w]) * tx;
+        top + (bottom - top) * ty
     }
 
     /// Bilinear radiance in direction `c` (finite, non-zero).

@@ -49,7 +49,7 @@ mod prefilter;
 mod rgbd;
 mod source_mips;
 
-pub use bordered_cube::BorderedCube;
+pub use bordered_cube::{BorderedCube, FacePoint};
 pub use cube_image::CubeImage;
 pub use dfg::{DfgForm, DfgTable, dfg, dfg_karis_approx};
 pub use engine::{Engine, ParseEngineError};

@@ -3,10 +3,10 @@
 //! prefilter's samples read, each at the mip whose texels match its share
 //! of the sphere (Colbert & Krivanek 2007).
 
-use glam::{DMat3, DVec3, Vec3};
+use glam::{DMat3, DVec3, Vec3, Vec3A};
 use shlight_core::map::{CubeFace, EnvMap};
 
-use crate::bordered_cube::BorderedCube;
+use crate::bordered_cube::{BorderedCube, FacePoint};
 use crate::cube_image::CubeImage;
 
 /// The largest face the source cube is resampled to.
@@ -81,12 +81,13 @@ impl SourceMips {
     /// mip `l0` blended with `l0 + 1` by `t`.
     #[inline]
     #[must_use]
-    pub fn trilinear_f32(&self, c: Vec3, l0: usize, t: f32) -> Vec3 {
-        let a = self.levels[l0].bilinear_f32(c);
+    pub fn trilinear_f32(&self, c: Vec3, l0: usize, t: f32) -> Vec3A {
+        let p = FacePoint::of(c);
+        let a = self.levels[l0].bilinear_at(p);
         if t <= 0.0 || l0 >= self.max_level() {
             return a;
         }
-        let b = self.levels[l0 + 1].bilinear_f32(c);
+        let b = self.levels[l0 + 1].bilinear_at(p);
         a + (b - a) * t
     }
 
