@@ -81,14 +81,59 @@ pub fn quantity() -> impl TypedValueParser<Value = Quantity> {
 /// `--layout NAME` of the maps shlight writes (docs/conventions.md,
 /// "Layouts").
 pub fn layout() -> impl TypedValueParser<Value = Layout> {
-    one_of(&Layout::ALL, Layout::name, |l| match l {
+    one_of(&Layout::ALL, Layout::name, layout_help)
+}
+
+/// The help line of each map layout.
+fn layout_help(l: Layout) -> &'static str {
+    match l {
         Layout::Equirect => "Equirectangular (latitude-longitude), 2:1",
         Layout::CrossHorizontal => "Horizontal cube cross, 4f x 3f",
         Layout::CrossVertical => "Vertical cube cross, 3f x 4f",
         Layout::Strip => "Six cube faces in a row, +X -X +Y -Y +Z -Z, 6f x f",
         Layout::Angular => "Angular map (Debevec light probe), N x N",
         Layout::MirrorBall => "Mirror ball, N x N",
-    })
+    }
+}
+
+/// What `shlight render --layout` draws: a map in one of the layouts of
+/// the maps shlight writes, or the function's lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderLayout {
+    /// The function on a map of this layout.
+    Map(Layout),
+    /// The luminance's lobe, the surface `r(w) = |f(w)|`
+    /// (shlight-pipeline's `render_lobe`).
+    Lobe,
+}
+
+/// Every [`RenderLayout`]: the map layouts in [`Layout::ALL`]'s order,
+/// then the lobe.
+static RENDER_LAYOUTS: [RenderLayout; Layout::ALL.len() + 1] = {
+    let mut all = [RenderLayout::Lobe; Layout::ALL.len() + 1];
+    let mut i = 0;
+    while i < Layout::ALL.len() {
+        all[i] = RenderLayout::Map(Layout::ALL[i]);
+        i += 1;
+    }
+    all
+};
+
+/// `shlight render --layout NAME`: [`layout`]'s names and `lobe`.
+pub fn render_layout() -> impl TypedValueParser<Value = RenderLayout> {
+    one_of(
+        &RENDER_LAYOUTS,
+        |r| match r {
+            RenderLayout::Map(l) => l.name(),
+            RenderLayout::Lobe => "lobe",
+        },
+        |r| match r {
+            RenderLayout::Map(l) => layout_help(l),
+            RenderLayout::Lobe => {
+                "The luminance as a 3D lobe |f(w)|, red positive, blue negative, seen from --view"
+            }
+        },
+    )
 }
 
 /// `--size WxH`, e.g. `1024x512`: two positive whole numbers, at most

@@ -167,3 +167,163 @@ fn png_output_is_exposed_and_tone_mapped_and_bad_input_is_refused() {
     );
     assert!(!dir.join("new.exr").exists());
 }
+
+/// `sqrt(3 / (4 pi))`: `Y_1^0 = C z`, `Y_1^-1 = -C y`, `Y_1^1 = -C x`
+/// with the Condon-Shortley phase.
+const C1: f64 = 0.488_602_511_902_919_9;
+
+/// Rows of a file holding `c` (grey) on coefficient `index` of lmax 1.
+fn one_coefficient(index: usize, c: f64) -> Vec<[f64; 3]> {
+    (0..4)
+        .map(|i| if i == index { [c; 3] } else { [0.0; 3] })
+        .collect()
+}
+
+/// What a pixel of a lobe picture shows: red, blue or the white background.
+fn colour_of(p: [f32; 3]) -> char {
+    match p {
+        [r, g, b] if r > 2.0 * b && r > g => 'r',
+        [r, g, b] if b > 2.0 * r && b > g => 'b',
+        [1.0, 1.0, 1.0] => 'w',
+        other => panic!("neither red, blue nor white: {other:?}"),
+    }
+}
+
+/// `--layout lobe` of `Y_1^0 = C z` seen from `+X` is two spheres of
+/// radius `C/2` at `+-C/2 z` seen side on: discs of radius `C/2` above
+/// and below the image's centre, the image's half-size `1.05 C`. Every
+/// pixel of the PNG is red inside the upper disc, blue inside the lower
+/// and white outside (centres within 0.02 pixel of a rim skipped): the
+/// silhouette's extent and the colours are the closed form's. Seen from
+/// `+X`, `Y_1^1 = -C x` shows its negative lobe (blue), from `-X` its
+/// positive one; a y-up file is drawn with `+Y` up (the default view).
+#[test]
+fn lobes_have_the_closed_forms_silhouette_and_sign() {
+    let dir = temp_dir("render_lobe");
+    let n = 64usize;
+    let file = dir.join("y10.json");
+    write_file(&file, &one_coefficient(2, 1.0), "z-up", false, "radiance");
+    let png = dir.join("y10.png");
+    let size = format!("{n}x{n}");
+    shlight_ok(&[
+        "render",
+        s(&file),
+        "-o",
+        s(&png),
+        "--layout",
+        "lobe",
+        "--view",
+        "1,0,0",
+        "--size",
+        &size,
+    ]);
+    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    assert_eq!((img.width(), img.height()), (n, n));
+    // Pixels per unit: the half-size n/2 spans 1.05 C.
+    let scale = 0.5 * n as f64 / (1.05 * C1);
+    let r = 0.5 * C1 * scale;
+    let (mut counts, mut skipped) = ([0usize; 3], 0);
+    for y in 0..n {
+        for x in 0..n {
+            // From +X with +Z up the image's right is +Y.
+            let (u, v) = (
+                x as f64 + 0.5 - 0.5 * n as f64,
+                0.5 * n as f64 - y as f64 - 0.5,
+            );
+            let rim = |cv: f64| u.hypot(v - cv) - r;
+            let (up, down) = (rim(r), rim(-r));
+            if up.abs() < 0.02 || down.abs() < 0.02 {
+                skipped += 1;
+                continue;
+            }
+            let want = if up < 0.0 {
+                'r'
+            } else if down < 0.0 {
+                'b'
+            } else {
+                'w'
+            };
+            assert_eq!(colour_of(img.get(x, y)), want, "pixel ({x}, {y})");
+            counts["rbw".find(want).unwrap()] += 1;
+        }
+    }
+    // About 190 pixels along the rims, 4% of them within the band.
+    assert!(skipped < 30, "{skipped}");
+    // Each disc covers about pi r^2 = 583 pixels.
+    assert!(counts[0] > 550 && counts[1] > 550, "{counts:?}");
+
+    let file = dir.join("y11.json");
+    write_file(&file, &one_coefficient(3, 1.0), "z-up", false, "radiance");
+    for (view, want) in [("1,0,0", 'b'), ("-1,0,0", 'r')] {
+        shlight_ok(&[
+            "render",
+            s(&file),
+            "-o",
+            s(&png),
+            "--layout",
+            "lobe",
+            "--view",
+            view,
+            "--size",
+            "32x32",
+        ]);
+        let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+        assert_eq!(colour_of(img.get(16, 16)), want, "--view {view}");
+    }
+
+    // C y in a y-up file: +Y is the frame's up, red on top, blue below.
+    let file = dir.join("yup.json");
+    write_file(&file, &one_coefficient(1, -1.0), "y-up", false, "radiance");
+    shlight_ok(&[
+        "render",
+        s(&file),
+        "-o",
+        s(&png),
+        "--layout",
+        "lobe",
+        "--size",
+        "32x32",
+    ]);
+    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    let column: String = (0..32).map(|y| colour_of(img.get(16, y))).collect();
+    let trimmed = column.trim_matches('w');
+    assert!(
+        trimmed.starts_with('r') && trimmed.ends_with('b'),
+        "{column}"
+    );
+}
+
+#[test]
+fn lobe_options_are_checked() {
+    let dir = temp_dir("render_lobe_errors");
+    let file = dir.join("y10.json");
+    write_file(&file, &one_coefficient(2, 1.0), "z-up", false, "radiance");
+    let png = dir.join("out.png");
+    let lobe = |extra: &[&str]| {
+        let mut args = vec!["render", s(&file), "-o", s(&png), "--layout", "lobe"];
+        args.extend_from_slice(extra);
+        shlight_err(&args)
+    };
+    let err = lobe(&["--view", "0,0,0"]);
+    assert!(err.contains("--view 0,0,0 has no direction"), "{err}");
+    let err = lobe(&["--view", "1,2"]);
+    assert!(
+        err.contains("--view") && err.contains("three finite numbers"),
+        "{err}"
+    );
+    let err = shlight_err(&["render", s(&file), "-o", s(&png), "--view", "1,0,0"]);
+    assert!(
+        err.contains("--view is where --layout lobe is seen from"),
+        "{err}"
+    );
+    let err = shlight_err(&["render", s(&file), "-o", s(&png), "--layout", "lobes"]);
+    assert!(err.contains("lobe"), "{err}");
+    let zero = dir.join("zero.json");
+    write_file(&zero, &one_coefficient(0, 0.0), "z-up", false, "radiance");
+    let err = shlight_err(&["render", s(&zero), "-o", s(&png), "--layout", "lobe"]);
+    assert!(
+        err.contains("zero.json") && err.contains("zero everywhere"),
+        "{err}"
+    );
+    assert!(!png.exists(), "an image was written on error");
+}

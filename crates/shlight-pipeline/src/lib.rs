@@ -37,6 +37,8 @@
 //! back. [`layout_for_size`] settles the layout of texels in memory.
 //! [`render_map`] evaluates coefficients at every texel centre of a map in
 //! any layout, on the [`output_grid`] of a map shlight writes;
+//! [`render_lobe`] draws a function as its lobe, the surface
+//! `r(w) = |f(w)|` coloured by sign ([`Lobe`], [`LobeCamera`]);
 //! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
 //! distant light of the commands that shade a scene (a map projected, or a
 //! coefficient file), with its encodings and their WGSL snippets.
@@ -79,6 +81,7 @@ mod environment;
 mod error;
 mod input_layout;
 mod load;
+mod lobe;
 mod map_info;
 mod output_grid;
 mod preview;
@@ -104,6 +107,7 @@ pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
+pub use lobe::{LOBE_MARGIN, Lobe, LobeCamera, default_lobe_view, render_lobe};
 pub use map_info::MapInfo;
 pub use output_grid::{default_output_size, output_grid};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
