@@ -1,6 +1,8 @@
 //! `shlight render`: rendering a coefficient file and projecting the image
 //! gives the file's coefficients back.
 
+use std::path::Path;
+
 use serde_json::json;
 use shlight_core::sh::{ShCoeffs, irradiance};
 
@@ -197,6 +199,26 @@ fn colour_of(p: [f32; 3]) -> char {
 /// silhouette's extent and the colours are the closed form's. Seen from
 /// `+X`, `Y_1^1 = -C x` shows its negative lobe (blue), from `-X` its
 /// positive one; a y-up file is drawn with `+Y` up (the default view).
+/// `shlight render FILE -o PNG --layout lobe [--view VIEW] --size SIZE`,
+/// the picture read back.
+fn render_lobe(file: &Path, png: &Path, view: Option<&str>, size: &str) -> shlight_io::Image {
+    let mut args = vec![
+        "render",
+        s(file),
+        "-o",
+        s(png),
+        "--layout",
+        "lobe",
+        "--size",
+        size,
+    ];
+    if let Some(view) = view {
+        args.extend(["--view", view]);
+    }
+    shlight_ok(&args);
+    shlight_io::read_image(png, &Default::default()).unwrap()
+}
+
 #[test]
 fn lobes_have_the_closed_forms_silhouette_and_sign() {
     let dir = temp_dir("render_lobe");
@@ -205,19 +227,7 @@ fn lobes_have_the_closed_forms_silhouette_and_sign() {
     write_file(&file, &one_coefficient(2, 1.0), "z-up", false, "radiance");
     let png = dir.join("y10.png");
     let size = format!("{n}x{n}");
-    shlight_ok(&[
-        "render",
-        s(&file),
-        "-o",
-        s(&png),
-        "--layout",
-        "lobe",
-        "--view",
-        "1,0,0",
-        "--size",
-        &size,
-    ]);
-    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    let img = render_lobe(&file, &png, Some("1,0,0"), &size);
     assert_eq!((img.width(), img.height()), (n, n));
     // Pixels per unit: the half-size n/2 spans 1.05 C.
     let scale = 0.5 * n as f64 / (1.05 * C1);
@@ -255,36 +265,14 @@ fn lobes_have_the_closed_forms_silhouette_and_sign() {
     let file = dir.join("y11.json");
     write_file(&file, &one_coefficient(3, 1.0), "z-up", false, "radiance");
     for (view, want) in [("1,0,0", 'b'), ("-1,0,0", 'r')] {
-        shlight_ok(&[
-            "render",
-            s(&file),
-            "-o",
-            s(&png),
-            "--layout",
-            "lobe",
-            "--view",
-            view,
-            "--size",
-            "32x32",
-        ]);
-        let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+        let img = render_lobe(&file, &png, Some(view), "32x32");
         assert_eq!(colour_of(img.get(16, 16)), want, "--view {view}");
     }
 
     // C y in a y-up file: +Y is the frame's up, red on top, blue below.
     let file = dir.join("yup.json");
     write_file(&file, &one_coefficient(1, -1.0), "y-up", false, "radiance");
-    shlight_ok(&[
-        "render",
-        s(&file),
-        "-o",
-        s(&png),
-        "--layout",
-        "lobe",
-        "--size",
-        "32x32",
-    ]);
-    let img = shlight_io::read_image(&png, &Default::default()).unwrap();
+    let img = render_lobe(&file, &png, None, "32x32");
     let column: String = (0..32).map(|y| colour_of(img.get(16, y))).collect();
     let trimmed = column.trim_matches('w');
     assert!(
