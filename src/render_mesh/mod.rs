@@ -65,9 +65,11 @@ pub struct RenderMeshArgs {
     /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
     #[arg(long, default_value = "none")]
     pub window: Window,
-    /// Lambertian albedo, R,G,B (linear).
-    #[arg(long, default_value = "0.8,0.8,0.8", value_parser = parse_vec3)]
-    pub albedo: Vec3,
+    /// Lambertian albedo, R,G,B (linear) [default: 0.8,0.8,0.8]; with a
+    /// glossy --prt file, the diffuse base under its glossy layer
+    /// [default: none, the glossy layer alone].
+    #[arg(long, value_parser = parse_vec3)]
+    pub albedo: Option<Vec3>,
     /// Behind the mesh: none (0), map (the --env map) or sh (its SH reconstruction).
     #[arg(long, value_enum, default_value_t = BackgroundArg::None)]
     pub background: BackgroundArg,
