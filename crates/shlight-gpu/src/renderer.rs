@@ -452,7 +452,10 @@ impl Renderer {
         let parts = records.len();
         let floats = parts as u64 + (groups * (vectors + 1) * nc * 3) as u64;
         let bytes = 4 * floats;
-        let limit = u64::from(ctx.device.limits().max_storage_buffer_binding_size)
+        let limit = ctx
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
             .min(ctx.device.limits().max_buffer_size);
         if bytes > limit || u32::try_from(floats).is_err() {
             return Err(GpuError::Invalid(format!(
