@@ -49,7 +49,9 @@ pub struct RenderMeshArgs {
     #[arg(long, value_enum)]
     pub mode: Option<RenderMode>,
     /// PRT transfer baked for this mesh by `shlight prt` (.shprt): each
-    /// vertex shows transfer · light (albedo is in the transfer).
+    /// vertex shows transfer · light (albedo is in the transfer); a glossy
+    /// file's vertices their exit radiance toward the camera (--albedo: a
+    /// diffuse base under the glossy layer).
     #[arg(long, value_name = "FILE.shprt")]
     pub prt: Option<PathBuf>,
     /// Highest SH degree of the light used (0..=8) [default: 2; with --prt,
@@ -108,7 +110,8 @@ pub struct RenderMeshArgs {
 pub enum RenderMode {
     /// Per-fragment SH irradiance, times albedo / π.
     Sh,
-    /// Per-vertex PRT transfer · light (`--prt`), interpolated.
+    /// Per-vertex PRT transfer · light (`--prt`; glossy files toward the
+    /// camera), interpolated.
     Prt,
     /// World-space unit normals (background 0).
     Normals,
