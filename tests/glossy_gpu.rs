@@ -7,8 +7,8 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::{DVec3, Vec3, Vec4};
-use shlight_core::sh::{Frame as Up, ShCoeffs, closed_form};
+use glam::{DMat3, DVec3, Vec3, Vec4};
+use shlight_core::sh::{Frame as Up, ShCoeffs, ShRotation, closed_form};
 use shlight_format::ShprtFile;
 use shlight_gpu::{Camera, GpuContext, HEADLESS_FORMAT, Mode, Renderer, Shading, render_frame};
 use shlight_mesh::Mesh;
@@ -155,7 +155,9 @@ fn vertex_values(
 /// GPU shading equals `shlight sample --eye` at the vertices: lmax 2 and
 /// 4, plain and CPCA-compressed, grey and coloured (bounces) matrices, with
 /// and without a diffuse base, every vertex the frame shows alone within
-/// 1e-5 of the largest value (f32 on the GPU, f64 in `sample`).
+/// 1e-5 of the largest value (f32 on the GPU, f64 in `sample`); then the
+/// environment turned (the renderer's new light against `sample` under a
+/// file of the turned coefficients).
 #[test]
 fn gpu_glossy_shading_equals_sample_at_the_vertices() {
     let test = "gpu_glossy_shading_equals_sample_at_the_vertices";
@@ -192,7 +194,7 @@ fn gpu_glossy_shading_equals_sample_at_the_vertices() {
     ] {
         let file = bake(&dir, name, &extra);
         let want = sample(&file, &light, eye, albedo);
-        let renderer = point_renderer(&ctx, &mesh, &file, &light);
+        let mut renderer = point_renderer(&ctx, &mesh, &file, &light);
         let base = albedo.map_or([0.0; 3], |a| {
             let v: Vec<f32> = a.split(',').map(|x| x.parse().unwrap()).collect();
             if v.len() == 1 {
@@ -208,30 +210,56 @@ fn gpu_glossy_shading_equals_sample_at_the_vertices() {
             ..Shading::default()
         };
         let got = vertex_values(&ctx, &renderer, &mesh, eye, &shading);
-        let largest = want
+        compare(name, &got, &want);
+        // The environment turned: the renderer recomputes the transferred
+        // radiance for the new light.
+        let env = Environment::load(&light, Up::YUp, shlight_baked::LIGHT_MAX_LMAX).unwrap();
+        let turned = ShRotation::from_mat3(8, DMat3::from_rotation_y(1.2)).apply(&env.radiance);
+        let turned_path = dir.join(format!("turned-{name}.json"));
+        let rows: Vec<[f64; 3]> = turned.as_slice().iter().map(|v| v.to_array()).collect();
+        crate::util::write_radiance_rows(&turned_path, &rows);
+        let want_turned = sample(&file, &turned_path, eye, albedo);
+        let change = want
             .iter()
-            .flatten()
-            .map(|x| x.abs())
+            .zip(&want_turned)
+            .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
             .fold(0.0f64, f64::max);
-        assert!(largest > 0.1, "{name}: the light shows ({largest})");
-        let (mut compared, mut worst) = (0, 0.0f64);
-        for (v, (g, w)) in got.iter().zip(&want).enumerate() {
-            let Some(g) = g else { continue };
-            compared += 1;
-            for c in 0..3 {
-                let d = (f64::from(g[c]) - w[c]).abs() / largest;
-                worst = worst.max(d);
-                assert!(
-                    d <= 1e-5,
-                    "{name}: vertex {v} channel {c}: GPU {} vs sample {} (largest {largest})",
-                    g[c],
-                    w[c]
-                );
-            }
-        }
-        eprintln!("{name}: {compared} vertices, worst {worst:.2e} of the largest {largest:.3}");
-        assert!(compared > 150, "{name}: only {compared} vertices compared");
+        assert!(
+            change > 0.1,
+            "{name}: turning the light changed little ({change})"
+        );
+        renderer.set_light(&ctx, &turned);
+        let got = vertex_values(&ctx, &renderer, &mesh, eye, &shading);
+        compare(&format!("{name} turned"), &got, &want_turned);
     }
+}
+
+/// Each vertex the frame shows alone against `sample`'s value, within
+/// 1e-5 of the largest value; more than 150 of them.
+fn compare(name: &str, got: &[Option<[f32; 3]>], want: &[[f64; 3]]) {
+    let largest = want
+        .iter()
+        .flatten()
+        .map(|x| x.abs())
+        .fold(0.0f64, f64::max);
+    assert!(largest > 0.1, "{name}: the light shows ({largest})");
+    let (mut compared, mut worst) = (0, 0.0f64);
+    for (v, (g, w)) in got.iter().zip(want).enumerate() {
+        let Some(g) = g else { continue };
+        compared += 1;
+        for c in 0..3 {
+            let d = (f64::from(g[c]) - w[c]).abs() / largest;
+            worst = worst.max(d);
+            assert!(
+                d <= 1e-5,
+                "{name}: vertex {v} channel {c}: GPU {} vs sample {} (largest {largest})",
+                g[c],
+                w[c]
+            );
+        }
+    }
+    eprintln!("{name}: {compared} vertices, worst {worst:.2e} of the largest {largest:.3}");
+    assert!(compared > 150, "{name}: only {compared} vertices compared");
 }
 
 /// A glossy file's vertices change when the eye moves; a diffuse file's
