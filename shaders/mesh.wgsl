@@ -4,12 +4,45 @@
 // at the interpolated unit normal, outgoing radiance rho/pi E(n).
 // MODE_PRT: per vertex, radiance sum_i T_vi L_i (the transfer T from a
 // storage buffer, one or three channels), interpolated.
+// MODE_GLOSSY: per vertex, glossy PRT (docs/shprt.md, "Glossy transfer"):
+// a diffuse base of albedo rho under the glossy layer,
+//   L_o = sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm,
+// R the mirror of the direction to the eye about the normal, T the vertex's
+// transferred radiance M L, interpolated.
 // MODE_NORMALS: the world-space unit normal as the colour, untouched by
 // exposure and tone map.
 
-// PRT transfer, vertex-major: vertex v, channel c, coefficient i at
-// (v * channels + c) * (prt_lmax + 1)^2 + i.
+// PRT transfer. Diffuse: vertex-major, vertex v, channel c, coefficient i at
+// (v * channels + c) * (prt_lmax + 1)^2 + i. Glossy: first a record per
+// vertex of K + 1 values, at v (K + 1): its group (a cluster, or the vertex
+// itself uncompressed) as u32 bits, then its K weights; from
+// frame.glossy_parts the parts, group-major, K + 1 parts of (prt_lmax + 1)^2
+// RGB coefficients each (part 0 the cluster mean's M L, part k the k-th
+// basis vector's), written by the renderer whenever the light changes.
 @group(0) @binding(2) var<storage, read> transfer: array<f32>;
+
+// The vertex's record and the first f32 of its group's parts (glossy).
+var<private> glossy_record: u32;
+var<private> glossy_part: u32;
+
+// The vertex's transferred radiance T_i: part 0 plus each weight times its
+// part (glossy; glossy_record and glossy_part set).
+fn glossy_t(i: u32) -> vec3<f32> {
+    let stride = 3u * sh_count(frame.prt_lmax);
+    var at = glossy_part + 3u * i;
+    var t = vec3<f32>(transfer[at], transfer[at + 1u], transfer[at + 2u]);
+    for (var k = 0u; k < frame.glossy_vectors; k = k + 1u) {
+        at = at + stride;
+        let w = transfer[glossy_record + 1u + k];
+        t = t + w * vec3<f32>(transfer[at], transfer[at + 1u], transfer[at + 2u]);
+    }
+    return t;
+}
+
+// glossy_radiance(n: vec3<f32>, r: vec3<f32>) -> vec3<f32> returns
+// sum_i (frame.albedo.rgb / pi A_l Y_i(n) + Lambda_l Y_i(r)) glossy_t(i) to
+// prt_lmax: written out per lmax and appended to the module
+// (crates/shlight-gpu/src/glossy_expansion.rs).
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -51,6 +84,16 @@ fn vs_mesh(in: VertexIn, @builtin(vertex_index) v: u32) -> VertexOut {
     if frame.mode == MODE_PRT {
         out.prt = prt_radiance(v);
     }
+    if frame.mode == MODE_GLOSSY {
+        let n = normalize(in.normal);
+        let w = normalize(frame.eye.xyz - in.position);
+        let r = 2.0 * dot(n, w) * n - w;
+        let parts = frame.glossy_vectors + 1u;
+        glossy_record = v * parts;
+        let group = bitcast<u32>(transfer[glossy_record]);
+        glossy_part = frame.glossy_parts + group * parts * 3u * sh_count(frame.prt_lmax);
+        out.prt = glossy_radiance(n, normalize(r));
+    }
     return out;
 }
 
@@ -61,7 +104,7 @@ fn fs_mesh(in: VertexOut) -> @location(0) vec4<f32> {
         case MODE_NORMALS: {
             return vec4<f32>(n, 1.0);
         }
-        case MODE_PRT: {
+        case MODE_PRT, MODE_GLOSSY: {
             return finish(in.prt);
         }
         default: {

@@ -36,12 +36,22 @@ struct Frame {
     background: u32,
     // 1: encode sRGB in the shader (the target is not an sRGB format).
     encode_srgb: u32,
+    // The camera's position (xyz): glossy shading's view direction.
+    eye: vec4<f32>,
+    // Per band l (element l/4, lane l%4): the glossy lobe's Lambda_l.
+    glossy_band: array<vec4<f32>, 3>,
+    // Glossy transfer: basis vectors per cluster K (0 uncompressed), and
+    // the first f32 of the parts in the transfer buffer (mesh.wgsl).
+    glossy_vectors: u32,
+    glossy_parts: u32,
 }
 
 const MODE_SH: u32 = 0u;
 const MODE_PRT: u32 = 1u;
 const MODE_NORMALS: u32 = 2u;
 const MODE_ENCODED: u32 = 3u;
+// MODE_PRT with glossy transfer (set by the renderer).
+const MODE_GLOSSY: u32 = 4u;
 
 const TONE_LINEAR: u32 = 0u;
 const TONE_CLAMP: u32 = 1u;

@@ -12,21 +12,10 @@ use shlight_mesh::Mesh;
 /// triangles, docs/shprt.md), so each vertex gets its own transfer vector.
 ///
 /// # Errors
-/// An unreadable or malformed file, a glossy one (shaded by `shlight
-/// sample` only), or one baked for another mesh; the message names both
-/// files.
+/// An unreadable or malformed file, or one baked for another mesh; the
+/// message names both files.
 pub fn load_transfer(path: &Path, mesh: &Mesh, mesh_path: &Path) -> Result<ShprtFile> {
     let file = ShprtFile::read(path)?;
-    if let Some(g) = &file.glossy {
-        bail!(
-            "{}: glossy transfer ({}) is not shaded on the GPU yet; render-mesh and view \
-             shade diffuse transfer (bake without --mode glossy), and `shlight sample {} \
-             --light LIGHT --view X,Y,Z` gives a glossy file's exit radiance",
-            path.display(),
-            g.brdf,
-            path.display()
-        );
-    }
     if file.vertex_count != mesh.vertex_count() {
         bail!(
             "{}: baked for {} vertices, but {} has {} (bake it with `shlight prt {}`)",

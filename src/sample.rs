@@ -10,7 +10,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
 use shlight_pipeline::Environment;
-use shlight_prt::glossy::{View, file_exit_radiance};
+use shlight_prt::glossy::{View, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax};
 
 use crate::input::frame_of;
@@ -64,6 +64,12 @@ pub struct SampleArgs {
     /// vertex seen from there; ignored for a diffuse file.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<DVec3>,
+    /// A glossy .shprt file's diffuse base: its albedo R,G,B (linear; one
+    /// value for grey, each in [0, 1]) under the glossy layer, as
+    /// render-mesh --prt --albedo shades it [default: none, the glossy
+    /// layer alone].
+    #[arg(long, value_parser = crate::values::parse_albedo)]
+    pub albedo: Option<[f32; 3]>,
     /// Highest degree shaded [default: a volume's lmax, at most 4 (what the
     /// GPU shades) for shlight and trilinear, all of it for bevy, at most 2
     /// for threejs; a PRT file's lmax, at most 8].
@@ -204,17 +210,29 @@ fn transfer(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
                 "--view 0,0,0 has zero length: give the direction from the vertices towards the eye"
             );
         }
+    } else if args.albedo.is_some() {
+        bail!(
+            "{}: --albedo is the diffuse base under a glossy file's glossy layer; a diffuse \
+             file's albedo is in its transfer",
+            args.file.display()
+        );
     } else if view.is_some() {
         ui.note(format!(
             "{}: diffuse transfer looks the same from everywhere; --view and --eye are ignored",
             args.file.display()
         ));
     }
-    let values = file_exit_radiance(&file, l.as_slice(), view)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?
-        .into_iter()
-        .map(|v| v.to_array())
-        .collect();
+    let values = file_shade(
+        &file,
+        l.as_slice(),
+        view,
+        args.albedo
+            .map_or(DVec3::ZERO, |a| DVec3::from(a.map(f64::from))),
+    )
+    .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?
+    .into_iter()
+    .map(|v| v.to_array())
+    .collect();
     Ok(Samples {
         quantity: "radiance",
         values,
@@ -225,6 +243,7 @@ fn transfer(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
             "view": file.glossy.as_ref().and(args.view).map(|d| d.normalize().to_array()),
             "eye": file.glossy.as_ref().and(args.eye).map(|e| e.to_array()),
             "brdf": file.glossy.as_ref().map(|g| g.brdf.clone()),
+            "albedo": args.albedo,
             "provenance": {
                 "mode": file.mode,
                 "transport": file.glossy.as_ref().map(|g| g.transport.clone()),

@@ -493,6 +493,24 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     // (a cube blends six colours; lmax 2 SH carries nine per channel), the
     // background does not.
     let cube = screenshot("cube.png", &["--hide-panel", "--encoding", "ambient-cube"]);
+    // A glossy PRT file of the sphere: the viewer starts in PRT mode and
+    // shades it toward its camera.
+    let glossy_file = dir.join("s.shprt");
+    shlight_ok(&[
+        "prt",
+        s(&mesh),
+        "--mode",
+        "glossy",
+        "--brdf",
+        "phong:8",
+        "--lmax",
+        "2",
+        "--samples",
+        "64",
+        "-o",
+        s(&glossy_file),
+    ]);
+    let glossy = screenshot("glossy.png", &["--hide-panel", "--prt", s(&glossy_file)]);
     drop(x);
     let lum = |img: &shlight_io::Image, x: usize, y: usize| {
         let p = img.get(x, y);
@@ -513,6 +531,12 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     assert!(
         sphere_change > 0.005,
         "--encoding ambient-cube shades the sphere ({sphere_change})"
+    );
+    let glossy_change = (mean(&glossy, 230, 150, 20) - mean(&bare, 230, 150, 20)).abs()
+        + (mean(&glossy, 200, 120, 10) - mean(&bare, 200, 120, 10)).abs();
+    assert!(
+        glossy_change > 0.005,
+        "view --prt GLOSSY shades the sphere otherwise than SH irradiance ({glossy_change})"
     );
     let corner_change = (mean(&cube, 0, 0, 20) - mean(&bare, 0, 0, 20)).abs();
     assert!(

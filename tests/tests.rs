@@ -8,6 +8,8 @@ mod engine_frames;
 mod export;
 #[cfg(feature = "gpu")]
 mod export_shaders;
+#[cfg(feature = "gpu")]
+mod glossy_gpu;
 mod gltf_asset;
 #[cfg(feature = "gpu")]
 mod gpu;

@@ -114,7 +114,15 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         window: args.window,
         exposure_ev: 0.0,
         tone_map: None,
-        albedo: args.albedo.to_array(),
+        albedo: match (
+            args.albedo,
+            transfer.as_ref().and_then(|t| t.glossy.as_ref()),
+        ) {
+            (Some(a), _) => a.to_array(),
+            // A glossy file's layer alone.
+            (None, Some(_)) => [0.0; 3],
+            (None, None) => [0.8; 3],
+        },
         background: match args.background {
             BackgroundArg::None => Background::None,
             BackgroundArg::Map => Background::Map,

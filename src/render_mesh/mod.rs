@@ -49,7 +49,9 @@ pub struct RenderMeshArgs {
     #[arg(long, value_enum)]
     pub mode: Option<RenderMode>,
     /// PRT transfer baked for this mesh by `shlight prt` (.shprt): each
-    /// vertex shows transfer · light (albedo is in the transfer).
+    /// vertex shows transfer · light (albedo is in the transfer); a glossy
+    /// file's vertices their exit radiance toward the camera (--albedo: a
+    /// diffuse base under the glossy layer).
     #[arg(long, value_name = "FILE.shprt")]
     pub prt: Option<PathBuf>,
     /// Highest SH degree of the light used (0..=8) [default: 2; with --prt,
@@ -65,9 +67,11 @@ pub struct RenderMeshArgs {
     /// Ringing window on the light: none, hanning:W, lanczos:W, laplacian:LAMBDA.
     #[arg(long, default_value = "none")]
     pub window: Window,
-    /// Lambertian albedo, R,G,B (linear).
-    #[arg(long, default_value = "0.8,0.8,0.8", value_parser = parse_vec3)]
-    pub albedo: Vec3,
+    /// Lambertian albedo, R,G,B (linear) [default: 0.8,0.8,0.8]; with a
+    /// glossy --prt file, the diffuse base under its glossy layer
+    /// [default: none, the glossy layer alone].
+    #[arg(long, value_parser = parse_vec3)]
+    pub albedo: Option<Vec3>,
     /// Behind the mesh: none (0), map (the --env map) or sh (its SH reconstruction).
     #[arg(long, value_enum, default_value_t = BackgroundArg::None)]
     pub background: BackgroundArg,
@@ -106,7 +110,8 @@ pub struct RenderMeshArgs {
 pub enum RenderMode {
     /// Per-fragment SH irradiance, times albedo / π.
     Sh,
-    /// Per-vertex PRT transfer · light (`--prt`), interpolated.
+    /// Per-vertex PRT transfer · light (`--prt`; glossy files toward the
+    /// camera), interpolated.
     Prt,
     /// World-space unit normals (background 0).
     Normals,

@@ -78,7 +78,7 @@ pub fn render(args: &RenderMeshArgs, format: Option<Format>, ui: &Ui) -> Result<
         );
     }
     background.set_environment_rotation(r);
-    let albedo = args.albedo.to_array();
+    let albedo = args.albedo.unwrap_or(glam::Vec3::splat(0.8)).to_array();
     let shaded = volume.renderer(&ctx, HEADLESS_FORMAT, Some(&mesh), albedo)?;
     let lmax = args.lmax.unwrap_or(shaded.lmax());
     let (w, h) = args.size;

@@ -30,7 +30,8 @@ pub struct ViewArgs {
     /// meshes/bunny.obj, built into shlight].
     pub mesh: Option<PathBuf>,
     /// PRT transfer baked for this mesh by `shlight prt` (.shprt): starts in
-    /// PRT mode (`m` cycles SH, PRT and normals).
+    /// PRT mode (`m` cycles SH, PRT and normals); a glossy file is shaded
+    /// toward the camera as the orbit moves it.
     #[arg(long, value_name = "FILE.shprt")]
     pub prt: Option<PathBuf>,
     /// The light: an equirect map or a radiance coefficient file (.json)

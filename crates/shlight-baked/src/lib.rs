@@ -18,7 +18,10 @@
 //!   the probes around it ([`visibility::visibility_weights`]), on
 //!   [`octahedral`] maps of the sphere.
 //! - [`TransferView`]: PRT transfer vectors borrowed (Sloan, Kautz &
-//!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex.
+//!   Snyder 2002), `L_out(v) = sum_i T_vi L_i` per vertex; [`GlossyView`]:
+//!   glossy transfer matrices, plain or clustered PCA, and the transferred
+//!   radiance `T_p = M_p L` they give under a light
+//!   ([`TransferredRadiance`], per cluster once, then summed per vertex).
 //! - [`dilate`]: a volume's invalid probes filled from their valid face
 //!   neighbours, pass by pass, for engines whose lookups know no validity.
 //! - [`morton_code`] and [`morton_order`]: the Z-order that bakes
@@ -38,6 +41,7 @@
 //! mathematics of SH (that is shlight-core's).
 
 mod dilate;
+mod glossy_view;
 mod light_lmax;
 mod morton;
 pub mod octahedral;
@@ -48,6 +52,7 @@ pub mod visibility;
 mod volume_view;
 
 pub use dilate::dilate;
+pub use glossy_view::{GlossyMatrices, GlossyView, TransferredRadiance};
 pub use light_lmax::LIGHT_MAX_LMAX;
 pub use morton::{morton_code, morton_order};
 pub use probe_grid::{MAX_PROBES, PADDING, ProbeGrid};

@@ -131,6 +131,34 @@ impl ShprtFile {
         )
     }
 
+    /// A glossy file's matrices borrowed, as `shlight sample` and the
+    /// renderer shade them (`None` for a diffuse file).
+    ///
+    /// # Errors
+    /// Arrays that do not fit the counts (a file read by
+    /// [`ShprtFile::from_bytes`] always fits).
+    pub fn glossy_view(
+        &self,
+    ) -> std::result::Result<Option<shlight_baked::GlossyView<'_>>, shlight_baked::ShapeError> {
+        use shlight_baked::{GlossyMatrices, GlossyView};
+        use std::borrow::Cow;
+        let Some(g) = &self.glossy else {
+            return Ok(None);
+        };
+        let matrices = match &g.cpca {
+            None => GlossyMatrices::Full(Cow::Borrowed(&self.transfer)),
+            Some(z) => GlossyMatrices::Cpca {
+                clusters: z.clusters,
+                vectors: z.vectors,
+                means: Cow::Borrowed(&z.means),
+                bases: Cow::Borrowed(&z.bases),
+                cluster: Cow::Borrowed(&z.cluster),
+                weights: Cow::Borrowed(&z.weights),
+            },
+        };
+        GlossyView::new(self.lmax, self.channels, self.vertex_count, matrices).map(Some)
+    }
+
     /// Values per vertex and channel: `(lmax+1)^2`, or `(lmax+1)^4` for
     /// glossy matrices.
     #[must_use]

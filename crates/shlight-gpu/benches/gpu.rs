@@ -12,6 +12,16 @@
 //! - `frame_bunny_prt`: PRT of the bunny, 3-channel transfer vectors of
 //!   lmax 2 and 8 (pseudo-random values: the frame time does not depend on
 //!   them), the light's lmax the same;
+//! - `frame_sphere_prt` / `frame_sphere_glossy`: a generated sphere of
+//!   99,851 vertices (400 segments x 250 rings) shaded per vertex by
+//!   3-channel diffuse transfer vectors, and by glossy transfer compressed
+//!   as CPCA with 64 clusters of 8 basis vectors (one channel,
+//!   pseudo-random values, a diffuse base under the glossy layer), both at
+//!   lmax 2 and 4 (the light's lmax the same), the light unchanged between
+//!   frames (the transferred radiance computed before the first);
+//! - `frame_sphere_glossy_turning`: the glossy frame at lmax 4 with the
+//!   light changed before each frame (two lights in turn), so the CPU's
+//!   per-cluster `M L` and its upload are in the time;
 //! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
 //!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
@@ -48,7 +58,7 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
-use shlight_baked::{ProbeGrid, TransferView, Visibility, VolumeView};
+use shlight_baked::{GlossyMatrices, GlossyView, ProbeGrid, TransferView, Visibility, VolumeView};
 use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::sh::closed_form;
 use shlight_gpu::{
@@ -159,6 +169,105 @@ fn frame_bunny_prt(bencher: divan::Bencher, lmax: usize) {
         ..sh(lmax)
     };
     bench_frame(bencher, &bunny(), shading, Some(lmax), false);
+}
+
+/// The sphere of `frame_sphere_prt` and `frame_sphere_glossy`: 99,851
+/// vertices.
+fn big_sphere() -> Mesh {
+    shlight_mesh::generate::uv_sphere(1.0, 400, 250)
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_sphere_prt(bencher: divan::Bencher, lmax: usize) {
+    let shading = Shading {
+        mode: Mode::Prt,
+        ..sh(lmax)
+    };
+    bench_frame(bencher, &big_sphere(), shading, Some(lmax), false);
+}
+
+/// A renderer holding `mesh` with CPCA glossy transfer of `lmax` (64
+/// clusters, 8 vectors, one channel, pseudo-random) and an lmax 8 light,
+/// its first frame drawn (pipelines built, `M L` computed); the target
+/// and camera.
+fn glossy_scene(ctx: &GpuContext, mesh: &Mesh, lmax: usize) -> (Renderer, Offscreen, Camera) {
+    let (clusters, vectors) = (64usize, 8usize);
+    let n = (lmax + 1) * (lmax + 1);
+    let dim = n * n;
+    let v = mesh.vertex_count();
+    let matrices = GlossyView::new(
+        lmax,
+        1,
+        v,
+        GlossyMatrices::Cpca {
+            clusters,
+            vectors,
+            means: pseudo_random(clusters * dim).into(),
+            bases: pseudo_random(clusters * vectors * dim).into(),
+            cluster: (0..v as u32)
+                .map(|i| i % clusters as u32)
+                .collect::<Vec<_>>()
+                .into(),
+            weights: pseudo_random(v * vectors).into(),
+        },
+    )
+    .unwrap();
+    let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
+    renderer.set_mesh(ctx, mesh);
+    renderer.set_light(ctx, &light(0.0));
+    let lambda: Vec<f64> = (0..=lmax).map(|l| 0.9f64.powi(l as i32)).collect();
+    renderer.set_glossy(ctx, &matrices, &lambda).unwrap();
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
+    target
+        .draw(ctx, &renderer, &camera, &glossy_shading(lmax))
+        .unwrap();
+    (renderer, target, camera)
+}
+
+/// The benchmarks' lmax 8 light, its cap turned `yaw` radians about +Y.
+fn light(yaw: f64) -> shlight_core::sh::ShCoeffs<glam::DVec3> {
+    closed_form::cap(
+        8,
+        glam::DVec3::new(
+            0.3 * yaw.cos() + 0.5 * yaw.sin(),
+            0.8,
+            0.5 * yaw.cos() - 0.3 * yaw.sin(),
+        ),
+        0.5,
+        glam::DVec3::new(5.0, 3.0, 2.0),
+    )
+}
+
+fn glossy_shading(lmax: usize) -> Shading {
+    Shading {
+        mode: Mode::Prt,
+        albedo: [0.5; 3],
+        ..sh(lmax)
+    }
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_sphere_glossy(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    let (renderer, target, camera) = glossy_scene(ctx, &big_sphere(), lmax);
+    let shading = glossy_shading(lmax);
+    bencher.bench_local(|| target.draw(ctx, &renderer, &camera, &shading).unwrap());
+}
+
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn frame_sphere_glossy_turning(bencher: divan::Bencher) {
+    let Some(ctx) = context() else { return };
+    let lmax = 4;
+    let (mut renderer, target, camera) = glossy_scene(ctx, &big_sphere(), lmax);
+    let shading = glossy_shading(lmax);
+    let lights = [light(0.5), light(1.0)];
+    let mut turn = 0;
+    bencher.bench_local(|| {
+        turn ^= 1;
+        renderer.set_light(ctx, &lights[turn]);
+        target.draw(ctx, &renderer, &camera, &shading).unwrap();
+    });
 }
 
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]

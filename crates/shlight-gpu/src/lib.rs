@@ -27,6 +27,7 @@
 mod camera;
 mod context;
 mod error;
+mod glossy_expansion;
 mod headless;
 mod orbit_camera;
 mod projector;

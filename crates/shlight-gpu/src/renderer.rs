@@ -2,7 +2,7 @@
 //! and PRT transfer, and the two passes (background, then mesh) that draw a
 //! frame into any colour target.
 
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 use glam::{DMat3, DVec3};
 use shlight_core::map::MapOrientation;
@@ -12,9 +12,9 @@ use shlight_mesh::Mesh;
 use wgpu::util::DeviceExt;
 
 use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE};
-use crate::shading::{FrameInputs, FrameUniform, Mode, Shading, shader_encodes_srgb};
+use crate::shading::{FrameInputs, FrameUniform, GlossyInputs, Mode, Shading, shader_encodes_srgb};
 use shlight_baked::LIGHT_MAX_LMAX;
-use shlight_baked::TransferView;
+use shlight_baked::{GlossyView, TransferView};
 
 use crate::{Camera, GpuContext, GpuError};
 
@@ -30,6 +30,19 @@ struct GpuMesh {
     indices: wgpu::Buffer,
     index_count: u32,
     vertex_count: usize,
+}
+
+/// Glossy PRT transfer on the GPU: the matrices kept on the CPU, where
+/// each light's transferred radiance is computed
+/// ([`GlossyView::transferred`]) and written after the per-vertex records.
+struct GlossyTransfer {
+    matrices: GlossyView<'static>,
+    /// The lobe's `Lambda_l` per band.
+    band: [[f32; 4]; 3],
+    /// Where the parts start in the transfer buffer, in `f32`s.
+    parts: usize,
+    /// The light coefficients the buffer's parts were computed from.
+    computed_for: Mutex<Option<Vec<[f32; 3]>>>,
 }
 
 /// Draws meshes lit by SH coefficients into targets of one colour format.
@@ -51,7 +64,13 @@ pub struct Renderer {
     mesh: Option<GpuMesh>,
     /// The light's lmax as uploaded (at most [`LIGHT_MAX_LMAX`]).
     light_lmax: usize,
+    /// The light's coefficients as uploaded (glossy transfer's `M L`).
+    light_coeffs: Vec<[f32; 3]>,
     prt: Option<(usize, usize)>,
+    glossy: Option<GlossyTransfer>,
+    /// Draw the mesh's vertices as points instead of its triangles.
+    points: bool,
+    point_pipelines: [OnceLock<wgpu::RenderPipeline>; LIGHT_MAX_LMAX + 1],
     /// [`Mode::Encoded`]'s pipeline, compiled with the encoding's snippet.
     encoded_pipeline: Option<wgpu::RenderPipeline>,
     map_orientation: MapOrientation,
@@ -189,7 +208,11 @@ impl Renderer {
             background_bind,
             mesh: None,
             light_lmax: 0,
+            light_coeffs: Vec::new(),
             prt: None,
+            glossy: None,
+            points: false,
+            point_pipelines: Default::default(),
             encoded_pipeline: None,
             map_orientation: MapOrientation::default(),
             environment_rotation: DMat3::IDENTITY,
@@ -245,6 +268,18 @@ impl Renderer {
         ctx.queue
             .write_buffer(&self.light, 0, bytemuck::cast_slice(&slots));
         self.light_lmax = lmax;
+        self.light_coeffs = slots[..(lmax + 1) * (lmax + 1)]
+            .iter()
+            .map(|s| [s[0], s[1], s[2]])
+            .collect();
+    }
+
+    /// Draws the mesh's vertices as points, one pixel each, instead of its
+    /// triangles (`true`), with the same shading: each vertex's own value
+    /// where it lands, uninterpolated (what a test reads a vertex's
+    /// shading from).
+    pub fn set_points(&mut self, points: bool) {
+        self.points = points;
     }
 
     /// Uploads an equirect environment map (`width x height` linear RGB
@@ -354,12 +389,141 @@ impl Renderer {
                 usage: wgpu::BufferUsages::STORAGE,
             });
         self.prt = Some((t.lmax, t.channels));
+        self.glossy = None;
         self.rebind_mesh(ctx);
         Ok(())
     }
 
+    /// Uploads glossy PRT transfer matrices for the current mesh (docs/shprt.md,
+    /// "Glossy transfer"), with the lobe's zonal coefficients `lambda`
+    /// (`Lambda_l`, `l = 0..=lmax`). [`Mode::Prt`] then shades each vertex
+    /// view by view: `sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm`
+    /// toward the camera, `rho` [`Shading::albedo`]'s diffuse base (zero:
+    /// the glossy layer alone), `T = M L` the transferred radiance. `T` is
+    /// computed on the CPU when the light (or the shading lmax) changes:
+    /// per cluster once for a compressed file, each vertex then summing its
+    /// cluster's parts with its weights on the GPU.
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] without a mesh, for another vertex count, an
+    /// lmax above [`LIGHT_MAX_LMAX`], `lambda` shorter than lmax + 1, or
+    /// more transferred radiance than the device's largest storage buffer.
+    pub fn set_glossy(
+        &mut self,
+        ctx: &GpuContext,
+        matrices: &GlossyView<'_>,
+        lambda: &[f64],
+    ) -> Result<(), GpuError> {
+        let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
+        if vertices != Some(matrices.vertex_count) {
+            return Err(GpuError::Invalid(match vertices {
+                None => "glossy transfer given before a mesh".into(),
+                Some(n) => format!(
+                    "glossy transfer is for {} vertices but the mesh has {n}",
+                    matrices.vertex_count
+                ),
+            }));
+        }
+        let lmax = matrices.lmax;
+        if lmax > LIGHT_MAX_LMAX {
+            return Err(GpuError::Invalid(format!(
+                "glossy transfer of lmax {lmax}: the GPU shades to lmax {LIGHT_MAX_LMAX}"
+            )));
+        }
+        if lambda.len() <= lmax {
+            return Err(GpuError::Invalid(format!(
+                "the lobe has {} zonal coefficients; lmax {lmax} needs {}",
+                lambda.len(),
+                lmax + 1
+            )));
+        }
+        let vectors = matrices.vectors();
+        let groups = match &matrices.matrices {
+            shlight_baked::GlossyMatrices::Full(_) => matrices.vertex_count,
+            shlight_baked::GlossyMatrices::Cpca { clusters, .. } => *clusters,
+        };
+        let nc = (lmax + 1) * (lmax + 1);
+        let mut records = Vec::with_capacity(matrices.vertex_count * (vectors + 1));
+        for v in 0..matrices.vertex_count {
+            let (g, w) = matrices.vertex_group(v);
+            records.push(f32::from_bits(g as u32));
+            records.extend_from_slice(w);
+        }
+        let parts = records.len();
+        let floats = parts as u64 + (groups * (vectors + 1) * nc * 3) as u64;
+        let bytes = 4 * floats;
+        let limit = ctx
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(ctx.device.limits().max_buffer_size);
+        if bytes > limit || u32::try_from(floats).is_err() {
+            return Err(GpuError::Invalid(format!(
+                "glossy transfer: {groups} group(s) x {} part(s) of {nc} RGB coefficients and the                  vertices' records take {bytes} bytes; the device's storage buffers hold {limit}                  (compress it: shlight prt --compress cpca:C,K)",
+                vectors + 1
+            )));
+        }
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("glossy transfer"),
+            size: bytes.max(16),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        if !records.is_empty() {
+            ctx.queue
+                .write_buffer(&buffer, 0, bytemuck::cast_slice(&records));
+        }
+        let mut band = [[0.0f32; 4]; 3];
+        for (l, x) in lambda.iter().take(lmax + 1).enumerate() {
+            band[l / 4][l % 4] = *x as f32;
+        }
+        self.transfer = buffer;
+        self.prt = Some((lmax, matrices.channels));
+        self.glossy = Some(GlossyTransfer {
+            matrices: matrices.clone().into_owned(),
+            band,
+            parts,
+            computed_for: Mutex::new(None),
+        });
+        self.rebind_mesh(ctx);
+        Ok(())
+    }
+
+    /// Glossy transfer's parts for the light to `lmax`, computed and
+    /// written unless the buffer holds them already.
+    fn update_glossy(&self, ctx: &GpuContext, lmax: usize) {
+        let Some(g) = &self.glossy else { return };
+        let light = &self.light_coeffs[..((lmax + 1) * (lmax + 1)).min(self.light_coeffs.len())];
+        let mut computed = g
+            .computed_for
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if computed.as_deref() == Some(light) {
+            return;
+        }
+        let coeffs: Vec<DVec3> = light
+            .iter()
+            .map(|c| DVec3::from(c.map(f64::from)))
+            .collect();
+        let t = g.matrices.transferred(&coeffs);
+        let values: Vec<f32> = t
+            .parts
+            .iter()
+            .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
+            .collect();
+        if !values.is_empty() {
+            ctx.queue.write_buffer(
+                &self.transfer,
+                4 * g.parts as u64,
+                bytemuck::cast_slice(&values),
+            );
+        }
+        *computed = Some(light.to_vec());
+    }
+
     fn clear_transfer(&mut self, ctx: &GpuContext) {
         self.prt = None;
+        self.glossy = None;
         self.transfer = no_transfer(&ctx.device);
         self.rebind_mesh(ctx);
     }
@@ -405,6 +569,18 @@ impl Renderer {
         let env_from_world =
             orientation_matrix(self.map_orientation) * self.environment_rotation.transpose();
         let lmax = shading.lmax.min(self.light_lmax);
+        let glossy = self
+            .glossy
+            .as_ref()
+            .filter(|_| shading.mode == Mode::Prt)
+            .map(|g| {
+                self.update_glossy(ctx, lmax);
+                GlossyInputs {
+                    band: g.band,
+                    vectors: g.matrices.vectors() as u32,
+                    parts: g.parts as u32,
+                }
+            });
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
             view_proj: camera.view_proj(aspect),
@@ -412,6 +588,8 @@ impl Renderer {
             light_from_world: self.environment_rotation.transpose(),
             lmax,
             prt: self.prt,
+            glossy,
+            eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });
         ctx.queue
@@ -460,24 +638,38 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
         if let Some(mesh) = &self.mesh {
-            // Only SH mode evaluates sh_reconstruct.
-            let l = if shading.mode == Mode::Sh { lmax } else { 0 };
-            pass.set_pipeline(match (&self.encoded_pipeline, shading.mode) {
-                (Some(encoded), Mode::Encoded) => encoded,
-                _ => self.mesh_pipelines[l].get_or_init(|| {
+            // Only SH mode evaluates sh_reconstruct, and glossy PRT
+            // glossy_radiance (to the transfer's lmax).
+            let l = match (shading.mode, glossy, self.prt) {
+                (Mode::Sh, _, _) => lmax,
+                (Mode::Prt, Some(_), Some((prt_lmax, _))) => prt_lmax,
+                _ => 0,
+            };
+            let (pipelines, pass_kind) = if self.points {
+                (&self.point_pipelines, &POINTS_PASS)
+            } else {
+                (&self.mesh_pipelines, &MESH_PASS)
+            };
+            pass.set_pipeline(match (&self.encoded_pipeline, shading.mode, self.points) {
+                (Some(encoded), Mode::Encoded, false) => encoded,
+                _ => pipelines[l].get_or_init(|| {
                     pipeline_of(
                         device,
                         &self.mesh_pipeline_layout,
                         self.color_format,
-                        &MESH_PASS,
+                        pass_kind,
                         &shaders::create(device, MESH_MODULE, l),
                     )
                 }),
             });
             pass.set_bind_group(0, &self.mesh_bind, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            if self.points {
+                pass.draw(0..mesh.vertex_count as u32, 0..1);
+            } else {
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            }
         }
         Ok(())
     }
@@ -497,6 +689,8 @@ pub(crate) struct Pass {
     /// Whether fragments write depth, and how they are tested against it.
     pub depth_write: bool,
     pub depth_compare: wgpu::CompareFunction,
+    /// Triangles, or one point per vertex.
+    pub topology: wgpu::PrimitiveTopology,
 }
 
 /// The mesh: positions and normals interleaved, depth tested and written,
@@ -512,6 +706,15 @@ const MESH_PASS: Pass = Pass {
     })],
     depth_write: true,
     depth_compare: wgpu::CompareFunction::Less,
+    topology: wgpu::PrimitiveTopology::TriangleList,
+};
+
+/// The mesh's vertices as points ([`Renderer::set_points`]): [`MESH_PASS`]
+/// drawn as a point list.
+const POINTS_PASS: Pass = Pass {
+    label: "points",
+    topology: wgpu::PrimitiveTopology::PointList,
+    ..MESH_PASS
 };
 
 /// The mesh shaded with an encoding: [`MESH_PASS`] with `encoded.wgsl`'s
@@ -530,6 +733,7 @@ const BACKGROUND_PASS: Pass = Pass {
     vertex_buffers: &[],
     depth_write: false,
     depth_compare: wgpu::CompareFunction::Always,
+    topology: wgpu::PrimitiveTopology::TriangleList,
 };
 
 /// The render pipeline of `pass` over a compiled `module`, for colour
@@ -557,6 +761,7 @@ pub(crate) fn pipeline_of(
             buffers: pass.vertex_buffers,
         },
         primitive: wgpu::PrimitiveState {
+            topology: pass.topology,
             cull_mode: None,
             ..Default::default()
         },

@@ -12,6 +12,7 @@
 //! file in the directory belongs to a module and that each module validates
 //! at every lmax.
 
+use crate::glossy_expansion::glossy_radiance_wgsl;
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
 use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads, volume_wgsl_visibility};
@@ -89,12 +90,23 @@ impl ShaderModuleSource {
     }
 }
 
-/// Mesh shading: vertex and fragment stages of SH, PRT and normals modes.
+/// Mesh shading: vertex and fragment stages of SH, PRT (diffuse and
+/// glossy) and normals modes; its generated code is `sh_reconstruct` and
+/// `glossy_radiance` at one lmax.
 pub const MESH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "mesh",
     files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl"],
-    generated: Some(sh_reconstruct_wgsl),
+    generated: Some(mesh_generated),
 };
+
+/// [`MESH_MODULE`]'s generated code: `sh_reconstruct` and
+/// `glossy_radiance` for `lmax`.
+fn mesh_generated(lmax: usize) -> String {
+    let mut text = sh_reconstruct_wgsl(lmax);
+    text.push('\n');
+    text.push_str(&glossy_radiance_wgsl(lmax));
+    text
+}
 /// The environment background (map or SH reconstruction).
 pub const BACKGROUND_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "background",
@@ -144,7 +156,7 @@ pub const VOLUME_VISIBILITY_MODULE: ShaderModuleSource = ShaderModuleSource {
 /// stage, `encoded.wgsl`'s fragment stage, and the encoding's WGSL snippet
 /// (`shlight_irradiance`) appended by the caller ([`encoded_source`]).
 /// Its `generated` code, used when the module is validated on its own, is
-/// `sh_reconstruct` at lmax 0 (the mesh stages' own) and [`SAMPLE_ENCODING`].
+/// the mesh stages' own at lmax 0 and [`SAMPLE_ENCODING`].
 pub const ENCODED_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "encoded",
     files: &["sh.wgsl", "scene.wgsl", "mesh.wgsl", "encoded.wgsl"],
@@ -161,10 +173,10 @@ fn sample_encoded(_lmax: usize) -> String {
     encoded_generated(SAMPLE_ENCODING)
 }
 
-/// What follows [`ENCODED_MODULE`]'s files: `sh_reconstruct` at lmax 0,
-/// then `snippet`.
+/// What follows [`ENCODED_MODULE`]'s files: the mesh stages' generated
+/// code at lmax 0, then `snippet`.
 fn encoded_generated(snippet: &str) -> String {
-    let mut text = sh_reconstruct_wgsl(0);
+    let mut text = mesh_generated(0);
     text.push('\n');
     text.push_str(snippet);
     text

@@ -12,7 +12,9 @@ pub enum Mode {
     /// Per-fragment SH irradiance at the normal, times albedo / π.
     #[default]
     Sh,
-    /// Per-vertex transfer dotted with the light coefficients.
+    /// Per-vertex PRT: a diffuse file's transfer dotted with the light
+    /// coefficients, or a glossy file's exit radiance toward the camera
+    /// ([`Renderer::set_glossy`](crate::Renderer::set_glossy)).
     Prt,
     /// World-space unit normals as colours (exposure and tone map not applied).
     Normals,
@@ -110,6 +112,9 @@ impl Default for Shading {
     }
 }
 
+/// `MODE_GLOSSY` of `scene.wgsl`: [`Mode::Prt`] with glossy transfer.
+const MODE_GLOSSY: u32 = 4;
+
 /// `Frame` of `shaders/scene.wgsl`, byte for byte.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -129,6 +134,22 @@ pub(crate) struct FrameUniform {
     prt_channels: u32,
     background: u32,
     encode_srgb: u32,
+    eye: [f32; 4],
+    glossy_band: [[f32; 4]; 3],
+    glossy_vectors: u32,
+    glossy_parts: u32,
+    _pad: [u32; 2],
+}
+
+/// What the glossy path adds to a frame's uniform block: the lobe's
+/// `Lambda_l` per band (element `l / 4`, lane `l % 4`), the basis vectors
+/// per cluster `K`, and where the parts start in the transfer buffer (in
+/// `f32`s).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GlossyInputs {
+    pub band: [[f32; 4]; 3],
+    pub vectors: u32,
+    pub parts: u32,
 }
 
 /// Everything a frame's uniform block is made from.
@@ -142,6 +163,11 @@ pub(crate) struct FrameInputs<'a> {
     /// The light's lmax after clamping.
     pub lmax: usize,
     pub prt: Option<(usize, usize)>,
+    /// The glossy transfer's lobe and layout, when the PRT transfer is
+    /// glossy (PRT mode then shades it view by view).
+    pub glossy: Option<GlossyInputs>,
+    /// The camera's position (glossy shading's `w_o`).
+    pub eye: glam::Vec3,
     pub encode_srgb: bool,
 }
 
@@ -193,7 +219,10 @@ impl FrameUniform {
             albedo: [r, g, b, 1.0],
             exposure: 2f32.powf(f.shading.exposure_ev),
             lmax: f.lmax as u32,
-            mode: f.shading.mode.code(),
+            mode: match (f.shading.mode, f.glossy) {
+                (Mode::Prt, Some(_)) => MODE_GLOSSY,
+                (mode, _) => mode.code(),
+            },
             tone_map: match f.shading.tone_map {
                 None => 0,
                 Some(ToneMap::Clamp) => 1,
@@ -204,6 +233,11 @@ impl FrameUniform {
             prt_channels: prt_channels as u32,
             background: background.code(),
             encode_srgb: u32::from(f.encode_srgb),
+            eye: [f.eye.x, f.eye.y, f.eye.z, 1.0],
+            glossy_band: f.glossy.map_or([[0.0; 4]; 3], |g| g.band),
+            glossy_vectors: f.glossy.map_or(0, |g| g.vectors),
+            glossy_parts: f.glossy.map_or(0, |g| g.parts),
+            _pad: [0; 2],
         }
     }
 }
@@ -215,7 +249,8 @@ mod tests {
     #[test]
     fn the_uniform_block_has_the_wgsl_size() {
         // Frame in scene.wgsl: four mat4x4 (256), two array<vec4, 3> (96),
-        // one vec4 (16), eight 4-byte scalars (32).
-        assert_eq!(std::mem::size_of::<FrameUniform>(), 400);
+        // one vec4 (16), eight 4-byte scalars (32); then the eye (16), the
+        // lobe's bands (48), two scalars and the padding to 16 bytes (16).
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 480);
     }
 }

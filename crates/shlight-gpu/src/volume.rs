@@ -487,6 +487,7 @@ const VOLUME_PASS: Pass = Pass {
     ],
     depth_write: true,
     depth_compare: wgpu::CompareFunction::Less,
+    topology: wgpu::PrimitiveTopology::TriangleList,
 };
 
 /// The probe spheres, each lit by its own probe: [`VOLUME_PASS`] with the
@@ -881,6 +882,8 @@ impl VolumeRenderer {
             light_from_world: DMat3::IDENTITY,
             lmax,
             prt: None,
+            glossy: None,
+            eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });
         ctx.queue

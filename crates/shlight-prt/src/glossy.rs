@@ -48,7 +48,10 @@ use core::f64::consts::PI;
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use shlight_core::sh::{ShBasis, sh_count};
+use std::borrow::Cow;
+
+use shlight_baked::{GlossyMatrices, GlossyView, TransferredRadiance};
+use shlight_core::sh::{ShBasis, clamped_cosine_eigenvalue, sh_count};
 use shlight_format::{GlossyData, ShprtFile};
 use shlight_mesh::Mesh;
 
@@ -345,6 +348,7 @@ impl View {
 /// vertex's normal, over the light's coefficients up to the matrices'
 /// lmax (missing ones count as 0). `matrices` as
 /// [`GlossyTransfer::matrices`], `lambda` the lobe's `Lambda_l` to lmax.
+/// The glossy layer alone: [`shade`] with no diffuse base.
 ///
 /// # Panics
 /// If the slices' lengths do not fit `lmax`, `channels` and the vertex
@@ -361,44 +365,77 @@ pub fn exit_radiance(
     light: &[DVec3],
     view: View,
 ) -> Vec<DVec3> {
+    let matrices = GlossyView::new(
+        lmax,
+        channels,
+        positions.len(),
+        GlossyMatrices::Full(Cow::Borrowed(matrices)),
+    )
+    .expect("matrices of the vertices' count");
+    shade(
+        &matrices,
+        &matrices.transferred(light),
+        positions,
+        normals,
+        lambda,
+        DVec3::ZERO,
+        view,
+    )
+}
+
+/// The exit radiance of the glossy material of `shlight render-mesh
+/// --prt` and `shlight sample`, per vertex: a diffuse base of albedo
+/// `diffuse` under the glossy layer,
+///
+/// ```text
+/// L_o = sum_lm (diffuse / pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm
+/// ```
+///
+/// with `T` each vertex's transferred radiance (`transferred`, from
+/// [`GlossyView::transferred`] of `matrices`: per cluster once, then
+/// summed per vertex), `n` the vertex's unit normal, `R` the mirror of
+/// `w_o` ([`View::towards_eye`]) about it, `A_l` the clamped cosine's
+/// zonal coefficients (`shlight_core::sh::clamped_cosine_eigenvalue`: the
+/// base is Lambertian under the transferred radiance, shadows and bounces
+/// included) and `Lambda_l` the lobe's (`lambda`, to lmax). Sums in `f64`.
+///
+/// # Panics
+/// If the slices' lengths do not fit `matrices`' vertex count and lmax.
+#[must_use]
+pub fn shade(
+    matrices: &GlossyView<'_>,
+    transferred: &TransferredRadiance,
+    positions: &[Vec3],
+    normals: &[Vec3],
+    lambda: &[f64],
+    diffuse: DVec3,
+    view: View,
+) -> Vec<DVec3> {
+    let lmax = matrices.lmax;
     let nc = sh_count(lmax);
-    let nn = nc * nc;
-    assert_eq!(matrices.len(), positions.len() * channels * nn);
+    assert_eq!(positions.len(), matrices.vertex_count);
     assert_eq!(normals.len(), positions.len());
     assert!(lambda.len() > lmax);
-    let used = nc.min(light.len());
     let basis = ShBasis::<f64>::new(lmax);
-    matrices
-        .par_chunks_exact(channels * nn)
-        .zip(positions.par_iter().zip(normals))
+    let base = diffuse / PI;
+    let cosine: Vec<f64> = (0..=lmax).map(clamped_cosine_eigenvalue).collect();
+    (0..positions.len())
+        .into_par_iter()
         .map_init(
-            || vec![0.0f64; nc],
-            |y, (m, (p, n))| {
-                let n = n.as_dvec3().normalize_or_zero();
-                let w_o = view.towards_eye(p.as_dvec3(), n);
+            || (vec![0.0f64; nc], vec![0.0f64; nc], vec![DVec3::ZERO; nc]),
+            |(yr, yn, t), v| {
+                let n = normals[v].as_dvec3().normalize_or_zero();
+                let w_o = view.towards_eye(positions[v].as_dvec3(), n);
                 let r = 2.0 * n.dot(w_o) * n - w_o;
-                basis.eval(r.normalize_or(n), y);
-                // The lobe folded into the basis values, band by band.
-                for (i, v) in y.iter_mut().enumerate() {
-                    *v *= lambda[shlight_core::sh::lm_from_index(i).0];
-                }
-                let mut out = DVec3::ZERO;
-                for c in 0..3 {
-                    let m = &m[(c % channels) * nn..][..nn];
-                    // sum_i y_i sum_j M_ij L_j
-                    out[c] = m
-                        .chunks_exact(nc)
-                        .zip(y.iter())
-                        .map(|(row, yi)| {
-                            yi * row[..used]
-                                .iter()
-                                .zip(light)
-                                .map(|(mij, lj)| f64::from(*mij) * lj[c])
-                                .sum::<f64>()
-                        })
-                        .sum();
-                }
-                out
+                basis.eval(r.normalize_or(n), yr);
+                basis.eval(n, yn);
+                transferred.vertex(matrices, v, t);
+                (0..nc)
+                    .map(|i| {
+                        let l = shlight_core::sh::lm_from_index(i).0;
+                        (lambda[l] * yr[i] + base * (cosine[l] * yn[i])) * t[i]
+                    })
+                    .sum()
             },
         )
         .collect()
@@ -406,7 +443,8 @@ pub fn exit_radiance(
 
 /// A `.shprt` file's exit radiance per vertex under `light` (radiance
 /// coefficients, index `l(l+1)+m`, any lmax): a diffuse file's `T . L`
-/// (`view` ignored), a glossy file's [`exit_radiance`] seen from `view`.
+/// (`view` ignored), a glossy file's glossy layer [`exit_radiance`] seen
+/// from `view` ([`file_shade`] with no diffuse base).
 ///
 /// # Errors
 /// A glossy file without a view, a zero view direction, an unknown BRDF
@@ -415,6 +453,21 @@ pub fn file_exit_radiance(
     file: &ShprtFile,
     light: &[DVec3],
     view: Option<View>,
+) -> Result<Vec<DVec3>, String> {
+    file_shade(file, light, view, DVec3::ZERO)
+}
+
+/// [`file_exit_radiance`] with a glossy file's diffuse base of albedo
+/// `diffuse` ([`shade`]); `diffuse` is ignored for a diffuse file, whose
+/// albedo is in its transfer.
+///
+/// # Errors
+/// As [`file_exit_radiance`].
+pub fn file_shade(
+    file: &ShprtFile,
+    light: &[DVec3],
+    view: Option<View>,
+    diffuse: DVec3,
 ) -> Result<Vec<DVec3>, String> {
     let Some(glossy) = &file.glossy else {
         return Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light));
@@ -439,101 +492,17 @@ pub fn file_exit_radiance(
     let brdf = Brdf::parse(&glossy.brdf)?;
     let positions: Vec<Vec3> = glossy.positions.iter().map(|p| Vec3::from(*p)).collect();
     let normals: Vec<Vec3> = glossy.normals.iter().map(|n| Vec3::from(*n)).collect();
-    if let Some(z) = &glossy.cpca {
-        return Ok(compressed_exit_radiance(
-            z,
-            file.lmax,
-            file.channels,
-            &positions,
-            &normals,
-            &brdf.lambda(file.lmax),
-            light,
-            view,
-        ));
-    }
-    Ok(exit_radiance(
-        &file.transfer,
-        file.lmax,
-        file.channels,
+    let matrices = file
+        .glossy_view()
+        .map_err(|e| e.to_string())?
+        .expect("a glossy file");
+    Ok(shade(
+        &matrices,
+        &matrices.transferred(light),
         &positions,
         &normals,
         &brdf.lambda(file.lmax),
-        light,
+        diffuse,
         view,
     ))
-}
-
-/// [`exit_radiance`] of CPCA-compressed matrices, as a renderer of them
-/// computes it (Sloan, Hall, Hart & Snyder 2003): per cluster the mean's
-/// and each basis matrix's transferred radiance `m_c L`, `b_ck L` once,
-/// then per vertex `T = m_c L + sum_k w_k (b_ck L)`.
-#[allow(clippy::too_many_arguments)]
-fn compressed_exit_radiance(
-    z: &shlight_format::CpcaData,
-    lmax: usize,
-    channels: usize,
-    positions: &[Vec3],
-    normals: &[Vec3],
-    lambda: &[f64],
-    light: &[DVec3],
-    view: View,
-) -> Vec<DVec3> {
-    let nc = sh_count(lmax);
-    let nn = nc * nc;
-    let dim = channels * nn;
-    let used = nc.min(light.len());
-    let k = z.vectors;
-    // (K + 1) transferred radiances per cluster, each `channels x nc` of
-    // RGB: row `i` of channel `ch` applied to the light's colour `c`.
-    let apply = |m: &[f32]| -> Vec<DVec3> {
-        let mut t = vec![DVec3::ZERO; channels * nc];
-        for ch in 0..channels {
-            for i in 0..nc {
-                let row = &m[ch * nn + i * nc..][..used];
-                t[ch * nc + i] = row
-                    .iter()
-                    .zip(light)
-                    .map(|(mij, lj)| f64::from(*mij) * *lj)
-                    .sum();
-            }
-        }
-        t
-    };
-    let per_cluster: Vec<Vec<Vec<DVec3>>> = (0..z.clusters)
-        .into_par_iter()
-        .map(|c| {
-            std::iter::once(apply(&z.means[c * dim..][..dim]))
-                .chain((0..k).map(|j| apply(&z.bases[(c * k + j) * dim..][..dim])))
-                .collect()
-        })
-        .collect();
-    let basis = ShBasis::<f64>::new(lmax);
-    (0..positions.len())
-        .into_par_iter()
-        .map_init(
-            || vec![0.0f64; nc],
-            |y, v| {
-                let n = normals[v].as_dvec3().normalize_or_zero();
-                let w_o = view.towards_eye(positions[v].as_dvec3(), n);
-                let r = 2.0 * n.dot(w_o) * n - w_o;
-                basis.eval(r.normalize_or(n), y);
-                let parts = &per_cluster[z.cluster[v] as usize];
-                let w = &z.weights[v * k..][..k];
-                let mut out = DVec3::ZERO;
-                for c in 0..3 {
-                    let ch = c % channels;
-                    out[c] = (0..nc)
-                        .map(|i| {
-                            let mut t = parts[0][ch * nc + i][c];
-                            for (j, wj) in w.iter().enumerate() {
-                                t += f64::from(*wj) * parts[j + 1][ch * nc + i][c];
-                            }
-                            lambda[shlight_core::sh::lm_from_index(i).0] * y[i] * t
-                        })
-                        .sum();
-                }
-                out
-            },
-        )
-        .collect()
 }

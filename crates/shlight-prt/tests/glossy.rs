@@ -58,6 +58,75 @@ fn mirror(w_o: DVec3, n: DVec3) -> DVec3 {
     2.0 * n.dot(w_o) * n - w_o
 }
 
+/// The diffuse base under the glossy layer (`shade`, what `sample
+/// --albedo` and the GPU evaluate): on an unshadowed sphere (`M` the
+/// identity but for sampling), `rho/pi E(n)` with `E` the light's
+/// irradiance by Ramamoorthi & Hanrahan's closed-form `A_l` (pi, 2 pi/3,
+/// pi/4), plus the closed-form glossy layer.
+#[test]
+fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
+    use shlight_baked::{GlossyMatrices, GlossyView};
+    let sphere = generate::uv_sphere(1.0, 16, 8);
+    let t = bake_glossy(
+        &sphere,
+        &options(2, 4096, Mode::Unshadowed, 0.8),
+        &|_, _, _| {},
+    );
+    let matrices = GlossyView::new(
+        2,
+        1,
+        t.vertex_count,
+        GlossyMatrices::Full(std::borrow::Cow::Borrowed(&t.matrices)),
+    )
+    .unwrap();
+    let light = test_light().resized(2);
+    let lambda = Brdf::Phong { exponent: 6.0 }.lambda(2);
+    let rho = DVec3::new(0.2, 0.5, 0.9);
+    let a = [PI, 2.0 * PI / 3.0, PI / 4.0];
+    let eye = DVec3::new(0.5, 3.0, 4.0);
+    let transferred = matrices.transferred(light.as_slice());
+    let got = shlight_prt::glossy::shade(
+        &matrices,
+        &transferred,
+        &sphere.positions,
+        &sphere.normals,
+        &lambda,
+        rho,
+        View::Eye(eye),
+    );
+    let glossy_only = shlight_prt::glossy::shade(
+        &matrices,
+        &transferred,
+        &sphere.positions,
+        &sphere.normals,
+        &lambda,
+        DVec3::ZERO,
+        View::Eye(eye),
+    );
+    for (v, (g, layer)) in got.iter().zip(&glossy_only).enumerate() {
+        let n = sphere.normals[v].as_dvec3();
+        let p = sphere.positions[v].as_dvec3();
+        let irradiance: DVec3 = sh_eval(2, n)
+            .iter()
+            .enumerate()
+            .map(|(i, y)| light.as_slice()[i] * a[lm_from_index(i).0] * *y)
+            .sum();
+        let base = rho / PI * irradiance;
+        let w_o = (eye - p).normalize();
+        let want = base + lobe_at(light.as_slice(), &lambda, mirror(w_o, n));
+        assert!(
+            (*g - want).abs().max_element() < 0.02 * want.max_element().max(1.0),
+            "vertex {v}: {g} vs {want}"
+        );
+        // The base adds to the layer, channel by channel.
+        assert!(
+            (*g - *layer - base).abs().max_element() < 0.01 * base.max_element().max(1.0),
+            "vertex {v}: base {} vs {base}",
+            *g - *layer
+        );
+    }
+}
+
 #[test]
 fn an_unshadowed_convex_sphere_has_identity_matrices_and_the_closed_form_exit() {
     let sphere = generate::uv_sphere(1.0, 16, 8);

@@ -474,6 +474,10 @@ impl<'a> App<'a> {
     /// with an SH part, the lmax changed.
     fn shading_to_draw(&mut self) -> Result<Shading> {
         let mut shading = self.controls.shading;
+        if shading.mode == Mode::Prt && self.transfer.as_ref().is_some_and(|t| t.glossy.is_some()) {
+            // A glossy file's layer alone, as render-mesh without --albedo.
+            shading.albedo = [0.0; 3];
+        }
         let encoding = self.controls.encoding;
         if shading.mode != Mode::Sh || encoding == Encoding::Sh || self.volume.is_some() {
             return Ok(shading);

@@ -51,10 +51,11 @@ pub fn background_renderer(
 }
 
 /// A renderer for colour targets of `format` holding `mesh`, its
-/// `transfer` (if any), the light of `env` and its map (if any).
+/// `transfer` (if any: diffuse transfer vectors, or glossy matrices with
+/// their lobe), the light of `env` and its map (if any).
 ///
 /// # Errors
-/// A transfer the GPU cannot hold.
+/// A transfer the GPU cannot hold, or a glossy file's unknown BRDF.
 pub fn renderer(
     ctx: &GpuContext,
     format: wgpu::TextureFormat,
@@ -65,7 +66,13 @@ pub fn renderer(
     let mut renderer = Renderer::new(ctx, format);
     renderer.set_mesh(ctx, mesh);
     if let Some(t) = transfer {
-        renderer.set_transfer(ctx, &t.view()?)?;
+        match (t.glossy_view()?, &t.glossy) {
+            (Some(matrices), Some(g)) => {
+                let brdf = shlight_prt::brdf::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
+                renderer.set_glossy(ctx, &matrices, &brdf.lambda(t.lmax))?;
+            }
+            _ => renderer.set_transfer(ctx, &t.view()?)?,
+        }
     }
     set_light(&mut renderer, ctx, env);
     Ok(renderer)

@@ -1,0 +1,190 @@
+//! The WGSL function `glossy_radiance` of the mesh pass's glossy PRT
+//! shading, written out as straight-line code for one lmax (the transfer's):
+//!
+//! ```text
+//! glossy_radiance(n, r) = sum_{l <= lmax} sum_m (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(r)) T_lm
+//! ```
+//!
+//! `rho` the diffuse base's albedo (`frame.albedo`), `A_l` the clamped
+//! cosine's zonal coefficients (literals), `Lambda_l` the lobe's
+//! (`frame.glossy_band`), `T_lm = glossy_t(l(l+1)+m)` the vertex's
+//! transferred radiance (`mesh.wgsl`). The basis at `n` and at `r` is
+//! [`basis_statements`]' (the renderer's `sh_reconstruct` basis), the one
+//! at `n` with its names prefixed `n_`.
+
+use std::fmt::Write;
+
+use shlight_baked::LIGHT_MAX_LMAX;
+use shlight_core::sh::clamped_cosine_eigenvalue;
+
+use crate::sh_expansion::{basis_statements, literal};
+
+/// `line` with every name [`basis_statements`] defines or reads (`d`, `z`,
+/// `factors`, `g{l}`, `c{m}`, `s{m}`, `q{l}_{m}`, `t{l}_{m}`) prefixed by
+/// `prefix`.
+fn prefixed(line: &str, prefix: &str) -> String {
+    let is_name = |w: &str| {
+        let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+        let pair = |t: &str| {
+            t.split_once('_')
+                .is_some_and(|(a, b)| digits(a) && digits(b))
+        };
+        match w {
+            "d" | "z" | "factors" => true,
+            _ => match w.split_at_checked(1) {
+                Some(("g" | "c" | "s", rest)) => digits(rest),
+                Some(("q" | "t", rest)) => pair(rest),
+                _ => false,
+            },
+        }
+    };
+    let mut out = String::with_capacity(line.len() + 16);
+    let mut word = String::new();
+    // A word after '.' is a field (d.z), not a name.
+    let mut field = false;
+    let flush = |word: &mut String, out: &mut String, field: bool| {
+        if !field && is_name(word) {
+            out.push_str(prefix);
+        }
+        out.push_str(word);
+        word.clear();
+    };
+    let mut in_number = false;
+    for ch in line.chars() {
+        if ch.is_ascii_alphanumeric() || ch == '_' {
+            if word.is_empty() && ch.is_ascii_digit() {
+                in_number = true;
+            }
+            if in_number {
+                out.push(ch);
+            } else {
+                word.push(ch);
+            }
+        } else {
+            // A '.' inside a number (1.5) or an exponent sign stays in it.
+            if !(in_number && (ch == '.' || ch == '-' || ch == '+')) {
+                in_number = false;
+            }
+            let was_field = field;
+            field = ch == '.' && !in_number;
+            flush(&mut word, &mut out, was_field);
+            out.push(ch);
+        }
+    }
+    flush(&mut word, &mut out, field);
+    out
+}
+
+/// The WGSL text of `glossy_radiance` for `lmax` (clamped to
+/// [`LIGHT_MAX_LMAX`]).
+#[must_use]
+pub(crate) fn glossy_radiance_wgsl(lmax: usize) -> String {
+    let lmax = lmax.min(LIGHT_MAX_LMAX);
+    let band = |f: &dyn Fn(usize) -> f64| {
+        (0..3)
+            .map(|e| {
+                let lanes: Vec<String> = (0..4)
+                    .map(|lane| {
+                        literal(if 4 * e + lane <= lmax {
+                            f(4 * e + lane)
+                        } else {
+                            0.0
+                        })
+                    })
+                    .collect();
+                format!("vec4<f32>({})", lanes.join(", "))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut body = vec![
+        "let base = frame.albedo.rgb / SH_PI;".to_string(),
+        "let n_d = n;".to_string(),
+        format!(
+            "let n_factors = array<vec4<f32>, 3>({});",
+            band(&clamped_cosine_eigenvalue)
+        ),
+    ];
+    body.extend(
+        basis_statements(lmax, |_, _, _| {})
+            .iter()
+            .map(|line| prefixed(line, "n_")),
+    );
+    body.push("let d = r;".into());
+    body.push("let factors = frame.glossy_band;".into());
+    body.extend(basis_statements(lmax, |l, m, lines| {
+        let centre = l * (l + 1);
+        let (e, lane) = (l / 4, l % 4);
+        if m == 0 {
+            let term = format!(
+                "(factors[{e}][{lane}] * q{l}_0 + base * (n_factors[{e}][{lane}] * n_q{l}_0)) * glossy_t({centre}u)"
+            );
+            lines.push(if l == 0 {
+                format!("var sum = {term};")
+            } else {
+                format!("sum += {term};")
+            });
+        } else {
+            lines.push(format!(
+                "sum += (t{l}_{m} * c{m} + base * (n_t{l}_{m} * n_c{m})) * glossy_t({}u) \
+                 + (t{l}_{m} * s{m} + base * (n_t{l}_{m} * n_s{m})) * glossy_t({}u);",
+                centre + m,
+                centre - m
+            ));
+        }
+    }));
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// sum_i (rho/pi A_l Y_i(n) + Lambda_l Y_i(r)) T_i to lmax {lmax}."
+    );
+    let _ = writeln!(
+        out,
+        "fn glossy_radiance(n: vec3<f32>, r: vec3<f32>) -> vec3<f32> {{"
+    );
+    let _ = writeln!(
+        out,
+        "    // Generated for lmax {lmax} (crates/shlight-gpu/src/glossy_expansion.rs)."
+    );
+    for line in body {
+        let _ = writeln!(out, "    {line}");
+    }
+    out.push_str("    return sum;\n}\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_prefixed_and_literals_kept() {
+        assert_eq!(
+            prefixed("let q3_1 = 1.5e-3 * z * q2_1 - 0.25 * q1_1;", "n_"),
+            "let n_q3_1 = 1.5e-3 * n_z * n_q2_1 - 0.25 * n_q1_1;"
+        );
+        assert_eq!(
+            prefixed(
+                "let g2 = SH_SQRT2 * factors[0][2]; let c2 = c1 * d.x - s1 * d.y;",
+                "n_"
+            ),
+            "let n_g2 = SH_SQRT2 * n_factors[0][2]; let n_c2 = n_c1 * n_d.x - n_s1 * n_d.y;"
+        );
+    }
+
+    #[test]
+    fn every_coefficient_is_read_once() {
+        for lmax in 0..=LIGHT_MAX_LMAX {
+            let text = glossy_radiance_wgsl(lmax);
+            let count = (lmax + 1) * (lmax + 1);
+            for i in 0..count {
+                assert_eq!(
+                    text.matches(&format!("glossy_t({i}u)")).count(),
+                    1,
+                    "lmax {lmax}: coefficient {i}\n{text}"
+                );
+            }
+            assert!(!text.contains(&format!("glossy_t({count}u)")), "{text}");
+        }
+    }
+}
