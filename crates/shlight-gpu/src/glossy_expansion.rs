@@ -12,12 +12,10 @@
 //! [`basis_statements`]' (the renderer's `sh_reconstruct` basis), the one
 //! at `n` with its names prefixed `n_`.
 
-use std::fmt::Write;
-
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::sh::clamped_cosine_eigenvalue;
 
-use crate::sh_expansion::{basis_statements, literal};
+use crate::sh_expansion::{basis_statements, literal, summing_function};
 
 /// `line` with every name [`basis_statements`] defines or reads (`d`, `z`,
 /// `factors`, `g{l}`, `c{m}`, `s{m}`, `q{l}_{m}`, `t{l}_{m}`) prefixed by
@@ -133,24 +131,12 @@ pub(crate) fn glossy_radiance_wgsl(lmax: usize) -> String {
             ));
         }
     }));
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "// sum_i (rho/pi A_l Y_i(n) + Lambda_l Y_i(r)) T_i to lmax {lmax}."
-    );
-    let _ = writeln!(
-        out,
-        "fn glossy_radiance(n: vec3<f32>, r: vec3<f32>) -> vec3<f32> {{"
-    );
-    let _ = writeln!(
-        out,
-        "    // Generated for lmax {lmax} (crates/shlight-gpu/src/glossy_expansion.rs)."
-    );
-    for line in body {
-        let _ = writeln!(out, "    {line}");
-    }
-    out.push_str("    return sum;\n}\n");
-    out
+    summing_function(
+        &format!("sum_i (rho/pi A_l Y_i(n) + Lambda_l Y_i(r)) T_i to lmax {lmax}."),
+        "fn glossy_radiance(n: vec3<f32>, r: vec3<f32>) -> vec3<f32>",
+        &format!("lmax {lmax} (crates/shlight-gpu/src/glossy_expansion.rs)"),
+        &body,
+    )
 }
 
 #[cfg(test)]

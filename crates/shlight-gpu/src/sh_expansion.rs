@@ -141,19 +141,29 @@ pub(crate) fn sh_reconstruct_wgsl(lmax: usize) -> String {
             ));
         }
     });
+    summing_function(
+        &format!(
+            "sum_l factors_l sum_m L_lm Y_lm(d) to lmax {lmax}, factors_l = factors[l / 4][l % 4]."
+        ),
+        "fn sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32>",
+        &format!("lmax {lmax} (crates/shlight-gpu/src/sh_expansion.rs)"),
+        &body,
+    )
+}
+
+/// A generated WGSL function that returns `sum`: a `// doc` line, then
+/// `signature {`, a `// Generated for ...` line naming `generated_for`,
+/// `body` (which declares and adds to `sum`) indented, and `return sum;`.
+pub(crate) fn summing_function(
+    doc: &str,
+    signature: &str,
+    generated_for: &str,
+    body: &[String],
+) -> String {
     let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "// sum_l factors_l sum_m L_lm Y_lm(d) to lmax {lmax}, factors_l = factors[l / 4][l % 4]."
-    );
-    let _ = writeln!(
-        out,
-        "fn sh_reconstruct(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> vec3<f32> {{"
-    );
-    let _ = writeln!(
-        out,
-        "    // Generated for lmax {lmax} (crates/shlight-gpu/src/sh_expansion.rs)."
-    );
+    let _ = writeln!(out, "// {doc}");
+    let _ = writeln!(out, "{signature} {{");
+    let _ = writeln!(out, "    // Generated for {generated_for}.");
     for line in body {
         let _ = writeln!(out, "    {line}");
     }
