@@ -45,15 +45,25 @@ fn decades(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     )
 }
 
-/// One line of a log-log plot.
-pub(crate) struct Series {
-    pub(crate) label: String,
-    pub(crate) points: Vec<(f64, f64)>,
-    pub(crate) dashed: bool,
+/// One line of a log-log plot ([`log_log_svg`]).
+pub struct Series {
+    /// Its name in the legend.
+    pub label: String,
+    /// Its points `(x, y)`; those not positive and finite are off the
+    /// axes' ranges.
+    pub points: Vec<(f64, f64)>,
+    /// A grey dashed reference line (no markers) instead of a coloured
+    /// one with a marker at each point.
+    pub dashed: bool,
 }
 
-/// A log-log plot of `series` as an SVG document.
-pub(crate) fn log_log_svg(
+/// A log-log plot of `series` as an SVG document (720x480, text as SVG
+/// text): both axes span the points' whole decades, the series coloured
+/// in turn, with a legend.
+///
+/// # Errors
+/// What `plotters` reports drawing it.
+pub fn log_log_svg(
     title: &str,
     x_desc: &str,
     y_desc: &str,
