@@ -47,8 +47,8 @@ fn write_file(file: &ShvolFile, path: &Path) -> PyResult<()> {
         VolumeFormat::from_path(path),
         shlight_format::threejs_volume::Precision::default(),
     )
-        .map(|_| ())
-        .map_err(|e| chained(&e))
+    .map(|_| ())
+    .map_err(|e| chained(&e))
 }
 
 /// An `(N, 3)` array of `what` from Python, each value rounded to f32 as a
@@ -249,9 +249,7 @@ impl Volume {
         let (light, warnings) = light_of(py, env, up)?;
         warn_all(py, &warnings, 2)?;
         let mut file = self.file.clone();
-        py.detach(|| {
-            guard(|| relight_file(&mut file, &light).map_err(|e| chained(&e)))
-        })?;
+        py.detach(|| guard(|| relight_file(&mut file, &light).map_err(|e| chained(&e))))?;
         Ok(Volume { file })
     }
 
