@@ -105,7 +105,7 @@ pub use crate::image::{Image, PixelCountError};
 pub use crate::image_codecs::encode_png_rgba8;
 pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
-pub use crate::row_readers::{RowSink, RowSource, open_rows};
+pub use crate::row_readers::{RowSink, RowSource, open_rows, read_image_by_rows};
 pub use crate::srgb::{linear_to_srgb, srgb_to_linear};
 pub use crate::stats::{PixelStats, SanitizeReport, sanitize_pixels};
 pub use crate::tone_map::{ParseToneMapError, ToneMap};

@@ -1,6 +1,6 @@
-//! Reading by rows (`open_rows`): every streaming reader hands out the
-//! whole-image reader's values bit for bit, each row once, and refuses
-//! what it refuses with the same error.
+//! Reading by rows (`open_rows`, and `read_image_by_rows` built on it):
+//! every streaming reader hands out the whole-image reader's values bit for
+//! bit, each row once, and refuses what it refuses with the same error.
 
 use std::path::Path;
 use std::sync::Mutex;
@@ -10,7 +10,10 @@ use exr::prelude::{
     LineOrder, SmallVec, Vec2, WritableImage,
 };
 use image::{ExtendedColorType, ImageEncoder};
-use shlight_io::{Image, ReadOptions, RowSource, WriteOptions, open_rows, read_image, write_image};
+use shlight_io::{
+    Image, ReadOptions, RowSource, WriteOptions, open_rows, read_image, read_image_by_rows,
+    write_image,
+};
 
 use crate::util::{TempDir, hdr_image, ldr_image};
 
@@ -51,6 +54,12 @@ fn check(path: &Path, streams: bool) {
     assert_eq!(source.size(), (whole.width(), whole.height()));
     let rows = gather(source.as_ref()).unwrap();
     assert_eq!(bits(&rows), bits(&whole), "{}", path.display());
+    let by_rows = read_image_by_rows(path, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (by_rows.width(), by_rows.height()),
+        (whole.width(), whole.height())
+    );
+    assert_eq!(bits(&by_rows), bits(&whole), "{}", path.display());
 }
 
 /// Writes `image` as float RGB with the given compression, blocks and
@@ -201,6 +210,8 @@ fn broken_files_give_the_whole_image_readers_error() {
                 .and_then(|source| gather(source.as_ref()).map(|_| ()))
                 .expect_err(&format!("{name} cut at {cut} of {}: {want}", bytes.len()));
             assert_eq!(got.to_string(), want.to_string(), "{name} cut at {cut}");
+            let got = read_image_by_rows(&short, &ReadOptions::default()).unwrap_err();
+            assert_eq!(got.to_string(), want.to_string(), "{name} cut at {cut}");
         }
     }
     // The pixel limit, judged from the header.
@@ -211,5 +222,7 @@ fn broken_files_give_the_whole_image_readers_error() {
     };
     let want = read_image(&path, &small).unwrap_err();
     let got = open_rows(&path, &small).err().unwrap();
+    assert_eq!(got.to_string(), want.to_string());
+    let got = read_image_by_rows(&path, &small).unwrap_err();
     assert_eq!(got.to_string(), want.to_string());
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::SanitizeCounts;
-use shlight_io::{Image, PixelStats, ReadOptions, read_image};
+use shlight_io::{Image, PixelStats, ReadOptions, read_image, read_image_by_rows};
 
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 use crate::map_info::MapInfo;
@@ -199,7 +199,10 @@ pub fn load_map(
             "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
         ))),
         (false, layout) => {
-            LoadedMap::from_image(&name.to_string(), read_image(path, read)?, layout, sanitize)
+            // By rows: a large compressed map then takes its texels'
+            // memory, not the file's besides.
+            let image = read_image_by_rows(path, read)?;
+            LoadedMap::from_image(&name.to_string(), image, layout, sanitize)
         }
     }
 }

@@ -13,6 +13,7 @@
 //! whole-image reader for its message.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
 
 use crate::openexr::ExrRows;
 use crate::{Format, Image, IoError, IoErrorKind, ReadOptions, read_image};
@@ -179,6 +180,36 @@ pub fn open_rows(path: &Path, options: &ReadOptions) -> Result<Box<dyn RowSource
         // Empty or too large: as the whole-image reader says it.
         _ => whole(),
     }
+}
+
+/// The image file at `path` read whole, exactly as [`crate::read_image`]
+/// reads it (the same pixels, bit for bit, and the same errors), but
+/// decoded by rows where the format streams ([`open_rows`]): what it holds
+/// is the image and a few compressed blocks, never the file's bytes beside
+/// the image (read or mapped), so a large compressed map takes its
+/// texels' memory and little more.
+///
+/// # Errors
+/// As [`crate::read_image`].
+pub fn read_image_by_rows(path: &Path, options: &ReadOptions) -> Result<Image, IoError> {
+    let source = open_rows(path, options)?;
+    if !source.streams() {
+        if let Some(image) = source.into_image() {
+            return Ok(image);
+        }
+        return read_image(path, options);
+    }
+    let (w, h) = source.size();
+    let pixels = Mutex::new(vec![[0.0_f32; 3]; w * h]);
+    source.read_rows(&|first, band: &[[f32; 3]]| {
+        let mut pixels = pixels.lock().unwrap_or_else(PoisonError::into_inner);
+        let start = first * w;
+        if let Some(rows) = pixels.get_mut(start..start + band.len()) {
+            rows.copy_from_slice(band);
+        }
+    })?;
+    let pixels = pixels.into_inner().unwrap_or_else(PoisonError::into_inner);
+    Image::new(w, h, pixels).map_err(|e| IoError::new(path, IoErrorKind::Corrupt(e.to_string())))
 }
 
 /// The format by the file's first bytes, then its extension
