@@ -92,12 +92,14 @@ class Transfer:
         light: Union[PathLike, SH],
         view: Optional[Tuple[float, float, float]] = None,
         eye: Optional[Tuple[float, float, float]] = None,
+        albedo: Optional[Union[float, Tuple[float, float, float]]] = None,
     ) -> npt.NDArray[np.float64]:
         """(vertex_count, 3) exit radiance under light (a map or radiance
         coefficient file, y up, or an SH of radiance), as shlight sample
         gives it: view is one direction from every vertex toward the eye,
         eye a camera position (a glossy file needs one; a diffuse file
-        ignores both)."""
+        ignores both); albedo adds a glossy file's diffuse base, as
+        sample --albedo does (a diffuse file refuses it)."""
 
     @property
     def lmax(self) -> int:

@@ -10,7 +10,7 @@ use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
-use shlight_prt::glossy::{View, file_exit_radiance};
+use shlight_prt::glossy::{View, file_shade};
 use shlight_prt::transfer::Mode;
 
 use crate::errors::{chained, shlight_error, warn_all};
@@ -106,8 +106,8 @@ impl Transfer {
         )
     }
 
-    /// exit_radiance(light, view=None, eye=None) -> (vertex_count, 3)
-    /// float64
+    /// exit_radiance(light, view=None, eye=None, albedo=None) ->
+    /// (vertex_count, 3) float64
     /// --
     ///
     /// Each vertex's exit radiance [r, g, b] under `light` (a path to an
@@ -117,15 +117,21 @@ impl Transfer {
     /// `sum Lambda_l (M L)_lm Y_lm(R)` with `R` the mirror about the
     /// vertex normal of `w_o`: `view` (x, y, z), one direction from every
     /// vertex toward the eye, or from each vertex to the point `eye`.
-    #[pyo3(signature = (light, view=None, eye=None))]
+    /// `albedo` (one value or (R, G, B), linear) adds a glossy file's
+    /// diffuse base, `albedo / pi sum A_l (M L)_lm Y_lm(n)`, as `shlight
+    /// sample --albedo` and `render-mesh --prt --albedo` do; a diffuse
+    /// file refuses it (its albedo is in its transfer).
+    #[pyo3(signature = (light, view=None, eye=None, albedo=None))]
     fn exit_radiance<'py>(
         &self,
         py: Python<'py>,
         light: &Bound<'py, PyAny>,
         view: Option<[f64; 3]>,
         eye: Option<[f64; 3]>,
+        albedo: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let f = &self.file;
+        let albedo = albedo.map(albedo_of).transpose()?;
         let view = match (view, eye) {
             (Some(_), Some(_)) => {
                 return Err(shlight_error("give view or eye, not both"));
@@ -135,6 +141,12 @@ impl Transfer {
             (None, None) => None,
         };
         let diffuse = f.glossy.is_none();
+        if diffuse && albedo.is_some() {
+            return Err(shlight_error(
+                "albedo is the diffuse base under a glossy file's glossy layer; a diffuse \
+                 file's albedo is in its transfer",
+            ));
+        }
         let view = if diffuse { None } else { view };
         if !diffuse && view.is_none() {
             return Err(shlight_error(format!(
@@ -149,7 +161,8 @@ impl Transfer {
         let light = light.resized(lmax);
         let values = py.detach(|| {
             guard(|| {
-                file_exit_radiance(f, light.as_slice(), view)
+                let base = albedo.map_or(DVec3::ZERO, |a| DVec3::from(a.map(f64::from)));
+                file_shade(f, light.as_slice(), view, base)
                     .map_err(|e| shlight_error(format!("{}: {e}", f.mesh)))
             })
         })?;

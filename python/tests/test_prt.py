@@ -111,6 +111,18 @@ def test_glossy_exit_radiance_is_the_clis_and_the_formula(cli, tmp_path):
     r = 2 * np.sum(n * w, axis=1)[:, None] * n - w
     want = np.einsum("vic,vi->vc", tr, sh_basis_l2(r / np.linalg.norm(r, axis=1)[:, None]) * lam)
     assert np.allclose(by_eye, want, rtol=1e-5, atol=1e-5 * np.abs(want).max())
+    # A diffuse base: albedo / pi sum A_l T_lm Y_lm(n), the CLI's --albedo.
+    based = t.exit_radiance(str(light), eye=tuple(eye), albedo=(0.2, 0.4, 0.6))
+    a_l = np.array([np.pi] + [2 * np.pi / 3] * 3 + [np.pi / 4] * 5)
+    e_n = np.einsum("vic,vi->vc", tr, sh_basis_l2(n / np.linalg.norm(n, axis=1)[:, None]) * a_l)
+    want_base = np.array([0.2, 0.4, 0.6]) / np.pi * e_n
+    assert np.allclose(based - by_eye, want_base, rtol=1e-5, atol=1e-5 * np.abs(want_base).max())
+    code, _, err = run_cli(
+        cli, "sample", glossy, "--light", light, "--eye", "0,1,5", "--albedo", "0.2,0.4,0.6",
+        "-o", out,
+    )
+    assert code == 0, err
+    assert np.allclose(based, np.array(json.loads(out.read_text())["radiance"]), rtol=1e-12, atol=1e-12)
     # Refusals.
     with pytest.raises(shlight.ShlightError, match="seen from somewhere"):
         t.exit_radiance(str(light))
@@ -122,6 +134,8 @@ def test_glossy_exit_radiance_is_the_clis_and_the_formula(cli, tmp_path):
     d = shlight.bake_transfer(BUNNY, lmax=2, samples=64)
     assert d.brdf is None and d.matrices is None
     assert np.array_equal(d.exit_radiance(str(light)), d.exit_radiance(str(light), view=(1, 2, 3)))
+    with pytest.raises(shlight.ShlightError, match="albedo is in its transfer"):
+        d.exit_radiance(str(light), albedo=0.5)
 
 
 def test_a_compressed_glossy_file_shades_as_the_cli_and_reconstructs(cli, tmp_path):
