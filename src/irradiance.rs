@@ -25,10 +25,10 @@ use clap::Args;
 use glam::DVec3;
 use shlight_accuracy::plot::{error_map_values, write_error_map};
 use shlight_core::map::{Layout, MapOrientation};
-use shlight_io::{Image, ReadOptions, WriteOptions, write_image};
-use shlight_pipeline::{IrradianceSettings, ReadSettings, map_irradiance, output_grid};
+use shlight_io::{Image, WriteOptions, write_image};
+use shlight_pipeline::{IrradianceSettings, map_irradiance, output_grid};
 
-use crate::input::{InputLayout, parse_input_layout};
+use crate::input::MapInputArgs;
 use crate::output_path::refuse_overwriting;
 use crate::progress::Ui;
 use crate::values::parse_size;
@@ -67,22 +67,9 @@ pub struct IrradianceArgs {
     /// bar underneath, so the maps of different lights compare.
     #[arg(long, value_name = "FILE.png")]
     pub error_map: Option<PathBuf>,
-    /// Layout of the input (as for `shlight project`): auto, equirect,
-    /// cross-h, cross-v, strip, angular, mirror-ball, faces.
-    #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
-    pub layout: InputLayout,
-    /// Which world axis the top row of the map faces.
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    pub up: String,
-    /// Read a map made for the mirrored pbrt / google mapping.
-    #[arg(long)]
-    pub mirror: bool,
-    /// Replace NaN/inf and negative texels (as `shlight project --sanitize`).
-    #[arg(long)]
-    pub sanitize: bool,
-    /// Refuse inputs with more pixels than this (judged from the header).
-    #[arg(long, default_value_t = ReadOptions::DEFAULT_MAX_PIXELS)]
-    pub max_pixels: usize,
+    /// How the map is read.
+    #[command(flatten)]
+    pub map: MapInputArgs,
 }
 
 /// `OUT` with `suffix` added to its stem: `dir/name-sh.exr`.
@@ -131,18 +118,8 @@ pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
         refuse_overwriting(out, std::slice::from_ref(&args.input))?;
     }
     let settings = IrradianceSettings {
-        read: ReadSettings {
-            layout: args.layout,
-            read: ReadOptions {
-                layer: None,
-                max_pixels: args.max_pixels,
-            },
-            sanitize: args.sanitize,
-        },
-        orientation: MapOrientation {
-            frame: crate::input::frame_of(&args.up),
-            mirror: args.mirror,
-        },
+        read: args.map.read_settings(),
+        orientation: args.map.orientation(),
         size: (w, h),
         encoding,
     };

@@ -6,15 +6,13 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::Args;
-use shlight_core::map::MapOrientation;
-use shlight_io::ReadOptions;
 use shlight_pipeline::{
-    PrefilterRequest, ReadSettings, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx1,
+    PrefilterRequest, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx1,
     write_prefiltered_ktx2,
 };
 use shlight_specular::{Engine, PrefilterSettings};
 
-use crate::input::{InputLayout, frame_of, parse_input_layout};
+use crate::input::MapInputArgs;
 use crate::output_path::{names_dir, refuse_overwriting};
 use crate::progress::Ui;
 
@@ -43,21 +41,9 @@ pub struct PrefilterArgs {
     /// --ibl-samples).
     #[arg(long, default_value_t = PrefilterSettings::DEFAULT_SAMPLES)]
     pub samples: u32,
-    /// Layout of the input (as for `shlight project`).
-    #[arg(long, default_value = "auto", value_parser = parse_input_layout)]
-    pub layout: InputLayout,
-    /// Which world axis the top row of the map faces.
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    pub up: String,
-    /// Read a map made for the mirrored pbrt / google mapping.
-    #[arg(long)]
-    pub mirror: bool,
-    /// Replace NaN/inf and negative texels (as `shlight project --sanitize`).
-    #[arg(long)]
-    pub sanitize: bool,
-    /// Refuse inputs with more pixels than this (judged from the header).
-    #[arg(long, default_value_t = ReadOptions::DEFAULT_MAX_PIXELS)]
-    pub max_pixels: usize,
+    /// How the map is read.
+    #[command(flatten)]
+    pub map: MapInputArgs,
 }
 
 /// Runs `shlight prefilter`.
@@ -84,18 +70,8 @@ pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
         samples: args.samples,
     };
     let request = PrefilterRequest {
-        read: ReadSettings {
-            layout: args.layout,
-            read: ReadOptions {
-                layer: None,
-                max_pixels: args.max_pixels,
-            },
-            sanitize: args.sanitize,
-        },
-        orientation: MapOrientation {
-            frame: frame_of(&args.up),
-            mirror: args.mirror,
-        },
+        read: args.map.read_settings(),
+        orientation: args.map.orientation(),
         settings,
     };
     settings.check()?;
