@@ -224,12 +224,7 @@ fn glossy_bake(
     compress: Option<(usize, usize)>,
 ) -> Result<()> {
     let name = args.mesh.display().to_string();
-    let (albedo, _) = request.albedo(mesh);
-    let channels = glossy_channels(&shlight_prt::transfer::BakeOptions {
-        mode: request.mode,
-        albedo,
-        ..Default::default()
-    });
+    let channels = glossy_channels(&request.options(mesh).0);
     let size = |lmax| glossy_bytes(mesh.vertex_count(), channels, lmax).unwrap_or(u64::MAX);
     let bytes = size(args.lmax);
     let mib = |b: u64| b as f64 / f64::from(1u32 << 20);

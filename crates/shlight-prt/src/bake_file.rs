@@ -37,6 +37,22 @@ pub struct BakeRequest {
 }
 
 impl BakeRequest {
+    /// The bake's options for `mesh` (no emitters), and the albedo to
+    /// record ([`BakeRequest::albedo`]).
+    #[must_use]
+    pub fn options(&self, mesh: &Mesh) -> (BakeOptions, Option<[f32; 3]>) {
+        let (albedo, recorded) = self.albedo(mesh);
+        let options = BakeOptions {
+            lmax: self.lmax,
+            samples: self.samples,
+            mode: self.mode,
+            albedo,
+            seed: self.seed,
+            emission: None,
+        };
+        (options, recorded)
+    }
+
     /// The albedo the bake of `mesh` uses, and the one its file records
     /// (`None` for the mesh's vertex colours).
     #[must_use]
@@ -74,15 +90,7 @@ pub fn bake_file(
     request: &BakeRequest,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> (Transfer, ShprtFile) {
-    let (albedo, recorded) = request.albedo(mesh);
-    let options = BakeOptions {
-        lmax: request.lmax,
-        samples: request.samples,
-        mode: request.mode,
-        albedo,
-        seed: request.seed,
-        emission: None,
-    };
+    let (options, recorded) = request.options(mesh);
     let transfer = bake(mesh, &options, progress);
     let file = transfer.to_shprt(
         request.mode,
@@ -108,15 +116,7 @@ pub fn bake_glossy_file(
     brdf: Brdf,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> (GlossyTransfer, ShprtFile) {
-    let (albedo, recorded) = request.albedo(mesh);
-    let options = BakeOptions {
-        lmax: request.lmax,
-        samples: request.samples,
-        mode: request.mode,
-        albedo,
-        seed: request.seed,
-        emission: None,
-    };
+    let (options, recorded) = request.options(mesh);
     let transfer = bake_glossy(mesh, &options, progress);
     let file = transfer.to_shprt(mesh, brdf, request.seed, recorded, &mesh_name(mesh_path));
     (transfer, file)
