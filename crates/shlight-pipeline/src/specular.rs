@@ -218,6 +218,17 @@ pub fn gltf_specular_images(
     })
 }
 
+/// The face size of mip 0 and each mip's six faces, `+X -X +Y -Y +Z -Z`,
+/// row-major: what the cube-map writers take.
+fn faces_by_level(cube: &Prefiltered) -> (usize, Vec<[Vec<[f32; 3]>; 6]>) {
+    let levels = cube
+        .levels
+        .iter()
+        .map(|l| CubeFace::ALL.map(|f| l.cube.face(f)))
+        .collect();
+    (cube.levels.first().map_or(1, |l| l.cube.size()), levels)
+}
+
 /// Writes `cube` to `path` as a KTX2 cube map with its mips (shlight-format's
 /// `cube_map_ktx2`: RGBA16F, linear, faces `+X -X +Y -Y +Z -Z` in the
 /// engine's cube axes): what Bevy's `EnvironmentMapLight` takes as its
@@ -226,12 +237,7 @@ pub fn gltf_specular_images(
 /// # Errors
 /// The file cannot be written, naming it.
 pub fn write_prefiltered_ktx2(cube: &Prefiltered, path: &Path) -> Result<()> {
-    let levels: Vec<[Vec<[f32; 3]>; 6]> = cube
-        .levels
-        .iter()
-        .map(|l| CubeFace::ALL.map(|f| l.cube.face(f)))
-        .collect();
-    let size = cube.levels.first().map_or(1, |l| l.cube.size());
+    let (size, levels) = faces_by_level(cube);
     let writer = concat!("shlight ", env!("CARGO_PKG_VERSION"));
     let bytes = shlight_format::cube_map_ktx2(size, &levels, writer);
     shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
@@ -245,12 +251,7 @@ pub fn write_prefiltered_ktx2(cube: &Prefiltered, path: &Path) -> Result<()> {
 /// # Errors
 /// The file cannot be written, naming it.
 pub fn write_prefiltered_ktx1(cube: &Prefiltered, path: &Path) -> Result<()> {
-    let levels: Vec<[Vec<[f32; 3]>; 6]> = cube
-        .levels
-        .iter()
-        .map(|l| CubeFace::ALL.map(|f| l.cube.face(f)))
-        .collect();
-    let size = cube.levels.first().map_or(1, |l| l.cube.size());
+    let (size, levels) = faces_by_level(cube);
     let bytes = shlight_format::filament_ktx1(size, &levels);
     shlight_io::write_atomically(path, |w| w.write_all(&bytes))?;
     Ok(())
