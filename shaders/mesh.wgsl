@@ -9,6 +9,9 @@
 //   L_o = sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm,
 // R the mirror of the direction to the eye about the normal, T the vertex's
 // transferred radiance M L, interpolated.
+// MODE_RADIANCE: per vertex, the exit radiance the renderer computed on the
+// CPU toward the eye (glossy BRDFs the shader does not evaluate, such as
+// GGX's tabulated projection), RGB at 3 v, interpolated.
 // MODE_NORMALS: the world-space unit normal as the colour, untouched by
 // exposure and tone map.
 
@@ -94,6 +97,9 @@ fn vs_mesh(in: VertexIn, @builtin(vertex_index) v: u32) -> VertexOut {
         glossy_part = frame.glossy_parts + group * parts * 3u * sh_count(frame.prt_lmax);
         out.prt = glossy_radiance(n, normalize(r));
     }
+    if frame.mode == MODE_RADIANCE {
+        out.prt = vec3<f32>(transfer[3u * v], transfer[3u * v + 1u], transfer[3u * v + 2u]);
+    }
     return out;
 }
 
@@ -104,7 +110,7 @@ fn fs_mesh(in: VertexOut) -> @location(0) vec4<f32> {
         case MODE_NORMALS: {
             return vec4<f32>(n, 1.0);
         }
-        case MODE_PRT, MODE_GLOSSY: {
+        case MODE_PRT, MODE_GLOSSY, MODE_RADIANCE: {
             return finish(in.prt);
         }
         default: {

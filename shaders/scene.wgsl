@@ -52,6 +52,9 @@ const MODE_NORMALS: u32 = 2u;
 const MODE_ENCODED: u32 = 3u;
 // MODE_PRT with glossy transfer (set by the renderer).
 const MODE_GLOSSY: u32 = 4u;
+// MODE_PRT with glossy transfer shaded on the CPU: each vertex's exit
+// radiance, RGB, in the transfer buffer (set by the renderer).
+const MODE_RADIANCE: u32 = 5u;
 
 const TONE_LINEAR: u32 = 0u;
 const TONE_CLAMP: u32 = 1u;

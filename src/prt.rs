@@ -60,7 +60,10 @@ pub struct PrtArgs {
     #[arg(long)]
     pub bounces: Option<u32>,
     /// The glossy BRDF of --mode glossy: phong:S, the normalised Phong lobe
-    /// of exponent S (e.g. phong:32).
+    /// of exponent S (e.g. phong:32); or ggx:ALPHA[,F0], the GGX microfacet
+    /// BRDF of linear roughness ALPHA (0.001 to 1) with Schlick's Fresnel
+    /// of reflectance F0 at normal incidence [default F0: 1, no Fresnel]
+    /// (e.g. ggx:0.3 or ggx:0.3,0.04).
     #[arg(long)]
     pub brdf: Option<String>,
     /// Compress --mode glossy's matrices: cpca:C,K, clustered PCA with C
@@ -111,7 +114,9 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     let glossy = args.mode == ModeArg::Glossy;
     let brdf = match (&args.brdf, glossy) {
         (Some(text), true) => Some(Brdf::parse(text).map_err(|e| anyhow::anyhow!("--brdf: {e}"))?),
-        (None, true) => bail!("--mode glossy needs --brdf phong:S (e.g. --brdf phong:32)"),
+        (None, true) => {
+            bail!("--mode glossy needs --brdf phong:S or ggx:ALPHA[,F0] (e.g. --brdf phong:32)")
+        }
         (Some(_), false) => bail!("--brdf is the BRDF of --mode glossy"),
         (None, false) => None,
     };

@@ -34,7 +34,8 @@ fn write_light(path: &Path) {
     crate::util::write_radiance_rows(path, &rows);
 }
 
-/// Bakes `shlight prt teapot --mode glossy` with `extra` into `dir/name`.
+/// Bakes `shlight prt teapot --mode glossy` with `extra` into `dir/name`
+/// (`--brdf phong:20` unless `extra` names one).
 fn bake(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
     let out = dir.join(name);
     let mesh = teapot();
@@ -43,13 +44,14 @@ fn bake(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
         s(&mesh),
         "--mode",
         "glossy",
-        "--brdf",
-        "phong:20",
         "--samples",
         "128",
         "-o",
         s(&out),
     ];
+    if !extra.contains(&"--brdf") {
+        args.extend(["--brdf", "phong:20"]);
+    }
     args.extend(extra);
     shlight_ok(&args);
     out
@@ -154,7 +156,8 @@ fn vertex_values(
 
 /// GPU shading equals `shlight sample --eye` at the vertices: lmax 2 and
 /// 4, plain and CPCA-compressed, grey and coloured (bounces) matrices, with
-/// and without a diffuse base, every vertex the frame shows alone within
+/// and without a diffuse base, Phong (evaluated by the shader) and GGX
+/// (shaded on the CPU, drawn by the GPU), every vertex the frame shows alone within
 /// 1e-5 of the largest value (f32 on the GPU, f64 in `sample`); then the
 /// environment turned (the renderer's new light against `sample` under a
 /// file of the turned coefficients).
@@ -189,6 +192,16 @@ fn gpu_glossy_shading_equals_sample_at_the_vertices() {
                 "--albedo",
                 "0.9,0.5,0.2",
             ],
+            None,
+        ),
+        (
+            "l4g.shprt",
+            vec!["--lmax", "4", "--brdf", "ggx:0.3,0.04"],
+            Some("0.5,0.4,0.3"),
+        ),
+        (
+            "l2gc.shprt",
+            vec!["--lmax", "2", "--brdf", "ggx:0.2", "--compress", "cpca:6,2"],
             None,
         ),
     ] {
@@ -262,7 +275,7 @@ fn compare(name: &str, got: &[Option<[f32; 3]>], want: &[[f64; 3]]) {
     assert!(compared > 150, "{name}: only {compared} vertices compared");
 }
 
-/// A glossy file's vertices change when the eye moves; a diffuse file's
+/// A glossy file's vertices (Phong and GGX) change when the eye moves; a diffuse file's
 /// do not (but for f32 rounding), each vertex read where it lands from
 /// both eyes.
 #[test]
@@ -276,6 +289,7 @@ fn glossy_vertices_change_with_the_eye_and_diffuse_ones_do_not() {
     write_light(&light);
     let mesh = shlight_mesh::load(&teapot()).unwrap();
     let glossy = bake(&dir, "glossy.shprt", &["--lmax", "4"]);
+    let ggx = bake(&dir, "ggx.shprt", &["--lmax", "4", "--brdf", "ggx:0.25"]);
     let diffuse = dir.join("diffuse.shprt");
     let path = teapot();
     shlight_ok(&[
@@ -295,7 +309,7 @@ fn glossy_vertices_change_with_the_eye_and_diffuse_ones_do_not() {
     };
     let (a, b) = (Vec3::new(20.0, 16.0, 44.0), Vec3::new(-30.0, 20.0, 36.0));
     let mut moved = Vec::new();
-    for file in [&glossy, &diffuse] {
+    for file in [&glossy, &ggx, &diffuse] {
         let renderer = point_renderer(&ctx, &mesh, file, &light);
         let from_a = vertex_values(&ctx, &renderer, &mesh, a, &shading);
         let from_b = vertex_values(&ctx, &renderer, &mesh, b, &shading);
@@ -316,17 +330,15 @@ fn glossy_vertices_change_with_the_eye_and_diffuse_ones_do_not() {
         );
         moved.push(change / largest);
     }
-    assert!(
-        moved[0] > 0.05,
-        "glossy: largest change {} of the largest value",
-        moved[0]
-    );
+    for (name, m) in [("phong", moved[0]), ("ggx", moved[1])] {
+        assert!(m > 0.05, "{name}: largest change {m} of the largest value");
+    }
     // Only the rasteriser's rounding of a point's attribute (measured about
     // 1e-7 on lavapipe).
     assert!(
-        moved[1] < 1e-6,
+        moved[2] < 1e-6,
         "diffuse: the eye changed a vertex by {}",
-        moved[1]
+        moved[2]
     );
 }
 

@@ -511,7 +511,69 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
         s(&glossy_file),
     ]);
     let glossy = screenshot("glossy.png", &["--hide-panel", "--prt", s(&glossy_file)]);
+    // --albedo: a red diffuse base under the glossy layer, and a dark
+    // Lambertian sphere in SH mode.
+    let glossy_red = screenshot(
+        "glossy-red.png",
+        &[
+            "--hide-panel",
+            "--prt",
+            s(&glossy_file),
+            "--albedo",
+            "0.9,0.05,0.05",
+        ],
+    );
+    let dark = screenshot("dark.png", &["--hide-panel", "--albedo", "0.2,0.2,0.2"]);
+    // GGX, shaded per vertex on the CPU toward the viewer's camera.
+    let ggx_file = dir.join("g.shprt");
+    shlight_ok(&[
+        "prt",
+        s(&mesh),
+        "--mode",
+        "glossy",
+        "--brdf",
+        "ggx:0.3",
+        "--lmax",
+        "2",
+        "--samples",
+        "64",
+        "-o",
+        s(&ggx_file),
+    ]);
+    let ggx = screenshot("ggx.png", &["--hide-panel", "--prt", s(&ggx_file)]);
     drop(x);
+    let channel_mean = |img: &shlight_io::Image, c: usize| {
+        let mut sum = 0.0;
+        for y in 140..160 {
+            for x in 220..240 {
+                sum += img.get(x, y)[c];
+            }
+        }
+        sum / 400.0
+    };
+    let (red_gain, green_gain) = (
+        channel_mean(&glossy_red, 0) - channel_mean(&glossy, 0),
+        channel_mean(&glossy_red, 1) - channel_mean(&glossy, 1),
+    );
+    assert!(
+        red_gain > 0.02 && red_gain > 5.0 * green_gain.abs(),
+        "view --albedo 0.9,0.05,0.05 adds a red base under the glossy layer: red {red_gain}, green {green_gain}"
+    );
+    for c in 0..3 {
+        assert!(
+            channel_mean(&dark, c) < 0.8 * channel_mean(&bare, c),
+            "view --albedo 0.2 darkens the sphere (channel {c}): {} vs {}",
+            channel_mean(&dark, c),
+            channel_mean(&bare, c)
+        );
+    }
+    let ggx_change: f32 = (0..3)
+        .map(|c| (channel_mean(&ggx, c) - channel_mean(&glossy, c)).abs())
+        .sum();
+    assert!(
+        ggx_change > 0.005 && channel_mean(&ggx, 0) > 0.01,
+        "view --prt GGX shades the sphere, otherwise than Phong ({ggx_change})"
+    );
     let lum = |img: &shlight_io::Image, x: usize, y: usize| {
         let p = img.get(x, y);
         p[0] + p[1] + p[2]

@@ -68,6 +68,11 @@ pub struct ViewArgs {
     /// Start with the overlay panel hidden (`h` toggles it).
     #[arg(long)]
     pub hide_panel: bool,
+    /// Lambertian albedo, R,G,B (linear) [default: 0.8,0.8,0.8]; with a
+    /// glossy --prt file, the diffuse base under its glossy layer
+    /// [default: none, the glossy layer alone].
+    #[arg(long, value_parser = crate::values::parse_vec3_f32)]
+    pub albedo: Option<glam::Vec3>,
     #[command(flatten)]
     pub volume: crate::volume_shading::VolumeShadingArgs,
 }
@@ -163,6 +168,7 @@ fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
         screenshot: args.screenshot.clone(),
         frames: args.frames,
         hide_panel: args.hide_panel,
+        albedo: args.albedo.map(|a| a.to_array()),
     };
     let scene = shlight_viewer::ViewerScene {
         mesh,

@@ -45,6 +45,23 @@ struct GlossyTransfer {
     computed_for: Mutex<Option<Vec<[f32; 3]>>>,
 }
 
+/// Each vertex's exit radiance toward the eye, computed on the CPU, for a
+/// glossy BRDF the shader does not evaluate: from the light's coefficients
+/// (world frame, to the lmax shaded), the camera's position and the
+/// diffuse base's albedo; one linear RGB value per vertex of the mesh.
+pub type VertexShader = dyn Fn(&[DVec3], glam::Vec3, [f32; 3]) -> Vec<[f32; 3]> + Send + Sync;
+
+/// What CPU-shaded radiance was computed for: the light's coefficients,
+/// the eye and the albedo.
+type ShadedFor = (Vec<[f32; 3]>, [f32; 3], [f32; 3]);
+
+/// Glossy transfer shaded on the CPU ([`Renderer::set_glossy_on_cpu`]).
+struct CpuGlossy {
+    shade: Box<VertexShader>,
+    /// What the buffer's radiance was computed for.
+    computed_for: Mutex<Option<ShadedFor>>,
+}
+
 /// Draws meshes lit by SH coefficients into targets of one colour format.
 pub struct Renderer {
     color_format: wgpu::TextureFormat,
@@ -68,6 +85,7 @@ pub struct Renderer {
     light_coeffs: Vec<[f32; 3]>,
     prt: Option<(usize, usize)>,
     glossy: Option<GlossyTransfer>,
+    cpu_glossy: Option<CpuGlossy>,
     /// Draw the mesh's vertices as points instead of its triangles.
     points: bool,
     point_pipelines: [OnceLock<wgpu::RenderPipeline>; LIGHT_MAX_LMAX + 1],
@@ -211,6 +229,7 @@ impl Renderer {
             light_coeffs: Vec::new(),
             prt: None,
             glossy: None,
+            cpu_glossy: None,
             points: false,
             point_pipelines: Default::default(),
             encoded_pipeline: None,
@@ -390,7 +409,97 @@ impl Renderer {
             });
         self.prt = Some((t.lmax, t.channels));
         self.glossy = None;
+        self.cpu_glossy = None;
         self.rebind_mesh(ctx);
+        Ok(())
+    }
+
+    /// Glossy transfer shaded on the CPU: [`Mode::Prt`] then draws each
+    /// vertex's exit radiance as `shade` gives it, called again whenever
+    /// the light (or the lmax shaded), the camera's position or
+    /// [`Shading::albedo`] changes, and interpolates it over the
+    /// triangles. For BRDFs the shader does not evaluate (GGX's tabulated
+    /// projection: a rotation of the transferred radiance into each
+    /// vertex's frame).
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] without a mesh, or when the mesh's radiance
+    /// is more than the device's largest storage buffer.
+    pub fn set_glossy_on_cpu(
+        &mut self,
+        ctx: &GpuContext,
+        shade: Box<VertexShader>,
+    ) -> Result<(), GpuError> {
+        let Some(vertices) = self.mesh.as_ref().map(|m| m.vertex_count) else {
+            return Err(GpuError::Invalid(
+                "glossy shading given before a mesh".into(),
+            ));
+        };
+        let bytes = 12 * vertices as u64;
+        let limit = ctx
+            .device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(ctx.device.limits().max_buffer_size);
+        if bytes > limit {
+            return Err(GpuError::Invalid(format!(
+                "the exit radiance of {vertices} vertices takes {bytes} bytes; the device's storage buffers hold {limit}"
+            )));
+        }
+        self.transfer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("vertex radiance"),
+            size: bytes.max(16),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.prt = Some((0, 3));
+        self.glossy = None;
+        self.cpu_glossy = Some(CpuGlossy {
+            shade,
+            computed_for: Mutex::new(None),
+        });
+        self.rebind_mesh(ctx);
+        Ok(())
+    }
+
+    /// The CPU-shaded radiance for the light to `lmax`, `eye` and
+    /// `albedo`, computed and written unless the buffer holds it already.
+    fn update_cpu_glossy(
+        &self,
+        ctx: &GpuContext,
+        lmax: usize,
+        eye: glam::Vec3,
+        albedo: [f32; 3],
+    ) -> Result<(), GpuError> {
+        let Some(g) = &self.cpu_glossy else {
+            return Ok(());
+        };
+        let light = &self.light_coeffs[..((lmax + 1) * (lmax + 1)).min(self.light_coeffs.len())];
+        let key = (light.to_vec(), eye.to_array(), albedo);
+        let mut computed = g
+            .computed_for
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if computed.as_ref() == Some(&key) {
+            return Ok(());
+        }
+        let coeffs: Vec<DVec3> = light
+            .iter()
+            .map(|c| DVec3::from(c.map(f64::from)))
+            .collect();
+        let radiance = (g.shade)(&coeffs, eye, albedo);
+        let vertices = self.mesh.as_ref().map_or(0, |m| m.vertex_count);
+        if radiance.len() != vertices {
+            return Err(GpuError::Invalid(format!(
+                "glossy shading gave {} values for {vertices} vertices",
+                radiance.len()
+            )));
+        }
+        if !radiance.is_empty() {
+            ctx.queue
+                .write_buffer(&self.transfer, 0, bytemuck::cast_slice(&radiance));
+        }
+        *computed = Some(key);
         Ok(())
     }
 
@@ -479,6 +588,7 @@ impl Renderer {
         }
         self.transfer = buffer;
         self.prt = Some((lmax, matrices.channels));
+        self.cpu_glossy = None;
         self.glossy = Some(GlossyTransfer {
             matrices: matrices.clone().into_owned(),
             band,
@@ -524,6 +634,7 @@ impl Renderer {
     fn clear_transfer(&mut self, ctx: &GpuContext) {
         self.prt = None;
         self.glossy = None;
+        self.cpu_glossy = None;
         self.transfer = no_transfer(&ctx.device);
         self.rebind_mesh(ctx);
     }
@@ -581,6 +692,10 @@ impl Renderer {
                     parts: g.parts as u32,
                 }
             });
+        let vertex_radiance = self.cpu_glossy.is_some() && shading.mode == Mode::Prt;
+        if vertex_radiance {
+            self.update_cpu_glossy(ctx, lmax, camera.eye, shading.albedo)?;
+        }
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
             view_proj: camera.view_proj(aspect),
@@ -589,6 +704,7 @@ impl Renderer {
             lmax,
             prt: self.prt,
             glossy,
+            vertex_radiance,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });

@@ -114,6 +114,9 @@ impl Default for Shading {
 
 /// `MODE_GLOSSY` of `scene.wgsl`: [`Mode::Prt`] with glossy transfer.
 const MODE_GLOSSY: u32 = 4;
+/// `MODE_RADIANCE` of `scene.wgsl`: [`Mode::Prt`] with glossy transfer
+/// shaded on the CPU, each vertex's exit radiance in the transfer buffer.
+const MODE_RADIANCE: u32 = 5;
 
 /// `Frame` of `shaders/scene.wgsl`, byte for byte.
 #[repr(C)]
@@ -166,6 +169,9 @@ pub(crate) struct FrameInputs<'a> {
     /// The glossy transfer's lobe and layout, when the PRT transfer is
     /// glossy (PRT mode then shades it view by view).
     pub glossy: Option<GlossyInputs>,
+    /// The transfer buffer holds each vertex's exit radiance, shaded on
+    /// the CPU (PRT mode then draws it).
+    pub vertex_radiance: bool,
     /// The camera's position (glossy shading's `w_o`).
     pub eye: glam::Vec3,
     pub encode_srgb: bool,
@@ -219,9 +225,10 @@ impl FrameUniform {
             albedo: [r, g, b, 1.0],
             exposure: 2f32.powf(f.shading.exposure_ev),
             lmax: f.lmax as u32,
-            mode: match (f.shading.mode, f.glossy) {
-                (Mode::Prt, Some(_)) => MODE_GLOSSY,
-                (mode, _) => mode.code(),
+            mode: match (f.shading.mode, f.glossy, f.vertex_radiance) {
+                (Mode::Prt, _, true) => MODE_RADIANCE,
+                (Mode::Prt, Some(_), false) => MODE_GLOSSY,
+                (mode, _, _) => mode.code(),
             },
             tone_map: match f.shading.tone_map {
                 None => 0,

@@ -883,6 +883,7 @@ impl VolumeRenderer {
             lmax,
             prt: None,
             glossy: None,
+            vertex_radiance: false,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });

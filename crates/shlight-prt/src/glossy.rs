@@ -35,6 +35,11 @@
 //! direction `R` ([`crate::brdf`]). Nothing is clamped: a view from below
 //! the surface gives the formula's value.
 //!
+//! For `ggx:ALPHA[,F0]`, not a lobe about `R`, the exit radiance is the
+//! transferred radiance integrated against the BRDF times the cosine over
+//! the hemisphere, through the BRDF's projection tabulated per view
+//! elevation ([`crate::ggx_lobe`] states it); 0 for a view from below.
+//!
 //! # Estimator
 //!
 //! The diffuse bake's seeded stratified directions `s_j` (equal solid
@@ -55,7 +60,7 @@ use shlight_core::sh::{ShBasis, clamped_cosine_eigenvalue, sh_count};
 use shlight_format::{GlossyData, ShprtFile};
 use shlight_mesh::Mesh;
 
-use crate::brdf::Brdf;
+use crate::brdf::{Brdf, Lobe};
 use crate::records::Kernels;
 use crate::transfer::{BakeOptions, Cast, Mode, Stage};
 
@@ -312,7 +317,7 @@ impl GlossyTransfer {
             self.channels,
             &mesh.positions,
             &mesh.normals,
-            &brdf.lambda(self.lmax),
+            &brdf.lobe(self.lmax),
             light,
             view,
         )
@@ -347,7 +352,9 @@ impl View {
 /// light), `R` the mirror of `w_o` ([`View::towards_eye`]) about the
 /// vertex's normal, over the light's coefficients up to the matrices'
 /// lmax (missing ones count as 0). `matrices` as
-/// [`GlossyTransfer::matrices`], `lambda` the lobe's `Lambda_l` to lmax.
+/// [`GlossyTransfer::matrices`], `lobe` the BRDF's to lmax
+/// ([`Brdf::lobe`]; for GGX its tabulated projection instead of `Lambda_l`,
+/// [`crate::ggx_lobe`]).
 /// The glossy layer alone: [`shade`] with no diffuse base.
 ///
 /// # Panics
@@ -361,7 +368,7 @@ pub fn exit_radiance(
     channels: usize,
     positions: &[Vec3],
     normals: &[Vec3],
-    lambda: &[f64],
+    lobe: &Lobe,
     light: &[DVec3],
     view: View,
 ) -> Vec<DVec3> {
@@ -377,7 +384,7 @@ pub fn exit_radiance(
         &matrices.transferred(light),
         positions,
         normals,
-        lambda,
+        lobe,
         DVec3::ZERO,
         view,
     )
@@ -397,7 +404,9 @@ pub fn exit_radiance(
 /// `w_o` ([`View::towards_eye`]) about it, `A_l` the clamped cosine's
 /// zonal coefficients (`shlight_core::sh::clamped_cosine_eigenvalue`: the
 /// base is Lambertian under the transferred radiance, shadows and bounces
-/// included) and `Lambda_l` the lobe's (`lambda`, to lmax). Sums in `f64`.
+/// included) and `Lambda_l` the lobe's ([`Lobe::Zonal`], to lmax). For a
+/// [`Lobe::Ggx`] (to at least the matrices' lmax) the glossy layer is
+/// instead [`crate::ggx_lobe::GgxLobe::exit_radiance`]. Sums in `f64`.
 ///
 /// # Panics
 /// If the slices' lengths do not fit `matrices`' vertex count and lmax.
@@ -407,7 +416,7 @@ pub fn shade(
     transferred: &TransferredRadiance,
     positions: &[Vec3],
     normals: &[Vec3],
-    lambda: &[f64],
+    lobe: &Lobe,
     diffuse: DVec3,
     view: View,
 ) -> Vec<DVec3> {
@@ -415,27 +424,50 @@ pub fn shade(
     let nc = sh_count(lmax);
     assert_eq!(positions.len(), matrices.vertex_count);
     assert_eq!(normals.len(), positions.len());
-    assert!(lambda.len() > lmax);
+    match lobe {
+        Lobe::Zonal(lambda) => assert!(lambda.len() > lmax),
+        Lobe::Ggx(g) => assert!(g.lmax() >= lmax),
+    }
     let basis = ShBasis::<f64>::new(lmax);
     let base = diffuse / PI;
     let cosine: Vec<f64> = (0..=lmax).map(clamped_cosine_eigenvalue).collect();
     (0..positions.len())
         .into_par_iter()
         .map_init(
-            || (vec![0.0f64; nc], vec![0.0f64; nc], vec![DVec3::ZERO; nc]),
+            || {
+                let size = match lobe {
+                    Lobe::Ggx(g) => sh_count(g.lmax()),
+                    Lobe::Zonal(_) => nc,
+                };
+                (
+                    vec![0.0f64; size],
+                    vec![0.0f64; nc],
+                    vec![DVec3::ZERO; size],
+                )
+            },
             |(yr, yn, t), v| {
                 let n = normals[v].as_dvec3().normalize_or_zero();
                 let w_o = view.towards_eye(positions[v].as_dvec3(), n);
-                let r = 2.0 * n.dot(w_o) * n - w_o;
-                basis.eval(r.normalize_or(n), yr);
                 basis.eval(n, yn);
-                transferred.vertex(matrices, v, t);
-                (0..nc)
+                transferred.vertex(matrices, v, &mut t[..nc]);
+                let under = (0..nc)
                     .map(|i| {
                         let l = shlight_core::sh::lm_from_index(i).0;
-                        (lambda[l] * yr[i] + base * (cosine[l] * yn[i])) * t[i]
+                        base * (cosine[l] * yn[i]) * t[i]
                     })
-                    .sum()
+                    .sum::<DVec3>();
+                let layer = match lobe {
+                    Lobe::Zonal(lambda) => {
+                        let r = 2.0 * n.dot(w_o) * n - w_o;
+                        basis.eval(r.normalize_or(n), yr);
+                        (0..nc)
+                            .map(|i| lambda[shlight_core::sh::lm_from_index(i).0] * yr[i] * t[i])
+                            .sum()
+                    }
+                    // Coefficients above the matrices' lmax stay zero.
+                    Lobe::Ggx(g) => g.exit_radiance(n, w_o, t, yr),
+                };
+                under + layer
             },
         )
         .collect()
@@ -469,40 +501,88 @@ pub fn file_shade(
     view: Option<View>,
     diffuse: DVec3,
 ) -> Result<Vec<DVec3>, String> {
-    let Some(glossy) = &file.glossy else {
-        return Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light));
-    };
-    let Some(view) = view else {
-        return Err(
-            "a glossy file's exit radiance depends on the view: give a view direction or an eye"
-                .into(),
-        );
-    };
-    match view {
-        View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
-            return Err(format!(
-                "the view direction {d} has zero length (or is not finite)"
-            ));
-        }
-        View::Eye(e) if !e.is_finite() => {
-            return Err(format!("the eye {e} is not finite"));
-        }
-        _ => {}
+    match GlossyShader::new(file)? {
+        None => Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light)),
+        Some(shader) => shader.shade(light, view, diffuse),
     }
-    let brdf = Brdf::parse(&glossy.brdf)?;
-    let positions: Vec<Vec3> = glossy.positions.iter().map(|p| Vec3::from(*p)).collect();
-    let normals: Vec<Vec3> = glossy.normals.iter().map(|n| Vec3::from(*n)).collect();
-    let matrices = file
-        .glossy_view()
-        .map_err(|e| e.to_string())?
-        .expect("a glossy file");
-    Ok(shade(
-        &matrices,
-        &matrices.transferred(light),
-        &positions,
-        &normals,
-        &brdf.lambda(file.lmax),
-        diffuse,
-        view,
-    ))
+}
+
+/// A glossy `.shprt` file ready to shade under light after light and view
+/// after view: its matrices, vertices and BRDF's lobe (a GGX table is
+/// made once, here).
+#[derive(Clone, Debug)]
+pub struct GlossyShader {
+    matrices: GlossyView<'static>,
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    lobe: Lobe,
+}
+
+impl GlossyShader {
+    /// `None` for a diffuse file.
+    ///
+    /// # Errors
+    /// An unknown BRDF in the file, or arrays that do not fit its counts.
+    pub fn new(file: &ShprtFile) -> Result<Option<Self>, String> {
+        let Some(glossy) = &file.glossy else {
+            return Ok(None);
+        };
+        let brdf = Brdf::parse(&glossy.brdf)?;
+        let matrices = file
+            .glossy_view()
+            .map_err(|e| e.to_string())?
+            .expect("a glossy file")
+            .into_owned();
+        Ok(Some(Self {
+            matrices,
+            positions: glossy.positions.iter().map(|p| Vec3::from(*p)).collect(),
+            normals: glossy.normals.iter().map(|n| Vec3::from(*n)).collect(),
+            lobe: brdf.lobe(file.lmax),
+        }))
+    }
+
+    /// The file's lobe.
+    #[must_use]
+    pub fn lobe(&self) -> &Lobe {
+        &self.lobe
+    }
+
+    /// Each vertex's exit radiance under `light` (any lmax) seen from
+    /// `view`, over a diffuse base of albedo `diffuse` ([`shade`]).
+    ///
+    /// # Errors
+    /// No view, a zero view direction, or a non-finite eye.
+    pub fn shade(
+        &self,
+        light: &[DVec3],
+        view: Option<View>,
+        diffuse: DVec3,
+    ) -> Result<Vec<DVec3>, String> {
+        let Some(view) = view else {
+            return Err(
+                "a glossy file's exit radiance depends on the view: give a view direction or an eye"
+                    .into(),
+            );
+        };
+        match view {
+            View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
+                return Err(format!(
+                    "the view direction {d} has zero length (or is not finite)"
+                ));
+            }
+            View::Eye(e) if !e.is_finite() => {
+                return Err(format!("the eye {e} is not finite"));
+            }
+            _ => {}
+        }
+        Ok(shade(
+            &self.matrices,
+            &self.matrices.transferred(light),
+            &self.positions,
+            &self.normals,
+            &self.lobe,
+            diffuse,
+            view,
+        ))
+    }
 }

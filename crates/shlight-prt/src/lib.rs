@@ -57,6 +57,7 @@ pub mod brute_force;
 pub mod bvh;
 pub mod cpca;
 mod error;
+pub mod ggx_lobe;
 pub mod glossy;
 pub mod gltf_export;
 pub mod packet;

@@ -11,7 +11,7 @@ use glam::{DVec3, Vec3};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 use shlight_core::sh::{ShCoeffs, closed_form, lm_from_index, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
-use shlight_prt::brdf::Brdf;
+use shlight_prt::brdf::{Brdf, Lobe};
 use shlight_prt::brute_force::closest_hit;
 use shlight_prt::glossy::{View, bake_glossy, exit_radiance, glossy_bytes};
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode};
@@ -80,7 +80,7 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
     )
     .unwrap();
     let light = test_light().resized(2);
-    let lambda = Brdf::Phong { exponent: 6.0 }.lambda(2);
+    let lambda = Brdf::Phong { exponent: 6.0 }.lambda(2).unwrap();
     let rho = DVec3::new(0.2, 0.5, 0.9);
     let a = [PI, 2.0 * PI / 3.0, PI / 4.0];
     let eye = DVec3::new(0.5, 3.0, 4.0);
@@ -90,7 +90,7 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
         &transferred,
         &sphere.positions,
         &sphere.normals,
-        &lambda,
+        &Lobe::Zonal(lambda.clone()),
         rho,
         View::Eye(eye),
     );
@@ -99,7 +99,7 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
         &transferred,
         &sphere.positions,
         &sphere.normals,
-        &lambda,
+        &Lobe::Zonal(lambda.clone()),
         DVec3::ZERO,
         View::Eye(eye),
     );
@@ -161,7 +161,7 @@ fn an_unshadowed_convex_sphere_has_identity_matrices_and_the_closed_form_exit() 
     assert!(w4 < 0.015 && w4 < 0.6 * w1, "max |M - I| = {w4}, {w1}");
     let light = test_light();
     let brdf = Brdf::Phong { exponent: 12.0 };
-    let lambda = brdf.lambda(4);
+    let lambda = brdf.lambda(4).unwrap();
     let mut rng = StdRng::seed_from_u64(1);
     for _ in 0..4 {
         let view = DVec3::new(
@@ -187,7 +187,7 @@ fn shadowed_exit_radiance_matches_a_brute_force_reference() {
     let t = bake_glossy(&mesh, &options(4, 4096, Mode::Shadowed, 0.8), &|_, _, _| {});
     let light = test_light();
     let brdf = Brdf::Phong { exponent: 6.0 };
-    let lambda = brdf.lambda(4);
+    let lambda = brdf.lambda(4).unwrap();
     // The reference's own directions: a jittered grid in (cos theta, phi).
     let mut rng = StdRng::seed_from_u64(21);
     let (rows, cols) = (100, 200);
@@ -330,7 +330,7 @@ fn a_sharpening_phong_lobe_approaches_the_mirror_reflection() {
         .iter()
         .map(|&s| {
             let brdf = Brdf::Phong { exponent: s };
-            let lambda = brdf.lambda(lmax);
+            let lambda = brdf.lambda(lmax).unwrap();
             // Lambda_l -> 1 from below, more slowly for higher l.
             assert!(lambda.windows(2).all(|w| w[1] < w[0]), "{lambda:?}");
             let got = exit_radiance(
@@ -339,7 +339,7 @@ fn a_sharpening_phong_lobe_approaches_the_mirror_reflection() {
                 1,
                 &positions,
                 &normals,
-                &lambda,
+                &Lobe::Zonal(lambda.clone()),
                 light.as_slice(),
                 View::Direction(view),
             );
@@ -376,7 +376,7 @@ fn a_view_turns_radiance_by_the_mirror_direction_and_the_sizes_are_counted() {
         m[i * nc + i] = 1.0;
     }
     let sun = closed_form::directional(2, DVec3::new(1.0, 1.0, 0.0).normalize(), DVec3::ONE);
-    let lambda = Brdf::Phong { exponent: 1e5 }.lambda(2);
+    let lambda = Brdf::Phong { exponent: 1e5 }.lambda(2).unwrap();
     let at = |view: DVec3| {
         exit_radiance(
             &m,
@@ -384,7 +384,7 @@ fn a_view_turns_radiance_by_the_mirror_direction_and_the_sizes_are_counted() {
             1,
             &positions,
             &normals,
-            &lambda,
+            &Lobe::Zonal(lambda.clone()),
             sun.as_slice(),
             View::Direction(view),
         )[0]
@@ -402,7 +402,7 @@ fn a_view_turns_radiance_by_the_mirror_direction_and_the_sizes_are_counted() {
         1,
         &positions,
         &normals,
-        &lambda,
+        &Lobe::Zonal(lambda.clone()),
         sun.as_slice(),
         View::Eye(DVec3::new(-3.0, 3.0, 0.0)),
     )[0]
@@ -506,7 +506,7 @@ fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
             1,
             &mesh.positions,
             &mesh.normals,
-            &brdf.lambda(2),
+            &Lobe::Zonal(brdf.lambda(2).unwrap()),
             light.as_slice(),
             view,
         )

@@ -107,7 +107,7 @@ impl<'a> App<'a> {
                     window: Window::None,
                     exposure_ev: options.exposure,
                     tone_map: Some(options.tone_map),
-                    albedo: [0.8; 3],
+                    albedo: options.albedo.unwrap_or([0.8; 3]),
                     background,
                 },
                 env_yaw: 0.0,
@@ -172,7 +172,12 @@ impl<'a> App<'a> {
         let renderer = match &mut self.volume {
             // The scene is drawn by the volume pass, lit by its probes.
             Some(v) => {
-                v.start(&ctx, format, &self.mesh, [0.8; 3])?;
+                v.start(
+                    &ctx,
+                    format,
+                    &self.mesh,
+                    self.options.albedo.unwrap_or([0.8; 3]),
+                )?;
                 crate::scene_renderer::background_renderer(&ctx, format, &self.env)
             }
             None => crate::scene_renderer::renderer(
@@ -475,8 +480,9 @@ impl<'a> App<'a> {
     fn shading_to_draw(&mut self) -> Result<Shading> {
         let mut shading = self.controls.shading;
         if shading.mode == Mode::Prt && self.transfer.as_ref().is_some_and(|t| t.glossy.is_some()) {
-            // A glossy file's layer alone, as render-mesh without --albedo.
-            shading.albedo = [0.0; 3];
+            // A glossy file's diffuse base: none (the glossy layer alone)
+            // unless --albedo gives one, as render-mesh.
+            shading.albedo = self.options.albedo.unwrap_or([0.0; 3]);
         }
         let encoding = self.controls.encoding;
         if shading.mode != Mode::Sh || encoding == Encoding::Sh || self.volume.is_some() {

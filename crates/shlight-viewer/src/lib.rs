@@ -71,6 +71,10 @@ pub struct ViewerOptions {
     pub frames: u32,
     /// Start with the overlay panel hidden.
     pub hide_panel: bool,
+    /// Lambertian albedo, linear RGB [default: 0.8 each]; with a glossy
+    /// PRT file, the diffuse base under its glossy layer [default: none,
+    /// the glossy layer alone], as `shlight render-mesh --albedo`.
+    pub albedo: Option<[f32; 3]>,
 }
 
 /// What the viewer shows.

@@ -67,9 +67,32 @@ pub fn renderer(
     renderer.set_mesh(ctx, mesh);
     if let Some(t) = transfer {
         match (t.glossy_view()?, &t.glossy) {
-            (Some(matrices), Some(g)) => {
-                let brdf = shlight_prt::brdf::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
-                renderer.set_glossy(ctx, &matrices, &brdf.lambda(t.lmax))?;
+            (Some(matrices), Some(_)) => {
+                let shader = shlight_prt::glossy::GlossyShader::new(t)
+                    .map_err(anyhow::Error::msg)?
+                    .expect("a glossy file");
+                match shader.lobe() {
+                    // Evaluated by the shader, per vertex.
+                    shlight_prt::brdf::Lobe::Zonal(lambda) => {
+                        renderer.set_glossy(ctx, &matrices, lambda)?;
+                    }
+                    // Shaded per vertex on the CPU, drawn by the GPU.
+                    shlight_prt::brdf::Lobe::Ggx(_) => {
+                        renderer.set_glossy_on_cpu(
+                            ctx,
+                            Box::new(move |light, eye, albedo| {
+                                let view = Some(shlight_prt::glossy::View::Eye(eye.as_dvec3()));
+                                let base = glam::DVec3::from(albedo.map(f64::from));
+                                shader
+                                    .shade(light, view, base)
+                                    .unwrap_or_default()
+                                    .iter()
+                                    .map(|c| c.as_vec3().to_array())
+                                    .collect()
+                            }),
+                        )?;
+                    }
+                }
             }
             _ => renderer.set_transfer(ctx, &t.view()?)?,
         }

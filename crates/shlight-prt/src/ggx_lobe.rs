@@ -1,0 +1,320 @@
+//! [`GgxLobe`]: the GGX microfacet BRDF projected onto SH per view
+//! direction and tabulated over the view's elevation (Kautz, Sloan &
+//! Snyder 2002, "Fast, Arbitrary BRDF Shading for Low-Frequency Lighting
+//! Using Spherical Harmonics"), what `--brdf ggx:ALPHA[,F0]` shades
+//! glossy transfer with.
+//!
+//! # Definition
+//!
+//! At a vertex with unit normal `n`, seen from the unit direction `w_o`
+//! (from the vertex to the eye) with `mu_o = n.w_o > 0`, the exit radiance
+//! of the transferred radiance `T(w) = sum_lm T_lm Y_lm(w)` is
+//!
+//! ```text
+//! L_o = int_{n.w > 0} T(w) f(w_o, w) (n.w) dw
+//! f(w_o, w_i) = D(h) F(w_o.h) V(mu_o, mu_i),   h = (w_o + w_i) / |w_o + w_i|
+//! ```
+//!
+//! with `D` the GGX distribution of linear roughness `alpha`
+//! (`alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2)`), `V = G_2 / (4 mu_o
+//! mu_i)` with `G_2` Smith's height-correlated masking-shadowing (Heitz
+//! 2014, eq. 99; `shlight_specular::Visibility::HeightCorrelated`), and
+//! `F` Schlick's Fresnel `F0 + (1 - F0) (1 - w_o.h)^5` (`F0 = 1` when the
+//! BRDF string gives none: `F = 1`, a white conductor). `L_o = 0` where
+//! `mu_o <= 0` (a view from below the surface).
+//!
+//! Because `T` is band-limited to lmax, the integral is exactly the dot
+//! product of `T` with the projection of `f (n.w)` onto SH to lmax: in the
+//! vertex's local frame (`z` the normal, `x` along the tangential part of
+//! `w_o`, `y = z x x`), `L_o = sum_lm B_lm(theta_o) T'_lm`, with
+//! `T' = T` rotated into that frame ([`shlight_core::sh::ShRotation`]) and
+//! `B_lm(theta_o) = int f(w_o, w) (n.w) Y_lm(w) dw` for
+//! `w_o = (sin theta_o, 0, cos theta_o)`. An isotropic BRDF is symmetric
+//! about the plane of `n` and `w_o`, so `B_lm = 0` for `m < 0` (to
+//! rounding).
+//!
+//! # Table
+//!
+//! `B` is computed at [`ELEVATIONS`] view elevations
+//! `theta_k = pi/2 sin(pi/2 k/(K-1))`, closer together towards grazing
+//! where the BRDF changes fastest, and interpolated in
+//! `t = 2/pi asin(2 theta_o / pi)` by Catmull-Rom splines (at `t = 0`,
+//! an odd function of `theta`, the point below is the mirror image,
+//! `B_lm(-theta) = s_lm B_lm(theta)`
+//! with `s_lm = (-1)^m` for `m >= 0` and `-(-1)^m` for `m < 0`; at `pi/2`
+//! the point beyond is extrapolated linearly). Each entry integrates over
+//! GGX's half-vector sampling map (`shlight_specular::sample_ggx_half`:
+//! `phi_h = 2 pi u_x`, `cos^2 theta_h = (1 - u_y) / (1 + (alpha^2 - 1)
+//! u_y)`, density `D(h) (n.h)`), where
+//! `B_lm = int int 4 V F mu_i (w_o.h) / (n.h) Y_lm(w_i) du_x du_y` with
+//! `w_i = 2 (w_o.h) h - w_o`. The reflection is above the surface for
+//! `theta_h < delta/2 + pi/4`, `tan delta = sin theta_o cos phi_h / cos
+//! theta_o` (as `mu_i = cos theta_o cos 2 theta_h + sin theta_o cos phi_h
+//! sin 2 theta_h`), so each azimuth integrates exactly that range; the
+//! azimuths are [`QUADRATURE_AZIMUTH`]-point Gauss-Legendre over each
+//! quarter turn, split where `cos phi_h = 0` (there, at grazing views, the
+//! cut swings within about `mu_o` of it); the elevations are
+//! [`QUADRATURE_ELEVATION`]-point Gauss-Legendre in `s = sqrt(1 - u_y)`
+//! (`cos theta_h = s / sqrt(alpha^2 + (1 - alpha^2) s^2)`, smooth where
+//! the lobe's tail is steep in `u_y`). Accumulated in `f64`.
+
+use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+
+use glam::{DMat3, DVec3};
+use rayon::prelude::*;
+use shlight_core::sh::{ShBasis, ShCoeffs, gauss_legendre, lm_from_index, rotate_once, sh_count};
+use shlight_specular::Visibility;
+
+/// View elevations tabulated, from `0` to `pi/2`.
+pub const ELEVATIONS: usize = 96;
+
+/// Gauss-Legendre nodes per quarter turn of half-vector azimuth.
+pub const QUADRATURE_AZIMUTH: usize = 24;
+
+/// Gauss-Legendre nodes per azimuth over the half vectors whose
+/// reflection is above the surface.
+pub const QUADRATURE_ELEVATION: usize = 48;
+
+/// The smallest roughness taken: below it the lobe is a mirror to any
+/// lmax a bake holds.
+pub const MIN_ALPHA: f64 = 1e-3;
+
+/// The GGX BRDF's SH projection per view elevation, to one lmax.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GgxLobe {
+    lmax: usize,
+    alpha: f64,
+    f0: f64,
+    /// `ELEVATIONS` rows of `(lmax+1)^2` coefficients `B_lm(theta_k)`.
+    table: Vec<f64>,
+}
+
+impl GgxLobe {
+    /// Tabulates the lobe of linear roughness `alpha` (from [`MIN_ALPHA`]
+    /// to 1) and Fresnel reflectance at normal incidence `f0` (0 to 1) to
+    /// `lmax` (the elevations in parallel).
+    ///
+    /// # Panics
+    /// If `alpha` or `f0` is out of its range.
+    #[must_use]
+    pub fn new(lmax: usize, alpha: f64, f0: f64) -> Self {
+        assert!(
+            (MIN_ALPHA..=1.0).contains(&alpha) && (0.0..=1.0).contains(&f0),
+            "GGX alpha {alpha}, F0 {f0}"
+        );
+        let nc = sh_count(lmax);
+        let table: Vec<f64> = (0..ELEVATIONS)
+            .into_par_iter()
+            .flat_map_iter(|k| project(lmax, alpha, f0, elevation(k)))
+            .collect();
+        debug_assert_eq!(table.len(), ELEVATIONS * nc);
+        Self {
+            lmax,
+            alpha,
+            f0,
+            table,
+        }
+    }
+
+    /// The highest degree tabulated.
+    #[must_use]
+    pub fn lmax(&self) -> usize {
+        self.lmax
+    }
+
+    /// `B_lm(theta_o)` for `cos theta_o = mu_o`, interpolated (all zero
+    /// where `mu_o <= 0`), into `out[l(l+1)+m]` for `l <= lmax`.
+    ///
+    /// # Panics
+    /// If `out` is shorter than `(lmax+1)^2`.
+    pub fn projection(&self, mu_o: f64, out: &mut [f64]) {
+        let nc = sh_count(self.lmax);
+        let out = &mut out[..nc];
+        if mu_o.is_nan() || mu_o <= 0.0 {
+            out.fill(0.0);
+            return;
+        }
+        // theta = pi/2 sin(pi/2 t), t = x / (K - 1).
+        let x = (mu_o.min(1.0).acos() / FRAC_PI_2).asin() / FRAC_PI_2 * (ELEVATIONS - 1) as f64;
+        let k = (x.floor() as usize).min(ELEVATIONS - 2);
+        let t = x - k as f64;
+        // Catmull-Rom weights of the points k-1, k, k+1, k+2.
+        let (t2, t3) = (t * t, t * t * t);
+        let w = [
+            0.5 * (-t3 + 2.0 * t2 - t),
+            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+            0.5 * (t3 - t2),
+        ];
+        let row = |j: usize| &self.table[j * nc..][..nc];
+        for (i, o) in out.iter_mut().enumerate() {
+            let before = if k == 0 {
+                mirror_sign(i) * row(1)[i]
+            } else {
+                row(k - 1)[i]
+            };
+            let after = if k + 2 < ELEVATIONS {
+                row(k + 2)[i]
+            } else {
+                2.0 * row(k + 1)[i] - row(k)[i]
+            };
+            *o = w[0] * before + w[1] * row(k)[i] + w[2] * row(k + 1)[i] + w[3] * after;
+        }
+    }
+
+    /// The exit radiance `sum_lm B_lm(theta_o) T'_lm` at a vertex with
+    /// unit normal `n` seen from the unit direction `w_o`, `t` its
+    /// transferred radiance in the global frame (`(lmax+1)^2` RGB
+    /// coefficients; [module docs](self)). `b` is scratch of
+    /// `(lmax+1)^2` values.
+    ///
+    /// # Panics
+    /// If `t` or `b` is shorter than `(lmax+1)^2`.
+    #[must_use]
+    pub fn exit_radiance(&self, n: DVec3, w_o: DVec3, t: &[DVec3], b: &mut [f64]) -> DVec3 {
+        let nc = sh_count(self.lmax);
+        let mu_o = n.dot(w_o);
+        if mu_o.is_nan() || mu_o <= 0.0 {
+            return DVec3::ZERO;
+        }
+        self.projection(mu_o, b);
+        let tangent = (w_o - mu_o * n)
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector());
+        let frame = DMat3::from_cols(tangent, n.cross(tangent), n);
+        // T'(d) = T(frame d): the rotation by frame^T.
+        let local = rotate_once(
+            &ShCoeffs::from_vec(t[..nc].to_vec()).expect("(lmax+1)^2 coefficients"),
+            frame.transpose(),
+        );
+        local
+            .as_slice()
+            .iter()
+            .zip(&b[..nc])
+            .map(|(t, b)| *t * *b)
+            .sum()
+    }
+
+    /// The roughness and `F0` tabulated.
+    #[must_use]
+    pub fn parameters(&self) -> (f64, f64) {
+        (self.alpha, self.f0)
+    }
+}
+
+/// Elevation `k` of the table, `pi/2 sin(pi/2 k/(K-1))`.
+fn elevation(k: usize) -> f64 {
+    FRAC_PI_2 * (FRAC_PI_2 * k as f64 / (ELEVATIONS - 1) as f64).sin()
+}
+
+/// `s_lm`: `Y_lm` of the mirror image `(-x, y, z)` is `s_lm Y_lm`.
+fn mirror_sign(i: usize) -> f64 {
+    let (_, m) = lm_from_index(i);
+    let odd = m.unsigned_abs() % 2 == 1;
+    match (m >= 0, odd) {
+        (true, false) | (false, true) => 1.0,
+        _ => -1.0,
+    }
+}
+
+/// `B_lm(theta_o)` by the product rule over the half-vector sampling map
+/// ([module docs](self)).
+fn project(lmax: usize, alpha: f64, f0: f64, theta_o: f64) -> Vec<f64> {
+    let nc = sh_count(lmax);
+    let basis = ShBasis::<f64>::new(lmax);
+    let (sin_o, cos_o) = theta_o.sin_cos();
+    let w_o = DVec3::new(sin_o, 0.0, cos_o);
+    let mu_o = cos_o.max(0.0);
+    let (nodes, weights) = gauss_legendre(QUADRATURE_ELEVATION);
+    let (turn_nodes, turn_weights) = gauss_legendre(QUADRATURE_AZIMUTH);
+    let a2 = alpha * alpha;
+    let mut y = vec![0.0; nc];
+    let mut sum = vec![0.0; nc];
+    // Quarter turns, split where cos phi = 0: there the cut swings from
+    // one side to the other, within about mu_o of it.
+    let azimuths = (0..4).flat_map(|q| {
+        turn_nodes.iter().zip(&turn_weights).map(move |(x, w)| {
+            (
+                FRAC_PI_2 * (q as f64 + 0.5 * (x + 1.0)),
+                // d u_x = d phi / 2 pi.
+                w * 0.5 * FRAC_PI_2 / TAU,
+            )
+        })
+    });
+    for (phi, w_phi) in azimuths {
+        let (sin_phi, cos_phi) = phi.sin_cos();
+        // mu_i = cos_o cos 2t + sin_o cos phi sin 2t = A cos(2t - delta):
+        // above the surface for half-vector elevations t < delta/2 + pi/4.
+        let cut = (0.5 * (sin_o * cos_phi).atan2(cos_o) + FRAC_PI_4).min(FRAC_PI_2);
+        let c = cut.cos();
+        // s = sqrt(1 - u.y) where the cut lies.
+        let s_cut = (c * alpha / (1.0 - c * c * (1.0 - a2)).sqrt()).min(1.0);
+        let half = 0.5 * (1.0 - s_cut);
+        for (x, wx) in nodes.iter().zip(&weights) {
+            let s = s_cut + half * (x + 1.0);
+            // cos^2 t = (1 - u.y) / (1 + (alpha^2 - 1) u.y) with u.y = 1 - s^2.
+            let cos_h = s / (a2 + (1.0 - a2) * s * s).sqrt();
+            let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
+            let h = DVec3::new(sin_h * cos_phi, sin_h * sin_phi, cos_h);
+            let o_h = w_o.dot(h);
+            if o_h <= 0.0 || cos_h <= 0.0 {
+                continue;
+            }
+            let w_i = (2.0 * o_h * h - w_o).normalize();
+            let mu_i = w_i.z;
+            if mu_i <= 0.0 {
+                continue;
+            }
+            let fresnel = f0 + (1.0 - f0) * (1.0 - o_h).powi(5);
+            // d u.y = 2 s ds.
+            let weight =
+                4.0 * Visibility::HeightCorrelated.eval(mu_o, mu_i, alpha) * fresnel * mu_i * o_h
+                    / cos_h
+                    * (2.0 * s * half * wx * w_phi);
+            basis.eval(w_i, &mut y);
+            for (acc, v) in sum.iter_mut().zip(&y) {
+                *acc += weight * v;
+            }
+        }
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The mirror signs are those of the basis itself.
+    #[test]
+    fn mirror_signs_match_the_basis() {
+        let basis = ShBasis::<f64>::new(6);
+        let d = DVec3::new(0.3, -0.5, 0.2).normalize();
+        let (mut a, mut b) = (vec![0.0; 49], vec![0.0; 49]);
+        basis.eval(d, &mut a);
+        basis.eval(DVec3::new(-d.x, d.y, d.z), &mut b);
+        for i in 0..49 {
+            assert!((b[i] - mirror_sign(i) * a[i]).abs() < 1e-12, "{i}");
+        }
+    }
+
+    /// The plane of `n` and `w_o` is a mirror of the lobe: `B_lm` with
+    /// `m < 0` vanish; and the table's rows are the projection itself at
+    /// the tabulated elevations.
+    #[test]
+    fn odd_coefficients_vanish_and_nodes_interpolate_exactly() {
+        let lobe = GgxLobe::new(4, 0.3, 1.0);
+        let mut b = vec![0.0; 25];
+        for k in [0, 17, 40, 94, 95] {
+            lobe.projection(elevation(k).cos(), &mut b);
+            let direct = project(4, 0.3, 1.0, elevation(k));
+            for i in 0..25 {
+                assert!((b[i] - direct[i]).abs() < 1e-9, "k {k} i {i}");
+                if lm_from_index(i).1 < 0 {
+                    assert!(b[i].abs() < 1e-12, "k {k} i {i}: {}", b[i]);
+                }
+            }
+        }
+        lobe.projection(-0.2, &mut b);
+        assert!(b.iter().all(|&x| x == 0.0));
+    }
+}
