@@ -22,6 +22,16 @@
 //! - `frame_sphere_glossy_turning`: the glossy frame at lmax 4 with the
 //!   light changed before each frame (two lights in turn), so the CPU's
 //!   per-cluster `M L` and its upload are in the time;
+//! - `frame_sphere_glossy_full_turning`: the same with the glossy
+//!   transfer uncompressed (a matrix per vertex, 99,851 of them: 32 MB at
+//!   lmax 2, 250 MB at lmax 4), the light changed before each frame, so
+//!   each frame pays every vertex's `M L` on the CPU;
+//! - `frame_sphere_ggx_turning`: the uncompressed glossy transfer of
+//!   `ggx:0.3` at lmax 2 and 4, shaded on the CPU per vertex
+//!   (`Renderer::set_glossy_on_cpu`: each vertex's `M L` rotated into its
+//!   frame and dotted with the BRDF's tabulated projection) and drawn by
+//!   the GPU, the light changed before each frame (a camera move costs
+//!   the same);
 //! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
 //!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
@@ -260,6 +270,91 @@ fn frame_sphere_glossy_turning(bencher: divan::Bencher) {
     let Some(ctx) = context() else { return };
     let lmax = 4;
     let (mut renderer, target, camera) = glossy_scene(ctx, &big_sphere(), lmax);
+    let shading = glossy_shading(lmax);
+    let lights = [light(0.5), light(1.0)];
+    let mut turn = 0;
+    bencher.bench_local(|| {
+        turn ^= 1;
+        renderer.set_light(ctx, &lights[turn]);
+        target.draw(ctx, &renderer, &camera, &shading).unwrap();
+    });
+}
+
+/// Uncompressed glossy matrices of `lmax` for every vertex of `mesh`
+/// (one channel, pseudo-random).
+fn full_matrices(mesh: &Mesh, lmax: usize) -> GlossyView<'static> {
+    let n = (lmax + 1) * (lmax + 1);
+    let v = mesh.vertex_count();
+    GlossyView::new(
+        lmax,
+        1,
+        v,
+        GlossyMatrices::Full(pseudo_random(v * n * n).into()),
+    )
+    .unwrap()
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_sphere_glossy_full_turning(bencher: divan::Bencher, lmax: usize) {
+    let Some(ctx) = context() else { return };
+    let mesh = big_sphere();
+    let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
+    renderer.set_mesh(ctx, &mesh);
+    renderer.set_light(ctx, &light(0.0));
+    let lambda: Vec<f64> = (0..=lmax).map(|l| 0.9f64.powi(l as i32)).collect();
+    renderer
+        .set_glossy(ctx, &full_matrices(&mesh, lmax), &lambda)
+        .unwrap();
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
+    let shading = glossy_shading(lmax);
+    let lights = [light(0.5), light(1.0)];
+    let mut turn = 0;
+    bencher.bench_local(|| {
+        turn ^= 1;
+        renderer.set_light(ctx, &lights[turn]);
+        target.draw(ctx, &renderer, &camera, &shading).unwrap();
+    });
+}
+
+#[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
+fn frame_sphere_ggx_turning(bencher: divan::Bencher, lmax: usize) {
+    use shlight_prt::brdf::Brdf;
+    use shlight_prt::glossy::{View, shade};
+    let Some(ctx) = context() else { return };
+    let mesh = big_sphere();
+    let matrices = full_matrices(&mesh, lmax);
+    let lobe = Brdf::Ggx {
+        alpha: 0.3,
+        f0: 1.0,
+    }
+    .lobe(lmax);
+    let (positions, normals) = (mesh.positions.clone(), mesh.normals.clone());
+    let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
+    renderer.set_mesh(ctx, &mesh);
+    renderer.set_light(ctx, &light(0.0));
+    renderer
+        .set_glossy_on_cpu(
+            ctx,
+            Box::new(move |light, eye, albedo| {
+                let t = matrices.transferred(light);
+                shade(
+                    &matrices,
+                    &t,
+                    &positions,
+                    &normals,
+                    &lobe,
+                    glam::DVec3::from(albedo.map(f64::from)),
+                    View::Eye(eye.as_dvec3()),
+                )
+                .iter()
+                .map(|c| c.as_vec3().to_array())
+                .collect()
+            }),
+        )
+        .unwrap();
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
     let shading = glossy_shading(lmax);
     let lights = [light(0.5), light(1.0)];
     let mut turn = 0;
