@@ -94,7 +94,9 @@ pub enum IoErrorKind {
     /// The image has more pixels than [`crate::ReadOptions::max_pixels`]
     /// allows. Reported from the file's header, before any pixel memory is
     /// allocated.
-    #[error("image too large ({width}x{height} pixels; the limit is {max_pixels} pixels)")]
+    #[error(
+        "image too large ({width}x{height} pixels; the limit is {max_pixels} pixels: raise it with the max_pixels read option, --max-pixels on the command line)"
+    )]
     TooLarge {
         /// Width in pixels, from the header.
         width: usize,

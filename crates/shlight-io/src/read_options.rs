@@ -11,8 +11,8 @@ pub struct ReadOptions {
     pub layer: Option<String>,
     /// The largest pixel count (width x height) accepted. Larger images are
     /// refused with [`crate::IoErrorKind::TooLarge`], judged from the file's header
-    /// before any pixel memory is allocated. Default: 2^28 (e.g. 16384 x
-    /// 16384).
+    /// before any pixel memory is allocated. Default: 2^29 (e.g. 32768 x
+    /// 16384, the largest equirect maps HDRI libraries publish).
     ///
     /// This also bounds a read's memory: at most about 64 bytes a pixel of
     /// this limit plus a few times the file's size (docs/limits.md), so a
@@ -21,8 +21,8 @@ pub struct ReadOptions {
 }
 
 impl ReadOptions {
-    /// The default [`ReadOptions::max_pixels`], 2^28.
-    pub const DEFAULT_MAX_PIXELS: usize = 1 << 28;
+    /// The default [`ReadOptions::max_pixels`], 2^29.
+    pub const DEFAULT_MAX_PIXELS: usize = 1 << 29;
 }
 
 impl Default for ReadOptions {
