@@ -304,6 +304,17 @@ fn glossy_files_are_sampled_toward_a_view_and_bad_glossy_input_is_refused() {
     for (mesh, args, what) in [
         (&obj, vec!["--brdf", "phong:shiny"], "not a number"),
         (&obj, vec!["--brdf", "blinn:3"], "unknown BRDF \"blinn\""),
+        (
+            &obj,
+            vec!["--brdf", "ggx:0"],
+            "alpha must be from 0.001 to 1",
+        ),
+        (
+            &obj,
+            vec!["--brdf", "ggx:0.3,1.5"],
+            "F0 must be from 0 to 1",
+        ),
+        (&obj, vec!["--brdf", "ggx:rough"], "not a number"),
         (&obj, vec![], "needs --brdf"),
         (
             &bunny,
