@@ -495,21 +495,24 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     let cube = screenshot("cube.png", &["--hide-panel", "--encoding", "ambient-cube"]);
     // A glossy PRT file of the sphere: the viewer starts in PRT mode and
     // shades it toward its camera.
+    let glossy_bake = |brdf: &str, out: &Path| {
+        shlight_ok(&[
+            "prt",
+            s(&mesh),
+            "--mode",
+            "glossy",
+            "--brdf",
+            brdf,
+            "--lmax",
+            "2",
+            "--samples",
+            "64",
+            "-o",
+            s(out),
+        ]);
+    };
     let glossy_file = dir.join("s.shprt");
-    shlight_ok(&[
-        "prt",
-        s(&mesh),
-        "--mode",
-        "glossy",
-        "--brdf",
-        "phong:8",
-        "--lmax",
-        "2",
-        "--samples",
-        "64",
-        "-o",
-        s(&glossy_file),
-    ]);
+    glossy_bake("phong:8", &glossy_file);
     let glossy = screenshot("glossy.png", &["--hide-panel", "--prt", s(&glossy_file)]);
     // --albedo: a red diffuse base under the glossy layer, and a dark
     // Lambertian sphere in SH mode.
@@ -526,20 +529,7 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
     let dark = screenshot("dark.png", &["--hide-panel", "--albedo", "0.2,0.2,0.2"]);
     // GGX, shaded per vertex on the CPU toward the viewer's camera.
     let ggx_file = dir.join("g.shprt");
-    shlight_ok(&[
-        "prt",
-        s(&mesh),
-        "--mode",
-        "glossy",
-        "--brdf",
-        "ggx:0.3",
-        "--lmax",
-        "2",
-        "--samples",
-        "64",
-        "-o",
-        s(&ggx_file),
-    ]);
+    glossy_bake("ggx:0.3", &ggx_file);
     let ggx = screenshot("ggx.png", &["--hide-panel", "--prt", s(&ggx_file)]);
     drop(x);
     let channel_mean = |img: &shlight_io::Image, c: usize| {

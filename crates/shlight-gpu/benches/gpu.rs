@@ -294,6 +294,27 @@ fn full_matrices(mesh: &Mesh, lmax: usize) -> GlossyView<'static> {
     .unwrap()
 }
 
+/// Frames of `renderer` (holding `mesh` and glossy transfer of `lmax`)
+/// with the light changed before each (two lights in turn).
+fn bench_turning(
+    bencher: divan::Bencher,
+    ctx: &GpuContext,
+    renderer: &mut Renderer,
+    mesh: &Mesh,
+    lmax: usize,
+) {
+    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
+    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
+    let shading = glossy_shading(lmax);
+    let lights = [light(0.5), light(1.0)];
+    let mut turn = 0;
+    bencher.bench_local(|| {
+        turn ^= 1;
+        renderer.set_light(ctx, &lights[turn]);
+        target.draw(ctx, renderer, &camera, &shading).unwrap();
+    });
+}
+
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
 fn frame_sphere_glossy_full_turning(bencher: divan::Bencher, lmax: usize) {
     let Some(ctx) = context() else { return };
@@ -305,16 +326,7 @@ fn frame_sphere_glossy_full_turning(bencher: divan::Bencher, lmax: usize) {
     renderer
         .set_glossy(ctx, &full_matrices(&mesh, lmax), &lambda)
         .unwrap();
-    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
-    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
-    let shading = glossy_shading(lmax);
-    let lights = [light(0.5), light(1.0)];
-    let mut turn = 0;
-    bencher.bench_local(|| {
-        turn ^= 1;
-        renderer.set_light(ctx, &lights[turn]);
-        target.draw(ctx, &renderer, &camera, &shading).unwrap();
-    });
+    bench_turning(bencher, ctx, &mut renderer, &mesh, lmax);
 }
 
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
@@ -353,16 +365,7 @@ fn frame_sphere_ggx_turning(bencher: divan::Bencher, lmax: usize) {
             }),
         )
         .unwrap();
-    let target = Offscreen::new(ctx, 1920, 1080).unwrap();
-    let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
-    let shading = glossy_shading(lmax);
-    let lights = [light(0.5), light(1.0)];
-    let mut turn = 0;
-    bencher.bench_local(|| {
-        turn ^= 1;
-        renderer.set_light(ctx, &lights[turn]);
-        target.draw(ctx, &renderer, &camera, &shading).unwrap();
-    });
+    bench_turning(bencher, ctx, &mut renderer, &mesh, lmax);
 }
 
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]

@@ -2,61 +2,19 @@
 //! integrated direction by direction over the hemisphere with the
 //! microfacet BRDF written out here (GGX's distribution, Smith's
 //! height-correlated `G_2 = 1 / (1 + Lambda(mu_o) + Lambda(mu_i))`,
-//! Schlick's Fresnel), the white furnace against shlight-specular's DFG
-//! estimator, and a shadowed bake against a brute-force reference.
+//! Schlick's Fresnel), and the white furnace against shlight-specular's
+//! DFG estimator. `glossy.rs` holds a shadowed GGX bake to a brute-force
+//! reference.
 
 use core::f64::consts::PI;
 
 use glam::DVec3;
 use rand::{Rng, SeedableRng, rngs::StdRng};
-use shlight_core::sh::{gauss_legendre, sh_count, sh_eval};
-use shlight_mesh::generate;
-use shlight_prt::brdf::{Brdf, Lobe};
-use shlight_prt::brute_force::closest_hit;
+use shlight_core::sh::sh_count;
 use shlight_prt::ggx_lobe::GgxLobe;
-use shlight_prt::glossy::{View, bake_glossy};
-use shlight_prt::transfer::{Albedo, BakeOptions, Mode};
 
-/// `f(w_o, w_i) (n.w_i)` of the GGX microfacet BRDF, from the formulas.
-fn brdf_cos(n: DVec3, w_o: DVec3, w_i: DVec3, alpha: f64, f0: f64) -> f64 {
-    let (mu_o, mu_i) = (n.dot(w_o), n.dot(w_i));
-    if mu_o <= 0.0 || mu_i <= 0.0 {
-        return 0.0;
-    }
-    let h = (w_o + w_i).normalize();
-    let a2 = alpha * alpha;
-    let c = n.dot(h);
-    let d = a2 / (PI * (c * c * (a2 - 1.0) + 1.0).powi(2));
-    // Smith's Lambda for GGX: (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2.
-    let lambda = |mu: f64| 0.5 * (-1.0 + (1.0 + a2 * (1.0 - mu * mu) / (mu * mu)).sqrt());
-    let g2 = 1.0 / (1.0 + lambda(mu_o) + lambda(mu_i));
-    let f = f0 + (1.0 - f0) * (1.0 - w_o.dot(h)).powi(5);
-    d * g2 * f / (4.0 * mu_o * mu_i) * mu_i
-}
-
-/// `int T(w) f(w_o, w) (n.w) dw` over the hemisphere about the normal:
-/// Gauss-Legendre in `n.w` from 0 to 1 (so the horizon, where the
-/// integrand stops, is the grid's edge), even steps in azimuth.
-fn integrated(t: &[DVec3], n: DVec3, w_o: DVec3, alpha: f64, f0: f64) -> DVec3 {
-    let lmax = (t.len() as f64).sqrt() as usize - 1;
-    let (u, v) = n.any_orthonormal_pair();
-    let (nodes, weights) = gauss_legendre(1000);
-    let azimuths = 2000;
-    let mut sum = DVec3::ZERO;
-    for (x, wx) in nodes.iter().zip(&weights) {
-        // n.w = (x + 1) / 2 over (0, 1).
-        let z = 0.5 * (x + 1.0);
-        let s = (1.0 - z * z).max(0.0).sqrt();
-        for k in 0..azimuths {
-            let phi = 2.0 * PI * (k as f64 + 0.5) / azimuths as f64;
-            let w = z * n + s * (phi.cos() * u + phi.sin() * v);
-            let g = brdf_cos(n, w_o, w, alpha, f0);
-            let tw: DVec3 = sh_eval(lmax, w).iter().zip(t).map(|(y, c)| *c * *y).sum();
-            sum += tw * (g * 0.5 * wx * 2.0 * PI / azimuths as f64);
-        }
-    }
-    sum
-}
+mod ggx_reference;
+use ggx_reference::integrated;
 
 fn random_unit(rng: &mut StdRng) -> DVec3 {
     loop {
@@ -147,86 +105,5 @@ fn the_white_furnace_gives_the_dfg_albedo() {
                 "alpha {alpha} F0 {f0} mu_o {mu_o}: {got} against DFG {want}"
             );
         }
-    }
-}
-
-/// A sphere over a plane, shadowed, lmax 4: the bake's GGX exit radiance
-/// at random vertices and eyes against the transferred radiance projected
-/// here from the brute-force tracer's visibility, integrated against the
-/// BRDF direction by direction.
-#[test]
-fn shadowed_ggx_matches_a_brute_force_reference() {
-    let mesh = generate::plane_under_sphere(1.0, 16, 8, 4.0, 8);
-    let options = BakeOptions {
-        lmax: 4,
-        samples: 4096,
-        mode: Mode::Shadowed,
-        albedo: Albedo::Constant([0.8; 3]),
-        seed: 7,
-        emission: None,
-    };
-    let t = bake_glossy(&mesh, &options, &|_, _, _| {});
-    let mut light = shlight_core::sh::closed_form::cap(
-        4,
-        DVec3::new(0.3, 0.8, -0.4).normalize(),
-        0.6,
-        DVec3::new(3.0, 2.0, 1.0),
-    );
-    light += &shlight_core::sh::closed_form::constant(4, DVec3::splat(0.4));
-    let (alpha, f0) = (0.35, 1.0);
-    let brdf = Brdf::Ggx { alpha, f0 };
-    assert!(matches!(brdf.lobe(4), Lobe::Ggx(_)));
-    let mut rng = StdRng::seed_from_u64(8);
-    let (rows, cols) = (100, 200);
-    let dirs: Vec<DVec3> = (0..rows * cols)
-        .map(|k| {
-            let z = -1.0 + 2.0 * ((k / cols) as f64 + rng.random::<f64>()) / rows as f64;
-            let phi = 2.0 * PI * ((k % cols) as f64 + rng.random::<f64>()) / cols as f64;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect();
-    let light_at = |d: DVec3| -> DVec3 {
-        sh_eval(4, d)
-            .iter()
-            .zip(light.as_slice())
-            .map(|(y, l)| *l * *y)
-            .sum()
-    };
-    let mut cases = Vec::new();
-    let mut peak = 0.0f64;
-    for _ in 0..8 {
-        let v = rng.random_range(0..mesh.vertex_count());
-        let eye = DVec3::new(
-            rng.random::<f64>() * 8.0 - 4.0,
-            rng.random::<f64>() * 4.0 + 0.5,
-            rng.random::<f64>() * 8.0 - 4.0,
-        );
-        let p = mesh.positions[v].as_dvec3();
-        let n = mesh.normals[v].as_dvec3();
-        let o = p + n * 1e-5;
-        let mut tr = vec![DVec3::ZERO; sh_count(4)];
-        for d in &dirs {
-            if n.dot(*d) <= 0.0 || closest_hit(&mesh, o, *d, 1e-9).is_some() {
-                continue;
-            }
-            let l = light_at(*d);
-            for (ti, y) in tr.iter_mut().zip(sh_eval(4, *d)) {
-                *ti += l * y * (4.0 * PI / dirs.len() as f64);
-            }
-        }
-        let w_o = (eye - p).normalize();
-        let want = integrated(&tr, n, w_o, alpha, f0);
-        let got = t.exit_radiance(&mesh, brdf, light.as_slice(), View::Eye(eye))[v];
-        peak = peak.max(want.max_element());
-        cases.push((v, got, want));
-    }
-    for (v, got, want) in cases {
-        // Two stratified estimates of a shadowed integrand (4096 and
-        // 20,000 directions): about 1% of the peak apart.
-        assert!(
-            (got - want).abs().max_element() < 0.03 * peak,
-            "vertex {v}: bake {got}, reference {want} (peak {peak})"
-        );
     }
 }

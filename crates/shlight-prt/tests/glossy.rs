@@ -2,7 +2,7 @@
 //! an unshadowed convex sphere and the closed-form exit radiance
 //! `sum Lambda_l L_lm Y_lm(R)`, a brute-force reference written here
 //! (its own directions, visibility by the brute-force tracer, projection
-//! and lobe), the bowl's closed-form bounce light, and the mirror limit of
+//! and lobe; for Phong and for GGX, `ggx_reference`), the bowl's closed-form bounce light, and the mirror limit of
 //! the Phong lobe.
 
 use core::f64::consts::{FRAC_1_SQRT_2, PI};
@@ -15,6 +15,8 @@ use shlight_prt::brdf::{Brdf, Lobe};
 use shlight_prt::brute_force::closest_hit;
 use shlight_prt::glossy::{View, bake_glossy, exit_radiance, glossy_bytes};
 use shlight_prt::transfer::{Albedo, BakeOptions, Mode};
+
+mod ggx_reference;
 
 fn options(lmax: usize, samples: usize, mode: Mode, albedo: f32) -> BakeOptions {
     BakeOptions {
@@ -181,13 +183,23 @@ fn an_unshadowed_convex_sphere_has_identity_matrices_and_the_closed_form_exit() 
     }
 }
 
+/// The bake's exit radiance at random vertices and eyes, for Phong and for
+/// GGX, against the transferred radiance projected here from the
+/// brute-force tracer's visibility, shaded by each BRDF's reference: the
+/// Phong lobe's zonal sum, GGX's integral direction by direction.
 #[test]
 fn shadowed_exit_radiance_matches_a_brute_force_reference() {
     let mesh = generate::plane_under_sphere(1.0, 16, 8, 4.0, 8);
     let t = bake_glossy(&mesh, &options(4, 4096, Mode::Shadowed, 0.8), &|_, _, _| {});
     let light = test_light();
-    let brdf = Brdf::Phong { exponent: 6.0 };
-    let lambda = brdf.lambda(4).unwrap();
+    let phong = Brdf::Phong { exponent: 6.0 };
+    let lambda = phong.lambda(4).unwrap();
+    let (alpha, f0) = (0.35, 1.0);
+    let ggx = Brdf::Ggx { alpha, f0 };
+    let reference = |brdf: Brdf, tr: &[DVec3], n: DVec3, w_o: DVec3| match brdf {
+        Brdf::Phong { .. } => lobe_at(tr, &lambda, mirror(w_o, n)),
+        _ => ggx_reference::integrated(tr, n, w_o, alpha, f0),
+    };
     // The reference's own directions: a jittered grid in (cos theta, phi).
     let mut rng = StdRng::seed_from_u64(21);
     let (rows, cols) = (100, 200);
@@ -206,8 +218,7 @@ fn shadowed_exit_radiance_matches_a_brute_force_reference() {
             .map(|(y, l)| *l * *y)
             .sum()
     };
-    let mut checked = 0;
-    let mut peak = 0.0f64;
+    let mut peak = [0.0f64; 2];
     let mut errors = Vec::new();
     for _ in 0..12 {
         let v = rng.random_range(0..mesh.vertex_count());
@@ -232,21 +243,23 @@ fn shadowed_exit_radiance_matches_a_brute_force_reference() {
             }
         }
         let w_o = (eye - p).normalize();
-        let want = lobe_at(&tr, &lambda, mirror(w_o, n));
-        let got = t.exit_radiance(&mesh, brdf, light.as_slice(), View::Eye(eye))[v];
-        peak = peak.max(want.max_element());
-        errors.push((v, got, want));
-        checked += 1;
+        for (k, brdf) in [phong, ggx].into_iter().enumerate() {
+            let want = reference(brdf, &tr, n, w_o);
+            let got = t.exit_radiance(&mesh, brdf, light.as_slice(), View::Eye(eye))[v];
+            peak[k] = peak[k].max(want.max_element());
+            errors.push((k, brdf, v, got, want));
+        }
     }
-    assert_eq!(checked, 12);
-    for (v, got, want) in errors {
+    assert_eq!(errors.len(), 24);
+    for (k, brdf, v, got, want) in errors {
         // Two stratified estimates (4096 and 20,000 directions) of a
         // shadowed, band-limited integrand: ~1% of the peak apart; a
         // vertex lit through the sphere or a mirror taken the wrong way
         // is off by tens of percent.
         assert!(
-            (got - want).abs().max_element() < 0.03 * peak,
-            "vertex {v}: bake {got}, reference {want} (peak {peak})"
+            (got - want).abs().max_element() < 0.03 * peak[k],
+            "{brdf}, vertex {v}: bake {got}, reference {want} (peak {})",
+            peak[k]
         );
     }
 }
