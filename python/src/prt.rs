@@ -80,7 +80,8 @@ impl Transfer {
         )
     }
 
-    /// A glossy file's BRDF ("phong:32"); None for diffuse transfer.
+    /// A glossy file's BRDF ("phong:32", "ggx:0.3,0.04"); None for diffuse
+    /// transfer.
     #[getter]
     fn brdf(&self) -> Option<&str> {
         self.file.glossy.as_ref().map(|g| g.brdf.as_str())
@@ -114,9 +115,11 @@ impl Transfer {
     /// equirect map or a radiance coefficient file, y up, or an SH of
     /// radiance), as `shlight sample FILE --light LIGHT` gives it: a diffuse
     /// file's `T . L` (view and eye ignored); a glossy file's
-    /// `sum Lambda_l (M L)_lm Y_lm(R)` with `R` the mirror about the
-    /// vertex normal of `w_o`: `view` (x, y, z), one direction from every
-    /// vertex toward the eye, or from each vertex to the point `eye`.
+    /// `sum Lambda_l (M L)_lm Y_lm(R)` (phong) with `R` the mirror about
+    /// the vertex normal of `w_o`, or the GGX BRDF's tabulated projection
+    /// dotted with `M L` in the vertex's frame (ggx; docs/shprt.md):
+    /// `w_o` is `view` (x, y, z), one direction from every vertex toward
+    /// the eye, or from each vertex to the point `eye`.
     /// `albedo` (one value or (R, G, B), linear) adds a glossy file's
     /// diffuse base, `albedo / pi sum A_l (M L)_lm Y_lm(n)`, as `shlight
     /// sample --albedo` and `render-mesh --prt --albedo` do; a diffuse
