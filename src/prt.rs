@@ -60,7 +60,7 @@ pub struct PrtArgs {
     #[arg(long)]
     pub bounces: Option<u32>,
     /// The glossy BRDF of --mode glossy: phong:S, the normalised Phong lobe
-    /// of exponent S (e.g. phong:32); or ggx:ALPHA[,F0], the GGX microfacet
+    /// of exponent S (e.g. phong:32); or ggx:ALPHA or ggx:ALPHA,F0, the GGX microfacet
     /// BRDF of linear roughness ALPHA (0.001 to 1) with Schlick's Fresnel
     /// of reflectance F0 at normal incidence [default F0: 1, no Fresnel]
     /// (e.g. ggx:0.3 or ggx:0.3,0.04).
