@@ -402,7 +402,7 @@ impl Builder<'_> {
             kind: n as u32,
         };
         let extent = chi - clo;
-        let axis = extent.max_position();
+        let mut axis = extent.max_position();
         if n <= 1 || depth >= MAX_DEPTH {
             self.nodes[index] = leaf;
             return;
@@ -419,22 +419,31 @@ impl Builder<'_> {
             let d = (b - a).max(Vec3::ZERO);
             d.x * d.y + d.y * d.z + d.z * d.x
         };
-        // Binned SAH on every axis the centroids spread along.
-        let (mut best, mut best_cost, mut axis) = (0, f32::INFINITY, axis);
-        for ax in [axis, (axis + 1) % 3, (axis + 2) % 3] {
-            if extent[ax] <= 0.0 {
+        // Binned SAH on every axis the centroids spread along, the
+        // triangles binned on the three in one pass.
+        let axes = [axis, (axis + 1) % 3, (axis + 2) % 3];
+        let spread = axes.map(|ax| extent[ax] > 0.0);
+        let scales = axes.map(|ax| BINS as f32 / extent[ax]);
+        let mut counts = [[0usize; BINS]; 3];
+        let mut boxes = [[(Vec3::INFINITY, Vec3::NEG_INFINITY); BINS]; 3];
+        for &i in &self.order[start..end] {
+            let c = self.centroids[i as usize];
+            let (a, d) = self.bounds[i as usize];
+            for s in 0..3 {
+                if spread[s] {
+                    let ax = axes[s];
+                    let b = (((c[ax] - clo[ax]) * scales[s]) as usize).min(BINS - 1);
+                    counts[s][b] += 1;
+                    boxes[s][b] = (boxes[s][b].0.min(a), boxes[s][b].1.max(d));
+                }
+            }
+        }
+        let (mut best, mut best_cost) = (0, f32::INFINITY);
+        for s in 0..3 {
+            if !spread[s] {
                 continue;
             }
-            let scale = BINS as f32 / extent[ax];
-            let bin_of = |c: Vec3| (((c[ax] - clo[ax]) * scale) as usize).min(BINS - 1);
-            let mut counts = [0usize; BINS];
-            let mut boxes = [(Vec3::INFINITY, Vec3::NEG_INFINITY); BINS];
-            for &i in &self.order[start..end] {
-                let b = bin_of(self.centroids[i as usize]);
-                counts[b] += 1;
-                let (a, c) = self.bounds[i as usize];
-                boxes[b] = (boxes[b].0.min(a), boxes[b].1.max(c));
-            }
+            let (counts, boxes) = (&counts[s], &boxes[s]);
             let mut right_cost = [0.0f32; BINS];
             let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
             for b in (1..BINS).rev() {
@@ -453,7 +462,7 @@ impl Builder<'_> {
                 if cost < best_cost {
                     best_cost = cost;
                     best = b;
-                    axis = ax;
+                    axis = axes[s];
                 }
             }
         }
