@@ -81,7 +81,9 @@ impl Default for VolumeOptions {
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
     Surface(transfer::Stage),
-    /// Moving probes out of geometry (`done` and `total` in probes).
+    /// Moving probes out of geometry (`done` and `total` in probes; the
+    /// probes are moved while the surfaces are baked, and this stage is
+    /// reported, begun and done, once the surfaces' stages are).
     Relocate,
     /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
