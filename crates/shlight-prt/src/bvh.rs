@@ -2,8 +2,11 @@
 //! and bounce rays of PRT baking.
 //!
 //! - **Build**: binary, top-down, binned surface-area heuristic (16 bins on
-//!   the centroid bounds of the longest axis; cost [`NODE_COST`] per node
-//!   visit, 1 per triangle test), leaves of at most [`MAX_LEAF`] triangles, nodes in
+//!   the centroid bounds of each axis, the cheapest split of the three, the
+//!   longest axis first among equals; cost [`NODE_COST`] per node visit, 1
+//!   per triangle test: on the longest axis alone, a dense scanned scene's
+//!   packets visited 5% more nodes and tested 7% more triangles), leaves
+//!   of at most [`MAX_LEAF`] triangles, nodes in
 //!   depth-first order with the two children next to each other, each inner
 //!   node remembering its split axis. Triangles are copied into leaf order,
 //!   so a leaf reads contiguous memory.
@@ -399,7 +402,7 @@ impl Builder<'_> {
             kind: n as u32,
         };
         let extent = chi - clo;
-        let axis = extent.max_position();
+        let mut axis = extent.max_position();
         if n <= 1 || depth >= MAX_DEPTH {
             self.nodes[index] = leaf;
             return;
@@ -412,42 +415,59 @@ impl Builder<'_> {
             }
             return;
         }
-        // Binned SAH on the longest centroid axis.
-        let scale = BINS as f32 / extent[axis];
-        let bin_of = |c: Vec3| (((c[axis] - clo[axis]) * scale) as usize).min(BINS - 1);
-        let mut counts = [0usize; BINS];
-        let mut boxes = [(Vec3::INFINITY, Vec3::NEG_INFINITY); BINS];
-        for &i in &self.order[start..end] {
-            let b = bin_of(self.centroids[i as usize]);
-            counts[b] += 1;
-            let (a, c) = self.bounds[i as usize];
-            boxes[b] = (boxes[b].0.min(a), boxes[b].1.max(c));
-        }
         let area = |(a, b): (Vec3, Vec3)| {
             let d = (b - a).max(Vec3::ZERO);
             d.x * d.y + d.y * d.z + d.z * d.x
         };
-        let mut right_cost = [0.0f32; BINS];
-        let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
-        for b in (1..BINS).rev() {
-            acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
-            cnt += counts[b];
-            right_cost[b] = area(acc) * cnt as f32;
+        // Binned SAH on every axis the centroids spread along, the
+        // triangles binned on the three in one pass.
+        let axes = [axis, (axis + 1) % 3, (axis + 2) % 3];
+        let spread = axes.map(|ax| extent[ax] > 0.0);
+        let scales = axes.map(|ax| BINS as f32 / extent[ax]);
+        let mut counts = [[0usize; BINS]; 3];
+        let mut boxes = [[(Vec3::INFINITY, Vec3::NEG_INFINITY); BINS]; 3];
+        for &i in &self.order[start..end] {
+            let c = self.centroids[i as usize];
+            let (a, d) = self.bounds[i as usize];
+            for s in 0..3 {
+                if spread[s] {
+                    let ax = axes[s];
+                    let b = (((c[ax] - clo[ax]) * scales[s]) as usize).min(BINS - 1);
+                    counts[s][b] += 1;
+                    boxes[s][b] = (boxes[s][b].0.min(a), boxes[s][b].1.max(d));
+                }
+            }
         }
         let (mut best, mut best_cost) = (0, f32::INFINITY);
-        let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
-        for b in 0..BINS - 1 {
-            acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
-            cnt += counts[b];
-            if cnt == 0 || cnt == n {
+        for s in 0..3 {
+            if !spread[s] {
                 continue;
             }
-            let cost = area(acc) * cnt as f32 + right_cost[b + 1];
-            if cost < best_cost {
-                best_cost = cost;
-                best = b;
+            let (counts, boxes) = (&counts[s], &boxes[s]);
+            let mut right_cost = [0.0f32; BINS];
+            let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
+            for b in (1..BINS).rev() {
+                acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
+                cnt += counts[b];
+                right_cost[b] = area(acc) * cnt as f32;
+            }
+            let (mut acc, mut cnt) = ((Vec3::INFINITY, Vec3::NEG_INFINITY), 0);
+            for b in 0..BINS - 1 {
+                acc = (acc.0.min(boxes[b].0), acc.1.max(boxes[b].1));
+                cnt += counts[b];
+                if cnt == 0 || cnt == n {
+                    continue;
+                }
+                let cost = area(acc) * cnt as f32 + right_cost[b + 1];
+                if cost < best_cost {
+                    best_cost = cost;
+                    best = b;
+                    axis = axes[s];
+                }
             }
         }
+        let scale = BINS as f32 / extent[axis];
+        let bin_of = |c: Vec3| (((c[axis] - clo[axis]) * scale) as usize).min(BINS - 1);
         let parent_area = area((lo, hi));
         let split_cost = NODE_COST + best_cost / parent_area.max(f32::MIN_POSITIVE);
         if n <= MAX_LEAF && split_cost >= n as f32 || best_cost == f32::INFINITY {

@@ -81,7 +81,9 @@ impl Default for VolumeOptions {
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
     Surface(transfer::Stage),
-    /// Moving probes out of geometry (`done` and `total` in probes).
+    /// Moving probes out of geometry (`done` and `total` in probes; the
+    /// probes are moved while the surfaces are baked, and this stage is
+    /// reported, begun and done, once the surfaces' stages are).
     Relocate,
     /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
@@ -237,12 +239,18 @@ fn bake_in_chunks(
     }
     let weight = 4.0 * std::f64::consts::PI / dirs.len() as f64;
 
-    let surface = scene.map(|mesh| Surface::bake(mesh, options, progress));
-    // Probes moved out of geometry before their rays are cast.
-    let offsets: Option<Vec<Vec3>> = options.relocate.then(|| match &surface {
-        Some(s) => {
+    // The surfaces, and the probes moved out of geometry before their rays
+    // are cast (found while the surfaces are baked, reported after).
+    let (surface, moved) = match scene {
+        Some(mesh) => {
+            let (s, o) = Surface::bake(mesh, options, options.relocate.then_some(grid), progress);
+            (Some(s), o)
+        }
+        None => (None, None),
+    };
+    let offsets: Option<Vec<Vec3>> = options.relocate.then(|| match moved {
+        Some(o) => {
             progress(Stage::Relocate, 0, grid.probe_count());
-            let o = relocate::offsets(&s.occluder, grid, options.seed);
             progress(Stage::Relocate, grid.probe_count(), grid.probe_count());
             o
         }
@@ -514,17 +522,31 @@ struct Surface {
 }
 
 impl Surface {
+    /// The surfaces of `mesh` baked, and when `relocate` is given, its
+    /// probes' offsets out of geometry ([`relocate::offsets`]), found
+    /// alongside the surfaces' bake once the scene is ready to cast
+    /// against, so that either's serial stretches (the subdivision's, the
+    /// bounces' set-up) leave no core idle.
     fn bake(
         mesh: &Mesh,
         options: &VolumeOptions,
+        relocate: Option<&ProbeGrid>,
         progress: &(dyn Fn(Stage, usize, usize) + Sync),
-    ) -> Self {
+    ) -> (Self, Option<Vec<Vec3>>) {
         let (lo, hi) = mesh.bounds();
         let max_edge = options
             .max_edge
             .unwrap_or((hi - lo).length() / SURFACE_DIVISIONS);
         let coarse = mesh;
-        let (mesh, map) = mesh.subdivided_with_map(max_edge);
+        // The surfaces' rays and the probes' are cast against the scene's
+        // own triangles (the same surface as the subdivided ones, and far
+        // fewer of them when it was subdivided), made ready once while the
+        // scene is subdivided (both mostly serial); the hits are then found
+        // in the subdivided mesh.
+        let ((mesh, map), occluder) = rayon::join(
+            || coarse.subdivided_with_map(max_edge),
+            || Occluder::new(coarse),
+        );
         let albedo = match &mesh.colors {
             Some(c) => {
                 Albedo::PerVertex(c.iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect())
@@ -546,22 +568,22 @@ impl Surface {
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
         };
-        // The surfaces' rays and the probes' are cast against the scene's
-        // own triangles (the same surface as the subdivided ones, and far
-        // fewer of them when it was subdivided), made ready once; the hits
-        // are then found in the subdivided mesh.
-        let occluder = Occluder::new(coarse);
-        let t = transfer::bake_against(
-            &mesh,
-            Some((&occluder, &map)),
-            &bake_options,
-            &|stage, done, total| {
-                progress(Stage::Surface(stage), done, total);
+        let (t, offsets) = rayon::join(
+            || {
+                transfer::bake_against(
+                    &mesh,
+                    Some((&occluder, &map)),
+                    &bake_options,
+                    &|stage, done, total| {
+                        progress(Stage::Surface(stage), done, total);
+                    },
+                )
             },
+            || relocate.map(|grid| relocate::offsets(&occluder, grid, options.seed)),
         );
         let stride = t.channels * sh_count(t.lmax);
         let len = stride + if t.emitted.is_some() { 3 } else { 0 };
-        Self {
+        let surface = Self {
             occluder,
             map,
             records: records::build(&t.coeffs, stride, t.emitted.as_deref()),
@@ -571,7 +593,8 @@ impl Surface {
             emits: t.emitted.is_some(),
             rays: t.rays,
             mesh,
-        }
+        };
+        (surface, offsets)
     }
 
     /// Casts the rays of the probes `chunk` (indices into `probes`, in

@@ -19,7 +19,10 @@
 //! candidate, a fixed order, one result at any thread count. The rays are
 //! cast as packets ([`Packet`]): eight probes' centres, then eight
 //! candidates of one probe at a time along each direction, a point's rays
-//! stopping once its answer is settled.
+//! stopping once its answer is settled (its lane leaves the packet). The
+//! search for the most clearance casts again only the candidates the first
+//! search did not find inside geometry, and stops a candidate's rays once
+//! it cannot beat the best so far; neither changes the answer.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -101,7 +104,16 @@ pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
     }
     let moved: Vec<Vec3> = stuck
         .par_iter()
-        .map(|&k| place(occluder, &dirs, centres[k], &lattice, clearance))
+        .map(|&k| {
+            place(
+                occluder,
+                &dirs,
+                centres[k],
+                looks[k].inside,
+                &lattice,
+                clearance,
+            )
+        })
         .collect();
     for (&k, o) in stuck.iter().zip(moved) {
         out[k] = o;
@@ -111,15 +123,26 @@ pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
 
 /// The offset of a probe whose centre is not free: the first free
 /// candidate of `lattice` (in its order), else the one with the most
-/// clearance outside geometry (the centre among them), else none.
+/// clearance outside geometry (the centre among them, `centre_inside`
+/// whether its first look found it inside), else none.
+///
+/// The second search casts again only what the first left open: a
+/// candidate the first found inside geometry is inside whatever a nearer
+/// hit would have settled (the same rays in the same order reach the same
+/// back faces), so only the others are cast, eight at a time in order,
+/// and a candidate's rays stop once its nearest hit is below the most
+/// clearance found so far (it cannot be taken).
 fn place(
     occluder: &Occluder,
     dirs: &[Direction],
     centre: Vec3,
+    centre_inside: bool,
     lattice: &[Vec3],
     clearance: f32,
 ) -> Vec3 {
     let mut points = [Vec3::ZERO; LANES];
+    // Whether the first search found each candidate inside geometry.
+    let mut inside = Vec::with_capacity(lattice.len());
     for batch in lattice.chunks(LANES) {
         for (p, o) in points.iter_mut().zip(batch) {
             *p = centre + *o;
@@ -128,17 +151,28 @@ fn place(
         if let Some(i) = looks.iter().position(|l| l.is_free(clearance)) {
             return batch[i];
         }
+        inside.extend(looks.iter().map(|l| l.inside));
     }
-    // None free: the most clearance outside geometry, all rays cast.
-    let mut best: Option<(f32, Vec3)> = None;
-    let all: Vec<Vec3> = std::iter::once(Vec3::ZERO)
-        .chain(lattice.iter().copied())
+    // None free: the most clearance outside geometry, the centre first
+    // (`centre_inside`: what `offsets` found of it).
+    let open: Vec<Vec3> = (!centre_inside)
+        .then_some(Vec3::ZERO)
+        .into_iter()
+        .chain(
+            lattice
+                .iter()
+                .zip(&inside)
+                .filter(|(_, inside)| !**inside)
+                .map(|(o, _)| *o),
+        )
         .collect();
-    for batch in all.chunks(LANES) {
+    let mut best: Option<(f32, Vec3)> = None;
+    for batch in open.chunks(LANES) {
         for (p, o) in points.iter_mut().zip(batch) {
             *p = centre + *o;
         }
-        let looks = look(occluder, dirs, &points[..batch.len()], 0.0);
+        let floor = best.map_or(0.0, |(c, _)| c);
+        let looks = look(occluder, dirs, &points[..batch.len()], floor);
         for (l, o) in looks.iter().zip(batch) {
             if !l.inside && best.is_none_or(|(c, _)| l.clearance > c) {
                 best = Some((l.clearance, *o));
@@ -164,15 +198,28 @@ fn look(occluder: &Occluder, dirs: &[Direction], points: &[Vec3], stop_within: f
     let mut inside = [false; LANES];
     let mut settled = 0u32;
     let all = ((1u64 << n) - 1) as u32;
+    // The points still open, packed into the first lanes (a ray's hit
+    // does not depend on the other rays of its packet, and settled ones
+    // would only widen the walk).
+    let mut open = [Vec3::ZERO; LANES];
+    let mut lane_of = [0usize; LANES];
     for dir in dirs {
-        let packet = Packet::new(dir, points);
-        let found = occluder.bvh().closest_direct(dir, &packet);
+        let mut m = 0;
         for k in 0..n {
-            if settled >> k & 1 == 1 || found.mask >> k & 1 == 0 {
+            if settled >> k & 1 == 0 {
+                open[m] = points[k];
+                lane_of[m] = k;
+                m += 1;
+            }
+        }
+        let packet = Packet::new(dir, &open[..m]);
+        let found = occluder.bvh().closest_direct(dir, &packet);
+        for (j, &k) in lane_of[..m].iter().enumerate() {
+            if found.mask >> j & 1 == 0 {
                 continue;
             }
-            nearest[k] = nearest[k].min(found.t[k]);
-            if !occluder.is_front(found.triangle[k], dir.dir()) {
+            nearest[k] = nearest[k].min(found.t[j]);
+            if !occluder.is_front(found.triangle[j], dir.dir()) {
                 back[k] += 1;
                 if back[k] as f32 > limit {
                     inside[k] = true;
