@@ -8,10 +8,8 @@
 // a diffuse base of albedo rho under the glossy layer,
 //   L_o = sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm,
 // R the mirror of the direction to the eye about the normal, T the vertex's
-// transferred radiance M L, interpolated.
-// MODE_RADIANCE: per vertex, the exit radiance the renderer computed on the
-// CPU toward the eye (glossy BRDFs the shader does not evaluate, such as
-// GGX's tabulated projection), RGB at 3 v, interpolated.
+// transferred radiance M L, interpolated; for a tabulated lobe (GGX,
+// frame.ggx_rows > 0) Lambda_l is 0 and ggx_layer adds the glossy layer.
 // MODE_NORMALS: the world-space unit normal as the colour, untouched by
 // exposure and tone map.
 
@@ -40,6 +38,71 @@ fn glossy_t(i: u32) -> vec3<f32> {
         t = t + w * vec3<f32>(transfer[at], transfer[at + 1u], transfer[at + 2u]);
     }
     return t;
+}
+
+// The vertex's transferred radiance T_i, for the GGX layer's band sums.
+var<private> ggx_t: array<vec3<f32>, 81>;
+
+// The glossy layer of a tabulated lobe (GGX; docs/shprt.md, "Shading glossy
+// files"): at the unit normal n seen from the unit direction w,
+//   sum_l sum_k w_lk(theta_o) T_l(d_k),  d_k = x sin(psi_k) + n cos(psi_k),
+// psi_k = pi (k + 1/2) / K, K = prt_lmax + 1, x the unit tangent toward w,
+// T_l(d) band l of T at d (ggx_band_sums), w_lk the direction weights at rows
+// k..k+3 of the table at frame.ggx_table (rows of (prt_lmax+1) bands of K),
+// Catmull-Rom in t = 2/pi asin(2 theta_o / pi) (shlight-prt's GgxLobe).
+// 0 for a view from below.
+fn ggx_layer(n: vec3<f32>, w: vec3<f32>) -> vec3<f32> {
+    let mu = dot(n, w);
+    if mu <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let lmax = min(frame.prt_lmax, GGX_LMAX);
+    for (var i = 0u; i < sh_count(lmax); i = i + 1u) {
+        ggx_t[i] = glossy_t(i);
+    }
+    var tangent = w - mu * n;
+    // |w - mu n| = sin theta_o: theta_o by atan2, accurate near the normal
+    // where acos of an f32 is not.
+    let sin_o = length(tangent);
+    let half_pi = 0.5 * SH_PI;
+    let elevations = frame.ggx_rows - 2u;
+    // t = asin(y) / (pi/2), y = theta_o / (pi/2), as atan2(y, sqrt((1 - y)
+    // (1 + y))) with 1 - y from the complement of theta_o: accurate near
+    // grazing, where asin's slope is steep and the table's rows dense.
+    let y = atan2(sin_o, mu) / half_pi;
+    let one_minus_y = atan2(mu, sin_o) / half_pi;
+    let x = atan2(y, sqrt(one_minus_y * (1.0 + y))) / half_pi * f32(elevations - 1u);
+    let k = min(u32(floor(x)), elevations - 2u);
+    let t = x - f32(k);
+    let t2 = t * t;
+    let t3 = t2 * t;
+    let cw = array<f32, 4>(
+        0.5 * (-t3 + 2.0 * t2 - t),
+        0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+        0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+        0.5 * (t3 - t2),
+    );
+    if sin_o > 1e-6 {
+        tangent = tangent / sin_o;
+    } else {
+        // Looking along the normal: the lobe is symmetric about it.
+        let a = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(n.x) > 0.9);
+        tangent = normalize(cross(n, a));
+    }
+    let dirs = frame.prt_lmax + 1u;
+    let row = (frame.prt_lmax + 1u) * dirs;
+    var sum = vec3<f32>(0.0);
+    for (var d = 0u; d < dirs; d = d + 1u) {
+        let psi = SH_PI * (f32(d) + 0.5) / f32(dirs);
+        let bands = ggx_band_sums(tangent * sin(psi) + n * cos(psi));
+        for (var l = 0u; l <= lmax; l = l + 1u) {
+            let at = frame.ggx_table + k * row + l * dirs + d;
+            let weight = cw[0] * transfer[at] + cw[1] * transfer[at + row]
+                + cw[2] * transfer[at + 2u * row] + cw[3] * transfer[at + 3u * row];
+            sum = sum + weight * bands[l];
+        }
+    }
+    return sum;
 }
 
 // glossy_radiance(n: vec3<f32>, r: vec3<f32>) -> vec3<f32> returns
@@ -96,9 +159,9 @@ fn vs_mesh(in: VertexIn, @builtin(vertex_index) v: u32) -> VertexOut {
         let group = bitcast<u32>(transfer[glossy_record]);
         glossy_part = frame.glossy_parts + group * parts * 3u * sh_count(frame.prt_lmax);
         out.prt = glossy_radiance(n, normalize(r));
-    }
-    if frame.mode == MODE_RADIANCE {
-        out.prt = vec3<f32>(transfer[3u * v], transfer[3u * v + 1u], transfer[3u * v + 2u]);
+        if frame.ggx_rows > 0u {
+            out.prt = out.prt + ggx_layer(n, w);
+        }
     }
     return out;
 }
@@ -110,7 +173,7 @@ fn fs_mesh(in: VertexOut) -> @location(0) vec4<f32> {
         case MODE_NORMALS: {
             return vec4<f32>(n, 1.0);
         }
-        case MODE_PRT, MODE_GLOSSY, MODE_RADIANCE: {
+        case MODE_PRT, MODE_GLOSSY: {
             return finish(in.prt);
         }
         default: {

@@ -44,6 +44,10 @@ struct Frame {
     // the first f32 of the parts in the transfer buffer (mesh.wgsl).
     glossy_vectors: u32,
     glossy_parts: u32,
+    // A tabulated glossy lobe (GGX): the first f32 of its direction
+    // weights in the transfer buffer, and their rows (0: a zonal lobe).
+    ggx_table: u32,
+    ggx_rows: u32,
 }
 
 const MODE_SH: u32 = 0u;
@@ -52,9 +56,6 @@ const MODE_NORMALS: u32 = 2u;
 const MODE_ENCODED: u32 = 3u;
 // MODE_PRT with glossy transfer (set by the renderer).
 const MODE_GLOSSY: u32 = 4u;
-// MODE_PRT with glossy transfer shaded on the CPU: each vertex's exit
-// radiance, RGB, in the transfer buffer (set by the renderer).
-const MODE_RADIANCE: u32 = 5u;
 
 const TONE_LINEAR: u32 = 0u;
 const TONE_CLAMP: u32 = 1u;

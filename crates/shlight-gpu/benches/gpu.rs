@@ -26,12 +26,11 @@
 //!   transfer uncompressed (a matrix per vertex, 99,851 of them: 32 MB at
 //!   lmax 2, 250 MB at lmax 4), the light changed before each frame, so
 //!   each frame pays every vertex's `M L` on the CPU;
-//! - `frame_sphere_ggx_turning`: the uncompressed glossy transfer of
-//!   `ggx:0.3` at lmax 2 and 4, shaded on the CPU per vertex
-//!   (`Renderer::set_glossy_on_cpu`: each vertex's `M L` rotated into its
-//!   frame and dotted with the BRDF's tabulated projection) and drawn by
-//!   the GPU, the light changed before each frame (a camera move costs
-//!   the same);
+//! - `frame_sphere_ggx_turning`: the same uncompressed transfer shaded
+//!   with `ggx:0.3` at lmax 2 and 4 (`GlossyLobe::Directions`: each
+//!   vertex's transferred radiance evaluated band by band at `lmax + 1`
+//!   directions and weighted from the BRDF's table), the light changed
+//!   before each frame;
 //! - `frame_bunny_volume`: the bunny lit per fragment by an irradiance
 //!   volume (`VolumeRenderer`) at lmax 2 and 4: a 16x8x16 grid (2,048
 //!   probes, pseudo-random radiance, every tenth probe invalid) over the
@@ -72,8 +71,8 @@ use shlight_baked::{GlossyMatrices, GlossyView, ProbeGrid, TransferView, Visibil
 use shlight_core::map::{EquirectView, MapOrientation, project_equirect};
 use shlight_core::sh::closed_form;
 use shlight_gpu::{
-    Camera, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer, Shading,
-    VolumeFetch, VolumeInstance, VolumeRenderer,
+    Camera, GlossyLobe, GpuContext, GpuProjector, HEADLESS_FORMAT, Mode, Offscreen, Renderer,
+    Shading, VolumeFetch, VolumeInstance, VolumeRenderer,
 };
 use shlight_mesh::Mesh;
 
@@ -226,7 +225,9 @@ fn glossy_scene(ctx: &GpuContext, mesh: &Mesh, lmax: usize) -> (Renderer, Offscr
     renderer.set_mesh(ctx, mesh);
     renderer.set_light(ctx, &light(0.0));
     let lambda: Vec<f64> = (0..=lmax).map(|l| 0.9f64.powi(l as i32)).collect();
-    renderer.set_glossy(ctx, &matrices, &lambda).unwrap();
+    renderer
+        .set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))
+        .unwrap();
     let target = Offscreen::new(ctx, 1920, 1080).unwrap();
     let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, target.aspect());
     target
@@ -324,45 +325,31 @@ fn frame_sphere_glossy_full_turning(bencher: divan::Bencher, lmax: usize) {
     renderer.set_light(ctx, &light(0.0));
     let lambda: Vec<f64> = (0..=lmax).map(|l| 0.9f64.powi(l as i32)).collect();
     renderer
-        .set_glossy(ctx, &full_matrices(&mesh, lmax), &lambda)
+        .set_glossy(ctx, &full_matrices(&mesh, lmax), GlossyLobe::Zonal(&lambda))
         .unwrap();
     bench_turning(bencher, ctx, &mut renderer, &mesh, lmax);
 }
 
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
 fn frame_sphere_ggx_turning(bencher: divan::Bencher, lmax: usize) {
-    use shlight_prt::brdf::Brdf;
-    use shlight_prt::glossy::{View, shade};
+    use shlight_prt::brdf::{Brdf, Lobe};
     let Some(ctx) = context() else { return };
     let mesh = big_sphere();
-    let matrices = full_matrices(&mesh, lmax);
-    let lobe = Brdf::Ggx {
+    let Lobe::Ggx(lobe) = (Brdf::Ggx {
         alpha: 0.3,
         f0: 1.0,
-    }
-    .lobe(lmax);
-    let (positions, normals) = (mesh.positions.clone(), mesh.normals.clone());
+    })
+    .lobe(lmax) else {
+        unreachable!("GGX is tabulated")
+    };
     let mut renderer = Renderer::new(ctx, HEADLESS_FORMAT);
     renderer.set_mesh(ctx, &mesh);
     renderer.set_light(ctx, &light(0.0));
     renderer
-        .set_glossy_on_cpu(
+        .set_glossy(
             ctx,
-            Box::new(move |light, eye, albedo| {
-                let t = matrices.transferred(light);
-                shade(
-                    &matrices,
-                    &t,
-                    &positions,
-                    &normals,
-                    &lobe,
-                    glam::DVec3::from(albedo.map(f64::from)),
-                    View::Eye(eye.as_dvec3()),
-                )
-                .iter()
-                .map(|c| c.as_vec3().to_array())
-                .collect()
-            }),
+            &full_matrices(&mesh, lmax),
+            GlossyLobe::Directions(&lobe.direction_table()),
         )
         .unwrap();
     bench_turning(bencher, ctx, &mut renderer, &mesh, lmax);

@@ -139,9 +139,59 @@ pub(crate) fn glossy_radiance_wgsl(lmax: usize) -> String {
     )
 }
 
+/// The WGSL text of `ggx_band_sums` for `lmax` (clamped to
+/// [`LIGHT_MAX_LMAX`]): band `l`'s part of the vertex's transferred
+/// radiance at the unit direction `d`, `sum_m Y_lm(d) T_lm` with
+/// `T_lm = ggx_t[l(l+1)+m]` (filled by `mesh.wgsl`'s `ggx_layer`), for
+/// every `l <= lmax`; the GGX layer weighs them per direction.
+#[must_use]
+pub(crate) fn ggx_band_sums_wgsl(lmax: usize) -> String {
+    let lmax = lmax.min(LIGHT_MAX_LMAX);
+    let mut body = vec![
+        "let factors = array<vec4<f32>, 3>(vec4<f32>(1.0), vec4<f32>(1.0), vec4<f32>(1.0));"
+            .to_string(),
+        format!("var sum = array<vec3<f32>, {}>();", LIGHT_MAX_LMAX + 1),
+    ];
+    body.extend(basis_statements(lmax, |l, m, lines| {
+        let centre = l * (l + 1);
+        lines.push(if m == 0 {
+            format!("sum[{l}] += q{l}_0 * ggx_t[{centre}];")
+        } else {
+            format!(
+                "sum[{l}] += (t{l}_{m} * c{m}) * ggx_t[{}] + (t{l}_{m} * s{m}) * ggx_t[{}];",
+                centre + m,
+                centre - m
+            )
+        });
+    }));
+    summing_function(
+        &format!("Per band l, sum_m Y_lm(d) T_lm, to lmax {lmax}."),
+        &format!(
+            "fn ggx_band_sums(d: vec3<f32>) -> array<vec3<f32>, {}>",
+            LIGHT_MAX_LMAX + 1
+        ),
+        &format!("lmax {lmax} (crates/shlight-gpu/src/glossy_expansion.rs)"),
+        &body,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn band_sums_take_each_coefficient_once() {
+        for lmax in 0..=LIGHT_MAX_LMAX {
+            let text = ggx_band_sums_wgsl(lmax);
+            for i in 0..(lmax + 1) * (lmax + 1) {
+                assert_eq!(
+                    text.matches(&format!("ggx_t[{i}]")).count(),
+                    1,
+                    "lmax {lmax}: coefficient {i}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn names_are_prefixed_and_literals_kept() {

@@ -48,7 +48,7 @@ pub use headless::{Frame, HEADLESS_FORMAT, Offscreen, depth_view, render_frame};
 pub use orbit_camera::OrbitCamera;
 pub use projector::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
-pub use renderer::{DEPTH_FORMAT, Renderer, VertexShader};
+pub use renderer::{DEPTH_FORMAT, GlossyLobe, Renderer};
 pub use shading::{Background, Mode, Shading};
 pub use volume::{
     PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, check_visibility_limits,

@@ -37,29 +37,33 @@ struct GpuMesh {
 /// ([`GlossyView::transferred`]) and written after the per-vertex records.
 struct GlossyTransfer {
     matrices: GlossyView<'static>,
-    /// The lobe's `Lambda_l` per band.
+    /// The lobe's `Lambda_l` per band (zero for a tabulated lobe).
     band: [[f32; 4]; 3],
+    /// A tabulated lobe's direction weights: where they start in the
+    /// transfer buffer and their rows, in `f32`s (`None`: a zonal lobe).
+    table: Option<(usize, usize)>,
     /// Where the parts start in the transfer buffer, in `f32`s.
     parts: usize,
     /// The light coefficients the buffer's parts were computed from.
     computed_for: Mutex<Option<Vec<[f32; 3]>>>,
 }
 
-/// Each vertex's exit radiance toward the eye, computed on the CPU, for a
-/// glossy BRDF the shader does not evaluate: from the light's coefficients
-/// (world frame, to the lmax shaded), the camera's position and the
-/// diffuse base's albedo; one linear RGB value per vertex of the mesh.
-pub type VertexShader = dyn Fn(&[DVec3], glam::Vec3, [f32; 3]) -> Vec<[f32; 3]> + Send + Sync;
-
-/// What CPU-shaded radiance was computed for: the light's coefficients,
-/// the eye and the albedo.
-type ShadedFor = (Vec<[f32; 3]>, [f32; 3], [f32; 3]);
-
-/// Glossy transfer shaded on the CPU ([`Renderer::set_glossy_on_cpu`]).
-struct CpuGlossy {
-    shade: Box<VertexShader>,
-    /// What the buffer's radiance was computed for.
-    computed_for: Mutex<Option<ShadedFor>>,
+/// The glossy layer's BRDF as [`Renderer::set_glossy`] takes it.
+#[derive(Clone, Copy, Debug)]
+pub enum GlossyLobe<'a> {
+    /// A lobe about the mirror direction: its zonal coefficients
+    /// `Lambda_l`, `l = 0..=lmax` (Phong): the layer is
+    /// `sum Lambda_l Y_lm(R) T_lm`.
+    Zonal(&'a [f64]),
+    /// A BRDF projected per view elevation (GGX), as direction weights:
+    /// shlight-prt's `GgxLobe::direction_table` (rows of `(lmax + 1)^2`
+    /// values: per band `lmax + 1` weights of the bands of `T` at the
+    /// directions `psi_k = pi (k + 1/2) / (lmax + 1)` from the normal,
+    /// toward the eye, in the plane of the normal and the eye; rows 1 to
+    /// `rows - 2` the elevations `pi/2 sin(pi/2 r / (rows - 3))`, 0 and
+    /// the last their splines' end points): the layer is `sum_lk w_lk(theta_o)
+    /// T_l(d_k)`, the weights Catmull-Rom interpolated.
+    Directions(&'a [f32]),
 }
 
 /// Draws meshes lit by SH coefficients into targets of one colour format.
@@ -85,7 +89,6 @@ pub struct Renderer {
     light_coeffs: Vec<[f32; 3]>,
     prt: Option<(usize, usize)>,
     glossy: Option<GlossyTransfer>,
-    cpu_glossy: Option<CpuGlossy>,
     /// Draw the mesh's vertices as points instead of its triangles.
     points: bool,
     point_pipelines: [OnceLock<wgpu::RenderPipeline>; LIGHT_MAX_LMAX + 1],
@@ -229,7 +232,6 @@ impl Renderer {
             light_coeffs: Vec::new(),
             prt: None,
             glossy: None,
-            cpu_glossy: None,
             points: false,
             point_pipelines: Default::default(),
             encoded_pipeline: None,
@@ -409,102 +411,13 @@ impl Renderer {
             });
         self.prt = Some((t.lmax, t.channels));
         self.glossy = None;
-        self.cpu_glossy = None;
         self.rebind_mesh(ctx);
-        Ok(())
-    }
-
-    /// Glossy transfer shaded on the CPU: [`Mode::Prt`] then draws each
-    /// vertex's exit radiance as `shade` gives it, called again whenever
-    /// the light (or the lmax shaded), the camera's position or
-    /// [`Shading::albedo`] changes, and interpolates it over the
-    /// triangles. For BRDFs the shader does not evaluate (GGX's tabulated
-    /// projection: a rotation of the transferred radiance into each
-    /// vertex's frame).
-    ///
-    /// # Errors
-    /// [`GpuError::Invalid`] without a mesh, or when the mesh's radiance
-    /// is more than the device's largest storage buffer.
-    pub fn set_glossy_on_cpu(
-        &mut self,
-        ctx: &GpuContext,
-        shade: Box<VertexShader>,
-    ) -> Result<(), GpuError> {
-        let Some(vertices) = self.mesh.as_ref().map(|m| m.vertex_count) else {
-            return Err(GpuError::Invalid(
-                "glossy shading given before a mesh".into(),
-            ));
-        };
-        let bytes = 12 * vertices as u64;
-        let limit = ctx
-            .device
-            .limits()
-            .max_storage_buffer_binding_size
-            .min(ctx.device.limits().max_buffer_size);
-        if bytes > limit {
-            return Err(GpuError::Invalid(format!(
-                "the exit radiance of {vertices} vertices takes {bytes} bytes; the device's storage buffers hold {limit}"
-            )));
-        }
-        self.transfer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("vertex radiance"),
-            size: bytes.max(16),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        self.prt = Some((0, 3));
-        self.glossy = None;
-        self.cpu_glossy = Some(CpuGlossy {
-            shade,
-            computed_for: Mutex::new(None),
-        });
-        self.rebind_mesh(ctx);
-        Ok(())
-    }
-
-    /// The CPU-shaded radiance for the light to `lmax`, `eye` and
-    /// `albedo`, computed and written unless the buffer holds it already.
-    fn update_cpu_glossy(
-        &self,
-        ctx: &GpuContext,
-        lmax: usize,
-        eye: glam::Vec3,
-        albedo: [f32; 3],
-    ) -> Result<(), GpuError> {
-        let Some(g) = &self.cpu_glossy else {
-            return Ok(());
-        };
-        let light = &self.light_coeffs[..((lmax + 1) * (lmax + 1)).min(self.light_coeffs.len())];
-        let key = (light.to_vec(), eye.to_array(), albedo);
-        let mut computed = g
-            .computed_for
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        if computed.as_ref() == Some(&key) {
-            return Ok(());
-        }
-        let coeffs: Vec<DVec3> = light
-            .iter()
-            .map(|c| DVec3::from(c.map(f64::from)))
-            .collect();
-        let radiance = (g.shade)(&coeffs, eye, albedo);
-        let vertices = self.mesh.as_ref().map_or(0, |m| m.vertex_count);
-        if radiance.len() != vertices {
-            return Err(GpuError::Invalid(format!(
-                "glossy shading gave {} values for {vertices} vertices",
-                radiance.len()
-            )));
-        }
-        if !radiance.is_empty() {
-            ctx.queue
-                .write_buffer(&self.transfer, 0, bytemuck::cast_slice(&radiance));
-        }
-        *computed = Some(key);
         Ok(())
     }
 
     /// Uploads glossy PRT transfer matrices for the current mesh (docs/shprt.md,
-    /// "Glossy transfer"), with the lobe's zonal coefficients `lambda`
+    /// "Glossy transfer"), with the BRDF's `lobe`: zonal coefficients
+    /// `lambda`
     /// (`Lambda_l`, `l = 0..=lmax`). [`Mode::Prt`] then shades each vertex
     /// view by view: `sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm`
     /// toward the camera, `rho` [`Shading::albedo`]'s diffuse base (zero:
@@ -521,7 +434,7 @@ impl Renderer {
         &mut self,
         ctx: &GpuContext,
         matrices: &GlossyView<'_>,
-        lambda: &[f64],
+        lobe: GlossyLobe<'_>,
     ) -> Result<(), GpuError> {
         let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
         if vertices != Some(matrices.vertex_count) {
@@ -539,12 +452,26 @@ impl Renderer {
                 "glossy transfer of lmax {lmax}: the GPU shades to lmax {LIGHT_MAX_LMAX}"
             )));
         }
-        if lambda.len() <= lmax {
-            return Err(GpuError::Invalid(format!(
-                "the lobe has {} zonal coefficients; lmax {lmax} needs {}",
-                lambda.len(),
-                lmax + 1
-            )));
+        let directions = lmax + 1;
+        match lobe {
+            GlossyLobe::Zonal(lambda) if lambda.len() <= lmax => {
+                return Err(GpuError::Invalid(format!(
+                    "the lobe has {} zonal coefficients; lmax {lmax} needs {}",
+                    lambda.len(),
+                    lmax + 1
+                )));
+            }
+            GlossyLobe::Directions(table)
+                if table.len() < 4 * directions * directions
+                    || table.len() % (directions * directions) != 0 =>
+            {
+                return Err(GpuError::Invalid(format!(
+                    "the lobe's direction table has {} values: not rows of {} at lmax {lmax}, four or more",
+                    table.len(),
+                    directions * directions
+                )));
+            }
+            _ => {}
         }
         let vectors = matrices.vectors();
         let groups = match &matrices.matrices {
@@ -558,6 +485,14 @@ impl Renderer {
             records.push(f32::from_bits(g as u32));
             records.extend_from_slice(w);
         }
+        let table = match lobe {
+            GlossyLobe::Directions(t) => {
+                let at = records.len();
+                records.extend_from_slice(t);
+                Some((at, t.len() / (directions * directions)))
+            }
+            GlossyLobe::Zonal(_) => None,
+        };
         let parts = records.len();
         let floats = parts as u64 + (groups * (vectors + 1) * nc * 3) as u64;
         let bytes = 4 * floats;
@@ -583,15 +518,17 @@ impl Renderer {
                 .write_buffer(&buffer, 0, bytemuck::cast_slice(&records));
         }
         let mut band = [[0.0f32; 4]; 3];
-        for (l, x) in lambda.iter().take(lmax + 1).enumerate() {
-            band[l / 4][l % 4] = *x as f32;
+        if let GlossyLobe::Zonal(lambda) = lobe {
+            for (l, x) in lambda.iter().take(lmax + 1).enumerate() {
+                band[l / 4][l % 4] = *x as f32;
+            }
         }
         self.transfer = buffer;
         self.prt = Some((lmax, matrices.channels));
-        self.cpu_glossy = None;
         self.glossy = Some(GlossyTransfer {
             matrices: matrices.clone().into_owned(),
             band,
+            table,
             parts,
             computed_for: Mutex::new(None),
         });
@@ -634,7 +571,6 @@ impl Renderer {
     fn clear_transfer(&mut self, ctx: &GpuContext) {
         self.prt = None;
         self.glossy = None;
-        self.cpu_glossy = None;
         self.transfer = no_transfer(&ctx.device);
         self.rebind_mesh(ctx);
     }
@@ -688,14 +624,11 @@ impl Renderer {
                 self.update_glossy(ctx, lmax);
                 GlossyInputs {
                     band: g.band,
+                    table: g.table.map(|(at, rows)| (at as u32, rows as u32)),
                     vectors: g.matrices.vectors() as u32,
                     parts: g.parts as u32,
                 }
             });
-        let vertex_radiance = self.cpu_glossy.is_some() && shading.mode == Mode::Prt;
-        if vertex_radiance {
-            self.update_cpu_glossy(ctx, lmax, camera.eye, shading.albedo)?;
-        }
         let uniform = FrameUniform::new(&FrameInputs {
             shading,
             view_proj: camera.view_proj(aspect),
@@ -704,7 +637,6 @@ impl Renderer {
             lmax,
             prt: self.prt,
             glossy,
-            vertex_radiance,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });

@@ -12,7 +12,7 @@
 //! file in the directory belongs to a module and that each module validates
 //! at every lmax.
 
-use crate::glossy_expansion::glossy_radiance_wgsl;
+use crate::glossy_expansion::{ggx_band_sums_wgsl, glossy_radiance_wgsl};
 use crate::ring_sums::ring_sums_wgsl;
 use crate::sh_expansion::sh_reconstruct_wgsl;
 use crate::volume_expansion::{volume_wgsl_filtered, volume_wgsl_loads, volume_wgsl_visibility};
@@ -99,12 +99,18 @@ pub const MESH_MODULE: ShaderModuleSource = ShaderModuleSource {
     generated: Some(mesh_generated),
 };
 
-/// [`MESH_MODULE`]'s generated code: `sh_reconstruct` and
-/// `glossy_radiance` for `lmax`.
+/// [`MESH_MODULE`]'s generated code: `sh_reconstruct`, `glossy_radiance`
+/// and `ggx_band_sums` for `lmax`, and `GGX_LMAX`, that lmax.
 fn mesh_generated(lmax: usize) -> String {
     let mut text = sh_reconstruct_wgsl(lmax);
     text.push('\n');
     text.push_str(&glossy_radiance_wgsl(lmax));
+    text.push('\n');
+    text.push_str(&ggx_band_sums_wgsl(lmax));
+    text.push_str(&format!(
+        "const GGX_LMAX: u32 = {}u;\n",
+        lmax.min(LIGHT_MAX_LMAX)
+    ));
     text
 }
 /// The environment background (map or SH reconstruction).

@@ -114,9 +114,6 @@ impl Default for Shading {
 
 /// `MODE_GLOSSY` of `scene.wgsl`: [`Mode::Prt`] with glossy transfer.
 const MODE_GLOSSY: u32 = 4;
-/// `MODE_RADIANCE` of `scene.wgsl`: [`Mode::Prt`] with glossy transfer
-/// shaded on the CPU, each vertex's exit radiance in the transfer buffer.
-const MODE_RADIANCE: u32 = 5;
 
 /// `Frame` of `shaders/scene.wgsl`, byte for byte.
 #[repr(C)]
@@ -141,7 +138,8 @@ pub(crate) struct FrameUniform {
     glossy_band: [[f32; 4]; 3],
     glossy_vectors: u32,
     glossy_parts: u32,
-    _pad: [u32; 2],
+    ggx_table: u32,
+    ggx_rows: u32,
 }
 
 /// What the glossy path adds to a frame's uniform block: the lobe's
@@ -151,6 +149,9 @@ pub(crate) struct FrameUniform {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct GlossyInputs {
     pub band: [[f32; 4]; 3],
+    /// A tabulated lobe's direction weights: their first `f32` in the
+    /// transfer buffer and their rows.
+    pub table: Option<(u32, u32)>,
     pub vectors: u32,
     pub parts: u32,
 }
@@ -169,9 +170,6 @@ pub(crate) struct FrameInputs<'a> {
     /// The glossy transfer's lobe and layout, when the PRT transfer is
     /// glossy (PRT mode then shades it view by view).
     pub glossy: Option<GlossyInputs>,
-    /// The transfer buffer holds each vertex's exit radiance, shaded on
-    /// the CPU (PRT mode then draws it).
-    pub vertex_radiance: bool,
     /// The camera's position (glossy shading's `w_o`).
     pub eye: glam::Vec3,
     pub encode_srgb: bool,
@@ -225,10 +223,9 @@ impl FrameUniform {
             albedo: [r, g, b, 1.0],
             exposure: 2f32.powf(f.shading.exposure_ev),
             lmax: f.lmax as u32,
-            mode: match (f.shading.mode, f.glossy, f.vertex_radiance) {
-                (Mode::Prt, _, true) => MODE_RADIANCE,
-                (Mode::Prt, Some(_), false) => MODE_GLOSSY,
-                (mode, _, _) => mode.code(),
+            mode: match (f.shading.mode, f.glossy) {
+                (Mode::Prt, Some(_)) => MODE_GLOSSY,
+                (mode, _) => mode.code(),
             },
             tone_map: match f.shading.tone_map {
                 None => 0,
@@ -244,7 +241,8 @@ impl FrameUniform {
             glossy_band: f.glossy.map_or([[0.0; 4]; 3], |g| g.band),
             glossy_vectors: f.glossy.map_or(0, |g| g.vectors),
             glossy_parts: f.glossy.map_or(0, |g| g.parts),
-            _pad: [0; 2],
+            ggx_table: f.glossy.and_then(|g| g.table).map_or(0, |t| t.0),
+            ggx_rows: f.glossy.and_then(|g| g.table).map_or(0, |t| t.1),
         }
     }
 }

@@ -883,7 +883,6 @@ impl VolumeRenderer {
             lmax,
             prt: None,
             glossy: None,
-            vertex_radiance: false,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
         });

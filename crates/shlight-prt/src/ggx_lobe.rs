@@ -57,6 +57,21 @@
 //! [`QUADRATURE_ELEVATION`]-point Gauss-Legendre in `s = sqrt(1 - u_y)`
 //! (`cos theta_h = s / sqrt(alpha^2 + (1 - alpha^2) s^2)`, smooth where
 //! the lobe's tail is steep in `u_y`). Accumulated in `f64`.
+//!
+//! # Without the rotation: directions in the vertex's frame
+//!
+//! The GPU evaluates the same sum without rotating `T`
+//! ([`GgxLobe::direction_table`]). In the local frame, `K = lmax + 1`
+//! fixed directions `d_k = (sin psi_k, 0, cos psi_k)`, `psi_k = pi (k +
+//! 1/2) / K`, lie in the plane of symmetry, where every `Y_lm` with
+//! `m < 0` vanishes. For each band `l` and elevation the weights `w_lk`
+//! with `sum_k w_lk Y_lm(d_k) = B_lm` (`m = 0..l`; the least-norm solution
+//! of `l + 1` equations in `K` unknowns) give
+//! `sum_m B_lm T'_lm = sum_k w_lk T_l(F d_k)`, where `T_l(d) = sum_m T_lm
+//! Y_lm(d)` is band `l` of the transferred radiance at the world direction
+//! `F d_k` (`F` the vertex's frame): `K` evaluations of `T`'s bands per
+//! vertex instead of a rotation. The weights are linear in `B`, so
+//! interpolating them is interpolating `B`.
 
 use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
@@ -200,6 +215,162 @@ impl GgxLobe {
     pub fn parameters(&self) -> (f64, f64) {
         (self.alpha, self.f0)
     }
+
+    /// The table of direction weights `w_lk` ([module docs](self)) the
+    /// GPU reads, `f32`: `ELEVATIONS + 2` rows (row `r + 1` the elevation
+    /// `theta_r`; row 0 and the last the points below `theta = 0` and
+    /// beyond `pi/2` that [`GgxLobe::projection`]'s splines use), each of
+    /// `lmax + 1` bands of `K = lmax + 1` weights: row `r`, band `l`,
+    /// direction `k` at `(r (lmax + 1) + l) K + k`. Catmull-Rom over rows
+    /// `k .. k + 3` with [`GgxLobe::projection`]'s `k` and `t` gives the
+    /// weights of `B(theta_o)`.
+    #[must_use]
+    pub fn direction_table(&self) -> Vec<f32> {
+        let nc = sh_count(self.lmax);
+        let row = |j: usize| &self.table[j * nc..][..nc];
+        let below: Vec<f64> = (0..nc).map(|i| mirror_sign(i) * row(1)[i]).collect();
+        let beyond: Vec<f64> = (0..nc)
+            .map(|i| 2.0 * row(ELEVATIONS - 1)[i] - row(ELEVATIONS - 2)[i])
+            .collect();
+        let solve = DirectionSolve::new(self.lmax);
+        std::iter::once(below.as_slice())
+            .chain((0..ELEVATIONS).map(row))
+            .chain(std::iter::once(beyond.as_slice()))
+            .flat_map(|b| solve.weights(b))
+            .map(|w| w as f32)
+            .collect()
+    }
+
+    /// [`GgxLobe::exit_radiance`] evaluated as the GPU does, through the
+    /// direction weights ([module docs](self)) instead of a rotation: the
+    /// same value to rounding.
+    ///
+    /// # Panics
+    /// If `t` is shorter than `(lmax+1)^2`.
+    #[must_use]
+    pub fn exit_radiance_by_directions(&self, n: DVec3, w_o: DVec3, t: &[DVec3]) -> DVec3 {
+        let nc = sh_count(self.lmax);
+        let mu_o = n.dot(w_o);
+        if mu_o.is_nan() || mu_o <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let mut b = vec![0.0; nc];
+        self.projection(mu_o, &mut b);
+        let weights = DirectionSolve::new(self.lmax).weights(&b);
+        let tangent = (w_o - mu_o * n)
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector());
+        let k_count = self.lmax + 1;
+        let basis = ShBasis::<f64>::new(self.lmax);
+        let mut y = vec![0.0; nc];
+        let mut sum = DVec3::ZERO;
+        for k in 0..k_count {
+            let (sin, cos) = direction_angle(k, k_count).sin_cos();
+            basis.eval(tangent * sin + n * cos, &mut y);
+            for l in 0..=self.lmax {
+                let band: DVec3 = (l * l..(l + 1) * (l + 1)).map(|i| t[i] * y[i]).sum();
+                sum += weights[l * k_count + k] * band;
+            }
+        }
+        sum
+    }
+}
+
+/// `psi_k = pi (k + 1/2) / K`, the angle from the normal of direction `k`
+/// of `count` in the vertex frame's plane of symmetry.
+fn direction_angle(k: usize, count: usize) -> f64 {
+    core::f64::consts::PI * (k as f64 + 0.5) / count as f64
+}
+
+/// The least-norm weights `w_lk` of [`GgxLobe::direction_table`] for one
+/// lmax: per band, `A_l^T (A_l A_l^T)^-1` with `A_l[m][k] = Y_lm(d_k)`.
+struct DirectionSolve {
+    lmax: usize,
+    /// Per band, the `K x (l + 1)` matrix, row-major.
+    maps: Vec<Vec<f64>>,
+}
+
+impl DirectionSolve {
+    fn new(lmax: usize) -> Self {
+        let k_count = lmax + 1;
+        let basis = ShBasis::<f64>::new(lmax);
+        let mut y = vec![0.0; sh_count(lmax)];
+        // a[k][i]: Y_i at direction k.
+        let a: Vec<Vec<f64>> = (0..k_count)
+            .map(|k| {
+                let (sin, cos) = direction_angle(k, k_count).sin_cos();
+                basis.eval(DVec3::new(sin, 0.0, cos), &mut y);
+                y.clone()
+            })
+            .collect();
+        let maps = (0..=lmax)
+            .map(|l| {
+                let m_count = l + 1;
+                let at = |m: usize, k: usize| a[k][l * (l + 1) + m];
+                // G = A A^T, (l+1) x (l+1); its inverse by Gauss-Jordan.
+                let mut g: Vec<f64> = (0..m_count * m_count)
+                    .map(|e| {
+                        let (r, c) = (e / m_count, e % m_count);
+                        (0..k_count).map(|k| at(r, k) * at(c, k)).sum()
+                    })
+                    .collect();
+                let mut inv: Vec<f64> = (0..m_count * m_count)
+                    .map(|e| f64::from(u8::from(e / m_count == e % m_count)))
+                    .collect();
+                for col in 0..m_count {
+                    let pivot = (col..m_count)
+                        .max_by(|&x, &y| {
+                            g[x * m_count + col]
+                                .abs()
+                                .total_cmp(&g[y * m_count + col].abs())
+                        })
+                        .expect("a row");
+                    for c in 0..m_count {
+                        g.swap(col * m_count + c, pivot * m_count + c);
+                        inv.swap(col * m_count + c, pivot * m_count + c);
+                    }
+                    let p = g[col * m_count + col];
+                    for c in 0..m_count {
+                        g[col * m_count + c] /= p;
+                        inv[col * m_count + c] /= p;
+                    }
+                    for r in 0..m_count {
+                        if r != col {
+                            let f = g[r * m_count + col];
+                            for c in 0..m_count {
+                                g[r * m_count + c] -= f * g[col * m_count + c];
+                                inv[r * m_count + c] -= f * inv[col * m_count + c];
+                            }
+                        }
+                    }
+                }
+                // A^T G^-1: K x (l+1).
+                (0..k_count * m_count)
+                    .map(|e| {
+                        let (k, m) = (e / m_count, e % m_count);
+                        (0..m_count).map(|j| at(j, k) * inv[j * m_count + m]).sum()
+                    })
+                    .collect()
+            })
+            .collect();
+        Self { lmax, maps }
+    }
+
+    /// Band-major weights (`l (lmax + 1) + k`) of the projection `b`
+    /// (`(lmax+1)^2` coefficients, those with `m < 0` ignored).
+    fn weights(&self, b: &[f64]) -> Vec<f64> {
+        let k_count = self.lmax + 1;
+        let mut out = vec![0.0; k_count * k_count];
+        for (l, map) in self.maps.iter().enumerate() {
+            let m_count = l + 1;
+            for k in 0..k_count {
+                out[l * k_count + k] = (0..m_count)
+                    .map(|m| map[k * m_count + m] * b[l * (l + 1) + m])
+                    .sum();
+            }
+        }
+        out
+    }
 }
 
 /// Elevation `k` of the table, `pi/2 sin(pi/2 k/(K-1))`.
@@ -316,5 +487,46 @@ mod tests {
         }
         lobe.projection(-0.2, &mut b);
         assert!(b.iter().all(|&x| x == 0.0));
+    }
+
+    /// The directions' weights give the rotation's value, at every lmax
+    /// the GPU shades, for views from the normal to grazing; and their
+    /// table holds the tabulated elevations' weights.
+    #[test]
+    fn directions_give_the_rotations_value() {
+        for lmax in [0, 1, 2, 4, 8] {
+            let lobe = GgxLobe::new(lmax, 0.3, 0.04);
+            let nc = sh_count(lmax);
+            let t: Vec<DVec3> = (0..nc)
+                .map(|i| {
+                    DVec3::new(1.0, 0.5, -0.3) * (1.0 + i as f64).recip()
+                        + DVec3::X * f64::from(u8::from(i == 0))
+                })
+                .collect();
+            let n = DVec3::new(0.2, 0.9, -0.4).normalize();
+            let mut b = vec![0.0; nc];
+            for mu in [1.0, 0.9, 0.5, 0.1, 0.01] {
+                let side = n.any_orthonormal_vector();
+                let w_o = mu * n + (1.0f64 - mu * mu).sqrt() * side;
+                let want = lobe.exit_radiance(n, w_o, &t, &mut b);
+                let got = lobe.exit_radiance_by_directions(n, w_o, &t);
+                let scale = want.abs().max_element().max(1e-3);
+                assert!(
+                    (got - want).abs().max_element() < 1e-9 * scale,
+                    "lmax {lmax} mu {mu}: {got} vs {want}"
+                );
+            }
+            let table = lobe.direction_table();
+            let k_count = lmax + 1;
+            assert_eq!(table.len(), (ELEVATIONS + 2) * k_count * k_count);
+            let solve = DirectionSolve::new(lmax);
+            let w = solve.weights(&lobe.table[5 * nc..][..nc]);
+            for (x, y) in table[6 * k_count * k_count..][..k_count * k_count]
+                .iter()
+                .zip(&w)
+            {
+                assert_eq!(*x, *y as f32);
+            }
+        }
     }
 }

@@ -6,7 +6,7 @@
 use anyhow::{Result, bail};
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_format::ShprtFile;
-use shlight_gpu::{GpuContext, Renderer, wgpu};
+use shlight_gpu::{GlossyLobe, GpuContext, Renderer, wgpu};
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
 
@@ -67,31 +67,17 @@ pub fn renderer(
     renderer.set_mesh(ctx, mesh);
     if let Some(t) = transfer {
         match (t.glossy_view()?, &t.glossy) {
-            (Some(matrices), Some(_)) => {
-                let shader = shlight_prt::glossy::GlossyShader::new(t)
-                    .map_err(anyhow::Error::msg)?
-                    .expect("a glossy file");
-                match shader.lobe() {
-                    // Evaluated by the shader, per vertex.
+            (Some(matrices), Some(g)) => {
+                let brdf = shlight_prt::brdf::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
+                match brdf.lobe(t.lmax) {
                     shlight_prt::brdf::Lobe::Zonal(lambda) => {
-                        renderer.set_glossy(ctx, &matrices, lambda)?;
+                        renderer.set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))?;
                     }
-                    // Shaded per vertex on the CPU, drawn by the GPU.
-                    shlight_prt::brdf::Lobe::Ggx(_) => {
-                        renderer.set_glossy_on_cpu(
-                            ctx,
-                            Box::new(move |light, eye, albedo| {
-                                let view = Some(shlight_prt::glossy::View::Eye(eye.as_dvec3()));
-                                let base = glam::DVec3::from(albedo.map(f64::from));
-                                shader
-                                    .shade(light, view, base)
-                                    .unwrap_or_default()
-                                    .iter()
-                                    .map(|c| c.as_vec3().to_array())
-                                    .collect()
-                            }),
-                        )?;
-                    }
+                    shlight_prt::brdf::Lobe::Ggx(lobe) => renderer.set_glossy(
+                        ctx,
+                        &matrices,
+                        GlossyLobe::Directions(&lobe.direction_table()),
+                    )?,
                 }
             }
             _ => renderer.set_transfer(ctx, &t.view()?)?,
