@@ -387,21 +387,23 @@ impl Renderer {
         Ok(())
     }
 
+    /// `what`, made for `count` vertices, fits the current mesh.
+    fn check_vertices(&self, what: &str, count: usize) -> Result<(), GpuError> {
+        match self.mesh.as_ref().map(|m| m.vertex_count) {
+            Some(n) if n == count => Ok(()),
+            None => Err(GpuError::Invalid(format!("{what} given before a mesh"))),
+            Some(n) => Err(GpuError::Invalid(format!(
+                "{what} is for {count} vertices but the mesh has {n}"
+            ))),
+        }
+    }
+
     /// Uploads PRT transfer vectors for the current mesh.
     ///
     /// # Errors
     /// [`GpuError::Invalid`] without a mesh, or when the vertex counts differ.
     pub fn set_transfer(&mut self, ctx: &GpuContext, t: &TransferView<'_>) -> Result<(), GpuError> {
-        let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
-        if vertices != Some(t.vertex_count) {
-            return Err(GpuError::Invalid(match vertices {
-                None => "PRT transfer given before a mesh".into(),
-                Some(n) => format!(
-                    "PRT transfer is for {} vertices but the mesh has {n}",
-                    t.vertex_count
-                ),
-            }));
-        }
+        self.check_vertices("PRT transfer", t.vertex_count)?;
         self.transfer = ctx
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -416,36 +418,30 @@ impl Renderer {
     }
 
     /// Uploads glossy PRT transfer matrices for the current mesh (docs/shprt.md,
-    /// "Glossy transfer"), with the BRDF's `lobe`: zonal coefficients
-    /// `lambda`
-    /// (`Lambda_l`, `l = 0..=lmax`). [`Mode::Prt`] then shades each vertex
-    /// view by view: `sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm`
-    /// toward the camera, `rho` [`Shading::albedo`]'s diffuse base (zero:
-    /// the glossy layer alone), `T = M L` the transferred radiance. `T` is
-    /// computed on the CPU when the light (or the shading lmax) changes:
-    /// per cluster once for a compressed file, each vertex then summing its
-    /// cluster's parts with its weights on the GPU.
+    /// "Glossy transfer"), with the BRDF's `lobe`. [`Mode::Prt`] then
+    /// shades each vertex view by view toward the camera:
+    /// `sum_lm rho/pi A_l Y_lm(n) T_lm` (`rho` [`Shading::albedo`]'s
+    /// diffuse base; zero: the glossy layer alone) plus the glossy layer,
+    /// `sum_lm Lambda_l Y_lm(R) T_lm` for [`GlossyLobe::Zonal`], the
+    /// weighted bands of [`GlossyLobe::Directions`]; `T = M L` the
+    /// transferred radiance. `T` is computed on the CPU when the light (or
+    /// the shading lmax) changes: per cluster once for a compressed file,
+    /// each vertex then summing its cluster's parts with its weights on the
+    /// GPU.
     ///
     /// # Errors
     /// [`GpuError::Invalid`] without a mesh, for another vertex count, an
-    /// lmax above [`LIGHT_MAX_LMAX`], `lambda` shorter than lmax + 1, or
-    /// more transferred radiance than the device's largest storage buffer.
+    /// lmax above [`LIGHT_MAX_LMAX`], zonal coefficients fewer than lmax +
+    /// 1, a direction table not of whole rows (four or more) for the lmax,
+    /// or more transferred radiance than the device's largest storage
+    /// buffer.
     pub fn set_glossy(
         &mut self,
         ctx: &GpuContext,
         matrices: &GlossyView<'_>,
         lobe: GlossyLobe<'_>,
     ) -> Result<(), GpuError> {
-        let vertices = self.mesh.as_ref().map(|m| m.vertex_count);
-        if vertices != Some(matrices.vertex_count) {
-            return Err(GpuError::Invalid(match vertices {
-                None => "glossy transfer given before a mesh".into(),
-                Some(n) => format!(
-                    "glossy transfer is for {} vertices but the mesh has {n}",
-                    matrices.vertex_count
-                ),
-            }));
-        }
+        self.check_vertices("glossy transfer", matrices.vertex_count)?;
         let lmax = matrices.lmax;
         if lmax > LIGHT_MAX_LMAX {
             return Err(GpuError::Invalid(format!(

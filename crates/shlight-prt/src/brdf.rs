@@ -129,18 +129,14 @@ impl Brdf {
     /// the mirror direction (Phong); `None` for GGX, which is not one.
     #[must_use]
     pub fn lambda(&self, lmax: usize) -> Option<Vec<f64>> {
-        match self.lobe_if_zonal(lmax) {
-            Some(Lobe::Zonal(l)) => Some(l),
-            _ => None,
+        match self {
+            Brdf::Phong { exponent } => Some(ZonalKernel::phong(lmax, *exponent).eigenvalues),
+            Brdf::Ggx { .. } => None,
         }
     }
 
-    fn lobe_if_zonal(&self, lmax: usize) -> Option<Lobe> {
-        matches!(self, Brdf::Phong { .. }).then(|| self.lobe(lmax))
-    }
-
     /// The lobe to `lmax`: Phong's zonal coefficients, GGX's table
-    /// ([`GgxLobe::new`], a fraction of a second at lmax 8).
+    /// ([`GgxLobe::new`]).
     #[must_use]
     pub fn lobe(&self, lmax: usize) -> Lobe {
         match self {

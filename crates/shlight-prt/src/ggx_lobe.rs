@@ -98,9 +98,10 @@ pub const MIN_ALPHA: f64 = 1e-3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct GgxLobe {
     lmax: usize,
-    alpha: f64,
-    f0: f64,
-    /// `ELEVATIONS` rows of `(lmax+1)^2` coefficients `B_lm(theta_k)`.
+    /// `ELEVATIONS + 2` rows of `(lmax+1)^2` coefficients: row `k + 1`
+    /// `B_lm(theta_k)`, row 0 and the last the splines' end points (the
+    /// mirror image below `theta = 0`, the linear extrapolation beyond
+    /// `pi/2`; [module docs](self)).
     table: Vec<f64>,
 }
 
@@ -118,17 +119,22 @@ impl GgxLobe {
             "GGX alpha {alpha}, F0 {f0}"
         );
         let nc = sh_count(lmax);
-        let table: Vec<f64> = (0..ELEVATIONS)
+        let nodes: Vec<f64> = (0..ELEVATIONS)
             .into_par_iter()
             .flat_map_iter(|k| project(lmax, alpha, f0, elevation(k)))
             .collect();
-        debug_assert_eq!(table.len(), ELEVATIONS * nc);
-        Self {
-            lmax,
-            alpha,
-            f0,
-            table,
-        }
+        let node = |k: usize| &nodes[k * nc..][..nc];
+        let mut table = Vec::with_capacity((ELEVATIONS + 2) * nc);
+        table.extend((0..nc).map(|i| mirror_sign(i) * node(1)[i]));
+        table.extend_from_slice(&nodes);
+        table.extend((0..nc).map(|i| 2.0 * node(ELEVATIONS - 1)[i] - node(ELEVATIONS - 2)[i]));
+        Self { lmax, table }
+    }
+
+    /// Row `r` of the table ([`GgxLobe::direction_table`]'s rows).
+    fn row(&self, r: usize) -> &[f64] {
+        let nc = sh_count(self.lmax);
+        &self.table[r * nc..][..nc]
     }
 
     /// The highest degree tabulated.
@@ -161,19 +167,10 @@ impl GgxLobe {
             0.5 * (-3.0 * t3 + 4.0 * t2 + t),
             0.5 * (t3 - t2),
         ];
-        let row = |j: usize| &self.table[j * nc..][..nc];
+        // Nodes k - 1 .. k + 2 are rows k .. k + 3.
+        let rows = [0, 1, 2, 3].map(|j| self.row(k + j));
         for (i, o) in out.iter_mut().enumerate() {
-            let before = if k == 0 {
-                mirror_sign(i) * row(1)[i]
-            } else {
-                row(k - 1)[i]
-            };
-            let after = if k + 2 < ELEVATIONS {
-                row(k + 2)[i]
-            } else {
-                2.0 * row(k + 1)[i] - row(k)[i]
-            };
-            *o = w[0] * before + w[1] * row(k)[i] + w[2] * row(k + 1)[i] + w[3] * after;
+            *o = (0..4).map(|j| w[j] * rows[j][i]).sum();
         }
     }
 
@@ -210,12 +207,6 @@ impl GgxLobe {
             .sum()
     }
 
-    /// The roughness and `F0` tabulated.
-    #[must_use]
-    pub fn parameters(&self) -> (f64, f64) {
-        (self.alpha, self.f0)
-    }
-
     /// The table of direction weights `w_lk` ([module docs](self)) the
     /// GPU reads, `f32`: `ELEVATIONS + 2` rows (row `r + 1` the elevation
     /// `theta_r`; row 0 and the last the points below `theta = 0` and
@@ -226,53 +217,11 @@ impl GgxLobe {
     /// weights of `B(theta_o)`.
     #[must_use]
     pub fn direction_table(&self) -> Vec<f32> {
-        let nc = sh_count(self.lmax);
-        let row = |j: usize| &self.table[j * nc..][..nc];
-        let below: Vec<f64> = (0..nc).map(|i| mirror_sign(i) * row(1)[i]).collect();
-        let beyond: Vec<f64> = (0..nc)
-            .map(|i| 2.0 * row(ELEVATIONS - 1)[i] - row(ELEVATIONS - 2)[i])
-            .collect();
         let solve = DirectionSolve::new(self.lmax);
-        std::iter::once(below.as_slice())
-            .chain((0..ELEVATIONS).map(row))
-            .chain(std::iter::once(beyond.as_slice()))
-            .flat_map(|b| solve.weights(b))
+        (0..ELEVATIONS + 2)
+            .flat_map(|r| solve.weights(self.row(r)))
             .map(|w| w as f32)
             .collect()
-    }
-
-    /// [`GgxLobe::exit_radiance`] evaluated as the GPU does, through the
-    /// direction weights ([module docs](self)) instead of a rotation: the
-    /// same value to rounding.
-    ///
-    /// # Panics
-    /// If `t` is shorter than `(lmax+1)^2`.
-    #[must_use]
-    pub fn exit_radiance_by_directions(&self, n: DVec3, w_o: DVec3, t: &[DVec3]) -> DVec3 {
-        let nc = sh_count(self.lmax);
-        let mu_o = n.dot(w_o);
-        if mu_o.is_nan() || mu_o <= 0.0 {
-            return DVec3::ZERO;
-        }
-        let mut b = vec![0.0; nc];
-        self.projection(mu_o, &mut b);
-        let weights = DirectionSolve::new(self.lmax).weights(&b);
-        let tangent = (w_o - mu_o * n)
-            .try_normalize()
-            .unwrap_or_else(|| n.any_orthonormal_vector());
-        let k_count = self.lmax + 1;
-        let basis = ShBasis::<f64>::new(self.lmax);
-        let mut y = vec![0.0; nc];
-        let mut sum = DVec3::ZERO;
-        for k in 0..k_count {
-            let (sin, cos) = direction_angle(k, k_count).sin_cos();
-            basis.eval(tangent * sin + n * cos, &mut y);
-            for l in 0..=self.lmax {
-                let band: DVec3 = (l * l..(l + 1) * (l + 1)).map(|i| t[i] * y[i]).sum();
-                sum += weights[l * k_count + k] * band;
-            }
-        }
-        sum
     }
 }
 
@@ -455,6 +404,36 @@ fn project(lmax: usize, alpha: f64, f0: f64, theta_o: f64) -> Vec<f64> {
 mod tests {
     use super::*;
 
+    /// [`GgxLobe::exit_radiance`] evaluated as the GPU does (`mesh.wgsl`'s
+    /// `ggx_layer`), through the direction weights instead of a rotation.
+    fn exit_radiance_by_directions(lobe: &GgxLobe, n: DVec3, w_o: DVec3, t: &[DVec3]) -> DVec3 {
+        let lmax = lobe.lmax;
+        let nc = sh_count(lmax);
+        let mu_o = n.dot(w_o);
+        if mu_o <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let mut b = vec![0.0; nc];
+        lobe.projection(mu_o, &mut b);
+        let weights = DirectionSolve::new(lmax).weights(&b);
+        let tangent = (w_o - mu_o * n)
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector());
+        let k_count = lmax + 1;
+        let basis = ShBasis::<f64>::new(lmax);
+        let mut y = vec![0.0; nc];
+        let mut sum = DVec3::ZERO;
+        for k in 0..k_count {
+            let (sin, cos) = direction_angle(k, k_count).sin_cos();
+            basis.eval(tangent * sin + n * cos, &mut y);
+            for l in 0..=lmax {
+                let band: DVec3 = (l * l..(l + 1) * (l + 1)).map(|i| t[i] * y[i]).sum();
+                sum += weights[l * k_count + k] * band;
+            }
+        }
+        sum
+    }
+
     /// The mirror signs are those of the basis itself.
     #[test]
     fn mirror_signs_match_the_basis() {
@@ -509,7 +488,7 @@ mod tests {
                 let side = n.any_orthonormal_vector();
                 let w_o = mu * n + (1.0f64 - mu * mu).sqrt() * side;
                 let want = lobe.exit_radiance(n, w_o, &t, &mut b);
-                let got = lobe.exit_radiance_by_directions(n, w_o, &t);
+                let got = exit_radiance_by_directions(&lobe, n, w_o, &t);
                 let scale = want.abs().max_element().max(1e-3);
                 assert!(
                     (got - want).abs().max_element() < 1e-9 * scale,
@@ -520,7 +499,7 @@ mod tests {
             let k_count = lmax + 1;
             assert_eq!(table.len(), (ELEVATIONS + 2) * k_count * k_count);
             let solve = DirectionSolve::new(lmax);
-            let w = solve.weights(&lobe.table[5 * nc..][..nc]);
+            let w = solve.weights(&lobe.table[6 * nc..][..nc]);
             for (x, y) in table[6 * k_count * k_count..][..k_count * k_count]
                 .iter()
                 .zip(&w)

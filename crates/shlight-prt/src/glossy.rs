@@ -501,88 +501,40 @@ pub fn file_shade(
     view: Option<View>,
     diffuse: DVec3,
 ) -> Result<Vec<DVec3>, String> {
-    match GlossyShader::new(file)? {
-        None => Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light)),
-        Some(shader) => shader.shade(light, view, diffuse),
-    }
-}
-
-/// A glossy `.shprt` file ready to shade under light after light and view
-/// after view: its matrices, vertices and BRDF's lobe (a GGX table is
-/// made once, here).
-#[derive(Clone, Debug)]
-pub struct GlossyShader {
-    matrices: GlossyView<'static>,
-    positions: Vec<Vec3>,
-    normals: Vec<Vec3>,
-    lobe: Lobe,
-}
-
-impl GlossyShader {
-    /// `None` for a diffuse file.
-    ///
-    /// # Errors
-    /// An unknown BRDF in the file, or arrays that do not fit its counts.
-    pub fn new(file: &ShprtFile) -> Result<Option<Self>, String> {
-        let Some(glossy) = &file.glossy else {
-            return Ok(None);
-        };
-        let brdf = Brdf::parse(&glossy.brdf)?;
-        let matrices = file
-            .glossy_view()
-            .map_err(|e| e.to_string())?
-            .expect("a glossy file")
-            .into_owned();
-        Ok(Some(Self {
-            matrices,
-            positions: glossy.positions.iter().map(|p| Vec3::from(*p)).collect(),
-            normals: glossy.normals.iter().map(|n| Vec3::from(*n)).collect(),
-            lobe: brdf.lobe(file.lmax),
-        }))
-    }
-
-    /// The file's lobe.
-    #[must_use]
-    pub fn lobe(&self) -> &Lobe {
-        &self.lobe
-    }
-
-    /// Each vertex's exit radiance under `light` (any lmax) seen from
-    /// `view`, over a diffuse base of albedo `diffuse` ([`shade`]).
-    ///
-    /// # Errors
-    /// No view, a zero view direction, or a non-finite eye.
-    pub fn shade(
-        &self,
-        light: &[DVec3],
-        view: Option<View>,
-        diffuse: DVec3,
-    ) -> Result<Vec<DVec3>, String> {
-        let Some(view) = view else {
-            return Err(
-                "a glossy file's exit radiance depends on the view: give a view direction or an eye"
-                    .into(),
-            );
-        };
-        match view {
-            View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
-                return Err(format!(
-                    "the view direction {d} has zero length (or is not finite)"
-                ));
-            }
-            View::Eye(e) if !e.is_finite() => {
-                return Err(format!("the eye {e} is not finite"));
-            }
-            _ => {}
+    let Some(glossy) = &file.glossy else {
+        return Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light));
+    };
+    let Some(view) = view else {
+        return Err(
+            "a glossy file's exit radiance depends on the view: give a view direction or an eye"
+                .into(),
+        );
+    };
+    match view {
+        View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
+            return Err(format!(
+                "the view direction {d} has zero length (or is not finite)"
+            ));
         }
-        Ok(shade(
-            &self.matrices,
-            &self.matrices.transferred(light),
-            &self.positions,
-            &self.normals,
-            &self.lobe,
-            diffuse,
-            view,
-        ))
+        View::Eye(e) if !e.is_finite() => {
+            return Err(format!("the eye {e} is not finite"));
+        }
+        _ => {}
     }
+    let brdf = Brdf::parse(&glossy.brdf)?;
+    let positions: Vec<Vec3> = glossy.positions.iter().map(|p| Vec3::from(*p)).collect();
+    let normals: Vec<Vec3> = glossy.normals.iter().map(|n| Vec3::from(*n)).collect();
+    let matrices = file
+        .glossy_view()
+        .map_err(|e| e.to_string())?
+        .expect("a glossy file");
+    Ok(shade(
+        &matrices,
+        &matrices.transferred(light),
+        &positions,
+        &normals,
+        &brdf.lobe(file.lmax),
+        diffuse,
+        view,
+    ))
 }
