@@ -157,7 +157,7 @@ fn vertex_values(
 /// GPU shading equals `shlight sample --eye` at the vertices: lmax 2 and
 /// 4, plain and CPCA-compressed, grey and coloured (bounces) matrices, with
 /// and without a diffuse base, Phong (evaluated by the shader) and GGX
-/// (shaded on the CPU, drawn by the GPU), every vertex the frame shows alone within
+/// (its direction table), every vertex the frame shows alone within
 /// 1e-5 of the largest value (f32 on the GPU, f64 in `sample`); then the
 /// environment turned (the renderer's new light against `sample` under a
 /// file of the turned coefficients).

@@ -527,7 +527,7 @@ fn view_screenshot_shows_the_mesh_under_xvfb() {
         ],
     );
     let dark = screenshot("dark.png", &["--hide-panel", "--albedo", "0.2,0.2,0.2"]);
-    // GGX, shaded per vertex on the CPU toward the viewer's camera.
+    // GGX, shaded per vertex on the GPU toward the viewer's camera.
     let ggx_file = dir.join("g.shprt");
     glossy_bake("ggx:0.3", &ggx_file);
     let ggx = screenshot("ggx.png", &["--hide-panel", "--prt", s(&ggx_file)]);

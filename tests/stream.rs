@@ -138,11 +138,7 @@ fn a_16k_map_projects_under_a_memory_cap_as_in_memory() {
 #[test]
 #[ignore = "writes benchmark inputs (about 600 MB) for benches/stream.sh"]
 fn write_benchmark_maps() {
-    let Ok(dir) = std::env::var("SHLIGHT_BENCH_DIR") else {
-        panic!("set SHLIGHT_BENCH_DIR to the directory to write the maps into");
-    };
-    let dir = Path::new(&dir);
-    std::fs::create_dir_all(dir).unwrap();
+    let dir = &bench_dir();
     let park = shlight_io::read_image(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("envmaps/park.exr"),
         &shlight_io::ReadOptions::default(),
@@ -168,10 +164,14 @@ fn write_benchmark_maps() {
 #[test]
 #[ignore = "writes a 24576x12288 benchmark map (about 30 MB, a minute)"]
 fn write_24k_benchmark_map() {
+    write_large_exr(&bench_dir().join("patches-24576.exr"), 24576, 12288);
+}
+
+/// `$SHLIGHT_BENCH_DIR`, made if missing: where the benchmark maps go.
+fn bench_dir() -> std::path::PathBuf {
     let Ok(dir) = std::env::var("SHLIGHT_BENCH_DIR") else {
-        panic!("set SHLIGHT_BENCH_DIR to the directory to write the map into");
+        panic!("set SHLIGHT_BENCH_DIR to the directory to write the maps into");
     };
-    let dir = Path::new(&dir);
-    std::fs::create_dir_all(dir).unwrap();
-    write_large_exr(&dir.join("patches-24576.exr"), 24576, 12288);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.into()
 }

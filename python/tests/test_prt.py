@@ -63,20 +63,27 @@ def test_bake_refusals_are_the_clis(cli, tmp_path):
     assert str(e.value) == cli_error(err)
 
 
-def test_glossy_exit_radiance_is_the_clis_and_the_formula(cli, tmp_path):
-    """Transfer.load reads a glossy .shprt file; exit_radiance gives what
-    `shlight sample --view/--eye` gives, and the definition written out
-    here: sum_lm Lambda_l (M L)_lm Y_lm(R), R the mirror of the view
-    about the normal, Lambda = 1, (S+1)/(S+2), S/(S+3)."""
+def bake_glossy_and_light(cli, tmp_path, brdf):
+    """`shlight prt` of the bunny, glossy with `brdf`, lmax 2, and the park
+    projected to lmax 2: the two paths."""
     glossy = tmp_path / "g.shprt"
     code, _, err = run_cli(
-        cli, "prt", BUNNY, "--mode", "glossy", "--brdf", "phong:20", "--lmax", "2",
+        cli, "prt", BUNNY, "--mode", "glossy", "--brdf", brdf, "--lmax", "2",
         "--samples", "64", "-o", glossy,
     )
     assert code == 0, err
     light = tmp_path / "park.json"
     code, _, err = run_cli(cli, "project", ROOT / "envmaps" / "park.exr", "--lmax", "2", "-o", light)
     assert code == 0, err
+    return glossy, light
+
+
+def test_glossy_exit_radiance_is_the_clis_and_the_formula(cli, tmp_path):
+    """Transfer.load reads a glossy .shprt file; exit_radiance gives what
+    `shlight sample --view/--eye` gives, and the definition written out
+    here: sum_lm Lambda_l (M L)_lm Y_lm(R), R the mirror of the view
+    about the normal, Lambda = 1, (S+1)/(S+2), S/(S+3)."""
+    glossy, light = bake_glossy_and_light(cli, tmp_path, "phong:20")
     t = shlight.Transfer.load(glossy)
     assert (t.mode, t.brdf, t.lmax, t.channels) == ("glossy", "phong:20", 2, 1)
     m = t.matrices
@@ -186,15 +193,7 @@ def test_ggx_exit_radiance_is_the_clis_and_the_brdf_integrated(cli, tmp_path):
     """A `--brdf ggx:0.3,0.04` file: exit_radiance gives what `shlight
     sample --eye` gives, and at a few vertices the transferred radiance
     M L integrated against the BRDF over the hemisphere, here in numpy."""
-    glossy = tmp_path / "g.shprt"
-    code, _, err = run_cli(
-        cli, "prt", BUNNY, "--mode", "glossy", "--brdf", "ggx:0.3,0.04", "--lmax", "2",
-        "--samples", "64", "-o", glossy,
-    )
-    assert code == 0, err
-    light = tmp_path / "park.json"
-    code, _, err = run_cli(cli, "project", ROOT / "envmaps" / "park.exr", "--lmax", "2", "-o", light)
-    assert code == 0, err
+    glossy, light = bake_glossy_and_light(cli, tmp_path, "ggx:0.3,0.04")
     t = shlight.Transfer.load(glossy)
     assert t.brdf == "ggx:0.3,0.04"
     eye = np.array([0.3, 1.0, 4.0])
