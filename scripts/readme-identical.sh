@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Proves that a change leaves every output of every README command
+# byte-identical: builds the shlight binary of BASE (default: the merge
+# base with origin/main, else HEAD~1) in a git worktree and of the working
+# tree, runs the README's commands with each (scripts/readme_outputs.py,
+# both with this checkout's README.md), and compares the digests.
+#
+#   scripts/readme-identical.sh [BASE] [--no-gpu]
+#
+# Exits 1 if any command's exit status, stdout or files differ. Both builds
+# share target/ (the worktree's crates build beside this checkout's, under
+# another path), so only shlight's own crates are compiled twice.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+base=""
+gpu_flag=""
+for arg in "$@"; do
+    case "$arg" in
+        --no-gpu) gpu_flag="--no-gpu" ;;
+        *) base=$arg ;;
+    esac
+done
+if [ -z "$base" ]; then
+    base=$(git merge-base HEAD origin/main 2>/dev/null || git rev-parse HEAD~1)
+fi
+base=$(git rev-parse --verify "$base^{commit}")
+out=$root/target/readme-identical
+mkdir -p "$out"
+tree=$out/base-tree
+if [ -d "$tree" ]; then
+    git worktree remove --force "$tree" >/dev/null 2>&1 || rm -rf "$tree"
+fi
+git worktree prune
+git worktree add --detach "$tree" "$base" >/dev/null
+trap 'git worktree remove --force "$tree" >/dev/null 2>&1 || true' EXIT
+
+echo "== building $base (before)"
+(cd "$tree" && CARGO_TARGET_DIR="$root/target" cargo build --release --quiet)
+cp target/release/shlight "$out/shlight-before"
+echo "== building the working tree (after)"
+cargo build --release --quiet
+
+echo "== README commands, before"
+python3 scripts/readme_outputs.py run --shlight "$out/shlight-before" $gpu_flag -o "$out/before.json"
+echo "== README commands, after"
+python3 scripts/readme_outputs.py run --shlight target/release/shlight $gpu_flag -o "$out/after.json"
+python3 scripts/readme_outputs.py compare "$out/before.json" "$out/after.json"
