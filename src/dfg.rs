@@ -1,15 +1,14 @@
 //! `shlight dfg`: the DFG (split-sum BRDF) table an engine reads beside its
-//! prefiltered environment (shlight-specular's `DfgTable`, written by
-//! shlight-pipeline's `write_dfg`).
+//! prefiltered environment, by shlight-pipeline's `dfg` job.
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
-use shlight_pipeline::write_dfg;
-use shlight_specular::{DfgForm, DfgTable, Engine};
+use shlight_pipeline::{DfgRequest, Spelling, dfg};
+use shlight_specular::{DfgTable, Engine};
 
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 
 /// Arguments of `shlight dfg`.
 #[derive(Args, Debug)]
@@ -31,19 +30,12 @@ pub struct DfgArgs {
 
 /// Runs `shlight dfg`.
 pub fn run(args: &DfgArgs, ui: &Ui) -> Result<()> {
-    if args.size == 0 || args.size > 4096 {
-        bail!("--size {} must be from 1 to 4096", args.size);
+    let plan = DfgRequest {
+        engine: args.engine,
+        size: args.size,
+        samples: args.samples,
     }
-    if args.samples == 0 {
-        bail!("--samples must be at least 1");
-    }
-    let spinner = ui.spinner("DFG table");
-    let table = DfgTable::for_engine(args.engine, args.size, args.samples);
-    spinner.finish_and_clear();
-    write_dfg(&table, &args.output)?;
-    ui.note(match table.form {
-        DfgForm::Multiscatter => "red: bias of F0 (B), green: scale + bias (A + B); x = n.v, y = perceptual roughness (top row 1)",
-        DfgForm::ScaleBias => "red: scale of F0 (A), green: bias (B); x = n.v, y = perceptual roughness (top row 1)",
-    });
+    .check(Spelling::CommandLine)?;
+    dfg(&args.output, &plan, &Reporter::new(ui))?;
     Ok(())
 }

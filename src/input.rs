@@ -8,7 +8,7 @@ use shlight_core::sh::Frame;
 use shlight_io::ReadOptions;
 use shlight_pipeline::ReadSettings;
 
-pub use shlight_pipeline::{FACE_PLACEHOLDER, InputLayout};
+pub use shlight_pipeline::InputLayout;
 
 /// How a command that reads one environment map reads it: `--layout`,
 /// `--up`, `--mirror`, `--sanitize`, `--max-pixels` (as `shlight project`

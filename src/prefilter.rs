@@ -1,20 +1,16 @@
 //! `shlight prefilter`: an environment map GGX-prefiltered into cube mips
-//! for an engine's specular lighting (shlight-pipeline's `prefilter_map`,
-//! shlight-specular), written as cmgen's `--ibl-ld` writes them.
+//! for an engine's specular lighting, by shlight-pipeline's `prefilter`
+//! job.
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
-use shlight_pipeline::{
-    PrefilterRequest, prefilter_map, write_prefiltered_faces, write_prefiltered_ktx1,
-    write_prefiltered_ktx2,
-};
+use shlight_pipeline::{PrefilterRequest, Spelling, prefilter};
 use shlight_specular::{Engine, PrefilterSettings};
 
 use crate::input::MapInputArgs;
-use crate::output_path::{names_dir, refuse_overwriting};
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 
 /// Arguments of `shlight prefilter`.
 #[derive(Args, Debug)]
@@ -48,54 +44,19 @@ pub struct PrefilterArgs {
 
 /// Runs `shlight prefilter`.
 pub fn run(args: &PrefilterArgs, ui: &Ui) -> Result<()> {
-    let ext = args
-        .output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let (ktx1, ktx2) = (
-        ext.as_deref() == Some("ktx"),
-        ext.as_deref() == Some("ktx2"),
-    );
-    if !ktx1 && !ktx2 && !names_dir(&args.output) {
-        bail!(
-            "{}: -o names a directory for the faces (end it with /, e.g. -o ld/), a .ktx or a .ktx2 file",
-            args.output.display()
-        );
-    }
-    refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
-    let settings = PrefilterSettings {
-        engine: args.engine,
-        size: args.size,
-        mips: args.mips,
-        samples: args.samples,
-    };
-    let request = PrefilterRequest {
+    let plan = PrefilterRequest {
+        input: &args.input,
+        output: &args.output,
         read: args.map.read_settings(),
         orientation: args.map.orientation(),
-        settings,
-    };
-    settings.check()?;
-    let bar = ui.bar(settings.rows() as u64, "prefilter");
-    let cube = prefilter_map(&args.input, &request, &|m| ui.warn(m), &|n| {
-        bar.inc(n as u64);
-    });
-    bar.finish_and_clear();
-    let cube = cube?;
-    if ktx1 {
-        write_prefiltered_ktx1(&cube, &args.output)?;
-    } else if ktx2 {
-        write_prefiltered_ktx2(&cube, &args.output)?;
-    } else {
-        write_prefiltered_faces(&cube, &args.output)?;
+        settings: PrefilterSettings {
+            engine: args.engine,
+            size: args.size,
+            mips: args.mips,
+            samples: args.samples,
+        },
     }
-    for (k, level) in cube.levels.iter().enumerate() {
-        ui.note(format!(
-            "mip {k}: {0}x{0}, roughness {1:.4} (perceptual {2:.4}), {3} samples",
-            level.cube.size(),
-            level.alpha,
-            level.alpha.sqrt(),
-            level.samples
-        ));
-    }
+    .check(Spelling::CommandLine)?;
+    prefilter(&plan, &Reporter::new(ui))?;
     Ok(())
 }

@@ -12,6 +12,7 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use shlight_pipeline::{Hooks, Progress};
 
 /// The stderr side of one run of the command line.
 #[derive(Clone, Debug)]
@@ -139,5 +140,75 @@ impl<'a, S: Copy + PartialEq> StageBars<'a, S> {
         if let Some((_, bar)) = self.current.lock().expect("no panics while held").take() {
             bar.finish_and_clear();
         }
+    }
+}
+
+/// A job's [`Hooks`] on the terminal: [`Progress::Step`] as a spinner's
+/// line, each stage of [`Progress::Count`] as a bar of its own (replaced
+/// when the stage changes, showing the furthest count), warnings and notes
+/// as [`Ui::warn`] and [`Ui::note`] print them. Bars are cleared when it is
+/// dropped.
+pub struct Reporter<'a> {
+    ui: &'a Ui,
+    spinner: std::sync::OnceLock<ProgressBar>,
+    stage: std::sync::Mutex<Option<(String, ProgressBar, u64)>>,
+}
+
+impl<'a> Reporter<'a> {
+    /// Nothing drawn until the job reports.
+    pub fn new(ui: &'a Ui) -> Self {
+        Self {
+            ui,
+            spinner: std::sync::OnceLock::new(),
+            stage: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// Clears every bar (before printing results on stdout).
+    pub fn finish(&self) {
+        if let Some(bar) = self.spinner.get() {
+            bar.finish_and_clear();
+        }
+        if let Some((_, bar, _)) = self.stage.lock().expect("no panics while held").take() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+impl Hooks for Reporter<'_> {
+    fn progress(&self, progress: Progress<'_>) {
+        match progress {
+            Progress::Step(what) => self
+                .spinner
+                .get_or_init(|| self.ui.spinner(what))
+                .set_message(what.to_string()),
+            Progress::Count { stage, done, total } => {
+                let mut current = self.stage.lock().expect("no panics while held");
+                if current.as_ref().is_none_or(|(s, _, _)| s != stage) {
+                    if let Some((_, bar, _)) = current.take() {
+                        bar.finish_and_clear();
+                    }
+                    *current = Some((stage.to_string(), self.ui.bar(total as u64, stage), 0));
+                }
+                if let Some((_, bar, furthest)) = current.as_mut() {
+                    *furthest = (*furthest).max(done as u64);
+                    bar.set_position(*furthest);
+                }
+            }
+        }
+    }
+
+    fn warn(&self, message: &str) {
+        self.ui.warn(message);
+    }
+
+    fn note(&self, message: &str) {
+        self.ui.note(message);
+    }
+}
+
+impl Drop for Reporter<'_> {
+    fn drop(&mut self) {
+        self.finish();
     }
 }

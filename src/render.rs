@@ -1,26 +1,16 @@
-//! `shlight render`: a coefficient file back to an image.
-//!
-//! Each texel gets `sum c_l^m Y_l^m(d)` at its centre direction `d`, in the
-//! coefficient file's frame (and mirroring), so that rendering a file made by
-//! `shlight project` from an equirect map gives that map's band-limited
-//! version texel for texel (`shlight_pipeline::render_map`). `--layout
-//! lobe` draws the luminance's lobe instead (`shlight_pipeline::render_lobe`).
+//! `shlight render`: a coefficient file back to an image, by
+//! shlight-pipeline's `render` job (its `RenderRequest`, checked, then run).
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use glam::DVec3;
-use shlight_core::map::{MapOrientation, luminance};
-use shlight_core::sh::irradiance;
-use shlight_io::{ToneMap, WriteOptions, write_image};
-use shlight_pipeline::{
-    default_lobe_view, default_output_size, output_grid, render_lobe, render_map,
-};
+use shlight_io::ToneMap;
+use shlight_pipeline::{RenderLayout, RenderRequest, Spelling, render};
 
-use crate::progress::Ui;
-use crate::values::{RenderLayout, parse_size, parse_vec3};
-use shlight_format::{CoeffFile, Quantity};
+use crate::progress::{Reporter, Ui};
+use crate::values::{parse_size, parse_vec3};
 
 /// Arguments of `shlight render`.
 #[derive(Args, Debug)]
@@ -62,71 +52,15 @@ pub struct RenderArgs {
 
 /// Runs `shlight render`.
 pub fn run(args: &RenderArgs, ui: &Ui) -> Result<()> {
-    let name = args.input.display().to_string();
-    crate::output_path::refuse_overwriting(&args.output, std::slice::from_ref(&args.input))?;
-    let file = CoeffFile::read(&args.input)?;
-    if file.encoding != shlight_format::FileEncoding::Sh {
-        anyhow::bail!(
-            "{name}: holds the {} encoding, whose coefficients are not the whole light; render draws plain SH (shlight irradiance --encoding draws an encoding's irradiance)",
-            file.encoding.encoding()
-        );
+    let plan = RenderRequest {
+        irradiance: args.irradiance,
+        size: args.size,
+        layout: args.layout,
+        view: args.view,
+        exposure: args.exposure,
+        tone_map: args.tone_map,
     }
-    let coeffs = match (file.quantity, args.irradiance) {
-        (Quantity::Radiance, true) => irradiance(&file.coeffs),
-        (Quantity::Irradiance, false) => {
-            ui.note(format!(
-                "{name} holds irradiance; rendering irradiance (radiance cannot be recovered from it)"
-            ));
-            file.coeffs.clone()
-        }
-        _ => file.coeffs.clone(),
-    };
-    let image = match args.layout {
-        RenderLayout::Map(layout) => {
-            if args.view.is_some() {
-                anyhow::bail!(
-                    "--view is where --layout lobe is seen from; a map (--layout {}) shows every direction",
-                    layout.name()
-                );
-            }
-            let size = args
-                .size
-                .unwrap_or_else(|| default_output_size(layout, 256));
-            let orientation = MapOrientation {
-                frame: file.frame,
-                mirror: file.mirror,
-            };
-            output_grid(layout, size, orientation).context("--size")?;
-            let bar = ui.bar(size.1 as u64, "rendering");
-            let image = render_map(&coeffs, layout, size, orientation, &|| bar.inc(1))?;
-            bar.finish_and_clear();
-            image
-        }
-        RenderLayout::Lobe => {
-            let size = args.size.unwrap_or((256, 256));
-            let view = args.view.unwrap_or_else(|| default_lobe_view(file.frame));
-            if view.length_squared() == 0.0 {
-                anyhow::bail!(
-                    "--view 0,0,0 has no direction: give the direction from the lobe toward the eye (e.g. 2,1,1)"
-                );
-            }
-            let bar = ui.bar(size.1 as u64, "drawing the lobe");
-            let image = render_lobe(&coeffs.map(luminance), file.frame, view, size, &|| {
-                bar.inc(1);
-            })
-            .with_context(|| format!("{name}: --layout lobe"))?;
-            bar.finish_and_clear();
-            image
-        }
-    };
-    write_image(
-        &args.output,
-        &image,
-        &WriteOptions {
-            exposure_ev: args.exposure,
-            tone_map: args.tone_map,
-            ..WriteOptions::default()
-        },
-    )?;
+    .check(Spelling::CommandLine)?;
+    render(&args.input, &args.output, &plan, &Reporter::new(ui))?;
     Ok(())
 }

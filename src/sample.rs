@@ -1,21 +1,18 @@
 //! `shlight sample`: what a baked file shades with, at points a user
 //! names: a volume's irradiance `E(p, n)` (by a lookup, relit first with
-//! `--env`), or a PRT file's exit radiance per vertex under `--light`.
+//! `--env`), or a PRT file's exit radiance per vertex under `--light`, by
+//! shlight-pipeline's `sample` job.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 use glam::DVec3;
-use serde_json::{Value, json};
-use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
-use shlight_pipeline::Environment;
-use shlight_prt::glossy::{View, file_shade};
-use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax};
+use shlight_pipeline::{SampleRequest, Spelling, sample};
+use shlight_volume::Lookup;
 
 use crate::input::frame_of;
-use crate::output_path::refuse_overwriting;
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 use crate::values::parse_vec3;
 
 /// Arguments of `shlight sample`.
@@ -79,180 +76,20 @@ pub struct SampleArgs {
 
 /// Runs `shlight sample`.
 pub fn run(args: &SampleArgs, ui: &Ui) -> Result<()> {
-    let mut inputs = vec![args.file.clone()];
-    inputs.extend(args.points.clone());
-    inputs.extend(args.env.clone());
-    inputs.extend(args.light.clone());
-    refuse_overwriting(&args.output, &inputs)?;
-    let ext = args
-        .file
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let samples = match ext.as_deref() {
-        Some("shvol") => volume(args, ui)?,
-        Some("shprt") => transfer(args, ui)?,
-        _ => bail!(
-            "{}: sample reads irradiance volumes (.shvol) and PRT transfer (.shprt)",
-            args.file.display()
-        ),
-    };
-    samples.write(&args.output)?;
+    let plan = SampleRequest {
+        file: &args.file,
+        output: &args.output,
+        points: args.points.as_deref(),
+        env: args.env.as_deref(),
+        light: args.light.as_deref(),
+        frame: frame_of(&args.up),
+        lookup: args.lookup,
+        view: args.view,
+        eye: args.eye,
+        albedo: args.albedo,
+        lmax: args.lmax,
+    }
+    .check(Spelling::CommandLine)?;
+    sample(&plan, &Reporter::new(ui))?;
     Ok(())
-}
-
-/// The light of `path` as radiance coefficients to `lmax` at most.
-fn light(path: &Path, up: &str, lmax: usize) -> Result<Environment> {
-    Ok(Environment::load(path, frame_of(up), lmax)?)
-}
-
-/// A volume's irradiance at the points.
-fn volume(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
-    let Some(points_path) = &args.points else {
-        bail!("sampling a volume needs --points POINTS.json (or .csv): where to sample it");
-    };
-    if args.light.is_some() {
-        bail!("--light is the light of a .shprt file; a volume is relit by --env");
-    }
-    let mut file = ShvolFile::read(&args.file)?;
-    let LookupLmax { lmax, note } =
-        lookup_lmax(&file.view(), args.lookup, args.lmax).map_err(|e| {
-            let lmax = args
-                .lmax
-                .map(|l| format!("--lmax {l}: "))
-                .unwrap_or_default();
-            anyhow::anyhow!(
-                "{}: --lookup {}: {lmax}{e}",
-                args.file.display(),
-                args.lookup
-            )
-        })?;
-    let points = SamplePoints::read(points_path)?;
-    if let Some(env) = &args.env {
-        let env = light(env, &args.up, shlight_baked::MAX_LMAX)?;
-        shlight_volume::relight_file(&mut file, &env.radiance)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
-    }
-    if let Some(note) = &note {
-        ui.note(format!("{}: {note}", args.file.display()));
-    }
-    let lookup = PreparedLookup::new(&file.view(), args.lookup, lmax);
-    let values = lookup.irradiance_all(&points.points, &points.normals);
-    Ok(Samples {
-        quantity: "irradiance",
-        values,
-        about: json!({
-            "file": args.file.display().to_string(),
-            "points": points_path.display().to_string(),
-            "lookup": args.lookup.effective(&file.view()).name(),
-            "visibility": file.visibility.is_some(),
-            "relocated": file.relocated().len(),
-            "lmax": lmax,
-            "notes": note.into_iter().collect::<Vec<_>>(),
-            "light": args.env.as_ref().map(|p| p.display().to_string()),
-            "frame": file.frame,
-            "provenance": {
-                "scene": file.scene,
-                "scene_hash": format!("fnv1a64:{:016x}", file.scene_hash),
-                "environment": file.environment,
-                "generator": file.generator,
-                "samples": file.samples,
-                "bounces": file.bounces,
-                "seed": file.seed,
-                "relightable": file.relightable(),
-            },
-        }),
-    })
-}
-
-/// A PRT file's exit radiance per vertex (toward `--view` or `--eye` for
-/// a glossy file).
-fn transfer(args: &SampleArgs, ui: &Ui) -> Result<Samples> {
-    let Some(light_path) = &args.light else {
-        bail!(
-            "sampling a .shprt file needs --light LIGHT (an equirect map or a radiance coefficient file)"
-        );
-    };
-    for (given, what) in [
-        (args.points.is_some(), "--points"),
-        (args.env.is_some(), "--env"),
-    ] {
-        if given {
-            bail!(
-                "{what} samples a volume; a .shprt file gives every vertex's exit radiance under --light"
-            );
-        }
-    }
-    let file = ShprtFile::read(&args.file)?;
-    let env = light(light_path, &args.up, shlight_baked::LIGHT_MAX_LMAX)?;
-    let lmax = args
-        .lmax
-        .unwrap_or(file.lmax)
-        .min(file.lmax)
-        .min(shlight_baked::LIGHT_MAX_LMAX);
-    let l = env.radiance.resized(lmax.min(env.radiance.lmax()));
-    let view = match (args.view, args.eye) {
-        (Some(d), _) => Some(View::Direction(d)),
-        (None, Some(e)) => Some(View::Eye(e)),
-        (None, None) => None,
-    };
-    if let Some(glossy) = &file.glossy {
-        if view.is_none() {
-            bail!(
-                "{}: glossy transfer ({}) is seen from somewhere: give --view X,Y,Z (from the \
-                 vertices towards the eye) or --eye X,Y,Z",
-                args.file.display(),
-                glossy.brdf
-            );
-        }
-        if args.view.is_some_and(|d| d.length_squared() == 0.0) {
-            bail!(
-                "--view 0,0,0 has zero length: give the direction from the vertices towards the eye"
-            );
-        }
-    } else if args.albedo.is_some() {
-        bail!(
-            "{}: --albedo is the diffuse base under a glossy file's glossy layer; a diffuse \
-             file's albedo is in its transfer",
-            args.file.display()
-        );
-    } else if view.is_some() {
-        ui.note(format!(
-            "{}: diffuse transfer looks the same from everywhere; --view and --eye are ignored",
-            args.file.display()
-        ));
-    }
-    let values = file_shade(
-        &file,
-        l.as_slice(),
-        view,
-        args.albedo
-            .map_or(DVec3::ZERO, |a| DVec3::from(a.map(f64::from))),
-    )
-    .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?
-    .into_iter()
-    .map(|v| v.to_array())
-    .collect();
-    Ok(Samples {
-        quantity: "radiance",
-        values,
-        about: json!({
-            "file": args.file.display().to_string(),
-            "lmax": lmax,
-            "light": light_path.display().to_string(),
-            "view": file.glossy.as_ref().and(args.view).map(|d| d.normalize().to_array()),
-            "eye": file.glossy.as_ref().and(args.eye).map(|e| e.to_array()),
-            "brdf": file.glossy.as_ref().map(|g| g.brdf.clone()),
-            "albedo": args.albedo,
-            "provenance": {
-                "mode": file.mode,
-                "transport": file.glossy.as_ref().map(|g| g.transport.clone()),
-                "samples": file.samples,
-                "bounces": file.bounces,
-                "seed": file.seed,
-                "albedo": file.albedo.map_or(Value::Null, |a| json!(a)),
-                "vertex_count": file.vertex_count,
-            },
-        }),
-    })
 }

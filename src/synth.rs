@@ -1,30 +1,22 @@
 //! `shlight synth`: analytic environment maps, the test inputs whose SH
-//! coefficients are known in closed form (`shlight_core::sh::closed_form`).
-//!
-//! Every texel holds the light's mean over the texel
-//! (`shlight_core::map::texel_means`, `--supersample N` points a side); a
-//! directional light is one texel or a cap of exact power
-//! (`shlight_core::map::directional_texels`, `--half-angle`). This module
-//! resolves the arguments into a `shlight_core::map::AnalyticLight`, reports
-//! where a one-texel sun landed, and writes the map.
+//! coefficients are known in closed form, by shlight-pipeline's `synth`
+//! job.
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use shlight_core::map::{
-    AnalyticLight, DirectionalDrawing, Layout, MapOrientation, directional_texels, texel_means,
-};
-use shlight_io::{Image, ToneMap, WriteOptions, write_image};
-use shlight_pipeline::{default_output_size, output_grid};
+use shlight_core::map::{Layout, MapOrientation};
+use shlight_io::ToneMap;
+use shlight_pipeline::{Spelling, SynthKind, SynthRequest, synth};
 
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 use crate::values::{parse_size, parse_vec3};
 
-/// The lights `shlight synth` can draw.
+/// The lights `shlight synth` can draw (shlight-pipeline's `SynthKind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SynthKind {
+pub enum SynthKindArg {
     /// Radiance `value * color` in every direction.
     Constant,
     /// Radiance `value * color` over the hemisphere about `--direction`
@@ -41,12 +33,24 @@ pub enum SynthKind {
     Directional,
 }
 
+impl From<SynthKindArg> for SynthKind {
+    fn from(k: SynthKindArg) -> Self {
+        match k {
+            SynthKindArg::Constant => SynthKind::Constant,
+            SynthKindArg::Hemisphere => SynthKind::Hemisphere,
+            SynthKindArg::Cap => SynthKind::Cap,
+            SynthKindArg::Gradient => SynthKind::Gradient,
+            SynthKindArg::Directional => SynthKind::Directional,
+        }
+    }
+}
+
 /// Arguments of `shlight synth`.
 #[derive(Args, Debug)]
 pub struct SynthArgs {
     /// Which light.
     #[arg(value_enum)]
-    pub kind: SynthKind,
+    pub kind: SynthKindArg,
     /// The map to write: .exr (exact), .hdr (RGBE, ~1% precision) or .png
     /// (8-bit, tone mapped; not for projecting).
     #[arg(short, long)]
@@ -95,114 +99,24 @@ pub struct SynthArgs {
 
 /// Runs `shlight synth`.
 pub fn run(args: &SynthArgs, ui: &Ui) -> Result<()> {
-    let orientation = MapOrientation {
-        frame: crate::input::frame_of(&args.up),
-        mirror: args.mirror,
-    };
-    let size = args
-        .size
-        .unwrap_or_else(|| default_output_size(args.layout, 512));
-    let grid = output_grid(args.layout, size, orientation).context("--size")?;
-    let axis = match args.direction {
-        None => grid.up(),
-        Some(d) if d.length() > 0.0 => d.normalize(),
-        Some(_) => bail!("--direction 0,0,0 has no direction"),
-    };
-    let colour = args.color * args.value;
-    let half_angle = args.half_angle.unwrap_or(if args.kind == SynthKind::Cap {
-        30.0
-    } else {
-        0.0
-    });
-    if !(0.0..=180.0).contains(&half_angle) {
-        bail!("--half-angle {half_angle}: must be between 0 and 180 degrees");
-    }
-    if args.kind == SynthKind::Directional && half_angle > 90.0 {
-        bail!(
-            "--half-angle {half_angle}: a directional light's cap must be at most 90 degrees \
-             (a wider cap cannot give the light's irradiance facing it)"
-        );
-    }
-    let alpha = half_angle.to_radians();
-    let n = args.supersample as usize;
-    let bar = ui.bar(grid.height() as u64, "synthesising");
-    let on_rows = |rows: usize| bar.inc(rows as u64);
-    let means =
-        |light: AnalyticLight, n: usize| texel_means(&grid, n, |d| light.radiance(d), &on_rows);
-    let pixels = match args.kind {
-        SynthKind::Constant => means(AnalyticLight::Constant(colour), 1),
-        SynthKind::Hemisphere => means(
-            AnalyticLight::Cap {
-                axis,
-                cos_half: 0.0,
-                radiance: colour,
-            },
-            n,
-        ),
-        SynthKind::Cap => means(
-            AnalyticLight::Cap {
-                axis,
-                cos_half: alpha.cos(),
-                radiance: colour,
-            },
-            n,
-        ),
-        SynthKind::Gradient => means(
-            AnalyticLight::Gradient {
-                axis,
-                a: colour,
-                b: args.color * args.slope,
-            },
-            n,
-        ),
-        SynthKind::Directional => {
-            let drawn = directional_texels(&grid, axis, colour, alpha, n, &on_rows);
-            if let DirectionalDrawing::Texel {
-                x,
-                y,
-                centre,
-                offset,
-                unresolved_cap,
-            } = drawn.drawing
-            {
-                if unresolved_cap {
-                    ui.warn(format!(
-                        "a cap of half-angle {}° is smaller than the texels can resolve; drawn as one texel",
-                        alpha.to_degrees()
-                    ));
-                }
-                if offset > 1e-9 {
-                    ui.note(format!(
-                        "the light lands in texel x={x}, y={y}, centred at direction {:.6},{:.6},{:.6} ({:.3}° from the one asked for)",
-                        centre.x,
-                        centre.y,
-                        centre.z,
-                        offset.to_degrees()
-                    ));
-                }
-            }
-            drawn.pixels
-        }
-    };
-    bar.finish_and_clear();
-    let image = Image::new(grid.width(), grid.height(), pixels)?;
-    let stats = image.stats();
-    if stats.negative > 0 {
-        ui.warn(format!(
-            "{}: {} negative values (minimum {}); radiance cannot be negative",
-            args.output.display(),
-            stats.negative,
-            stats.min_value
-        ));
-    }
-    write_image(
-        &args.output,
-        &image,
-        &WriteOptions {
-            exposure_ev: args.exposure,
-            tone_map: args.tone_map,
-            ..WriteOptions::default()
+    let plan = SynthRequest {
+        kind: args.kind.into(),
+        size: args.size,
+        layout: args.layout,
+        orientation: MapOrientation {
+            frame: crate::input::frame_of(&args.up),
+            mirror: args.mirror,
         },
-    )?;
+        color: args.color,
+        value: args.value,
+        slope: args.slope,
+        direction: args.direction,
+        half_angle: args.half_angle,
+        supersample: args.supersample,
+        exposure: args.exposure,
+        tone_map: args.tone_map,
+    }
+    .check(Spelling::CommandLine)?;
+    synth(&args.output, &plan, &Reporter::new(ui))?;
     Ok(())
 }

@@ -8,6 +8,7 @@ use glam::DVec3;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::Layout;
 use shlight_format::{ExportFormat, Quantity, VolumeFormat};
+use shlight_pipeline::RenderLayout;
 use shlight_specular::Engine;
 
 /// A parser accepting exactly the names of `all`, with their help lines.
@@ -96,44 +97,14 @@ fn layout_help(l: Layout) -> &'static str {
     }
 }
 
-/// What `shlight render --layout` draws: a map in one of the layouts of
-/// the maps shlight writes, or the function's lobe.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RenderLayout {
-    /// The function on a map of this layout.
-    Map(Layout),
-    /// The luminance's lobe, the surface `r(w) = |f(w)|`
-    /// (shlight-pipeline's `render_lobe`).
-    Lobe,
-}
-
-/// Every [`RenderLayout`]: the map layouts in [`Layout::ALL`]'s order,
-/// then the lobe.
-static RENDER_LAYOUTS: [RenderLayout; Layout::ALL.len() + 1] = {
-    let mut all = [RenderLayout::Lobe; Layout::ALL.len() + 1];
-    let mut i = 0;
-    while i < Layout::ALL.len() {
-        all[i] = RenderLayout::Map(Layout::ALL[i]);
-        i += 1;
-    }
-    all
-};
-
 /// `shlight render --layout NAME`: [`layout`]'s names and `lobe`.
 pub fn render_layout() -> impl TypedValueParser<Value = RenderLayout> {
-    one_of(
-        &RENDER_LAYOUTS,
-        |r| match r {
-            RenderLayout::Map(l) => l.name(),
-            RenderLayout::Lobe => "lobe",
-        },
-        |r| match r {
-            RenderLayout::Map(l) => layout_help(l),
-            RenderLayout::Lobe => {
-                "The luminance as a 3D lobe |f(w)|, red positive, blue negative, seen from --view"
-            }
-        },
-    )
+    one_of(&RenderLayout::ALL, RenderLayout::name, |r| match r {
+        RenderLayout::Map(l) => layout_help(l),
+        RenderLayout::Lobe => {
+            "The luminance as a 3D lobe |f(w)|, red positive, blue negative, seen from --view"
+        }
+    })
 }
 
 /// `--size WxH`, e.g. `1024x512`: two positive whole numbers, at most

@@ -45,6 +45,7 @@ from ._shlight import irradiance as _irradiance
 from ._shlight import prefilter as _prefilter
 from ._shlight import project as _project
 from ._shlight import project_many as _project_many
+from ._shlight import sample as _sample
 
 __all__ = [
     "EXPORT_FORMATS",
@@ -63,6 +64,7 @@ __all__ = [
     "project_many",
     "read_image",
     "render",
+    "sample",
     "write_image",
 ]
 
@@ -87,6 +89,14 @@ def project(
     layer=None,
     max_pixels=None,
     encoding="sh",
+    output=None,
+    format=None,
+    preview=None,
+    preview_size=(512, 256),
+    preview_exposure=None,
+    preview_tone_map="aces",
+    specular_size=128,
+    specular_samples=1024,
 ):
     """Project an environment map to SH coefficients (``shlight project``).
 
@@ -139,6 +149,17 @@ def project(
         ``quantity="irradiance"``, ``rotate``, ``method="montecarlo"`` or a
         ``window`` other than none. Evaluate an encoded light with
         ``SH.irradiance_at``; its coefficients alone are not the light.
+    output, format : None | str | os.PathLike, None | str
+        Also write the result as ``shlight project MAP -o OUTPUT --format
+        FORMAT`` does (a map file only): shlight's JSON, or any name of
+        ``EXPORT_FORMATS``; ``gltf`` writes a glTF 2.0 light (``.gltf``,
+        or binary ``.glb``) with its specular images prefiltered from the
+        map. ``format`` needs ``output``.
+    preview, preview_size, preview_exposure, preview_tone_map :
+        Also write ``--preview``'s image (input | SH radiance | SH
+        irradiance / pi) of a map file, each panel ``preview_size``.
+    specular_size, specular_samples :
+        The glTF light's specular cube: face size, GGX samples per texel.
 
     Returns
     -------
@@ -174,6 +195,14 @@ def project(
         layer=layer,
         max_pixels=max_pixels,
         encoding=encoding,
+        output=output,
+        format=format,
+        preview=preview,
+        preview_size=preview_size,
+        preview_exposure=preview_exposure,
+        preview_tone_map=preview_tone_map,
+        specular_size=specular_size,
+        specular_samples=specular_samples,
     )
 
 
@@ -195,11 +224,13 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
         message, after all maps are done. ``none``: a failed map gives None
         in its place and a ``UserWarning`` with its message.
     progress : bool
-        Draw a progress bar on stderr (when it is a terminal).
+        Print the maps done so far on stderr.
     **options :
         The keyword options of ``project`` (up, layout, method, samples,
         sampler, seed, window, quantity, mirror, sanitize, rotate, layer,
-        max_pixels, encoding).
+        max_pixels, encoding); ``output`` and ``preview`` name directories
+        (one file per map, as ``shlight project MAPS -o DIR``), with
+        ``format`` and the preview and specular options.
 
     Returns
     -------
@@ -444,7 +475,7 @@ def prefilter(
     sanitize=False,
     max_pixels=None,
 ):
-    """A map GGX-prefiltered into cube mips (``shlight prefilter MAP -o DIR/``).
+    """A map GGX-prefiltered into cube mips (``shlight prefilter MAP -o OUT``).
 
     The specular half of image-based lighting: mip ``k`` holds the map
     convolved with the GGX lobe (``n = v = r``, Karis 2013) at the
@@ -457,9 +488,12 @@ def prefilter(
     source : str | os.PathLike
         A map file in any layout ``project`` reads.
     output : str | os.PathLike
-        A directory (made if missing): one float OpenEXR per mip and face,
-        ``m0_px.exr`` ... ``m<N>_nz.exr``, named and oriented as cmgen's
-        ``--ibl-ld`` writes them.
+        A directory (made if missing; a name without an extension, or one
+        ending in ``/``): one float OpenEXR per mip and face, ``m0_px.exr``
+        ... ``m<N>_nz.exr``, named and oriented as cmgen's ``--ibl-ld``
+        writes them; ``NAME.ktx``: the KTX 1.1 cube Filament's KtxBundle
+        reads (``cmgen --format=ktx``); ``NAME.ktx2``: a KTX2 cube with its
+        mips (RGBA16F), Bevy's specular map.
     engine : {"filament", "babylon", "bevy", "unreal"}
         Whose roughness per mip and cube axes.
     size : int
@@ -475,7 +509,8 @@ def prefilter(
     Returns
     -------
     list[str]
-        The files written, mip 0 first, faces ``px nx py ny pz nz``.
+        The files written: the faces, mip 0 first, faces ``px nx py ny pz
+        nz``; or the one KTX file.
 
     Raises
     ------
@@ -512,3 +547,72 @@ def dfg(output, engine="filament", size=128, samples=1024):
         Another extension, a size outside 1..4096, no samples.
     """
     _dfg(output, engine, size, samples)
+
+
+def sample(
+    file,
+    output,
+    *,
+    points=None,
+    env=None,
+    light=None,
+    up="y",
+    lookup="shlight",
+    view=None,
+    eye=None,
+    albedo=None,
+    lmax=None,
+):
+    """What a baked file shades with, file to file (``shlight sample``).
+
+    The same JSON (or CSV) file as ``shlight sample FILE -o OUTPUT`` with
+    the same options: a volume's irradiance ``E(p, n)`` at the points of
+    ``points`` (``Volume.irradiance``), or a PRT file's exit radiance per
+    vertex under ``light`` (``Transfer.exit_radiance``).
+
+    Parameters
+    ----------
+    file : str | os.PathLike
+        An irradiance volume (``.shvol``) or PRT transfer (``.shprt``).
+    output : str | os.PathLike
+        The answer: JSON (the values, the lookup, the file's provenance),
+        or CSV rows ``r,g,b`` (``.csv``); written atomically.
+    points : str | os.PathLike
+        A volume's points: JSON ``{"points": [...], "normals": [...]}`` or
+        CSV rows ``x,y,z,nx,ny,nz``.
+    env : str | os.PathLike
+        Relight a relightable volume under this light first (an equirect
+        map or a radiance coefficient file).
+    light : str | os.PathLike
+        The distant light of a ``.shprt`` file.
+    up : "y" | "z"
+        The world axis a map light's top row faces.
+    lookup : "shlight" | "trilinear" | "bevy" | "threejs"
+        How a volume's light is read off its probes (``Volume.irradiance``).
+    view, eye : (x, y, z)
+        A glossy file's view: one direction from the vertices toward the
+        eye, or the eye's position (not both).
+    albedo : float | (r, g, b)
+        A glossy file's diffuse base under its glossy layer.
+    lmax : int
+        The highest degree shaded.
+
+    Raises
+    ------
+    ShlightError
+        A missing or malformed file, options that do not fit the file; the
+        CLI's messages in Python's spelling.
+    """
+    _sample(
+        file,
+        output,
+        points=points,
+        env=env,
+        light=light,
+        up=up,
+        lookup=lookup,
+        view=view,
+        eye=eye,
+        albedo=albedo,
+        lmax=lmax,
+    )

@@ -221,6 +221,14 @@ def project(
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
     encoding: Encoding = "sh",
+    output: Optional[PathLike] = None,
+    format: Optional[str] = None,
+    preview: Optional[PathLike] = None,
+    preview_size: tuple[int, int] = (512, 256),
+    preview_exposure: Optional[float] = None,
+    preview_tone_map: Literal["clamp", "reinhard", "aces"] = "aces",
+    specular_size: int = 128,
+    specular_samples: int = 1024,
 ) -> SH: ...
 def project_many(
     paths: Sequence[PathLike],
@@ -242,6 +250,14 @@ def project_many(
     layer: Optional[str] = None,
     max_pixels: Optional[int] = None,
     encoding: Encoding = "sh",
+    output: Optional[PathLike] = None,
+    format: Optional[str] = None,
+    preview: Optional[PathLike] = None,
+    preview_size: tuple[int, int] = (512, 256),
+    preview_exposure: Optional[float] = None,
+    preview_tone_map: Literal["clamp", "reinhard", "aces"] = "aces",
+    specular_size: int = 128,
+    specular_samples: int = 1024,
 ) -> list[Optional[SH]]: ...
 def load(path: PathLike) -> SH:
     """A coefficient file, or any engine file `shlight convert` reads."""
@@ -259,8 +275,10 @@ def render(
     *,
     layout: str = "equirect",
     irradiance: bool = False,
+    view: Optional[tuple[float, float, float]] = None,
 ) -> npt.NDArray[np.float32]:
-    """(H, W, 3) float32: the expansion at every texel centre."""
+    """(H, W, 3) float32: the expansion at every texel centre, or with
+    layout="lobe" the luminance's lobe seen from view."""
 def irradiance(
     source: PathLike,
     size: tuple[int, int] = (64, 32),
@@ -331,6 +349,22 @@ def prefilter(
     sanitize: bool = False,
     max_pixels: Optional[int] = None,
 ) -> list[str]:
-    """GGX-prefiltered cube mips as cmgen --ibl-ld files (shlight prefilter)."""
+    """GGX-prefiltered cube mips as cmgen --ibl-ld files, a KTX or a KTX2
+    cube (shlight prefilter)."""
 def dfg(output: PathLike, engine: Engine = "filament", size: int = 128, samples: int = 1024) -> None:
     """The DFG table as .exr or .png (shlight dfg)."""
+def sample(
+    file: PathLike,
+    output: PathLike,
+    *,
+    points: Optional[PathLike] = None,
+    env: Optional[PathLike] = None,
+    light: Optional[PathLike] = None,
+    up: Literal["y", "z"] = "y",
+    lookup: Literal["shlight", "trilinear", "bevy", "threejs"] = "shlight",
+    view: Optional[tuple[float, float, float]] = None,
+    eye: Optional[tuple[float, float, float]] = None,
+    albedo: Union[None, float, tuple[float, float, float]] = None,
+    lmax: Optional[int] = None,
+) -> None:
+    """What a baked file shades with, written as shlight sample writes it."""

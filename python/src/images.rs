@@ -6,11 +6,12 @@ use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3, PyUntypedArray};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use shlight_core::map::{Layout, MapOrientation};
-use shlight_format::Quantity;
+use glam::DVec3;
+use shlight_core::map::Layout;
 use shlight_io::{Image, ReadOptions, ToneMap, WriteOptions};
+use shlight_pipeline::{Collected, RenderLayout, RenderRequest, Spelling, render_light};
 
-use crate::errors::{chained, pipeline_error, shlight_error};
+use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::sh::Sh;
 use crate::source::{ArrayMap, Data};
@@ -81,67 +82,50 @@ pub fn write_image(
     })
 }
 
-/// render(sh, size=None, *, layout="equirect", irradiance=False) -> ndarray
+/// render(sh, size=None, *, layout="equirect", irradiance=False, view=None) -> ndarray
 /// --
 ///
 /// See the package documentation (`help(shlight.render)`).
 #[pyfunction]
-#[pyo3(signature = (sh, size=None, *, layout="equirect".to_string(), irradiance=false))]
+#[pyo3(signature = (sh, size=None, *, layout="equirect".to_string(), irradiance=false, view=None))]
 pub fn render<'py>(
     py: Python<'py>,
     sh: &Sh,
     size: Option<&Bound<'py, PyAny>>,
     layout: String,
     irradiance: bool,
+    view: Option<[f64; 3]>,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
-    let layout: Layout = layout
-        .parse()
-        .map_err(|e| shlight_error(format!("layout={layout:?}: {e}")))?;
-    let (w, h) = match size {
-        None => {
-            let n = 256;
-            layout.dimensions(if layout.is_cube() { n / 2 } else { n })
-        }
-        Some(s) => {
-            if let Ok(n) = s.extract::<usize>() {
-                layout.dimensions(n)
-            } else {
-                s.extract::<(usize, usize)>().map_err(|_| {
-                    PyTypeError::new_err(
-                        "size is (width, height) or one number (see help(shlight.render))",
-                    )
-                })?
+    let layout: RenderLayout = Spelling::Python
+        .parse("layout", &layout)
+        .map_err(pipeline_error)?;
+    let size = match size {
+        None => None,
+        Some(s) => Some(if let Ok(n) = s.extract::<usize>() {
+            match layout {
+                RenderLayout::Map(l) => l.dimensions(n),
+                RenderLayout::Lobe => (n, n),
             }
-        }
+        } else {
+            s.extract::<(usize, usize)>().map_err(|_| {
+                PyTypeError::new_err("size is (width, height) or one number (see help(shlight.render))")
+            })?
+        }),
     };
-    if layout == Layout::Equirect && (w == 0 || w != 2 * h) {
-        return Err(shlight_error(format!(
-            "a {w}x{h} image is not an equirect map (its width must be twice its height)"
-        )));
+    let plan = RenderRequest {
+        irradiance,
+        size,
+        layout,
+        view: view.map(DVec3::from_array),
+        ..RenderRequest::default()
     }
-    if w.checked_mul(h)
-        .is_none_or(|n| n > ReadOptions::DEFAULT_MAX_PIXELS)
-    {
-        return Err(shlight_error(format!(
-            "{w}x{h}: more than {} pixels",
-            ReadOptions::DEFAULT_MAX_PIXELS
-        )));
-    }
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
     sh.plain("render")?;
-    let file = sh.file();
-    let coeffs = match (file.quantity, irradiance) {
-        (Quantity::Radiance, true) => shlight_core::sh::irradiance(&file.coeffs),
-        _ => file.coeffs.clone(),
-    };
-    let orientation = MapOrientation {
-        frame: file.frame,
-        mirror: file.mirror,
-    };
+    let hooks = Collected::new();
     let image = py.detach(|| {
-        guard(|| {
-            shlight_pipeline::render_map(&coeffs, layout, (w, h), orientation, &|| {})
-                .map_err(pipeline_error)
-        })
+        guard(|| render_light(sh.file(), "this SH", &plan, &hooks).map_err(pipeline_error))
     })?;
+    warn_all(py, &hooks.notes(), 1)?;
     Ok(to_array(py, image))
 }

@@ -13,10 +13,12 @@
 mod accuracy;
 mod errors;
 mod guard;
+mod hooks;
 mod images;
 mod options;
 mod project;
 mod prt;
+mod sample;
 mod sh;
 mod source;
 mod specular;
@@ -42,6 +44,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
     m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add_function(wrap_pyfunction!(volume::bake_volume, m)?)?;
+    m.add_function(wrap_pyfunction!(sample::sample, m)?)?;
     m.add_function(wrap_pyfunction!(specular::prefilter, m)?)?;
     m.add_function(wrap_pyfunction!(specular::dfg, m)?)?;
     m.add("EXPORT_FORMATS", export_formats())?;

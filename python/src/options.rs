@@ -59,6 +59,13 @@ impl RawOptions {
     /// `method="montecarlo"`; an encoding other than `sh` only for radiance
     /// by quadrature, without a window or rotation).
     pub fn resolve(&self) -> PyResult<Settings> {
+        self.options()?
+            .check(Spelling::Python)
+            .map_err(pipeline_error)
+    }
+
+    /// The options, parsed, before [`ProjectOptions::check`].
+    pub fn options(&self) -> PyResult<ProjectOptions<'_>> {
         let frame = frame_of(&self.up)?;
         let layout = input_layout(&self.layout)?;
         let quantity: Quantity = self
@@ -89,7 +96,7 @@ impl RawOptions {
             .trim()
             .parse()
             .map_err(|err| shlight_error(format!("encoding={:?}: {err}", self.encoding)))?;
-        ProjectOptions {
+        Ok(ProjectOptions {
             read: ReadSettings {
                 layout,
                 read: ReadOptions {
@@ -113,8 +120,6 @@ impl RawOptions {
             encoding,
             gpu: false,
             format: None,
-        }
-        .check(Spelling::Python)
-        .map_err(pipeline_error)
+        })
     }
 }

@@ -3,15 +3,18 @@
 use std::borrow::Cow;
 use std::path::PathBuf;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use pyo3::prelude::*;
-use rayon::prelude::*;
 use shlight_core::map::{CubeFaces, Layout, contiguous_pixels};
-use shlight_format::CoeffFile;
-use shlight_pipeline::{Settings, Source as MapSource, layout_for_size, project_with_warnings};
+use shlight_format::{CoeffFile, ExportFormat};
+use shlight_pipeline::{
+    CpuProjector, GLTF_SPECULAR_SIZE, PreviewOptions, ProjectRequest, Settings, Source as MapSource,
+    Spelling, StdoutForm, layout_for_size, project_each, project_files, project_with_warnings,
+};
+use shlight_specular::PrefilterSettings;
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
-use crate::guard::{guard, panic_text};
+use crate::guard::guard;
+use crate::hooks::PyHooks;
 use crate::options::RawOptions;
 use crate::sh::Sh;
 use crate::source::{ArrayMap, Source};
@@ -22,7 +25,9 @@ const ARRAY_NAME: &str = "<array>";
 /// project(source, lmax=2, *, up="y", layout="auto", method="quadrature",
 /// samples=None, sampler=None, seed=None, window=None, quantity="radiance",
 /// mirror=False, sanitize=False, rotate=None, layer=None, max_pixels=None,
-/// encoding="sh")
+/// encoding="sh", output=None, format=None, preview=None,
+/// preview_size=(512, 256), preview_exposure=None, preview_tone_map="aces",
+/// specular_size=64, specular_samples=1024)
 /// --
 ///
 /// See the package documentation (`help(shlight.project)`).
@@ -30,7 +35,9 @@ const ARRAY_NAME: &str = "<array>";
 #[pyo3(signature = (source, lmax=2, *, up="y".to_string(), layout="auto".to_string(),
     method="quadrature".to_string(), samples=None, sampler=None, seed=None, window=None,
     quantity="radiance".to_string(), mirror=false, sanitize=false, rotate=None, layer=None,
-    max_pixels=None, encoding="sh".to_string()))]
+    max_pixels=None, encoding="sh".to_string(), output=None, format=None, preview=None,
+    preview_size=(512, 256), preview_exposure=None, preview_tone_map="aces".to_string(),
+    specular_size=GLTF_SPECULAR_SIZE, specular_samples=PrefilterSettings::DEFAULT_SAMPLES))]
 pub fn project(
     py: Python<'_>,
     source: &Bound<'_, PyAny>,
@@ -49,8 +56,16 @@ pub fn project(
     layer: Option<String>,
     max_pixels: Option<usize>,
     encoding: String,
+    output: Option<PathBuf>,
+    format: Option<String>,
+    preview: Option<PathBuf>,
+    preview_size: (usize, usize),
+    preview_exposure: Option<f32>,
+    preview_tone_map: String,
+    specular_size: usize,
+    specular_samples: u32,
 ) -> PyResult<Sh> {
-    let options = RawOptions {
+    let raw = RawOptions {
         lmax,
         up,
         layout,
@@ -66,9 +81,29 @@ pub fn project(
         layer,
         max_pixels,
         encoding,
-    }
-    .resolve()?;
+    };
+    let outputs = Outputs {
+        output,
+        format,
+        preview,
+        preview_size,
+        preview_exposure,
+        preview_tone_map,
+        specular_size,
+        specular_samples,
+    };
     let source = Source::from_py(source)?;
+    if outputs.any() {
+        let Source::Path(path) = &source else {
+            return Err(shlight_error(
+                "output, format and preview write what shlight project writes of a map file: give its path, or save the SH (SH.save, SH.export)",
+            ));
+        };
+        let done = project_to_files(py, &raw, &outputs, std::slice::from_ref(path), false)?;
+        let [one] = <[_; 1]>::try_from(done).expect("one input");
+        return one.map(Sh::new).map_err(shlight_error);
+    }
+    let options = raw.resolve()?;
     let (file, warnings) = match &source {
         Source::Path(path) => {
             let path = path.clone();
@@ -79,6 +114,71 @@ pub fn project(
     };
     warn_all(py, &warnings, 2)?;
     Ok(Sh::new(file))
+}
+
+/// `project`'s and `project_many`'s writing options, as given from Python.
+pub struct Outputs {
+    output: Option<PathBuf>,
+    format: Option<String>,
+    preview: Option<PathBuf>,
+    preview_size: (usize, usize),
+    preview_exposure: Option<f32>,
+    preview_tone_map: String,
+    specular_size: usize,
+    specular_samples: u32,
+}
+
+impl Outputs {
+    /// Whether anything is written; `format` only with `output`.
+    fn any(&self) -> bool {
+        self.output.is_some() || self.format.is_some() || self.preview.is_some()
+    }
+}
+
+/// Maps projected and written as `shlight project` writes them
+/// (shlight-pipeline's `project_files`, one result per path, its error
+/// text naming the path), with the warnings and notes issued; progress on
+/// stderr if `progress`.
+fn project_to_files(
+    py: Python<'_>,
+    raw: &RawOptions,
+    outputs: &Outputs,
+    paths: &[PathBuf],
+    progress: bool,
+) -> PyResult<Vec<Result<CoeffFile, String>>> {
+    let mut options = raw.options()?;
+    options.format = outputs
+        .format
+        .as_deref()
+        .map(|f| Spelling::Python.parse::<ExportFormat>("format", f))
+        .transpose()
+        .map_err(pipeline_error)?;
+    let request = ProjectRequest {
+        options,
+        inputs: paths,
+        output: outputs.output.as_deref(),
+        preview: outputs.preview.as_deref(),
+        preview_options: PreviewOptions {
+            panel: outputs.preview_size,
+            exposure: outputs.preview_exposure,
+            tone_map: Spelling::Python
+                .parse("preview_tone_map", &outputs.preview_tone_map)
+                .map_err(pipeline_error)?,
+        },
+        specular_size: outputs.specular_size,
+        specular_samples: outputs.specular_samples,
+        stdout: StdoutForm::Json,
+    };
+    let plan = request.check(Spelling::Python).map_err(pipeline_error)?;
+    let hooks = PyHooks::new(progress);
+    let done = py.detach(|| project_files(&plan, &CpuProjector, &hooks));
+    warn_all(py, &hooks.warnings(), 2)?;
+    warn_all(py, &hooks.notes(), 2)?;
+    Ok(done
+        .map_err(pipeline_error)?
+        .into_iter()
+        .map(|r| r.map(|p| p.file).map_err(|e| e.to_string()))
+        .collect())
 }
 
 /// The projection of one file: every step of `shlight project`.
@@ -166,7 +266,7 @@ fn project_faces(
     })
 }
 
-/// project_many(paths, lmax=2, *, errors="raise", progress=False, **options)
+/// project_many(paths, lmax=2, *, errors="raise", progress=False, output=None, format=None, preview=None, **options)
 /// --
 ///
 /// See the package documentation (`help(shlight.project_many)`).
@@ -175,7 +275,9 @@ fn project_faces(
     up="y".to_string(), layout="auto".to_string(), method="quadrature".to_string(),
     samples=None, sampler=None, seed=None, window=None, quantity="radiance".to_string(),
     mirror=false, sanitize=false, rotate=None, layer=None, max_pixels=None,
-    encoding="sh".to_string()))]
+    encoding="sh".to_string(), output=None, format=None, preview=None,
+    preview_size=(512, 256), preview_exposure=None, preview_tone_map="aces".to_string(),
+    specular_size=GLTF_SPECULAR_SIZE, specular_samples=PrefilterSettings::DEFAULT_SAMPLES))]
 pub fn project_many(
     py: Python<'_>,
     paths: Vec<PathBuf>,
@@ -196,6 +298,14 @@ pub fn project_many(
     layer: Option<String>,
     max_pixels: Option<usize>,
     encoding: String,
+    output: Option<PathBuf>,
+    format: Option<String>,
+    preview: Option<PathBuf>,
+    preview_size: (usize, usize),
+    preview_exposure: Option<f32>,
+    preview_tone_map: String,
+    specular_size: usize,
+    specular_samples: u32,
 ) -> PyResult<Vec<Option<Sh>>> {
     let raise = match errors.as_str() {
         "raise" => true,
@@ -206,7 +316,7 @@ pub fn project_many(
             )));
         }
     };
-    let options = RawOptions {
+    let raw = RawOptions {
         lmax,
         up,
         layout,
@@ -222,73 +332,65 @@ pub fn project_many(
         layer,
         max_pixels,
         encoding,
-    }
-    .resolve()?;
-    let results: Vec<Result<(CoeffFile, Vec<String>), String>> = py.detach(|| {
-        let bar = if progress {
-            let bar = ProgressBar::with_draw_target(
-                Some(paths.len() as u64),
-                ProgressDrawTarget::stderr(),
-            );
-            bar.set_style(
-                ProgressStyle::with_template("{bar:40} {pos}/{len} maps {elapsed} (eta {eta})")
-                    .expect("a valid template"),
-            );
-            bar
-        } else {
-            ProgressBar::hidden()
-        };
-        let out = paths
-            .par_iter()
-            .map(|path| {
-                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    project_with_warnings(MapSource::Path(path), &options)
-                }));
-                bar.inc(1);
-                match r {
-                    Ok(Ok(done)) => Ok(done),
-                    Ok(Err(e)) => {
-                        // As the CLI's batch: every message names its input.
-                        let (msg, input) = (e.to_string(), path.display().to_string());
-                        Err(if msg.contains(&input) {
-                            msg
-                        } else {
-                            format!("{input}: {msg}")
-                        })
-                    }
-                    Err(p) => Err(format!(
-                        "{}: internal error (please report it): {}",
-                        path.display(),
-                        panic_text(p.as_ref())
-                    )),
-                }
-            })
-            .collect();
-        bar.finish_and_clear();
-        out
-    });
+    };
+    let outputs = Outputs {
+        output,
+        format,
+        preview,
+        preview_size,
+        preview_exposure,
+        preview_tone_map,
+        specular_size,
+        specular_samples,
+    };
+    let results = if outputs.any() {
+        project_to_files(py, &raw, &outputs, &paths, progress)?
+    } else {
+        project_in_memory(py, &raw.resolve()?, &paths, progress)?
+    };
+    many_results(py, results, raise)
+}
+
+/// Maps projected in parallel by shlight-pipeline's `project_each`, with
+/// the warnings issued; progress on stderr if `progress`.
+fn project_in_memory(
+    py: Python<'_>,
+    settings: &Settings,
+    paths: &[PathBuf],
+    progress: bool,
+) -> PyResult<Vec<Result<CoeffFile, String>>> {
+    let hooks = PyHooks::new(progress && paths.len() > 1);
+    let done = py.detach(|| project_each(paths, settings, &CpuProjector, &hooks));
+    warn_all(py, &hooks.warnings(), 2)?;
+    Ok(done
+        .into_iter()
+        .map(|r| r.map_err(|e| e.to_string()))
+        .collect())
+}
+
+/// `project_many`'s answer: the SH of each path in order; a failed path
+/// raises (with `raise`, one error listing every failure) or is None with
+/// a warning.
+fn many_results(
+    py: Python<'_>,
+    results: Vec<Result<CoeffFile, String>>,
+    raise: bool,
+) -> PyResult<Vec<Option<Sh>>> {
     let failed: Vec<&String> = results.iter().filter_map(|r| r.as_ref().err()).collect();
     if raise && !failed.is_empty() {
         let list: Vec<String> = failed.iter().map(|m| format!("  {m}")).collect();
         return Err(shlight_error(format!(
             "{} of {} inputs failed:\n{}",
             failed.len(),
-            paths.len(),
+            results.len(),
             list.join("\n")
         )));
     }
-    let mut out = Vec::with_capacity(results.len());
-    for r in results {
-        match r {
-            Ok((file, warnings)) => {
-                warn_all(py, &warnings, 2)?;
-                out.push(Some(Sh::new(file)));
-            }
-            Err(msg) => {
-                warn_all(py, std::slice::from_ref(&msg), 2)?;
-                out.push(None);
-            }
-        }
-    }
-    Ok(out)
+    results
+        .into_iter()
+        .map(|r| match r {
+            Ok(file) => Ok(Some(Sh::new(file))),
+            Err(msg) => warn_all(py, std::slice::from_ref(&msg), 2).map(|()| None),
+        })
+        .collect()
 }

@@ -10,10 +10,11 @@ use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
-use shlight_prt::glossy::{View, file_shade};
+use shlight_pipeline::{Shading, Silent, Spelling, transfer_radiance};
+use shlight_prt::glossy::View;
 use shlight_prt::transfer::Mode;
 
-use crate::errors::{chained, shlight_error, warn_all};
+use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 
 /// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
@@ -133,40 +134,24 @@ impl Transfer {
         eye: Option<[f64; 3]>,
         albedo: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let f = &self.file;
         let albedo = albedo.map(albedo_of).transpose()?;
         let view = match (view, eye) {
-            (Some(_), Some(_)) => {
-                return Err(shlight_error("give view or eye, not both"));
-            }
+            (Some(_), Some(_)) => return Err(shlight_error("give view or eye, not both")),
             (Some(d), None) => Some(View::Direction(DVec3::from_array(d))),
             (None, Some(e)) => Some(View::Eye(DVec3::from_array(e))),
             (None, None) => None,
         };
-        let diffuse = f.glossy.is_none();
-        if diffuse && albedo.is_some() {
-            return Err(shlight_error(
-                "albedo is the diffuse base under a glossy file's glossy layer; a diffuse \
-                 file's albedo is in its transfer",
-            ));
-        }
-        let view = if diffuse { None } else { view };
-        if !diffuse && view.is_none() {
-            return Err(shlight_error(format!(
-                "glossy transfer ({}) is seen from somewhere: give view=(x, y, z) (from the \
-                 vertices toward the eye) or eye=(x, y, z)",
-                f.glossy.as_ref().map_or("", |g| g.brdf.as_str())
-            )));
-        }
         let (light, warnings) = crate::volume::light_of(py, light, "y")?;
         warn_all(py, &warnings, 2)?;
-        let lmax = f.lmax.min(shlight_baked::LIGHT_MAX_LMAX).min(light.lmax());
-        let light = light.resized(lmax);
-        let values = py.detach(|| {
+        let shading = Shading {
+            view,
+            albedo,
+            lmax: None,
+        };
+        let (values, _) = py.detach(|| {
             guard(|| {
-                let base = albedo.map_or(DVec3::ZERO, |a| DVec3::from(a.map(f64::from)));
-                file_shade(f, light.as_slice(), view, base)
-                    .map_err(|e| shlight_error(format!("{}: {e}", f.mesh)))
+                transfer_radiance(&self.file, None, &light, &shading, Spelling::Python, &Silent)
+                    .map_err(pipeline_error)
             })
         })?;
         let flat: Vec<f64> = values.iter().flat_map(|v| v.to_array()).collect();

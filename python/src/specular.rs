@@ -1,7 +1,7 @@
-//! `shlight.prefilter` (a map GGX-prefiltered into cube mips, `shlight
-//! prefilter`) and `shlight.dfg` (the DFG table, `shlight dfg`): the same
-//! library calls as the command line's (shlight-pipeline's
-//! `prefilter_map`, `write_prefiltered_faces` and `write_dfg`).
+//! `shlight.prefilter` (a map GGX-prefiltered into cube mips: faces, KTX or
+//! KTX2, `shlight prefilter`) and `shlight.dfg` (the DFG table, `shlight
+//! dfg`): shlight-pipeline's `prefilter` and `dfg` jobs, as the command
+//! line runs them.
 
 use std::path::PathBuf;
 
@@ -9,12 +9,14 @@ use pyo3::prelude::*;
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
 use shlight_pipeline::{
-    PrefilterRequest, ReadSettings, prefilter_map, write_dfg, write_prefiltered_faces,
+    DfgRequest, PrefilterRequest, ReadSettings, Silent, Spelling, dfg as dfg_job,
+    prefilter as prefilter_job,
 };
-use shlight_specular::{DfgTable, Engine, PrefilterSettings};
+use shlight_specular::{Engine, PrefilterSettings};
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
+use crate::hooks::PyHooks;
 use crate::options::{frame_of, input_layout};
 
 fn engine_of(name: &str) -> PyResult<Engine> {
@@ -46,7 +48,9 @@ pub fn prefilter(
     sanitize: bool,
     max_pixels: Option<usize>,
 ) -> PyResult<Vec<String>> {
-    let request = PrefilterRequest {
+    let plan = PrefilterRequest {
+        input: &source,
+        output: &output,
         read: ReadSettings {
             layout: input_layout(&layout)?,
             read: ReadOptions {
@@ -65,22 +69,13 @@ pub fn prefilter(
             mips,
             samples,
         },
-    };
-    let warnings = std::sync::Mutex::new(Vec::new());
-    let written = py.detach(|| {
-        guard(|| {
-            let cube = prefilter_map(
-                &source,
-                &request,
-                &|w| warnings.lock().unwrap().push(w.to_string()),
-                &|_| {},
-            )
-            .map_err(pipeline_error)?;
-            write_prefiltered_faces(&cube, &output).map_err(pipeline_error)
-        })
-    });
-    warn_all(py, &warnings.into_inner().unwrap(), 1)?;
-    Ok(written?.iter().map(|p| p.display().to_string()).collect())
+    }
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
+    let hooks = PyHooks::new(false);
+    let written = py.detach(|| guard(|| prefilter_job(&plan, &hooks).map_err(pipeline_error)));
+    warn_all(py, &hooks.warnings(), 1)?;
+    Ok(written?.1.iter().map(|p| p.display().to_string()).collect())
 }
 
 /// dfg(output, engine="filament", size=128, samples=1024) -> None
@@ -96,16 +91,12 @@ pub fn dfg(
     size: usize,
     samples: u32,
 ) -> PyResult<()> {
-    let engine = engine_of(&engine)?;
-    if size == 0 || size > 4096 || samples == 0 {
-        return Err(shlight_error(format!(
-            "size={size}, samples={samples}: size must be from 1 to 4096 and samples at least 1"
-        )));
+    let plan = DfgRequest {
+        engine: engine_of(&engine)?,
+        size,
+        samples,
     }
-    py.detach(|| {
-        guard(|| {
-            let table = DfgTable::for_engine(engine, size, samples);
-            write_dfg(&table, &output).map_err(pipeline_error)
-        })
-    })
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
+    py.detach(|| guard(|| dfg_job(&output, &plan, &Silent).map(|_| ()).map_err(pipeline_error)))
 }

@@ -16,14 +16,14 @@ use pyo3::prelude::*;
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::{Quantity, SamplePoints, ShvolFile, VolumeFormat};
-use shlight_pipeline::Environment;
+use shlight_pipeline::{Environment, Spelling, volume_irradiance, volume_lookup};
 use shlight_volume::{
-    BakedVolume, Lookup, LookupLmax, PreparedLookup, VolumeOptions, VolumeRequest, bake_file,
-    check_environment, lookup_lmax, relight_file,
+    BakedVolume, Lookup, VolumeOptions, VolumeRequest, bake_file, check_environment, relight_file,
 };
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
+use crate::hooks::PyHooks;
 use crate::options::frame_of;
 use crate::prt::albedo_of;
 use crate::sh::Sh;
@@ -284,28 +284,25 @@ impl Volume {
         lookup: &str,
         lmax: Option<usize>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let lookup: Lookup = lookup
-            .parse()
-            .map_err(|e: String| shlight_error(format!("lookup: {e}")))?;
-        let view = self.file.view();
-        let LookupLmax { lmax, note } = lookup_lmax(&view, lookup, lmax).map_err(|e| {
-            let lmax = lmax.map(|l| format!("lmax={l}: ")).unwrap_or_default();
-            shlight_error(format!("lookup={lookup}: {lmax}{e}"))
-        })?;
+        let lookup: Lookup = Spelling::Python
+            .parse("lookup", lookup)
+            .map_err(pipeline_error)?;
+        let settled = volume_lookup(&self.file, None, lookup, lmax, Spelling::Python)
+            .map_err(pipeline_error)?;
         let at = SamplePoints::new(
             rows3(points, "points")?,
             rows3(normals, "normals")?,
             "points and normals",
         )
         .map_err(|e| chained(&e))?;
-        warn_all(py, &note.into_iter().collect::<Vec<_>>(), 2)?;
+        let hooks = PyHooks::new(false);
         let values: Vec<f64> = py.detach(|| {
             guard(|| {
-                let prepared = PreparedLookup::new(&view, lookup, lmax);
-                let values = prepared.irradiance_all(&at.points, &at.normals);
+                let values = volume_irradiance(&self.file, None, lookup, &settled, &at, &hooks);
                 Ok(values.into_iter().flatten().collect())
             })
         })?;
+        warn_all(py, &hooks.notes(), 2)?;
         Ok(Array2::from_shape_vec((at.points.len(), 3), values)
             .expect("N x 3 values")
             .into_pyarray(py))

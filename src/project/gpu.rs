@@ -10,6 +10,15 @@ pub struct GpuProjection {
     pub projector: shlight_gpu::GpuProjector,
 }
 
+impl GpuProjection {
+    /// A headless device and the projector's pipelines.
+    pub fn new() -> anyhow::Result<Self> {
+        let ctx = anyhow::Context::context(shlight_gpu::GpuContext::headless(), "--gpu")?;
+        let projector = shlight_gpu::GpuProjector::new(&ctx);
+        Ok(Self { ctx, projector })
+    }
+}
+
 impl Projector for GpuProjection {
     /// The quadrature of an equirect map on the GPU; other layouts are
     /// refused.

@@ -59,14 +59,14 @@
 //! ```
 //! use shlight_core::map::{Layout, MapOrientation, StridedImage};
 //! use shlight_format::Quantity;
-//! use shlight_pipeline::{Hooks, Method, ProjectSettings, Settings, Source, project};
+//! use shlight_pipeline::{CpuProjector, Method, ProjectSettings, Settings, Silent, Source, project};
 //!
 //! // A grey 64x32 equirect map: only L_0^0 = 2 sqrt(pi) * 0.5 is non-zero.
 //! let pixels = vec![[0.5_f32; 3]; 64 * 32];
 //! let texels = StridedImage::new(Layout::Equirect, 64, 32, 64, &pixels).unwrap();
 //! let p = ProjectSettings::new(2, MapOrientation::default(), Method::Quadrature, Quantity::Radiance);
 //! let source = Source::Texels { texels: &texels, name: "grey", layout_name: "equirect" };
-//! let file = project(source, &Settings::new(p), &Hooks::default()).unwrap();
+//! let file = project(source, &Settings::new(p), &CpuProjector, &Silent).unwrap();
 //! assert!((file.coeffs[0].x - std::f64::consts::PI.sqrt()).abs() < 1e-12);
 //! ```
 
@@ -79,11 +79,14 @@ mod cpu_projector;
 mod encoded_file;
 mod environment;
 mod error;
+mod hooks;
 mod input_layout;
+mod job;
 mod load;
 mod lobe;
 mod map_info;
 mod output_grid;
+mod output_path;
 mod preview;
 mod project;
 mod project_options;
@@ -93,6 +96,7 @@ mod rotation_spec;
 mod settings;
 mod source_stats;
 mod specular;
+mod spelling;
 mod stream_project;
 
 pub use accuracy::{
@@ -105,21 +109,34 @@ pub use cpu_projector::{CpuProjector, project_radiance, project_radiance_texels}
 pub use encoded_file::encode_file;
 pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
+pub use hooks::{Collected, Hooks, Progress, Silent, StageCounter};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
+pub use job::dfg::{DfgPlan, DfgRequest, dfg, dfg_channels};
+pub use job::prefilter::{PrefilterOutput, PrefilterPlan, PrefilterRequest, prefilter};
+pub use job::project::{
+    Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,
+    project_files, write_coeff_file,
+};
+pub use job::render::{RenderLayout, RenderPlan, RenderRequest, render, render_light};
+pub use job::sample::{
+    SamplePlan, SampleRequest, Shading, sample, transfer_radiance, volume_irradiance, volume_lookup,
+};
+pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use lobe::{LOBE_MARGIN, Lobe, LobeCamera, default_lobe_view, render_lobe};
 pub use map_info::MapInfo;
 pub use output_grid::{default_output_size, output_grid};
+pub use output_path::{names_dir, refuse_overwriting};
 pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview};
-pub use project::{Hooks, Source, project, project_with_warnings};
-pub use project_options::{ProjectOptions, Spelling};
+pub use project::{Source, project, project_with_warnings};
+pub use project_options::ProjectOptions;
 pub use projector::{Projection, Projector};
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
 pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
 pub use source_stats::source_stats;
 pub use specular::{
-    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, PrefilterRequest, cmgen_face_file, gltf_specular_images,
-    prefilter_map, write_dfg, write_prefiltered_faces, write_prefiltered_ktx1,
-    write_prefiltered_ktx2,
+    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, cmgen_face_file, gltf_specular_images, prefilter_map,
+    write_dfg, write_prefiltered_faces, write_prefiltered_ktx1, write_prefiltered_ktx2,
 };
+pub use spelling::Spelling;

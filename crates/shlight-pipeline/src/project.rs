@@ -11,6 +11,7 @@ use crate::choose_windows::choose_windows;
 use crate::coeff_file_of::coeff_file_of;
 use crate::cpu_projector::CpuProjector;
 use crate::encoded_file::encode_file;
+use crate::hooks::{Collected, Hooks, Progress};
 use crate::input_layout::is_faces;
 use crate::load::{LoadedMap, check_values, env_map, load_map};
 use crate::map_info::MapInfo;
@@ -38,31 +39,6 @@ pub enum Source<'a> {
     },
 }
 
-/// What [`project`] calls as it goes: the projector, and where progress and
-/// warnings go.
-#[derive(Clone, Copy)]
-pub struct Hooks<'a> {
-    /// The projection step.
-    pub projector: &'a dyn Projector,
-    /// Told what the pipeline starts next (`"reading NAME"`,
-    /// `"projecting NAME (WxH, lmax L)"`, ...), for a progress line.
-    pub progress: &'a (dyn Fn(&str) + Sync),
-    /// Given each warning for the user as it arises (a stretched equirect
-    /// map, negative texels, replaced values), naming the input.
-    pub warn: &'a (dyn Fn(&str) + Sync),
-}
-
-impl Default for Hooks<'static> {
-    /// The CPU projector; progress ignored; warnings dropped.
-    fn default() -> Self {
-        Hooks {
-            projector: &CpuProjector,
-            progress: &|_| {},
-            warn: &|_| {},
-        }
-    }
-}
-
 /// Reads (or takes), checks, projects and finishes one map: every step of
 /// `shlight project` in order, with the same messages whoever calls it.
 ///
@@ -82,15 +58,20 @@ impl Default for Hooks<'static> {
 ///
 /// # Errors
 /// Any step's error; every message names the map.
-pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<CoeffFile> {
-    let warn_all = |warnings: &[String]| warnings.iter().for_each(|w| (hooks.warn)(w));
+pub fn project(
+    source: Source<'_>,
+    s: &Settings,
+    projector: &dyn Projector,
+    hooks: &dyn Hooks,
+) -> Result<CoeffFile> {
+    let warn_all = |warnings: &[String]| warnings.iter().for_each(|w| hooks.warn(w));
     let orientation = s.project.orientation;
     match source {
         Source::Path(path) => {
             let name = path.display().to_string();
-            (hooks.progress)(&format!("reading {name}"));
-            let streamed = if streams(path, s, hooks) {
-                project_streaming(path, &name, s, hooks.progress)?
+            hooks.progress(Progress::Step(&format!("reading {name}")));
+            let streamed = if streams(path, s, projector) {
+                project_streaming(path, &name, s, hooks)?
             } else {
                 Streamed::NotEquirect
             };
@@ -114,7 +95,7 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
             };
             let info = loaded.info(&name, layout);
             let map = loaded.map(orientation, &name)?;
-            finish(&map, Some((&loaded.image, &map)), info, s, hooks)
+            finish(&map, Some((&loaded.image, &map)), info, s, projector, hooks)
         }
         Source::Texels {
             texels,
@@ -134,7 +115,7 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
                 check_values(name, &stats, &mut warnings)?;
                 warn_all(&warnings);
                 let info = MapInfo::new(name, layout_name, size, stats, None);
-                return finish(texels, None, info, s, hooks);
+                return finish(texels, None, info, s, projector, hooks);
             }
             let image = Image::new(size.0, size.1, contiguous_pixels(texels).into_owned())
                 .expect("width * height texels");
@@ -144,7 +125,7 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
             let info = loaded.info(name, layout_name);
             let map = env_map(layout, orientation, size, loaded.image.pixels())
                 .map_err(|e| e.context(format!("{name}: projecting")))?;
-            finish(&map, Some((&loaded.image, &map)), info, s, hooks)
+            finish(&map, Some((&loaded.image, &map)), info, s, projector, hooks)
         }
     }
 }
@@ -153,11 +134,11 @@ pub fn project(source: Source<'_>, s: &Settings, hooks: &Hooks<'_>) -> Result<Co
 /// ([`project_streaming`]): a single file (not six faces), projected by a
 /// projector that allows it ([`Projector::projects_rows`]), with no step
 /// that needs the whole map (a preview, an encoding other than plain SH).
-fn streams(path: &std::path::Path, s: &Settings, hooks: &Hooks<'_>) -> bool {
+fn streams(path: &std::path::Path, s: &Settings, projector: &dyn Projector) -> bool {
     !is_faces(path)
         && s.preview.is_none()
         && s.encoding == Encoding::Sh
-        && hooks.projector.projects_rows(&s.project)
+        && projector.projects_rows(&s.project)
 }
 
 /// Steps 2 to 5 of [`project`] on checked texels (`contiguous`: the same
@@ -167,16 +148,16 @@ fn finish(
     contiguous: Option<(&Image, &EnvMap<'_>)>,
     info: MapInfo,
     s: &Settings,
-    hooks: &Hooks<'_>,
+    projector: &dyn Projector,
+    hooks: &dyn Hooks,
 ) -> Result<CoeffFile> {
     let name = &info.name;
     let p = &s.project;
-    (hooks.progress)(&format!(
+    hooks.progress(Progress::Step(&format!(
         "projecting {name} ({}x{}, lmax {})",
         info.width, info.height, p.lmax
-    ));
-    let projection = hooks
-        .projector
+    )));
+    let projection = projector
         .project(texels, p)
         .map_err(|e| e.context(format!("{name}: projecting")))?;
     complete(projection, contiguous, info, s, hooks)
@@ -188,16 +169,16 @@ fn complete(
     contiguous: Option<(&Image, &EnvMap<'_>)>,
     info: MapInfo,
     s: &Settings,
-    hooks: &Hooks<'_>,
+    hooks: &dyn Hooks,
 ) -> Result<CoeffFile> {
     let name = &info.name;
     let p = &s.project;
     if p.window.is_none() {
-        (hooks.progress)(&format!("choosing windows for {name}"));
+        hooks.progress(Progress::Step(&format!("choosing windows for {name}")));
     }
     let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name)?;
     if let (Some(preview), Some((image, map))) = (&s.preview, contiguous) {
-        (hooks.progress)(&format!("preview of {name}"));
+        hooks.progress(Progress::Step(&format!("preview of {name}")));
         let radiance = apply_channel_windows(&windows, &projection.coeffs);
         write_preview(
             &preview.path,
@@ -211,7 +192,10 @@ fn complete(
     }
     let mut file = coeff_file_of(&projection, windows, p, &info);
     if s.encoding != Encoding::Sh {
-        (hooks.progress)(&format!("encoding {name} as {}", s.encoding));
+        hooks.progress(Progress::Step(&format!(
+            "encoding {name} as {}",
+            s.encoding
+        )));
         let (_, map) = contiguous.expect("an encoding copies the texels into an image");
         encode_file(&mut file, map, s.encoding, p.lmax);
     }
@@ -225,24 +209,9 @@ fn complete(
 /// # Errors
 /// As [`project`].
 pub fn project_with_warnings(source: Source<'_>, s: &Settings) -> Result<(CoeffFile, Vec<String>)> {
-    let warnings = std::sync::Mutex::new(Vec::new());
-    let warn = |w: &str| {
-        warnings
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .push(w.to_string());
-    };
-    let hooks = Hooks {
-        warn: &warn,
-        ..Hooks::default()
-    };
-    let file = project(source, s, &hooks)?;
-    Ok((
-        file,
-        warnings
-            .into_inner()
-            .unwrap_or_else(std::sync::PoisonError::into_inner),
-    ))
+    let hooks = Collected::new();
+    let file = project(source, s, &CpuProjector, &hooks)?;
+    Ok((file, hooks.into_warnings()))
 }
 
 #[cfg(test)]
@@ -350,13 +319,15 @@ mod tests {
     fn the_injected_projector_and_progress_are_used() {
         let (path, _) = sky();
         let projector = Uniform(Mutex::new(0));
-        let steps = Mutex::new(Vec::<String>::new());
-        let progress = |m: &str| steps.lock().unwrap().push(m.to_string());
-        let hooks = Hooks {
-            projector: &projector,
-            progress: &progress,
-            warn: &|_| {},
-        };
+        struct Steps(Mutex<Vec<String>>);
+        impl Hooks for Steps {
+            fn progress(&self, p: Progress<'_>) {
+                if let Progress::Step(m) = p {
+                    self.0.lock().unwrap().push(m.to_string());
+                }
+            }
+        }
+        let hooks = Steps(Mutex::new(Vec::new()));
         let mut p = ProjectSettings::new(
             2,
             MapOrientation::default(),
@@ -364,12 +335,18 @@ mod tests {
             Quantity::Irradiance,
         );
         p.window = None;
-        let file = project(Source::Path(&path), &Settings::new(p.clone()), &hooks).unwrap();
+        let file = project(
+            Source::Path(&path),
+            &Settings::new(p.clone()),
+            &projector,
+            &hooks,
+        )
+        .unwrap();
         assert_eq!(*projector.0.lock().unwrap(), 1);
         let e = file.coeffs.eval(DVec3::new(0.2, -0.9, 0.3).normalize());
         assert!((e - DVec3::splat(std::f64::consts::PI)).abs().max_element() < 1e-12);
         let name = path.display().to_string();
-        let steps = steps.lock().unwrap().clone();
+        let steps = hooks.0.lock().unwrap().clone();
         assert_eq!(
             steps,
             [
@@ -386,7 +363,7 @@ mod tests {
             name: "strip",
             layout_name: "strip",
         };
-        let e = project(texels, &Settings::new(p), &hooks).unwrap_err();
+        let e = project(texels, &Settings::new(p), &projector, &hooks).unwrap_err();
         assert_eq!(e.message(), "strip: projecting: equirect only");
     }
 }

@@ -4,6 +4,7 @@
 //! end, each message naming the option as that front end spells it
 //! ([`Spelling`]).
 
+use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::MapOrientation;
 use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
@@ -12,37 +13,8 @@ use shlight_format::{ExportFormat, Quantity, RotationRecord};
 
 use crate::rotation_spec::parse_rotation;
 use crate::settings::{DEFAULT_SAMPLES, Method, ProjectSettings, ReadSettings, Settings};
+use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
-
-/// How a front end names its options in messages.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Spelling {
-    /// The command line's flags: `--rotate`, `--method montecarlo`.
-    CommandLine,
-    /// Python's keyword arguments: `rotate`, `method="montecarlo"`.
-    Python,
-}
-
-impl Spelling {
-    /// The option `name` alone: `--rotate`, `rotate`.
-    #[must_use]
-    pub fn option(self, name: &str) -> String {
-        match self {
-            Spelling::CommandLine => format!("--{name}"),
-            Spelling::Python => name.to_string(),
-        }
-    }
-
-    /// The option `name` given `value`: `--method montecarlo`,
-    /// `method="montecarlo"`.
-    #[must_use]
-    pub fn option_value(self, name: &str, value: &str) -> String {
-        match self {
-            Spelling::CommandLine => format!("--{name} {value}"),
-            Spelling::Python => format!("{name}=\"{value}\""),
-        }
-    }
-}
 
 /// A projection's options as a front end was given them, its own values
 /// already parsed, before [`ProjectOptions::check`] resolves and checks
@@ -87,7 +59,8 @@ impl ProjectOptions<'_> {
     /// 2. the window spec parses (`auto`: one per channel, chosen later);
     /// 3. the rotation spec parses;
     /// 4. Monte Carlo takes at least one sample; its options are refused
-    ///    with quadrature.
+    ///    with quadrature;
+    /// 5. the GPU computes the quadrature, to [`LIGHT_MAX_LMAX`] at most.
     ///
     /// # Errors
     /// The first check that fails, naming the options as `spelling` does.
@@ -113,12 +86,16 @@ impl ProjectOptions<'_> {
                 Some((record, matrix))
             }
         };
+        let method = self.method(spelling)?;
+        if self.gpu {
+            self.check_gpu(&method, spelling)?;
+        }
         Ok(Settings {
             read: self.read.clone(),
             project: ProjectSettings {
                 lmax: self.lmax,
                 orientation: self.orientation,
-                method: self.method(spelling)?,
+                method,
                 window,
                 rotation,
                 quantity: self.quantity,
@@ -155,6 +132,25 @@ impl ProjectOptions<'_> {
             ))),
             None => Ok(()),
         }
+    }
+
+    /// Step 5 of [`ProjectOptions::check`].
+    fn check_gpu(&self, method: &Method, spelling: Spelling) -> Result<()> {
+        if *method != Method::Quadrature {
+            return Err(PipelineError::new(format!(
+                "{} computes the quadrature; it does not apply to {}",
+                spelling.option("gpu"),
+                spelling.option_value("method", "montecarlo")
+            )));
+        }
+        if self.lmax > LIGHT_MAX_LMAX {
+            return Err(PipelineError::new(format!(
+                "{} projects to lmax {LIGHT_MAX_LMAX} at most (asked: {})",
+                spelling.option("gpu"),
+                self.lmax
+            )));
+        }
+        Ok(())
     }
 
     /// Step 4 of [`ProjectOptions::check`]: the method with its options.

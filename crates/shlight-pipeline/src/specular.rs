@@ -22,45 +22,30 @@ use crate::{PipelineError, Result};
 /// cmgen's face names, in [`CubeFace::ALL`] order (`+X -X +Y -Y +Z -Z`).
 pub const CMGEN_FACE_NAMES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
-/// What [`prefilter_map`] does, decided before the map is read.
-#[derive(Clone, Debug)]
-pub struct PrefilterRequest {
-    /// How the map is read.
-    pub read: ReadSettings,
-    /// How its texels meet world directions.
-    pub orientation: MapOrientation,
-    /// The cube, its mips, samples and engine.
-    pub settings: PrefilterSettings,
-}
-
-/// Reads the map at `path` (warnings to `warn`) and prefilters it
-/// (shlight-specular's `prefilter`, `progress(rows)` as rows of faces are
-/// done).
+/// Reads the map at `path` (warnings to `warn`) and prefilters it with
+/// `settings` (shlight-specular's `prefilter`, `progress(rows)` as rows of
+/// faces are done).
 ///
 /// # Errors
 /// The loader's ([`load_map`]) or refused settings, naming the input.
 pub fn prefilter_map(
     path: &Path,
-    request: &PrefilterRequest,
+    read: &ReadSettings,
+    orientation: MapOrientation,
+    settings: &PrefilterSettings,
     warn: &dyn Fn(&str),
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Prefiltered> {
-    request
-        .settings
+    settings
         .check()
         .map_err(|e| PipelineError::new(e.to_string()))?;
     let name = path.display().to_string();
-    let loaded = load_map(
-        path,
-        request.read.layout,
-        &request.read.read,
-        request.read.sanitize,
-    )?;
+    let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
     for w in &loaded.warnings {
         warn(w);
     }
-    let map = loaded.map(request.orientation, &name)?;
-    prefilter(&map, &request.settings, progress).map_err(|e| PipelineError::new(e.to_string()))
+    let map = loaded.map(orientation, &name)?;
+    prefilter(&map, settings, progress).map_err(|e| PipelineError::new(e.to_string()))
 }
 
 /// The file cmgen's `--ibl-ld` gives face `face` of mip `level`:

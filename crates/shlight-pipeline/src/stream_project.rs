@@ -11,6 +11,7 @@ use shlight_format::SanitizeCounts;
 use shlight_io::{PixelStats, RowSource, SanitizeReport, open_rows, sanitize_pixels};
 
 use crate::Result;
+use crate::hooks::{Hooks, Progress};
 use crate::load::{check_values, layout_for_size, sanitize_warning};
 use crate::map_info::MapInfo;
 use crate::projector::Projection;
@@ -54,7 +55,7 @@ pub(crate) fn project_streaming(
     path: &Path,
     name: &str,
     s: &Settings,
-    progress: &(dyn Fn(&str) + Sync),
+    hooks: &dyn Hooks,
 ) -> Result<Streamed> {
     let rows = open_rows(path, &s.read.read)?;
     if !rows.streams() {
@@ -70,7 +71,10 @@ pub(crate) fn project_streaming(
         return Ok(Streamed::NotEquirect);
     }
     let p = &s.project;
-    progress(&format!("projecting {name} ({w}x{h}, lmax {})", p.lmax));
+    hooks.progress(Progress::Step(&format!(
+        "projecting {name} ({w}x{h}, lmax {})",
+        p.lmax
+    )));
     // Without `--sanitize`, or with it when the map holds no +inf, one
     // pass; the first pass replaces +inf by 0 and is run again otherwise.
     let (mut acc, stats, mut report) = pass(rows.as_ref(), s, s.read.sanitize.then_some(0.0))?;
@@ -205,7 +209,8 @@ impl StatsSum {
 mod tests {
     use super::*;
     use crate::cpu_projector::CpuProjector;
-    use crate::project::{Hooks, Source, project};
+    use crate::hooks::Collected;
+    use crate::project::{Source, project};
     use crate::projector::Projector;
     use crate::settings::{Method, ProjectSettings};
     use shlight_core::map::{MapOrientation, TexelSource};
@@ -224,18 +229,12 @@ mod tests {
 
     /// The coefficient file as JSON and the warnings, or the error.
     fn run(path: &Path, s: &Settings, projector: &dyn Projector) -> (String, Vec<String>) {
-        let warnings = Mutex::new(Vec::new());
-        let warn = |w: &str| warnings.lock().unwrap().push(w.to_string());
-        let hooks = Hooks {
-            projector,
-            progress: &|_| {},
-            warn: &warn,
-        };
-        let out = match project(Source::Path(path), s, &hooks) {
+        let hooks = Collected::new();
+        let out = match project(Source::Path(path), s, projector, &hooks) {
             Ok(file) => file.to_json_string(),
             Err(e) => format!("error: {e}"),
         };
-        (out, warnings.into_inner().unwrap())
+        (out, hooks.into_warnings())
     }
 
     /// Files streamed into the ring sums give the in-memory route's file,
@@ -291,7 +290,7 @@ mod tests {
                 s.read.sanitize = sanitize;
                 s.read.layout = crate::InputLayout::Image(Layout::Equirect);
                 let name = path.display().to_string();
-                let streamed = project_streaming(path, &name, &s, &|_| {});
+                let streamed = project_streaming(path, &name, &s, &crate::Silent);
                 streamed_any |= matches!(streamed, Ok(Streamed::Projected(_)));
                 let want = run(path, &s, &InMemory);
                 let got = run(path, &s, &CpuProjector);

@@ -92,6 +92,35 @@ impl DfgTable {
     pub const DEFAULT_SIZE: usize = 128;
     /// cmgen's samples per texel.
     pub const DEFAULT_SAMPLES: u32 = 1024;
+    /// The largest table made: 4096 texels per side (16M texels, 256 MiB
+    /// of `f64` pairs).
+    pub const MAX_SIZE: usize = 4096;
+
+    /// Refuses a table of `size` texels per side from `samples` per texel
+    /// that shlight does not make: a size from 1 to [`DfgTable::MAX_SIZE`]
+    /// and at least one sample.
+    ///
+    /// # Errors
+    /// The first refused setting, naming it ([`crate::PrefilterError`]'s
+    /// form: the setting and why).
+    pub fn check(size: usize, samples: u32) -> Result<(), crate::PrefilterError> {
+        if size == 0 || size > Self::MAX_SIZE {
+            return Err(crate::PrefilterError::new(
+                "size",
+                format!(
+                    "a DFG table of {size} texels per side: the size must be from 1 to {}",
+                    Self::MAX_SIZE
+                ),
+            ));
+        }
+        if samples == 0 {
+            return Err(crate::PrefilterError::new(
+                "samples",
+                "the sample count must be at least 1".into(),
+            ));
+        }
+        Ok(())
+    }
 
     /// `n·v` of column `x`.
     #[must_use]

@@ -104,37 +104,64 @@ impl PrefilterSettings {
     ///
     /// # Errors
     /// A size that is not a power of two (or over 8192), no samples, no
-    /// mips or more mips than the size halves into.
+    /// mips or more mips than the size halves into; the error names the
+    /// setting ([`PrefilterError::setting`]).
     pub fn check(&self) -> Result<(), PrefilterError> {
-        let fail = |m: String| Err(PrefilterError(m));
+        let fail = |setting, message| Err(PrefilterError::new(setting, message));
         if !self.size.is_power_of_two() || self.size > 8192 {
-            return fail(format!(
-                "--size {} must be a power of two from 1 to 8192",
-                self.size
-            ));
+            return fail(
+                "size",
+                format!(
+                    "the face size {} is not a power of two from 1 to 8192",
+                    self.size
+                ),
+            );
         }
         if self.samples == 0 {
-            return fail("--samples must be at least 1".into());
+            return fail("samples", "the sample count must be at least 1".into());
         }
         let full = self.size.ilog2() as usize + 1;
         match self.mips {
-            Some(0) => fail("--mips must be at least 1".into()),
-            Some(m) if m > full => fail(format!(
-                "--mips {m}: a {}-pixel cube halves into at most {full} mips",
-                self.size
-            )),
+            Some(0) => fail("mips", "the mip count must be at least 1".into()),
+            Some(m) if m > full => fail(
+                "mips",
+                format!(
+                    "{m} mips: a {}-pixel cube halves into at most {full} mips",
+                    self.size
+                ),
+            ),
             _ => Ok(()),
         }
     }
 }
 
-/// Settings [`prefilter`] refuses, with the reason.
+/// Settings [`prefilter`] (or [`crate::DfgTable::check`]) refuses: which,
+/// and why.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PrefilterError(pub String);
+pub struct PrefilterError {
+    setting: &'static str,
+    message: String,
+}
+
+impl PrefilterError {
+    /// `setting` refused, with `message` saying why (in words, naming no
+    /// front end's spelling of the setting).
+    #[must_use]
+    pub fn new(setting: &'static str, message: String) -> Self {
+        Self { setting, message }
+    }
+
+    /// The refused field of [`PrefilterSettings`]: `"size"`, `"samples"`
+    /// or `"mips"` (front ends name it as their users give it).
+    #[must_use]
+    pub fn setting(&self) -> &'static str {
+        self.setting
+    }
+}
 
 impl fmt::Display for PrefilterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
+        f.write_str(&self.message)
     }
 }
 

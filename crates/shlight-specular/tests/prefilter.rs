@@ -260,14 +260,25 @@ fn bad_settings_are_refused() {
     let pixels = draw(smooth);
     let map = map(&pixels);
     let base = PrefilterSettings::new(Engine::Filament);
-    for (s, needle) in [
-        (PrefilterSettings { size: 48, ..base }, "power of two"),
-        (PrefilterSettings { samples: 0, ..base }, "--samples"),
+    // Each refusal names the setting as a field (a front end spells it as
+    // its users give it) and says why, without any front end's flag.
+    for (s, setting, needle) in [
+        (
+            PrefilterSettings { size: 48, ..base },
+            "size",
+            "power of two",
+        ),
+        (
+            PrefilterSettings { samples: 0, ..base },
+            "samples",
+            "at least 1",
+        ),
         (
             PrefilterSettings {
                 mips: Some(10),
                 ..base
             },
+            "mips",
             "at most 9",
         ),
         (
@@ -275,10 +286,13 @@ fn bad_settings_are_refused() {
                 mips: Some(0),
                 ..base
             },
-            "--mips",
+            "mips",
+            "at least 1",
         ),
     ] {
         let e = prefilter(&map, &s, &|_| {}).unwrap_err();
+        assert_eq!(e.setting(), setting, "{e}");
         assert!(e.to_string().contains(needle), "{e}");
+        assert!(!e.to_string().contains("--"), "{e}");
     }
 }

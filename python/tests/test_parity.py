@@ -1,0 +1,159 @@
+"""What the command line writes, Python writes: every file of every
+command reachable from Python is compared byte for byte with the CLI's
+(docs/python.md, "Every command from Python", names the test of each)."""
+
+import warnings
+
+import pytest
+
+import shlight
+
+from conftest import ENVMAPS, ROOT, cli_error, run_cli
+
+PARK = ENVMAPS / "park.exr"
+SKY = ENVMAPS / "sky.exr"
+BOX = ROOT / "meshes" / "cornell_box.obj"
+POINTS = ROOT / "meshes" / "cornell_box_points.json"
+
+
+def quietly(f, *args, **kwargs):
+    """A call without the bundled maps' negative-texel warnings."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        return f(*args, **kwargs)
+
+
+@pytest.mark.parametrize(
+    "name, flags, options",
+    [
+        ("light.gltf", ["--format", "gltf", "--specular-size", "16", "--specular-samples", "16"],
+         {"format": "gltf", "specular_size": 16, "specular_samples": 16}),
+        ("light.glb", ["--format", "gltf", "--specular-size", "16", "--specular-samples", "16"],
+         {"format": "gltf", "specular_size": 16, "specular_samples": 16}),
+        ("probe.json", ["--format", "threejs"], {"format": "threejs"}),
+        ("sh.hlsl", ["--format", "hlsl", "--lmax", "3"], {"format": "hlsl", "lmax": 3}),
+        ("park.json", ["--lmax", "4", "--window", "auto"], {"lmax": 4, "window": "auto"}),
+    ],
+)
+def test_project_writes_the_clis_files(cli, tmp_path, name, flags, options):
+    code, _, err = run_cli(cli, "project", SKY, *flags, "-o", tmp_path / f"cli-{name}", "-q")
+    assert code == 0, err
+    sh = quietly(shlight.project, str(SKY), output=tmp_path / f"py-{name}", **options)
+    assert (tmp_path / f"py-{name}").read_bytes() == (tmp_path / f"cli-{name}").read_bytes()
+    # The SH returned is the file written.
+    assert sh.lmax == options.get("lmax", 2)
+
+
+def test_project_previews_and_batches_are_the_clis(cli, tmp_path):
+    maps = [str(PARK), str(SKY)]
+    code, _, err = run_cli(
+        cli, "project", *maps, "-o", tmp_path / "cli", "--preview", tmp_path / "cli-previews",
+        "--preview-size", "32x16", "--format", "txt", "-q",
+    )
+    assert code == 0, err
+    many = quietly(
+        shlight.project_many, maps, output=tmp_path / "py", preview=tmp_path / "py-previews",
+        preview_size=(32, 16), format="txt",
+    )
+    assert [s.lmax for s in many] == [2, 2]
+    for name in ["park", "sky"]:
+        assert (tmp_path / "py" / f"{name}.txt").read_bytes() == (tmp_path / "cli" / f"{name}.txt").read_bytes()
+        assert (tmp_path / "py-previews" / f"{name}.png").read_bytes() == (
+            tmp_path / "cli-previews" / f"{name}.png"
+        ).read_bytes()
+
+
+def test_project_refuses_outputs_of_arrays_and_formats_without_output(tmp_path):
+    import numpy as np
+
+    with pytest.raises(shlight.ShlightError, match="a map file"):
+        shlight.project(np.ones((8, 16, 3), np.float32), output=tmp_path / "x.json")
+    with pytest.raises(shlight.ShlightError, match="format"):
+        shlight.project(str(SKY), format="bogus", output=tmp_path / "x.json")
+    # Settings are named as Python spells them.
+    with pytest.raises(shlight.ShlightError, match=r"^preview_size: "):
+        shlight.project(str(SKY), preview=tmp_path / "p.png", preview_size=(10, 10))
+
+
+@pytest.mark.parametrize("name", ["cube.ktx", "cube.ktx2"])
+def test_prefilter_writes_the_clis_ktx_files(cli, tmp_path, name):
+    code, _, err = run_cli(cli, "prefilter", PARK, "-o", tmp_path / f"cli-{name}", "--size", "16", "--samples", "16", "-q")
+    assert code == 0, err
+    files = quietly(shlight.prefilter, str(PARK), tmp_path / f"py-{name}", size=16, samples=16)
+    assert files == [str(tmp_path / f"py-{name}")]
+    assert (tmp_path / f"py-{name}").read_bytes() == (tmp_path / f"cli-{name}").read_bytes()
+
+
+def test_prefilter_and_dfg_refusals_name_python_settings(tmp_path):
+    with pytest.raises(shlight.ShlightError, match=r"^size: .*power of two"):
+        shlight.prefilter(str(PARK), tmp_path / "x", size=48)
+    with pytest.raises(shlight.ShlightError, match=r"^size: .*from 1 to 4096"):
+        shlight.dfg(tmp_path / "d.exr", size=5000)
+    with pytest.raises(shlight.ShlightError, match="output names a directory"):
+        shlight.prefilter(str(PARK), tmp_path / "x.exr")
+
+
+def test_render_draws_the_clis_lobe(cli, tmp_path):
+    coeffs = tmp_path / "park.json"
+    code, _, err = run_cli(cli, "project", PARK, "--lmax", "3", "-o", coeffs, "-q")
+    assert code == 0, err
+    code, _, err = run_cli(cli, "render", coeffs, "-o", tmp_path / "lobe.exr", "--layout", "lobe", "--size", "32x24", "--view", "1,2,3")
+    assert code == 0, err
+    want = shlight.read_image(tmp_path / "lobe.exr")
+    got = shlight.render(shlight.load(coeffs), (32, 24), layout="lobe", view=(1, 2, 3))
+    # The EXR holds the same float32 values the array does.
+    assert (got == want).all()
+    with pytest.raises(shlight.ShlightError, match=r'^view is where layout="lobe" is seen from'):
+        shlight.render(shlight.load(coeffs), layout="equirect", view=(1, 0, 0))
+
+
+@pytest.fixture(scope="module")
+def baked(cli, tmp_path_factory):
+    """A small volume and a diffuse PRT file, baked by the CLI."""
+    d = tmp_path_factory.mktemp("baked")
+    light = d / "park.json"
+    assert run_cli(cli, "project", PARK, "--lmax", "4", "-o", light, "-q")[0] == 0
+    volume = d / "box.shvol"
+    code, _, err = run_cli(
+        cli, "volume", BOX, "--env", light, "--resolution", "3x2x3", "--samples", "128",
+        "--surface-samples", "64", "-o", volume, "-q",
+    )
+    assert code == 0, err
+    transfer = d / "bunny.shprt"
+    code, _, err = run_cli(cli, "prt", ROOT / "meshes" / "bunny.obj", "--samples", "64", "--lmax", "3", "-o", transfer, "-q")
+    assert code == 0, err
+    return {"light": light, "volume": volume, "transfer": transfer}
+
+
+@pytest.mark.parametrize(
+    "kind, flags, options",
+    [
+        ("volume", ["--points", POINTS], {"points": POINTS}),
+        ("volume", ["--points", POINTS, "--lookup", "threejs", "--env", SKY],
+         {"points": POINTS, "lookup": "threejs", "env": SKY}),
+        ("transfer", ["--lmax", "2"], {"lmax": 2}),
+    ],
+)
+def test_sample_writes_the_clis_answer(cli, tmp_path, baked, kind, flags, options):
+    file = baked[kind]
+    if kind == "transfer":
+        flags = [*flags, "--light", baked["light"]]
+        options = {**options, "light": baked["light"]}
+    code, _, err = run_cli(cli, "sample", file, *flags, "-o", tmp_path / "cli.json", "-q")
+    assert code == 0, err
+    quietly(shlight.sample, file, tmp_path / "py.json", **options)
+    assert (tmp_path / "py.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+
+
+def test_sample_refusals_are_the_clis_in_python_spelling(cli, tmp_path, baked):
+    code, _, err = run_cli(cli, "sample", baked["volume"], "-o", tmp_path / "x.json")
+    assert code != 0
+    with pytest.raises(shlight.ShlightError) as e:
+        shlight.sample(baked["volume"], tmp_path / "x.json")
+    assert "sampling a volume needs" in cli_error(err) and "sampling a volume needs" in str(e.value)
+    assert "--points" in cli_error(err) and "--points" not in str(e.value)
+    code, _, err = run_cli(cli, "sample", baked["transfer"], "--light", baked["light"], "--env", SKY, "-o", tmp_path / "x.json")
+    assert code != 0
+    with pytest.raises(shlight.ShlightError) as e:
+        shlight.sample(baked["transfer"], tmp_path / "x.json", light=baked["light"], env=SKY)
+    assert str(e.value) == cli_error(err).replace("--env", "env").replace("--light", "light")
