@@ -8,13 +8,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
-use shlight_accuracy::legendre_study::{DEGREES, legendre_study, legendre_table};
-use shlight_accuracy::report_table::report_table;
-use shlight_accuracy::suite::{self, Row, SuiteOptions};
+use shlight_pipeline::{AccuracyRequest, accuracy};
 
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 
 /// Arguments of `shlight accuracy`.
 #[derive(Args, Debug)]
@@ -39,38 +37,22 @@ pub struct AccuracyArgs {
 
 /// Runs `shlight accuracy`.
 pub fn run(args: &AccuracyArgs, ui: &Ui) -> Result<()> {
-    if args.legendre {
-        let rows = legendre_study(&DEGREES);
-        print!("{}", legendre_table(&rows));
-        return Ok(());
-    }
-    if let Some(dir) = &args.output {
-        if dir.exists() && !dir.is_dir() {
-            bail!("{}: exists and is not a directory", dir.display());
-        }
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
-    }
-    let bar = ui.spinner("accuracy suite");
-    let report = suite::run(SuiteOptions { quick: args.quick }, &|what| {
-        bar.set_message(what.to_string());
-    });
-    if let Some(dir) = &args.output {
-        bar.set_message("pictures");
-        for path in shlight_accuracy::plot::write_pictures(&report, dir)? {
-            ui.note(format!("wrote {}", path.display()));
-        }
-    }
-    bar.finish_and_clear();
-    if args.json {
-        let rows: Vec<serde_json::Value> = report.rows.iter().map(Row::to_json).collect();
-        println!("{}", serde_json::to_string_pretty(&rows)?);
-    } else {
-        print!("{}", report_table(&report));
-    }
-    let failed = report.rows.iter().filter(|r| !r.pass).count();
-    if failed > 0 {
-        bail!("{failed} of {} accuracy rows failed", report.rows.len());
+    let request = AccuracyRequest {
+        quick: args.quick,
+        json: args.json,
+        output: args.output.as_deref(),
+        legendre: args.legendre,
+    };
+    let reporter = Reporter::new(ui);
+    let outcome = accuracy(&request, &reporter)?;
+    reporter.finish();
+    print!("{}", outcome.text);
+    if outcome.failed > 0 {
+        bail!(
+            "{} of {} accuracy rows failed",
+            outcome.failed,
+            outcome.rows
+        );
     }
     Ok(())
 }

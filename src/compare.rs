@@ -6,15 +6,14 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use clap::Args;
-use shlight_accuracy::compare::{self, CompareRow};
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
-use shlight_pipeline::{ReadSettings, compare_encodings, compare_name};
+use shlight_pipeline::{CompareRequest, ReadSettings, Spelling, compare};
 
 use crate::input::{InputLayout, parse_input_layout};
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 use crate::values::parse_size;
 
 /// Arguments of `shlight compare`.
@@ -43,49 +42,24 @@ pub struct CompareArgs {
 
 /// Runs `shlight compare`.
 pub fn run(args: &CompareArgs, ui: &Ui) -> Result<()> {
-    if let Some(dir) = &args.output {
-        if dir.exists() && !dir.is_dir() {
-            bail!("{}: exists and is not a directory", dir.display());
-        }
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+    let plan = CompareRequest {
+        inputs: &args.inputs,
+        output: args.output.as_deref(),
+        normals: args.normals,
+        read: ReadSettings {
+            layout: args.layout,
+            read: ReadOptions::default(),
+            sanitize: args.sanitize,
+        },
+        orientation: MapOrientation {
+            frame: crate::input::frame_of(&args.up),
+            mirror: false,
+        },
     }
-    let orientation = MapOrientation {
-        frame: crate::input::frame_of(&args.up),
-        mirror: false,
-    };
-    let read = ReadSettings {
-        layout: args.layout,
-        read: ReadOptions::default(),
-        sanitize: args.sanitize,
-    };
-    let mut rows: Vec<CompareRow> = Vec::new();
-    let mut names = Vec::new();
-    for input in &args.inputs {
-        let name = compare_name(input);
-        let bar = ui.spinner(&format!("comparing {name}"));
-        rows.extend(compare_encodings(
-            input,
-            &read,
-            orientation,
-            args.normals,
-            &|m| ui.warn(m),
-        )?);
-        bar.finish_and_clear();
-        names.push(name);
-    }
-    print!("{}", compare::table(&rows));
-    if let Some(dir) = &args.output {
-        let json = dir.join("compare.json");
-        let text = serde_json::to_string_pretty(&compare::rows_json(&rows))? + "\n";
-        shlight_io::write_atomically(&json, |w| w.write_all(text.as_bytes()))?;
-        ui.note(format!("wrote {}", json.display()));
-        for name in &names {
-            let svg = compare::floats_plot(name, &rows)?;
-            let path = dir.join(format!("compare-{name}.svg"));
-            shlight_accuracy::plot::write_svg(&path, &svg)?;
-            ui.note(format!("wrote {}", path.display()));
-        }
-    }
+    .check(Spelling::CommandLine)?;
+    let reporter = Reporter::new(ui);
+    let (_, table) = compare(&plan, &reporter)?;
+    reporter.finish();
+    print!("{table}");
     Ok(())
 }

@@ -16,26 +16,18 @@
 //! lights + SH, ZH3, non-linear L1, the ambient cube), writing
 //! `OUT-E.EXT` and `OUT-diff.EXT`; its SH part is `--sh LMAX` (default 2).
 //! `--error-map FILE.png` draws the peak-relative error over the sphere on
-//! a fixed 0-10% colour scale (shlight-accuracy's error maps).
+//! a fixed 0-10% colour scale (shlight-accuracy's error maps). All of it is
+//! shlight-pipeline's `irradiance` job; this prints its summary.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::Result;
 use clap::Args;
-use glam::DVec3;
-use shlight_accuracy::plot::{error_map_values, write_error_map};
-use shlight_core::map::{Layout, MapOrientation};
-use shlight_io::{Image, WriteOptions, write_image};
-use shlight_pipeline::{IrradianceSettings, map_irradiance, output_grid};
+use shlight_pipeline::{IrradianceRequest, Spelling, irradiance};
 
 use crate::input::MapInputArgs;
-use crate::output_path::refuse_overwriting;
-use crate::progress::Ui;
+use crate::progress::{Reporter, Ui};
 use crate::values::parse_size;
-
-/// Top of `--error-map`'s colour scale: 10% of the peak irradiance, about
-/// the worst Ramamoorthi & Hanrahan allow for nine terms (9%).
-const ERROR_MAP_TOP: f64 = 0.1;
 
 /// Arguments of `shlight irradiance`.
 #[derive(Args, Debug)]
@@ -72,130 +64,22 @@ pub struct IrradianceArgs {
     pub map: MapInputArgs,
 }
 
-/// `OUT` with `suffix` added to its stem: `dir/name-sh.exr`.
-fn beside(out: &Path, suffix: &str) -> PathBuf {
-    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
-    let name = match out.extension() {
-        Some(ext) => format!("{stem}{suffix}.{}", ext.to_string_lossy()),
-        None => format!("{stem}{suffix}"),
-    };
-    out.with_file_name(name)
-}
-
 /// Runs `shlight irradiance`.
 pub fn run(args: &IrradianceArgs, ui: &Ui) -> Result<()> {
-    let name = args.input.display().to_string();
-    let (w, h) = args.size;
-    output_grid(Layout::Equirect, (w, h), MapOrientation::default())
-        .map_err(|e| anyhow!("--size: {e}"))?;
-    let encoding = match (args.encoding, args.sh) {
-        (Some(e), lmax) => Some((e, lmax.unwrap_or(2))),
-        (None, Some(lmax)) => Some((shlight_core::encoding::Encoding::Sh, lmax)),
-        (None, None) => None,
-    };
-    let outputs: Vec<PathBuf> = match (args.encoding, encoding) {
-        (_, None) => vec![args.output.clone()],
-        (None, Some(_)) => vec![
-            args.output.clone(),
-            beside(&args.output, "-sh"),
-            beside(&args.output, "-diff"),
-        ],
-        (Some(e), Some(_)) => vec![
-            args.output.clone(),
-            beside(&args.output, &format!("-{e}")),
-            beside(&args.output, "-diff"),
-        ],
-    };
-    if let Some(map) = &args.error_map {
-        if encoding.is_none() {
-            bail!("--error-map needs --sh or --encoding: it maps an estimate's error");
-        }
-        if map.extension().and_then(|e| e.to_str()) != Some("png") {
-            bail!("{}: --error-map writes a PNG (.png)", map.display());
-        }
-    }
-    for out in outputs.iter().chain(&args.error_map) {
-        refuse_overwriting(out, std::slice::from_ref(&args.input))?;
-    }
-    let settings = IrradianceSettings {
+    let plan = IrradianceRequest {
+        input: &args.input,
+        output: Some(&args.output),
+        size: args.size,
+        sh: args.sh,
+        encoding: args.encoding,
+        error_map: args.error_map.as_deref(),
         read: args.map.read_settings(),
         orientation: args.map.orientation(),
-        size: (w, h),
-        encoding,
-    };
-    let bar = ui.bar((w * h) as u64, "irradiance");
-    let report = map_irradiance(&args.input, &settings, &|m| ui.warn(m), &|n| {
-        bar.inc(n as u64);
-    });
-    bar.finish_and_clear();
-    let report = report?;
-    let to_image = |values: &[DVec3]| {
-        Image::new(
-            w,
-            h,
-            values.iter().map(|v| v.as_vec3().to_array()).collect(),
-        )
-        .expect("w * h values")
-    };
-    let write = |path: &Path, values: &[DVec3]| {
-        write_image(path, &to_image(values), &WriteOptions::default())
-            .with_context(|| format!("{name}: writing"))
-    };
-    write(&args.output, &report.exact.exact)?;
-
-    let Some(measured) = &report.encoded else {
-        return Ok(());
-    };
-    let (encoding, lmax) = (measured.encoding, measured.lmax);
-    write(&outputs[1], &measured.estimate)?;
-    write(&outputs[2], &measured.difference)?;
-    let Some(errors) = measured.errors else {
-        bail!("{name}: the map has no light (its irradiance is 0 everywhere)");
-    };
-    if let Some(path) = &args.error_map {
-        let values = report
-            .exact
-            .peak_relative_map(&measured.estimate)
-            .expect("the map has light: its errors exist");
-        let (image, _) = error_map_values(w, h, Some(ERROR_MAP_TOP), &values);
-        write_error_map(path, &image).with_context(|| format!("{name}: writing"))?;
     }
-    let (p, q) = (errors.pointwise, errors.peak_relative);
-    let what = match (args.encoding, encoding.takes_lmax()) {
-        (None, _) => format!("SH irradiance (lmax {lmax})"),
-        (Some(_), true) => format!("{encoding} irradiance (SH lmax {lmax})"),
-        (Some(_), false) => format!("{encoding} irradiance"),
-    };
-    println!(
-        "{name}: {what} against brute force over {} normals ({}x{} texels of input):",
-        report.exact.normals.len(),
-        report.map_size.0,
-        report.map_size.1
-    );
-    if args.encoding.is_some() {
-        println!("  floats stored:      {}", measured.light.floats(encoding));
-        for (i, l) in measured.light.lights().iter().enumerate() {
-            println!(
-                "  light {i}: direction {:.4},{:.4},{:.4}  half-angle {:.3}°  power {:.4},{:.4},{:.4}",
-                l.direction.x,
-                l.direction.y,
-                l.direction.z,
-                l.half_angle.to_degrees(),
-                l.power.x,
-                l.power.y,
-                l.power.z
-            );
-        }
-    }
-    println!(
-        "  relative to E(n):   mean {:.3}%  max {:.3}%",
-        100.0 * p.mean,
-        100.0 * p.max
-    );
-    println!(
-        "  relative to max E:  mean {:.3}%  max {:.3}%",
-        100.0 * q.mean,
-        100.0 * q.max
-    );
+    .check(Spelling::CommandLine)?;
+    let reporter = Reporter::new(ui);
+    let (_, summary) = irradiance(&plan, &reporter)?;
+    reporter.finish();
+    print!("{summary}");
     Ok(())
 }

@@ -131,7 +131,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(&args, &ui),
         Command::Synth(args) => synth::run(&args, &ui),
         Command::Show { file } => show(&file),
-        Command::Convert(args) => convert::run(&args),
+        Command::Convert(args) => convert::run(&args, &ui),
         Command::Irradiance(args) => irradiance::run(&args, &ui),
         Command::Accuracy(args) => accuracy::run(&args, &ui),
         Command::Compare(args) => compare::run(&args, &ui),

@@ -37,7 +37,10 @@ from ._shlight import (
     render,
     write_image,
 )
+from ._shlight import accuracy_suite as _accuracy
 from ._shlight import bake_transfer as _bake_transfer
+from ._shlight import convert as _convert
+from ._shlight import synth as _synth
 from ._shlight import bake_volume as _bake_volume
 from ._shlight import compare as _compare
 from ._shlight import dfg as _dfg
@@ -53,9 +56,11 @@ __all__ = [
     "ShlightError",
     "Transfer",
     "Volume",
+    "accuracy",
     "bake_transfer",
     "bake_volume",
     "compare",
+    "convert",
     "dfg",
     "irradiance",
     "load",
@@ -65,6 +70,7 @@ __all__ = [
     "read_image",
     "render",
     "sample",
+    "synth",
     "write_image",
 ]
 
@@ -243,7 +249,20 @@ def project_many(paths, lmax=2, *, errors="raise", progress=False, **options):
     )
 
 
-def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sanitize=False, max_pixels=None):
+def irradiance(
+    source,
+    size=(64, 32),
+    *,
+    up="y",
+    layout="auto",
+    mirror=False,
+    sanitize=False,
+    max_pixels=None,
+    sh=None,
+    encoding=None,
+    output=None,
+    error_map=None,
+):
     """The exact irradiance of a map (``shlight irradiance MAP -o E.exr``).
 
     Every texel of the output, an equirect map of ``size`` in the map's
@@ -263,12 +282,30 @@ def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sa
         As for ``project``. The output lies in the map's own frame, so
         ``up`` and ``mirror`` turn the map and the normals together and
         leave the values as they are.
+    sh : int | None
+        Also measure the map's SH irradiance to this lmax against the exact
+        one (``--sh``); with ``encoding``, the lmax of its SH part (default 2).
+    encoding : str | None
+        Measure this encoding of the map instead of plain SH (``dominant+sh``,
+        ``zh3``, ...; ``--encoding``).
+    output : str | os.PathLike | None
+        Also write the files ``shlight irradiance -o OUTPUT`` writes: the
+        exact map, and with an estimate ``OUT-sh.EXT`` (or
+        ``OUT-ENCODING.EXT``) and ``OUT-diff.EXT``.
+    error_map : str | os.PathLike | None
+        With an estimate: a PNG of its error relative to the peak, 0 to 10%.
 
     Returns
     -------
-    numpy.ndarray
-        ``(height, width, 3)`` float64 linear RGB, rows from the top: the
-        numbers the CLI writes to its EXR (float32 there).
+    numpy.ndarray | dict
+        Without an estimate: ``(height, width, 3)`` float64 linear RGB,
+        rows from the top: the numbers the CLI writes to its EXR (float32
+        there). With ``sh`` or ``encoding``: a dict with ``exact`` and
+        ``estimate`` (such arrays), ``encoding``, ``lmax``, ``floats``
+        (stored), the luminance errors ``mean_relative`` and
+        ``max_relative`` (to ``E(n)``), ``mean_peak_relative`` and
+        ``max_peak_relative`` (to the peak), and ``summary``, the lines the
+        CLI prints.
 
     Raises
     ------
@@ -277,11 +314,21 @@ def irradiance(source, size=(64, 32), *, up="y", layout="auto", mirror=False, sa
         size that is not 2:1; the CLI's messages.
     """
     return _irradiance(
-        source, tuple(size), up=up, layout=layout, mirror=mirror, sanitize=sanitize, max_pixels=max_pixels
+        source,
+        tuple(size),
+        up=up,
+        layout=layout,
+        mirror=mirror,
+        sanitize=sanitize,
+        max_pixels=max_pixels,
+        sh=sh,
+        encoding=encoding,
+        output=output,
+        error_map=error_map,
     )
 
 
-def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
+def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False, output=None):
     """Every encoding on every map against its exact irradiance (``shlight compare``).
 
     For each map: the exact irradiance at the texel centres of an equirect
@@ -299,6 +346,10 @@ def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
         ``(width, height)`` of the grid of normals.
     up, layout, sanitize :
         As for ``project``.
+    output : str | os.PathLike | None
+        A directory (made) for ``compare.json`` and one plot of error
+        against floats stored per map (``compare-MAP.svg``), as ``shlight
+        compare ... -o DIR`` writes them.
 
     Returns
     -------
@@ -311,7 +362,131 @@ def compare(paths, normals=(128, 64), *, up="y", layout="auto", sanitize=False):
         and ``light_angle_degrees`` (first light to the brightest texel, or
         None).
     """
-    return _compare([str(p) for p in paths], tuple(normals), up=up, layout=layout, sanitize=sanitize)
+    return _compare(
+        [str(p) for p in paths], tuple(normals), up=up, layout=layout, sanitize=sanitize, output=output
+    )
+
+
+def accuracy(quick=False, *, output=None):
+    """The accuracy suite of SH irradiance against analytic lights (``shlight accuracy --json``).
+
+    Truncation, quadrature and Monte Carlo cases against closed-form
+    irradiance (docs/accuracy.md), each row with its errors, its bound and
+    whether it passes.
+
+    Parameters
+    ----------
+    quick : bool
+        The subset that runs in a few seconds (``--quick``).
+    output : str | os.PathLike | None
+        A directory (made) for the pictures: error plots (SVG) and error
+        maps (PNG).
+
+    Returns
+    -------
+    list[dict]
+        The rows ``shlight accuracy --json`` prints.
+    """
+    return _accuracy(quick, output=output)
+
+
+def synth(
+    kind,
+    size=None,
+    *,
+    layout="equirect",
+    up="y",
+    mirror=False,
+    color=(1.0, 1.0, 1.0),
+    value=1.0,
+    slope=0.5,
+    direction=None,
+    half_angle=None,
+    supersample=4,
+    output=None,
+    exposure=0.0,
+    tone_map="clamp",
+):
+    """An analytic environment map (``shlight synth KIND -o MAP``).
+
+    The test inputs whose SH coefficients are known in closed form: each
+    texel holds the light's mean over the texel (``supersample`` points a
+    side); a directional light is one texel, or a cap of ``half_angle``
+    of the same irradiance.
+
+    Parameters
+    ----------
+    kind : "constant" | "hemisphere" | "cap" | "gradient" | "directional"
+        The light.
+    size : (int, int) | None
+        ``(width, height)``, fitting ``layout`` (default 1024x512 for
+        equirect; faces of 256, or a 512x512 disc).
+    layout, up, mirror :
+        The map's layout and frame (as ``render``'s and ``project``'s).
+    color, value, slope, direction, half_angle :
+        Linear Rec.709 colour times ``value`` (radiance, or a directional
+        light's irradiance facing it); the gradient's ``b`` in ``a + b (d .
+        direction)``; the light's axis (default the frame's up); the
+        half-angle in degrees (cap: 30; directional: 0, one texel).
+    output, exposure, tone_map :
+        Also write the map (``.exr``, ``.hdr``, ``.png``), as the CLI does.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(height, width, 3)`` float32 linear RGB.
+    """
+    return _synth(
+        kind,
+        None if size is None else tuple(size),
+        layout=layout,
+        up=up,
+        mirror=mirror,
+        color=list(color),
+        value=value,
+        slope=slope,
+        direction=None if direction is None else list(direction),
+        half_angle=half_angle,
+        supersample=supersample,
+        output=output,
+        exposure=exposure,
+        tone_map=tone_map,
+    )
+
+
+def convert(input, output=None, *, format=None, into=None, precision="half", irradiance_only=False):
+    """A coefficient file or volume in another format (``shlight convert``).
+
+    Parameters
+    ----------
+    input : str | os.PathLike
+        A coefficient file or an engine file that keeps its coefficients
+        (``load`` reads the same), or an irradiance volume (``.shvol``).
+    output : str | os.PathLike | None
+        The file to write, atomically; None: the text is returned.
+    format : str | None
+        A name of ``EXPORT_FORMATS`` (default: from ``output``'s
+        extension); a volume converts to ``threejs`` (three.js's
+        LightProbeGrid), ``wgsl`` or ``glsl`` (a snippet of its lookup, its
+        textures beside it).
+    into : str | os.PathLike | None
+        Add the light to this glTF asset (``.gltf`` or ``.glb``) in place,
+        with ``irradiance_only``.
+    precision : "half" | "f32"
+        The numbers of a volume's three.js atlas.
+    irradiance_only : bool
+        A glTF light from the coefficients alone, without its specular
+        images (a coefficient file holds no map to prefilter).
+
+    Returns
+    -------
+    str | list[str] | None
+        The text without ``output``; the files a volume's snippet wrote;
+        else None.
+    """
+    return _convert(
+        input, output, format=format, into=into, precision=precision, irradiance_only=irradiance_only
+    )
 
 
 def bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024, bounces=None, albedo=None, seed=0):

@@ -288,9 +288,14 @@ def irradiance(
     mirror: bool = False,
     sanitize: bool = False,
     max_pixels: Optional[int] = None,
-) -> npt.NDArray[np.float64]:
+    sh: Optional[int] = None,
+    encoding: Optional[Encoding] = None,
+    output: Optional[PathLike] = None,
+    error_map: Optional[PathLike] = None,
+) -> Union[npt.NDArray[np.float64], dict[str, Any]]:
     """(H, W, 3) float64: the exact irradiance of the map at every texel
-    centre of an equirect grid (shlight irradiance)."""
+    centre of an equirect grid (shlight irradiance); with sh or encoding, a
+    dict of the exact and estimated irradiance and the estimate's errors."""
 def compare(
     paths: Sequence[PathLike],
     normals: tuple[int, int] = (128, 64),
@@ -298,9 +303,40 @@ def compare(
     up: Literal["y", "z"] = "y",
     layout: str = "auto",
     sanitize: bool = False,
+    output: Optional[PathLike] = None,
 ) -> list[dict[str, Any]]:
     """Every encoding on every map against its exact irradiance: the rows
     of shlight compare's compare.json."""
+def accuracy(quick: bool = False, *, output: Optional[PathLike] = None) -> list[dict[str, Any]]:
+    """The accuracy suite's rows, as shlight accuracy --json prints them."""
+def synth(
+    kind: Literal["constant", "hemisphere", "cap", "gradient", "directional"],
+    size: Optional[tuple[int, int]] = None,
+    *,
+    layout: str = "equirect",
+    up: Literal["y", "z"] = "y",
+    mirror: bool = False,
+    color: tuple[float, float, float] = (1.0, 1.0, 1.0),
+    value: float = 1.0,
+    slope: float = 0.5,
+    direction: Optional[tuple[float, float, float]] = None,
+    half_angle: Optional[float] = None,
+    supersample: int = 4,
+    output: Optional[PathLike] = None,
+    exposure: float = 0.0,
+    tone_map: Literal["clamp", "reinhard", "aces"] = "clamp",
+) -> npt.NDArray[np.float32]:
+    """An analytic environment map (shlight synth)."""
+def convert(
+    input: PathLike,
+    output: Optional[PathLike] = None,
+    *,
+    format: Optional[str] = None,
+    into: Optional[PathLike] = None,
+    precision: Literal["half", "f32"] = "half",
+    irradiance_only: bool = False,
+) -> Union[str, list[str], None]:
+    """A coefficient file or volume in another format (shlight convert)."""
 def bake_transfer(
     mesh: PathLike,
     mode: Literal["unshadowed", "shadowed", "interreflected"] = "shadowed",

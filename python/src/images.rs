@@ -1,18 +1,25 @@
-//! `shlight.read_image`, `shlight.write_image` and `shlight.render`.
+//! `shlight.read_image`, `shlight.write_image`, `shlight.render` and
+//! `shlight.synth` (shlight-pipeline's `render` and `synth` jobs).
 
 use std::path::PathBuf;
 
+use glam::DVec3;
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3, PyUntypedArray};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use glam::DVec3;
 use shlight_core::map::Layout;
+use shlight_core::map::MapOrientation;
 use shlight_io::{Image, ReadOptions, ToneMap, WriteOptions};
-use shlight_pipeline::{Collected, RenderLayout, RenderRequest, Spelling, render_light};
+use shlight_pipeline::{
+    Collected, RenderLayout, RenderRequest, Spelling, SynthRequest, render_light,
+    synth as synth_job, synth_map,
+};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
+use crate::hooks::PyHooks;
+use crate::options::frame_of;
 use crate::sh::Sh;
 use crate::source::{ArrayMap, Data};
 
@@ -108,7 +115,9 @@ pub fn render<'py>(
             }
         } else {
             s.extract::<(usize, usize)>().map_err(|_| {
-                PyTypeError::new_err("size is (width, height) or one number (see help(shlight.render))")
+                PyTypeError::new_err(
+                    "size is (width, height) or one number (see help(shlight.render))",
+                )
             })?
         }),
     };
@@ -128,4 +137,70 @@ pub fn render<'py>(
     })?;
     warn_all(py, &hooks.notes(), 1)?;
     Ok(to_array(py, image))
+}
+
+/// synth(kind, size=None, *, layout="equirect", up="y", mirror=False,
+/// color=(1, 1, 1), value=1.0, slope=0.5, direction=None, half_angle=None,
+/// supersample=4, output=None, exposure=0.0, tone_map="clamp") -> ndarray
+/// --
+///
+/// See the package documentation (`help(shlight.synth)`).
+#[pyfunction]
+#[pyo3(signature = (kind, size=None, *, layout="equirect".to_string(), up="y".to_string(),
+    mirror=false, color=[1.0, 1.0, 1.0], value=1.0, slope=0.5, direction=None, half_angle=None,
+    supersample=4, output=None, exposure=0.0, tone_map="clamp".to_string()))]
+pub fn synth<'py>(
+    py: Python<'py>,
+    kind: String,
+    size: Option<(usize, usize)>,
+    layout: String,
+    up: String,
+    mirror: bool,
+    color: [f64; 3],
+    value: f64,
+    slope: f64,
+    direction: Option<[f64; 3]>,
+    half_angle: Option<f64>,
+    supersample: u32,
+    output: Option<PathBuf>,
+    exposure: f32,
+    tone_map: String,
+) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let plan = SynthRequest {
+        kind: Spelling::Python
+            .parse("kind", &kind)
+            .map_err(pipeline_error)?,
+        size,
+        layout: Spelling::Python
+            .parse("layout", &layout)
+            .map_err(pipeline_error)?,
+        orientation: MapOrientation {
+            frame: frame_of(&up)?,
+            mirror,
+        },
+        color: DVec3::from_array(color),
+        value,
+        slope,
+        direction: direction.map(DVec3::from_array),
+        half_angle,
+        supersample,
+        exposure,
+        tone_map: Spelling::Python
+            .parse("tone_map", &tone_map)
+            .map_err(pipeline_error)?,
+    }
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
+    let hooks = PyHooks::new(false);
+    let image = py.detach(|| {
+        guard(|| {
+            match &output {
+                Some(path) => synth_job(path, &plan, &hooks),
+                None => synth_map(&plan, &hooks),
+            }
+            .map_err(pipeline_error)
+        })
+    });
+    warn_all(py, &hooks.warnings(), 1)?;
+    Ok(to_array(py, image?))
 }

@@ -11,6 +11,7 @@
 //! `shlight.ShlightError`).
 
 mod accuracy;
+mod convert;
 mod errors;
 mod guard;
 mod hooks;
@@ -40,8 +41,11 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::render, m)?)?;
+    m.add_function(wrap_pyfunction!(images::synth, m)?)?;
+    m.add_function(wrap_pyfunction!(convert::convert, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(accuracy::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(accuracy::accuracy_suite, m)?)?;
     m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add_function(wrap_pyfunction!(volume::bake_volume, m)?)?;
     m.add_function(wrap_pyfunction!(sample::sample, m)?)?;

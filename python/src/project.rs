@@ -7,8 +7,9 @@ use pyo3::prelude::*;
 use shlight_core::map::{CubeFaces, Layout, contiguous_pixels};
 use shlight_format::{CoeffFile, ExportFormat};
 use shlight_pipeline::{
-    CpuProjector, GLTF_SPECULAR_SIZE, PreviewOptions, ProjectRequest, Settings, Source as MapSource,
-    Spelling, StdoutForm, layout_for_size, project_each, project_files, project_with_warnings,
+    CpuProjector, GLTF_SPECULAR_SIZE, PreviewOptions, ProjectRequest, Settings,
+    Source as MapSource, Spelling, StdoutForm, layout_for_size, project_each, project_files,
+    project_with_warnings,
 };
 use shlight_specular::PrefilterSettings;
 

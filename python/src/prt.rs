@@ -9,8 +9,8 @@ use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
-use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
 use shlight_pipeline::{Shading, Silent, Spelling, transfer_radiance};
+use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
 use shlight_prt::glossy::View;
 use shlight_prt::transfer::Mode;
 
@@ -150,8 +150,15 @@ impl Transfer {
         };
         let (values, _) = py.detach(|| {
             guard(|| {
-                transfer_radiance(&self.file, None, &light, &shading, Spelling::Python, &Silent)
-                    .map_err(pipeline_error)
+                transfer_radiance(
+                    &self.file,
+                    None,
+                    &light,
+                    &shading,
+                    Spelling::Python,
+                    &Silent,
+                )
+                .map_err(pipeline_error)
             })
         })?;
         let flat: Vec<f64> = values.iter().flat_map(|v| v.to_array()).collect();

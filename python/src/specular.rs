@@ -98,5 +98,11 @@ pub fn dfg(
     }
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
-    py.detach(|| guard(|| dfg_job(&output, &plan, &Silent).map(|_| ()).map_err(pipeline_error)))
+    py.detach(|| {
+        guard(|| {
+            dfg_job(&output, &plan, &Silent)
+                .map(|_| ())
+                .map_err(pipeline_error)
+        })
+    })
 }

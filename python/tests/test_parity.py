@@ -157,3 +157,83 @@ def test_sample_refusals_are_the_clis_in_python_spelling(cli, tmp_path, baked):
     with pytest.raises(shlight.ShlightError) as e:
         shlight.sample(baked["transfer"], tmp_path / "x.json", light=baked["light"], env=SKY)
     assert str(e.value) == cli_error(err).replace("--env", "env").replace("--light", "light")
+
+
+def test_synth_writes_the_clis_map(cli, tmp_path):
+    flags = ["cap", "--size", "64x32", "--half-angle", "25", "--direction", "1,1,0", "--value", "3", "--up", "z"]
+    code, _, err = run_cli(cli, "synth", *flags, "-o", tmp_path / "cli.exr")
+    assert code == 0, err
+    image = shlight.synth(
+        "cap", (64, 32), half_angle=25, direction=(1, 1, 0), value=3, up="z", output=tmp_path / "py.exr"
+    )
+    assert (tmp_path / "py.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    assert (image == shlight.read_image(tmp_path / "cli.exr")).all()
+    with pytest.raises(shlight.ShlightError, match=r"^half_angle=120: .*at most 90 degrees"):
+        shlight.synth("directional", (16, 8), half_angle=120)
+
+
+def test_convert_writes_the_clis_files(cli, tmp_path, baked):
+    for name, flags, options in [
+        ("unity.json", ["--format", "unity"], {"format": "unity"}),
+        ("light.glsl", [], {}),
+    ]:
+        code, _, err = run_cli(cli, "convert", baked["light"], *flags, "-o", tmp_path / f"cli-{name}")
+        assert code == 0, err
+        shlight.convert(baked["light"], tmp_path / f"py-{name}", **options)
+        assert (tmp_path / f"py-{name}").read_bytes() == (tmp_path / f"cli-{name}").read_bytes(), name
+    code, out, err = run_cli(cli, "convert", baked["light"], "--format", "threejs")
+    assert code == 0, err
+    assert shlight.convert(baked["light"], format="threejs") == out
+    # A volume as three.js's grid and as a WGSL snippet with its textures.
+    code, _, err = run_cli(cli, "convert", baked["volume"], "--format", "threejs", "-o", tmp_path / "cli-grid.json")
+    assert code == 0, err
+    shlight.convert(baked["volume"], tmp_path / "py-grid.json", format="threejs")
+    assert (tmp_path / "py-grid.json").read_bytes() == (tmp_path / "cli-grid.json").read_bytes()
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "py").mkdir()
+    code, _, err = run_cli(cli, "convert", baked["volume"], "-o", tmp_path / "cli" / "box.wgsl")
+    assert code == 0, err
+    written = shlight.convert(baked["volume"], tmp_path / "py" / "box.wgsl")
+    assert len(written) >= 2
+    for path in written:
+        name = path.split("/")[-1]
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    with pytest.raises(shlight.ShlightError, match=r"writing to stdout needs format \(or give output\)"):
+        shlight.convert(baked["light"])
+
+
+def test_irradiance_writes_the_clis_files_and_errors(cli, tmp_path):
+    code, out, err = run_cli(
+        cli, "irradiance", SKY, "-o", tmp_path / "cli.exr", "--size", "32x16", "--encoding", "dominant+sh",
+        "--error-map", tmp_path / "cli-map.png",
+    )
+    assert code == 0, err
+    got = quietly(
+        shlight.irradiance, SKY, (32, 16), encoding="dominant+sh", output=tmp_path / "py.exr",
+        error_map=tmp_path / "py-map.png",
+    )
+    for cli_name, py_name in [
+        ("cli.exr", "py.exr"), ("cli-dominant+sh.exr", "py-dominant+sh.exr"),
+        ("cli-diff.exr", "py-diff.exr"), ("cli-map.png", "py-map.png"),
+    ]:
+        assert (tmp_path / py_name).read_bytes() == (tmp_path / cli_name).read_bytes(), py_name
+    # The summary is the CLI's, and its percentages are the dict's.
+    assert got["summary"] == out
+    assert f"max {100 * got['max_peak_relative']:.3f}%" in out
+    assert got["exact"].shape == got["estimate"].shape == (16, 32, 3)
+    with pytest.raises(shlight.ShlightError, match=r"^error_map needs sh or encoding"):
+        shlight.irradiance(SKY, error_map=tmp_path / "x.png")
+
+
+def test_compare_and_accuracy_write_the_clis_files(cli, tmp_path):
+    code, _, err = run_cli(cli, "compare", SKY, "--normals", "16x8", "-o", tmp_path / "cli")
+    assert code == 0, err
+    rows = quietly(shlight.compare, [SKY], (16, 8), output=tmp_path / "py")
+    for name in ["compare.json", "compare-sky.svg"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert rows[0]["map"] == "sky"
+    code, out, err = run_cli(cli, "accuracy", "--quick", "--json")
+    assert code == 0, err
+    import json
+
+    assert shlight.accuracy(quick=True) == json.loads(out)

@@ -111,7 +111,13 @@ pub use environment::Environment;
 pub use error::{PipelineError, Result, error_chain};
 pub use hooks::{Collected, Hooks, Progress, Silent, StageCounter};
 pub use input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
+pub use job::accuracy::{AccuracyOutcome, AccuracyRequest, accuracy};
+pub use job::compare::{ComparePlan, CompareRequest, compare};
+pub use job::convert::{ConvertPlan, ConvertRequest, Converted, convert};
 pub use job::dfg::{DfgPlan, DfgRequest, dfg, dfg_channels};
+pub use job::irradiance::{
+    ERROR_MAP_TOP, IrradiancePlan, IrradianceRequest, irradiance, summary as irradiance_summary,
+};
 pub use job::prefilter::{PrefilterOutput, PrefilterPlan, PrefilterRequest, prefilter};
 pub use job::project::{
     Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,

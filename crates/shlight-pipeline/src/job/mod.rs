@@ -9,7 +9,11 @@
 //! warnings and notes to [`crate::Hooks`]. Front ends only turn their
 //! arguments into the request, call, and show what comes back.
 
+pub mod accuracy;
+pub mod compare;
+pub mod convert;
 pub mod dfg;
+pub mod irradiance;
 pub mod prefilter;
 pub mod project;
 pub mod render;

@@ -394,8 +394,7 @@ pub fn write_coeff_file(
     match dest {
         Dest::Stdout => Ok(Some(out.text)),
         Dest::File(path) => {
-            shlight_io::write_atomically(path, |w| w.write_all(out.text.as_bytes()))
-                .map_err(|e| writing(path, &e))?;
+            write_text(path, &out.text)?;
             Ok(None)
         }
     }
@@ -408,4 +407,13 @@ fn writing(path: &Path, e: &shlight_io::IoError) -> PipelineError {
         path.display(),
         crate::error_chain(e)
     ))
+}
+
+/// Writes `text` to `path`, atomically.
+///
+/// # Errors
+/// The file cannot be written, naming it.
+pub(crate) fn write_text(path: &Path, text: &str) -> Result<()> {
+    shlight_io::write_atomically(path, |w| w.write_all(text.as_bytes()))
+        .map_err(|e| writing(path, &e))
 }
