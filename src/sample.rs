@@ -10,7 +10,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
 use shlight_pipeline::Environment;
-use shlight_prt::glossy::{View, file_shade};
+use shlight_prt::{View, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax};
 
 use crate::input::frame_of;
