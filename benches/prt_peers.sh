@@ -9,7 +9,7 @@
 # Installs Embree 4 from PyPI (the embreex wheel, as used by trimesh) into
 # target/peers/venv. What is timed (best of 3 each, the rays already in
 # memory):
-#   shlight   crates/shlight-prt/examples/prt_rays.rs: packets of eight
+#   shlight   crates/shlight-rays/examples/prt_rays.rs: packets of eight
 #             parallel rays (AVX2), occlusion and closest hits, on one
 #             thread and on all cores
 #   embree    rtcOccluded1 / rtcIntersect1 per ray (embreex's scene.run),
@@ -28,7 +28,7 @@ if ! "$DIR/venv/bin/python" -c "import embreex, numpy" 2>/dev/null; then
 fi
 
 echo "== shlight (writes $DIR/prt_rays.bin)"
-cargo run --release --quiet -p shlight-prt --example prt_rays -- "$DIR/prt_rays.bin"
+cargo run --release --quiet -p shlight-rays --example prt_rays -- "$DIR/prt_rays.bin"
 
 echo "== embree"
 "$DIR/venv/bin/python" - "$DIR/prt_rays.bin" <<'PY'

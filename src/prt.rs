@@ -15,12 +15,10 @@ use glam::DVec3;
 use shlight_format::ShprtFile;
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::Mesh;
-use shlight_prt::bake_file::{
-    BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
+use shlight_prt::{
+    Albedo, BakeRequest, Brdf, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES, Mode, Stage,
+    bake_file, bake_glossy_file, glossy_bytes, glossy_channels,
 };
-use shlight_prt::brdf::Brdf;
-use shlight_prt::glossy::{MAX_GLOSSY_BYTES, glossy_bytes, glossy_channels};
-use shlight_prt::transfer::{Albedo, Mode, Stage};
 
 use crate::progress::{StageBars, Ui};
 use crate::values::{parse_albedo, parse_size};
@@ -121,9 +119,9 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         (None, false) => None,
     };
     let compress = match (&args.compress, glossy) {
-        (Some(text), true) => Some(
-            shlight_prt::cpca::parse_cpca(text).map_err(|e| anyhow::anyhow!("--compress: {e}"))?,
-        ),
+        (Some(text), true) => {
+            Some(shlight_prt::parse_cpca(text).map_err(|e| anyhow::anyhow!("--compress: {e}"))?)
+        }
         (Some(_), false) => bail!("--compress compresses the matrices of --mode glossy"),
         (None, _) => None,
     };
@@ -209,7 +207,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
     if let (Some(out), Some(kind)) = (&args.output, output_kind) {
         match kind {
             Output::Shprt => file.write(out)?,
-            Output::Gltf => shlight_prt::gltf_export::write_gltf(out, &mesh, &file)?,
+            Output::Gltf => shlight_prt::write_gltf(out, &mesh, &file)?,
         }
     }
     if let (Some(path), Some(light)) = (&args.preview, &light) {
@@ -288,7 +286,7 @@ fn glossy_bake(
     ));
     if let Some((clusters, vectors)) = compress {
         let bar = ui.spinner("compressing (CPCA)");
-        let e = shlight_prt::cpca::compress_file(&mut file, clusters, vectors, args.seed)
+        let e = shlight_prt::compress_file(&mut file, clusters, vectors, args.seed)
             .map_err(|e| anyhow::anyhow!("--compress: {e}"))?;
         bar.finish_and_clear();
         ui.note(format!(
@@ -334,13 +332,17 @@ fn write_preview(
     light: &shlight_core::sh::ShCoeffs<DVec3>,
     args: &PrtArgs,
 ) -> Result<()> {
-    let radiance =
-        shlight_prt::transfer::exit_radiance(&file.transfer, file.lmax, file.channels, light);
+    let radiance: Vec<glam::Vec3> = file
+        .view()?
+        .exit_radiance(light.as_slice())
+        .iter()
+        .map(|c| c.as_vec3())
+        .collect();
     let (w, h) = args.preview_size;
-    let image = shlight_prt::preview::render(mesh, &radiance, w, h);
+    let image = shlight_prt::render_preview(mesh, &radiance, w, h);
     let exposure = args
         .preview_exposure
-        .unwrap_or_else(|| shlight_prt::preview::vertex_exposure(&radiance));
+        .unwrap_or_else(|| shlight_prt::vertex_exposure(&radiance));
     write_image(
         path,
         &image,

@@ -192,9 +192,9 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
     ));
 
     let bars = StageBars::new(ui, |stage| match stage {
-        Stage::Surface(shlight_prt::transfer::Stage::Rays) => "surface rays".to_string(),
-        Stage::Surface(shlight_prt::transfer::Stage::Bounce(k)) => format!("bounce {k}"),
-        Stage::Surface(shlight_prt::transfer::Stage::Matrices) => "matrices".to_string(),
+        Stage::Surface(shlight_prt::Stage::Rays) => "surface rays".to_string(),
+        Stage::Surface(shlight_prt::Stage::Bounce(k)) => format!("bounce {k}"),
+        Stage::Surface(shlight_prt::Stage::Matrices) => "matrices".to_string(),
         Stage::Relocate => "relocate".to_string(),
         Stage::Probes => "probes".to_string(),
     });

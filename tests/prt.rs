@@ -7,7 +7,7 @@ use glam::DVec3;
 use shlight_core::sh::closed_form;
 use shlight_format::ShprtFile;
 use shlight_mesh::generate;
-use shlight_prt::transfer::{Albedo, BakeOptions, Mode, bake};
+use shlight_prt::{Albedo, BakeOptions, Mode, bake};
 
 use crate::util::{s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows, write_obj};
 
@@ -67,8 +67,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
     // Half bowl, half sky from every point: L_o = rho L / (2 - rho) = 1/3
     // (6 bounces leave (rho/2)^7 ~ 6e-5 out; 512 directions err ~0.01).
     let light = closed_form::constant(4, DVec3::ONE);
-    for e in shlight_prt::transfer::exit_radiance(&file.transfer, file.lmax, file.channels, &light)
-    {
+    for e in file.view().unwrap().exit_radiance(light.as_slice()) {
         assert!((e.x - 1.0 / 3.0).abs() < 0.02, "{e}");
     }
     // The same command gives the same bytes.

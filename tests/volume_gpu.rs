@@ -375,11 +375,11 @@ const SPHERE_TOL: f64 = 1.5e-2;
 
 /// The mesh under `ray`: (which mesh, triangle, hit point, barycentrics).
 fn cast(
-    meshes: &[(&shlight_mesh::Mesh, &shlight_prt::bvh::Bvh)],
+    meshes: &[(&shlight_mesh::Mesh, &shlight_rays::Occluder)],
     origin: Vec3,
     dir: Vec3,
 ) -> Option<(usize, u32, Vec3, [f32; 3])> {
-    let ray = shlight_prt::bvh::Ray::new(origin, dir, f32::INFINITY);
+    let ray = shlight_rays::Ray::new(origin, dir, f32::INFINITY);
     meshes
         .iter()
         .enumerate()
@@ -407,7 +407,7 @@ struct PixelHit {
 /// What pixel `(i, j)`'s centre sees through `ray` (pixel coordinates to
 /// origin and direction); `None` when the ray meets nothing.
 fn pixel_hit(
-    meshes: &[(&shlight_mesh::Mesh, &shlight_prt::bvh::Bvh)],
+    meshes: &[(&shlight_mesh::Mesh, &shlight_rays::Occluder)],
     ray: impl Fn(f32, f32) -> (Vec3, Vec3),
     i: usize,
     j: usize,
@@ -530,8 +530,8 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
         *p = *p * scale + at;
     }
     let bvhs = [
-        shlight_prt::bvh::Bvh::new(&scene.positions, &scene.triangles),
-        shlight_prt::bvh::Bvh::new(&boxed.positions, &boxed.triangles),
+        shlight_rays::Occluder::new(&scene),
+        shlight_rays::Occluder::new(&boxed),
     ];
     let meshes = [(&scene, &bvhs[0]), (&boxed, &bvhs[1])];
     let camera = shlight_gpu::Camera::looking_at(eye, target, 1.0, 35f32.to_radians());
@@ -653,10 +653,7 @@ fn probe_spheres_show_their_own_probe_beside_an_interpolated_object() {
     for instance in &spheres {
         world.push(moved(&sphere, instance.offset_scale));
     }
-    let bvhs: Vec<_> = world
-        .iter()
-        .map(|m| shlight_prt::bvh::Bvh::new(&m.positions, &m.triangles))
-        .collect();
+    let bvhs: Vec<_> = world.iter().map(shlight_rays::Occluder::new).collect();
     let meshes: Vec<_> = world.iter().zip(&bvhs).collect();
     let (w, h) = (512usize, 256usize);
     let (eye, target) = (Vec3::new(1.0, 0.75, 6.5), Vec3::new(1.0, 0.75, 2.5));
@@ -1175,7 +1172,7 @@ fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
     // The pixels against the CPU's lookup, and what trilinear
     // interpolation would show there.
     let scene = shlight_mesh::load(&rooms).unwrap();
-    let bvh = shlight_prt::bvh::Bvh::new(&scene.positions, &scene.triangles);
+    let bvh = shlight_rays::Occluder::new(&scene);
     let meshes = [(&scene, &bvh)];
     let camera = shlight_gpu::Camera::looking_at(
         dark_eye,

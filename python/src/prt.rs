@@ -1,6 +1,6 @@
 //! `shlight.bake_transfer` and `shlight.Transfer`: precomputed radiance
 //! transfer of a mesh, baked by the library call `shlight prt` makes
-//! (`shlight_prt::bake_file::bake_file`), and its `.shprt` file.
+//! (`shlight_prt::bake_file`), and its `.shprt` file.
 
 use std::path::PathBuf;
 
@@ -10,9 +10,7 @@ use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_pipeline::{Shading, Silent, Spelling, transfer_radiance};
-use shlight_prt::bake_file::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file};
-use shlight_prt::glossy::View;
-use shlight_prt::transfer::Mode;
+use shlight_prt::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, Mode, View, bake_file};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
@@ -99,7 +97,7 @@ impl Transfer {
         let n = (f.lmax + 1) * (f.lmax + 1);
         let values = match &g.cpca {
             None => f.transfer.clone(),
-            Some(z) => shlight_prt::cpca::reconstruct_data(z, f.channels * n * n),
+            Some(z) => shlight_prt::reconstruct_data(z, f.channels * n * n),
         };
         Some(
             Array4::from_shape_vec((f.vertex_count, f.channels, n, n), values)

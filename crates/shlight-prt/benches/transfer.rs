@@ -11,7 +11,7 @@
 use divan::Bencher;
 use divan::counter::ItemsCount;
 use shlight_mesh::generate;
-use shlight_prt::transfer::{BakeOptions, Mode, bake};
+use shlight_prt::{BakeOptions, Mode, bake};
 
 fn main() {
     divan::main();
@@ -59,5 +59,5 @@ fn glossy_torus70k_lmax4_1024(bencher: Bencher, mode: &str) {
         },
         ..BakeOptions::default()
     };
-    bencher.bench(|| shlight_prt::glossy::bake_glossy(&mesh, &options, &|_, _, _| {}));
+    bencher.bench(|| shlight_prt::bake_glossy(&mesh, &options, &|_, _, _| {}));
 }

@@ -15,10 +15,7 @@ use std::path::{Path, PathBuf};
 
 use shlight_accuracy::plot::{Series, log_log_svg, write_svg};
 
-use shlight_prt::bake_file::{BakeRequest, bake_glossy_file};
-use shlight_prt::brdf::Brdf;
-use shlight_prt::cpca::compress_file;
-use shlight_prt::transfer::Mode;
+use shlight_prt::{BakeRequest, Brdf, Mode, bake_glossy_file, compress_file};
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");

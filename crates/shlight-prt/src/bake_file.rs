@@ -7,9 +7,11 @@ use std::path::Path;
 use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 
+use crate::bake::bake;
 use crate::brdf::Brdf;
 use crate::glossy::{GlossyTransfer, bake_glossy};
-use crate::transfer::{Albedo, BakeOptions, Mode, Stage, Transfer, bake};
+use crate::options::{Albedo, BakeOptions, Mode, Stage};
+use crate::transfer::Transfer;
 
 /// The albedo of a mesh without vertex colours baked with no albedo given.
 pub const DEFAULT_ALBEDO: [f32; 3] = [0.8; 3];

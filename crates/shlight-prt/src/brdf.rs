@@ -1,31 +1,32 @@
 //! [`Brdf`]: the glossy lobe that turns a vertex's transferred radiance
-//! into view-dependent exit radiance ([`crate::glossy`]).
-//!
-//! `phong:S` is the normalised Phong lobe about the mirror direction `R`,
-//! `k(t) = (S+1)/(2 pi) max(t, 0)^S` with `t = R.w`: a rotationally
-//! symmetric kernel, so convolving the transferred radiance with it scales
-//! band `l` by the zonal coefficient
-//! `Lambda_l = 2 pi int_{-1}^{1} k(t) P_l(t) dt` (Funk-Hecke;
-//! `Lambda_0 = 1`, `Lambda_1 = (S+1)/(S+2)`, `Lambda_2 = S/(S+3)`), the
-//! eigenvalues of shlight-core's `ZonalKernel::phong` (Sloan, Kautz &
-//! Snyder 2002, §5; Ramamoorthi & Hanrahan 2002).
-//!
-//! `ggx:ALPHA[,F0]` is the Cook-Torrance microfacet BRDF with the GGX
-//! distribution of linear roughness `ALPHA`, Smith's height-correlated
-//! masking and Schlick's Fresnel of reflectance `F0` at normal incidence
-//! (1 when not given), clipped to the hemisphere and weighted by the
-//! cosine: not a lobe about `R`, so it is projected onto SH per view
-//! elevation and tabulated ([`crate::ggx_lobe`] states the definition).
+//! into view-dependent exit radiance ([`crate::GlossyTransfer`]); the
+//! lobes are stated on [`Brdf`].
 
 use shlight_core::sh::ZonalKernel;
 
-use crate::ggx_lobe::{GgxLobe, MIN_ALPHA};
+use crate::ggx_lobe::{GgxLobe, MIN_GGX_ALPHA};
 
 /// The largest Phong exponent taken: beyond it the lobe is a mirror to
 /// any lmax a bake holds (`Lambda_l` within `l^2 / S` of 1).
 pub const MAX_PHONG_EXPONENT: f64 = 1e6;
 
 /// A glossy BRDF, as `--brdf` names it.
+///
+/// `phong:S` is the normalised Phong lobe about the mirror direction `R`,
+/// `k(t) = (S+1)/(2 pi) max(t, 0)^S` with `t = R.w`: a rotationally
+/// symmetric kernel, so convolving the transferred radiance with it scales
+/// band `l` by the zonal coefficient
+/// `Lambda_l = 2 pi int_{-1}^{1} k(t) P_l(t) dt` (Funk-Hecke;
+/// `Lambda_0 = 1`, `Lambda_1 = (S+1)/(S+2)`, `Lambda_2 = S/(S+3)`), the
+/// eigenvalues of shlight-core's `ZonalKernel::phong` (Sloan, Kautz &
+/// Snyder 2002, §5; Ramamoorthi & Hanrahan 2002).
+///
+/// `ggx:ALPHA[,F0]` is the Cook-Torrance microfacet BRDF with the GGX
+/// distribution of linear roughness `ALPHA`, Smith's height-correlated
+/// masking and Schlick's Fresnel of reflectance `F0` at normal incidence
+/// (1 when not given), clipped to the hemisphere and weighted by the
+/// cosine: not a lobe about `R`, so it is projected onto SH per view
+/// elevation and tabulated ([`GgxLobe`] states the definition).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Brdf {
@@ -37,7 +38,7 @@ pub enum Brdf {
     },
     /// The GGX microfacet BRDF (`ggx:ALPHA` or `ggx:ALPHA,F0`).
     Ggx {
-        /// Linear roughness, from [`MIN_ALPHA`] to 1.
+        /// Linear roughness, from [`MIN_GGX_ALPHA`] to 1.
         alpha: f64,
         /// Schlick's Fresnel reflectance at normal incidence, 0 to 1 (1:
         /// no Fresnel).
@@ -49,7 +50,7 @@ pub enum Brdf {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Lobe {
     /// A lobe about the mirror direction: its zonal coefficients
-    /// `Lambda_l`, `l = 0..=lmax` ([`crate::glossy`]).
+    /// `Lambda_l`, `l = 0..=lmax` ([`Brdf`] states them).
     Zonal(Vec<f64>),
     /// A BRDF tabulated per view elevation ([`GgxLobe`]).
     Ggx(GgxLobe),
@@ -59,7 +60,7 @@ const NAMES: &str = "shlight bakes phong:S (e.g. phong:32) and ggx:ALPHA[,F0] (e
 
 impl Brdf {
     /// Parses `phong:S` (`S` a number from 0 to [`MAX_PHONG_EXPONENT`])
-    /// or `ggx:ALPHA[,F0]` (`ALPHA` from [`MIN_ALPHA`] to 1, `F0` from 0
+    /// or `ggx:ALPHA[,F0]` (`ALPHA` from [`MIN_GGX_ALPHA`] to 1, `F0` from 0
     /// to 1).
     ///
     /// # Errors
@@ -88,9 +89,9 @@ impl Brdf {
                 let alpha: f64 = alpha.trim().parse().map_err(|_| {
                     format!("BRDF \"{text}\": the GGX roughness \"{alpha}\" is not a number")
                 })?;
-                if !(MIN_ALPHA..=1.0).contains(&alpha) {
+                if !(MIN_GGX_ALPHA..=1.0).contains(&alpha) {
                     return Err(format!(
-                        "BRDF \"{text}\": the GGX roughness alpha must be from {MIN_ALPHA} to 1"
+                        "BRDF \"{text}\": the GGX roughness alpha must be from {MIN_GGX_ALPHA} to 1"
                     ));
                 }
                 let f0 = match f0 {

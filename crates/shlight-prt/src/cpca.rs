@@ -1,29 +1,7 @@
 //! Clustered principal component analysis (CPCA) of glossy transfer
 //! matrices (Sloan, Hall, Hart & Snyder 2003), the compression a glossy
-//! bake's matrices are meant to be stored and shaded in.
-//!
-//! Each vertex's matrix, flattened to a vector `x_p` of `dim` values, is
-//! approximated as its cluster's mean plus `K` weighted basis vectors:
-//!
-//! ```text
-//! x_p ~ m_c + sum_k w_pk b_ck,   c = cluster(p),   w_pk = (x_p - m_c) . b_ck
-//! ```
-//!
-//! with the `b_ck` orthonormal: a renderer computes `m_c L` and `b_ck L`
-//! once per cluster and light, and each vertex sums `K + 1` of them. This is
-//! the paper's static CPCA: clusters by k-means (Lloyd's iteration, from
-//! the vertices `i n / C` as seeds, until no vertex changes cluster or 16
-//! passes), then per cluster the `K` leading principal directions of its
-//! members by subspace iteration (`X^T X V`, orthonormalised, from a seeded
-//! start; exact once `K` reaches the cluster's rank, since `X^T X V` then
-//! spans every direction the members take), all sums in `f64`.
-//!
-//! With `C` the vertex count, or `K` at least each cluster's member count
-//! (or `dim`), the matrices are reproduced but for `f32` rounding.
-//!
-//! [`compress_file`] compresses a glossy `.shprt` file's matrices in place
-//! (`shlight prt --compress cpca:C,K`); the file then keeps the means, bases,
-//! cluster indices and weights (docs/shprt.md).
+//! bake's matrices are meant to be stored and shaded in ([`Cpca`] states
+//! the method).
 
 use rand::{Rng, SeedableRng, rngs::StdRng};
 use rayon::prelude::*;
@@ -35,6 +13,29 @@ const KMEANS_PASSES: usize = 16;
 const SUBSPACE_PASSES: usize = 24;
 
 /// A CPCA of `n` vectors of `dim` values.
+///
+/// Each vertex's matrix, flattened to a vector `x_p` of `dim` values, is
+/// approximated as its cluster's mean plus `K` weighted basis vectors:
+///
+/// ```text
+/// x_p ~ m_c + sum_k w_pk b_ck,   c = cluster(p),   w_pk = (x_p - m_c) . b_ck
+/// ```
+///
+/// with the `b_ck` orthonormal: a renderer computes `m_c L` and `b_ck L`
+/// once per cluster and light, and each vertex sums `K + 1` of them. This is
+/// the paper's static CPCA: clusters by k-means (Lloyd's iteration, from
+/// the vertices `i n / C` as seeds, until no vertex changes cluster or 16
+/// passes), then per cluster the `K` leading principal directions of its
+/// members by subspace iteration (`X^T X V`, orthonormalised, from a seeded
+/// start; exact once `K` reaches the cluster's rank, since `X^T X V` then
+/// spans every direction the members take), all sums in `f64`.
+///
+/// With `C` the vertex count, or `K` at least each cluster's member count
+/// (or `dim`), the matrices are reproduced but for `f32` rounding.
+///
+/// [`compress_file`] compresses a glossy `.shprt` file's matrices in place
+/// (`shlight prt --compress cpca:C,K`); the file then keeps the means, bases,
+/// cluster indices and weights (docs/shprt.md).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cpca {
     /// Values per vector.

@@ -2,76 +2,8 @@
 //! direction and tabulated over the view's elevation (Kautz, Sloan &
 //! Snyder 2002, "Fast, Arbitrary BRDF Shading for Low-Frequency Lighting
 //! Using Spherical Harmonics"), what `--brdf ggx:ALPHA[,F0]` shades
-//! glossy transfer with.
-//!
-//! # Definition
-//!
-//! At a vertex with unit normal `n`, seen from the unit direction `w_o`
-//! (from the vertex to the eye) with `mu_o = n.w_o > 0`, the exit radiance
-//! of the transferred radiance `T(w) = sum_lm T_lm Y_lm(w)` is
-//!
-//! ```text
-//! L_o = int_{n.w > 0} T(w) f(w_o, w) (n.w) dw
-//! f(w_o, w_i) = D(h) F(w_o.h) V(mu_o, mu_i),   h = (w_o + w_i) / |w_o + w_i|
-//! ```
-//!
-//! with `D` the GGX distribution of linear roughness `alpha`
-//! (`alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2)`), `V = G_2 / (4 mu_o
-//! mu_i)` with `G_2` Smith's height-correlated masking-shadowing (Heitz
-//! 2014, eq. 99; `shlight_specular::Visibility::HeightCorrelated`), and
-//! `F` Schlick's Fresnel `F0 + (1 - F0) (1 - w_o.h)^5` (`F0 = 1` when the
-//! BRDF string gives none: `F = 1`, a white conductor). `L_o = 0` where
-//! `mu_o <= 0` (a view from below the surface).
-//!
-//! Because `T` is band-limited to lmax, the integral is exactly the dot
-//! product of `T` with the projection of `f (n.w)` onto SH to lmax: in the
-//! vertex's local frame (`z` the normal, `x` along the tangential part of
-//! `w_o`, `y = z x x`), `L_o = sum_lm B_lm(theta_o) T'_lm`, with
-//! `T' = T` rotated into that frame ([`shlight_core::sh::ShRotation`]) and
-//! `B_lm(theta_o) = int f(w_o, w) (n.w) Y_lm(w) dw` for
-//! `w_o = (sin theta_o, 0, cos theta_o)`. An isotropic BRDF is symmetric
-//! about the plane of `n` and `w_o`, so `B_lm = 0` for `m < 0` (to
-//! rounding).
-//!
-//! # Table
-//!
-//! `B` is computed at [`ELEVATIONS`] view elevations
-//! `theta_k = pi/2 sin(pi/2 k/(K-1))`, closer together towards grazing
-//! where the BRDF changes fastest, and interpolated in
-//! `t = 2/pi asin(2 theta_o / pi)` by Catmull-Rom splines (at `t = 0`,
-//! an odd function of `theta`, the point below is the mirror image,
-//! `B_lm(-theta) = s_lm B_lm(theta)`
-//! with `s_lm = (-1)^m` for `m >= 0` and `-(-1)^m` for `m < 0`; at `pi/2`
-//! the point beyond is extrapolated linearly). Each entry integrates over
-//! GGX's half-vector sampling map (`shlight_specular::sample_ggx_half`:
-//! `phi_h = 2 pi u_x`, `cos^2 theta_h = (1 - u_y) / (1 + (alpha^2 - 1)
-//! u_y)`, density `D(h) (n.h)`), where
-//! `B_lm = int int 4 V F mu_i (w_o.h) / (n.h) Y_lm(w_i) du_x du_y` with
-//! `w_i = 2 (w_o.h) h - w_o`. The reflection is above the surface for
-//! `theta_h < delta/2 + pi/4`, `tan delta = sin theta_o cos phi_h / cos
-//! theta_o` (as `mu_i = cos theta_o cos 2 theta_h + sin theta_o cos phi_h
-//! sin 2 theta_h`), so each azimuth integrates exactly that range; the
-//! azimuths are [`QUADRATURE_AZIMUTH`]-point Gauss-Legendre over each
-//! quarter turn, split where `cos phi_h = 0` (there, at grazing views, the
-//! cut swings within about `mu_o` of it); the elevations are
-//! [`QUADRATURE_ELEVATION`]-point Gauss-Legendre in `s = sqrt(1 - u_y)`
-//! (`cos theta_h = s / sqrt(alpha^2 + (1 - alpha^2) s^2)`, smooth where
-//! the lobe's tail is steep in `u_y`). Accumulated in `f64`.
-//!
-//! # Without the rotation: directions in the vertex's frame
-//!
-//! The GPU evaluates the same sum without rotating `T`
-//! ([`GgxLobe::direction_table`]). In the local frame, `K = lmax + 1`
-//! fixed directions `d_k = (sin psi_k, 0, cos psi_k)`, `psi_k = pi (k +
-//! 1/2) / K`, lie in the plane of symmetry, where every `Y_lm` with
-//! `m < 0` vanishes. For each band `l` and elevation the weights `w_lk`
-//! with `sum_k w_lk Y_lm(d_k) = B_lm` (`m = 0..l`; the least-norm solution
-//! of `l + 1` equations in `K` unknowns) give
-//! `sum_m B_lm T'_lm = sum_k w_lk T_l(F d_k)`, where `T_l(d) = sum_m T_lm
-//! Y_lm(d)` is band `l` of the transferred radiance at the world direction
-//! `F d_k` (`F` the vertex's frame): `K` evaluations of `T`'s bands per
-//! vertex instead of a rotation. The weights are linear in `B`, so
-//! interpolating them is interpolating `B`.
+//! glossy transfer with. The definition, the table and the directions are
+//! stated on [`GgxLobe`].
 
 use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
@@ -81,32 +13,103 @@ use shlight_core::sh::{ShBasis, ShCoeffs, gauss_legendre, lm_from_index, rotate_
 use shlight_specular::Visibility;
 
 /// View elevations tabulated, from `0` to `pi/2`.
-pub const ELEVATIONS: usize = 96;
+pub(crate) const ELEVATIONS: usize = 96;
 
 /// Gauss-Legendre nodes per quarter turn of half-vector azimuth.
-pub const QUADRATURE_AZIMUTH: usize = 24;
+pub(crate) const QUADRATURE_AZIMUTH: usize = 24;
 
 /// Gauss-Legendre nodes per azimuth over the half vectors whose
 /// reflection is above the surface.
-pub const QUADRATURE_ELEVATION: usize = 48;
+pub(crate) const QUADRATURE_ELEVATION: usize = 48;
 
 /// The smallest roughness taken: below it the lobe is a mirror to any
 /// lmax a bake holds.
-pub const MIN_ALPHA: f64 = 1e-3;
+pub const MIN_GGX_ALPHA: f64 = 1e-3;
 
-/// The GGX BRDF's SH projection per view elevation, to one lmax.
+/// The GGX BRDF's SH projection per view elevation, to one lmax, what
+/// `--brdf ggx:ALPHA[,F0]` shades glossy transfer with (Kautz, Sloan &
+/// Snyder 2002).
+///
+/// # Definition
+///
+/// At a vertex with unit normal `n`, seen from the unit direction `w_o`
+/// (from the vertex to the eye) with `mu_o = n.w_o > 0`, the exit radiance
+/// of the transferred radiance `T(w) = sum_lm T_lm Y_lm(w)` is
+///
+/// ```text
+/// L_o = int_{n.w > 0} T(w) f(w_o, w) (n.w) dw
+/// f(w_o, w_i) = D(h) F(w_o.h) V(mu_o, mu_i),   h = (w_o + w_i) / |w_o + w_i|
+/// ```
+///
+/// with `D` the GGX distribution of linear roughness `alpha`
+/// (`alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2)`), `V = G_2 / (4 mu_o
+/// mu_i)` with `G_2` Smith's height-correlated masking-shadowing (Heitz
+/// 2014, eq. 99; `shlight_specular::Visibility::HeightCorrelated`), and
+/// `F` Schlick's Fresnel `F0 + (1 - F0) (1 - w_o.h)^5` (`F0 = 1` when the
+/// BRDF string gives none: `F = 1`, a white conductor). `L_o = 0` where
+/// `mu_o <= 0` (a view from below the surface).
+///
+/// Because `T` is band-limited to lmax, the integral is exactly the dot
+/// product of `T` with the projection of `f (n.w)` onto SH to lmax: in the
+/// vertex's local frame (`z` the normal, `x` along the tangential part of
+/// `w_o`, `y = z x x`), `L_o = sum_lm B_lm(theta_o) T'_lm`, with
+/// `T' = T` rotated into that frame ([`shlight_core::sh::ShRotation`]) and
+/// `B_lm(theta_o) = int f(w_o, w) (n.w) Y_lm(w) dw` for
+/// `w_o = (sin theta_o, 0, cos theta_o)`. An isotropic BRDF is symmetric
+/// about the plane of `n` and `w_o`, so `B_lm = 0` for `m < 0` (to
+/// rounding).
+///
+/// # Table
+///
+/// `B` is computed at `ELEVATIONS` (96) view elevations
+/// `theta_k = pi/2 sin(pi/2 k/(K-1))`, closer together towards grazing
+/// where the BRDF changes fastest, and interpolated in
+/// `t = 2/pi asin(2 theta_o / pi)` by Catmull-Rom splines (at `t = 0`,
+/// an odd function of `theta`, the point below is the mirror image,
+/// `B_lm(-theta) = s_lm B_lm(theta)`
+/// with `s_lm = (-1)^m` for `m >= 0` and `-(-1)^m` for `m < 0`; at `pi/2`
+/// the point beyond is extrapolated linearly). Each entry integrates over
+/// GGX's half-vector sampling map (`shlight_specular::sample_ggx_half`:
+/// `phi_h = 2 pi u_x`, `cos^2 theta_h = (1 - u_y) / (1 + (alpha^2 - 1)
+/// u_y)`, density `D(h) (n.h)`), where
+/// `B_lm = int int 4 V F mu_i (w_o.h) / (n.h) Y_lm(w_i) du_x du_y` with
+/// `w_i = 2 (w_o.h) h - w_o`. The reflection is above the surface for
+/// `theta_h < delta/2 + pi/4`, `tan delta = sin theta_o cos phi_h / cos
+/// theta_o` (as `mu_i = cos theta_o cos 2 theta_h + sin theta_o cos phi_h
+/// sin 2 theta_h`), so each azimuth integrates exactly that range; the
+/// azimuths are `QUADRATURE_AZIMUTH`-point (24) Gauss-Legendre over each
+/// quarter turn, split where `cos phi_h = 0` (there, at grazing views, the
+/// cut swings within about `mu_o` of it); the elevations are
+/// `QUADRATURE_ELEVATION`-point (48) Gauss-Legendre in `s = sqrt(1 - u_y)`
+/// (`cos theta_h = s / sqrt(alpha^2 + (1 - alpha^2) s^2)`, smooth where
+/// the lobe's tail is steep in `u_y`). Accumulated in `f64`.
+///
+/// # Without the rotation: directions in the vertex's frame
+///
+/// The GPU evaluates the same sum without rotating `T`
+/// ([`GgxLobe::direction_table`]). In the local frame, `K = lmax + 1`
+/// fixed directions `d_k = (sin psi_k, 0, cos psi_k)`, `psi_k = pi (k +
+/// 1/2) / K`, lie in the plane of symmetry, where every `Y_lm` with
+/// `m < 0` vanishes. For each band `l` and elevation the weights `w_lk`
+/// with `sum_k w_lk Y_lm(d_k) = B_lm` (`m = 0..l`; the least-norm solution
+/// of `l + 1` equations in `K` unknowns) give
+/// `sum_m B_lm T'_lm = sum_k w_lk T_l(F d_k)`, where `T_l(d) = sum_m T_lm
+/// Y_lm(d)` is band `l` of the transferred radiance at the world direction
+/// `F d_k` (`F` the vertex's frame): `K` evaluations of `T`'s bands per
+/// vertex instead of a rotation. The weights are linear in `B`, so
+/// interpolating them is interpolating `B`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GgxLobe {
     lmax: usize,
     /// `ELEVATIONS + 2` rows of `(lmax+1)^2` coefficients: row `k + 1`
     /// `B_lm(theta_k)`, row 0 and the last the splines' end points (the
     /// mirror image below `theta = 0`, the linear extrapolation beyond
-    /// `pi/2`; [module docs](self)).
+    /// `pi/2`; [`GgxLobe`]).
     table: Vec<f64>,
 }
 
 impl GgxLobe {
-    /// Tabulates the lobe of linear roughness `alpha` (from [`MIN_ALPHA`]
+    /// Tabulates the lobe of linear roughness `alpha` (from [`MIN_GGX_ALPHA`]
     /// to 1) and Fresnel reflectance at normal incidence `f0` (0 to 1) to
     /// `lmax` (the elevations in parallel).
     ///
@@ -115,7 +118,7 @@ impl GgxLobe {
     #[must_use]
     pub fn new(lmax: usize, alpha: f64, f0: f64) -> Self {
         assert!(
-            (MIN_ALPHA..=1.0).contains(&alpha) && (0.0..=1.0).contains(&f0),
+            (MIN_GGX_ALPHA..=1.0).contains(&alpha) && (0.0..=1.0).contains(&f0),
             "GGX alpha {alpha}, F0 {f0}"
         );
         let nc = sh_count(lmax);
@@ -177,7 +180,7 @@ impl GgxLobe {
     /// The exit radiance `sum_lm B_lm(theta_o) T'_lm` at a vertex with
     /// unit normal `n` seen from the unit direction `w_o`, `t` its
     /// transferred radiance in the global frame (`(lmax+1)^2` RGB
-    /// coefficients; [module docs](self)). `b` is scratch of
+    /// coefficients; [`GgxLobe`]). `b` is scratch of
     /// `(lmax+1)^2` values.
     ///
     /// # Panics
@@ -207,7 +210,7 @@ impl GgxLobe {
             .sum()
     }
 
-    /// The table of direction weights `w_lk` ([module docs](self)) the
+    /// The table of direction weights `w_lk` ([`GgxLobe`]) the
     /// GPU reads, `f32`: `ELEVATIONS + 2` rows (row `r + 1` the elevation
     /// `theta_r`; row 0 and the last the points below `theta = 0` and
     /// beyond `pi/2` that [`GgxLobe::projection`]'s splines use), each of
@@ -338,7 +341,7 @@ fn mirror_sign(i: usize) -> f64 {
 }
 
 /// `B_lm(theta_o)` by the product rule over the half-vector sampling map
-/// ([module docs](self)).
+/// ([`GgxLobe`]).
 fn project(lmax: usize, alpha: f64, f0: f64, theta_o: f64) -> Vec<f64> {
     let nc = sh_count(lmax);
     let basis = ShBasis::<f64>::new(lmax);

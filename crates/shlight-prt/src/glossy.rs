@@ -1,53 +1,6 @@
 //! Glossy transfer matrices (Sloan, Kautz & Snyder 2002, §5).
-//!
-//! For a vertex at `p` with unit normal `n`, under distant radiance
-//! `L(w) = sum_j L_j Y_j(w)`, the *transferred radiance* (the light arriving
-//! at `p` after shadows and interreflections) is `T_p = M_p L`, with `M_p`
-//! the `(lmax+1)^2 x (lmax+1)^2` matrix
-//!
-//! ```text
-//! M_p,ij = int Y_i(w) V_p(w) Y_j(w) dw                       (shadowed)
-//!        + int Y_i(w) (1 - V_p(w)) T^{B-1}_j(q(p, w)) dw      (with B = --bounces > 0)
-//! ```
-//!
-//! in the global frame (turning the light is turning `L`), one matrix per
-//! colour channel where the albedo is coloured and there are bounces (the
-//! bounce light is the only place the albedo enters; otherwise one). `V_p`
-//! is 1 where the ray from `p` along `w` escapes the mesh and 0 where it
-//! meets it or where `w` is below the tangent plane (`n.w <= 0`: the
-//! surface itself). `q(p, w)` is the point the ray meets, and
-//! `T^{B-1}(q)` its diffuse transfer vector ([`crate::transfer`]: shadowed,
-//! with `B - 1` bounces, albedo over pi folded in; barycentric
-//! interpolation of its triangle's vertices), so `T^{B-1}(q) . L` is the
-//! radiance the diffuse mesh sends from `q` towards `p`: light that reached
-//! `p` after 1 to `B` diffuse bounces. A ray meeting the back of a triangle
-//! brings nothing. Unshadowed, `V_p = 1` everywhere (the whole sphere) and
-//! `M_p` is the identity but for sampling error.
-//!
-//! Exit radiance towards the unit view direction `w_o` (from `p` to the
-//! eye) for a [`Brdf`] with zonal coefficients `Lambda_l`:
-//!
-//! ```text
-//! L_o = sum_lm Lambda_l T_p,lm Y_lm(R),   R = 2 (n.w_o) n - w_o
-//! ```
-//!
-//! the transferred radiance convolved with the lobe about the mirror
-//! direction `R` ([`crate::brdf`]). Nothing is clamped: a view from below
-//! the surface gives the formula's value.
-//!
-//! For `ggx:ALPHA[,F0]`, not a lobe about `R`, the exit radiance is the
-//! transferred radiance integrated against the BRDF times the cosine over
-//! the hemisphere, through the BRDF's projection tabulated per view
-//! elevation ([`crate::ggx_lobe`] states it); 0 for a view from below.
-//!
-//! # Estimator
-//!
-//! The diffuse bake's seeded stratified directions `s_j` (equal solid
-//! angles `4 pi / N`, [`crate::transfer`]), its ray origins and its rays:
-//! `M_p ~ 4 pi / N sum_j Y(s_j) (V_j Y(s_j) + (1 - V_j) T^{B-1}(q_j))^T`,
-//! summed per vertex in `f64` (the visible part's symmetric half only),
-//! stored as `f32`, vertices in parallel, the same bit for bit at any
-//! thread count.
+//! [`GlossyTransfer`] states the matrices and their exit radiance;
+//! [`bake_glossy`] the estimator.
 
 use core::f64::consts::PI;
 
@@ -61,8 +14,9 @@ use shlight_format::{GlossyData, ShprtFile};
 use shlight_mesh::Mesh;
 
 use crate::brdf::{Brdf, Lobe};
+use crate::cast::Cast;
+use crate::options::{BakeOptions, Mode, Stage};
 use crate::records::Kernels;
-use crate::transfer::{BakeOptions, Cast, Mode, Stage};
 
 /// The most bytes a glossy bake's matrices may take (the file's data, and
 /// the bake's memory for them): 4 GiB.
@@ -71,7 +25,48 @@ pub const MAX_GLOSSY_BYTES: u64 = 4 << 30;
 /// Vertices per task of the matrices' sums.
 const CHUNK: usize = 64;
 
-/// Per-vertex glossy transfer matrices and what produced them.
+/// Per-vertex glossy transfer matrices (Sloan, Kautz & Snyder 2002, §5)
+/// and what produced them.
+///
+/// For a vertex at `p` with unit normal `n`, under distant radiance
+/// `L(w) = sum_j L_j Y_j(w)`, the *transferred radiance* (the light arriving
+/// at `p` after shadows and interreflections) is `T_p = M_p L`, with `M_p`
+/// the `(lmax+1)^2 x (lmax+1)^2` matrix
+///
+/// ```text
+/// M_p,ij = int Y_i(w) V_p(w) Y_j(w) dw                       (shadowed)
+///        + int Y_i(w) (1 - V_p(w)) T^{B-1}_j(q(p, w)) dw      (with B = --bounces > 0)
+/// ```
+///
+/// in the global frame (turning the light is turning `L`), one matrix per
+/// colour channel where the albedo is coloured and there are bounces (the
+/// bounce light is the only place the albedo enters; otherwise one). `V_p`
+/// is 1 where the ray from `p` along `w` escapes the mesh and 0 where it
+/// meets it or where `w` is below the tangent plane (`n.w <= 0`: the
+/// surface itself). `q(p, w)` is the point the ray meets, and
+/// `T^{B-1}(q)` its diffuse transfer vector ([`crate::Transfer`]: shadowed,
+/// with `B - 1` bounces, albedo over pi folded in; barycentric
+/// interpolation of its triangle's vertices), so `T^{B-1}(q) . L` is the
+/// radiance the diffuse mesh sends from `q` towards `p`: light that reached
+/// `p` after 1 to `B` diffuse bounces. A ray meeting the back of a triangle
+/// brings nothing. Unshadowed, `V_p = 1` everywhere (the whole sphere) and
+/// `M_p` is the identity but for sampling error.
+///
+/// Exit radiance towards the unit view direction `w_o` (from `p` to the
+/// eye) for a [`Brdf`] with zonal coefficients `Lambda_l`:
+///
+/// ```text
+/// L_o = sum_lm Lambda_l T_p,lm Y_lm(R),   R = 2 (n.w_o) n - w_o
+/// ```
+///
+/// the transferred radiance convolved with the lobe about the mirror
+/// direction `R` ([`Brdf`]). Nothing is clamped: a view from below
+/// the surface gives the formula's value.
+///
+/// For `ggx:ALPHA[,F0]`, not a lobe about `R`, the exit radiance is the
+/// transferred radiance integrated against the BRDF times the cosine over
+/// the hemisphere, through the BRDF's projection tabulated per view
+/// elevation ([`crate::GgxLobe`] states it); 0 for a view from below.
 #[derive(Clone, Debug)]
 pub struct GlossyTransfer {
     /// Highest SH degree.
@@ -122,9 +117,18 @@ pub fn glossy_bytes(vertex_count: usize, channels: usize, lmax: usize) -> Option
 /// `options.mode` the transport ([`Mode::Unshadowed`], [`Mode::Shadowed`],
 /// [`Mode::Interreflected`] with `B` bounces: the matrices' light after 1
 /// to `B` diffuse bounces). The emission is not part of glossy transfer
-/// and is ignored.
+/// and is ignored. [`GlossyTransfer`] states what the matrices are.
 ///
-/// `progress` as [`crate::transfer::bake`]'s, with [`Stage::Matrices`] in
+/// # Estimator
+///
+/// The diffuse bake's seeded stratified directions `s_j` (equal solid
+/// angles `4 pi / N`, [`crate::bake`]), its ray origins and its rays:
+/// `M_p ~ 4 pi / N sum_j Y(s_j) (V_j Y(s_j) + (1 - V_j) T^{B-1}(q_j))^T`,
+/// summed per vertex in `f64` (the visible part's symmetric half only),
+/// stored as `f32`, vertices in parallel, the same bit for bit at any
+/// thread count.
+///
+/// `progress` as [`crate::bake`]'s, with [`Stage::Matrices`] in
 /// vertices.
 ///
 /// # Panics
@@ -302,7 +306,7 @@ impl GlossyTransfer {
     }
 
     /// Exit radiance per vertex of `mesh` (the baked one) under `light`
-    /// seen from `view`, for `brdf` ([`exit_radiance`]).
+    /// seen from `view`, for `brdf` ([`glossy_exit_radiance`]).
     #[must_use]
     pub fn exit_radiance(
         &self,
@@ -311,7 +315,7 @@ impl GlossyTransfer {
         light: &[DVec3],
         view: View,
     ) -> Vec<DVec3> {
-        exit_radiance(
+        glossy_exit_radiance(
             &self.matrices,
             self.lmax,
             self.channels,
@@ -354,15 +358,15 @@ impl View {
 /// lmax (missing ones count as 0). `matrices` as
 /// [`GlossyTransfer::matrices`], `lobe` the BRDF's to lmax
 /// ([`Brdf::lobe`]; for GGX its tabulated projection instead of `Lambda_l`,
-/// [`crate::ggx_lobe`]).
-/// The glossy layer alone: [`shade`] with no diffuse base.
+/// [`crate::GgxLobe`]).
+/// The glossy layer alone: [`glossy_shade`] with no diffuse base.
 ///
 /// # Panics
 /// If the slices' lengths do not fit `lmax`, `channels` and the vertex
 /// count of `positions`.
 #[allow(clippy::too_many_arguments)]
 #[must_use]
-pub fn exit_radiance(
+pub fn glossy_exit_radiance(
     matrices: &[f32],
     lmax: usize,
     channels: usize,
@@ -379,7 +383,7 @@ pub fn exit_radiance(
         GlossyMatrices::Full(Cow::Borrowed(matrices)),
     )
     .expect("matrices of the vertices' count");
-    shade(
+    glossy_shade(
         &matrices,
         &matrices.transferred(light),
         positions,
@@ -406,12 +410,12 @@ pub fn exit_radiance(
 /// base is Lambertian under the transferred radiance, shadows and bounces
 /// included) and `Lambda_l` the lobe's ([`Lobe::Zonal`], to lmax). For a
 /// [`Lobe::Ggx`] (to at least the matrices' lmax) the glossy layer is
-/// instead [`crate::ggx_lobe::GgxLobe::exit_radiance`]. Sums in `f64`.
+/// instead [`crate::GgxLobe::exit_radiance`]. Sums in `f64`.
 ///
 /// # Panics
 /// If the slices' lengths do not fit `matrices`' vertex count and lmax.
 #[must_use]
-pub fn shade(
+pub fn glossy_shade(
     matrices: &GlossyView<'_>,
     transferred: &TransferredRadiance,
     positions: &[Vec3],
@@ -475,7 +479,7 @@ pub fn shade(
 
 /// A `.shprt` file's exit radiance per vertex under `light` (radiance
 /// coefficients, index `l(l+1)+m`, any lmax): a diffuse file's `T . L`
-/// (`view` ignored), a glossy file's glossy layer [`exit_radiance`] seen
+/// (`view` ignored), a glossy file's glossy layer [`glossy_exit_radiance`] seen
 /// from `view` ([`file_shade`] with no diffuse base).
 ///
 /// # Errors
@@ -490,7 +494,7 @@ pub fn file_exit_radiance(
 }
 
 /// [`file_exit_radiance`] with a glossy file's diffuse base of albedo
-/// `diffuse` ([`shade`]); `diffuse` is ignored for a diffuse file, whose
+/// `diffuse` ([`glossy_shade`]); `diffuse` is ignored for a diffuse file, whose
 /// albedo is in its transfer.
 ///
 /// # Errors
@@ -528,7 +532,7 @@ pub fn file_shade(
         .glossy_view()
         .map_err(|e| e.to_string())?
         .expect("a glossy file");
-    Ok(shade(
+    Ok(glossy_shade(
         &matrices,
         &matrices.transferred(light),
         &positions,

@@ -1,43 +1,47 @@
 //! Precomputed radiance transfer (Sloan, Kautz & Snyder 2002) for shlight:
 //! per-vertex diffuse transfer vectors for any mesh, so a renderer shades
 //! soft shadows and bounce light under any distant SH lighting with one dot
-//! product per vertex.
+//! product per vertex. The rays are cast by shlight-rays.
 //!
 //! # Main items
-//! - [`bvh::Bvh`]: binned-SAH hierarchy with a watertight ray/triangle test;
-//!   occlusion and closest-hit queries with barycentrics for single rays.
-//! - [`packet::PacketBvh`]: the same hierarchy traced by packets of eight
-//!   parallel rays with AVX2, what baking uses.
-//! - [`transfer::bake`]: unshadowed, shadowed and interreflected transfer
-//!   to any lmax, constant or per-vertex albedo, in parallel and
-//!   deterministic for a seed ([`transfer`] states the estimator).
-//! - [`glossy::bake_glossy`]: glossy transfer matrices `M_p` (shadowed or
-//!   with diffuse interreflections), and [`glossy::exit_radiance`], the
-//!   view-dependent exit radiance of a [`brdf::Brdf`] lobe ([`glossy`]
-//!   states the definition).
-//! - [`cpca::compress`]: clustered PCA of glossy matrices (Sloan, Hall,
-//!   Hart & Snyder 2003), [`cpca::Cpca::reconstruct`], and
-//!   [`cpca::compress_file`], a glossy `.shprt` file compressed.
-//! - [`transfer::Transfer::to_shprt`]: the bake as a `.shprt` file
+//! - [`bake`]: unshadowed, shadowed and interreflected [`Transfer`] to any
+//!   lmax ([`BakeOptions`]: [`Mode`], [`Albedo`], samples, seed, emission),
+//!   in parallel and deterministic for a seed ([`Transfer`] states the
+//!   definitions, [`bake`] the estimator); [`bake_with_occluder`] and
+//!   [`bake_against`] cast a subdivided mesh's rays against the mesh it was
+//!   subdivided from ([`shlight_rays::Occluder`]).
+//! - [`bake_glossy`]: glossy transfer matrices `M_p` ([`GlossyTransfer`],
+//!   shadowed or with diffuse interreflections), and
+//!   [`glossy_exit_radiance`], the view-dependent exit radiance of a
+//!   [`Brdf`] lobe ([`GlossyTransfer`] states the definition);
+//!   [`glossy_shade`] with a diffuse base; [`file_shade`] and
+//!   [`file_exit_radiance`] on a `.shprt` file of either kind.
+//! - [`compress`]: clustered PCA of glossy matrices (Sloan, Hall, Hart &
+//!   Snyder 2003), [`Cpca::reconstruct`], and [`compress_file`], a glossy
+//!   `.shprt` file compressed.
+//! - [`Transfer::to_shprt`]: the bake as a `.shprt` file
 //!   ([`shlight_format::ShprtFile`], docs/shprt.md).
-//! - [`bake_file::bake_file`]: a bake as a front end asks for it
-//!   ([`bake_file::BakeRequest`], `shlight prt`'s options: the albedo
-//!   chosen, the bake, its `.shprt` file), for the command line and the
-//!   Python package alike.
-//! - [`gltf_export::write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
-//! - [`preview::render`]: a CPU z-buffer rasteriser of vertex colours;
-//!   [`preview::vertex_exposure`] the exposure to show them at.
+//! - [`bake_file`]: a bake as a front end asks for it ([`BakeRequest`],
+//!   `shlight prt`'s options: the albedo chosen, the bake, its `.shprt`
+//!   file), for the command line and the Python package alike.
+//! - [`write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
+//! - [`render_preview`]: a CPU z-buffer rasteriser of vertex colours;
+//!   [`vertex_exposure`] the exposure to show them at.
+//! - [`Transfer::records`] ([`VertexRecords`]) and [`Kernels`]: a bake's
+//!   vectors as the summing kernels read them, and which kernels run; the
+//!   bounces and shlight-volume's probe sums share both.
 //!
 //! # Shading convention
 //! Exit radiance = transfer . (light radiance coefficients): albedo/pi is
 //! folded into the transfer, the light is the radiance `L_lm` of
 //! docs/conventions.md (not irradiance). A grey transfer (1 channel) is
-//! applied to each colour channel of the light.
+//! applied to each colour channel of the light; every reader of a bake
+//! shades with [`shlight_baked::TransferView::exit_radiance`].
 //!
 //! ```
 //! use shlight_core::sh::closed_form;
 //! use shlight_mesh::generate;
-//! use shlight_prt::transfer::{bake, BakeOptions, Mode};
+//! use shlight_prt::{BakeOptions, Mode, bake};
 //!
 //! let sphere = generate::uv_sphere(1.0, 16, 8);
 //! let options = BakeOptions { mode: Mode::Shadowed, samples: 256, ..BakeOptions::default() };
@@ -49,36 +53,39 @@
 //! ```
 //!
 //! **Architecture invariant:** no GPU and no command line; files are
-//! written through shlight-io's atomic writer.
+//! written through shlight-io's atomic writer; rays only through
+//! shlight-rays's public items.
 
-pub mod bake_file;
-pub mod brdf;
-pub mod brute_force;
-pub mod bvh;
-pub mod cpca;
+mod bake;
+mod bake_file;
+mod brdf;
+mod cast;
+mod cpca;
 mod error;
-pub mod ggx_lobe;
-pub mod glossy;
-pub mod gltf_export;
-pub mod packet;
-pub mod preview;
-pub mod records;
-pub mod transfer;
+mod gather;
+mod ggx_lobe;
+mod glossy;
+mod gltf_export;
+mod options;
+mod preview;
+mod records;
+mod transfer;
 
+pub use bake::{bake, bake_against, bake_with_occluder};
+pub use bake_file::{
+    BakeRequest, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
+    mesh_name,
+};
+pub use brdf::{Brdf, Lobe, MAX_PHONG_EXPONENT};
+pub use cpca::{CompressionError, Cpca, compress, compress_file, parse_cpca, reconstruct_data};
 pub use error::PrtError;
-
-/// For shlight's own tests (this crate's, its test binaries' and
-/// shlight-volume's): reports a test, or the part of it that needs AVX2 and
-/// FMA, as skipped. Prints `SKIPPED test: why` with `write!` on the
-/// process's stderr handle, which the test harness does not capture (it
-/// captures only the `print!`/`eprint!` macros), so the line shows in a
-/// passing run; panics under `SHLIGHT_REQUIRE_ALL=1`, where no test may
-/// skip.
-#[doc(hidden)]
-pub fn skip_test(test: &str, why: &str) {
-    if std::env::var("SHLIGHT_REQUIRE_ALL").as_deref() == Ok("1") {
-        panic!("{test}: SHLIGHT_REQUIRE_ALL=1 but it would be skipped: {why}");
-    }
-    use std::io::Write as _;
-    let _ = writeln!(std::io::stderr(), "SKIPPED {test}: {why}");
-}
+pub use ggx_lobe::{GgxLobe, MIN_GGX_ALPHA};
+pub use glossy::{
+    GlossyTransfer, MAX_GLOSSY_BYTES, View, bake_glossy, file_exit_radiance, file_shade,
+    glossy_bytes, glossy_channels, glossy_exit_radiance, glossy_shade,
+};
+pub use gltf_export::write_gltf;
+pub use options::{Albedo, BakeOptions, Mode, Stage};
+pub use preview::{render_preview, vertex_exposure};
+pub use records::{Kernels, VertexRecords};
+pub use transfer::Transfer;

@@ -37,7 +37,7 @@ pub fn vertex_exposure(colors: &[Vec3]) -> f32 {
 /// # Panics
 /// If `colors` has another length than the mesh's vertices.
 #[must_use]
-pub fn render(mesh: &Mesh, colors: &[Vec3], width: usize, height: usize) -> Image {
+pub fn render_preview(mesh: &Mesh, colors: &[Vec3], width: usize, height: usize) -> Image {
     assert_eq!(colors.len(), mesh.vertex_count(), "one colour per vertex");
     let (w, h) = (width * SUPERSAMPLE, height * SUPERSAMPLE);
     let cam = Camera::framing(mesh, width as f32 / height.max(1) as f32);
@@ -181,7 +181,7 @@ mod tests {
             .iter()
             .map(|n| Vec3::splat((n.y + 1.0) * 0.5))
             .collect();
-        let img = render(&sphere, &colors, 64, 64);
+        let img = render_preview(&sphere, &colors, 64, 64);
         // The sphere's silhouette from distance d = 1.02/sin(17.5 deg) has
         // angular radius asin(1/d); its share of the square image:
         let d = 1.02 / (FOV_Y_DEGREES.to_radians() * 0.5).sin();

@@ -6,12 +6,16 @@
 //! with zeros to whole 64-byte [`Line`]s: a kernel reads it eight floats at
 //! a time without running past it. [`Kernels`] says whether the sums run
 //! with AVX2 and FMA or as portable loops (the same sums in the same order;
-//! the fused roundings differ in the last bits). The bounces of
-//! [`crate::transfer`] and shlight-volume's probe sums read them.
+//! the fused roundings differ in the last bits). The bounces of the diffuse
+//! bake ([`crate::bake`]) and shlight-volume's probe sums read them
+//! ([`VertexRecords`], from [`crate::Transfer::records`]), both with the
+//! kernels [`Kernels::detect`] chooses.
 
 use glam::Vec3;
 
-/// Which kernels run: AVX2 and FMA, or portable loops.
+/// Which summing kernels run: AVX2 and FMA, or portable loops (the same
+/// sums in the same order; the fused roundings differ in the last bits).
+/// The diffuse bake's bounces and shlight-volume's probe sums choose by it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kernels {
     /// `x86_64` AVX2 and FMA.
@@ -21,11 +25,11 @@ pub enum Kernels {
 }
 
 impl Kernels {
-    /// AVX2 where the processor has it and FMA ([`has_avx2_and_fma`]), the
-    /// portable loops otherwise.
+    /// AVX2 where the processor has it and FMA
+    /// ([`shlight_rays::has_avx2_and_fma`]), the portable loops otherwise.
     #[must_use]
     pub fn detect() -> Self {
-        if has_avx2_and_fma() {
+        if shlight_rays::has_avx2_and_fma() {
             Kernels::Avx2
         } else {
             Kernels::Portable
@@ -33,36 +37,68 @@ impl Kernels {
     }
 }
 
-/// Whether the processor has AVX2 and FMA (detected at run time; `false`
-/// off `x86_64`).
-#[must_use]
-pub fn has_avx2_and_fma() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
 /// Floats in a [`Line`].
-pub const LINE: usize = 16;
+pub(crate) const LINE: usize = 16;
 
 /// One 64-byte line of a record.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-pub struct Line(pub [f32; LINE]);
+pub(crate) struct Line(pub(crate) [f32; LINE]);
 
 impl Line {
     /// A line of zeros.
-    pub const ZERO: Line = Line([0.0; LINE]);
+    pub(crate) const ZERO: Line = Line([0.0; LINE]);
+}
+
+/// Per-vertex records, each a vertex's transfer (`channels x nc` floats)
+/// and, when the mesh emits, its exit radiance due to emitters (3 more), in
+/// `f32`, padded with zeros to whole 64-byte lines, so that a kernel reads
+/// a record eight floats at a time without running past it. Record `v`
+/// starts at float `v * stride()` of [`floats`](Self::floats).
+#[derive(Clone, Debug)]
+pub struct VertexRecords {
+    lines: Vec<Line>,
+    len: usize,
+}
+
+impl VertexRecords {
+    /// Floats in a 64-byte line: a record's [`stride`](Self::stride) is a
+    /// whole number of them.
+    pub const LINE: usize = LINE;
+
+    /// The records of the transfer rows `transfer` and the exit radiances
+    /// `emitted`, as [`build`] lays them out.
+    pub(crate) fn new(transfer: &[f32], stride: usize, emitted: Option<&[Vec3]>) -> Self {
+        Self {
+            lines: build(transfer, stride, emitted),
+            len: stride + if emitted.is_some() { 3 } else { 0 },
+        }
+    }
+
+    /// Every record's floats, one after another.
+    #[must_use]
+    pub fn floats(&self) -> &[f32] {
+        flat(&self.lines)
+    }
+
+    /// Floats from one record to the next: [`used`](Self::used) rounded up
+    /// to whole lines of [`LINE`](Self::LINE).
+    #[must_use]
+    pub fn stride(&self) -> usize {
+        lines(self.len) * LINE
+    }
+
+    /// Floats used in each record: the transfer's `channels x nc`, and 3
+    /// when the mesh emits.
+    #[must_use]
+    pub fn used(&self) -> usize {
+        self.len
+    }
 }
 
 /// Lines per record of `len` floats.
 #[must_use]
-pub fn lines(len: usize) -> usize {
+pub(crate) fn lines(len: usize) -> usize {
     len.div_ceil(LINE)
 }
 
@@ -75,7 +111,7 @@ pub fn lines(len: usize) -> usize {
 /// If `stride` is 0, or `emitted` holds fewer values than `transfer` has
 /// rows.
 #[must_use]
-pub fn build(transfer: &[f32], stride: usize, emitted: Option<&[Vec3]>) -> Vec<Line> {
+pub(crate) fn build(transfer: &[f32], stride: usize, emitted: Option<&[Vec3]>) -> Vec<Line> {
     let len = stride + if emitted.is_some() { 3 } else { 0 };
     let per = lines(len);
     let count = transfer.len() / stride;
@@ -96,14 +132,14 @@ pub fn build(transfer: &[f32], stride: usize, emitted: Option<&[Vec3]>) -> Vec<L
 
 /// The floats of `lines`.
 #[must_use]
-pub fn flat(lines: &[Line]) -> &[f32] {
+pub(crate) fn flat(lines: &[Line]) -> &[f32] {
     // SAFETY: a `Line` is 16 `f32` with no padding (`repr(C)`, 64 bytes).
     unsafe { std::slice::from_raw_parts(lines.as_ptr().cast::<f32>(), lines.len() * LINE) }
 }
 
 /// The floats of `lines`, mutable.
 #[must_use]
-pub fn flat_mut(lines: &mut [Line]) -> &mut [f32] {
+pub(crate) fn flat_mut(lines: &mut [Line]) -> &mut [f32] {
     // SAFETY: as in `flat`.
     unsafe { std::slice::from_raw_parts_mut(lines.as_mut_ptr().cast::<f32>(), lines.len() * LINE) }
 }

@@ -11,7 +11,7 @@ use core::f64::consts::PI;
 use glam::DVec3;
 use rand::{Rng, SeedableRng, rngs::StdRng};
 use shlight_core::sh::sh_count;
-use shlight_prt::ggx_lobe::GgxLobe;
+use shlight_prt::GgxLobe;
 
 mod ggx_reference;
 use ggx_reference::integrated;

@@ -11,10 +11,11 @@ use glam::{DVec3, Vec3};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 use shlight_core::sh::{ShCoeffs, closed_form, lm_from_index, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
-use shlight_prt::brdf::{Brdf, Lobe};
-use shlight_prt::brute_force::closest_hit;
-use shlight_prt::glossy::{View, bake_glossy, exit_radiance, glossy_bytes};
-use shlight_prt::transfer::{Albedo, BakeOptions, Mode};
+use shlight_prt::{
+    Albedo, BakeOptions, Brdf, Lobe, Mode, View, bake_glossy, glossy_bytes,
+    glossy_exit_radiance as exit_radiance,
+};
+use shlight_rays::brute_force_closest_hit as closest_hit;
 
 mod ggx_reference;
 
@@ -87,7 +88,7 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
     let a = [PI, 2.0 * PI / 3.0, PI / 4.0];
     let eye = DVec3::new(0.5, 3.0, 4.0);
     let transferred = matrices.transferred(light.as_slice());
-    let got = shlight_prt::glossy::shade(
+    let got = shlight_prt::glossy_shade(
         &matrices,
         &transferred,
         &sphere.positions,
@@ -96,7 +97,7 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
         rho,
         View::Eye(eye),
     );
-    let glossy_only = shlight_prt::glossy::shade(
+    let glossy_only = shlight_prt::glossy_shade(
         &matrices,
         &transferred,
         &sphere.positions,
@@ -140,7 +141,7 @@ fn an_unshadowed_convex_sphere_has_identity_matrices_and_the_closed_form_exit() 
         )
     };
     let nc = sh_count(4);
-    let worst = |t: &shlight_prt::glossy::GlossyTransfer| {
+    let worst = |t: &shlight_prt::GlossyTransfer| {
         let mut worst = 0.0f64;
         for m in t.matrices.chunks_exact(nc * nc) {
             for i in 0..nc {
@@ -441,15 +442,14 @@ fn glossy_files_round_trip_and_shade_as_the_bake() {
     assert_eq!(back, file);
     let light = test_light();
     let view = View::Eye(DVec3::new(1.0, 5.0, 2.0));
-    let from_file =
-        shlight_prt::glossy::file_exit_radiance(&back, light.as_slice(), Some(view)).unwrap();
+    let from_file = shlight_prt::file_exit_radiance(&back, light.as_slice(), Some(view)).unwrap();
     assert_eq!(
         from_file,
         t.exit_radiance(&mesh, brdf, light.as_slice(), view)
     );
-    let e = shlight_prt::glossy::file_exit_radiance(&back, light.as_slice(), None).unwrap_err();
+    let e = shlight_prt::file_exit_radiance(&back, light.as_slice(), None).unwrap_err();
     assert!(e.contains("depends on the view"), "{e}");
-    let e = shlight_prt::glossy::file_exit_radiance(
+    let e = shlight_prt::file_exit_radiance(
         &back,
         light.as_slice(),
         Some(View::Direction(DVec3::ZERO)),
@@ -494,7 +494,7 @@ fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
     let n = t.vertex_count;
     let peak = t.matrices.iter().fold(0.0f32, |m, x| m.max(x.abs()));
     let worst = |c: usize, k: usize| {
-        let z = shlight_prt::cpca::compress(&t.matrices, dim, c, k, 3).unwrap();
+        let z = shlight_prt::compress(&t.matrices, dim, c, k, 3).unwrap();
         z.reconstruct()
             .iter()
             .zip(&t.matrices)
@@ -508,7 +508,7 @@ fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
     let (k8, k2) = (worst(4, 8), worst(4, 2));
     assert!(k2 > k8 && k8 > 1e-5 * peak, "{k2} {k8}");
     // And the exit radiance of the reproduced matrices is the bake's.
-    let z = shlight_prt::cpca::compress(&t.matrices, dim, n, 0, 3).unwrap();
+    let z = shlight_prt::compress(&t.matrices, dim, n, 0, 3).unwrap();
     let brdf = Brdf::Phong { exponent: 8.0 };
     let light = test_light();
     let view = View::Direction(DVec3::new(0.1, 1.0, 0.4));

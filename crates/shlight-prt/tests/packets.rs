@@ -3,9 +3,8 @@
 //! process.
 
 use shlight_mesh::generate;
-use shlight_prt::packet::{packets_enabled, set_packets_enabled};
-use shlight_prt::skip_test;
-use shlight_prt::transfer::{BakeOptions, Mode, bake};
+use shlight_prt::{BakeOptions, Mode, bake};
+use shlight_rays::{packets_enabled, set_packets_enabled, skip_test};
 
 #[test]
 fn packet_and_single_ray_bakes_agree() {

@@ -11,8 +11,8 @@ use shlight_core::sh::{
     ShCoeffs, ShRotation, clamped_cosine_eigenvalue, closed_form, lm_from_index, sh_eval,
 };
 use shlight_mesh::{Mesh, generate};
-use shlight_prt::brute_force::closest_hit;
-use shlight_prt::transfer::{Albedo, BakeOptions, Mode, Transfer, bake, bake_with_occluder};
+use shlight_prt::{Albedo, BakeOptions, Mode, Transfer, bake, bake_with_occluder};
+use shlight_rays::brute_force_closest_hit as closest_hit;
 
 fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
     let options = BakeOptions {

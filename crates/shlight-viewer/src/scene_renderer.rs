@@ -68,12 +68,12 @@ pub fn renderer(
     if let Some(t) = transfer {
         match (t.glossy_view()?, &t.glossy) {
             (Some(matrices), Some(g)) => {
-                let brdf = shlight_prt::brdf::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
+                let brdf = shlight_prt::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
                 match brdf.lobe(t.lmax) {
-                    shlight_prt::brdf::Lobe::Zonal(lambda) => {
+                    shlight_prt::Lobe::Zonal(lambda) => {
                         renderer.set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))?;
                     }
-                    shlight_prt::brdf::Lobe::Ggx(lobe) => renderer.set_glossy(
+                    shlight_prt::Lobe::Ggx(lobe) => renderer.set_glossy(
                         ctx,
                         &matrices,
                         GlossyLobe::Directions(&lobe.direction_table()),

@@ -9,9 +9,8 @@ use rayon::prelude::*;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_core::sh::{ShBasis, sh_count};
 use shlight_mesh::{Mesh, Subdivision};
-use shlight_prt::packet::{Direction, LANES, Packet};
-use shlight_prt::records::{self, Kernels, LINE, Line, flat};
-use shlight_prt::transfer::{self, Albedo, BakeOptions, Mode, Occluder};
+use shlight_prt::{Albedo, BakeOptions, Kernels, Mode, VertexRecords};
+use shlight_rays::{Direction, LANES, Occluder, Packet};
 
 use shlight_baked::visibility::{MomentFilter, ray_distance};
 use shlight_baked::{ProbeGrid, ProbeVisibility, Visibility};
@@ -80,7 +79,7 @@ impl Default for VolumeOptions {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
     /// The surfaces' transfer (the PRT bake's stages).
-    Surface(transfer::Stage),
+    Surface(shlight_prt::Stage),
     /// Moving probes out of geometry (`done` and `total` in probes; the
     /// probes are moved while the surfaces are baked, and this stage is
     /// reported, begun and done, once the surfaces' stages are).
@@ -107,7 +106,7 @@ pub enum Stage {
 /// ```
 ///
 /// `T(q)` being the surface's interreflected diffuse transfer (shadowed
-/// direct light plus `bounces` bounces, [`shlight_prt::transfer`]) and
+/// direct light plus `bounces` bounces, [`shlight_prt::Transfer`]) and
 /// `E(q)` its exit radiance due to emitters (their emission plus the same
 /// bounces). Both are linear in the environment's coefficients, so per
 /// probe and channel `c`
@@ -138,13 +137,13 @@ pub enum Stage {
 /// # Casting and summing
 /// The probes' rays along one direction are parallel: the probes are taken
 /// eight at a time in Morton order of their grid cells and traced as one
-/// [`Packet`] ([`shlight_prt::packet::PacketBvh::closest`]) against the
+/// [`Packet`] ([`Occluder::packet_closest`]) against the
 /// scene's own triangles, not the subdivided ones (the same surface; a room
 /// of large quads has a few dozen instead of a hundred thousand), and each
 /// front hit is found in the subdivided mesh by
 /// [`Subdivision::locate_each`]; the surfaces' transfer is cast the same
-/// way, against the same hierarchy ([`transfer::Occluder`],
-/// [`transfer::bake_against`]).
+/// way, against the same hierarchy ([`Occluder`],
+/// [`shlight_prt::bake_against`]).
 ///
 /// The directions are cut into blocks of 64 that are small patches of the
 /// sphere (`direction_order`: halves across the widest axis, down to
@@ -511,10 +510,9 @@ struct Surface {
     /// Where the scene's triangles went in `mesh`.
     map: Subdivision,
     /// Per vertex its `channels x nc` transfer and (when the scene emits)
-    /// its exit radiance due to emitters, `len` floats padded with zeros to
-    /// whole 64-byte lines.
-    records: Vec<Line>,
-    len: usize,
+    /// its exit radiance due to emitters, padded with zeros to whole
+    /// 64-byte lines.
+    records: VertexRecords,
     channels: usize,
     nc: usize,
     emits: bool,
@@ -570,7 +568,7 @@ impl Surface {
         };
         let (t, offsets) = rayon::join(
             || {
-                transfer::bake_against(
+                shlight_prt::bake_against(
                     &mesh,
                     Some((&occluder, &map)),
                     &bake_options,
@@ -581,13 +579,10 @@ impl Surface {
             },
             || relocate.map(|grid| relocate::offsets(&occluder, grid, options.seed)),
         );
-        let stride = t.channels * sh_count(t.lmax);
-        let len = stride + if t.emitted.is_some() { 3 } else { 0 };
         let surface = Self {
             occluder,
             map,
-            records: records::build(&t.coeffs, stride, t.emitted.as_deref()),
-            len,
+            records: t.records(),
             channels: t.channels,
             nc: sh_count(t.lmax),
             emits: t.emitted.is_some(),
@@ -612,7 +607,7 @@ impl Surface {
     /// ray-space copies for the whole block fit [`LOCAL_FLOATS`]) is put in
     /// ray space once per direction and block; a larger one triangle by
     /// triangle as the rays meet it
-    /// ([`shlight_prt::packet::PacketBvh::closest_direct`]).
+    /// ([`Occluder::packet_closest_direct`]).
     fn cast(
         &self,
         chunk: &[u32],
@@ -621,8 +616,7 @@ impl Surface {
         progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Hit> {
         let n = chunk.len();
-        let (bvh, ranked) = (self.occluder.bvh(), self.occluder.positions());
-        let nv = ranked.len();
+        let nv = self.occluder.vertex_count();
         let small = nv * 4 * BLOCK <= LOCAL_FLOATS;
         let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
         hits.par_chunks_mut(n * BLOCK)
@@ -636,7 +630,7 @@ impl Surface {
                     local.clear();
                     if small {
                         for dir in &directions {
-                            local.extend(ranked.iter().map(|p| dir.to_ray_space(*p)));
+                            local.extend(self.occluder.ray_space(dir));
                         }
                     }
                     for (g, eight) in chunk.chunks(LANES).enumerate() {
@@ -648,9 +642,10 @@ impl Surface {
                         for (jj, dir) in directions.iter().enumerate() {
                             let packet = Packet::new(dir, origins);
                             let found = if small {
-                                bvh.closest(dir, &local[jj * nv..][..nv], &packet)
+                                self.occluder
+                                    .packet_closest(dir, &local[jj * nv..][..nv], &packet)
                             } else {
-                                bvh.closest_direct(dir, &packet)
+                                self.occluder.packet_closest_direct(dir, &packet)
                             };
                             for k in 0..eight.len() {
                                 if found.mask >> k & 1 == 0 {
@@ -699,11 +694,11 @@ impl Surface {
     fn rows(&self) -> Rows<'_> {
         Rows {
             nc: self.nc,
-            width: (self.nc + self.len).div_ceil(8) * 8,
+            width: (self.nc + self.records.used()).div_ceil(8) * 8,
             triangles: &self.mesh.triangles,
-            records: flat(&self.records),
-            rec: records::lines(self.len) * LINE,
-            len: self.len,
+            records: self.records.floats(),
+            rec: self.records.stride(),
+            len: self.records.used(),
         }
     }
 
@@ -900,7 +895,7 @@ mod tests {
         // has it): the same sums, fused or not, in a scene with emitters
         // and coloured walls.
         if Kernels::detect() == Kernels::Portable {
-            shlight_prt::skip_test(
+            shlight_rays::skip_test(
                 "bakes_with_either_kernel_agree",
                 "no AVX2 and FMA here: both bakes sum with the portable kernels",
             );

@@ -13,7 +13,7 @@ pub(crate) const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
 /// The exposure in stops for a [`probe_sheet`]'s pixels: the mean
 /// luminance of the pixels that are not black (the balls, not the
 /// background) at 0.25, as the PRT preview
-/// ([`shlight_prt::preview::vertex_exposure`]).
+/// ([`shlight_prt::vertex_exposure`]).
 #[must_use]
 pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
     let lit: Vec<Vec3> = pixels
@@ -21,7 +21,7 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
         .map(|p| Vec3::from_array(*p))
         .filter(|p| *p != Vec3::ZERO)
         .collect();
-    shlight_prt::preview::vertex_exposure(&lit)
+    shlight_prt::vertex_exposure(&lit)
 }
 
 /// The probes of `radiance` (per probe `(lmax+1)^2` rows of `[r, g, b]`)

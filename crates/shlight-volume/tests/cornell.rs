@@ -13,7 +13,7 @@ use rand::{Rng, SeedableRng};
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShCoeffs, closed_form, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
-use shlight_prt::brute_force::closest_hit;
+use shlight_rays::brute_force_closest_hit as closest_hit;
 use shlight_volume::{VolumeOptions, bake};
 
 const BOUNCES: u32 = 2;

@@ -11,7 +11,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
-use shlight_prt::glossy::{View, file_shade};
+use shlight_prt::{View, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax, relight_file};
 
 use crate::environment::Environment;

@@ -28,8 +28,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use shlight_baked::ProbeGrid;
 use shlight_core::map::montecarlo::stratified_directions;
-use shlight_prt::packet::{Direction, LANES, Packet};
-use shlight_prt::transfer::Occluder;
+use shlight_rays::{Direction, LANES, Occluder, Packet};
 
 /// Rays cast from each position tested.
 pub const RELOCATION_RAYS: usize = 128;
@@ -213,7 +212,7 @@ fn look(occluder: &Occluder, dirs: &[Direction], points: &[Vec3], stop_within: f
             }
         }
         let packet = Packet::new(dir, &open[..m]);
-        let found = occluder.bvh().closest_direct(dir, &packet);
+        let found = occluder.packet_closest_direct(dir, &packet);
         for (j, &k) in lane_of[..m].iter().enumerate() {
             if found.mask >> j & 1 == 0 {
                 continue;

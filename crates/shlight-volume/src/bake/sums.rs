@@ -7,7 +7,7 @@
 //! computes the same sums in the same order (its roundings differ from the
 //! fused ones in the last bits).
 
-use shlight_prt::records::{Kernels, LINE};
+use shlight_prt::{Kernels, VertexRecords};
 
 use super::Hit;
 
@@ -45,7 +45,7 @@ impl Rows<'_> {
     ) -> (usize, usize) {
         assert!(v.len() >= self.buffer(hits.len()) && ylm.len() >= hits.len() * self.nc);
         assert!(
-            self.rec.is_multiple_of(LINE)
+            self.rec.is_multiple_of(VertexRecords::LINE)
                 && self.len <= self.rec
                 && self.nc + self.len <= self.width
         );
@@ -275,7 +275,7 @@ mod tests {
         // Every tile shape: 1 to 10 rows, widths of 8 to 56 (one to seven
         // vectors), 64 rays, entries of either sign.
         if Kernels::detect() == Kernels::Portable {
-            shlight_prt::skip_test(
+            shlight_rays::skip_test(
                 "block_sums_match_f64_sums_with_both_kernels",
                 "no AVX2 and FMA here: only the portable sums are held to the f64 ones",
             );
@@ -323,13 +323,13 @@ mod tests {
         // rows of 9 + 12 = 21 padded to 24: the AVX2 fill writes 16 floats
         // from 9 and so runs into the next row.
         if Kernels::detect() == Kernels::Portable {
-            shlight_prt::skip_test(
+            shlight_rays::skip_test(
                 "rows_are_the_same_with_both_kernels",
                 "no AVX2 and FMA here: only the portable rows are checked",
             );
         }
         let mut next = numbers(3);
-        let (nc, len, rec, width) = (9, 12, LINE, 24);
+        let (nc, len, rec, width) = (9, 12, VertexRecords::LINE, 24);
         let vertices = 10;
         let mut records = vec![0.0f32; vertices * rec];
         for v in 0..vertices {

@@ -5,14 +5,14 @@
 //!
 //! - `packets_*`: what baking does: direction by direction, the vertices
 //!   facing it in Morton order, eight parallel rays per AVX2 packet through
-//!   shlight-prt's binned-SAH `Bvh` (`packet.rs`), the ray-space vertices
-//!   computed per direction included;
-//! - `single_*`: the same `Bvh` one ray at a time, in vertex order (the
+//!   shlight-rays's binned-SAH hierarchy (`Occluder`, `packet.rs`), the
+//!   ray-space vertices computed per direction included;
+//! - `single_*`: the same hierarchy one ray at a time, in vertex order (the
 //!   path of processors without AVX2);
 //! - `obvhs_*`: the obvhs crate's CWBVH8 and BVH2 with its own
 //!   Möller-Trumbore test, one ray at a time.
 //!
-//! `cargo bench -p shlight-prt --bench rays`; divan's "items/s" is rays/s.
+//! `cargo bench -p shlight-rays --bench rays`; divan's "items/s" is rays/s.
 
 use std::path::Path;
 use std::time::Duration;
@@ -29,8 +29,7 @@ use obvhs::triangle::Triangle;
 use rayon::prelude::*;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_mesh::{Mesh, generate};
-use shlight_prt::bvh::{Bvh, Ray};
-use shlight_prt::packet::PacketBvh;
+use shlight_rays::{OFFSET, Occluder, Ray};
 
 #[path = "rays/cast.rs"]
 mod cast;
@@ -47,7 +46,7 @@ fn rays(mesh: &Mesh, count: usize) -> Vec<(Vec3, Vec3)> {
         .map(|d| d.as_vec3())
         .collect();
     let (lo, hi) = mesh.bounds();
-    let eps = shlight_prt::transfer::OFFSET * (hi - lo).length();
+    let eps = OFFSET * (hi - lo).length();
     let step = (mesh.vertex_count() * dirs.len() / 2 / count).max(1);
     let mut out = Vec::new();
     for v in (0..mesh.vertex_count()).step_by(step) {
@@ -84,43 +83,45 @@ fn cast_each<R: Sync>(bencher: Bencher, rays: &[R], hit: impl Fn(&R) -> bool + S
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
 fn single_occluded(bencher: Bencher, name: &str) {
     let m = mesh(name);
-    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let occluder = Occluder::new(&m);
     let rays = rays(&m, RAYS);
     cast_each(bencher, &rays, |(o, d)| {
-        bvh.occluded(&Ray::new(*o, *d, f32::INFINITY))
+        occluder.occluded(&Ray::new(*o, *d, f32::INFINITY))
     });
 }
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]
 fn single_closest(bencher: Bencher, name: &str) {
     let m = mesh(name);
-    let bvh = Bvh::new(&m.positions, &m.triangles);
+    let occluder = Occluder::new(&m);
     let rays = rays(&m, RAYS);
     cast_each(bencher, &rays, |(o, d)| {
-        bvh.closest_hit(&Ray::new(*o, *d, f32::INFINITY)).is_some()
+        occluder
+            .closest_hit(&Ray::new(*o, *d, f32::INFINITY))
+            .is_some()
     });
 }
 
 /// Every 8th direction of the 1024-direction grid, with the rays baking
-/// casts along it (`transfer::cast_rays`): about as many rays as [`rays`]
+/// casts along it (`cast::bake_rays`): about as many rays as [`rays`]
 /// gives, cast direction-major.
-fn direction_major(mesh: &Mesh) -> Vec<(Vec3, Vec<Vec3>)> {
+fn direction_major(mesh: &Mesh, occluder: &Occluder) -> Vec<(Vec3, Vec<Vec3>)> {
     let dirs: Vec<Vec3> = stratified_directions(1024, 0)
         .iter()
         .map(|d| d.as_vec3())
         .step_by(8)
         .collect();
-    shlight_prt::transfer::cast_rays(mesh, &dirs)
+    cast::bake_rays(mesh, occluder, &dirs)
 }
 
 fn packet_bench(bencher: Bencher, name: &str, closest: bool) {
     let m = mesh(name);
-    let per_dir = direction_major(&m);
-    let bvh = PacketBvh::new(Bvh::new(&m.positions, &m.triangles));
+    let occluder = Occluder::new(&m);
+    let per_dir = direction_major(&m, &occluder);
     let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
     bencher
         .counter(ItemsCount::new(count))
-        .bench(|| cast::cast_packets(&bvh, &m.positions, &per_dir, closest));
+        .bench(|| cast::cast_packets(&occluder, &per_dir, closest));
 }
 
 #[divan::bench(args = MESHES, sample_count = 5, sample_size = 1)]

@@ -1,6 +1,6 @@
 //! Ray casting by brute force in `f64`: Möller-Trumbore against every
 //! triangle, O(triangles) per ray. The independent reference that the
-//! hierarchy, the packets and the bake are tested against; too slow for
+//! hierarchy, the packets and the bakes are tested against; too slow for
 //! anything else.
 
 use glam::DVec3;
@@ -11,7 +11,12 @@ use shlight_mesh::Mesh;
 /// of the triangle's corners 1 and 2. Both sides of a triangle are hit;
 /// triangles the ray runs parallel to are missed.
 #[must_use]
-pub fn closest_hit(mesh: &Mesh, o: DVec3, d: DVec3, t_min: f64) -> Option<(f64, usize, f64, f64)> {
+pub fn brute_force_closest_hit(
+    mesh: &Mesh,
+    o: DVec3,
+    d: DVec3,
+    t_min: f64,
+) -> Option<(f64, usize, f64, f64)> {
     let mut best: Option<(f64, usize, f64, f64)> = None;
     for (k, t) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec3());

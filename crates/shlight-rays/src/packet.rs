@@ -38,7 +38,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 
 use crate::bvh::{Bvh, INNER, Ray};
-use crate::records::has_avx2_and_fma;
+use crate::cpu::has_avx2_and_fma;
 
 /// Rays in a packet: one AVX register. Sixteen (two registers, rays from a
 /// wider patch of vertices) visited 1.5x the nodes per packet (105 against
@@ -50,8 +50,8 @@ pub const LANES: usize = 8;
 static DISABLED: AtomicBool = AtomicBool::new(false);
 
 /// Turns the AVX2 packet traversal off (`false`) or back on, for every
-/// [`PacketBvh`] built afterwards: each ray is then traced alone. For tests
-/// and benchmarks.
+/// [`Occluder`](crate::Occluder) made afterwards: each ray of a packet is
+/// then traced alone. For tests and benchmarks.
 pub fn set_packets_enabled(enabled: bool) {
     DISABLED.store(!enabled, Ordering::Relaxed);
 }
@@ -156,7 +156,7 @@ pub struct PacketHits {
 /// A visit then reads one cache line at fixed offsets. Eight copies of the
 /// inner nodes, about a third of the triangles' memory together.
 #[derive(Clone, Debug)]
-pub struct PacketBvh {
+pub(crate) struct PacketBvh {
     bvh: Bvh,
     octants: Vec<Vec<Node2>>,
     /// The root: [`Node2::child`]'s code and count.

@@ -3,7 +3,7 @@
 //! order baking casts them) for other ray casters, and times shlight's
 //! packet traversal on the same rays, on one thread and on all.
 //!
-//! `cargo run --release -p shlight-prt --example prt_rays -- OUT.bin`
+//! `cargo run --release -p shlight-rays --example prt_rays -- OUT.bin`
 //! (`benches/prt_peers.sh` runs it and Embree on the file).
 //!
 //! File: little-endian `u32` vertex count, triangle count and ray count;
@@ -17,9 +17,7 @@ use std::time::Instant;
 use glam::Vec3;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_mesh::generate;
-use shlight_prt::bvh::Bvh;
-use shlight_prt::packet::PacketBvh;
-use shlight_prt::transfer::cast_rays;
+use shlight_rays::Occluder;
 
 #[path = "../benches/rays/cast.rs"]
 mod cast;
@@ -34,7 +32,8 @@ fn main() -> std::io::Result<()> {
         .map(|d| d.as_vec3())
         .step_by(8)
         .collect();
-    let per_dir = cast_rays(&mesh, &dirs);
+    let occluder = Occluder::new(&mesh);
+    let per_dir = cast::bake_rays(&mesh, &occluder, &dirs);
     let count: usize = per_dir.iter().map(|(_, o)| o.len()).sum();
 
     let mut bytes = Vec::new();
@@ -58,8 +57,7 @@ fn main() -> std::io::Result<()> {
     std::fs::File::create(&out)?.write_all(&bytes)?;
     println!("{count} rays written to {out}");
 
-    let tree = PacketBvh::new(Bvh::new(&mesh.positions, &mesh.triangles));
-    let cast = |closest: bool| cast::cast_packets(&tree, &mesh.positions, &per_dir, closest);
+    let cast = |closest: bool| cast::cast_packets(&occluder, &per_dir, closest);
     let threads = rayon::current_num_threads();
     for n in [1, threads] {
         let pool = rayon::ThreadPoolBuilder::new()

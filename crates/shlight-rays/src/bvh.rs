@@ -1,5 +1,5 @@
 //! A bounding-volume hierarchy over a mesh's triangles, for the visibility
-//! and bounce rays of PRT baking.
+//! and bounce rays of the bakes.
 //!
 //! - **Build**: binary, top-down, binned surface-area heuristic (16 bins on
 //!   the centroid bounds of each axis, the cheapest split of the three, the
@@ -45,7 +45,7 @@ pub struct Hit {
 /// direction's largest component, and the shear that maps the direction to
 /// +z.
 #[derive(Clone, Copy, Debug)]
-pub struct WatertightRay {
+pub(crate) struct WatertightRay {
     origin: Vec3,
     k: [usize; 3],
     shear: Vec3,
@@ -61,14 +61,14 @@ pub struct Ray {
 }
 
 /// The most triangles in one leaf.
-pub const MAX_LEAF: usize = 8;
+const MAX_LEAF: usize = 8;
 /// What the surface-area heuristic charges a node visit, a triangle test
 /// costing 1. A packet's visit tests two boxes against eight lanes, while
 /// most triangle tests end when the lanes' edge functions differ in sign,
 /// before the division; so leaves may hold more triangles, and the walks
 /// are shorter (docs/benchmarks.md, "Irradiance volume bake", has the
 /// timings).
-pub const NODE_COST: f32 = 4.0;
+const NODE_COST: f32 = 4.0;
 const BINS: usize = 16;
 /// Depth of the traversal stacks; the build never nests deeper (a split
 /// always leaves both sides non-empty, and [`MAX_DEPTH`] caps it).
@@ -81,7 +81,7 @@ pub(crate) const FAR_SCALE: f32 =
     1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 /// Relative growth of triangle boxes, about 16 units in the last place of
 /// the mesh's largest coordinate.
-pub const BOX_PADDING: f32 = 16.0 * f32::EPSILON;
+const BOX_PADDING: f32 = 16.0 * f32::EPSILON;
 /// Direction components smaller than this are replaced by it (with their
 /// sign) before inverting, so slab distances stay finite.
 pub(crate) const TINY_DIRECTION: f32 = 1e-30;
@@ -202,7 +202,7 @@ pub(crate) const INNER: u32 = 1 << 31;
 /// The hierarchy: nodes, triangles in leaf order (corners, and vertex
 /// indices into the mesh), and each one's index in the mesh.
 #[derive(Clone, Debug)]
-pub struct Bvh {
+pub(crate) struct Bvh {
     pub(crate) nodes: Vec<Node>,
     pub(crate) triangles: Vec<[Vec3; 3]>,
     pub(crate) corners: Vec<[u32; 3]>,
@@ -259,7 +259,7 @@ impl Bvh {
     }
 
     /// Number of nodes (inner and leaves).
-    #[must_use]
+    #[cfg(test)]
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -524,7 +524,7 @@ impl Builder<'_> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::brute_force;
+    use crate::brute_force::brute_force_closest_hit;
     use rand::{Rng, SeedableRng, rngs::StdRng};
     use shlight_mesh::generate;
 
@@ -542,6 +542,16 @@ pub(crate) mod tests {
         }
     }
 
+    /// A random point in and around the box of
+    /// `generate::plane_under_sphere(1.0, 24, 12, 4.0, 6)`.
+    pub(crate) fn random_origin(rng: &mut StdRng) -> Vec3 {
+        Vec3::new(
+            rng.random_range(-2.5..2.5),
+            rng.random_range(-0.5..2.5),
+            rng.random_range(-2.5..2.5),
+        )
+    }
+
     #[test]
     fn closest_hits_and_occlusion_match_a_brute_force_reference() {
         let mesh = generate::plane_under_sphere(1.0, 24, 12, 4.0, 6);
@@ -549,15 +559,11 @@ pub(crate) mod tests {
         let mut rng = StdRng::seed_from_u64(5);
         let (mut hits, mut mismatched) = (0, 0);
         for _ in 0..4000 {
-            let o = Vec3::new(
-                rng.random_range(-2.5..2.5),
-                rng.random_range(-0.5..2.5),
-                rng.random_range(-2.5..2.5),
-            );
+            let o = random_origin(&mut rng);
             let d = random_unit(&mut rng);
             let ray = Ray::new(o, d, f32::INFINITY);
             let got = bvh.closest_hit(&ray);
-            let want = brute_force::closest_hit(&mesh, o.as_dvec3(), d.as_dvec3(), 0.0)
+            let want = brute_force_closest_hit(&mesh, o.as_dvec3(), d.as_dvec3(), 0.0)
                 .map(|(t, k, ..)| (t, k as u32));
             assert_eq!(bvh.occluded(&ray), got.is_some());
             match (got, want) {

@@ -1,0 +1,170 @@
+//! The diffuse bake's entry points: [`bake`] (whose docs state the
+//! estimator), [`bake_with_occluder`], [`bake_against`].
+
+use shlight_mesh::{Mesh, Subdivision};
+use shlight_rays::Occluder;
+
+use crate::cast::Cast;
+use crate::options::{BakeOptions, Mode, Stage};
+use crate::records::Kernels;
+use crate::transfer::Transfer;
+
+/// Bakes the transfer of every vertex of `mesh` ([`Transfer`] states what
+/// it is).
+///
+/// # Estimator
+///
+/// One jittered equal-area grid of directions `s_j`
+/// ([`shlight_core::map::montecarlo::stratified_directions`], seeded) serves
+/// every vertex. Per vertex, only directions above the tangent plane are
+/// cast, and each gets the weight `w_j = (n.s_j) / sum_k max(n.s_k, 0)`, so
+/// `int max(n.s, 0) f(s) ds ~ pi sum_j w_j f(s_j)`: a ratio estimator whose
+/// weights sum to exactly 1 (bias O(1/N)), so a white surface (albedo 1)
+/// under constant light never gains or loses energy in the estimate, and the
+/// interreflected limit of the white furnace is exact.
+///
+/// Rays start off the surface and never across the mesh
+/// ([`Occluder::ray_origins`]: `p + eps (n + c)`, `c` the unit tangent
+/// towards the mean centroid of the vertex's triangles, so a vertex on a
+/// concave edge starts off the other surface's plane). A ray that hits the
+/// back of a triangle (an open mesh seen from behind) is blocked and brings
+/// no bounce light: surfaces are one-sided.
+///
+/// Rays are cast direction by direction, directions in parallel (rayon):
+/// for each shared direction, the vertices facing it are taken in Morton
+/// order eight at a time, and each eight is traced as one
+/// [`shlight_rays::Packet`] of parallel rays. Each vertex's sum runs over
+/// the directions in order, so the result is the same bit for bit at any
+/// thread count. The bounces are gathered in `f32`, a chunk of vertices
+/// through the directions in order (AVX2 and FMA when present).
+///
+/// `progress(stage, done, total)` is called from worker threads as work
+/// finishes (in no fixed order; `done` only grows within a stage): for
+/// [`Stage::Rays`] in directions, for the bounces in vertices.
+///
+/// # Panics
+/// If a per-vertex albedo has another length than the mesh's vertices.
+#[must_use]
+pub fn bake(
+    mesh: &Mesh,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with_occluder(mesh, None, options, progress)
+}
+
+/// [`bake`] for a `mesh` made by [`Mesh::subdivided_with_map`] from
+/// `occluder.0` (`occluder.1` its map): the rays are cast against the
+/// original triangles (the same surface, fewer triangles) and their hits
+/// found in `mesh` by [`Subdivision::locate_each`], a direction's hits
+/// together. `None`: cast against `mesh`.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_with_occluder(
+    mesh: &Mesh,
+    occluder: Option<(&Mesh, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    let built = occluder.map(|(coarse, map)| (Occluder::new(coarse), map));
+    let occluder = built.as_ref().map(|(o, map)| (o, *map));
+    bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// [`bake_with_occluder`] with the occluder made ready already
+/// ([`Occluder::new`] of the mesh `mesh` was subdivided from), for callers
+/// that cast rays of their own against it too.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_against(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with(mesh, occluder, options, progress, Kernels::detect())
+}
+
+/// [`bake_with_occluder`], the bounces gathered with `kernels`.
+fn bake_with(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, &Subdivision)>,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    kernels: Kernels,
+) -> Transfer {
+    let shadowed = options.mode != Mode::Unshadowed;
+    let bounces = options.mode.bounces();
+    let cast = Cast::new(mesh, occluder, options, shadowed, bounces > 0, progress);
+    let (total, emitted) = cast.diffuse(options, bounces, kernels, progress);
+    let stride = cast.channels * cast.nc;
+    Transfer {
+        lmax: options.lmax,
+        channels: cast.channels,
+        vertex_count: cast.order.len(),
+        coeffs: by_vertex(&total, stride, &cast.order),
+        samples: cast.dirs.len(),
+        rays: cast.rays,
+        emitted: emitted.map(|e| by_vertex(&e, 1, &cast.order)),
+    }
+}
+
+/// Rows of `width` values by rank (`order[s]` the vertex of rank `s`) in
+/// vertex order.
+fn by_vertex<T: Copy + Default>(ranked: &[T], width: usize, order: &[u32]) -> Vec<T> {
+    let mut out = vec![T::default(); ranked.len()];
+    for (row, &v) in ranked.chunks_exact(width).zip(order) {
+        out[v as usize * width..][..width].copy_from_slice(row);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::Albedo;
+    use shlight_mesh::generate;
+
+    #[test]
+    fn bakes_with_either_kernel_agree() {
+        if Kernels::detect() == Kernels::Portable {
+            shlight_rays::skip_test(
+                "bakes_with_either_kernel_agree",
+                "no AVX2 and FMA here: both bakes gather with the portable kernel",
+            );
+        }
+        let room = generate::cornell_box();
+        let (fine, map) = room.subdivided_with_map(0.05);
+        let options = BakeOptions {
+            lmax: 2,
+            samples: 128,
+            mode: Mode::Interreflected { bounces: 2 },
+            albedo: Albedo::PerVertex(fine.colors.clone().unwrap()),
+            seed: 5,
+            emission: fine.emission.clone(),
+        };
+        let occluder = Occluder::new(&room);
+        let run = |kernels| {
+            bake_with(
+                &fine,
+                Some((&occluder, &map)),
+                &options,
+                &|_, _, _| {},
+                kernels,
+            )
+        };
+        // Without AVX2 and FMA this compares the portable bake with itself.
+        let (portable, simd) = (run(Kernels::Portable), run(Kernels::detect()));
+        let max = portable.coeffs.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        for (a, b) in portable.coeffs.iter().zip(&simd.coeffs) {
+            assert!((a - b).abs() <= 1e-5 * max, "{a} vs {b}");
+        }
+        for (a, b) in portable.emitted.unwrap().iter().zip(&simd.emitted.unwrap()) {
+            assert!((*a - *b).abs().max_element() <= 1e-5 * a.abs().max_element().max(1.0));
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! What a diffuse bake is asked for ([`BakeOptions`]: the transport, the
+//! albedo, the lmax, the directions) and where it is ([`Stage`]).
+
+use glam::Vec3;
+
+/// Which light transport the transfer holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Cosine-weighted, no visibility: the SH irradiance transfer.
+    Unshadowed,
+    /// Cosine-weighted with binary visibility (self-shadowing).
+    Shadowed,
+    /// Shadowed plus `bounces` bounces of diffuse interreflection.
+    Interreflected {
+        /// Number of bounces gathered after the shadowed term.
+        bounces: u32,
+    },
+}
+
+impl Mode {
+    /// `unshadowed`, `shadowed` or `interreflected`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Unshadowed => "unshadowed",
+            Mode::Shadowed => "shadowed",
+            Mode::Interreflected { .. } => "interreflected",
+        }
+    }
+
+    /// Bounces gathered (0 unless interreflected).
+    #[must_use]
+    pub fn bounces(self) -> u32 {
+        match self {
+            Mode::Interreflected { bounces } => bounces,
+            _ => 0,
+        }
+    }
+}
+
+/// The surface's diffuse albedo.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Albedo {
+    /// The same linear RGB albedo everywhere; one channel when the three are
+    /// equal.
+    Constant([f32; 3]),
+    /// One linear RGB albedo per vertex (e.g. the mesh's vertex colours).
+    PerVertex(Vec<Vec3>),
+}
+
+impl Albedo {
+    /// 1 for a grey constant albedo, 3 otherwise.
+    #[must_use]
+    pub fn channels(&self) -> usize {
+        match self {
+            Albedo::Constant([r, g, b]) if r == g && g == b => 1,
+            _ => 3,
+        }
+    }
+
+    /// Albedo of vertex `v` in channel `c` (`channels()` of them).
+    pub(crate) fn get(&self, v: usize, c: usize) -> f32 {
+        match self {
+            Albedo::Constant(rgb) => rgb[c],
+            Albedo::PerVertex(all) => all[v][c],
+        }
+    }
+}
+
+/// What to bake.
+#[derive(Clone, Debug)]
+pub struct BakeOptions {
+    /// Highest SH degree (`(lmax+1)^2` coefficients per channel).
+    pub lmax: usize,
+    /// Directions wanted over the whole sphere (rounded to a whole grid,
+    /// see [`shlight_core::map::montecarlo::stratified_directions`]); about
+    /// half are cast per vertex.
+    pub samples: usize,
+    /// Transport.
+    pub mode: Mode,
+    /// Albedo.
+    pub albedo: Albedo,
+    /// Seed of the direction set.
+    pub seed: u64,
+    /// Emitted radiance per vertex (linear RGB, one per vertex, e.g.
+    /// [`shlight_mesh::Mesh::emission`]); with it the bake also gathers the light the
+    /// emitters send around the mesh ([`Transfer::emitted`](crate::Transfer::emitted)).
+    pub emission: Option<Vec<Vec3>>,
+}
+
+impl Default for BakeOptions {
+    fn default() -> Self {
+        Self {
+            lmax: 4,
+            samples: 1024,
+            mode: Mode::Shadowed,
+            albedo: Albedo::Constant([0.8; 3]),
+            seed: 0,
+            emission: None,
+        }
+    }
+}
+
+/// Where a bake is, for progress bars.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Casting rays from the vertices.
+    Rays,
+    /// Gathering bounce `k` (1-based).
+    Bounce(u32),
+    /// Summing glossy transfer matrices, in vertices.
+    Matrices,
+}
