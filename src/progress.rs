@@ -97,52 +97,6 @@ impl Ui {
     }
 }
 
-/// One progress bar per stage of a multi-stage job (a bake), replaced when
-/// the stage changes; `label` names each stage's bar.
-pub struct StageBars<'a, S> {
-    ui: &'a Ui,
-    label: fn(S) -> String,
-    current: std::sync::Mutex<Option<(S, ProgressBar)>>,
-    furthest: std::sync::atomic::AtomicUsize,
-}
-
-impl<'a, S: Copy + PartialEq> StageBars<'a, S> {
-    /// No bar until the first update.
-    pub fn new(ui: &'a Ui, label: fn(S) -> String) -> Self {
-        Self {
-            ui,
-            label,
-            current: std::sync::Mutex::new(None),
-            furthest: std::sync::atomic::AtomicUsize::new(0),
-        }
-    }
-
-    /// `done` of `total` steps of `stage` are finished (called from worker
-    /// threads in any order; the bar shows the furthest).
-    pub fn update(&self, stage: S, done: usize, total: usize) {
-        use std::sync::atomic::Ordering;
-        let mut current = self.current.lock().expect("no panics while held");
-        if current.as_ref().is_none_or(|(s, _)| *s != stage) {
-            if let Some((_, bar)) = current.take() {
-                bar.finish_and_clear();
-            }
-            self.furthest.store(0, Ordering::Relaxed);
-            *current = Some((stage, self.ui.bar(total as u64, &(self.label)(stage))));
-        }
-        let furthest = self.furthest.fetch_max(done, Ordering::Relaxed).max(done);
-        if let Some((_, bar)) = current.as_ref() {
-            bar.set_position(furthest as u64);
-        }
-    }
-
-    /// Clears the last bar.
-    pub fn finish(&self) {
-        if let Some((_, bar)) = self.current.lock().expect("no panics while held").take() {
-            bar.finish_and_clear();
-        }
-    }
-}
-
 /// A job's [`Hooks`] on the terminal: [`Progress::Step`] as a spinner's
 /// line, each stage of [`Progress::Count`] as a bar of its own (replaced
 /// when the stage changes, showing the furthest count), warnings and notes

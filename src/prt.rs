@@ -1,28 +1,16 @@
-//! `shlight prt`: bake precomputed radiance transfer for a mesh.
-//!
-//! Loads the mesh (OBJ, PLY, OFF, glTF/GLB; shlight-mesh), bakes per-vertex
-//! transfer vectors (shlight-prt, in parallel with a progress bar), and
-//! writes a `.shprt` file (docs/shprt.md) or a glTF with `_SH_TRANSFER_k`
-//! attributes; with `--light` and `--preview`, shades the vertices under a
-//! coefficient file's radiance and rasterises them to a PNG.
+//! `shlight prt`: bake precomputed radiance transfer for a mesh, by
+//! shlight-pipeline's `prt` job: a `.shprt` file (docs/shprt.md) or a glTF
+//! with `_SH_TRANSFER_k` attributes; with `--light` and `--preview`, the
+//! vertices shaded under a coefficient file's radiance, rasterised.
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
-use glam::DVec3;
-use shlight_format::ShprtFile;
-use shlight_io::{ToneMap, WriteOptions, write_image};
-use shlight_mesh::Mesh;
-use shlight_prt::{
-    Albedo, BakeRequest, Brdf, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES, Mode, Stage,
-    bake_file, bake_glossy_file, glossy_bytes, glossy_channels,
-};
+use shlight_pipeline::{PrtMode, PrtRequest, Spelling, prt};
 
-use crate::progress::{StageBars, Ui};
+use crate::progress::{Reporter, Ui};
 use crate::values::{parse_albedo, parse_size};
-use shlight_format::CoeffFile;
 
 /// Light transport to bake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -36,6 +24,17 @@ pub enum ModeArg {
     /// Glossy transfer matrices (shadowed, with `--bounces` diffuse
     /// bounces when given) for the view-dependent `--brdf`; .shprt only.
     Glossy,
+}
+
+impl From<ModeArg> for PrtMode {
+    fn from(m: ModeArg) -> Self {
+        match m {
+            ModeArg::Unshadowed => PrtMode::Unshadowed,
+            ModeArg::Shadowed => PrtMode::Shadowed,
+            ModeArg::Interreflected => PrtMode::Interreflected,
+            ModeArg::Glossy => PrtMode::Glossy,
+        }
+    }
 }
 
 /// Arguments of `shlight prt`.
@@ -99,258 +98,23 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
             "nothing to write: give -o OUT.shprt (or .gltf/.glb) and/or --light L.json --preview P.png"
         );
     }
-    let mode = match (args.mode, args.bounces) {
-        (ModeArg::Interreflected, b) => Mode::Interreflected {
-            bounces: b.unwrap_or(DEFAULT_BOUNCES),
-        },
-        (ModeArg::Glossy, None | Some(0)) => Mode::Shadowed,
-        (ModeArg::Glossy, Some(bounces)) => Mode::Interreflected { bounces },
-        (_, Some(_)) => bail!("--bounces needs --mode interreflected or --mode glossy"),
-        (ModeArg::Unshadowed, None) => Mode::Unshadowed,
-        (ModeArg::Shadowed, None) => Mode::Shadowed,
-    };
-    let glossy = args.mode == ModeArg::Glossy;
-    let brdf = match (&args.brdf, glossy) {
-        (Some(text), true) => Some(Brdf::parse(text).map_err(|e| anyhow::anyhow!("--brdf: {e}"))?),
-        (None, true) => {
-            bail!("--mode glossy needs --brdf phong:S or ggx:ALPHA[,F0] (e.g. --brdf phong:32)")
-        }
-        (Some(_), false) => bail!("--brdf is the BRDF of --mode glossy"),
-        (None, false) => None,
-    };
-    let compress = match (&args.compress, glossy) {
-        (Some(text), true) => {
-            Some(shlight_prt::parse_cpca(text).map_err(|e| anyhow::anyhow!("--compress: {e}"))?)
-        }
-        (Some(_), false) => bail!("--compress compresses the matrices of --mode glossy"),
-        (None, _) => None,
-    };
-    if glossy && args.preview.is_some() {
-        bail!(
-            "--preview shades diffuse transfer; a glossy file is shaded view by view: \
-             shlight sample FILE.shprt --light LIGHT --view X,Y,Z"
-        );
-    }
-    if args.samples == 0 {
-        bail!("--samples must be at least 1");
-    }
-    if args.lmax > MAX_BAKE_LMAX {
-        bail!(
-            "--lmax {} is beyond {MAX_BAKE_LMAX} (diffuse transfer needs 2 to 6)",
-            args.lmax
-        );
-    }
-    let output_kind = args.output.as_deref().map(output_kind).transpose()?;
-    if let (Some(brdf), Some(Output::Gltf), Some(out)) = (brdf, output_kind, &args.output) {
-        bail!(
-            "{}: glTF cannot carry glossy transfer ({brdf}): a matrix per vertex is beyond \
-             what glTF vertex attributes hold; write a .shprt file, or bake without \
-             --mode glossy for glTF's transfer vectors",
-            out.display()
-        );
-    }
-    for out in args.output.iter().chain(&args.preview) {
-        crate::output_path::refuse_overwriting(out, std::slice::from_ref(&args.mesh))?;
-    }
-    // Read the light first: a bad light file fails before a long bake.
-    let light = args
-        .light
-        .as_deref()
-        .map(|path| {
-            CoeffFile::read_radiance(path, "PRT shading", "project without --quantity irradiance")
-                .map(|f| f.coeffs)
-        })
-        .transpose()?;
-
-    let name = args.mesh.display().to_string();
-    let mesh = shlight_mesh::load(&args.mesh)?;
-    if mesh.report.degenerate_triangles > 0 {
-        ui.warn(format!(
-            "{name}: skipped {} degenerate triangles",
-            mesh.report.degenerate_triangles
-        ));
-    }
-    let request = BakeRequest {
+    let plan = PrtRequest {
+        mesh: &args.mesh,
         lmax: args.lmax,
         samples: args.samples,
-        mode,
+        mode: args.mode.into(),
+        bounces: args.bounces,
+        brdf: args.brdf.as_deref(),
+        compress: args.compress.as_deref(),
         albedo: args.albedo,
         seed: args.seed,
-    };
-    if matches!(request.albedo(&mesh).0, Albedo::PerVertex(_)) {
-        ui.note(format!("{name}: albedo from the mesh's vertex colours"));
+        output: args.output.as_deref(),
+        light: args.light.as_deref(),
+        preview: args.preview.as_deref(),
+        preview_size: args.preview_size,
+        preview_exposure: args.preview_exposure,
     }
-    if let Some(brdf) = brdf {
-        return glossy_bake(args, ui, &mesh, &request, brdf, compress);
-    }
-    let bars = StageBars::new(ui, |stage| match stage {
-        Stage::Rays => "directions".to_string(),
-        Stage::Bounce(k) => format!("bounce {k}"),
-        Stage::Matrices => "matrices".to_string(),
-    });
-    let start = Instant::now();
-    let (transfer, file) = bake_file(&mesh, &args.mesh, &request, &|stage, done, total| {
-        bars.update(stage, done, total)
-    });
-    bars.finish();
-    let seconds = start.elapsed().as_secs_f64();
-    ui.note(format!(
-        "{name}: {} vertices, {} triangles, {} transfer, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
-        mesh.vertex_count(),
-        mesh.triangle_count(),
-        mode.name(),
-        args.lmax,
-        transfer.samples,
-        transfer.rays,
-        transfer.rays as f64 / seconds.max(1e-9) / 1e6,
-    ));
-    if let (Some(out), Some(kind)) = (&args.output, output_kind) {
-        match kind {
-            Output::Shprt => file.write(out)?,
-            Output::Gltf => shlight_prt::write_gltf(out, &mesh, &file)?,
-        }
-    }
-    if let (Some(path), Some(light)) = (&args.preview, &light) {
-        write_preview(path, &mesh, &file, light, args)?;
-    }
-    Ok(())
-}
-
-/// `--mode glossy`: says the matrices' bytes (refusing more than shlight
-/// bakes), bakes them and writes the `.shprt` file.
-fn glossy_bake(
-    args: &PrtArgs,
-    ui: &Ui,
-    mesh: &Mesh,
-    request: &BakeRequest,
-    brdf: Brdf,
-    compress: Option<(usize, usize)>,
-) -> Result<()> {
-    let name = args.mesh.display().to_string();
-    let channels = glossy_channels(&request.options(mesh).0);
-    let size = |lmax| glossy_bytes(mesh.vertex_count(), channels, lmax).unwrap_or(u64::MAX);
-    let bytes = size(args.lmax);
-    let mib = |b: u64| b as f64 / f64::from(1u32 << 20);
-    if bytes > MAX_GLOSSY_BYTES {
-        let fits = (0..args.lmax).rev().find(|&l| size(l) <= MAX_GLOSSY_BYTES);
-        bail!(
-            "{name}: --lmax {}: glossy matrices of {} vertices x {channels} channel{} x {}^2 \
-             floats would take {:.0} MiB, beyond the {:.0} MiB shlight bakes{}",
-            args.lmax,
-            mesh.vertex_count(),
-            if channels == 1 { "" } else { "s" },
-            (args.lmax + 1) * (args.lmax + 1),
-            mib(bytes),
-            mib(MAX_GLOSSY_BYTES),
-            fits.map_or(String::new(), |l| format!(
-                " (--lmax {l} takes {:.0} MiB)",
-                mib(size(l))
-            ))
-        );
-    }
-    let dim = channels * (args.lmax + 1).pow(4);
-    if let Some((_, vectors)) = compress.filter(|&(_, k)| k > dim) {
-        bail!(
-            "--compress: a vertex's matrices hold {dim} values at --lmax {}: at most {dim} basis \
-             vectors per cluster, not {vectors}",
-            args.lmax
-        );
-    }
-    ui.note(format!(
-        "{name}: glossy matrices take {:.1} MiB ({} vertices x {channels} channel{} x {}^2 floats, with positions and normals)",
-        mib(bytes),
-        mesh.vertex_count(),
-        if channels == 1 { "" } else { "s" },
-        (args.lmax + 1) * (args.lmax + 1),
-    ));
-    let bars = StageBars::new(ui, |stage| match stage {
-        Stage::Rays => "directions".to_string(),
-        Stage::Bounce(k) => format!("bounce {k}"),
-        Stage::Matrices => "matrices".to_string(),
-    });
-    let start = Instant::now();
-    let (transfer, mut file) =
-        bake_glossy_file(mesh, &args.mesh, request, brdf, &|stage, done, total| {
-            bars.update(stage, done, total)
-        });
-    bars.finish();
-    let seconds = start.elapsed().as_secs_f64();
-    ui.note(format!(
-        "{name}: {} vertices, {} triangles, glossy {} transfer for {brdf}, lmax {}, {} directions; {} rays in {seconds:.2} s",
-        mesh.vertex_count(),
-        mesh.triangle_count(),
-        request.mode.name(),
-        args.lmax,
-        transfer.samples,
-        transfer.rays,
-    ));
-    if let Some((clusters, vectors)) = compress {
-        let bar = ui.spinner("compressing (CPCA)");
-        let e = shlight_prt::compress_file(&mut file, clusters, vectors, args.seed)
-            .map_err(|e| anyhow::anyhow!("--compress: {e}"))?;
-        bar.finish_and_clear();
-        ui.note(format!(
-            "{name}: cpca:{clusters},{vectors}: {:.1} MiB of matrices in {:.1} MiB; RMS error {:.3e} ({:.2}% of the entries' RMS)",
-            mib(e.bytes_before),
-            mib(e.bytes_after),
-            e.rms,
-            100.0 * e.rms / e.rms_entries.max(f64::MIN_POSITIVE),
-        ));
-    }
-    if let Some(out) = &args.output {
-        file.write(out)?;
-    }
-    Ok(())
-}
-
-#[derive(Clone, Copy)]
-enum Output {
-    Shprt,
-    Gltf,
-}
-
-fn output_kind(path: &Path) -> Result<Output> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("shprt") => Ok(Output::Shprt),
-        Some("gltf" | "glb") => Ok(Output::Gltf),
-        _ => bail!(
-            "{}: unknown output format (use .shprt, .gltf or .glb)",
-            path.display()
-        ),
-    }
-}
-
-/// Shades every vertex (`T . L`) and rasterises the mesh to `path`.
-fn write_preview(
-    path: &Path,
-    mesh: &Mesh,
-    file: &ShprtFile,
-    light: &shlight_core::sh::ShCoeffs<DVec3>,
-    args: &PrtArgs,
-) -> Result<()> {
-    let radiance: Vec<glam::Vec3> = file
-        .view()?
-        .exit_radiance(light.as_slice())
-        .iter()
-        .map(|c| c.as_vec3())
-        .collect();
-    let (w, h) = args.preview_size;
-    let image = shlight_prt::render_preview(mesh, &radiance, w, h);
-    let exposure = args
-        .preview_exposure
-        .unwrap_or_else(|| shlight_prt::vertex_exposure(&radiance));
-    write_image(
-        path,
-        &image,
-        &WriteOptions {
-            exposure_ev: exposure,
-            tone_map: ToneMap::Aces,
-            ..WriteOptions::default()
-        },
-    )?;
+    .check(Spelling::CommandLine)?;
+    prt(&plan, &Reporter::new(ui))?;
     Ok(())
 }

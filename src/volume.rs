@@ -1,29 +1,21 @@
 //! `shlight volume`: bake an irradiance volume (SH probes on a grid) through
 //! a scene.
 //!
-//! Loads the scene (shlight-mesh, with albedo and emission from its
-//! materials), the environment (an equirect map projected to the bake's
-//! lmax, or a radiance coefficient file), bakes the probes (shlight-volume's
-//! `bake_file`, which the Python package calls too; in parallel with progress
-//! bars) and writes a `.shvol` file or its JSON form (shlight-format;
-//! docs/shvol.md).
+//! The arguments made into shlight-pipeline's `VolumeRequest` and its
+//! `volume` job run: the scene and the light read, the probes baked, a
+//! `.shvol` file or another form written (docs/shvol.md).
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
-use glam::DVec3;
 use shlight_baked::ProbeGrid;
-use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::VolumeFormat;
 use shlight_format::threejs_volume::Precision;
-use shlight_pipeline::Environment;
-use shlight_volume::{
-    BakedVolume, Stage, VolumeOptions, VolumeRequest, bake_file, check_environment,
-};
+use shlight_pipeline::{Spelling, VolumeRequest, visibility_size, volume};
+use shlight_volume::{VolumeBakeSettings, VolumeOptions};
 
-use crate::progress::{StageBars, Ui};
+use crate::progress::{Reporter, Ui};
 
 /// `--precision` of the three.js export.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -124,132 +116,37 @@ pub struct VolumeArgs {
 
 /// Runs `shlight volume`.
 pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
-    let resolution = ProbeGrid::parse_resolution(&args.resolution)?;
-    let bounds = args
-        .bounds
-        .as_deref()
-        .map(ProbeGrid::parse_bounds)
-        .transpose()?;
-    let format = args
-        .format
-        .unwrap_or_else(|| VolumeFormat::from_path(&args.output));
-    for out in std::iter::once(&args.output).chain(&args.preview) {
-        crate::output_path::refuse_overwriting(out, &[args.scene.clone(), args.env.clone()])?;
-    }
-    if args.lmax > shlight_baked::MAX_LMAX {
-        bail!(
-            "--lmax {} is beyond {}, the most a volume holds",
-            args.lmax,
-            shlight_baked::MAX_LMAX
-        );
-    }
-    let request = VolumeRequest {
-        resolution,
-        bounds,
-        options: VolumeOptions {
-            lmax: args.lmax,
-            samples: args.samples,
-            bounces: args.bounces,
-            surface_samples: args.surface_samples,
-            max_edge: None,
-            albedo: args.albedo,
-            invalid_backfaces: args.invalid_backfaces,
-            seed: args.seed,
-            relocate: !args.no_relocate,
-            visibility_size: if args.no_visibility {
-                0
-            } else {
-                shlight_baked::visibility::VISIBILITY_SIZE
+    let plan = VolumeRequest {
+        scene: &args.scene,
+        env: &args.env,
+        output: Some(&args.output),
+        format: args.format,
+        precision: args.precision.into(),
+        bake: VolumeBakeSettings {
+            resolution: ProbeGrid::parse_resolution(&args.resolution)?,
+            bounds: args
+                .bounds
+                .as_deref()
+                .map(ProbeGrid::parse_bounds)
+                .transpose()?,
+            options: VolumeOptions {
+                lmax: args.lmax,
+                samples: args.samples,
+                bounces: args.bounces,
+                surface_samples: args.surface_samples,
+                max_edge: None,
+                albedo: args.albedo,
+                invalid_backfaces: args.invalid_backfaces,
+                seed: args.seed,
+                relocate: !args.no_relocate,
+                visibility_size: visibility_size(!args.no_visibility),
             },
+            relightable: !args.static_only,
         },
-        relightable: !args.static_only,
-    };
-    // The light first: a bad file fails before a long bake.
-    let env = environment(&args.env, args.lmax, ui)?;
-    let scene = shlight_mesh::load(&args.scene)?;
-    let name = args.scene.display().to_string();
-    if scene.report.degenerate_triangles > 0 {
-        ui.warn(format!(
-            "{name}: skipped {} degenerate triangles",
-            scene.report.degenerate_triangles
-        ));
+        preview: args.preview.as_deref(),
+        preview_ball: args.preview_ball,
     }
-    let grid = request.grid(&scene)?;
-    ui.note(format!(
-        "{name}: {} triangles, {}; grid {}x{}x{} over {}:{}",
-        scene.triangle_count(),
-        match (&scene.colors, &scene.emission) {
-            (Some(_), Some(_)) => "albedo and emission from its materials",
-            (Some(_), None) => "albedo from its colours",
-            (None, Some(_)) => "emission from its materials",
-            (None, None) => "constant albedo",
-        },
-        resolution[0],
-        resolution[1],
-        resolution[2],
-        grid.min,
-        grid.max
-    ));
-
-    let bars = StageBars::new(ui, |stage| match stage {
-        Stage::Surface(shlight_prt::Stage::Rays) => "surface rays".to_string(),
-        Stage::Surface(shlight_prt::Stage::Bounce(k)) => format!("bounce {k}"),
-        Stage::Surface(shlight_prt::Stage::Matrices) => "matrices".to_string(),
-        Stage::Relocate => "relocate".to_string(),
-        Stage::Probes => "probes".to_string(),
-    });
-    let start = Instant::now();
-    let BakedVolume { volume, file } = bake_file(
-        &scene,
-        &args.scene,
-        &env,
-        &args.env,
-        &request,
-        &|stage, done, total| {
-            bars.update(stage, done, total);
-        },
-    )?;
-    bars.finish();
-    let seconds = start.elapsed().as_secs_f64();
-    let invalid = volume.invalid_count();
-    ui.note(format!(
-        "{} probes ({} invalid: inside geometry; {} moved out of geometry, at most {:.2} of a cell), {} rays in {seconds:.2} s ({:.1} M rays/s)",
-        volume.probe_count(),
-        invalid,
-        volume.relocated_count(),
-        volume.largest_move(),
-        volume.rays,
-        volume.rays as f64 / seconds.max(1e-9) / 1e6
-    ));
-    if let Some(path) = &args.preview {
-        let (w, h, pixels) = shlight_volume::probe_sheet(
-            &grid,
-            &file.valid,
-            &file.radiance,
-            args.lmax,
-            args.preview_ball,
-        );
-        let exposure = shlight_volume::probe_sheet_exposure(&pixels);
-        let image = shlight_io::Image::new(w, h, pixels)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        let options = shlight_io::WriteOptions {
-            exposure_ev: exposure,
-            ..shlight_io::WriteOptions::default()
-        };
-        shlight_io::write_image(path, &image, &options)?;
-    }
-    for note in file.write_as(&args.output, format, args.precision.into())? {
-        ui.note(note);
-    }
+    .check(Spelling::CommandLine)?;
+    volume(&plan, &Reporter::new(ui))?;
     Ok(())
-}
-
-/// The environment's radiance coefficients to `lmax`, in the y-up frame
-/// (`shlight_pipeline::Environment`), refusing a coefficient file that
-/// stops below `lmax`.
-fn environment(path: &Path, lmax: usize, ui: &Ui) -> Result<ShCoeffs<DVec3>> {
-    let env = Environment::load(path, Frame::YUp, lmax)?;
-    env.warnings.iter().for_each(|w| ui.warn(w));
-    check_environment(&env.radiance, path, lmax)?;
-    Ok(env.radiance_in(Frame::YUp))
 }

@@ -489,44 +489,91 @@ def convert(input, output=None, *, format=None, into=None, precision="half", irr
     )
 
 
-def bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024, bounces=None, albedo=None, seed=0):
-    """Bake precomputed radiance transfer for a mesh (``shlight prt MESH -o OUT.shprt``).
+def bake_transfer(
+    mesh,
+    mode="shadowed",
+    lmax=4,
+    *,
+    samples=1024,
+    bounces=None,
+    albedo=None,
+    seed=0,
+    brdf=None,
+    compress=None,
+    output=None,
+    light=None,
+    preview=None,
+    preview_size=(512, 512),
+    preview_exposure=None,
+):
+    """Bake precomputed radiance transfer for a mesh (``shlight prt MESH -o OUT``).
 
     Per-vertex diffuse transfer vectors T (Sloan, Kautz & Snyder 2002),
     albedo / pi folded in: a vertex's exit radiance under distant radiance
     SH L (``project(...).coefficients``, radiance) is ``T[v, c] @ L[:n, c]``
-    per channel (a grey transfer, one channel, for each colour of L). The
-    defaults are the CLI's.
+    per channel (a grey transfer, one channel, for each colour of L); or,
+    with ``mode="glossy"``, a transfer matrix per vertex for a
+    view-dependent BRDF, shaded by ``Transfer.exit_radiance``. The defaults
+    are the CLI's.
 
     Parameters
     ----------
     mesh : str | os.PathLike
         .obj, .ply, .off, .gltf or .glb.
-    mode : "unshadowed" | "shadowed" | "interreflected"
+    mode : "unshadowed" | "shadowed" | "interreflected" | "glossy"
         Cosine-weighted only; with self-shadowing; with self-shadowing and
-        ``bounces`` bounces of diffuse interreflection.
+        ``bounces`` bounces of diffuse interreflection; glossy matrices
+        (shadowed, with ``bounces`` diffuse bounces when given) for ``brdf``.
     lmax : int
         Highest SH degree of the transfer, at most 32.
     samples : int
         Directions per vertex over the whole sphere (a stratified grid of
         about this many, shared by all vertices; about half are cast).
     bounces : None | int
-        Bounces of interreflection (``mode="interreflected"`` only;
-        default 2).
+        Bounces of interreflection (``mode="interreflected"``, default 2;
+        ``mode="glossy"``, default 0).
     albedo : None | float | (float, float, float)
         Diffuse albedo, linear, in [0, 1]; None: the mesh's vertex colours
         if it has them, otherwise 0.8.
     seed : int
         Seed of the direction set (the same seed gives the same bake).
+    brdf : None | str
+        The glossy BRDF: ``phong:S`` (normalised Phong of exponent S) or
+        ``ggx:ALPHA`` / ``ggx:ALPHA,F0`` (GGX of linear roughness ALPHA,
+        Schlick's Fresnel of F0); ``mode="glossy"`` only.
+    compress : None | str
+        ``cpca:C,K``: the glossy matrices by clustered PCA, C clusters of K
+        basis vectors.
+    output : None | str | os.PathLike
+        Also write the bake, as the CLI writes ``-o``: ``.shprt``, or a glTF
+        (``.gltf``, ``.glb``) of the mesh with ``_SH_TRANSFER_k`` attributes
+        (diffuse transfer only).
+    light, preview, preview_size, preview_exposure :
+        A radiance coefficient file, and the picture of the mesh shaded by
+        it (diffuse transfer), as ``--light L --preview P``.
 
     Returns
     -------
     Transfer
-        ``coefficients`` ``(vertex_count, channels, (lmax+1)**2)`` float32;
-        ``save(path)`` writes the CLI's .shprt file byte for byte.
+        ``coefficients`` ``(vertex_count, channels, (lmax+1)**2)`` float32
+        (or ``matrices`` for glossy transfer); ``save(path)`` writes the
+        CLI's .shprt file byte for byte.
     """
     return _bake_transfer(
-        str(mesh), mode, lmax, samples=samples, bounces=bounces, albedo=albedo, seed=seed
+        str(mesh),
+        mode,
+        lmax,
+        samples=samples,
+        bounces=bounces,
+        albedo=albedo,
+        seed=seed,
+        brdf=brdf,
+        compress=compress,
+        output=output,
+        light=light,
+        preview=preview,
+        preview_size=tuple(preview_size),
+        preview_exposure=preview_exposure,
     )
 
 
@@ -546,6 +593,10 @@ def bake_volume(
     visibility=True,
     static=False,
     output=None,
+    format=None,
+    precision="half",
+    preview=None,
+    preview_ball=32,
 ):
     """Bake an irradiance volume through a scene (``shlight volume SCENE --env ENV -o OUT``).
 
@@ -605,6 +656,16 @@ def bake_volume(
     output : None | str | os.PathLike
         Also write the file: ``.shvol``, its JSON form for a ``.json``
         name, Bevy's KTX2 texture for ``.ktx2`` (as ``Volume.write``).
+    format, precision : None | str, str
+        The output's format (``shvol``, ``json``, ``bevy``, ``threejs``;
+        default by extension) and three.js's atlas numbers (``half`` or
+        ``f32``), as ``--format`` and ``--precision``.
+    preview : None | str | os.PathLike
+        Also write a picture of the probes (PNG, EXR or HDR): each a white
+        diffuse ball lit by its light, z layers side by side, invalid
+        probes grey (``--preview``).
+    preview_ball : int
+        Each ball's diameter in pixels.
 
     Returns
     -------
@@ -633,6 +694,10 @@ def bake_volume(
         visibility,
         static_only=static,
         output=None if output is None else str(output),
+        format=format,
+        precision=precision,
+        preview=None if preview is None else str(preview),
+        preview_ball=preview_ball,
     )
 
 

@@ -195,8 +195,14 @@ class Volume:
     ) -> npt.NDArray[np.float64]:
         """(N, 3) points facing (N, 3) normals -> (N, 3) float64 irradiance
         E(p, n) (shlight sample --lookup)."""
-    def write(self, path: PathLike) -> None:
-        """Writes .shvol, .json or .ktx2 (Bevy) as shlight volume -o does."""
+    def write(
+        self,
+        path: PathLike,
+        format: Optional[Literal["shvol", "json", "bevy", "threejs"]] = None,
+        precision: Literal["half", "f32"] = "half",
+    ) -> list[str]:
+        """Writes .shvol, .json, .ktx2 (Bevy) or three.js's grid as shlight
+        volume -o does; returns the writer's notes."""
 
 Source = Union[PathLike, Image, Sequence[Image]]
 Encoding = Literal[
@@ -339,13 +345,20 @@ def convert(
     """A coefficient file or volume in another format (shlight convert)."""
 def bake_transfer(
     mesh: PathLike,
-    mode: Literal["unshadowed", "shadowed", "interreflected"] = "shadowed",
+    mode: Literal["unshadowed", "shadowed", "interreflected", "glossy"] = "shadowed",
     lmax: int = 4,
     *,
     samples: int = 1024,
     bounces: Optional[int] = None,
     albedo: Union[None, float, tuple[float, float, float]] = None,
     seed: int = 0,
+    brdf: Optional[str] = None,
+    compress: Optional[str] = None,
+    output: Optional[PathLike] = None,
+    light: Optional[PathLike] = None,
+    preview: Optional[PathLike] = None,
+    preview_size: tuple[int, int] = (512, 512),
+    preview_exposure: Optional[float] = None,
 ) -> Transfer:
     """PRT of a mesh as shlight prt bakes it."""
 def bake_volume(
@@ -366,6 +379,10 @@ def bake_volume(
     visibility: bool = True,
     static: bool = False,
     output: Optional[PathLike] = None,
+    format: Optional[Literal["shvol", "json", "bevy", "threejs"]] = None,
+    precision: Literal["half", "f32"] = "half",
+    preview: Optional[PathLike] = None,
+    preview_ball: int = 32,
 ) -> Volume:
     """An irradiance volume as shlight volume bakes it."""
 

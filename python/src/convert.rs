@@ -10,7 +10,7 @@ use shlight_format::ExportFormat;
 use shlight_format::threejs_volume::Precision;
 use shlight_pipeline::{ConvertRequest, Spelling, convert as convert_job};
 
-use crate::errors::{pipeline_error, shlight_error, warn_all};
+use crate::errors::{pipeline_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 
@@ -35,15 +35,9 @@ pub fn convert(
         .map(|f| Spelling::Python.parse("format", &f))
         .transpose()
         .map_err(pipeline_error)?;
-    let precision = match precision.trim() {
-        "half" => Precision::Half,
-        "f32" => Precision::F32,
-        other => {
-            return Err(shlight_error(format!(
-                "precision={other:?}: expected \"half\" or \"f32\""
-            )));
-        }
-    };
+    let precision: Precision = Spelling::Python
+        .parse("precision", &precision)
+        .map_err(pipeline_error)?;
     let plan = ConvertRequest {
         input: &input,
         output: output.as_deref(),

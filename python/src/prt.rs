@@ -1,6 +1,7 @@
 //! `shlight.bake_transfer` and `shlight.Transfer`: precomputed radiance
-//! transfer of a mesh, baked by the library call `shlight prt` makes
-//! (`shlight_prt::bake_file`), and its `.shprt` file.
+//! transfer of a mesh, baked by shlight-pipeline's `prt` job as `shlight
+//! prt` bakes it (diffuse or glossy, compressed, to `.shprt` or glTF, with
+//! a preview), and its `.shprt` file.
 
 use std::path::PathBuf;
 
@@ -9,11 +10,12 @@ use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
-use shlight_pipeline::{Shading, Silent, Spelling, transfer_radiance};
-use shlight_prt::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, Mode, View, bake_file};
+use shlight_pipeline::{PrtRequest, Shading, Silent, Spelling, prt, transfer_radiance};
+use shlight_prt::View;
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
+use crate::hooks::PyHooks;
 
 /// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
 /// vectors, whose exit radiance under distant radiance SH `L` is
@@ -218,24 +220,6 @@ impl Transfer {
     }
 }
 
-/// `mode=` and `bounces=` as the library's mode, refused as `shlight prt`
-/// refuses `--mode` and `--bounces`.
-fn mode_of(mode: &str, bounces: Option<u32>) -> PyResult<Mode> {
-    match (mode.trim(), bounces) {
-        ("interreflected", b) => Ok(Mode::Interreflected {
-            bounces: b.unwrap_or(DEFAULT_BOUNCES),
-        }),
-        ("unshadowed" | "shadowed", Some(_)) => {
-            Err(shlight_error("bounces needs mode=\"interreflected\""))
-        }
-        ("unshadowed", None) => Ok(Mode::Unshadowed),
-        ("shadowed", None) => Ok(Mode::Shadowed),
-        (other, _) => Err(shlight_error(format!(
-            "mode={other:?}: expected \"unshadowed\", \"shadowed\" or \"interreflected\""
-        ))),
-    }
-}
-
 /// An albedo from Python: one value or (R, G, B) (`bake_transfer`'s and
 /// `bake_volume`'s).
 pub fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
@@ -255,13 +239,16 @@ pub fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
 }
 
 /// bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024,
-/// bounces=None, albedo=None, seed=0) -> Transfer
+/// bounces=None, albedo=None, seed=0, brdf=None, compress=None, output=None,
+/// light=None, preview=None, preview_size=(512, 512), preview_exposure=None)
+/// -> Transfer
 /// --
 ///
 /// See the package documentation (`help(shlight.bake_transfer)`).
 #[pyfunction]
 #[pyo3(signature = (mesh, mode="shadowed".to_string(), lmax=4, *, samples=1024, bounces=None,
-    albedo=None, seed=0))]
+    albedo=None, seed=0, brdf=None, compress=None, output=None, light=None, preview=None,
+    preview_size=(512, 512), preview_exposure=None))]
 pub fn bake_transfer(
     py: Python<'_>,
     mesh: PathBuf,
@@ -271,38 +258,36 @@ pub fn bake_transfer(
     bounces: Option<u32>,
     albedo: Option<&Bound<'_, PyAny>>,
     seed: u64,
+    brdf: Option<String>,
+    compress: Option<String>,
+    output: Option<PathBuf>,
+    light: Option<PathBuf>,
+    preview: Option<PathBuf>,
+    preview_size: (usize, usize),
+    preview_exposure: Option<f32>,
 ) -> PyResult<Transfer> {
-    let mode = mode_of(&mode, bounces)?;
-    if samples == 0 {
-        return Err(shlight_error("samples must be at least 1"));
-    }
-    if lmax > MAX_BAKE_LMAX {
-        return Err(shlight_error(format!(
-            "lmax={lmax} is beyond {MAX_BAKE_LMAX} (diffuse transfer needs 2 to 6)"
-        )));
-    }
-    let request = BakeRequest {
+    let plan = PrtRequest {
+        mesh: &mesh,
         lmax,
         samples,
-        mode,
+        mode: Spelling::Python
+            .parse("mode", &mode)
+            .map_err(pipeline_error)?,
+        bounces,
+        brdf: brdf.as_deref(),
+        compress: compress.as_deref(),
         albedo: albedo.map(albedo_of).transpose()?,
         seed,
-    };
-    let (file, warnings) = py.detach(|| {
-        guard(|| {
-            let loaded = shlight_mesh::load(&mesh).map_err(|e| chained(&e))?;
-            let mut warnings = Vec::new();
-            if loaded.report.degenerate_triangles > 0 {
-                warnings.push(format!(
-                    "{}: skipped {} degenerate triangles",
-                    mesh.display(),
-                    loaded.report.degenerate_triangles
-                ));
-            }
-            let (_, file) = bake_file(&loaded, &mesh, &request, &|_, _, _| {});
-            Ok((file, warnings))
-        })
-    })?;
-    warn_all(py, &warnings, 2)?;
-    Ok(Transfer { file })
+        output: output.as_deref(),
+        light: light.as_deref(),
+        preview: preview.as_deref(),
+        preview_size,
+        preview_exposure,
+    }
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
+    let hooks = PyHooks::new(false);
+    let baked = py.detach(|| guard(|| prt(&plan, &hooks).map_err(pipeline_error)));
+    warn_all(py, &hooks.warnings(), 2)?;
+    Ok(Transfer { file: baked?.file })
 }

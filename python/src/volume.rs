@@ -4,7 +4,7 @@
 //! sample --env` relights it and read at points by the lookups of `shlight
 //! sample --lookup` (`shlight_volume::PreparedLookup`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glam::{DVec3, Vec3};
 use numpy::ndarray::{Array2, Array3};
@@ -14,12 +14,13 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use shlight_baked::ProbeGrid;
-use shlight_core::sh::{Frame, ShCoeffs};
+use shlight_core::sh::ShCoeffs;
+use shlight_format::threejs_volume::Precision;
 use shlight_format::{Quantity, SamplePoints, ShvolFile, VolumeFormat};
-use shlight_pipeline::{Environment, Spelling, volume_irradiance, volume_lookup};
-use shlight_volume::{
-    BakedVolume, Lookup, VolumeOptions, VolumeRequest, bake_file, check_environment, relight_file,
+use shlight_pipeline::{
+    Environment, Spelling, VolumeRequest, visibility_size, volume, volume_irradiance, volume_lookup,
 };
+use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions, relight_file};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
@@ -39,16 +40,19 @@ pub struct Volume {
     file: ShvolFile,
 }
 
-/// Writes `file` to `path` as `shlight volume -o PATH` does: JSON for a
-/// `.json` name, Bevy's KTX2 for `.ktx2`, else the `.shvol` file; atomically.
-fn write_file(file: &ShvolFile, path: &Path) -> PyResult<()> {
-    file.write_as(
-        path,
-        VolumeFormat::from_path(path),
-        shlight_format::threejs_volume::Precision::default(),
-    )
-    .map(|_| ())
-    .map_err(|e| chained(&e))
+/// `format=` and `precision=` of a volume written from Python.
+fn volume_format(
+    format: Option<&str>,
+    precision: &str,
+) -> PyResult<(Option<VolumeFormat>, Precision)> {
+    let format = format
+        .map(|f| Spelling::Python.parse("format", f))
+        .transpose()
+        .map_err(pipeline_error)?;
+    let precision = Spelling::Python
+        .parse("precision", precision)
+        .map_err(pipeline_error)?;
+    Ok((format, precision))
 }
 
 /// An `(N, 3)` array of `what` from Python, each value rounded to f32 as a
@@ -309,10 +313,27 @@ impl Volume {
     }
 
     /// Writes the file atomically: `.shvol` (docs/shvol.md), its JSON form
-    /// for a `.json` name, Bevy's KTX2 texture for `.ktx2`; the bytes
-    /// `shlight volume -o PATH` writes.
-    fn write(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        py.detach(|| guard(|| write_file(&self.file, &path)))
+    /// for a `.json` name, Bevy's KTX2 texture for `.ktx2`, or `format`
+    /// ("shvol", "json", "bevy", "threejs", three.js's grid at `precision`
+    /// "half" or "f32"); the bytes `shlight volume -o PATH --format F`
+    /// writes. Returns the writer's notes.
+    #[pyo3(signature = (path, format=None, precision="half"))]
+    fn write(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        format: Option<&str>,
+        precision: &str,
+    ) -> PyResult<Vec<String>> {
+        let (format, precision) = volume_format(format, precision)?;
+        let format = format.unwrap_or_else(|| VolumeFormat::from_path(&path));
+        py.detach(|| {
+            guard(|| {
+                self.file
+                    .write_as(&path, format, precision)
+                    .map_err(|e| chained(&e))
+            })
+        })
     }
 
     fn __repr__(&self) -> String {
@@ -363,14 +384,16 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
 /// bake_volume(scene, env, resolution=(8, 4, 8), bounds=None, lmax=2,
 /// samples=1024, bounces=2, surface_samples=512, albedo=0.8,
 /// invalid_backfaces=0.5, seed=0, relocate=True, visibility=True,
-/// static_only=False, output=None) -> Volume
+/// static_only=False, output=None, format=None, precision="half", preview=None,
+/// preview_ball=32) -> Volume
 /// --
 ///
 /// See the package documentation (`help(shlight.bake_volume)`).
 #[pyfunction]
 #[pyo3(signature = (scene, env, resolution=None, bounds=None, lmax=2, samples=1024, bounces=2,
     surface_samples=512, albedo=None, invalid_backfaces=0.5, seed=0, relocate=true,
-    visibility=true, static_only=false, output=None))]
+    visibility=true, static_only=false, output=None, format=None, precision="half", preview=None,
+    preview_ball=32))]
 pub fn bake_volume(
     py: Python<'_>,
     scene: PathBuf,
@@ -388,68 +411,46 @@ pub fn bake_volume(
     visibility: bool,
     static_only: bool,
     output: Option<PathBuf>,
+    format: Option<&str>,
+    precision: &str,
+    preview: Option<PathBuf>,
+    preview_ball: usize,
 ) -> PyResult<Volume> {
+    let (format, precision) = volume_format(format, precision)?;
     let resolution = match resolution {
         Some(r) => resolution_of(r)?,
         None => [8, 4, 8],
     };
-    let bounds = bounds_of(bounds)?;
-    // The counts and box checked before anything is read, as the command
-    // line parses them first.
-    let (min, max) = bounds.unwrap_or((Vec3::ZERO, Vec3::ONE));
-    ProbeGrid::new(resolution, min, max).map_err(shlight_error)?;
-    if lmax > shlight_baked::MAX_LMAX {
-        return Err(shlight_error(format!(
-            "lmax={lmax} is beyond {}, the most a volume holds",
-            shlight_baked::MAX_LMAX
-        )));
-    }
-    let request = VolumeRequest {
-        resolution,
-        bounds,
-        options: VolumeOptions {
-            lmax,
-            samples,
-            bounces,
-            surface_samples,
-            max_edge: None,
-            albedo: albedo.map(albedo_of).transpose()?.unwrap_or([0.8; 3]),
-            invalid_backfaces,
-            seed,
-            relocate,
-            visibility_size: if visibility {
-                shlight_baked::visibility::VISIBILITY_SIZE
-            } else {
-                0
+    let plan = VolumeRequest {
+        scene: &scene,
+        env: &env,
+        output: output.as_deref(),
+        format,
+        precision,
+        bake: VolumeBakeSettings {
+            resolution,
+            bounds: bounds_of(bounds)?,
+            options: VolumeOptions {
+                lmax,
+                samples,
+                bounces,
+                surface_samples,
+                max_edge: None,
+                albedo: albedo.map(albedo_of).transpose()?.unwrap_or([0.8; 3]),
+                invalid_backfaces,
+                seed,
+                relocate,
+                visibility_size: visibility_size(visibility),
             },
+            relightable: !static_only,
         },
-        relightable: !static_only,
-    };
-    let (file, warnings) = py.detach(|| {
-        guard(|| {
-            let mut warnings = Vec::new();
-            // The light first: a bad file fails before a long bake.
-            let light = Environment::load(&env, Frame::YUp, lmax).map_err(pipeline_error)?;
-            warnings.extend(light.warnings.iter().cloned());
-            check_environment(&light.radiance, &env, lmax).map_err(|e| chained(&e))?;
-            let radiance = light.radiance_in(Frame::YUp);
-            let loaded = shlight_mesh::load(&scene).map_err(|e| chained(&e))?;
-            if loaded.report.degenerate_triangles > 0 {
-                warnings.push(format!(
-                    "{}: skipped {} degenerate triangles",
-                    scene.display(),
-                    loaded.report.degenerate_triangles
-                ));
-            }
-            let BakedVolume { file, .. } =
-                bake_file(&loaded, &scene, &radiance, &env, &request, &|_, _, _| {})
-                    .map_err(|e| chained(&e))?;
-            if let Some(path) = &output {
-                write_file(&file, path)?;
-            }
-            Ok((file, warnings))
-        })
-    })?;
-    warn_all(py, &warnings, 2)?;
-    Ok(Volume { file })
+        preview: preview.as_deref(),
+        preview_ball,
+    }
+    .check(Spelling::Python)
+    .map_err(pipeline_error)?;
+    let hooks = PyHooks::new(false);
+    let baked = py.detach(|| guard(|| volume(&plan, &hooks).map_err(pipeline_error)));
+    warn_all(py, &hooks.warnings(), 2)?;
+    Ok(Volume { file: baked?.file })
 }

@@ -237,3 +237,58 @@ def test_compare_and_accuracy_write_the_clis_files(cli, tmp_path):
     import json
 
     assert shlight.accuracy(quick=True) == json.loads(out)
+
+
+@pytest.mark.parametrize(
+    "name, flags, options",
+    [
+        ("g.shprt", ["--mode", "glossy", "--brdf", "phong:16", "--bounces", "1"],
+         {"mode": "glossy", "brdf": "phong:16", "bounces": 1}),
+        ("ggx.shprt", ["--mode", "glossy", "--brdf", "ggx:0.3,0.04", "--compress", "cpca:4,3"],
+         {"mode": "glossy", "brdf": "ggx:0.3,0.04", "compress": "cpca:4,3"}),
+        ("t.glb", ["--mode", "interreflected", "--albedo", "0.8,0.6,0.4"],
+         {"mode": "interreflected", "albedo": (0.8, 0.6, 0.4)}),
+    ],
+)
+def test_bake_transfer_writes_the_clis_glossy_compressed_and_gltf_files(cli, tmp_path, name, flags, options):
+    teapot = ROOT / "meshes" / "teapot.obj"
+    common = ["--lmax", "2", "--samples", "64"]
+    code, _, err = run_cli(cli, "prt", teapot, *common, *flags, "-o", tmp_path / f"cli-{name}", "-q")
+    assert code == 0, err
+    t = shlight.bake_transfer(teapot, lmax=2, samples=64, output=tmp_path / f"py-{name}", **options)
+    assert (tmp_path / f"py-{name}").read_bytes() == (tmp_path / f"cli-{name}").read_bytes()
+    if options.get("mode") == "glossy":
+        assert t.mode == "glossy" and t.brdf == options["brdf"]
+
+
+def test_bake_transfer_draws_the_clis_preview(cli, tmp_path, baked):
+    bunny = ROOT / "meshes" / "bunny.obj"
+    flags = ["--samples", "64", "--light", baked["light"], "--preview-size", "48x40"]
+    code, _, err = run_cli(cli, "prt", bunny, *flags, "--preview", tmp_path / "cli.png", "-q")
+    assert code == 0, err
+    shlight.bake_transfer(bunny, samples=64, light=baked["light"], preview=tmp_path / "py.png", preview_size=(48, 40))
+    assert (tmp_path / "py.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
+    with pytest.raises(shlight.ShlightError, match=r"^compress compresses the matrices of mode=\"glossy\""):
+        shlight.bake_transfer(bunny, compress="cpca:2,2")
+    with pytest.raises(shlight.ShlightError, match=r"^light needs preview"):
+        shlight.bake_transfer(bunny, light=baked["light"])
+
+
+def test_bake_volume_writes_the_clis_grid_and_probe_picture(cli, tmp_path, baked):
+    flags = ["--resolution", "3x2x3", "--samples", "128", "--surface-samples", "64"]
+    code, _, err = run_cli(
+        cli, "volume", BOX, "--env", baked["light"], *flags, "--format", "threejs", "--precision", "f32",
+        "-o", tmp_path / "cli.json", "--preview", tmp_path / "cli.png", "--preview-ball", "12", "-q",
+    )
+    assert code == 0, err
+    v = shlight.bake_volume(
+        BOX, baked["light"], resolution=(3, 2, 3), samples=128, surface_samples=64, format="threejs",
+        precision="f32", output=tmp_path / "py.json", preview=tmp_path / "py.png", preview_ball=12,
+    )
+    for name in ["json", "png"]:
+        assert (tmp_path / f"py.{name}").read_bytes() == (tmp_path / f"cli.{name}").read_bytes(), name
+    # The volume writes any form the CLI writes.
+    v.write(tmp_path / "again.json", format="threejs", precision="f32")
+    assert (tmp_path / "again.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+    with pytest.raises(shlight.ShlightError, match=r'^precision="double": '):
+        v.write(tmp_path / "x.json", format="threejs", precision="double")

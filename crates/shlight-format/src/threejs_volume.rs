@@ -88,8 +88,21 @@ pub enum Precision {
     F32,
 }
 
+impl std::str::FromStr for Precision {
+    type Err = String;
+
+    /// `half` or `f32`.
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s.trim() {
+            "half" => Ok(Precision::Half),
+            "f32" => Ok(Precision::F32),
+            _ => Err("unknown precision (expected half or f32)".into()),
+        }
+    }
+}
+
 impl Precision {
-    /// The name on the command line (`--precision`).
+    /// The name both front ends take.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {

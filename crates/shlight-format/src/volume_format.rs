@@ -24,6 +24,18 @@ pub enum VolumeFormat {
     Threejs,
 }
 
+impl std::str::FromStr for VolumeFormat {
+    type Err = String;
+
+    /// One of the [names](VolumeFormat::name).
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        VolumeFormat::ALL
+            .into_iter()
+            .find(|f| f.name() == s.trim())
+            .ok_or_else(|| "unknown volume format (expected shvol, json, bevy or threejs)".into())
+    }
+}
+
 impl VolumeFormat {
     /// Every format, in the order the help lists them.
     pub const ALL: [VolumeFormat; 4] = [

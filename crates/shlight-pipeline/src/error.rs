@@ -67,3 +67,21 @@ impl From<shlight_format::FormatError> for PipelineError {
         Self::new(error_chain(&e))
     }
 }
+
+impl From<shlight_mesh::MeshError> for PipelineError {
+    fn from(e: shlight_mesh::MeshError) -> Self {
+        Self::new(error_chain(&e))
+    }
+}
+
+impl From<shlight_prt::PrtError> for PipelineError {
+    fn from(e: shlight_prt::PrtError) -> Self {
+        Self::new(error_chain(&e))
+    }
+}
+
+impl From<shlight_volume::VolumeError> for PipelineError {
+    fn from(e: shlight_volume::VolumeError) -> Self {
+        Self::new(error_chain(&e))
+    }
+}

@@ -123,11 +123,13 @@ pub use job::project::{
     Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,
     project_files, write_coeff_file,
 };
+pub use job::prt::{PrtBaked, PrtMode, PrtOutput, PrtPlan, PrtRequest, prt};
 pub use job::render::{RenderLayout, RenderPlan, RenderRequest, render, render_light};
 pub use job::sample::{
     SamplePlan, SampleRequest, Shading, sample, transfer_radiance, volume_irradiance, volume_lookup,
 };
 pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
+pub use job::volume::{VolumePlan, VolumeRequest, visibility_size, volume};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use lobe::{LOBE_MARGIN, Lobe, LobeCamera, default_lobe_view, render_lobe};
 pub use map_info::MapInfo;

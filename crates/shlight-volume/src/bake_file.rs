@@ -1,13 +1,11 @@
-//! [`bake_file`]: a volume bake as a front end asks for it (`shlight
-//! volume`, the Python package's `bake_volume`), from its options to the
-//! `.shvol` file, so every front end bakes, lights and records a scene the
-//! same way.
+//! [`bake_file`]: a volume baked through a scene and lit, from its
+//! settings to the `.shvol` file with its provenance.
 //!
-//! The front end reads the inputs (the scene with [`shlight_mesh::load`],
-//! the light with shlight-pipeline's `Environment`, turned to the y-up
-//! frame) and shows their warnings; [`check_environment`] refuses a light
-//! too short for the bake before the scene is read; [`bake_file`] does the
-//! rest: the grid ([`VolumeRequest::grid`]), the bake, the probes lit by the
+//! shlight-pipeline's `volume` job reads the inputs (the scene with
+//! [`shlight_mesh::load`], the light with its `Environment`, turned to the
+//! y-up frame); [`check_environment`] refuses a light too short for the
+//! bake before the scene is read; [`bake_file`] does the rest: the grid
+//! ([`VolumeBakeSettings::grid`]), the bake, the probes lit by the
 //! environment, and the file with its provenance.
 
 use std::path::Path;
@@ -24,9 +22,10 @@ use crate::{FileMeta, ProbeVolume, Stage, VolumeError, VolumeOptions, bake};
 /// to it before [`bake_file`].
 pub const BAKE_FRAME: &str = "y-up";
 
-/// What a front end asks of a volume bake: `shlight volume`'s options.
+/// The settings of a volume bake through a scene: the grid asked for and
+/// the bake's options (shlight-pipeline's `VolumeRequest` holds them).
 #[derive(Clone, Debug, PartialEq)]
-pub struct VolumeRequest {
+pub struct VolumeBakeSettings {
     /// Probes along x, y and z.
     pub resolution: [usize; 3],
     /// The grid's box `(min, max)`; `None`: the scene's bounding box,
@@ -36,12 +35,12 @@ pub struct VolumeRequest {
     /// distance maps...).
     pub options: VolumeOptions,
     /// Keep the transfer matrices and emitted light in the file, so it
-    /// can be relit (`false`: `--static`).
+    /// can be relit (`false`: a static volume).
     pub relightable: bool,
 }
 
-impl VolumeRequest {
-    /// The probe grid over `scene`: [`VolumeRequest::bounds`], or the
+impl VolumeBakeSettings {
+    /// The probe grid over `scene`: [`VolumeBakeSettings::bounds`], or the
     /// scene's padded bounding box.
     ///
     /// # Errors
@@ -77,7 +76,7 @@ pub fn check_environment(
 ) -> Result<(), VolumeError> {
     if env.lmax() < lmax {
         return Err(VolumeError::Options(format!(
-            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project with --lmax {lmax})",
+            "{}: holds coefficients to lmax {}, the bake needs {lmax} (project the map to lmax {lmax})",
             env_path.display(),
             env.lmax()
         )));
@@ -103,7 +102,7 @@ pub fn generator() -> String {
 
 /// Bakes the volume `request` asks for through `scene` (read from
 /// `scene_path`) and makes its `.shvol` file: the grid
-/// ([`VolumeRequest::grid`]), [`bake()`] (`progress` as there), the probes
+/// ([`VolumeBakeSettings::grid`]), [`bake()`] (`progress` as there), the probes
 /// relit under `env` (radiance coefficients in the y-up frame, read from
 /// `env_path`; [`ProbeVolume::relight`]), and [`ProbeVolume::to_shvol`]
 /// recording the frame, the inputs' file names and the generator
@@ -117,7 +116,7 @@ pub fn bake_file(
     scene_path: &Path,
     env: &ShCoeffs<DVec3>,
     env_path: &Path,
-    request: &VolumeRequest,
+    request: &VolumeBakeSettings,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<BakedVolume, VolumeError> {
     check_environment(env, env_path, request.options.lmax)?;
@@ -152,7 +151,7 @@ mod tests {
             bounces: 1,
             ..VolumeOptions::default()
         };
-        let request = VolumeRequest {
+        let request = VolumeBakeSettings {
             resolution: [2, 1, 2],
             bounds: Some((Vec3::splat(-1.0), Vec3::ONE)),
             options: options.clone(),
@@ -180,7 +179,7 @@ mod tests {
         assert_eq!((baked.file.frame.as_str(), baked.file.seed), ("y-up", 0));
         assert_eq!(baked.file.generator, generator());
 
-        let fixed = VolumeRequest {
+        let fixed = VolumeBakeSettings {
             bounds: None,
             relightable: false,
             ..request.clone()
@@ -212,7 +211,7 @@ mod tests {
         .unwrap_err();
         assert_eq!(
             e.to_string(),
-            "l1.json: holds coefficients to lmax 1, the bake needs 2 (project with --lmax 2)"
+            "l1.json: holds coefficients to lmax 1, the bake needs 2 (project the map to lmax 2)"
         );
         assert_eq!(input_name(Path::new("..")), "..");
     }

@@ -11,7 +11,7 @@
 //!   through the scene's shadows and interreflections
 //!   ([`bake()`] states the estimator).
 //! - [`bake_file()`]: a bake as a front end asks for it (`shlight volume`,
-//!   the Python package's `bake_volume`): a [`VolumeRequest`] over a scene
+//!   the Python package's `bake_volume`): a [`VolumeBakeSettings`] over a scene
 //!   and an environment to the `.shvol` file.
 //! - [`ProbeVolume::relight`]: the probes for any environment (rotated, or
 //!   another map) without a new bake; [`relight_file`] for a `.shvol` file.
@@ -61,7 +61,7 @@ mod probe_volume;
 mod threejs_lookup;
 
 pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake, relocate};
-pub use bake_file::{BakedVolume, VolumeRequest, bake_file, check_environment};
+pub use bake_file::{BakedVolume, VolumeBakeSettings, bake_file, check_environment};
 pub use bevy_lookup::BevyLookup;
 pub use error::VolumeError;
 pub use lookup::{Lookup, irradiance_at, shaded_lmax};

@@ -16,6 +16,8 @@ pub mod dfg;
 pub mod irradiance;
 pub mod prefilter;
 pub mod project;
+pub mod prt;
 pub mod render;
 pub mod sample;
 pub mod synth;
+pub mod volume;
