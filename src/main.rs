@@ -96,6 +96,27 @@ fn show(path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Runs one command.
+fn run(command: Command, ui: &progress::Ui) -> anyhow::Result<()> {
+    match command {
+        Command::Project(args) => project::run(&args, ui),
+        Command::Render(args) => render::run(&args, ui),
+        Command::Synth(args) => synth::run(&args, ui),
+        Command::Show { file } => show(&file),
+        Command::Convert(args) => convert::run(&args, ui),
+        Command::Irradiance(args) => irradiance::run(&args, ui),
+        Command::Accuracy(args) => accuracy::run(&args, ui),
+        Command::Compare(args) => compare::run(&args, ui),
+        Command::RenderMesh(args) => render_mesh::run(&args, ui),
+        Command::View(args) => view::run(&args, ui),
+        Command::Prt(args) => prt::run(&args, ui),
+        Command::Volume(args) => volume::run(&args, ui),
+        Command::Sample(args) => sample::run(&args, ui),
+        Command::Prefilter(args) => prefilter::run(&args, ui),
+        Command::Dfg(args) => dfg::run(&args, ui),
+    }
+}
+
 /// Large buffers on huge pages (see heap.rs).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[global_allocator]
@@ -126,24 +147,7 @@ fn main() -> ExitCode {
         Command::Project(args) if args.gpu => runtime_dir::ensure_runtime_dir(),
         _ => None,
     };
-    let result = match cli.command {
-        Command::Project(args) => project::run(&args, &ui),
-        Command::Render(args) => render::run(&args, &ui),
-        Command::Synth(args) => synth::run(&args, &ui),
-        Command::Show { file } => show(&file),
-        Command::Convert(args) => convert::run(&args, &ui),
-        Command::Irradiance(args) => irradiance::run(&args, &ui),
-        Command::Accuracy(args) => accuracy::run(&args, &ui),
-        Command::Compare(args) => compare::run(&args, &ui),
-        Command::RenderMesh(args) => render_mesh::run(&args, &ui),
-        Command::View(args) => view::run(&args, &ui),
-        Command::Prt(args) => prt::run(&args, &ui),
-        Command::Volume(args) => volume::run(&args, &ui),
-        Command::Sample(args) => sample::run(&args, &ui),
-        Command::Prefilter(args) => prefilter::run(&args, &ui),
-        Command::Dfg(args) => dfg::run(&args, &ui),
-    };
-    match result {
+    match run(cli.command, &ui) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
             eprintln!("error: {err:#}");
