@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use shlight_core::sh::Frame;
 use shlight_io::{Image, ReadOptions, read_image_bytes};
 use shlight_mesh::{Mesh, MeshFormat};
-use shlight_pipeline::{Environment, InputLayout, LoadedMap};
+use shlight_pipeline::{Environment, LoadedMap, ReadSettings};
 
 /// The name the bundled mesh goes by (its path in the repository).
 pub const MESH_NAME: &str = "meshes/bunny.obj";
@@ -39,7 +39,7 @@ pub fn env_image() -> Result<Image> {
 /// ([`Environment::from_loaded`]). Its known negative texels are not
 /// reported: the user did not name the file.
 pub fn environment(up: Frame) -> Result<Environment> {
-    let loaded = LoadedMap::from_image(ENV_NAME, env_image()?, InputLayout::Auto, false)?;
+    let loaded = LoadedMap::from_image(ENV_NAME, env_image()?, &ReadSettings::default())?;
     let mut env = Environment::from_loaded(
         Path::new(ENV_NAME),
         loaded,

@@ -50,6 +50,7 @@ pub fn run(args: &CompareArgs, ui: &Ui) -> Result<()> {
             layout: args.layout,
             read: ReadOptions::default(),
             sanitize: args.sanitize,
+            spelling: Spelling::CommandLine,
         },
         orientation: MapOrientation {
             frame: crate::input::frame_of(&args.up),

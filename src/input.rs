@@ -6,7 +6,7 @@ use clap::Args;
 use shlight_core::map::MapOrientation;
 use shlight_core::sh::Frame;
 use shlight_io::ReadOptions;
-use shlight_pipeline::ReadSettings;
+use shlight_pipeline::{ReadSettings, Spelling};
 
 pub use shlight_pipeline::InputLayout;
 
@@ -43,6 +43,7 @@ impl MapInputArgs {
                 max_pixels: self.max_pixels,
             },
             sanitize: self.sanitize,
+            spelling: Spelling::CommandLine,
         }
     }
 

@@ -50,6 +50,7 @@ fn read_settings(
             max_pixels: max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
         },
         sanitize,
+        spelling: Spelling::Python,
     })
 }
 

@@ -104,6 +104,7 @@ impl RawOptions {
                     max_pixels: self.max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
                 },
                 sanitize: self.sanitize,
+                spelling: Spelling::Python,
             },
             lmax: self.lmax,
             orientation: MapOrientation {

@@ -200,6 +200,7 @@ fn project_array(
         o.read.layout,
         array.width,
         array.height,
+        Spelling::Python,
         &mut warnings,
     )
     .map_err(pipeline_error)?;

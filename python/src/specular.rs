@@ -58,6 +58,7 @@ pub fn prefilter(
                 max_pixels: max_pixels.unwrap_or(ReadOptions::DEFAULT_MAX_PIXELS),
             },
             sanitize,
+            spelling: Spelling::Python,
         },
         orientation: MapOrientation {
             frame: frame_of(&up)?,

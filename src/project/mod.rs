@@ -69,6 +69,7 @@ fn request(args: &ProjectArgs) -> ProjectRequest<'_> {
                     max_pixels: args.max_pixels,
                 },
                 sanitize: args.sanitize,
+                spelling: Spelling::CommandLine,
             },
             lmax: args.lmax,
             orientation: MapOrientation {

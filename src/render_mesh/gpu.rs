@@ -168,7 +168,11 @@ pub fn write_frame(
 /// comes from `R a`.
 pub fn rotation(args: &RenderMeshArgs) -> Result<DMat3> {
     Ok(match &args.rotate {
-        Some(spec) => shlight_pipeline::parse_rotation(spec, frame_of(&args.up))?,
+        Some(spec) => shlight_pipeline::parse_rotation(
+            spec,
+            frame_of(&args.up),
+            shlight_pipeline::Spelling::CommandLine,
+        )?,
         None => DMat3::IDENTITY,
     })
 }

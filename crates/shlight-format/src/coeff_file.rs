@@ -374,7 +374,7 @@ impl CoeffFile {
             return Err(FormatError::invalid(
                 &name,
                 format!(
-                    "holds the {} encoding, whose coefficients are not the whole light; {user} needs plain SH ({fix}, without --encoding)",
+                    "holds the {} encoding, whose coefficients are not the whole light; {user} needs plain SH ({fix}, without an encoding)",
                     file.encoding.encoding()
                 ),
             ));

@@ -21,16 +21,17 @@ impl CoeffFile {
     ///
     /// # Errors
     /// A spec that names no window, or no Hanning window that makes a
-    /// channel non-negative; the message starts with `--window SPEC`.
+    /// channel non-negative; the message starts with `window SPEC` (a
+    /// front end names the setting its own way before it).
     pub fn windows_for(&self, spec: &str, target: WindowTarget) -> Result<[Window; 3]> {
         let spec = spec.trim();
         if spec == "auto" {
             return auto_windows(&self.coeffs, WindowFamily::Hanning, target)
-                .map_err(|e| FormatError::Export(format!("--window auto: {e}")));
+                .map_err(|e| FormatError::Export(format!("window auto: {e}")));
         }
         let w = spec
             .parse::<Window>()
-            .map_err(|e| FormatError::Export(format!("--window {spec}: {e}")))?;
+            .map_err(|e| FormatError::Export(format!("window {spec}: {e}")))?;
         Ok([w; 3])
     }
 

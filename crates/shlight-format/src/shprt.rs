@@ -119,7 +119,7 @@ impl ShprtFile {
         if let Some(g) = &self.glossy {
             return Err(shlight_baked::ShapeError(format!(
                 "glossy transfer ({}) holds a matrix per vertex, not a transfer vector: \
-                 it is shaded view by view (shlight sample --view or --eye)",
+                 it is shaded view by view (sampled toward a view direction or an eye)",
                 g.brdf
             )));
         }

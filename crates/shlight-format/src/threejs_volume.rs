@@ -219,7 +219,7 @@ impl ThreeJsAtlas {
                     if !h.is_finite() {
                         return Err(FormatError::Export(format!(
                             "a probe coefficient ({v}) is beyond a half float's range (65504): \
-                             use --precision f32"
+                             use f32 precision"
                         )));
                     }
                     out.extend(h.to_bits().to_le_bytes());
@@ -377,7 +377,7 @@ mod tests {
         let probes = vec![[[7.0e4f32, 0.0, 0.0]; 9]];
         let atlas = ThreeJsAtlas::from_probes([1, 1, 1], &probes);
         let e = atlas.bytes(Precision::Half).unwrap_err().to_string();
-        assert!(e.contains("--precision f32"), "{e}");
+        assert!(e.contains("f32 precision") && !e.contains("--"), "{e}");
         assert_eq!(atlas.bytes(Precision::F32).unwrap().len(), 7 * 3 * 16);
     }
 }

@@ -95,7 +95,7 @@ pub enum IoErrorKind {
     /// allows. Reported from the file's header, before any pixel memory is
     /// allocated.
     #[error(
-        "image too large ({width}x{height} pixels; the limit is {max_pixels} pixels: raise it with the max_pixels read option, --max-pixels on the command line)"
+        "image too large ({width}x{height} pixels; the limit is {max_pixels} pixels: raise the max_pixels limit to read it)"
     )]
     TooLarge {
         /// Width in pixels, from the header.

@@ -134,7 +134,7 @@ pub fn compare_encodings(
 
 /// [`load_map`] with `read`, its warnings handed to `warn`.
 fn load(path: &Path, read: &ReadSettings, warn: &dyn Fn(&str)) -> Result<LoadedMap> {
-    let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
+    let loaded = load_map(path, read)?;
     for w in &loaded.warnings {
         warn(w);
     }
@@ -179,7 +179,7 @@ mod tests {
         assert_eq!(warnings.borrow().len(), 1);
         assert!(warnings.borrow()[0].contains("negative"), "{warnings:?}");
 
-        let loaded = load_map(&path, s.read.layout, &s.read.read, false).unwrap();
+        let loaded = load_map(&path, &s.read).unwrap();
         let map = loaded.map(o, "sunny").unwrap();
         let exact = MapIrradiance::on_equirect(&map, (8, 4), o, &|_| {}).unwrap();
         assert_eq!(report.map_size, (w, h));

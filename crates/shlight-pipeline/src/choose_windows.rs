@@ -6,6 +6,7 @@ use shlight_core::sh::{ShCoeffs, Window, WindowFamily, WindowTarget, auto_window
 use shlight_format::Quantity;
 
 use crate::settings::ProjectSettings;
+use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
 /// The window of each colour channel: the settings' window for all three,
@@ -15,11 +16,13 @@ use crate::{PipelineError, Result};
 /// ([`shlight_core::sh::auto_windows`]).
 ///
 /// # Errors
-/// No Hanning window makes a channel non-negative; the message names `name`.
+/// No Hanning window makes a channel non-negative; the message names `name`
+/// and the setting as `spelling` does.
 pub fn choose_windows(
     radiance: &ShCoeffs<DVec3>,
     s: &ProjectSettings,
     name: &str,
+    spelling: Spelling,
 ) -> Result<[Window; 3]> {
     let target = match s.quantity {
         Quantity::Radiance => WindowTarget::Function,
@@ -28,7 +31,10 @@ pub fn choose_windows(
     match s.window {
         Some(w) => Ok([w; 3]),
         None => auto_windows(radiance, WindowFamily::Hanning, target).map_err(|e| {
-            PipelineError::new(crate::error_chain(&e)).context(format!("{name}: --window auto"))
+            PipelineError::new(crate::error_chain(&e)).context(format!(
+                "{name}: {}",
+                spelling.option_value("window", "auto")
+            ))
         }),
     }
 }

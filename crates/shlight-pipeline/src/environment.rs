@@ -12,14 +12,13 @@ use shlight_core::encoding::{
 use shlight_core::map::{Layout, MapOrientation};
 use shlight_core::sh::{Frame, ShCoeffs, ShRotation};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
-use shlight_io::{Image, ReadOptions};
+use shlight_io::Image;
 
 use crate::cpu_projector::CpuProjector;
 use crate::encoded_file::set_encoding;
-use crate::input_layout::InputLayout;
 use crate::load::{LoadedMap, env_map, load_map};
 use crate::projector::Projector;
-use crate::settings::{Method, ProjectSettings};
+use crate::settings::{Method, ProjectSettings, ReadSettings};
 use crate::{PipelineError, Result};
 
 /// A light read from a file.
@@ -56,8 +55,7 @@ impl Environment {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"));
         if is_json {
-            let file =
-                CoeffFile::read_radiance(path, "--env", "shlight project --quantity radiance")?;
+            let file = CoeffFile::read_radiance(path, "the light", "project the map as radiance")?;
             let lmax = file.coeffs.lmax().min(lmax);
             return Ok(Self {
                 path: path.to_path_buf(),
@@ -70,7 +68,7 @@ impl Environment {
                 warnings: Vec::new(),
             });
         }
-        let loaded = load_map(path, InputLayout::Auto, &ReadOptions::default(), false)?;
+        let loaded = load_map(path, &ReadSettings::default())?;
         Self::from_loaded(path, loaded, up, lmax)
     }
 
@@ -88,8 +86,8 @@ impl Environment {
         let (w, h) = (loaded.image.width(), loaded.image.height());
         if Layout::detect(w, h) != Some(Layout::Equirect) {
             return Err(PipelineError::new(format!(
-                "{name}: {w}x{h} is not an equirect map (2:1); project other layouts first \
-                 (shlight project {name} --lmax {lmax} -o light.json) and pass the JSON file"
+                "{name}: {w}x{h} is not an equirect map (2:1); project other layouts to a \
+                 coefficient file of lmax {lmax} first and pass that"
             )));
         }
         let orientation = MapOrientation {
@@ -146,7 +144,7 @@ impl Environment {
                 ))
             }
             None if encoding == Encoding::DominantSh => Err(PipelineError::new(format!(
-                "--encoding dominant+sh finds its lights among a map's texels; {name} holds coefficients (pass the map, or use --encoding sloan+sh)"
+                "the dominant+sh encoding finds its lights among a map's texels; {name} holds coefficients (pass the map, or use the sloan+sh encoding)"
             ))),
             None => {
                 // The SH part to lmax; the others take what they need (the
@@ -157,7 +155,7 @@ impl Environment {
                 };
                 encode_coefficients(&coeffs, encoding).ok_or_else(|| {
                     PipelineError::new(format!(
-                        "{name}: lmax {} is too low for --encoding {encoding}",
+                        "{name}: lmax {} is too low for the {encoding} encoding",
                         self.radiance.lmax()
                     ))
                 })
@@ -197,7 +195,7 @@ mod tests {
     /// `image` named `name` through the loader, as the bundled map comes
     /// in.
     fn from_image(name: &str, image: Image, up: Frame, lmax: usize) -> Result<Environment> {
-        let loaded = LoadedMap::from_image(name, image, InputLayout::Auto, false)?;
+        let loaded = LoadedMap::from_image(name, image, &ReadSettings::default())?;
         Environment::from_loaded(Path::new(name), loaded, up, lmax)
     }
 

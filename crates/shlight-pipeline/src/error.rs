@@ -27,6 +27,13 @@ impl PipelineError {
         Self::new(format!("{context}: {}", self.message))
     }
 
+    /// This error with `hint` after it: `"{self}; {hint}"` (what to do
+    /// about it, in the words of the caller's front end).
+    #[must_use]
+    pub fn context_after(self, hint: impl fmt::Display) -> Self {
+        Self::new(format!("{}; {hint}", self.message))
+    }
+
     /// The message.
     #[must_use]
     pub fn message(&self) -> &str {

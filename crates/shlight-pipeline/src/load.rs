@@ -9,6 +9,8 @@ use shlight_io::{Image, PixelStats, ReadOptions, read_image, read_image_by_rows}
 
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 use crate::map_info::MapInfo;
+use crate::settings::ReadSettings;
+use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
 /// `width x height` texels of `layout`, row after row, as a map read in
@@ -70,21 +72,17 @@ impl LoadedMap {
     ///
     /// # Errors
     /// As [`load_map`] for a single image.
-    pub fn from_image(
-        name: &str,
-        image: Image,
-        layout: InputLayout,
-        sanitize: bool,
-    ) -> Result<Self> {
+    pub fn from_image(name: &str, image: Image, read: &ReadSettings) -> Result<Self> {
         let mut warnings = Vec::new();
-        let layout = layout_for_size(name, layout, image.width(), image.height(), &mut warnings)?;
+        let (w, h) = (image.width(), image.height());
+        let layout = layout_for_size(name, read.layout, w, h, read.spelling, &mut warnings)?;
         let stats = image.stats();
-        Self::checked(name, image, layout, stats, warnings, sanitize)
+        Self::checked(name, image, layout, stats, warnings, read)
     }
 
     /// `image` of `layout`, whose values have the statistics `stats`,
     /// refused (NaN or infinite texels) or kept with a warning added to
-    /// `warnings` ([`check_values`]), or with `sanitize` replaced
+    /// `warnings` ([`check_values`]), or with `read.sanitize` replaced
     /// ([`sanitize_image`]).
     pub(crate) fn checked(
         name: &str,
@@ -92,12 +90,17 @@ impl LoadedMap {
         layout: Layout,
         stats: PixelStats,
         mut warnings: Vec<String>,
-        sanitize: bool,
+        read: &ReadSettings,
     ) -> Result<Self> {
-        let sanitized = if sanitize {
-            Some(sanitize_image(name, &mut image, &mut warnings))
+        let sanitized = if read.sanitize {
+            Some(sanitize_image(
+                name,
+                &mut image,
+                read.spelling,
+                &mut warnings,
+            ))
         } else {
-            check_values(name, &stats, &mut warnings)?;
+            check_values(name, &stats, read.spelling, &mut warnings)?;
             None
         };
         Ok(Self {
@@ -112,7 +115,7 @@ impl LoadedMap {
 
 /// Reads the six face files of `path` (all must exist, be square and of
 /// one size) and lays them side by side as a strip, +X -X +Y -Y +Z -Z.
-fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
+fn read_faces(path: &Path, read: &ReadOptions, spelling: Spelling) -> Result<Image> {
     let mut faces: Vec<(std::path::PathBuf, Image)> = Vec::with_capacity(6);
     for p in face_paths(path) {
         if !p.exists() {
@@ -153,8 +156,9 @@ fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
     let max = read.max_pixels;
     if w.checked_mul(h).is_none_or(|p| p > max) {
         return Err(PipelineError::new(format!(
-            "{}: six faces of {n}x{n} make more than --max-pixels {max}",
-            path.display()
+            "{}: six faces of {n}x{n} make more than {}",
+            path.display(),
+            spelling.option_number("max_pixels", max, max)
         )));
     }
     Ok(Image::from_fn(w, h, |x, y| faces[x / n].1.get(x % n, y)))
@@ -172,39 +176,36 @@ fn read_faces(path: &Path, read: &ReadOptions) -> Result<Image> {
 /// a `{face}` input with a single-image layout (or the reverse), missing or
 /// mismatched faces, NaN or infinite texels without `sanitize`. Every
 /// message names the input.
-pub fn load_map(
-    path: &Path,
-    input_layout: InputLayout,
-    read: &ReadOptions,
-    sanitize: bool,
-) -> Result<LoadedMap> {
+pub fn load_map(path: &Path, read: &ReadSettings) -> Result<LoadedMap> {
     let name = path.display();
-    match (is_faces(path), input_layout) {
+    let spelling = read.spelling;
+    match (is_faces(path), read.layout) {
         (true, InputLayout::Auto | InputLayout::Faces) => {
-            let image = read_faces(path, read)?;
+            let image = read_faces(path, &read.read, spelling)?;
             let stats = image.stats();
-            LoadedMap::checked(
-                &name.to_string(),
-                image,
-                Layout::Strip,
-                stats,
-                Vec::new(),
-                sanitize,
-            )
+            let name = name.to_string();
+            LoadedMap::checked(&name, image, Layout::Strip, stats, Vec::new(), read)
         }
         (true, InputLayout::Image(l)) => Err(PipelineError::new(format!(
-            "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs --layout faces or auto, not {l}"
+            "{name}: an input with {FACE_PLACEHOLDER} names six face files; it needs {} or auto, not {l}",
+            spelling.option_value("layout", "faces")
         ))),
-        (false, InputLayout::Faces) => Err(PipelineError::new(format!(
-            "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
-        ))),
-        (false, layout) => {
+        (false, InputLayout::Faces) => Err(faces_need_a_placeholder(&name.to_string(), spelling)),
+        (false, _) => {
             // By rows: a large compressed map then takes its texels'
             // memory, not the file's besides.
-            let image = read_image_by_rows(path, read)?;
-            LoadedMap::from_image(&name.to_string(), image, layout, sanitize)
+            let image = read_image_by_rows(path, &read.read)?;
+            LoadedMap::from_image(&name.to_string(), image, read)
         }
     }
+}
+
+/// The refusal of the faces layout for an input that names one file.
+fn faces_need_a_placeholder(name: &str, spelling: Spelling) -> PipelineError {
+    PipelineError::new(format!(
+        "{name}: {} reads six files named by an input containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)",
+        spelling.option_value("layout", "faces")
+    ))
 }
 
 /// The layout of a single `w x h` image named `name`: by aspect ratio for
@@ -220,18 +221,16 @@ pub fn layout_for_size(
     layout: InputLayout,
     w: usize,
     h: usize,
+    spelling: Spelling,
     warnings: &mut Vec<String>,
 ) -> Result<Layout> {
     let layout = match layout {
-        InputLayout::Faces => {
-            return Err(PipelineError::new(format!(
-                "{name}: --layout faces reads six files named by an INPUT containing {FACE_PLACEHOLDER} (e.g. sky_{FACE_PLACEHOLDER}.exr for sky_px.exr ... sky_nz.exr)"
-            )));
-        }
+        InputLayout::Faces => return Err(faces_need_a_placeholder(name, spelling)),
         InputLayout::Auto => {
             return Layout::detect(w, h).ok_or_else(|| {
                 PipelineError::new(format!(
-                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with --layout"
+                    "{name}: a {w}x{h} image fits no layout by its aspect ratio (2:1 equirect, 4:3 cross-h, 3:4 cross-v, 6:1 strip, 1:1 angular); name one with {}",
+                    spelling.option("layout")
                 ))
             });
         }
@@ -257,12 +256,18 @@ pub fn layout_for_size(
 /// # Errors
 /// `stats` counts non-finite values; the message names `name`, the count
 /// and the first such texel.
-pub fn check_values(name: &str, stats: &PixelStats, warnings: &mut Vec<String>) -> Result<()> {
+pub fn check_values(
+    name: &str,
+    stats: &PixelStats,
+    spelling: Spelling,
+    warnings: &mut Vec<String>,
+) -> Result<()> {
     if stats.non_finite > 0 {
         let (x, y) = stats.first_non_finite.unwrap_or((0, 0));
         return Err(PipelineError::new(format!(
-            "{name}: {} texels are NaN or infinite (the first at x={x}, y={y}); --sanitize replaces them",
-            stats.non_finite
+            "{name}: {} texels are NaN or infinite (the first at x={x}, y={y}); {} replaces them",
+            stats.non_finite,
+            spelling.option("sanitize")
         )));
     }
     if stats.negative > 0 {
@@ -276,18 +281,29 @@ pub fn check_values(name: &str, stats: &PixelStats, warnings: &mut Vec<String>) 
 
 /// Sanitizes `image` in place ([`Image::sanitize`]), pushing a warning that
 /// names `name` and counts what was replaced, if anything was.
-pub fn sanitize_image(name: &str, image: &mut Image, warnings: &mut Vec<String>) -> SanitizeCounts {
+pub fn sanitize_image(
+    name: &str,
+    image: &mut Image,
+    spelling: Spelling,
+    warnings: &mut Vec<String>,
+) -> SanitizeCounts {
     let counts = SanitizeCounts::from(image.sanitize());
-    sanitize_warning(name, &counts, warnings);
+    sanitize_warning(name, &counts, spelling, warnings);
     counts
 }
 
 /// The warning of [`sanitize_image`] for `counts`, pushed to `warnings`
 /// when anything was replaced.
-pub(crate) fn sanitize_warning(name: &str, counts: &SanitizeCounts, warnings: &mut Vec<String>) {
+pub(crate) fn sanitize_warning(
+    name: &str,
+    counts: &SanitizeCounts,
+    spelling: Spelling,
+    warnings: &mut Vec<String>,
+) {
     if counts.total() > 0 {
         warnings.push(format!(
-            "{name}: --sanitize replaced {} values: {} NaN and {} -inf by 0, {} +inf by {}, {} negative by 0",
+            "{name}: {} replaced {} values: {} NaN and {} -inf by 0, {} +inf by {}, {} negative by 0",
+            spelling.option("sanitize"),
             counts.total(),
             counts.nan,
             counts.negative_infinite,

@@ -80,12 +80,8 @@ pub fn project(
                     warn_all(&done.warnings);
                     return complete(done.projection, None, done.info, s, hooks);
                 }
-                Streamed::Whole(image) => {
-                    LoadedMap::from_image(&name, image, s.read.layout, s.read.sanitize)?
-                }
-                Streamed::NotEquirect => {
-                    load_map(path, s.read.layout, &s.read.read, s.read.sanitize)?
-                }
+                Streamed::Whole(image) => LoadedMap::from_image(&name, image, &s.read)?,
+                Streamed::NotEquirect => load_map(path, &s.read)?,
             };
             warn_all(&loaded.warnings);
             let layout = if is_faces(path) {
@@ -112,15 +108,14 @@ pub fn project(
             let needs_copy = s.read.sanitize || s.preview.is_some() || s.encoding != Encoding::Sh;
             if !needs_copy {
                 let mut warnings = Vec::new();
-                check_values(name, &stats, &mut warnings)?;
+                check_values(name, &stats, s.read.spelling, &mut warnings)?;
                 warn_all(&warnings);
                 let info = MapInfo::new(name, layout_name, size, stats, None);
                 return finish(texels, None, info, s, projector, hooks);
             }
             let image = Image::new(size.0, size.1, contiguous_pixels(texels).into_owned())
                 .expect("width * height texels");
-            let loaded =
-                LoadedMap::checked(name, image, layout, stats, Vec::new(), s.read.sanitize)?;
+            let loaded = LoadedMap::checked(name, image, layout, stats, Vec::new(), &s.read)?;
             warn_all(&loaded.warnings);
             let info = loaded.info(name, layout_name);
             let map = env_map(layout, orientation, size, loaded.image.pixels())
@@ -176,7 +171,7 @@ fn complete(
     if p.window.is_none() {
         hooks.progress(Progress::Step(&format!("choosing windows for {name}")));
     }
-    let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name)?;
+    let windows: [Window; 3] = choose_windows(&projection.coeffs, p, name, s.read.spelling)?;
     if let (Some(preview), Some((image, map))) = (&s.preview, contiguous) {
         hooks.progress(Progress::Step(&format!("preview of {name}")));
         let radiance = apply_channel_windows(&windows, &projection.coeffs);

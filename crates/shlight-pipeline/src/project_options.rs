@@ -70,15 +70,14 @@ impl ProjectOptions<'_> {
         }
         let window = match self.window.trim() {
             "auto" => None,
-            spec => Some(
-                spec.parse::<Window>()
-                    .map_err(|e| PipelineError::new(format!("--window {spec}: {e}")))?,
-            ),
+            spec => Some(spec.parse::<Window>().map_err(|e| {
+                PipelineError::new(format!("{}: {e}", spelling.option_value("window", spec)))
+            })?),
         };
         let rotation = match self.rotate {
             None => None,
             Some(spec) => {
-                let matrix = parse_rotation(spec, self.orientation.frame)?;
+                let matrix = parse_rotation(spec, self.orientation.frame, spelling)?;
                 let record = RotationRecord {
                     spec: spec.trim().to_string(),
                     matrix: matrix.transpose().to_cols_array_2d(),
@@ -279,7 +278,8 @@ mod tests {
             window: "gauss:2",
             ..options()
         };
-        assert!(message(&window, Python).starts_with("--window gauss:2: "));
+        assert!(message(&window, Python).starts_with("window=\"gauss:2\": "));
+        assert!(message(&window, CommandLine).starts_with("--window gauss:2: "));
         let head = "keeps radiance projected by quadrature in shlight's JSON file; it cannot be combined with";
         for (o, cli, python) in [
             (

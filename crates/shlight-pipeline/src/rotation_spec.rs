@@ -1,9 +1,10 @@
-//! [`parse_rotation`]: a rotation as `--rotate` (and the Python `rotate=`)
-//! spells it.
+//! [`parse_rotation`]: a rotation as the command line's `--rotate` and
+//! Python's `rotate=` spell it.
 
 use glam::{DMat3, DQuat};
 use shlight_core::sh::Frame;
 
+use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
 /// Parses a rotation spec into the matrix `R` (a light from `a` comes from
@@ -13,11 +14,13 @@ use crate::{PipelineError, Result};
 ///
 /// # Errors
 /// An unknown kind, a wrong count of numbers, a number that does not parse
-/// or is not finite, the zero quaternion.
-pub fn parse_rotation(spec: &str, frame: Frame) -> Result<DMat3> {
+/// or is not finite, the zero quaternion; the message names the setting as
+/// `spelling` does.
+pub fn parse_rotation(spec: &str, frame: Frame, spelling: Spelling) -> Result<DMat3> {
     let err = |why: &str| {
         PipelineError::new(format!(
-            "--rotate {spec}: {why} (expected yaw:DEG, quat:X,Y,Z,W or euler:X,Y,Z in degrees)"
+            "{}: {why} (expected yaw:DEG, quat:X,Y,Z,W or euler:X,Y,Z in degrees)",
+            spelling.option_value("rotate", spec)
         ))
     };
     let (kind, rest) = spec.trim().split_once(':').ok_or_else(|| err("no kind"))?;
@@ -62,19 +65,22 @@ mod tests {
     fn rotations_parse_to_the_documented_matrices() {
         let close = |a: DMat3, b: DMat3| (a - b).to_cols_array().iter().all(|v| v.abs() < 1e-12);
         // yaw about +Y (y-up) takes +X to -Z; about +Z (z-up) +X to +Y.
-        let r = parse_rotation("yaw:90", Frame::YUp).unwrap();
+        let r = parse_rotation("yaw:90", Frame::YUp, Spelling::CommandLine).unwrap();
         assert!((r * DVec3::X - DVec3::NEG_Z).length() < 1e-12);
-        let r = parse_rotation("yaw:90", Frame::ZUp).unwrap();
+        let r = parse_rotation("yaw:90", Frame::ZUp, Spelling::CommandLine).unwrap();
         assert!((r * DVec3::X - DVec3::Y).length() < 1e-12);
         let s = std::f64::consts::FRAC_1_SQRT_2;
-        let q = parse_rotation("quat:0,0,2,2", Frame::YUp).unwrap();
+        let q = parse_rotation("quat:0,0,2,2", Frame::YUp, Spelling::CommandLine).unwrap();
         assert!(close(q, DMat3::from_quat(DQuat::from_xyzw(0.0, 0.0, s, s))));
-        let e = parse_rotation("euler:90,0,90", Frame::YUp).unwrap();
+        let e = parse_rotation("euler:90,0,90", Frame::YUp, Spelling::CommandLine).unwrap();
         // X first: +Y -> +Z; then Z: +Z stays.
         assert!((e * DVec3::Y - DVec3::Z).length() < 1e-12);
         assert!((e * DVec3::X - DVec3::Y).length() < 1e-12);
         for bad in ["yaw", "yaw:1,2", "quat:0,0,0,0", "spin:3", "yaw:nan"] {
-            assert!(parse_rotation(bad, Frame::YUp).is_err(), "{bad}");
+            assert!(
+                parse_rotation(bad, Frame::YUp, Spelling::CommandLine).is_err(),
+                "{bad}"
+            );
         }
     }
 }

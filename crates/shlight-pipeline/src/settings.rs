@@ -15,6 +15,7 @@ use shlight_io::ReadOptions;
 
 use crate::input_layout::InputLayout;
 use crate::preview::PreviewOptions;
+use crate::spelling::Spelling;
 
 /// Monte Carlo directions drawn when no count is given.
 pub const DEFAULT_SAMPLES: usize = 1 << 16;
@@ -98,6 +99,9 @@ pub struct ReadSettings {
     pub read: ReadOptions,
     /// Replace NaN, infinities and negatives ([`crate::sanitize_image`]).
     pub sanitize: bool,
+    /// How the loader's messages name these settings (`--sanitize`,
+    /// `sanitize`).
+    pub spelling: Spelling,
 }
 
 /// `--preview`: the three-panel picture of a projection, and where it goes.

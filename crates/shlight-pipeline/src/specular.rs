@@ -40,7 +40,7 @@ pub fn prefilter_map(
         .check()
         .map_err(|e| PipelineError::new(e.to_string()))?;
     let name = path.display().to_string();
-    let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
+    let loaded = load_map(path, read)?;
     for w in &loaded.warnings {
         warn(w);
     }
@@ -155,7 +155,7 @@ pub fn gltf_specular_images(
     settings
         .check()
         .map_err(|e| PipelineError::new(format!("{name}: specular images: {e}")))?;
-    let loaded = load_map(path, read.layout, &read.read, read.sanitize)?;
+    let loaded = load_map(path, read)?;
     let map = loaded.map(orientation, &name)?;
     // Cube direction c (the light's frame) -> shlight's y-up -> the file's frame
     // -> back through the rotation: where the map is read.

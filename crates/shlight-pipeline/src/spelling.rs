@@ -9,15 +9,19 @@ use crate::{PipelineError, Result};
 
 /// How a front end names its settings in messages.
 ///
+/// The default is the command line's, shlight's first front end (what the
+/// library's own callers see without saying).
+///
 /// Settings are named in snake case (`max_pixels`, `preview_size`); the
 /// command line spells them as flags with hyphens (`--max-pixels`), Python
 /// as keyword arguments (`max_pixels`). A setting whose flag is not its
 /// name (`shlight prefilter --for`, `engine=` in Python) is passed to the
 /// methods under each front end's own name by the caller of
 /// [`Spelling::pick`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Spelling {
     /// The command line's flags: `--rotate`, `--method montecarlo`.
+    #[default]
     CommandLine,
     /// Python's keyword arguments: `rotate`, `method="montecarlo"`.
     Python,

@@ -66,7 +66,7 @@ pub(crate) fn project_streaming(
     }
     let (w, h) = rows.size();
     let mut warnings = Vec::new();
-    let layout = layout_for_size(name, s.read.layout, w, h, &mut warnings)?;
+    let layout = layout_for_size(name, s.read.layout, w, h, s.read.spelling, &mut warnings)?;
     if layout != Layout::Equirect {
         return Ok(Streamed::NotEquirect);
     }
@@ -87,10 +87,10 @@ pub(crate) fn project_streaming(
         }
         r.infinity_replacement = largest;
         let counts = SanitizeCounts::from(r);
-        sanitize_warning(name, &counts, &mut warnings);
+        sanitize_warning(name, &counts, s.read.spelling, &mut warnings);
         Some(counts)
     } else {
-        check_values(name, &stats, &mut warnings)?;
+        check_values(name, &stats, s.read.spelling, &mut warnings)?;
         None
     };
     let coeffs = acc

@@ -145,7 +145,7 @@ pub fn compress_file(
 ) -> Result<CompressionError, String> {
     let dim = file.channels * file.coeffs_per_channel();
     let Some(glossy) = file.glossy.as_mut() else {
-        return Err("only glossy transfer matrices are compressed (--mode glossy)".into());
+        return Err("only glossy transfer matrices are compressed (a glossy bake)".into());
     };
     if glossy.cpca.is_some() {
         return Err("the matrices are compressed already".into());

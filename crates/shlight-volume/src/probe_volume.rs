@@ -141,7 +141,7 @@ pub struct FileMeta {
 pub fn relight_file(file: &mut ShvolFile, env: &ShCoeffs<DVec3>) -> Result<(), VolumeError> {
     let (Some(transfer), Some(emitted)) = (&file.transfer, &file.emitted) else {
         return Err(VolumeError::Invalid(format!(
-            "the volume of {} was baked --static (no transfer matrices), so it cannot be relit",
+            "the volume of {} was baked static (no transfer matrices), so it cannot be relit",
             file.scene
         )));
     };

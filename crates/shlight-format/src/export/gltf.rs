@@ -101,8 +101,8 @@ pub struct SpecularImages {
 /// Why a glTF light cannot be written from coefficients alone.
 pub const MISSING_SPECULAR: &str = "a glTF EXT_lights_image_based light requires \
      specularImages and specularImageSize (the environment prefiltered into cube mips), \
-     which coefficients cannot give: write it from the map (shlight project MAP --format gltf), \
-     or pass --irradiance-only to write the light without them";
+     which coefficients cannot give: project the map itself to a glTF light, or write the \
+     light from its coefficients alone, irradiance only, without them";
 
 /// The light object: `irradianceCoefficients` of `input`, and what they
 /// are in words under `extras.shlight`.

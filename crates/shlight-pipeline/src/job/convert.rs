@@ -98,7 +98,12 @@ impl ConvertRequest<'_> {
         } else {
             let format = match (self.format, self.output) {
                 (Some(f), _) => f,
-                (None, Some(path)) => ExportFormat::from_path(path)?,
+                (None, Some(path)) => ExportFormat::from_path(path).map_err(|e| {
+                    PipelineError::from(e).context_after(format!(
+                        "name the format with {}",
+                        spelling.option("format")
+                    ))
+                })?,
                 (None, None) => {
                     return Err(PipelineError::new(format!(
                         "writing to stdout needs {} (or give {})",
