@@ -18,9 +18,10 @@ use shlight_core::sh::ShCoeffs;
 use shlight_format::threejs_volume::Precision;
 use shlight_format::{Quantity, SamplePoints, ShvolFile, VolumeFormat};
 use shlight_pipeline::{
-    Environment, Spelling, VolumeRequest, visibility_size, volume, volume_irradiance, volume_lookup,
+    Environment, Spelling, VolumeRequest, relight_volume, visibility_size, volume,
+    volume_irradiance, volume_lookup,
 };
-use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions, relight_file};
+use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
@@ -253,7 +254,11 @@ impl Volume {
         let (light, warnings) = light_of(py, env, up)?;
         warn_all(py, &warnings, 2)?;
         let mut file = self.file.clone();
-        py.detach(|| guard(|| relight_file(&mut file, &light).map_err(|e| chained(&e))))?;
+        py.detach(|| {
+            guard(|| {
+                relight_volume(&mut file, None, &light, Spelling::Python).map_err(pipeline_error)
+            })
+        })?;
         Ok(Volume { file })
     }
 

@@ -126,7 +126,8 @@ pub use job::project::{
 pub use job::prt::{PrtBaked, PrtMode, PrtOutput, PrtPlan, PrtRequest, prt};
 pub use job::render::{RenderLayout, RenderPlan, RenderRequest, render, render_light};
 pub use job::sample::{
-    SamplePlan, SampleRequest, Shading, sample, transfer_radiance, volume_irradiance, volume_lookup,
+    SamplePlan, SampleRequest, Shading, relight_volume, sample, transfer_radiance,
+    volume_irradiance, volume_lookup,
 };
 pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
 pub use job::volume::{VolumePlan, VolumeRequest, visibility_size, volume};

@@ -226,7 +226,7 @@ fn sample_volume(
     let points = SamplePoints::read(points_path)?;
     if let Some(env) = env {
         let light = light_of(env, plan.frame, shlight_baked::MAX_LMAX, hooks)?;
-        relight_file(&mut file, &light).map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
+        relight_volume(&mut file, Some(&name), &light, plan.spelling)?;
     }
     let values = volume_irradiance(&file, Some(&name), lookup, &settled, &points, hooks);
     let LookupLmax { lmax, note } = settled;
@@ -304,6 +304,33 @@ fn light_of(path: &Path, frame: Frame, lmax: usize, hooks: &dyn Hooks) -> Result
     let env = Environment::load(path, frame, lmax)?;
     env.warnings.iter().for_each(|w| hooks.warn(w));
     Ok(env.radiance)
+}
+
+/// A volume's probes relit under `light` (radiance coefficients in the
+/// volume's frame; shlight-volume's [`relight_file`]), refused for a static
+/// volume with the setting that bakes one named as `spelling` does, after
+/// `name` where given.
+///
+/// # Errors
+/// A static volume (no transfer matrices).
+pub fn relight_volume(
+    file: &mut ShvolFile,
+    name: Option<&str>,
+    light: &ShCoeffs<DVec3>,
+    spelling: Spelling,
+) -> Result<()> {
+    let named = |m: String| match name {
+        Some(name) => format!("{name}: {m}"),
+        None => m,
+    };
+    if !file.relightable() {
+        return Err(PipelineError::new(named(format!(
+            "the volume of {} was baked {} (no transfer matrices), so it cannot be relit",
+            file.scene,
+            spelling.option("static")
+        ))));
+    }
+    relight_file(file, light).map_err(|e| PipelineError::new(named(e.to_string())))
 }
 
 /// The lmax `lookup` reads `file` to when asked for `lmax`
