@@ -6,8 +6,9 @@
 //! point gives the probes around it, which let a probe light a point only
 //! where the probe can see it. This file is the one definition of both:
 //! the bake fills the maps with [`MomentFilter`], `shlight sample` weighs
-//! the probes with [`visibility_weights`], and `shaders/volume.wgsl`
-//! repeats the same arithmetic on the GPU.
+//! the probes with [`visibility_weights`], and shlight-shader's
+//! `visibility.rs` writes the same arithmetic as shader code, once, for
+//! the GPU's volume pass and the volume snippets alike.
 //!
 //! # The distance moments
 //! A probe's ray along the unit direction `s` reaches distance

@@ -31,10 +31,8 @@ use crate::{CoeffFile, FormatError, Quantity, Result};
 pub(crate) use engine::basis_polynomial;
 pub use engine::engine_frame;
 pub(crate) use engine::{basis_constant, engine_coeffs, frame_words, rgb_array, transform};
-pub(crate) use snippet::{
-    BAND_WEIGHT_COMMENT, CLikeShader, band_weight_list, check_f32_range, code_header,
-    coefficient_rows, float_literal,
-};
+pub(crate) use shlight_shader::float_literal;
+pub(crate) use snippet::{check_f32_range, snippet};
 
 /// What an exporter needs to know about the coefficients it writes.
 #[derive(Clone, Debug)]

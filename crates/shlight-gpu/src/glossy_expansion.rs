@@ -9,69 +9,15 @@
 //! cosine's zonal coefficients (literals), `Lambda_l` the lobe's
 //! (`frame.glossy_band`), `T_lm = glossy_t(l(l+1)+m)` the vertex's
 //! transferred radiance (`mesh.wgsl`). The basis at `n` and at `r` is
-//! [`basis_statements`]' (the renderer's `sh_reconstruct` basis), the one
-//! at `n` with its names prefixed `n_`.
+//! shlight-shader's [`basis_statements`] (the renderer's `sh_reconstruct`
+//! basis), the one at `n` with its names prefixed `n_`.
 
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::sh::clamped_cosine_eigenvalue;
+use shlight_shader::basis::{BasisNames, basis_statements};
+use shlight_shader::{Language, f32_literal as literal};
 
-use crate::sh_expansion::{basis_statements, literal, summing_function};
-
-/// `line` with every name [`basis_statements`] defines or reads (`d`, `z`,
-/// `factors`, `g{l}`, `c{m}`, `s{m}`, `q{l}_{m}`, `t{l}_{m}`) prefixed by
-/// `prefix`.
-fn prefixed(line: &str, prefix: &str) -> String {
-    let is_name = |w: &str| {
-        let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
-        let pair = |t: &str| {
-            t.split_once('_')
-                .is_some_and(|(a, b)| digits(a) && digits(b))
-        };
-        match w {
-            "d" | "z" | "factors" => true,
-            _ => match w.split_at_checked(1) {
-                Some(("g" | "c" | "s", rest)) => digits(rest),
-                Some(("q" | "t", rest)) => pair(rest),
-                _ => false,
-            },
-        }
-    };
-    let mut out = String::with_capacity(line.len() + 16);
-    let mut word = String::new();
-    // A word after '.' is a field (d.z), not a name.
-    let mut field = false;
-    let flush = |word: &mut String, out: &mut String, field: bool| {
-        if !field && is_name(word) {
-            out.push_str(prefix);
-        }
-        out.push_str(word);
-        word.clear();
-    };
-    let mut in_number = false;
-    for ch in line.chars() {
-        if ch.is_ascii_alphanumeric() || ch == '_' {
-            if word.is_empty() && ch.is_ascii_digit() {
-                in_number = true;
-            }
-            if in_number {
-                out.push(ch);
-            } else {
-                word.push(ch);
-            }
-        } else {
-            // A '.' inside a number (1.5) or an exponent sign stays in it.
-            if !(in_number && (ch == '.' || ch == '-' || ch == '+')) {
-                in_number = false;
-            }
-            let was_field = field;
-            field = ch == '.' && !in_number;
-            flush(&mut word, &mut out, was_field);
-            out.push(ch);
-        }
-    }
-    flush(&mut word, &mut out, field);
-    out
-}
+use crate::sh_expansion::summing_function;
 
 /// The WGSL text of `glossy_radiance` for `lmax` (clamped to
 /// [`LIGHT_MAX_LMAX`]).
@@ -103,14 +49,19 @@ pub(crate) fn glossy_radiance_wgsl(lmax: usize) -> String {
             band(&clamped_cosine_eigenvalue)
         ),
     ];
-    body.extend(
-        basis_statements(lmax, |_, _, _| {})
-            .iter()
-            .map(|line| prefixed(line, "n_")),
-    );
+    let n_names = BasisNames {
+        prefix: "n_",
+        ..BasisNames::default()
+    };
+    body.extend(basis_statements(
+        Language::Wgsl,
+        lmax,
+        n_names,
+        |_, _, _| {},
+    ));
     body.push("let d = r;".into());
     body.push("let factors = frame.glossy_band;".into());
-    body.extend(basis_statements(lmax, |l, m, lines| {
+    body.extend(basis_statements(Language::Wgsl, lmax, BasisNames::default(), |l, m, lines| {
         let centre = l * (l + 1);
         let (e, lane) = (l / 4, l % 4);
         if m == 0 {
@@ -152,18 +103,23 @@ pub(crate) fn ggx_band_sums_wgsl(lmax: usize) -> String {
             .to_string(),
         format!("var sum = array<vec3<f32>, {}>();", LIGHT_MAX_LMAX + 1),
     ];
-    body.extend(basis_statements(lmax, |l, m, lines| {
-        let centre = l * (l + 1);
-        lines.push(if m == 0 {
-            format!("sum[{l}] += q{l}_0 * ggx_t[{centre}];")
-        } else {
-            format!(
-                "sum[{l}] += (t{l}_{m} * c{m}) * ggx_t[{}] + (t{l}_{m} * s{m}) * ggx_t[{}];",
-                centre + m,
-                centre - m
-            )
-        });
-    }));
+    body.extend(basis_statements(
+        Language::Wgsl,
+        lmax,
+        BasisNames::default(),
+        |l, m, lines| {
+            let centre = l * (l + 1);
+            lines.push(if m == 0 {
+                format!("sum[{l}] += q{l}_0 * ggx_t[{centre}];")
+            } else {
+                format!(
+                    "sum[{l}] += (t{l}_{m} * c{m}) * ggx_t[{}] + (t{l}_{m} * s{m}) * ggx_t[{}];",
+                    centre + m,
+                    centre - m
+                )
+            });
+        },
+    ));
     summing_function(
         &format!("Per band l, sum_m Y_lm(d) T_lm, to lmax {lmax}."),
         &format!(
@@ -191,21 +147,6 @@ mod tests {
                 );
             }
         }
-    }
-
-    #[test]
-    fn names_are_prefixed_and_literals_kept() {
-        assert_eq!(
-            prefixed("let q3_1 = 1.5e-3 * z * q2_1 - 0.25 * q1_1;", "n_"),
-            "let n_q3_1 = 1.5e-3 * n_z * n_q2_1 - 0.25 * n_q1_1;"
-        );
-        assert_eq!(
-            prefixed(
-                "let g2 = SH_SQRT2 * factors[0][2]; let c2 = c1 * d.x - s1 * d.y;",
-                "n_"
-            ),
-            "let n_g2 = SH_SQRT2 * n_factors[0][2]; let n_c2 = n_c1 * n_d.x - n_s1 * n_d.y;"
-        );
     }
 
     #[test]

@@ -11,8 +11,8 @@
 //! stored as `2 lmax + 1` slots per row: slot 0 is `C_0`, slot `2m - 1` is
 //! `C_m` and slot `2m` is `S_m` ([`ring_slot`]). Each texel's
 //! `cos(m ψ) + i sin(m ψ) = (cos ψ + i sin ψ)^m` comes from the column's
-//! `(cos ψ, sin ψ)` by complex multiplication (`sh_expansion`'s
-//! [`azimuth_power`]), so a texel costs `2 lmax + 1` multiply-adds per
+//! `(cos ψ, sin ψ)` by complex multiplication (shlight-shader's
+//! [`azimuth_power`], the basis's), so a texel costs `2 lmax + 1` multiply-adds per
 //! colour channel and no trigonometry. The second pass weighs the rows by
 //! `Ω_j Pbar_l^m(cos θ_j)` (`sqrt2` for `m > 0`) to give the coefficients
 //! about the map's pole: the ring transform of shlight-core's
@@ -46,8 +46,9 @@ use std::fmt::Write;
 
 use shlight_core::sh::legendre_count;
 
-use crate::sh_expansion::azimuth_power;
 use shlight_baked::LIGHT_MAX_LMAX;
+use shlight_shader::Language;
+use shlight_shader::basis::azimuth_power;
 
 /// Invocations per row in the first pass (the workgroup size; a GPU's
 /// 32-wide warp, and few partial sums for llvmpipe to reduce).
@@ -142,7 +143,7 @@ pub(crate) fn ring_sums_wgsl(lmax: usize) -> String {
         line(3, format!("let f = {f};"));
         line(3, format!("r{} = r{0} + f;", ring_slot(0, false)));
         for m in 1..=lmax {
-            for text in azimuth_power(m, x, y) {
+            for text in azimuth_power(Language::Wgsl, m, "", x, y) {
                 line(3, text);
             }
             let (c, s) = (ring_slot(m, false), ring_slot(m, true));

@@ -24,7 +24,7 @@
 //! (`volume_loads`), one text per [`VolumeFetch`], or by the same eight
 //! loads with the weights of `volume_visibility_at`
 //! (`shaders/volume_visibility.wgsl`). The basis's statements are the
-//! render passes' ([`basis_statements`]): the recurrences of
+//! render passes' (shlight-shader's [`basis_statements`]): the recurrences of
 //! shlight-core's [`Legendre`](shlight_core::sh::Legendre) with `sin(theta)^m` carried by
 //! `C_m + i S_m = (x + i y)^m`, every factor an f32 literal, no loops and no
 //! local array (a struct of named scalars stays in registers; an array
@@ -35,9 +35,11 @@ use std::fmt::Write;
 
 use shlight_core::sh::clamped_cosine_eigenvalue;
 
-use crate::sh_expansion::basis_statements;
 use crate::volume_fetch::VolumeFetch;
 use shlight_baked::SHADED_MAX_LMAX;
+use shlight_shader::basis::{BasisNames, basis_statements};
+use shlight_shader::visibility::{VisibilityInputs, visibility_code};
+use shlight_shader::{Language, ShaderLanguage, Type};
 
 /// How `volume_sum` reads and weighs the texels of the eight probes around
 /// a point: one shader module each.
@@ -63,9 +65,51 @@ pub(crate) fn volume_wgsl_loads(lmax: usize) -> String {
 }
 
 /// The volume module's generated WGSL for `lmax`, texels by eight loads
-/// weighted by the probes' visibility.
+/// weighted by the probes' visibility, then the visibility lookup
+/// ([`visibility_wgsl`]).
 pub(crate) fn volume_wgsl_visibility(lmax: usize) -> String {
-    volume_wgsl(lmax, VolumeVariant::Visibility)
+    let mut text = volume_wgsl(lmax, VolumeVariant::Visibility);
+    text.push_str(&visibility_wgsl());
+    text
+}
+
+/// The visibility lookup of the pass (`shlight_volume_visibility(k, q,
+/// biased)`, probe `k` at `q`): shlight-shader's, the one the volume
+/// snippets ship, reading the probe's map from the storage buffer
+/// `probe_moments` as `volume.rs`'s `pair_texels` writes it (entry `(a, b)`
+/// of a probe, `a` fastest over `0..=size`, holds its map's texels
+/// `(a - 1, b - 1)` and `(a, b - 1)`: a bilinear lookup is two loads) and
+/// its constants from the `Volume` uniform (`volume.map`,
+/// `volume.visibility`), as shlight-baked's `visibility.rs` computes them.
+#[must_use]
+pub(crate) fn visibility_wgsl() -> String {
+    let texels = [
+        "// Entries (a.x, a.y) and (a.x, a.y + 1) of probe k's pairs: its map's texels".to_string(),
+        "// (a.x - 1, a.y - 1), (a.x, a.y - 1) and (a.x - 1, a.y), (a.x, a.y).".to_string(),
+        "let row = volume.map.x + 1u;".to_string(),
+        "let at = k * volume.map.y + u32(a.y) * row + u32(a.x);".to_string(),
+        "let lower = probe_moments[at];".to_string(),
+        "let upper = probe_moments[at + row];".to_string(),
+        "let t00 = lower.xy;".to_string(),
+        "let t10 = lower.zw;".to_string(),
+        "let t01 = upper.xy;".to_string(),
+        "let t11 = upper.zw;".to_string(),
+    ];
+    let mut text = String::from(
+        "\n// The visibility lookup (crates/shlight-gpu/src/volume_expansion.rs: shlight-shader's).\n",
+    );
+    text.push_str(&visibility_code(
+        ShaderLanguage::Wgsl,
+        &VisibilityInputs {
+            probe: &[(Type::Uint, "k")],
+            texels: &texels,
+            map_size: "i32(volume.map.x)",
+            floor: "volume.visibility.y",
+            crush: "volume.visibility.z",
+            crush_sq: "volume.visibility.w",
+        },
+    ));
+    text
 }
 
 /// The WGSL text of `ShBasis`, `sh_basis`, `volume_sum` and `probe_sum`
@@ -91,7 +135,7 @@ pub(crate) fn volume_wgsl(lmax: usize, variant: VolumeVariant) -> String {
     out.push_str("}\n\n");
     out.push_str("fn sh_basis(d: vec3<f32>, factors: array<vec4<f32>, 3>) -> ShBasis {\n");
     let mut fields = vec![String::new(); count];
-    let body = basis_statements(lmax, |l, m, _| {
+    let body = basis_statements(Language::Wgsl, lmax, BasisNames::default(), |l, m, _| {
         let centre = l * (l + 1);
         if m == 0 {
             fields[centre] = format!("factors[{}][{}] * q{l}_0", l / 4, l % 4);

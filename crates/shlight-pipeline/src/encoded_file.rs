@@ -35,6 +35,7 @@ mod tests {
     use crate::cpu_projector::project_radiance;
     use crate::map_info::MapInfo;
     use crate::settings::{Method, ProjectSettings};
+    use crate::spelling::Spelling;
 
     /// Every encoding recorded in the file evaluates (`CoeffFile::encoded`)
     /// to the irradiance of the encoding made from the map directly.
@@ -52,7 +53,7 @@ mod tests {
         let map = EnvMap::new(Layout::Equirect, o, w, h, &pixels).unwrap();
         let s = ProjectSettings::new(2, o, Method::Quadrature, Quantity::Radiance);
         let projection = project_radiance(&map, &s);
-        let windows = choose_windows(&projection.coeffs, &s, "sky").unwrap();
+        let windows = choose_windows(&projection.coeffs, &s, "sky", Spelling::CommandLine).unwrap();
         let info = MapInfo::of_pixels("sky", Layout::Equirect, w, h, &pixels);
         let plain = coeff_file_of(&projection, windows, &s, &info);
         let normals = [DVec3::Y, DVec3::X, DVec3::new(0.3, -0.8, 0.5).normalize()];

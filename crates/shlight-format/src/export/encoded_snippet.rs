@@ -12,28 +12,18 @@
 //! | `l1-nonlinear` | the lmax-1 coefficients (the linear irradiance) | Hazel's non-linear reconstruction per channel |
 //! | `ambient-cube` | none | `SHLIGHT_CUBE`, six colours blended by `n²` |
 //!
-//! The formulas are the core's, statement for statement:
-//! [`shlight_core::encoding`] (Snyder 1996, including the case where the
-//! cap crosses the horizon), [`shlight_core::encoding`], [`shlight_core::encoding`],
-//! [`shlight_core::encoding`]. Arrays cannot be empty in these
-//! languages: with no light the light arrays hold one zero light and
-//! `SHLIGHT_LIGHT_COUNT` is 0.
-
-use core::f64::consts::PI;
+//! This file chooses the parts and writes the header; the code is
+//! shlight-shader's [`shlight_shader::encodings`], the core's formulas
+//! ([`shlight_core::encoding`]) statement for statement in every language.
 
 use glam::DVec3;
 use shlight_core::encoding::{CapLight, Encoded, Encoding};
 use shlight_core::sh::ShCoeffs;
+use shlight_shader::Language;
+use shlight_shader::encodings::{EncodingTerm, encoding_code};
 
-use super::{ExportFormat, ExportInput, Exported, float_literal};
+use super::{ExportFormat, ExportInput, Exported};
 use crate::{CoeffFile, FormatError, Quantity, Result};
-
-/// `(atan(u) - u) / u³` to `u^14` (error below 4e-12 for `u < 0.25`),
-/// Horner form in `u2 = u²`.
-const SERIES: &str = "-0.3333333333333333 + u2 * (0.2 + u2 * (-0.14285714285714285 + u2 * (0.1111111111111111 + u2 * (-0.09090909090909091 + u2 * (0.07692307692307693 + u2 * -0.06666666666666667)))))";
-
-/// Rec.709 luminance weights, the core's (ZH3's luminance axis).
-const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
 
 /// The snippet of `file` in `format` (one of the four snippet formats),
 /// whose encoding is not plain SH.
@@ -54,8 +44,18 @@ pub(crate) fn render(file: &CoeffFile, format: ExportFormat) -> Result<Exported>
     if format != ExportFormat::C {
         check_f32(&parts, format.name())?;
     }
-    let lang = Lang::of(format);
-    let mut text = header(encoding, &encoded, lang.comment_note());
+    let lang = match format {
+        ExportFormat::Wgsl => Language::Wgsl,
+        ExportFormat::Hlsl => Language::Hlsl,
+        ExportFormat::C => Language::C,
+        _ => Language::Glsl,
+    };
+    let note = if lang.is_c() {
+        "C99, double precision; link with -lm where needed."
+    } else {
+        "32-bit floats."
+    };
+    let mut text = header(encoding, &encoded, note);
     if let Some(sh) = &parts.sh {
         let input = ExportInput {
             coeffs: sh,
@@ -80,7 +80,7 @@ pub(crate) fn render(file: &CoeffFile, format: ExportFormat) -> Result<Exported>
         }
     }
     text.push('\n');
-    text.push_str(&lang.body(encoding, &parts));
+    text.push_str(&encoding_code(lang, parts.term(encoding)));
     Ok(Exported {
         text,
         notes: Vec::new(),
@@ -133,6 +133,20 @@ impl Parts {
                 sh: None,
                 extra: Extra::Cube(c.colours),
             },
+        }
+    }
+
+    /// What the snippet adds, for shlight-shader.
+    fn term(&self, encoding: Encoding) -> EncodingTerm<'_> {
+        match &self.extra {
+            Extra::Lights(lights) => EncodingTerm::Lights {
+                lights,
+                sloan: encoding == Encoding::SloanSh,
+            },
+            Extra::Zh3Stored(z) => EncodingTerm::Zh3Stored(*z),
+            Extra::Zh3Hallucinated => EncodingTerm::Zh3Hallucinated,
+            Extra::L1NonLinear => EncodingTerm::L1NonLinear,
+            Extra::Cube(c) => EncodingTerm::AmbientCube(c),
         }
     }
 
@@ -233,586 +247,6 @@ fn header(encoding: Encoding, encoded: &Encoded, lang_note: &str) -> String {
         lines.push(lang_note.to_string());
     }
     lines.iter().map(|l| format!("// {l}\n")).collect()
-}
-
-/// The three code dialects: GLSL/HLSL share one text.
-enum Lang {
-    Wgsl,
-    CLike {
-        vec3: &'static str,
-        konst: &'static str,
-        hlsl: bool,
-    },
-    C,
-}
-
-fn f(v: f64) -> String {
-    float_literal(v)
-}
-
-impl Lang {
-    fn of(format: ExportFormat) -> Self {
-        match format {
-            ExportFormat::Wgsl => Lang::Wgsl,
-            ExportFormat::Hlsl => Lang::CLike {
-                vec3: "float3",
-                konst: "static const",
-                hlsl: true,
-            },
-            ExportFormat::C => Lang::C,
-            _ => Lang::CLike {
-                vec3: "vec3",
-                konst: "const",
-                hlsl: false,
-            },
-        }
-    }
-
-    fn comment_note(&self) -> &'static str {
-        match self {
-            Lang::C => "C99, double precision; link with -lm where needed.",
-            _ => "32-bit floats.",
-        }
-    }
-
-    fn v3(&self, v: DVec3) -> String {
-        let (x, y, z) = (f(v.x), f(v.y), f(v.z));
-        match self {
-            Lang::Wgsl => format!("vec3<f32>({x}, {y}, {z})"),
-            Lang::CLike { vec3, .. } => format!("{vec3}({x}, {y}, {z})"),
-            Lang::C => format!("{{{x}, {y}, {z}}}"),
-        }
-    }
-
-    /// An array constant of `rows` (vec3 when `vec`, else scalars `x`).
-    fn array(&self, name: &str, vec: bool, rows: &[DVec3]) -> String {
-        let n = rows.len();
-        let items: Vec<String> = rows
-            .iter()
-            .map(|r| if vec { self.v3(*r) } else { f(r.x) })
-            .collect();
-        let body = items
-            .iter()
-            .map(|i| format!("    {i}"))
-            .collect::<Vec<_>>()
-            .join(",\n");
-        match self {
-            Lang::Wgsl => {
-                let ty = if vec { "vec3<f32>" } else { "f32" };
-                format!("var<private> {name}: array<{ty}, {n}> = array<{ty}, {n}>(\n{body}\n);\n")
-            }
-            Lang::CLike { vec3, konst, hlsl } => {
-                let ty = if vec { *vec3 } else { "float" };
-                if *hlsl {
-                    format!("{konst} {ty} {name}[{n}] = {{\n{body}\n}};\n")
-                } else {
-                    format!("{konst} {ty} {name}[{n}] = {ty}[{n}](\n{body}\n);\n")
-                }
-            }
-            Lang::C => {
-                let dims = if vec { "[3]" } else { "" };
-                let lower = name.to_ascii_lowercase();
-                format!("static const double {lower}[{n}]{dims} = {{\n{body}\n}};\n")
-            }
-        }
-    }
-
-    fn int_const(&self, name: &str, v: usize) -> String {
-        match self {
-            Lang::Wgsl => format!("const {name}: i32 = {v};\n"),
-            Lang::CLike { konst, .. } => format!("{konst} int {name} = {v};\n"),
-            Lang::C => format!("#define {name} {v}\n"),
-        }
-    }
-
-    fn vec_const(&self, name: &str, v: DVec3) -> String {
-        match self {
-            Lang::Wgsl => format!("const {name}: vec3<f32> = {};\n", self.v3(v)),
-            Lang::CLike { vec3, konst, .. } => format!("{konst} {vec3} {name} = {};\n", self.v3(v)),
-            Lang::C => format!(
-                "static const double {}[3] = {};\n",
-                name.to_ascii_lowercase(),
-                self.v3(v)
-            ),
-        }
-    }
-
-    /// The text below the SH part.
-    fn body(&self, encoding: Encoding, parts: &Parts) -> String {
-        let mut s = String::new();
-        match &parts.extra {
-            Extra::Lights(lights) => {
-                s.push_str(&format!(
-                    "// The {} light(s) kept exactly ({}).\n",
-                    lights.len(),
-                    if encoding == Encoding::SloanSh {
-                        "Sloan's light"
-                    } else {
-                        "dominant lights"
-                    }
-                ));
-                s.push_str(&self.int_const("SHLIGHT_LIGHT_COUNT", lights.len()));
-                let padded: Vec<CapLight<DVec3>> = if lights.is_empty() {
-                    vec![CapLight {
-                        direction: DVec3::Z,
-                        half_angle: 0.0,
-                        power: DVec3::ZERO,
-                    }]
-                } else {
-                    lights.clone()
-                };
-                let dirs: Vec<DVec3> = padded.iter().map(|l| l.direction).collect();
-                let angles: Vec<DVec3> =
-                    padded.iter().map(|l| DVec3::splat(l.half_angle)).collect();
-                let powers: Vec<DVec3> = padded.iter().map(|l| l.power).collect();
-                s.push_str(&self.array("SHLIGHT_LIGHT_DIRECTION", true, &dirs));
-                s.push_str(&self.array("SHLIGHT_LIGHT_HALF_ANGLE", false, &angles));
-                s.push_str(&self.array("SHLIGHT_LIGHT_POWER", true, &powers));
-                s.push_str(&self.cap_function());
-                s.push_str(&self.lights_irradiance());
-            }
-            Extra::Zh3Stored(z) => {
-                s.push_str("// The stored zonal degree-2 coefficient z per channel (RGB).\n");
-                s.push_str(&self.vec_const("SHLIGHT_ZH3_ZONAL", *z));
-                s.push_str(&self.zh3(false));
-            }
-            Extra::Zh3Hallucinated => s.push_str(&self.zh3(true)),
-            Extra::L1NonLinear => s.push_str(&self.l1_nonlinear()),
-            Extra::Cube(c) => {
-                s.push_str("// Irradiance at +x, -x, +y, -y, +z, -z (RGB).\n");
-                s.push_str(&self.array("SHLIGHT_CUBE", true, c));
-                s.push_str(&self.cube());
-            }
-        }
-        s
-    }
-
-    /// `shlight_cap_per_power(alpha, cos_t)`: [`shlight_core::encoding::cap_irradiance_per_power`].
-    fn cap_function(&self) -> String {
-        let four_pi = f(4.0 * PI);
-        let doc = "\n// Irradiance per unit power of a uniform cap of half-angle alpha whose centre makes\n\
-                   // cosine cos_t with the normal (Snyder 1996, divided by the power 2 pi (1 - cos alpha) L):\n\
-                   // (1 + cos alpha) / 2 max(cos_t, 0) while the cap is wholly above or below the horizon.\n";
-        let body = match self {
-            Lang::Wgsl => format!(
-                "fn shlight_cap_per_power(alpha: f32, cos_t_in: f32) -> f32 {{\n\
-                 \x20   let cos_t = clamp(cos_t_in, -1.0, 1.0);\n\
-                 \x20   let sin_a = sin(alpha);\n\
-                 \x20   let sin2 = sin_a * sin_a;\n\
-                 \x20   if (alpha <= 0.0 || cos_t * cos_t >= sin2) {{\n\
-                 \x20       return (1.0 + cos(alpha)) / 2.0 * max(cos_t, 0.0);\n\
-                 \x20   }}\n\
-                 \x20   let sin_t = sqrt(1.0 - cos_t * cos_t);\n\
-                 \x20   let x = cos(alpha) / sin_a;\n\
-                 \x20   let y = -x * cos_t / sin_t;\n\
-                 \x20   let s = sin_t * sqrt(max(1.0 - y * y, 0.0));\n\
-                 \x20   // atan(u) - x s sin2 = u sin2 + (atan(u) - u), u = s / x, the last by its series\n\
-                 \x20   // for small u: the two near-equal terms do not cancel in 32 bits.\n\
-                 \x20   let u = s / x;\n\
-                 \x20   let u2 = u * u;\n\
-                 \x20   var d = atan(u) - u;\n\
-                 \x20   if (u < 0.25) {{\n\
-                 \x20       d = u * u2 * ({SERIES});\n\
-                 \x20   }}\n\
-                 \x20   let e = cos_t * acos(clamp(y, -1.0, 1.0)) * sin2 + u * sin2 + d;\n\
-                 \x20   let h = sin(alpha / 2.0);\n\
-                 \x20   return e / ({four_pi} * h * h);\n\
-                 }}\n"
-            ),
-            Lang::CLike { .. } | Lang::C => {
-                let (ty, cst, lc) = match self {
-                    Lang::C => ("double", "static inline double", "const "),
-                    _ => ("float", "float", ""),
-                };
-                let fmax = if matches!(self, Lang::C) {
-                    "fmax"
-                } else {
-                    "max"
-                };
-                let clamp = |v: &str| {
-                    if matches!(self, Lang::C) {
-                        format!("fmin(fmax({v}, -1.0), 1.0)")
-                    } else {
-                        format!("clamp({v}, -1.0, 1.0)")
-                    }
-                };
-                format!(
-                    "{cst} shlight_cap_per_power({ty} alpha, {ty} cos_t_in) {{\n\
-                     \x20   {lc}{ty} cos_t = {};\n\
-                     \x20   {lc}{ty} sin_a = sin(alpha);\n\
-                     \x20   {lc}{ty} sin2 = sin_a * sin_a;\n\
-                     \x20   if (alpha <= 0.0 || cos_t * cos_t >= sin2) {{\n\
-                     \x20       return (1.0 + cos(alpha)) / 2.0 * {fmax}(cos_t, 0.0);\n\
-                     \x20   }}\n\
-                     \x20   {lc}{ty} sin_t = sqrt(1.0 - cos_t * cos_t);\n\
-                     \x20   {lc}{ty} x = cos(alpha) / sin_a;\n\
-                     \x20   {lc}{ty} y = -x * cos_t / sin_t;\n\
-                     \x20   {lc}{ty} s = sin_t * sqrt({fmax}(1.0 - y * y, 0.0));\n\
-                     {tail}\
-                     \x20   {lc}{ty} h = sin(alpha / 2.0);\n\
-                     \x20   return e / ({four_pi} * h * h);\n\
-                     }}\n",
-                    clamp("cos_t_in"),
-                    tail = if matches!(self, Lang::C) {
-                        format!(
-                            "    const double e = (cos_t * acos({}) - x * s) * sin2 + atan(s / x);\n",
-                            clamp("y")
-                        )
-                    } else {
-                        format!(
-                            "    // atan(u) - x s sin2 = u sin2 + (atan(u) - u), u = s / x, the last by its series\n\
-                             \x20   // for small u: the two near-equal terms do not cancel in 32 bits.\n\
-                             \x20   float u = s / x;\n\
-                             \x20   float u2 = u * u;\n\
-                             \x20   float d = atan(u) - u;\n\
-                             \x20   if (u < 0.25) {{\n\
-                             \x20       d = u * u2 * ({SERIES});\n\
-                             \x20   }}\n\
-                             \x20   float e = cos_t * acos({}) * sin2 + u * sin2 + d;\n",
-                            clamp("y")
-                        )
-                    }
-                )
-            }
-        };
-        format!("{doc}{body}")
-    }
-
-    fn lights_irradiance(&self) -> String {
-        match self {
-            Lang::Wgsl => "\n// The lights' irradiance at normal n.\n\
-                fn shlight_lights_irradiance(n: vec3<f32>) -> vec3<f32> {\n\
-                \x20   var e = vec3<f32>(0.0, 0.0, 0.0);\n\
-                \x20   for (var k: i32 = 0; k < SHLIGHT_LIGHT_COUNT; k++) {\n\
-                \x20       e += SHLIGHT_LIGHT_POWER[k] * shlight_cap_per_power(SHLIGHT_LIGHT_HALF_ANGLE[k], dot(n, SHLIGHT_LIGHT_DIRECTION[k]));\n\
-                \x20   }\n\
-                \x20   return e;\n\
-                }\n\n\
-                // Irradiance E(n) at a surface with normal n: the SH part plus the lights.\n\
-                fn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {\n\
-                \x20   return shlight_sh_irradiance(n) + shlight_lights_irradiance(n);\n\
-                }\n"
-                .to_string(),
-            Lang::CLike { vec3: v3, .. } => format!(
-                "\n// The lights' irradiance at normal n.\n\
-                 {v3} shlight_lights_irradiance({v3} n) {{\n\
-                 \x20   {v3} e = {v3}(0.0, 0.0, 0.0);\n\
-                 \x20   for (int k = 0; k < SHLIGHT_LIGHT_COUNT; k++) {{\n\
-                 \x20       e += SHLIGHT_LIGHT_POWER[k] * shlight_cap_per_power(SHLIGHT_LIGHT_HALF_ANGLE[k], dot(n, SHLIGHT_LIGHT_DIRECTION[k]));\n\
-                 \x20   }}\n\
-                 \x20   return e;\n\
-                 }}\n\n\
-                 // Irradiance E(n) at a surface with normal n: the SH part plus the lights.\n\
-                 {v3} shlight_irradiance({v3} n) {{\n\
-                 \x20   return shlight_sh_irradiance(n) + shlight_lights_irradiance(n);\n\
-                 }}\n"
-            ),
-            Lang::C => "\n// Irradiance E(n) at a surface with normal n: the SH part plus the lights.\n\
-                static inline void shlight_irradiance(const double n[3], double out[3]) {\n\
-                \x20   shlight_sh_irradiance(n, out);\n\
-                \x20   for (int k = 0; k < SHLIGHT_LIGHT_COUNT; k++) {\n\
-                \x20       const double *d = shlight_light_direction[k];\n\
-                \x20       const double w = shlight_cap_per_power(shlight_light_half_angle[k], n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);\n\
-                \x20       for (int c = 0; c < 3; c++) {\n\
-                \x20           out[c] += shlight_light_power[k][c] * w;\n\
-                \x20       }\n\
-                \x20   }\n\
-                }\n"
-            .to_string(),
-        }
-    }
-
-    /// ZH3's axis, zonal coefficient and irradiance.
-    fn zh3(&self, hallucinated: bool) -> String {
-        let [lr, lg, lb] = LUMA.map(f);
-        let zh = f(PI / 4.0 * (5.0 / (16.0 * PI)).sqrt());
-        let mut s = String::new();
-        match self {
-            Lang::Wgsl => {
-                s.push_str(&format!(
-                    "\n// The luminance axis a: the unit Rec.709-luminance degree-1 vector (-f11, -f1-1, f10); +z if zero.\n\
-                     fn shlight_zh3_axis() -> vec3<f32> {{\n\
-                     \x20   let w = vec3<f32>({lr}, {lg}, {lb});\n\
-                     \x20   let v = vec3<f32>(-dot(SHLIGHT_COEFFS[3], w), -dot(SHLIGHT_COEFFS[1], w), dot(SHLIGHT_COEFFS[2], w));\n\
-                     \x20   let len = length(v);\n\
-                     \x20   if (len > 0.0) {{\n\
-                     \x20       return v / len;\n\
-                     \x20   }}\n\
-                     \x20   return vec3<f32>(0.0, 0.0, 1.0);\n\
-                     }}\n"
-                ));
-                if hallucinated {
-                    s.push_str(
-                        "\n// The hallucinated zonal coefficient of one channel: f00 (0.08 r + 0.6 r^2), r = |v.a| / f00.\n\
-                         fn shlight_zh3_hallucinate(f00: f32, va: f32) -> f32 {\n\
-                         \x20   if (f00 <= 0.0) {\n\
-                         \x20       return 0.0;\n\
-                         \x20   }\n\
-                         \x20   let r = abs(va) / f00;\n\
-                         \x20   return f00 * (0.08 * r + 0.6 * r * r);\n\
-                         }\n\n\
-                         // z per channel, from the lmax-1 part.\n\
-                         fn shlight_zh3_z(a: vec3<f32>) -> vec3<f32> {\n\
-                         \x20   let va = -SHLIGHT_COEFFS[3] * a.x - SHLIGHT_COEFFS[1] * a.y + SHLIGHT_COEFFS[2] * a.z;\n\
-                         \x20   let f00 = SHLIGHT_COEFFS[0];\n\
-                         \x20   return vec3<f32>(shlight_zh3_hallucinate(f00.x, va.x), shlight_zh3_hallucinate(f00.y, va.y), shlight_zh3_hallucinate(f00.z, va.z));\n\
-                         }\n",
-                    );
-                } else {
-                    s.push_str(
-                        "\n// z per channel: the stored coefficient.\n\
-                         fn shlight_zh3_z(a: vec3<f32>) -> vec3<f32> {\n\
-                         \x20   return SHLIGHT_ZH3_ZONAL;\n\
-                         }\n",
-                    );
-                }
-                s.push_str(&format!(
-                    "\n// Irradiance E(n) at a surface with normal n: E_1(n) + (pi/4) z sqrt(5/(16 pi)) (3 (a.n)^2 - 1).\n\
-                     fn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {{\n\
-                     \x20   let a = shlight_zh3_axis();\n\
-                     \x20   let t = dot(a, n);\n\
-                     \x20   return shlight_sh_irradiance(n) + shlight_zh3_z(a) * ({zh} * (3.0 * t * t - 1.0));\n\
-                     }}\n"
-                ));
-            }
-            Lang::CLike { vec3: v3, .. } => {
-                s.push_str(&format!(
-                    "\n// The luminance axis a: the unit Rec.709-luminance degree-1 vector (-f11, -f1-1, f10); +z if zero.\n\
-                     {v3} shlight_zh3_axis() {{\n\
-                     \x20   {v3} w = {v3}({lr}, {lg}, {lb});\n\
-                     \x20   {v3} v = {v3}(-dot(SHLIGHT_COEFFS[3], w), -dot(SHLIGHT_COEFFS[1], w), dot(SHLIGHT_COEFFS[2], w));\n\
-                     \x20   float len = length(v);\n\
-                     \x20   if (len > 0.0) {{\n\
-                     \x20       return v / len;\n\
-                     \x20   }}\n\
-                     \x20   return {v3}(0.0, 0.0, 1.0);\n\
-                     }}\n"
-                ));
-                if hallucinated {
-                    s.push_str(&format!(
-                        "\n// The hallucinated zonal coefficient of one channel: f00 (0.08 r + 0.6 r^2), r = |v.a| / f00.\n\
-                         float shlight_zh3_hallucinate(float f00, float va) {{\n\
-                         \x20   if (f00 <= 0.0) {{\n\
-                         \x20       return 0.0;\n\
-                         \x20   }}\n\
-                         \x20   float r = abs(va) / f00;\n\
-                         \x20   return f00 * (0.08 * r + 0.6 * r * r);\n\
-                         }}\n\n\
-                         // z per channel, from the lmax-1 part.\n\
-                         {v3} shlight_zh3_z({v3} a) {{\n\
-                         \x20   {v3} va = -SHLIGHT_COEFFS[3] * a.x - SHLIGHT_COEFFS[1] * a.y + SHLIGHT_COEFFS[2] * a.z;\n\
-                         \x20   {v3} f00 = SHLIGHT_COEFFS[0];\n\
-                         \x20   return {v3}(shlight_zh3_hallucinate(f00.x, va.x), shlight_zh3_hallucinate(f00.y, va.y), shlight_zh3_hallucinate(f00.z, va.z));\n\
-                         }}\n"
-                    ));
-                } else {
-                    s.push_str(&format!(
-                        "\n// z per channel: the stored coefficient.\n\
-                         {v3} shlight_zh3_z({v3} a) {{\n\
-                         \x20   return SHLIGHT_ZH3_ZONAL;\n\
-                         }}\n"
-                    ));
-                }
-                s.push_str(&format!(
-                    "\n// Irradiance E(n) at a surface with normal n: E_1(n) + (pi/4) z sqrt(5/(16 pi)) (3 (a.n)^2 - 1).\n\
-                     {v3} shlight_irradiance({v3} n) {{\n\
-                     \x20   {v3} a = shlight_zh3_axis();\n\
-                     \x20   float t = dot(a, n);\n\
-                     \x20   return shlight_sh_irradiance(n) + shlight_zh3_z(a) * ({zh} * (3.0 * t * t - 1.0));\n\
-                     }}\n"
-                ));
-            }
-            Lang::C => {
-                s.push_str(&format!(
-                    "\n// The luminance axis a: the unit Rec.709-luminance degree-1 vector (-f11, -f1-1, f10); +z if zero.\n\
-                     static inline void shlight_zh3_axis(double a[3]) {{\n\
-                     \x20   static const double w[3] = {{{lr}, {lg}, {lb}}};\n\
-                     \x20   double v[3] = {{0.0, 0.0, 0.0}};\n\
-                     \x20   for (int c = 0; c < 3; c++) {{\n\
-                     \x20       v[0] -= shlight_coeffs[3][c] * w[c];\n\
-                     \x20       v[1] -= shlight_coeffs[1][c] * w[c];\n\
-                     \x20       v[2] += shlight_coeffs[2][c] * w[c];\n\
-                     \x20   }}\n\
-                     \x20   const double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);\n\
-                     \x20   if (len > 0.0) {{\n\
-                     \x20       a[0] = v[0] / len;\n\
-                     \x20       a[1] = v[1] / len;\n\
-                     \x20       a[2] = v[2] / len;\n\
-                     \x20   }} else {{\n\
-                     \x20       a[0] = 0.0;\n\
-                     \x20       a[1] = 0.0;\n\
-                     \x20       a[2] = 1.0;\n\
-                     \x20   }}\n\
-                     }}\n"
-                ));
-                if hallucinated {
-                    s.push_str(
-                        "\n// z per channel, hallucinated from the lmax-1 part: f00 (0.08 r + 0.6 r^2), r = |v.a| / f00.\n\
-                         static inline void shlight_zh3_z(const double a[3], double z[3]) {\n\
-                         \x20   for (int c = 0; c < 3; c++) {\n\
-                         \x20       const double f00 = shlight_coeffs[0][c];\n\
-                         \x20       const double va = -shlight_coeffs[3][c] * a[0] - shlight_coeffs[1][c] * a[1] + shlight_coeffs[2][c] * a[2];\n\
-                         \x20       const double r = f00 > 0.0 ? fabs(va) / f00 : 0.0;\n\
-                         \x20       z[c] = f00 > 0.0 ? f00 * (0.08 * r + 0.6 * r * r) : 0.0;\n\
-                         \x20   }\n\
-                         }\n",
-                    );
-                } else {
-                    s.push_str(
-                        "\n// z per channel: the stored coefficient.\n\
-                         static inline void shlight_zh3_z(const double a[3], double z[3]) {\n\
-                         \x20   (void)a;\n\
-                         \x20   for (int c = 0; c < 3; c++) {\n\
-                         \x20       z[c] = shlight_zh3_zonal[c];\n\
-                         \x20   }\n\
-                         }\n",
-                    );
-                }
-                s.push_str(&format!(
-                    "\n// Irradiance E(n) at a surface with normal n: E_1(n) + (pi/4) z sqrt(5/(16 pi)) (3 (a.n)^2 - 1).\n\
-                     static inline void shlight_irradiance(const double n[3], double out[3]) {{\n\
-                     \x20   double a[3], z[3];\n\
-                     \x20   shlight_zh3_axis(a);\n\
-                     \x20   shlight_zh3_z(a, z);\n\
-                     \x20   const double t = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];\n\
-                     \x20   shlight_sh_irradiance(n, out);\n\
-                     \x20   for (int c = 0; c < 3; c++) {{\n\
-                     \x20       out[c] += z[c] * ({zh} * (3.0 * t * t - 1.0));\n\
-                     \x20   }}\n\
-                     }}\n"
-                ));
-            }
-        }
-        s
-    }
-
-    fn l1_nonlinear(&self) -> String {
-        let (k0, k1, pi) = (
-            f(1.0 / (2.0 * PI.sqrt())),
-            f(1.0 / (2.0 * (3.0 * PI).sqrt())),
-            f(PI),
-        );
-        let doc = "\n// Hazel's non-linear irradiance of one channel from its lmax-1 radiance f00, f1-1, f10, f11 (header).\n";
-        match self {
-            Lang::Wgsl => format!(
-                "{doc}fn shlight_l1_channel(f00: f32, f1m1: f32, f10: f32, f11: f32, n: vec3<f32>) -> f32 {{\n\
-                 \x20   let r0 = f00 * {k0};\n\
-                 \x20   if (r0 <= 0.0) {{\n\
-                 \x20       return 0.0;\n\
-                 \x20   }}\n\
-                 \x20   let r1 = vec3<f32>(-f11, -f1m1, f10) * {k1};\n\
-                 \x20   let len = length(r1);\n\
-                 \x20   if (len == 0.0) {{\n\
-                 \x20       return {pi} * r0;\n\
-                 \x20   }}\n\
-                 \x20   let r = min(len / r0, 1.0);\n\
-                 \x20   let p = 1.0 + 2.0 * r;\n\
-                 \x20   let a = (1.0 - r) / (1.0 + r);\n\
-                 \x20   let q = max(0.5 * (1.0 + dot(r1, n) / len), 0.0);\n\
-                 \x20   return {pi} * r0 * (a + (1.0 - a) * (p + 1.0) * pow(q, p));\n\
-                 }}\n\n\
-                 // Irradiance E(n) at a surface with normal n, channel by channel.\n\
-                 fn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {{\n\
-                 \x20   let c0 = SHLIGHT_COEFFS[0];\n\
-                 \x20   let c1 = SHLIGHT_COEFFS[1];\n\
-                 \x20   let c2 = SHLIGHT_COEFFS[2];\n\
-                 \x20   let c3 = SHLIGHT_COEFFS[3];\n\
-                 \x20   return vec3<f32>(\n\
-                 \x20       shlight_l1_channel(c0.x, c1.x, c2.x, c3.x, n),\n\
-                 \x20       shlight_l1_channel(c0.y, c1.y, c2.y, c3.y, n),\n\
-                 \x20       shlight_l1_channel(c0.z, c1.z, c2.z, c3.z, n),\n\
-                 \x20   );\n\
-                 }}\n"
-            ),
-            Lang::CLike { vec3: v3, .. } => format!(
-                "{doc}float shlight_l1_channel(float f00, float f1m1, float f10, float f11, {v3} n) {{\n\
-                 \x20   float r0 = f00 * {k0};\n\
-                 \x20   if (r0 <= 0.0) {{\n\
-                 \x20       return 0.0;\n\
-                 \x20   }}\n\
-                 \x20   {v3} r1 = {v3}(-f11, -f1m1, f10) * {k1};\n\
-                 \x20   float len = length(r1);\n\
-                 \x20   if (len == 0.0) {{\n\
-                 \x20       return {pi} * r0;\n\
-                 \x20   }}\n\
-                 \x20   float r = min(len / r0, 1.0);\n\
-                 \x20   float p = 1.0 + 2.0 * r;\n\
-                 \x20   float a = (1.0 - r) / (1.0 + r);\n\
-                 \x20   float q = max(0.5 * (1.0 + dot(r1, n) / len), 0.0);\n\
-                 \x20   return {pi} * r0 * (a + (1.0 - a) * (p + 1.0) * pow(q, p));\n\
-                 }}\n\n\
-                 // Irradiance E(n) at a surface with normal n, channel by channel.\n\
-                 {v3} shlight_irradiance({v3} n) {{\n\
-                 \x20   {v3} c0 = SHLIGHT_COEFFS[0];\n\
-                 \x20   {v3} c1 = SHLIGHT_COEFFS[1];\n\
-                 \x20   {v3} c2 = SHLIGHT_COEFFS[2];\n\
-                 \x20   {v3} c3 = SHLIGHT_COEFFS[3];\n\
-                 \x20   return {v3}(\n\
-                 \x20       shlight_l1_channel(c0.x, c1.x, c2.x, c3.x, n),\n\
-                 \x20       shlight_l1_channel(c0.y, c1.y, c2.y, c3.y, n),\n\
-                 \x20       shlight_l1_channel(c0.z, c1.z, c2.z, c3.z, n));\n\
-                 }}\n"
-            ),
-            Lang::C => format!(
-                "{doc}static inline double shlight_l1_channel(int c, const double n[3]) {{\n\
-                 \x20   const double r0 = shlight_coeffs[0][c] * {k0};\n\
-                 \x20   if (r0 <= 0.0) {{\n\
-                 \x20       return 0.0;\n\
-                 \x20   }}\n\
-                 \x20   const double r1[3] = {{-shlight_coeffs[3][c] * {k1}, -shlight_coeffs[1][c] * {k1}, shlight_coeffs[2][c] * {k1}}};\n\
-                 \x20   const double len = sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2]);\n\
-                 \x20   if (len == 0.0) {{\n\
-                 \x20       return {pi} * r0;\n\
-                 \x20   }}\n\
-                 \x20   const double r = fmin(len / r0, 1.0);\n\
-                 \x20   const double p = 1.0 + 2.0 * r;\n\
-                 \x20   const double a = (1.0 - r) / (1.0 + r);\n\
-                 \x20   const double q = fmax(0.5 * (1.0 + (r1[0] * n[0] + r1[1] * n[1] + r1[2] * n[2]) / len), 0.0);\n\
-                 \x20   return {pi} * r0 * (a + (1.0 - a) * (p + 1.0) * pow(q, p));\n\
-                 }}\n\n\
-                 // Irradiance E(n) at a surface with normal n, channel by channel.\n\
-                 static inline void shlight_irradiance(const double n[3], double out[3]) {{\n\
-                 \x20   for (int c = 0; c < 3; c++) {{\n\
-                 \x20       out[c] = shlight_l1_channel(c, n);\n\
-                 \x20   }}\n\
-                 }}\n"
-            ),
-        }
-    }
-
-    fn cube(&self) -> String {
-        match self {
-            Lang::Wgsl => "\n// Irradiance E(n) at a surface with normal n: the colours blended by n^2.\n\
-                fn shlight_irradiance(n: vec3<f32>) -> vec3<f32> {\n\
-                \x20   let nn = n * n;\n\
-                \x20   let cx = select(SHLIGHT_CUBE[0], SHLIGHT_CUBE[1], n.x < 0.0);\n\
-                \x20   let cy = select(SHLIGHT_CUBE[2], SHLIGHT_CUBE[3], n.y < 0.0);\n\
-                \x20   let cz = select(SHLIGHT_CUBE[4], SHLIGHT_CUBE[5], n.z < 0.0);\n\
-                \x20   return nn.x * cx + nn.y * cy + nn.z * cz;\n\
-                }\n"
-            .to_string(),
-            Lang::CLike { vec3: v3, .. } => format!(
-                "\n// Irradiance E(n) at a surface with normal n: the colours blended by n^2.\n\
-                 {v3} shlight_irradiance({v3} n) {{\n\
-                 \x20   {v3} nn = n * n;\n\
-                 \x20   {v3} cx = n.x < 0.0 ? SHLIGHT_CUBE[1] : SHLIGHT_CUBE[0];\n\
-                 \x20   {v3} cy = n.y < 0.0 ? SHLIGHT_CUBE[3] : SHLIGHT_CUBE[2];\n\
-                 \x20   {v3} cz = n.z < 0.0 ? SHLIGHT_CUBE[5] : SHLIGHT_CUBE[4];\n\
-                 \x20   return nn.x * cx + nn.y * cy + nn.z * cz;\n\
-                 }}\n"
-            ),
-            Lang::C => "\n// Irradiance E(n) at a surface with normal n: the colours blended by n^2.\n\
-                static inline void shlight_irradiance(const double n[3], double out[3]) {\n\
-                \x20   const double *cx = shlight_cube[n[0] < 0.0 ? 1 : 0];\n\
-                \x20   const double *cy = shlight_cube[n[1] < 0.0 ? 3 : 2];\n\
-                \x20   const double *cz = shlight_cube[n[2] < 0.0 ? 5 : 4];\n\
-                \x20   for (int c = 0; c < 3; c++) {\n\
-                \x20       out[c] = n[0] * n[0] * cx[c] + n[1] * n[1] * cy[c] + n[2] * n[2] * cz[c];\n\
-                \x20   }\n\
-                }\n"
-            .to_string(),
-        }
-    }
 }
 
 #[cfg(test)]

@@ -18,17 +18,10 @@
 //! `sin^m`, times the trig-free azimuth terms `C_m, S_m` of Sloan 2008),
 //! in 32-bit floats. The header comment says all this in the file.
 
+use shlight_shader::Language;
+
+use super::{ExportInput, Exported, check_f32_range, snippet};
 use crate::Result;
-
-use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
-
-/// The GLSL dialect of the shared evaluator.
-const GLSL: CLikeShader = CLikeShader {
-    vec3: "vec3",
-    konst: "const",
-    array_open: |ty, n| format!("{ty}[{n}]("),
-    array_close: ");",
-};
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
@@ -39,11 +32,14 @@ pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
 /// `{prefix}radiance`.
 pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Result<Exported> {
     check_f32_range(input.coeffs, "GLSL")?;
-    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", prefix);
-    text.push_str("// GLSL 3.30 / GLSL ES 3.00 or later.\n\n");
-    text.push_str(&GLSL.body(input, prefix));
     Ok(Exported {
-        text,
+        text: snippet(
+            input,
+            Language::Glsl,
+            "SHLIGHT_COEFFS",
+            "// GLSL 3.30 / GLSL ES 3.00 or later.\n",
+            prefix,
+        ),
         notes: Vec::new(),
     })
 }

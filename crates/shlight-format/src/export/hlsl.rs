@@ -17,19 +17,13 @@
 //! - `shlight_radiance(w)` (radiance files only) returns `L(w)`.
 //!
 //! The evaluator is the one of the GLSL snippet with HLSL spellings
-//! (`float3`, `static const`, `{ ... }` initialisers); 32-bit floats.
+//! (`float3`, `static const`, `{ ... }` initialisers; shlight-shader's
+//! [`shlight_shader::coefficients`]); 32-bit floats.
 
+use shlight_shader::Language;
+
+use super::{ExportInput, Exported, check_f32_range, snippet};
 use crate::Result;
-
-use super::{CLikeShader, ExportInput, Exported, check_f32_range, code_header};
-
-/// The HLSL dialect of the shared evaluator.
-const HLSL: CLikeShader = CLikeShader {
-    vec3: "float3",
-    konst: "static const",
-    array_open: |_, _| "{".to_string(),
-    array_close: "};",
-};
 
 /// Renders the snippet.
 pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
@@ -40,11 +34,8 @@ pub fn render(input: &ExportInput<'_>) -> Result<Exported> {
 /// `{prefix}radiance`.
 pub(crate) fn render_named(input: &ExportInput<'_>, prefix: &str) -> Result<Exported> {
     check_f32_range(input.coeffs, "HLSL")?;
-    let mut text = code_header(input, "//", "SHLIGHT_COEFFS", prefix);
-    text.push('\n');
-    text.push_str(&HLSL.body(input, prefix));
     Ok(Exported {
-        text,
+        text: snippet(input, Language::Hlsl, "SHLIGHT_COEFFS", "", prefix),
         notes: Vec::new(),
     })
 }
