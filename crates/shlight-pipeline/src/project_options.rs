@@ -24,12 +24,13 @@ pub enum Spelling {
 }
 
 impl Spelling {
-    /// The option `name` alone: `--rotate`, `rotate`.
+    /// The option `name` (words joined by `-`) alone: `--rotate`,
+    /// `rotate`; `--object-size`, `object_size`.
     #[must_use]
     pub fn option(self, name: &str) -> String {
         match self {
             Spelling::CommandLine => format!("--{name}"),
-            Spelling::Python => name.to_string(),
+            Spelling::Python => name.replace('-', "_"),
         }
     }
 
@@ -39,7 +40,7 @@ impl Spelling {
     pub fn option_value(self, name: &str, value: &str) -> String {
         match self {
             Spelling::CommandLine => format!("--{name} {value}"),
-            Spelling::Python => format!("{name}=\"{value}\""),
+            Spelling::Python => format!("{}=\"{value}\"", self.option(name)),
         }
     }
 }
