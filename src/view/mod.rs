@@ -94,21 +94,27 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
             note: &note,
         };
         let scene = shlight_gpu::Scene::read(&settings, &crate::bundled::BUILT_IN, &hooks)?;
-        if let (Some(path), Some(t)) = (&args.prt, &scene.transfer) {
-            ui.note(format!(
-                "{}: {} transfer to lmax {}, {} channel(s)",
-                path.display(),
-                t.mode,
-                t.lmax,
-                t.channels
-            ));
-        }
+        note_transfer(args, &scene, ui);
         Ok(shlight_viewer::run(&options, scene)?)
     }
     #[cfg(not(feature = "gpu"))]
     {
         let _ = (args, ui);
         Err(crate::gpu_feature::needs_gpu("view"))
+    }
+}
+
+/// Says what `--prt`'s file holds.
+#[cfg(feature = "gpu")]
+fn note_transfer(args: &ViewArgs, scene: &shlight_gpu::Scene, ui: &Ui) {
+    if let (Some(path), Some(t)) = (&args.prt, &scene.transfer) {
+        ui.note(format!(
+            "{}: {} transfer to lmax {}, {} channel(s)",
+            path.display(),
+            t.mode,
+            t.lmax,
+            t.channels
+        ));
     }
 }
 
