@@ -21,8 +21,6 @@ mod prefilter;
 mod progress;
 mod project;
 mod prt;
-#[cfg(feature = "gpu")]
-mod prt_input;
 mod render;
 mod render_mesh;
 #[cfg(feature = "gpu")]

@@ -90,7 +90,7 @@ fn point_renderer(ctx: &GpuContext, mesh: &Mesh, file: &Path, light: &Path) -> R
     let transfer = ShprtFile::read(file).unwrap();
     let env = Environment::load(light, Up::YUp, shlight_baked::LIGHT_MAX_LMAX).unwrap();
     let mut renderer =
-        shlight_viewer::renderer(ctx, HEADLESS_FORMAT, mesh, Some(&transfer), &env).unwrap();
+        shlight_gpu::mesh_renderer(ctx, HEADLESS_FORMAT, mesh, Some(&transfer), &env).unwrap();
     renderer.set_points(true);
     renderer
 }

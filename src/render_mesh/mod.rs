@@ -10,19 +10,18 @@
 //! linear `f32`: EXR output holds those values untouched (no exposure, no
 //! tone map); PNG output gets `--exposure` and `--tone-map` on the CPU, as
 //! `shlight render` does.
+//!
+//! The arguments become shlight-gpu's `RenderMeshRequest`, checked by its
+//! `check` and run by its `render_mesh` (the scene read, drawn and
+//! written); this module only converts them and reports.
 
 use std::path::PathBuf;
 
-#[cfg(feature = "gpu")]
-mod gpu;
-#[cfg(feature = "gpu")]
-mod volume;
-
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 use glam::Vec3;
 use shlight_core::sh::Window;
-use shlight_io::{Format, ToneMap};
+use shlight_io::ToneMap;
 
 use crate::progress::Ui;
 use crate::values::{parse_size, parse_vec3_f32 as parse_vec3};
@@ -117,18 +116,6 @@ pub enum RenderMode {
     Normals,
 }
 
-#[cfg(feature = "gpu")]
-impl RenderMode {
-    /// The mode's name as `--mode` takes it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Sh => "sh",
-            Self::Prt => "prt",
-            Self::Normals => "normals",
-        }
-    }
-}
-
 /// `--background`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum BackgroundArg {
@@ -142,22 +129,65 @@ pub enum BackgroundArg {
 
 /// Runs `shlight render-mesh`.
 pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
-    let out = args.output.display().to_string();
-    let format = Format::from_extension(&args.output);
-    if !matches!(format, Some(Format::Exr | Format::Png)) {
-        bail!("{out}: render-mesh writes .exr (linear) or .png");
-    }
-    args.volume.check(args.lmax)?;
     #[cfg(feature = "gpu")]
-    return if args.volume.volume.is_some() {
-        volume::render(args, format, ui)
-    } else {
-        gpu::render(args, format, ui)
-    };
+    {
+        let settings = request(args).check(shlight_pipeline::Spelling::CommandLine)?;
+        crate::output_path::refuse_overwriting(&args.output, &settings.inputs())?;
+        let bar = ui.spinner("");
+        let progress = |m: &str| bar.set_message(m.to_string());
+        let (warn, note) = (|m: &str| ui.warn(m), |m: &str| ui.note(m));
+        let hooks = shlight_gpu::SceneHooks {
+            progress: &progress,
+            warn: &warn,
+            note: &note,
+        };
+        shlight_gpu::render_mesh(&settings, &crate::bundled::BUILT_IN, &hooks)?;
+        bar.finish_and_clear();
+        Ok(())
+    }
     #[cfg(not(feature = "gpu"))]
     {
-        let _ = ui;
+        let _ = (args, ui);
         Err(crate::gpu_feature::needs_gpu("render-mesh"))
+    }
+}
+
+/// The arguments as shlight-gpu's request.
+#[cfg(feature = "gpu")]
+fn request(args: &RenderMeshArgs) -> shlight_gpu::RenderMeshRequest {
+    use shlight_gpu::{Background, Mode};
+    shlight_gpu::RenderMeshRequest {
+        scene: shlight_gpu::SceneOptions {
+            mesh: Some(args.mesh.clone()),
+            prt: args.prt.clone(),
+            env: Some(args.env.clone()),
+            up: crate::input::frame_of(&args.up),
+            mode: args.mode.map(|m| match m {
+                RenderMode::Sh => Mode::Sh,
+                RenderMode::Prt => Mode::Prt,
+                RenderMode::Normals => Mode::Normals,
+            }),
+            lmax: args.lmax,
+            encoding: args.encoding,
+            albedo: args.albedo.map(|a| a.to_array()),
+            background: Some(match args.background {
+                BackgroundArg::None => Background::None,
+                BackgroundArg::Map => Background::Map,
+                BackgroundArg::Sh => Background::Sh,
+            }),
+            rotate: args.rotate.clone(),
+            ..args.volume.options()
+        },
+        shot: shlight_gpu::Shot {
+            camera: args.camera,
+            target: args.target,
+            fov_degrees: args.fov,
+            size: args.size,
+            window: args.window,
+        },
+        exposure: args.exposure,
+        tone_map: args.tone_map,
+        output: args.output.clone(),
     }
 }
 

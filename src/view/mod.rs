@@ -11,12 +11,14 @@
 //! tone map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit. `--screenshot FILE.png` renders `--frames` frames, saves
 //! the last (overlay included) and exits.
 //!
-//! The window is shlight-viewer's ([`shlight_viewer::run`]); this module
-//! parses the arguments and reads the files.
+//! The scene is shlight-gpu's (`SceneOptions::check`, then `Scene::read`,
+//! as `render-mesh` reads it) and the window shlight-viewer's
+//! (`shlight_viewer::run`); this module converts the arguments and calls
+//! them.
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 use shlight_io::ToneMap;
 
@@ -79,102 +81,67 @@ pub struct ViewArgs {
 
 /// Runs `shlight view`.
 pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    if args.frames == 0 {
-        bail!("--frames must be at least 1");
-    }
-    if let Some(path) = &args.screenshot
-        && !path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
-    {
-        bail!("{}: --screenshot writes PNG files", path.display());
-    }
-    args.volume.check(args.lmax)?;
-    if args.volume.volume.is_some() && args.mesh.is_none() {
-        bail!("--volume lights the scene it was baked in: give that scene as MESH");
-    }
-    if args.volume.volume.is_some() && args.prt.is_some() {
-        bail!("--volume shades by the volume's SH: it takes no --prt");
-    }
-    if args.volume.volume.is_some() && args.encoding != shlight_core::encoding::Encoding::Sh {
-        bail!(
-            "--volume shades by the volume's SH probes: it does not take --encoding {}",
-            args.encoding
-        );
-    }
     #[cfg(feature = "gpu")]
-    return show(args, ui);
+    {
+        use shlight_pipeline::Spelling::CommandLine;
+        let options = viewer_options(args);
+        options.check(CommandLine)?;
+        let settings = scene_options(args).check(CommandLine)?;
+        let (warn, note) = (|m: &str| ui.warn(m), |m: &str| ui.note(m));
+        let hooks = shlight_gpu::SceneHooks {
+            progress: &|_| {},
+            warn: &warn,
+            note: &note,
+        };
+        let scene = shlight_gpu::Scene::read(&settings, &crate::bundled::BUILT_IN, &hooks)?;
+        note_transfer(args, &scene, ui);
+        Ok(shlight_viewer::run(&options, scene)?)
+    }
     #[cfg(not(feature = "gpu"))]
     {
-        let _ = ui;
+        let _ = (args, ui);
         Err(crate::gpu_feature::needs_gpu("view"))
     }
 }
 
-/// Opens the window and runs its event loop until it closes.
+/// Says what `--prt`'s file holds.
 #[cfg(feature = "gpu")]
-fn show(args: &ViewArgs, ui: &Ui) -> Result<()> {
-    use crate::input::frame_of;
-    use shlight_pipeline::Environment;
-
-    shlight_viewer::check_lmax(args.lmax)?;
-    let mesh_path = args
-        .mesh
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(crate::bundled::MESH_NAME));
-    let mesh = match &args.mesh {
-        Some(path) => shlight_mesh::load(path)?,
-        None => crate::bundled::mesh()?,
-    };
-    let transfer = match &args.prt {
-        Some(path) => {
-            let t = crate::prt_input::load_transfer(path, &mesh, &mesh_path)?;
-            ui.note(format!(
-                "{}: {} transfer to lmax {}, {} channel(s)",
-                path.display(),
-                t.mode,
-                t.lmax,
-                t.channels
-            ));
-            Some(t)
-        }
-        None => None,
-    };
-    let up = frame_of(&args.up);
-    let env = match &args.env {
-        Some(path) => Environment::load(path, up, shlight_baked::LIGHT_MAX_LMAX)?,
-        None => crate::bundled::environment(up)?,
-    };
-    env.warnings.iter().for_each(|w| ui.warn(w));
-    if args.encoding == shlight_core::encoding::Encoding::DominantSh && env.map.is_none() {
-        // The same message as render-mesh's.
-        env.encode(args.encoding, 2)?;
+fn note_transfer(args: &ViewArgs, scene: &shlight_gpu::Scene, ui: &Ui) {
+    if let (Some(path), Some(t)) = (&args.prt, &scene.transfer) {
+        ui.note(format!(
+            "{}: {} transfer to lmax {}, {} channel(s)",
+            path.display(),
+            t.mode,
+            t.lmax,
+            t.channels
+        ));
     }
-    let volume = match &args.volume.volume {
-        Some(_) => Some(crate::volume_shading::load_volume(
-            &args.volume,
-            &mesh,
-            &mesh_path,
-            ui,
-        )?),
-        None => None,
-    };
-    let options = shlight_viewer::ViewerOptions {
-        lmax: args.lmax,
-        encoding: args.encoding,
+}
+
+/// The window's arguments as shlight-viewer's options.
+#[cfg(feature = "gpu")]
+fn viewer_options(args: &ViewArgs) -> shlight_viewer::ViewerOptions {
+    shlight_viewer::ViewerOptions {
         exposure: args.exposure,
         tone_map: args.tone_map,
         size: args.size,
         screenshot: args.screenshot.clone(),
         frames: args.frames,
         hide_panel: args.hide_panel,
+    }
+}
+
+/// The scene's arguments as shlight-gpu's options.
+#[cfg(feature = "gpu")]
+fn scene_options(args: &ViewArgs) -> shlight_gpu::SceneOptions {
+    shlight_gpu::SceneOptions {
+        mesh: args.mesh.clone(),
+        prt: args.prt.clone(),
+        env: args.env.clone(),
+        up: crate::input::frame_of(&args.up),
+        lmax: args.lmax,
+        encoding: args.encoding,
         albedo: args.albedo.map(|a| a.to_array()),
-    };
-    let scene = shlight_viewer::ViewerScene {
-        mesh,
-        transfer,
-        env,
-        volume,
-    };
-    shlight_viewer::run(&options, scene)
+        ..args.volume.options()
+    }
 }

@@ -18,7 +18,17 @@
 //!   [`Camera::aimed`] place it for a mesh's bounds) and [`OrbitCamera`]
 //!   (yaw, pitch and distance about a target);
 //! - [`GpuProjector`]: equirect maps to SH by exact texel-solid-angle
-//!   quadrature, the GPU twin of shlight-core's `project_equirect`.
+//!   quadrature, the GPU twin of shlight-core's `project_equirect`;
+//! - the scene `render-mesh` and the viewer shade (`scene/`): [`SceneOptions`]
+//!   and its [`check`](SceneOptions::check), the same refusals for every
+//!   front end; [`Scene`] read from shlight's files (a mesh, its `.shprt`
+//!   transfer, a light, a `.shvol` volume with an object moved through
+//!   it); [`mesh_renderer`] and [`light_renderer`]; [`render_mesh`], every
+//!   step of a headless frame written to an image.
+//!
+//! The renderers take meshes, texel slices and shlight-baked's views; the
+//! scene module alone reads files (shlight-format's `.shprt` and `.shvol`,
+//! the light through shlight-pipeline).
 //!
 //! Conventions are shlight's (docs/conventions.md): real orthonormal SH with
 //! the Condon-Shortley phase, index `l(l+1)+m`, world `(x, y, z)`.
@@ -34,6 +44,7 @@ mod projector;
 mod readback;
 mod renderer;
 mod ring_sums;
+mod scene;
 mod sh_expansion;
 pub mod shaders;
 mod shading;
@@ -49,6 +60,11 @@ pub use orbit_camera::OrbitCamera;
 pub use projector::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, GlossyLobe, Renderer};
+pub use scene::{
+    BuiltIn, RenderMeshRequest, RenderMeshSettings, Scene, SceneError, SceneHooks, SceneOptions,
+    SceneSettings, SceneVolume, Shot, VolumeLight, light_renderer, mesh_renderer, read_transfer,
+    render_mesh, set_transfer, write_frame,
+};
 pub use shading::{Background, Mode, Shading};
 pub use volume::{
     PROBE_SPHERE_RADIUS, ProbeTexels, VolumeInstance, VolumeRenderer, check_visibility_limits,

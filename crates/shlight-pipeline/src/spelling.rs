@@ -28,12 +28,13 @@ pub enum Spelling {
 }
 
 impl Spelling {
-    /// The setting `name` alone: `--rotate`, `rotate`.
+    /// The setting `name` (words joined by `_` or `-`) alone: `--rotate`,
+    /// `rotate`; `--object-size`, `object_size`.
     #[must_use]
     pub fn option(self, name: &str) -> String {
         match self {
             Spelling::CommandLine => format!("--{}", name.replace('_', "-")),
-            Spelling::Python => name.to_string(),
+            Spelling::Python => name.replace('-', "_"),
         }
     }
 
@@ -43,7 +44,7 @@ impl Spelling {
     pub fn option_value(self, name: &str, value: impl Display) -> String {
         match self {
             Spelling::CommandLine => format!("{} {value}", self.option(name)),
-            Spelling::Python => format!("{name}=\"{value}\""),
+            Spelling::Python => format!("{}=\"{value}\"", self.option(name)),
         }
     }
 
@@ -54,7 +55,7 @@ impl Spelling {
     pub fn option_number(self, name: &str, cli: impl Display, python: impl Display) -> String {
         match self {
             Spelling::CommandLine => format!("{} {cli}", self.option(name)),
-            Spelling::Python => format!("{name}={python}"),
+            Spelling::Python => format!("{}={python}", self.option(name)),
         }
     }
 
@@ -94,6 +95,8 @@ mod tests {
         use Spelling::{CommandLine, Python};
         assert_eq!(CommandLine.option("max_pixels"), "--max-pixels");
         assert_eq!(Python.option("max_pixels"), "max_pixels");
+        assert_eq!(Python.option("object-size"), "object_size");
+        assert_eq!(CommandLine.option("object-size"), "--object-size");
         assert_eq!(
             CommandLine.option_value("method", "montecarlo"),
             "--method montecarlo"

@@ -5,29 +5,28 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow};
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_core::encoding::Encoding;
-use shlight_core::sh::{ShRotation, Window};
-use shlight_format::ShprtFile;
+use shlight_core::sh::Window;
 use shlight_gpu::wgpu;
-use shlight_gpu::{Background, GpuContext, Mode, OrbitCamera, Renderer, Shading};
+use shlight_gpu::{
+    Background, GpuContext, Mode, OrbitCamera, Renderer, Scene, Shading, light_renderer,
+    mesh_renderer,
+};
 use shlight_io::ToneMap;
-use shlight_mesh::Mesh;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{Key, NamedKey};
 use winit::window::WindowId;
 
-use shlight_pipeline::Environment;
-
-use crate::ViewerOptions;
 use crate::controls::{Controls, WINDOWS};
 use crate::panel::{PanelInfo, draw_panel};
 use crate::screenshot::save_screenshot;
 use crate::view_volume::ViewVolume;
-use crate::volume_scene::VolumeScene;
+use crate::{ViewerError, ViewerOptions};
+
+type Result<T> = std::result::Result<T, ViewerError>;
 
 /// Everything that exists once the window does.
 struct Running {
@@ -44,11 +43,10 @@ struct Running {
 /// The viewer's state, driven by winit's event loop.
 pub struct App<'a> {
     options: &'a ViewerOptions,
-    mesh: Mesh,
-    /// `--prt`'s transfer, checked against the mesh.
-    transfer: Option<ShprtFile>,
-    env: Environment,
-    /// `--volume`: the scene lit by it, the object moving through it.
+    /// The mesh, its transfer and the light (its volume taken out, into
+    /// `volume`).
+    scene: Scene,
+    /// The volume lighting the mesh, the object moving through it.
     volume: Option<ViewVolume>,
     running: Option<Running>,
     controls: Controls,
@@ -66,56 +64,33 @@ pub struct App<'a> {
     screenshot_requested: bool,
     screenshots_taken: u32,
     message: String,
-    pub error: Option<anyhow::Error>,
+    pub error: Option<ViewerError>,
 }
 
 impl<'a> App<'a> {
-    pub fn new(
-        options: &'a ViewerOptions,
-        mesh: Mesh,
-        transfer: Option<ShprtFile>,
-        env: Environment,
-        volume: Option<VolumeScene>,
-    ) -> Self {
-        let background = if env.map.is_some() {
-            Background::Map
-        } else {
-            Background::Sh
-        };
-        let mode = if transfer.is_some() {
-            Mode::Prt
-        } else {
-            Mode::Sh
-        };
-        let lmax = match &volume {
-            Some(v) => options
-                .lmax
-                .unwrap_or(v.file.lmax.min(shlight_baked::SHADED_MAX_LMAX)),
-            None => crate::scene_renderer::shading_lmax(options.lmax, transfer.as_ref()),
+    pub fn new(options: &'a ViewerOptions, mut scene: Scene) -> Self {
+        let controls = Controls {
+            shading: Shading {
+                mode: scene.mode,
+                lmax: scene.lmax,
+                window: Window::None,
+                exposure_ev: options.exposure,
+                tone_map: Some(options.tone_map),
+                albedo: scene.albedo(Mode::Sh),
+                background: scene.background,
+            },
+            env_yaw: 0.0,
+            env_pitch: 0.0,
+            window_choice: 0,
+            encoding: scene.encoding,
+            show_panel: !options.hide_panel,
         };
         Self {
             options,
-            mesh,
-            transfer,
-            env,
-            volume: volume.map(ViewVolume::new),
+            volume: scene.volume.take().map(ViewVolume::new),
+            scene,
             running: None,
-            controls: Controls {
-                shading: Shading {
-                    mode,
-                    lmax,
-                    window: Window::None,
-                    exposure_ev: options.exposure,
-                    tone_map: Some(options.tone_map),
-                    albedo: options.albedo.unwrap_or([0.8; 3]),
-                    background,
-                },
-                env_yaw: 0.0,
-                env_pitch: 0.0,
-                window_choice: 0,
-                encoding: options.encoding,
-                show_panel: !options.hide_panel,
-            },
+            controls,
             orbit: None,
             dragging: None,
             shift: false,
@@ -141,12 +116,12 @@ impl<'a> App<'a> {
                         .with_title("shlight view")
                         .with_inner_size(winit::dpi::PhysicalSize::new(w as u32, h as u32)),
                 )
-                .context("cannot create a window")?,
+                .map_err(ViewerError::Window)?,
         );
         let instance = shlight_gpu::new_instance(None);
         let surface = instance
             .create_surface(window.clone())
-            .map_err(|e| anyhow!("cannot draw into the window: {e}"))?;
+            .map_err(|e| ViewerError::Surface(e.to_string()))?;
         let ctx = GpuContext::with_instance(instance, Some(&surface))?;
         let size = window.inner_size();
         let caps = surface.get_capabilities(&ctx.adapter);
@@ -156,36 +131,27 @@ impl<'a> App<'a> {
             .copied()
             .find(|f| f.is_srgb())
             .or_else(|| caps.formats.first().copied())
-            .ok_or_else(|| anyhow!("the window's surface offers no format"))?;
+            .ok_or(ViewerError::NoSurfaceFormat)?;
         let mut config = surface
             .get_default_config(&ctx.adapter, size.width.max(1), size.height.max(1))
-            .ok_or_else(|| {
-                anyhow!(
-                    "the window's surface does not work with {}",
-                    ctx.adapter_name()
-                )
-            })?;
+            .ok_or_else(|| ViewerError::SurfaceAdapter(ctx.adapter_name()))?;
         config.format = format;
         config.present_mode = wgpu::PresentMode::AutoNoVsync;
         config.view_formats = vec![];
         surface.configure(&ctx.device, &config);
+        let scene = &self.scene;
         let renderer = match &mut self.volume {
-            // The scene is drawn by the volume pass, lit by its probes.
+            // The mesh is drawn by the volume pass, lit by its probes.
             Some(v) => {
-                v.start(
-                    &ctx,
-                    format,
-                    &self.mesh,
-                    self.options.albedo.unwrap_or([0.8; 3]),
-                )?;
-                crate::scene_renderer::background_renderer(&ctx, format, &self.env)
+                v.start(&ctx, format, &scene.mesh, scene.albedo(Mode::Sh))?;
+                light_renderer(&ctx, format, &scene.light)
             }
-            None => crate::scene_renderer::renderer(
+            None => mesh_renderer(
                 &ctx,
                 format,
-                &self.mesh,
-                self.transfer.as_ref(),
-                &self.env,
+                &scene.mesh,
+                scene.transfer.as_ref(),
+                &scene.light,
             )?,
         };
         let depth = shlight_gpu::depth_view(&ctx, config.width, config.height);
@@ -200,7 +166,7 @@ impl<'a> App<'a> {
         );
         let egui_renderer = egui_wgpu::Renderer::new(&ctx.device, format, Default::default());
         self.orbit = Some(OrbitCamera::new(
-            self.mesh.bounds(),
+            self.scene.mesh.bounds(),
             config.width as f32 / config.height as f32,
         ));
         self.message = ctx.adapter_name();
@@ -244,8 +210,7 @@ impl<'a> App<'a> {
         self.last_frame = Some(now);
         self.controls.shading.window = self.controls.window();
         let rotation = self.controls.rotation();
-        let rotated =
-            ShRotation::from_mat3(self.env.radiance.lmax(), rotation).apply(&self.env.radiance);
+        let rotated = self.scene.turned_radiance(rotation);
         let Some(r) = self.running.as_mut() else {
             return Ok(());
         };
@@ -274,8 +239,8 @@ impl<'a> App<'a> {
             frame_ms: self.frame_ms,
             adapter: &self.message,
             coefficients: &rotated,
-            has_map: self.env.map.is_some(),
-            prt: self.transfer.as_ref().map(|t| t.mode.as_str()),
+            has_map: self.scene.light.map.is_some(),
+            prt: self.scene.transfer.as_ref().map(|t| t.mode.as_str()),
             volume: &volume_lines,
             encoding: &self.encoding_line,
         };
@@ -435,20 +400,23 @@ impl<'a> App<'a> {
                 "q" => event_loop.exit(),
                 "m" => {
                     c.shading.mode = match c.shading.mode {
-                        Mode::Sh if self.transfer.is_some() => Mode::Prt,
+                        Mode::Sh if self.scene.transfer.is_some() => Mode::Prt,
                         Mode::Sh | Mode::Prt => Mode::Normals,
                         Mode::Normals | Mode::Encoded => Mode::Sh,
                     }
                 }
                 "b" => {
                     c.shading.background = match c.shading.background {
-                        Background::None if self.env.map.is_some() => Background::Map,
+                        Background::None if self.scene.light.map.is_some() => Background::Map,
                         Background::None | Background::Map => Background::Sh,
                         Background::Sh => Background::None,
                     }
                 }
                 "w" => c.window_choice = (c.window_choice + 1) % WINDOWS.len(),
-                "e" => c.encoding = Controls::next_encoding(c.encoding, self.env.map.is_some()),
+                "e" => {
+                    c.encoding =
+                        Controls::next_encoding(c.encoding, self.scene.light.map.is_some());
+                }
                 "t" => {
                     let next = match c.shading.tone_map {
                         Some(ToneMap::Clamp) => ToneMap::Reinhard,
@@ -479,10 +447,10 @@ impl<'a> App<'a> {
     /// with an SH part, the lmax changed.
     fn shading_to_draw(&mut self) -> Result<Shading> {
         let mut shading = self.controls.shading;
-        if shading.mode == Mode::Prt && self.transfer.as_ref().is_some_and(|t| t.glossy.is_some()) {
+        if shading.mode == Mode::Prt {
             // A glossy file's diffuse base: none (the glossy layer alone)
-            // unless --albedo gives one, as render-mesh.
-            shading.albedo = self.options.albedo.unwrap_or([0.0; 3]);
+            // unless the scene's albedo gives one, as in a headless frame.
+            shading.albedo = self.scene.albedo(Mode::Prt);
         }
         let encoding = self.controls.encoding;
         if shading.mode != Mode::Sh || encoding == Encoding::Sh || self.volume.is_some() {
@@ -498,7 +466,7 @@ impl<'a> App<'a> {
         };
         if self.encoded_for != Some((encoding, lmax)) {
             let started = Instant::now();
-            let (encoded, snippet) = self.env.encoded_light(encoding, lmax)?;
+            let (encoded, snippet) = self.scene.light.encoded_light(encoding, lmax)?;
             r.renderer.set_encoding(&r.ctx, &snippet)?;
             let lights = match encoding {
                 Encoding::DominantSh | Encoding::SloanSh => {

@@ -1,64 +1,51 @@
-//! What shlight shows on the GPU beyond a single renderer: the window of
-//! `shlight view` (winit events, the wgpu surface, shlight-gpu's renderers
-//! and an egui overlay) and the scenes `render-mesh` and the viewer hand the
-//! GPU.
+//! The window of `shlight view`: winit events, the wgpu surface,
+//! shlight-gpu's renderers and an egui overlay, on a scene shlight-gpu
+//! read and checked ([`shlight_gpu::Scene`]).
 //!
-//! - [`run`]: opens the window on a [`ViewerScene`] with the
-//!   [`ViewerOptions`] and runs its event loop until it closes (or, with
-//!   `screenshot`, until the frame is saved). Left drag orbits the camera
-//!   (shlight-gpu's `OrbitCamera`), right drag (or shift + left drag, or
-//!   the arrow keys) turns the environment: its radiance coefficients
-//!   rotated on the CPU every frame (`ShRotation`, lmax 8) and the map
-//!   background with them. Keys: `0`-`8` lmax, `m` mode, `e` the light's
-//!   encoding (each compiled into the fragment shader as its WGSL snippet,
-//!   the normal turned back by the environment's rotation), `b`
-//!   background, `w` window, `t` tone map, `+`/`-` exposure, `p`
-//!   screenshot, `h` panel, `Esc`/`q` quit; with a volume, `j`/`l`,
-//!   `u`/`o`, `i`/`k` move the object and `g` shows the probes.
-//! - [`VolumeScene`]: an irradiance volume with the object moved through
-//!   it, relit from its transfer matrices under the turned environment
-//!   (`L_probe = M R(L_env) + L_emitted`, shlight-volume's `relight_file`)
-//!   or kept as stored (`--static`, [`VolumeLight`]).
-//! - [`renderer`], [`background_renderer`], [`shading_lmax`],
-//!   [`check_lmax`]: a mesh, its PRT transfer and an environment made into
-//!   shlight-gpu's `Renderer`, as both commands do.
+//! - [`run`]: opens the window on a [`Scene`] with the [`ViewerOptions`]
+//!   and runs its event loop until it closes (or, with `screenshot`, until
+//!   the frame is saved). Left drag orbits the camera (shlight-gpu's
+//!   `OrbitCamera`), right drag (or shift + left drag, or the arrow keys)
+//!   turns the environment: its radiance coefficients rotated on the CPU
+//!   every frame (`ShRotation`, lmax 8) and the map background with them.
+//!   Keys: `0`-`8` lmax, `m` mode, `e` the light's encoding (each compiled
+//!   into the fragment shader as its WGSL snippet, the normal turned back
+//!   by the environment's rotation), `b` background, `w` window, `t` tone
+//!   map, `+`/`-` exposure, `p` screenshot, `h` panel, `Esc`/`q` quit;
+//!   with a volume (relit every frame under the turned environment, or
+//!   kept as stored), `j`/`l`, `u`/`o`, `i`/`k` move the object and `g`
+//!   shows the probes.
+//! - [`ViewerOptions::check`] refuses options that do not go together,
+//!   naming them as the front end spells them.
 //!
 //! Files: `app.rs` (the window, the surface and the event loop),
 //! `controls.rs` (what the panel and keys change), `panel.rs` (the egui
 //! overlay), `screenshot.rs` (the swapchain image read back to PNG),
-//! `view_volume.rs` (the volume in the window), `volume_scene.rs`,
-//! `scene_renderer.rs`.
+//! `view_volume.rs` (the volume in the window), `viewer_error.rs`.
 //!
-//! **Architecture invariant:** no command line: options come in as
-//! values, and nothing is printed; files are read by the caller.
+//! **Architecture invariant:** only the window: no command line (options
+//! come in as values, nothing is printed but a saved screenshot's name),
+//! no file read, no scene rule (shlight-gpu's `Scene` holds them).
 
 mod app;
 mod controls;
 mod panel;
-mod scene_renderer;
 mod screenshot;
 mod view_volume;
-mod volume_scene;
+mod viewer_error;
 
 use std::path::PathBuf;
 
-use anyhow::{Result, anyhow};
-use shlight_core::encoding::Encoding;
+use shlight_gpu::Scene;
 use shlight_io::ToneMap;
-use shlight_mesh::Mesh;
-use shlight_pipeline::Environment;
+use shlight_pipeline::Spelling;
 
-pub use scene_renderer::{background_renderer, check_lmax, renderer, shading_lmax};
-pub use volume_scene::{VolumeLight, VolumeScene};
+pub use viewer_error::ViewerError;
 
-/// How the viewer starts (each can be changed in the window but the size).
+/// How the window starts (each can be changed in it but the size); the
+/// lmax, encoding and albedo shown first are the [`Scene`]'s.
 #[derive(Clone, Debug)]
 pub struct ViewerOptions {
-    /// Highest SH degree shown at start [default: 2; with PRT, the
-    /// transfer's lmax, at most 8; with a volume, its lmax, at most 4].
-    pub lmax: Option<usize>,
-    /// The light's encoding at start.
-    pub encoding: Encoding,
     /// Exposure in stops at start.
     pub exposure: f32,
     /// Tone map at start.
@@ -71,23 +58,33 @@ pub struct ViewerOptions {
     pub frames: u32,
     /// Start with the overlay panel hidden.
     pub hide_panel: bool,
-    /// Lambertian albedo, linear RGB [default: 0.8 each]; with a glossy
-    /// PRT file, the diffuse base under its glossy layer [default: none,
-    /// the glossy layer alone], as `shlight render-mesh --albedo`.
-    pub albedo: Option<[f32; 3]>,
 }
 
-/// What the viewer shows.
-pub struct ViewerScene {
-    /// The mesh.
-    pub mesh: Mesh,
-    /// Its PRT transfer, checked against the mesh.
-    pub transfer: Option<shlight_format::ShprtFile>,
-    /// The light.
-    pub env: Environment,
-    /// An irradiance volume lighting the mesh and an object moving through
-    /// it.
-    pub volume: Option<VolumeScene>,
+impl ViewerOptions {
+    /// Refuses no frames, and a screenshot that is not a PNG file.
+    ///
+    /// # Errors
+    /// As above, naming the option as `spelling` does.
+    pub fn check(&self, spelling: Spelling) -> Result<(), ViewerError> {
+        if self.frames == 0 {
+            return Err(ViewerError::Refused(format!(
+                "{} must be at least 1",
+                spelling.option("frames")
+            )));
+        }
+        if let Some(path) = &self.screenshot
+            && !path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+        {
+            return Err(ViewerError::Refused(format!(
+                "{}: {} writes PNG files",
+                path.display(),
+                spelling.option("screenshot")
+            )));
+        }
+        Ok(())
+    }
 }
 
 /// Opens the window and runs its event loop until it closes.
@@ -95,18 +92,56 @@ pub struct ViewerScene {
 /// # Errors
 /// No display to open a window on, no GPU adapter, a failure while
 /// rendering or saving a screenshot.
-pub fn run(options: &ViewerOptions, scene: ViewerScene) -> Result<()> {
+pub fn run(options: &ViewerOptions, scene: Scene) -> Result<(), ViewerError> {
     use winit::event_loop::{ControlFlow, EventLoop};
 
-    let event_loop = EventLoop::new()
-        .map_err(|e| anyhow!("cannot open a window ({e}); is a display available (DISPLAY)?"))?;
+    let event_loop = EventLoop::new().map_err(|e| ViewerError::NoDisplay(e.to_string()))?;
     event_loop.set_control_flow(ControlFlow::Poll);
-    let mut app = app::App::new(options, scene.mesh, scene.transfer, scene.env, scene.volume);
+    let mut app = app::App::new(options, scene);
     event_loop
         .run_app(&mut app)
-        .map_err(|e| anyhow!("window event loop: {e}"))?;
+        .map_err(|e| ViewerError::EventLoop(e.to_string()))?;
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn options_are_refused_in_the_front_ends_spelling() {
+        let options = ViewerOptions {
+            exposure: 0.0,
+            tone_map: ToneMap::Aces,
+            size: (64, 48),
+            screenshot: Some("shot.jpg".into()),
+            frames: 3,
+            hide_panel: false,
+        };
+        let message = |o: &ViewerOptions, s| o.check(s).unwrap_err().to_string();
+        assert_eq!(
+            message(&options, Spelling::CommandLine),
+            "shot.jpg: --screenshot writes PNG files"
+        );
+        assert_eq!(
+            message(&options, Spelling::Python),
+            "shot.jpg: screenshot writes PNG files"
+        );
+        let none = ViewerOptions {
+            frames: 0,
+            ..options.clone()
+        };
+        assert_eq!(
+            message(&none, Spelling::CommandLine),
+            "--frames must be at least 1"
+        );
+        let fine = ViewerOptions {
+            screenshot: Some("shot.PNG".into()),
+            ..options
+        };
+        assert!(fine.check(Spelling::CommandLine).is_ok());
     }
 }

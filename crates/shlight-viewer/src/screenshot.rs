@@ -3,14 +3,22 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
 use shlight_gpu::{GpuContext, read_srgb8_texture, wgpu};
 use shlight_io::{WriteOptions, write_image};
 
+use crate::ViewerError;
+
 /// Reads an 8-bit RGBA or BGRA texture back and writes it as PNG.
-pub fn save_screenshot(ctx: &GpuContext, texture: &wgpu::Texture, path: &Path) -> Result<()> {
-    let image = read_srgb8_texture(ctx, texture).context("screenshot")?;
-    write_image(path, &image, &WriteOptions::default())
-        .with_context(|| format!("{}: writing the screenshot", path.display()))?;
-    Ok(())
+pub fn save_screenshot(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    path: &Path,
+) -> Result<(), ViewerError> {
+    let image = read_srgb8_texture(ctx, texture).map_err(ViewerError::ScreenshotRead)?;
+    write_image(path, &image, &WriteOptions::default()).map_err(|source| {
+        ViewerError::ScreenshotWrite {
+            path: path.to_path_buf(),
+            source,
+        }
+    })
 }

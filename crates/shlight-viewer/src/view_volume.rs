@@ -8,13 +8,12 @@
 
 use std::time::Duration;
 
-use anyhow::Result;
 use glam::{DVec3, Vec3};
 use shlight_core::sh::ShCoeffs;
-use shlight_gpu::{Camera, GpuContext, Shading, VolumeRenderer, wgpu};
+use shlight_gpu::{
+    Camera, GpuContext, GpuError, SceneVolume, Shading, VolumeLight, VolumeRenderer, wgpu,
+};
 use shlight_mesh::Mesh;
-
-use crate::volume_scene::{VolumeLight, VolumeScene};
 
 /// The keys that move the object and the direction of each.
 pub const MOVE_KEYS: [(&str, Vec3); 6] = [
@@ -40,7 +39,7 @@ pub fn moved(at: Vec3, key: &str, step: f32, bounds: (Vec3, Vec3)) -> Option<Vec
 /// The volume of the viewer: its input, its GPU pass once the window
 /// exists, the object's position and the last relight's time.
 pub struct ViewVolume {
-    input: VolumeScene,
+    input: SceneVolume,
     renderer: Option<VolumeRenderer>,
     at: Vec3,
     step: f32,
@@ -50,7 +49,7 @@ pub struct ViewVolume {
 
 impl ViewVolume {
     /// The volume's state in the viewer, the object at its start.
-    pub fn new(input: VolumeScene) -> Self {
+    pub fn new(input: SceneVolume) -> Self {
         let (lo, hi) = input.bounds();
         let cell = (hi - lo) / Vec3::from_array(input.file.resolution.map(|n| n as f32));
         Self {
@@ -70,14 +69,14 @@ impl ViewVolume {
         format: wgpu::TextureFormat,
         scene: &Mesh,
         albedo: [f32; 3],
-    ) -> Result<()> {
+    ) -> Result<(), GpuError> {
         self.renderer = Some(self.input.renderer(ctx, format, Some(scene), albedo)?);
         Ok(())
     }
 
     /// Relights the probes under `env` (already turned) and uploads them;
     /// a static volume stays as stored.
-    pub fn relight(&mut self, ctx: &GpuContext, env: &ShCoeffs<DVec3>) -> Result<()> {
+    pub fn relight(&mut self, ctx: &GpuContext, env: &ShCoeffs<DVec3>) -> Result<(), GpuError> {
         self.relight = self.input.relight(env);
         if let (Some(r), Some(_)) = (&mut self.renderer, self.relight) {
             r.set_radiance(ctx, self.input.file.lmax, &self.input.file.radiance)?;
@@ -131,7 +130,7 @@ impl ViewVolume {
     pub fn panel_lines(&self) -> Vec<String> {
         let file = &self.input.file;
         let valid = file.valid.iter().filter(|v| **v).count();
-        let lmax = file.lmax.min(shlight_baked::SHADED_MAX_LMAX);
+        let lmax = self.input.shaded_lmax();
         vec![
             format!(
                 "volume {}: {valid} valid of {} probes ({}x{}x{}), shaded to lmax {lmax}",
