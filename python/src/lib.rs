@@ -16,6 +16,7 @@ mod errors;
 mod guard;
 mod hooks;
 mod images;
+mod light;
 mod options;
 mod project;
 mod prt;

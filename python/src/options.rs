@@ -124,3 +124,21 @@ impl RawOptions {
         })
     }
 }
+
+/// An albedo from Python: one value or (R, G, B) (`bake_transfer`'s and
+/// `bake_volume`'s).
+pub fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
+    let rgb = if let Ok(v) = albedo.extract::<f32>() {
+        [v; 3]
+    } else {
+        albedo.extract::<[f32; 3]>().map_err(|_| {
+            shlight_error("albedo is one value or (R, G, B), linear, each in [0, 1]")
+        })?
+    };
+    if !rgb.iter().all(|v| (0.0..=1.0).contains(v)) {
+        return Err(shlight_error(format!(
+            "albedo={rgb:?}: each value must lie in [0, 1]"
+        )));
+    }
+    Ok(rgb)
+}

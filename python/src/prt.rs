@@ -16,6 +16,7 @@ use shlight_prt::View;
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
+use crate::options::albedo_of;
 
 /// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
 /// vectors, whose exit radiance under distant radiance SH `L` is
@@ -141,7 +142,7 @@ impl Transfer {
             (None, Some(e)) => Some(View::Eye(DVec3::from_array(e))),
             (None, None) => None,
         };
-        let (light, warnings) = crate::volume::light_of(py, light, "y")?;
+        let (light, warnings) = crate::light::light_of(py, light, "y")?;
         warn_all(py, &warnings, 2)?;
         let shading = Shading {
             view,
@@ -218,24 +219,6 @@ impl Transfer {
             f.mode, f.lmax, f.channels, f.vertex_count, f.mesh
         )
     }
-}
-
-/// An albedo from Python: one value or (R, G, B) (`bake_transfer`'s and
-/// `bake_volume`'s).
-pub fn albedo_of(albedo: &Bound<'_, PyAny>) -> PyResult<[f32; 3]> {
-    let rgb = if let Ok(v) = albedo.extract::<f32>() {
-        [v; 3]
-    } else {
-        albedo.extract::<[f32; 3]>().map_err(|_| {
-            shlight_error("albedo is one value or (R, G, B), linear, each in [0, 1]")
-        })?
-    };
-    if !rgb.iter().all(|v| (0.0..=1.0).contains(v)) {
-        return Err(shlight_error(format!(
-            "albedo={rgb:?}: each value must lie in [0, 1]"
-        )));
-    }
-    Ok(rgb)
 }
 
 /// bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024,

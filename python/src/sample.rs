@@ -11,8 +11,8 @@ use shlight_volume::Lookup;
 use crate::errors::{pipeline_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
+use crate::options::albedo_of;
 use crate::options::frame_of;
-use crate::prt::albedo_of;
 
 /// sample(file, output, *, points=None, env=None, light=None, up="y",
 /// lookup="shlight", view=None, eye=None, albedo=None, lmax=None) -> None

@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
     AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayLike2, PyUntypedArrayMethods,
@@ -14,21 +14,18 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use shlight_baked::ProbeGrid;
-use shlight_core::sh::ShCoeffs;
 use shlight_format::threejs_volume::Precision;
-use shlight_format::{Quantity, SamplePoints, ShvolFile, VolumeFormat};
+use shlight_format::{SamplePoints, ShvolFile, VolumeFormat};
 use shlight_pipeline::{
-    Environment, Spelling, VolumeRequest, relight_volume, visibility_size, volume,
-    volume_irradiance, volume_lookup,
+    Spelling, VolumeRequest, relight_volume, visibility_size, volume, volume_irradiance,
+    volume_lookup,
 };
 use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
-use crate::options::frame_of;
-use crate::prt::albedo_of;
-use crate::sh::Sh;
+use crate::options::albedo_of;
 
 /// An irradiance volume (a `.shvol` file, docs/shvol.md): SH probes on a
 /// grid through a scene, with their validity, positions, distance maps
@@ -73,37 +70,6 @@ fn rows3(array: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f32; 3]>> {
         .into_iter()
         .map(|r| [r[0] as f32, r[1] as f32, r[2] as f32])
         .collect())
-}
-
-/// The light a volume is relit with: a path (an equirect map or a radiance
-/// coefficient file, read as `shlight sample --env` reads it) or an `SH` of
-/// plain radiance; radiance coefficients in the volume's frame, and the
-/// warnings of reading them.
-pub(crate) fn light_of(
-    py: Python<'_>,
-    env: &Bound<'_, PyAny>,
-    up: &str,
-) -> PyResult<(ShCoeffs<DVec3>, Vec<String>)> {
-    if let Ok(sh) = env.cast::<Sh>() {
-        let sh = sh.get();
-        sh.plain("relight")?;
-        if sh.file().quantity != Quantity::Radiance {
-            return Err(shlight_error(
-                "relight takes radiance; this SH holds irradiance (project with quantity=\"radiance\")",
-            ));
-        }
-        return Ok((sh.file().coeffs.clone(), Vec::new()));
-    }
-    let path = env.extract::<PathBuf>().map_err(|_| {
-        PyValueError::new_err(
-            "env must be a path (an equirect map or a radiance coefficient file) or an SH of radiance",
-        )
-    })?;
-    let up = frame_of(up)?;
-    let env = py.detach(|| {
-        guard(|| Environment::load(&path, up, shlight_baked::MAX_LMAX).map_err(pipeline_error))
-    })?;
-    Ok((env.radiance, env.warnings))
 }
 
 #[pymethods]
@@ -251,7 +217,7 @@ impl Volume {
     /// an encoding.
     #[pyo3(signature = (env, *, up="y"))]
     fn relight(&self, py: Python<'_>, env: &Bound<'_, PyAny>, up: &str) -> PyResult<Volume> {
-        let (light, warnings) = light_of(py, env, up)?;
+        let (light, warnings) = crate::light::light_of(py, env, up)?;
         warn_all(py, &warnings, 2)?;
         let mut file = self.file.clone();
         py.detach(|| {

@@ -323,7 +323,7 @@ mod tests {
                     ..volume("room.shvol")
                 },
                 "--object-size -1: expected a positive length",
-                "object_size=\"-1\": expected a positive length",
+                "object_size=-1: expected a positive length",
             ),
             (
                 SceneOptions {
@@ -363,7 +363,7 @@ mod tests {
                     ..Default::default()
                 },
                 "--lmax 9: the GPU shades to lmax 8",
-                "lmax=\"9\": the GPU shades to lmax 8",
+                "lmax=9: the GPU shades to lmax 8",
             ),
             (
                 SceneOptions {
