@@ -8,8 +8,7 @@
 #   scripts/readme-identical.sh [BASE] [--no-gpu]
 #
 # Exits 1 if any command's exit status, stdout or files differ. Both builds
-# share target/ (the worktree's crates build beside this checkout's, under
-# another path), so only shlight's own crates are compiled twice.
+# share target/: only shlight's own crates are compiled twice.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -35,10 +34,23 @@ git worktree prune
 git worktree add --detach "$tree" "$base" >/dev/null
 trap 'git worktree remove --force "$tree" >/dev/null 2>&1 || true' EXIT
 
+# Cargo names a workspace crate's build by its path relative to the
+# workspace root and checks it by its sources' times, so the two trees'
+# crates share their artifacts and one tree's build can look fresh to the
+# other (the "after" binary would be the base's): each build starts with
+# its workspace's own crates cleaned; third-party crates stay built.
+clean_workspace() {
+    local packages
+    packages=$(cargo metadata --no-deps --format-version 1 | python3 -c \
+        'import json, sys; print(" ".join("-p " + p["name"] for p in json.load(sys.stdin)["packages"]))')
+    # shellcheck disable=SC2086
+    cargo clean --release --quiet $packages
+}
 echo "== building $base (before)"
-(cd "$tree" && CARGO_TARGET_DIR="$root/target" cargo build --release --quiet)
+(cd "$tree" && export CARGO_TARGET_DIR="$root/target" && clean_workspace && cargo build --release --quiet)
 cp target/release/shlight "$out/shlight-before"
 echo "== building the working tree (after)"
+clean_workspace
 cargo build --release --quiet
 
 echo "== README commands, before"
