@@ -4,7 +4,8 @@
 # the workspace's target/ so the libraries are not compiled twice), then
 # pytest on python/tests against the `shlight` CLI built from the same
 # sources (built here when missing), then the guide's notebook
-# (docs/guide/guide.ipynb, executed by nbclient; about 5 s). Budgets: 30 min
+# (docs/guide/guide.ipynb, executed by nbclient in docs/guide, where Jupyter
+# starts its kernel; about 5 s). Budgets: 30 min
 # to install, 5 min of tests (about 30 s on 2 cores), 2 min for the notebook.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,5 +23,5 @@ if [ ! -x "$CARGO_TARGET_DIR/release/shlight" ]; then
 fi
 echo "== pytest python/tests"
 SHLIGHT_CLI="$CARGO_TARGET_DIR/release/shlight" timeout 300 "$venv/bin/pytest" -q python/tests
-echo "== docs/guide/guide.ipynb (nbclient)"
-timeout 120 "$venv/bin/python" docs/guide/run-notebook.py
+echo "== docs/guide/guide.ipynb (nbclient, from docs/guide)"
+timeout 120 "$venv/bin/python" docs/guide/run-notebook.py docs/guide

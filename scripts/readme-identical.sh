@@ -7,9 +7,9 @@
 #
 #   scripts/readme-identical.sh [BASE] [--no-gpu]
 #
-# Exits 1 if any command's exit status, stdout or files differ. Both builds
-# share target/ (the worktree's crates build beside this checkout's, under
-# another path), so only shlight's own crates are compiled twice.
+# Exits 1 if any command's exit status, stdout or files differ. A README
+# line the base cannot run (a command added with the change) shows as
+# differing; read the list.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -35,9 +35,15 @@ git worktree prune
 git worktree add --detach "$tree" "$base" >/dev/null
 trap 'git worktree remove --force "$tree" >/dev/null 2>&1 || true' EXIT
 
+# The base builds in a target directory of its own: cargo names a
+# workspace crate's build by its path relative to the workspace root and
+# checks it by its sources' times, so two trees sharing one target
+# directory share their crates' artifacts and one tree's build can look
+# fresh to the other (the "after" binary would be the base's). The first
+# run builds the third-party crates there once; later runs reuse them.
 echo "== building $base (before)"
-(cd "$tree" && CARGO_TARGET_DIR="$root/target" cargo build --release --quiet)
-cp target/release/shlight "$out/shlight-before"
+(cd "$tree" && CARGO_TARGET_DIR="$out/target" cargo build --release --quiet)
+cp "$out/target/release/shlight" "$out/shlight-before"
 echo "== building the working tree (after)"
 cargo build --release --quiet
 

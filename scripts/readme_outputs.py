@@ -121,6 +121,7 @@ def compare(args):
     with open(args.after, encoding="utf-8") as f:
         after = json.load(f)["commands"]
     differ = 0
+    new = 0
     same_files = 0
     for r in after:
         b = before.get(r["command"])
@@ -129,6 +130,7 @@ def compare(args):
             continue
         if b is None:
             print(f"new (no earlier run): {r['command']}")
+            new += 1
             continue
         problems = []
         if b["status"] != r["status"]:
@@ -147,8 +149,8 @@ def compare(args):
             print(f"DIFFERS: {r['command']}")
             for p in problems:
                 print(f"    {p}")
-    total = sum(1 for r in after if "skipped" not in r)
-    print(f"{total - differ} of {total} commands identical ({same_files} files byte-identical); {differ} differ")
+    total = sum(1 for r in after if "skipped" not in r) - new
+    print(f"{total - differ} of {total} commands identical ({same_files} files byte-identical); {differ} differ; {new} new")
     return 1 if differ else 0
 
 

@@ -81,16 +81,24 @@ enum Command {
     Prefilter(prefilter::PrefilterArgs),
     /// Write the DFG (split-sum BRDF) table an engine reads.
     Dfg(dfg::DfgArgs),
-    /// Print a coefficient file (JSON) as a readable table.
+    /// Print any file shlight writes as a readable table: a coefficient
+    /// file's coefficients; any other file's header (what it holds, lmax,
+    /// grid, provenance).
     Show {
-        /// A file written by `shlight project -o FILE.json`.
+        /// A file shlight writes: a coefficient file; an engine export of a
+        /// light (three.js, Unity, Filament, glTF/GLB, txt) or a code
+        /// snippet; a .shprt or .shvol file, a volume's JSON, three.js or
+        /// Bevy export; a PRT glTF/GLB; a KTX2 or KTX texture; `sample`'s
+        /// answer or points (JSON, CSV); an image (its size and channels).
+        /// The kind is read from the content, not the extension.
         file: std::path::PathBuf,
     },
 }
 
-/// `shlight show FILE`: a coefficient file as a readable table.
+/// `shlight show FILE`: any file shlight writes as a readable table
+/// (shlight-format's `describe`).
 fn show(path: &std::path::Path) -> anyhow::Result<()> {
-    print!("{}", shlight_format::CoeffFile::read(path)?.to_table());
+    print!("{}", shlight_format::describe(path)?.to_table());
     Ok(())
 }
 

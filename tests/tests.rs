@@ -25,6 +25,7 @@ mod render;
 mod sample;
 #[cfg(feature = "gpu")]
 mod shaders;
+mod show;
 mod specular;
 mod stream;
 mod synth;

@@ -608,25 +608,36 @@ impl CoeffFile {
             p.height,
             p.layout,
         );
-        s.push_str("#  l   m           red         green          blue");
-        if self.std_error.is_some() {
-            s.push_str("     std error (red, green, blue)");
-        }
-        s.push('\n');
-        for (i, v) in self.coeffs.as_slice().iter().enumerate() {
-            let (l, m) = lm_from_index(i);
-            s.push_str(&format!(
-                "{l:4} {m:3} {:13.6e} {:13.6e} {:13.6e}",
-                v.x, v.y, v.z
-            ));
-            if let Some(se) = &self.std_error {
-                let e = se[i];
-                s.push_str(&format!(" {:11.3e} {:11.3e} {:11.3e}", e.x, e.y, e.z));
-            }
-            s.push('\n');
-        }
+        s.push_str(&coefficient_rows(&self.coeffs, self.std_error.as_ref()));
         s
     }
+}
+
+/// The rows of [`CoeffFile::to_table`]: a line naming the columns, then
+/// `l`, `m` and the red, green and blue coefficient (and its standard
+/// error, when given) per line.
+pub(crate) fn coefficient_rows(
+    coeffs: &ShCoeffs<DVec3>,
+    std_error: Option<&ShCoeffs<DVec3>>,
+) -> String {
+    let mut s = String::from("#  l   m           red         green          blue");
+    if std_error.is_some() {
+        s.push_str("     std error (red, green, blue)");
+    }
+    s.push('\n');
+    for (i, v) in coeffs.as_slice().iter().enumerate() {
+        let (l, m) = lm_from_index(i);
+        s.push_str(&format!(
+            "{l:4} {m:3} {:13.6e} {:13.6e} {:13.6e}",
+            v.x, v.y, v.z
+        ));
+        if let Some(se) = std_error {
+            let e = se[i];
+            s.push_str(&format!(" {:11.3e} {:11.3e} {:11.3e}", e.x, e.y, e.z));
+        }
+        s.push('\n');
+    }
+    s
 }
 
 /// `[r, g, b]`: exactly three numbers.

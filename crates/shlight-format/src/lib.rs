@@ -19,6 +19,10 @@
 //! - [`read_coefficients`]: any file `shlight convert` reads (a coefficient
 //!   file or an engine format that keeps enough), as a [`CoeffFile`].
 //! - [`Quantity`] and [`convert_quantity`]: radiance and irradiance.
+//! - [`describe`]: what any file shlight writes holds, as a readable table
+//!   (`shlight show`): a coefficient file's coefficients, any other file's
+//!   [`Header`] (what it is, lmax, grid, provenance), its kind read from
+//!   its content.
 //! - [`ShprtFile`]: the `.shprt` file of per-vertex PRT transfer (vectors,
 //!   or glossy matrices with [`GlossyData`], format version 2)
 //!   (docs/shprt.md).
@@ -61,6 +65,7 @@
 
 pub mod bevy_volume;
 mod coeff_file;
+mod describe;
 mod error;
 mod export;
 mod file_encoding;
@@ -81,6 +86,7 @@ pub use coeff_file::{
     BINARY_MIN_LMAX, CoeffFile, MINIMUM_MAX_LMAX, PRETTY_MAX_LMAX, Provenance, RotationRecord,
     SanitizeCounts,
 };
+pub use describe::{Description, Header, describe, describe_bytes};
 pub use error::{FormatError, Result};
 pub use export::{
     ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, export_gltf, gltf,

@@ -20,6 +20,8 @@
 //!   PNG stream; other files are read whole first), with [`read_image`]'s
 //!   values and errors, for callers that fold rows into sums without
 //!   holding the image; [`sanitize_pixels`] sanitizes such a band.
+//! - [`image_info`]: a file's [`ImageInfo`] (format, size, channels as
+//!   stored) from its header alone, without decoding a pixel.
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
 //!   the format is named by the extension; [`auto_exposure`] picks the
 //!   exposure that brings a mean luminance to a grey.
@@ -84,6 +86,7 @@ mod exr_compression;
 mod format;
 mod image;
 mod image_codecs;
+mod image_info;
 mod openexr;
 mod panic_message;
 mod read;
@@ -103,6 +106,7 @@ pub use crate::exr_compression::ExrCompression;
 pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
 pub use crate::image_codecs::encode_png_rgba8;
+pub use crate::image_info::{ImageInfo, image_info};
 pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
 pub use crate::row_readers::{RowSink, RowSource, open_rows, read_image_by_rows};
