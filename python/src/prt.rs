@@ -10,7 +10,7 @@ use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_pipeline::{Shading, Silent, Spelling, transfer_radiance};
-use shlight_prt::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, Mode, View, bake_file};
+use shlight_prt::{BakeRequest, DEFAULT_BOUNCES, MAX_BAKE_LMAX, Mode, Observer, bake_file};
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
@@ -135,8 +135,8 @@ impl Transfer {
         let albedo = albedo.map(albedo_of).transpose()?;
         let view = match (view, eye) {
             (Some(_), Some(_)) => return Err(shlight_error("give view or eye, not both")),
-            (Some(d), None) => Some(View::Direction(DVec3::from_array(d))),
-            (None, Some(e)) => Some(View::Eye(DVec3::from_array(e))),
+            (Some(d), None) => Some(Observer::Direction(DVec3::from_array(d))),
+            (None, Some(e)) => Some(Observer::Eye(DVec3::from_array(e))),
             (None, None) => None,
         };
         let (light, warnings) = crate::volume::light_of(py, light, "y")?;
@@ -174,7 +174,7 @@ impl Transfer {
     /// Directions in the shared set (the stratified grid's size).
     #[getter]
     fn samples(&self) -> u64 {
-        self.file.samples
+        self.file.rays_per_vertex
     }
 
     /// Vertices, in the mesh file's order.

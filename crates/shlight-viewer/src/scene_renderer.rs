@@ -70,10 +70,10 @@ pub fn renderer(
             (Some(matrices), Some(g)) => {
                 let brdf = shlight_prt::Brdf::parse(&g.brdf).map_err(anyhow::Error::msg)?;
                 match brdf.lobe(t.lmax) {
-                    shlight_prt::Lobe::Zonal(lambda) => {
+                    shlight_prt::BrdfLobe::Zonal(lambda) => {
                         renderer.set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))?;
                     }
-                    shlight_prt::Lobe::Ggx(lobe) => renderer.set_glossy(
+                    shlight_prt::BrdfLobe::Ggx(lobe) => renderer.set_glossy(
                         ctx,
                         &matrices,
                         GlossyLobe::Directions(&lobe.direction_table()),
