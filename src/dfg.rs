@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use shlight_pipeline::{DfgRequest, Spelling, dfg};
-use shlight_specular::{DfgTable, Engine};
+use shlight_specular::{DfgTable, TargetEngine};
 
 use crate::progress::{Reporter, Ui};
 
@@ -19,7 +19,7 @@ pub struct DfgArgs {
     /// The engine whose form to write: filament (multiscatter: bias, scale +
     /// bias), the others Karis' scale and bias.
     #[arg(long = "for", default_value = "filament", value_parser = crate::values::engine())]
-    pub engine: Engine,
+    pub engine: TargetEngine,
     /// Texels per side.
     #[arg(long, default_value_t = DfgTable::DEFAULT_SIZE)]
     pub size: usize,

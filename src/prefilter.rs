@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use shlight_pipeline::{PrefilterRequest, Spelling, prefilter};
-use shlight_specular::{Engine, PrefilterSettings};
+use shlight_specular::{PrefilterSettings, TargetEngine};
 
 use crate::input::MapInputArgs;
 use crate::progress::{Reporter, Ui};
@@ -26,7 +26,7 @@ pub struct PrefilterArgs {
     pub output: PathBuf,
     /// The engine whose roughness per mip and cube axes to use.
     #[arg(long = "for", default_value = "filament", value_parser = crate::values::engine())]
-    pub engine: Engine,
+    pub engine: TargetEngine,
     /// Face size of mip 0 (a power of two).
     #[arg(long, default_value_t = PrefilterSettings::DEFAULT_SIZE)]
     pub size: usize,

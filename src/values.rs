@@ -9,7 +9,7 @@ use shlight_core::encoding::Encoding;
 use shlight_core::map::Layout;
 use shlight_format::{ExportFormat, Quantity, VolumeFormat};
 use shlight_pipeline::RenderLayout;
-use shlight_specular::Engine;
+use shlight_specular::TargetEngine;
 
 /// A parser accepting exactly the names of `all`, with their help lines.
 fn one_of<T: Copy + Send + Sync + 'static>(
@@ -47,12 +47,12 @@ pub fn volume_format() -> impl TypedValueParser<Value = VolumeFormat> {
 }
 
 /// `--for ENGINE` of `prefilter` and `dfg`.
-pub fn engine() -> impl TypedValueParser<Value = Engine> {
-    one_of(&Engine::ALL, Engine::name, |e| match e {
-        Engine::Filament => "Filament / cmgen: 16-pixel smallest mip, multiscatter DFG",
-        Engine::Babylon => "Babylon.js (EXT_lights_image_based): full mip chain",
-        Engine::Bevy => "Bevy EnvironmentMapLight: roughness linear in the mip",
-        Engine::Unreal => "Unreal Engine 4 reflection captures",
+pub fn engine() -> impl TypedValueParser<Value = TargetEngine> {
+    one_of(&TargetEngine::ALL, TargetEngine::name, |e| match e {
+        TargetEngine::Filament => "Filament / cmgen: 16-pixel smallest mip, multiscatter DFG",
+        TargetEngine::Babylon => "Babylon.js (EXT_lights_image_based): full mip chain",
+        TargetEngine::Bevy => "Bevy EnvironmentMapLight: roughness linear in the mip",
+        TargetEngine::Unreal => "Unreal Engine 4 reflection captures",
     })
 }
 

@@ -63,7 +63,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
     };
     let library = bake(&mesh, &options, &|_, _, _| {});
     assert_eq!(file.transfer, library.coeffs);
-    assert_eq!(file.samples, library.samples as u64);
+    assert_eq!(file.rays_per_vertex, library.samples as u64);
     // Half bowl, half sky from every point: L_o = rho L / (2 - rho) = 1/3
     // (6 bounces leave (rho/2)^7 ~ 6e-5 out; 512 directions err ~0.01).
     let light = closed_form::constant(4, DVec3::ONE);

@@ -36,7 +36,7 @@ fn two_probes(relightable: bool) -> ShvolFile {
         transfer: relightable.then_some(identity),
         offsets: None,
         visibility: None,
-        samples: 1,
+        rays_per_probe: 1,
         bounces: 0,
         seed: 0,
         scene: "two probes".into(),

@@ -187,8 +187,9 @@ fn dfg_writes_the_table() {
         "-q",
     ]);
     let filament =
-        shlight_specular::DfgTable::for_engine(shlight_specular::Engine::Filament, 16, 256);
-    let unreal = shlight_specular::DfgTable::for_engine(shlight_specular::Engine::Unreal, 16, 256);
+        shlight_specular::DfgTable::for_engine(shlight_specular::TargetEngine::Filament, 16, 256);
+    let unreal =
+        shlight_specular::DfgTable::for_engine(shlight_specular::TargetEngine::Unreal, 16, 256);
     let (e, p) = (read(&exr), read(&png));
     for (k, (a, b)) in e.pixels().iter().zip(&filament.values).enumerate() {
         assert_eq!([a[0], a[1]], [b[0] as f32, b[1] as f32], "texel {k}");

@@ -11,7 +11,7 @@ use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
 use shlight_pipeline::{PrtRequest, Shading, Silent, Spelling, prt, transfer_radiance};
-use shlight_prt::View;
+use shlight_prt::Observer;
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
@@ -138,8 +138,8 @@ impl Transfer {
         let albedo = albedo.map(albedo_of).transpose()?;
         let view = match (view, eye) {
             (Some(_), Some(_)) => return Err(shlight_error("give view or eye, not both")),
-            (Some(d), None) => Some(View::Direction(DVec3::from_array(d))),
-            (None, Some(e)) => Some(View::Eye(DVec3::from_array(e))),
+            (Some(d), None) => Some(Observer::Direction(DVec3::from_array(d))),
+            (None, Some(e)) => Some(Observer::Eye(DVec3::from_array(e))),
             (None, None) => None,
         };
         let (light, warnings) = crate::light::light_of(py, light, "y")?;
@@ -177,7 +177,7 @@ impl Transfer {
     /// Directions in the shared set (the stratified grid's size).
     #[getter]
     fn samples(&self) -> u64 {
-        self.file.samples
+        self.file.rays_per_vertex
     }
 
     /// Vertices, in the mesh file's order.

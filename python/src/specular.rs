@@ -12,14 +12,14 @@ use shlight_pipeline::{
     DfgRequest, PrefilterRequest, ReadSettings, Silent, Spelling, dfg as dfg_job,
     prefilter as prefilter_job,
 };
-use shlight_specular::{Engine, PrefilterSettings};
+use shlight_specular::{PrefilterSettings, TargetEngine};
 
 use crate::errors::{pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::{frame_of, input_layout};
 
-fn engine_of(name: &str) -> PyResult<Engine> {
+fn engine_of(name: &str) -> PyResult<TargetEngine> {
     name.parse()
         .map_err(|e| shlight_error(format!("engine={name:?}: {e}")))
 }

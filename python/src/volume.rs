@@ -185,7 +185,7 @@ impl Volume {
     /// Rays per probe of the bake.
     #[getter]
     fn samples(&self) -> u64 {
-        self.file.samples
+        self.file.rays_per_probe
     }
 
     /// Interreflection bounces of the surfaces' light.

@@ -38,7 +38,8 @@
 //!   [`map::directional_texels()`] draw lights into maps;
 //!   [`map::irradiance_brute_force`] is a map's exact irradiance, the
 //!   ground truth for SH irradiance; [`map::render_coefficients`] renders
-//!   an expansion back into a map.
+//!   an expansion back into a map, and [`map::render_lobe`] draws a scalar
+//!   one as its lobe ([`map::LobeSurface`], [`map::LobeCamera`]).
 //! - [`encoding`]: encodings beyond plain SH, each against the exact
 //!   irradiance. [`encoding::Encoding`] names them and
 //!   [`encoding::encode_map`] builds one; [`encoding::DominantLights`]

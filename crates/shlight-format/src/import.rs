@@ -44,7 +44,7 @@ enum Recognised {
     /// A shlight coefficient file (JSON).
     Shlight,
     /// An engine format, already read.
-    Engine(Imported),
+    EngineFormat(Imported),
 }
 
 /// Reads the file at `path` as coefficients: a shlight coefficient file,
@@ -77,7 +77,7 @@ pub fn read_coefficients_from_bytes(bytes: &[u8], name: &str) -> Result<CoeffFil
         .map_err(|_| FormatError::invalid(name, "not a text file (not UTF-8)"))?;
     match recognise(text, name)? {
         Recognised::Shlight => CoeffFile::from_json_str(text, name),
-        Recognised::Engine(imported) => Ok(imported.into_coeff_file(name)),
+        Recognised::EngineFormat(imported) => Ok(imported.into_coeff_file(name)),
     }
 }
 
@@ -92,13 +92,13 @@ fn recognise(text: &str, name: &str) -> Result<Recognised> {
         if v.get("format").and_then(Value::as_str) == Some(unity::FORMAT_TAG)
             || v.get("SphericalHarmonicsL2").is_some()
         {
-            return unity::read(&v, name).map(Recognised::Engine);
+            return unity::read(&v, name).map(Recognised::EngineFormat);
         }
         if v.pointer("/extensions/EXT_lights_image_based").is_some() {
-            return gltf::read(&v, name).map(Recognised::Engine);
+            return gltf::read(&v, name).map(Recognised::EngineFormat);
         }
         if threejs::is_light_probe_json(&v) {
-            return threejs::read(&v, name).map(Recognised::Engine);
+            return threejs::read(&v, name).map(Recognised::EngineFormat);
         }
         return Err(FormatError::invalid(
             name,
@@ -107,7 +107,7 @@ fn recognise(text: &str, name: &str) -> Result<Recognised> {
         ));
     }
     if trimmed.starts_with('(') {
-        return filament::read(text, name).map(Recognised::Engine);
+        return filament::read(text, name).map(Recognised::EngineFormat);
     }
     Err(FormatError::invalid(
         name,

@@ -51,8 +51,9 @@ pub struct ShprtFile {
     pub transfer: Vec<f32>,
     /// `unshadowed`, `shadowed` or `interreflected`.
     pub mode: String,
-    /// Directions in the shared set.
-    pub samples: u64,
+    /// Rays per vertex: the directions of the shared set (the file's
+    /// `samples`).
+    pub rays_per_vertex: u64,
     /// Interreflection bounces (0 for the other modes).
     pub bounces: u32,
     /// Seed of the direction set.
@@ -185,7 +186,7 @@ impl ShprtFile {
             "vertex_count": self.vertex_count,
             "channels": self.channels,
             "mode": self.mode,
-            "samples": self.samples,
+            "samples": self.rays_per_vertex,
             "bounces": self.bounces,
             "seed": self.seed,
             // Each f32 written as its shortest decimal (0.8, not 0.800000011920929).
@@ -419,7 +420,7 @@ impl ShprtFile {
             vertex_count,
             transfer,
             bounces: header.get("bounces").and_then(Value::as_u64).unwrap_or(0) as u32,
-            samples: uint("samples")?,
+            rays_per_vertex: uint("samples")?,
             seed: uint("seed")?,
             mode,
             albedo,
@@ -444,7 +445,7 @@ mod tests {
             vertex_count: 2,
             transfer: (0..24).map(|i| i as f32 * 0.5 - 3.0).collect(),
             mode: "interreflected".into(),
-            samples: 1035,
+            rays_per_vertex: 1035,
             bounces: 2,
             seed: 9,
             albedo: Some([0.5, 0.25, 1.0]),

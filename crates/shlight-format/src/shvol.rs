@@ -79,8 +79,8 @@ pub struct ShvolFile {
     /// The probes' distance maps, for the visibility-weighted lookup
     /// (version 2).
     pub visibility: Option<ProbeVisibility>,
-    /// Rays cast per probe.
-    pub samples: u64,
+    /// Rays cast per probe (the file's `samples`).
+    pub rays_per_probe: u64,
     /// Interreflection bounces of the surfaces' light.
     pub bounces: u32,
     /// Seed of the ray directions.
@@ -194,7 +194,7 @@ impl ShvolFile {
             "colour_space": "linear Rec.709",
             "holds": holds,
             "invalid": invalid,
-            "samples": self.samples,
+            "samples": self.rays_per_probe,
             "bounces": self.bounces,
             "seed": self.seed,
             "scene": self.scene,
@@ -572,7 +572,7 @@ impl ShvolFile {
             transfer,
             offsets,
             visibility,
-            samples: uint("samples")?,
+            rays_per_probe: uint("samples")?,
             bounces: uint("bounces")? as u32,
             seed: uint("seed")?,
             scene: text("scene").unwrap_or_default(),
@@ -610,7 +610,7 @@ mod tests {
             }),
             offsets: None,
             visibility: None,
-            samples: 1035,
+            rays_per_probe: 1035,
             bounces: 2,
             seed: 7,
             scene: "room.obj".into(),

@@ -322,7 +322,7 @@ pub fn threejs_grid(file: &ShvolFile, precision: Precision) -> Result<ThreeJsGri
                 "scene": file.scene.clone(),
                 "scene_hash": format!("{:016x}", file.scene_hash),
                 "environment": file.environment.clone(),
-                "samples": file.samples,
+                "samples": file.rays_per_probe,
                 "bounces": file.bounces,
                 "seed": file.seed,
             },

@@ -52,7 +52,7 @@ fn volume(valid: Vec<bool>) -> ShvolFile {
         transfer: None,
         offsets: None,
         visibility: None,
-        samples: 1,
+        rays_per_probe: 1,
         bounces: 0,
         seed: 0,
         scene: "s".into(),

@@ -332,10 +332,10 @@ fn frame_sphere_glossy_full_turning(bencher: divan::Bencher, lmax: usize) {
 
 #[divan::bench(args = [2, 4], sample_count = 10, sample_size = 1)]
 fn frame_sphere_ggx_turning(bencher: divan::Bencher, lmax: usize) {
-    use shlight_prt::{Brdf, Lobe};
+    use shlight_prt::{Brdf, BrdfLobe};
     let Some(ctx) = context() else { return };
     let mesh = big_sphere();
-    let Lobe::Ggx(lobe) = (Brdf::Ggx {
+    let BrdfLobe::Ggx(lobe) = (Brdf::Ggx {
         alpha: 0.3,
         f0: 1.0,
     })

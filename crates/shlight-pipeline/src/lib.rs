@@ -38,7 +38,8 @@
 //! [`render_map`] evaluates coefficients at every texel centre of a map in
 //! any layout, on the [`output_grid`] of a map shlight writes;
 //! [`render_lobe`] draws a function as its lobe, the surface
-//! `r(w) = |f(w)|` coloured by sign ([`Lobe`], [`LobeCamera`]);
+//! `r(w) = |f(w)|` coloured by sign (shlight-core's
+//! [`shlight_core::map::render_lobe`]);
 //! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
 //! distant light of the commands that shade a scene (a map projected, or a
 //! coefficient file), with its encodings and their WGSL snippets.
@@ -132,7 +133,7 @@ pub use job::sample::{
 pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
 pub use job::volume::{VolumePlan, VolumeRequest, visibility_size, volume};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
-pub use lobe::{LOBE_MARGIN, Lobe, LobeCamera, default_lobe_view, render_lobe};
+pub use lobe::render_lobe;
 pub use map_info::MapInfo;
 pub use output_grid::{default_output_size, output_grid};
 pub use output_path::{names_dir, refuse_overwriting};

@@ -11,8 +11,8 @@ use shlight_core::map::{CubeFace, MapOrientation};
 use shlight_core::sh::Frame;
 use shlight_io::{Image, WriteOptions, encode_png_rgba8, srgb_to_linear, write_image};
 use shlight_specular::{
-    DfgTable, Engine, PrefilterSettings, Prefiltered, SourceMips, prefilter, prefilter_source,
-    rgbd_encode,
+    DfgTable, PrefilterSettings, Prefiltered, SourceMips, TargetEngine, prefilter,
+    prefilter_source, rgbd_encode,
 };
 
 use crate::load::load_map;
@@ -150,7 +150,7 @@ pub fn gltf_specular_images(
     let settings = PrefilterSettings {
         size,
         samples,
-        ..PrefilterSettings::new(Engine::Babylon)
+        ..PrefilterSettings::new(TargetEngine::Babylon)
     };
     settings
         .check()
@@ -161,7 +161,7 @@ pub fn gltf_specular_images(
     // -> back through the rotation: where the map is read.
     let to_file = Frame::YUp.rotation_to(orientation.frame);
     let undo = rotation.map_or(glam::DMat3::IDENTITY, |r| r.transpose());
-    let world_from_cube = undo * to_file * Engine::Babylon.world_from_cube();
+    let world_from_cube = undo * to_file * TargetEngine::Babylon.world_from_cube();
     let source = SourceMips::new(
         &map,
         world_from_cube,

@@ -48,7 +48,7 @@ pub enum Brdf {
 
 /// A BRDF's lobe as shading evaluates it, to one lmax.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Lobe {
+pub enum BrdfLobe {
     /// A lobe about the mirror direction: its zonal coefficients
     /// `Lambda_l`, `l = 0..=lmax` ([`Brdf`] states them).
     Zonal(Vec<f64>),
@@ -139,12 +139,12 @@ impl Brdf {
     /// The lobe to `lmax`: Phong's zonal coefficients, GGX's table
     /// ([`GgxLobe::new`]).
     #[must_use]
-    pub fn lobe(&self, lmax: usize) -> Lobe {
+    pub fn lobe(&self, lmax: usize) -> BrdfLobe {
         match self {
             Brdf::Phong { exponent } => {
-                Lobe::Zonal(ZonalKernel::phong(lmax, *exponent).eigenvalues)
+                BrdfLobe::Zonal(ZonalKernel::phong(lmax, *exponent).eigenvalues)
             }
-            Brdf::Ggx { alpha, f0 } => Lobe::Ggx(GgxLobe::new(lmax, *alpha, *f0)),
+            Brdf::Ggx { alpha, f0 } => BrdfLobe::Ggx(GgxLobe::new(lmax, *alpha, *f0)),
         }
     }
 }
@@ -164,7 +164,7 @@ mod tests {
         let b = Brdf::parse("phong:32").unwrap();
         assert_eq!(b, Brdf::Phong { exponent: 32.0 });
         assert_eq!(Brdf::parse(&b.name()).unwrap(), b);
-        let Lobe::Zonal(l) = b.lobe(2) else {
+        let BrdfLobe::Zonal(l) = b.lobe(2) else {
             panic!("Phong is zonal")
         };
         // The closed forms of the first three bands.

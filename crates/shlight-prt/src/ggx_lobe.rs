@@ -10,7 +10,7 @@ use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use shlight_core::sh::{ShBasis, ShCoeffs, gauss_legendre, lm_from_index, rotate_once, sh_count};
-use shlight_specular::Visibility;
+use shlight_specular::MaskingShadowing;
 
 /// View elevations tabulated, from `0` to `pi/2`.
 pub(crate) const ELEVATIONS: usize = 96;
@@ -44,7 +44,7 @@ pub const MIN_GGX_ALPHA: f64 = 1e-3;
 /// with `D` the GGX distribution of linear roughness `alpha`
 /// (`alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2)`), `V = G_2 / (4 mu_o
 /// mu_i)` with `G_2` Smith's height-correlated masking-shadowing (Heitz
-/// 2014, eq. 99; `shlight_specular::Visibility::HeightCorrelated`), and
+/// 2014, eq. 99; `shlight_specular::MaskingShadowing::HeightCorrelated`), and
 /// `F` Schlick's Fresnel `F0 + (1 - F0) (1 - w_o.h)^5` (`F0 = 1` when the
 /// BRDF string gives none: `F = 1`, a white conductor). `L_o = 0` where
 /// `mu_o <= 0` (a view from below the surface).
@@ -390,10 +390,13 @@ fn project(lmax: usize, alpha: f64, f0: f64, theta_o: f64) -> Vec<f64> {
             }
             let fresnel = f0 + (1.0 - f0) * (1.0 - o_h).powi(5);
             // d u.y = 2 s ds.
-            let weight =
-                4.0 * Visibility::HeightCorrelated.eval(mu_o, mu_i, alpha) * fresnel * mu_i * o_h
-                    / cos_h
-                    * (2.0 * s * half * wx * w_phi);
+            let weight = 4.0
+                * MaskingShadowing::HeightCorrelated.eval(mu_o, mu_i, alpha)
+                * fresnel
+                * mu_i
+                * o_h
+                / cos_h
+                * (2.0 * s * half * wx * w_phi);
             basis.eval(w_i, &mut y);
             for (acc, v) in sum.iter_mut().zip(&y) {
                 *acc += weight * v;

@@ -13,7 +13,7 @@ use shlight_core::sh::{ShBasis, clamped_cosine_eigenvalue, sh_count};
 use shlight_format::{GlossyData, ShprtFile};
 use shlight_mesh::Mesh;
 
-use crate::brdf::{Brdf, Lobe};
+use crate::brdf::{Brdf, BrdfLobe};
 use crate::cast::Cast;
 use crate::options::{BakeOptions, Mode, Stage};
 use crate::records::Kernels;
@@ -289,7 +289,7 @@ impl GlossyTransfer {
             vertex_count: self.vertex_count,
             transfer: self.matrices.clone(),
             mode: "glossy".into(),
-            samples: self.samples as u64,
+            rays_per_vertex: self.samples as u64,
             bounces: self.transport.bounces(),
             seed,
             albedo,
@@ -313,7 +313,7 @@ impl GlossyTransfer {
         mesh: &Mesh,
         brdf: Brdf,
         light: &[DVec3],
-        view: View,
+        view: Observer,
     ) -> Vec<DVec3> {
         glossy_exit_radiance(
             &self.matrices,
@@ -328,9 +328,10 @@ impl GlossyTransfer {
     }
 }
 
-/// Where the eye is.
+/// Where a glossy surface is seen from: the eye, at infinity along one
+/// direction or at a point.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum View {
+pub enum Observer {
     /// One direction for every vertex, from the vertex to the eye (an
     /// orthographic camera looking along its negative); need not be unit,
     /// must not be zero.
@@ -340,20 +341,20 @@ pub enum View {
     Eye(DVec3),
 }
 
-impl View {
+impl Observer {
     /// `w_o` at a vertex at `p` with normal `n`: unit, from `p` to the eye.
     #[must_use]
     pub fn towards_eye(&self, p: DVec3, n: DVec3) -> DVec3 {
         match self {
-            View::Direction(d) => d.normalize_or(n),
-            View::Eye(e) => (*e - p).normalize_or(n),
+            Observer::Direction(d) => d.normalize_or(n),
+            Observer::Eye(e) => (*e - p).normalize_or(n),
         }
     }
 }
 
 /// Each vertex's exit radiance `sum_lm Lambda_l T_lm Y_lm(R)`,
 /// `T = M L` per channel (one channel applying to every colour of the
-/// light), `R` the mirror of `w_o` ([`View::towards_eye`]) about the
+/// light), `R` the mirror of `w_o` ([`Observer::towards_eye`]) about the
 /// vertex's normal, over the light's coefficients up to the matrices'
 /// lmax (missing ones count as 0). `matrices` as
 /// [`GlossyTransfer::matrices`], `lobe` the BRDF's to lmax
@@ -372,9 +373,9 @@ pub fn glossy_exit_radiance(
     channels: usize,
     positions: &[Vec3],
     normals: &[Vec3],
-    lobe: &Lobe,
+    lobe: &BrdfLobe,
     light: &[DVec3],
-    view: View,
+    view: Observer,
 ) -> Vec<DVec3> {
     let matrices = GlossyView::new(
         lmax,
@@ -405,11 +406,11 @@ pub fn glossy_exit_radiance(
 /// with `T` each vertex's transferred radiance (`transferred`, from
 /// [`GlossyView::transferred`] of `matrices`: per cluster once, then
 /// summed per vertex), `n` the vertex's unit normal, `R` the mirror of
-/// `w_o` ([`View::towards_eye`]) about it, `A_l` the clamped cosine's
+/// `w_o` ([`Observer::towards_eye`]) about it, `A_l` the clamped cosine's
 /// zonal coefficients (`shlight_core::sh::clamped_cosine_eigenvalue`: the
 /// base is Lambertian under the transferred radiance, shadows and bounces
-/// included) and `Lambda_l` the lobe's ([`Lobe::Zonal`], to lmax). For a
-/// [`Lobe::Ggx`] (to at least the matrices' lmax) the glossy layer is
+/// included) and `Lambda_l` the lobe's ([`BrdfLobe::Zonal`], to lmax). For a
+/// [`BrdfLobe::Ggx`] (to at least the matrices' lmax) the glossy layer is
 /// instead [`crate::GgxLobe::exit_radiance`]. Sums in `f64`.
 ///
 /// # Panics
@@ -420,17 +421,17 @@ pub fn glossy_shade(
     transferred: &TransferredRadiance,
     positions: &[Vec3],
     normals: &[Vec3],
-    lobe: &Lobe,
+    lobe: &BrdfLobe,
     diffuse: DVec3,
-    view: View,
+    view: Observer,
 ) -> Vec<DVec3> {
     let lmax = matrices.lmax;
     let nc = sh_count(lmax);
     assert_eq!(positions.len(), matrices.vertex_count);
     assert_eq!(normals.len(), positions.len());
     match lobe {
-        Lobe::Zonal(lambda) => assert!(lambda.len() > lmax),
-        Lobe::Ggx(g) => assert!(g.lmax() >= lmax),
+        BrdfLobe::Zonal(lambda) => assert!(lambda.len() > lmax),
+        BrdfLobe::Ggx(g) => assert!(g.lmax() >= lmax),
     }
     let basis = ShBasis::<f64>::new(lmax);
     let base = diffuse / PI;
@@ -440,8 +441,8 @@ pub fn glossy_shade(
         .map_init(
             || {
                 let size = match lobe {
-                    Lobe::Ggx(g) => sh_count(g.lmax()),
-                    Lobe::Zonal(_) => nc,
+                    BrdfLobe::Ggx(g) => sh_count(g.lmax()),
+                    BrdfLobe::Zonal(_) => nc,
                 };
                 (
                     vec![0.0f64; size],
@@ -461,7 +462,7 @@ pub fn glossy_shade(
                     })
                     .sum::<DVec3>();
                 let layer = match lobe {
-                    Lobe::Zonal(lambda) => {
+                    BrdfLobe::Zonal(lambda) => {
                         let r = 2.0 * n.dot(w_o) * n - w_o;
                         basis.eval(r.normalize_or(n), yr);
                         (0..nc)
@@ -469,7 +470,7 @@ pub fn glossy_shade(
                             .sum()
                     }
                     // Coefficients above the matrices' lmax stay zero.
-                    Lobe::Ggx(g) => g.exit_radiance(n, w_o, t, yr),
+                    BrdfLobe::Ggx(g) => g.exit_radiance(n, w_o, t, yr),
                 };
                 under + layer
             },
@@ -488,7 +489,7 @@ pub fn glossy_shade(
 pub fn file_exit_radiance(
     file: &ShprtFile,
     light: &[DVec3],
-    view: Option<View>,
+    view: Option<Observer>,
 ) -> Result<Vec<DVec3>, String> {
     file_shade(file, light, view, DVec3::ZERO)
 }
@@ -502,7 +503,7 @@ pub fn file_exit_radiance(
 pub fn file_shade(
     file: &ShprtFile,
     light: &[DVec3],
-    view: Option<View>,
+    view: Option<Observer>,
     diffuse: DVec3,
 ) -> Result<Vec<DVec3>, String> {
     let Some(glossy) = &file.glossy else {
@@ -515,12 +516,12 @@ pub fn file_shade(
         );
     };
     match view {
-        View::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
+        Observer::Direction(d) if !(d.length_squared() > 0.0 && d.is_finite()) => {
             return Err(format!(
                 "the view direction {d} has zero length (or is not finite)"
             ));
         }
-        View::Eye(e) if !e.is_finite() => {
+        Observer::Eye(e) if !e.is_finite() => {
             return Err(format!("the eye {e} is not finite"));
         }
         _ => {}

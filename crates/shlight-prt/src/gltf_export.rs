@@ -219,7 +219,7 @@ mod tests {
                 .map(|i| i as f32 * 0.25)
                 .collect(),
             mode: "shadowed".into(),
-            samples: 1035,
+            rays_per_vertex: 1035,
             bounces: 0,
             seed: 1,
             albedo: Some([0.8; 3]),

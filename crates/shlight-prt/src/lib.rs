@@ -76,12 +76,12 @@ pub use bake_file::{
     BakeRequest, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
     mesh_name,
 };
-pub use brdf::{Brdf, Lobe, MAX_PHONG_EXPONENT};
+pub use brdf::{Brdf, BrdfLobe, MAX_PHONG_EXPONENT};
 pub use cpca::{CompressionError, Cpca, compress, compress_file, parse_cpca, reconstruct_data};
 pub use error::PrtError;
 pub use ggx_lobe::{GgxLobe, MIN_GGX_ALPHA};
 pub use glossy::{
-    GlossyTransfer, MAX_GLOSSY_BYTES, View, bake_glossy, file_exit_radiance, file_shade,
+    GlossyTransfer, MAX_GLOSSY_BYTES, Observer, bake_glossy, file_exit_radiance, file_shade,
     glossy_bytes, glossy_channels, glossy_exit_radiance, glossy_shade,
 };
 pub use gltf_export::write_gltf;

@@ -85,7 +85,7 @@ impl Transfer {
             vertex_count: self.vertex_count,
             transfer: self.coeffs.clone(),
             mode: mode.name().to_string(),
-            samples: self.samples as u64,
+            rays_per_vertex: self.samples as u64,
             bounces: mode.bounces(),
             seed,
             albedo,

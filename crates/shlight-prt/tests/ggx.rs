@@ -96,7 +96,7 @@ fn the_white_furnace_gives_the_dfg_albedo() {
             let [a, b] = shlight_specular::dfg(
                 mu_o,
                 alpha,
-                shlight_specular::Visibility::HeightCorrelated,
+                shlight_specular::MaskingShadowing::HeightCorrelated,
                 1 << 16,
             );
             let want = f0 * a + b;

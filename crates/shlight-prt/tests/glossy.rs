@@ -12,7 +12,7 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 use shlight_core::sh::{ShCoeffs, closed_form, lm_from_index, sh_count, sh_eval};
 use shlight_mesh::{Mesh, generate};
 use shlight_prt::{
-    Albedo, BakeOptions, Brdf, Lobe, Mode, View, bake_glossy, glossy_bytes,
+    Albedo, BakeOptions, Brdf, BrdfLobe, Mode, Observer, bake_glossy, glossy_bytes,
     glossy_exit_radiance as exit_radiance,
 };
 use shlight_rays::brute_force_closest_hit as closest_hit;
@@ -93,18 +93,18 @@ fn the_diffuse_base_is_the_irradiance_of_the_transferred_radiance() {
         &transferred,
         &sphere.positions,
         &sphere.normals,
-        &Lobe::Zonal(lambda.clone()),
+        &BrdfLobe::Zonal(lambda.clone()),
         rho,
-        View::Eye(eye),
+        Observer::Eye(eye),
     );
     let glossy_only = shlight_prt::glossy_shade(
         &matrices,
         &transferred,
         &sphere.positions,
         &sphere.normals,
-        &Lobe::Zonal(lambda.clone()),
+        &BrdfLobe::Zonal(lambda.clone()),
         DVec3::ZERO,
-        View::Eye(eye),
+        Observer::Eye(eye),
     );
     for (v, (g, layer)) in got.iter().zip(&glossy_only).enumerate() {
         let n = sphere.normals[v].as_dvec3();
@@ -172,7 +172,7 @@ fn an_unshadowed_convex_sphere_has_identity_matrices_and_the_closed_form_exit() 
             rng.random::<f64>() - 0.5,
             rng.random::<f64>() - 0.5,
         );
-        let got = t.exit_radiance(&sphere, brdf, light.as_slice(), View::Direction(view));
+        let got = t.exit_radiance(&sphere, brdf, light.as_slice(), Observer::Direction(view));
         for (v, g) in got.iter().enumerate() {
             let n = sphere.normals[v].as_dvec3();
             let want = lobe_at(light.as_slice(), &lambda, mirror(view.normalize(), n));
@@ -246,7 +246,7 @@ fn shadowed_exit_radiance_matches_a_brute_force_reference() {
         let w_o = (eye - p).normalize();
         for (k, brdf) in [phong, ggx].into_iter().enumerate() {
             let want = reference(brdf, &tr, n, w_o);
-            let got = t.exit_radiance(&mesh, brdf, light.as_slice(), View::Eye(eye))[v];
+            let got = t.exit_radiance(&mesh, brdf, light.as_slice(), Observer::Eye(eye))[v];
             peak[k] = peak[k].max(want.max_element());
             errors.push((k, brdf, v, got, want));
         }
@@ -353,9 +353,9 @@ fn a_sharpening_phong_lobe_approaches_the_mirror_reflection() {
                 1,
                 &positions,
                 &normals,
-                &Lobe::Zonal(lambda.clone()),
+                &BrdfLobe::Zonal(lambda.clone()),
                 light.as_slice(),
-                View::Direction(view),
+                Observer::Direction(view),
             );
             got.iter()
                 .zip(&normals)
@@ -398,9 +398,9 @@ fn a_view_turns_radiance_by_the_mirror_direction_and_the_sizes_are_counted() {
             1,
             &positions,
             &normals,
-            &Lobe::Zonal(lambda.clone()),
+            &BrdfLobe::Zonal(lambda.clone()),
             sun.as_slice(),
-            View::Direction(view),
+            Observer::Direction(view),
         )[0]
         .x
     };
@@ -416,9 +416,9 @@ fn a_view_turns_radiance_by_the_mirror_direction_and_the_sizes_are_counted() {
         1,
         &positions,
         &normals,
-        &Lobe::Zonal(lambda.clone()),
+        &BrdfLobe::Zonal(lambda.clone()),
         sun.as_slice(),
-        View::Eye(DVec3::new(-3.0, 3.0, 0.0)),
+        Observer::Eye(DVec3::new(-3.0, 3.0, 0.0)),
     )[0]
     .x;
     assert!((eye - toward).abs() < 1e-9);
@@ -441,7 +441,7 @@ fn glossy_files_round_trip_and_shade_as_the_bake() {
             .unwrap();
     assert_eq!(back, file);
     let light = test_light();
-    let view = View::Eye(DVec3::new(1.0, 5.0, 2.0));
+    let view = Observer::Eye(DVec3::new(1.0, 5.0, 2.0));
     let from_file = shlight_prt::file_exit_radiance(&back, light.as_slice(), Some(view)).unwrap();
     assert_eq!(
         from_file,
@@ -452,7 +452,7 @@ fn glossy_files_round_trip_and_shade_as_the_bake() {
     let e = shlight_prt::file_exit_radiance(
         &back,
         light.as_slice(),
-        Some(View::Direction(DVec3::ZERO)),
+        Some(Observer::Direction(DVec3::ZERO)),
     )
     .unwrap_err();
     assert!(e.contains("zero length"), "{e}");
@@ -511,7 +511,7 @@ fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
     let z = shlight_prt::compress(&t.matrices, dim, n, 0, 3).unwrap();
     let brdf = Brdf::Phong { exponent: 8.0 };
     let light = test_light();
-    let view = View::Direction(DVec3::new(0.1, 1.0, 0.4));
+    let view = Observer::Direction(DVec3::new(0.1, 1.0, 0.4));
     let exit = |m: &[f32]| {
         exit_radiance(
             m,
@@ -519,7 +519,7 @@ fn cpca_at_its_most_clusters_or_vectors_reproduces_the_matrices() {
             1,
             &mesh.positions,
             &mesh.normals,
-            &Lobe::Zonal(brdf.lambda(2).unwrap()),
+            &BrdfLobe::Zonal(brdf.lambda(2).unwrap()),
             light.as_slice(),
             view,
         )

@@ -3,7 +3,7 @@
 //! samples, and to a 64-pixel cube.
 
 use shlight_core::map::{EnvMap, Layout, MapOrientation, equirect_direction};
-use shlight_specular::{Engine, PrefilterSettings, prefilter};
+use shlight_specular::{PrefilterSettings, TargetEngine, prefilter};
 
 fn main() {
     divan::main();
@@ -32,7 +32,7 @@ fn filament_cube(bencher: divan::Bencher, size: usize) {
     let map = EnvMap::new(Layout::Equirect, MapOrientation::default(), w, h, &pixels).unwrap();
     let settings = PrefilterSettings {
         size,
-        ..PrefilterSettings::new(Engine::Filament)
+        ..PrefilterSettings::new(TargetEngine::Filament)
     };
     bencher.bench(|| prefilter(&map, &settings, &|_| {}).unwrap());
 }

@@ -9,7 +9,7 @@
 //! A = ∫ D V (1 - Fc) (n·l) dl,   B = ∫ D V Fc (n·l) dl,
 //! ```
 //!
-//! `V = G / (4 (n·l)(n·v))` ([`Visibility`]). Estimated as Karis and
+//! `V = G / (4 (n·l)(n·v))` ([`MaskingShadowing`]). Estimated as Karis and
 //! Filament (`DFV`) do: half vectors from `D(h)(n·h)` at Hammersley
 //! points, `l = 2(v·h)h - v`, each sample weighing
 //! `4 V (n·l) (v·h) / (n·h)`, with `v = (sqrt(1 - (n·v)²), 0, n·v)`.
@@ -23,8 +23,8 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::engine::Engine;
-use crate::ggx::{Visibility, hammersley, sample_ggx_half};
+use crate::ggx::{MaskingShadowing, hammersley, sample_ggx_half};
+use crate::target_engine::TargetEngine;
 
 /// Which two numbers a DFG texel holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,7 +39,12 @@ pub enum DfgForm {
 /// `(A, B)` at `n_dot_v` in `(0, 1]` and GGX roughness `alpha`, from
 /// `samples` Hammersley points (module docs).
 #[must_use]
-pub fn dfg(n_dot_v: f64, alpha: f64, visibility: Visibility, samples: u32) -> [f64; 2] {
+pub fn dfg(
+    n_dot_v: f64,
+    alpha: f64,
+    masking_shadowing: MaskingShadowing,
+    samples: u32,
+) -> [f64; 2] {
     let v = DVec3::new((1.0 - n_dot_v * n_dot_v).max(0.0).sqrt(), 0.0, n_dot_v);
     let (mut a, mut b) = (0.0, 0.0);
     for i in 0..samples {
@@ -49,7 +54,7 @@ pub fn dfg(n_dot_v: f64, alpha: f64, visibility: Visibility, samples: u32) -> [f
         let n_dot_l = l.z.clamp(0.0, 1.0);
         let n_dot_h = h.z.clamp(0.0, 1.0);
         if n_dot_l > 0.0 && n_dot_h > 0.0 {
-            let w = visibility.eval(n_dot_v, n_dot_l, alpha) * n_dot_l * v_dot_h / n_dot_h;
+            let w = masking_shadowing.eval(n_dot_v, n_dot_l, alpha) * n_dot_l * v_dot_h / n_dot_h;
             let fc = (1.0 - v_dot_h).powi(5);
             a += w * (1.0 - fc);
             b += w * fc;
@@ -82,7 +87,7 @@ pub struct DfgTable {
     /// What each texel holds.
     pub form: DfgForm,
     /// The masking-shadowing term it integrates.
-    pub visibility: Visibility,
+    pub masking_shadowing: MaskingShadowing,
     /// `size * size` texels, row-major from the top-left.
     pub values: Vec<[f64; 2]>,
 }
@@ -134,26 +139,31 @@ impl DfgTable {
         1.0 - (y as f64 + 0.5) / self.size as f64
     }
 
-    /// The table `engine` reads ([`Engine::multiscatter_dfg`],
-    /// [`Engine::visibility`]), rows in parallel.
+    /// The table `engine` reads ([`TargetEngine::multiscatter_dfg`],
+    /// [`TargetEngine::masking_shadowing`]), rows in parallel.
     #[must_use]
-    pub fn for_engine(engine: Engine, size: usize, samples: u32) -> Self {
+    pub fn for_engine(engine: TargetEngine, size: usize, samples: u32) -> Self {
         let form = if engine.multiscatter_dfg() {
             DfgForm::Multiscatter
         } else {
             DfgForm::ScaleBias
         };
-        Self::new(size, form, engine.visibility(), samples)
+        Self::new(size, form, engine.masking_shadowing(), samples)
     }
 
     /// A table of `size` (at least 1) in `form`.
     #[must_use]
-    pub fn new(size: usize, form: DfgForm, visibility: Visibility, samples: u32) -> Self {
+    pub fn new(
+        size: usize,
+        form: DfgForm,
+        masking_shadowing: MaskingShadowing,
+        samples: u32,
+    ) -> Self {
         let size = size.max(1);
         let mut table = Self {
             size,
             form,
-            visibility,
+            masking_shadowing,
             values: vec![[0.0; 2]; size * size],
         };
         let rows: Vec<Vec<[f64; 2]>> = (0..size)
@@ -162,7 +172,7 @@ impl DfgTable {
                 let p = table.perceptual(y);
                 (0..size)
                     .map(|x| {
-                        let [a, b] = dfg(table.n_dot_v(x), p * p, visibility, samples);
+                        let [a, b] = dfg(table.n_dot_v(x), p * p, masking_shadowing, samples);
                         match form {
                             DfgForm::ScaleBias => [a, b],
                             DfgForm::Multiscatter => [b, a + b],

@@ -44,7 +44,7 @@ pub fn hammersley(i: u32, n: u32) -> DVec2 {
 
 /// How a DFG table masks and shadows: the term `V = G / (4 (n·l)(n·v))`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Visibility {
+pub enum MaskingShadowing {
     /// Smith's height-correlated GGX masking-shadowing (Heitz 2014,
     /// "Understanding the Masking-Shadowing Function", eq. 99): Filament's
     /// `Visibility`, Babylon's `smithVisibility_GGXCorrelated`.
@@ -54,18 +54,18 @@ pub enum Visibility {
     SchlickSmith,
 }
 
-impl Visibility {
+impl MaskingShadowing {
     /// `V(n·v, n·l) = G / (4 (n·l)(n·v))` for roughness `alpha`.
     #[must_use]
     pub fn eval(self, n_dot_v: f64, n_dot_l: f64, alpha: f64) -> f64 {
         match self {
-            Visibility::HeightCorrelated => {
+            MaskingShadowing::HeightCorrelated => {
                 let a2 = alpha * alpha;
                 let ggx_l = n_dot_v * ((n_dot_l - n_dot_l * a2) * n_dot_l + a2).sqrt();
                 let ggx_v = n_dot_l * ((n_dot_v - n_dot_v * a2) * n_dot_v + a2).sqrt();
                 0.5 / (ggx_v + ggx_l)
             }
-            Visibility::SchlickSmith => {
+            MaskingShadowing::SchlickSmith => {
                 let k = alpha / 2.0;
                 let g1 = |x: f64| x / (x * (1.0 - k) + k);
                 g1(n_dot_v) * g1(n_dot_l) / (4.0 * n_dot_l * n_dot_v)

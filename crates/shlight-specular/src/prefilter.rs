@@ -10,7 +10,7 @@
 //!             ∫ (n·l)⁺ D(h) dl
 //! ```
 //!
-//! `D` the GGX distribution at the mip's roughness ([`crate::Engine`]).
+//! `D` the GGX distribution at the mip's roughness ([`crate::TargetEngine`]).
 //! The estimate is Karis' and Filament's (`CubemapIBL::roughnessFilter`):
 //! half vectors `h` importance-sampled from `D(h)(n·h)` at the points of a
 //! fixed Hammersley set, so the density of `l = 2(n·h)h - n` is
@@ -38,18 +38,18 @@ use glam::{DMat3, DVec3, Vec3};
 use shlight_core::map::{CubeFace, EnvMap};
 
 use crate::cube_image::CubeImage;
-use crate::engine::Engine;
 use crate::ggx::{d_ggx, hammersley, sample_ggx_half};
 use crate::source_mips::SourceMips;
+use crate::target_engine::TargetEngine;
 
 /// What [`prefilter`] makes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrefilterSettings {
-    /// Whose roughness per mip and cube axes ([`Engine`]).
-    pub engine: Engine,
+    /// Whose roughness per mip and cube axes ([`TargetEngine`]).
+    pub engine: TargetEngine,
     /// Face size of mip 0, a power of two.
     pub size: usize,
-    /// The number of mips; `None`: [`Engine::default_mips`].
+    /// The number of mips; `None`: [`TargetEngine::default_mips`].
     pub mips: Option<usize>,
     /// GGX samples per texel at levels 0 and 1, doubled per level after
     /// (cmgen's `--ibl-samples`, default 1024).
@@ -64,7 +64,7 @@ impl PrefilterSettings {
 
     /// The defaults for `engine`.
     #[must_use]
-    pub fn new(engine: Engine) -> Self {
+    pub fn new(engine: TargetEngine) -> Self {
         Self {
             engine,
             size: Self::DEFAULT_SIZE,
@@ -182,7 +182,7 @@ pub struct PrefilteredLevel {
 #[derive(Clone, Debug)]
 pub struct Prefiltered {
     /// The engine its roughness and axes are for.
-    pub engine: Engine,
+    pub engine: TargetEngine,
     /// The mips, each half the size of the one before.
     pub levels: Vec<PrefilteredLevel>,
 }

@@ -5,7 +5,7 @@
 use glam::DVec3;
 use shlight_core::map::{CubeFace, EnvMap, Layout, MapOrientation, equirect_direction};
 use shlight_specular::d_ggx;
-use shlight_specular::{Engine, PrefilterSettings, prefilter};
+use shlight_specular::{PrefilterSettings, TargetEngine, prefilter};
 
 const W: usize = 256;
 const H: usize = 128;
@@ -68,7 +68,11 @@ fn roughness_zero_is_the_map_itself() {
     const TOLERANCE: f64 = 0.01;
     let pixels = draw(smooth);
     let map = map(&pixels);
-    for engine in [Engine::Filament, Engine::Bevy, Engine::Babylon] {
+    for engine in [
+        TargetEngine::Filament,
+        TargetEngine::Bevy,
+        TargetEngine::Babylon,
+    ] {
         let settings = PrefilterSettings {
             size: 32,
             mips: Some(3),
@@ -114,7 +118,7 @@ fn a_constant_map_stays_constant_at_every_roughness() {
     )
     .unwrap();
     for m in [map(&pixels), cross] {
-        for engine in [Engine::Filament, Engine::Unreal] {
+        for engine in [TargetEngine::Filament, TargetEngine::Unreal] {
             let settings = PrefilterSettings {
                 size: 16,
                 samples: 128,
@@ -149,10 +153,10 @@ fn every_mip_matches_the_brute_force_integral() {
         size: 32,
         mips: Some(4),
         samples: 1024,
-        ..PrefilterSettings::new(Engine::Filament)
+        ..PrefilterSettings::new(TargetEngine::Filament)
     };
     let cube = prefilter(&map, &settings, &|_| {}).unwrap();
-    let world = Engine::Filament.world_from_cube();
+    let world = TargetEngine::Filament.world_from_cube();
     let mut worst = 0.0f64;
     for (k, level) in cube.levels.iter().enumerate().skip(1) {
         let size = level.cube.size();
@@ -201,10 +205,10 @@ fn a_small_sun_spreads_into_the_lobe() {
         size: 32,
         mips: Some(5),
         samples: 1024,
-        ..PrefilterSettings::new(Engine::Unreal)
+        ..PrefilterSettings::new(TargetEngine::Unreal)
     };
     let cube = prefilter(&map, &settings, &|_| {}).unwrap();
-    let world = Engine::Unreal.world_from_cube();
+    let world = TargetEngine::Unreal.world_from_cube();
     let mut worst = 0.0f64;
     for (k, level) in cube.levels.iter().enumerate().skip(2) {
         let size = level.cube.size();
@@ -242,7 +246,7 @@ fn results_repeat_bit_for_bit() {
     let settings = PrefilterSettings {
         size: 16,
         samples: 64,
-        ..PrefilterSettings::new(Engine::Babylon)
+        ..PrefilterSettings::new(TargetEngine::Babylon)
     };
     let a = prefilter(&map, &settings, &|_| {}).unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
@@ -259,7 +263,7 @@ fn results_repeat_bit_for_bit() {
 fn bad_settings_are_refused() {
     let pixels = draw(smooth);
     let map = map(&pixels);
-    let base = PrefilterSettings::new(Engine::Filament);
+    let base = PrefilterSettings::new(TargetEngine::Filament);
     // Each refusal names the setting as a field (a front end spells it as
     // its users give it) and says why, without any front end's flag.
     for (s, setting, needle) in [

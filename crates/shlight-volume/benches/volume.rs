@@ -196,7 +196,7 @@ fn volume_32x16x32() -> shlight_format::ShvolFile {
         transfer: None,
         offsets: None,
         visibility: None,
-        samples: 1,
+        rays_per_probe: 1,
         bounces: 0,
         seed: 0,
         scene: "bench".into(),

@@ -88,15 +88,18 @@ pub struct PreparedLookup<'a> {
     view: VolumeView<'a>,
     lookup: Lookup,
     lmax: usize,
-    engine: Engine,
+    precomputed: Precomputed,
 }
 
+/// What a [`PreparedLookup`] computes once for all its points.
 #[derive(Clone, Debug)]
-enum Engine {
+enum Precomputed {
     /// The `shlight` and `trilinear` lookups: per probe its irradiance
     /// coefficients `A_l L_lm` to the lookup's lmax, `[r, g, b]` rows.
     Probes(Vec<DVec3>, ShBasis<f64>),
+    /// The `bevy` lookup: the volume as Bevy's texture.
     Bevy(BevyLookup),
+    /// The `threejs` lookup: the dilated grid in three.js's basis.
     ThreeJs(ThreeJsLookup),
 }
 
@@ -132,9 +135,9 @@ impl<'a> PreparedLookup<'a> {
     /// `lookup` of `view`'s probes kept to `lmax` (see [`lookup_lmax`]).
     #[must_use]
     pub fn new(view: &VolumeView<'a>, lookup: Lookup, lmax: usize) -> Self {
-        let engine = match lookup {
-            Lookup::Bevy => Engine::Bevy(BevyLookup::new(view, lmax)),
-            Lookup::ThreeJs => Engine::ThreeJs(ThreeJsLookup::new(view, lmax)),
+        let precomputed = match lookup {
+            Lookup::Bevy => Precomputed::Bevy(BevyLookup::new(view, lmax)),
+            Lookup::ThreeJs => Precomputed::ThreeJs(ThreeJsLookup::new(view, lmax)),
             _ => {
                 let shaded = view.lmax.min(lmax);
                 let per = sh_count(view.lmax);
@@ -153,14 +156,14 @@ impl<'a> PreparedLookup<'a> {
                         kernel.apply(&l).as_slice().to_vec()
                     })
                     .collect();
-                Engine::Probes(e, ShBasis::new(shaded))
+                Precomputed::Probes(e, ShBasis::new(shaded))
             }
         };
         Self {
             view: *view,
             lookup,
             lmax,
-            engine,
+            precomputed,
         }
     }
 
@@ -188,10 +191,10 @@ impl<'a> PreparedLookup<'a> {
     /// lookup and lmax.
     #[must_use]
     pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
-        match &self.engine {
-            Engine::Bevy(b) => b.irradiance_at(p, n),
-            Engine::ThreeJs(t) => t.irradiance_at(p, n),
-            Engine::Probes(e, basis) => self.probes_at(e, basis, p, n),
+        match &self.precomputed {
+            Precomputed::Bevy(b) => b.irradiance_at(p, n),
+            Precomputed::ThreeJs(t) => t.irradiance_at(p, n),
+            Precomputed::Probes(e, basis) => self.probes_at(e, basis, p, n),
         }
     }
 }

@@ -108,7 +108,7 @@ impl ProbeVolume {
             transfer: relightable.then(|| self.transfer.clone()),
             offsets: self.offsets.clone(),
             visibility: self.visibility.clone(),
-            samples: self.samples as u64,
+            rays_per_probe: self.samples as u64,
             bounces: self.bounces,
             seed: self.seed,
             scene: meta.scene.clone(),

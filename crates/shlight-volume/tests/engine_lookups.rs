@@ -30,7 +30,7 @@ fn file(resolution: [usize; 3], bounds: ([f32; 3], [f32; 3]), lmax: usize) -> Sh
         transfer: None,
         offsets: None,
         visibility: None,
-        samples: 1,
+        rays_per_probe: 1,
         bounces: 0,
         seed: 0,
         scene: "s".into(),

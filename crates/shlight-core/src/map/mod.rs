@@ -1,7 +1,8 @@
 //! The map wing: environment maps. The geometry of every image layout, the
 //! sources projections read texels from, projection to SH, Monte Carlo
-//! projection, lights drawn into maps, the exact irradiance of a map, and
-//! coefficients rendered back into a map. It builds on the SH wing and
+//! projection, lights drawn into maps, the exact irradiance of a map,
+//! coefficients rendered back into a map, and a function drawn as its
+//! lobe. It builds on the SH wing and
 //! knows nothing of files: a map is a borrowed slice of linear RGB texels.
 //!
 //! # Layouts and orientation
@@ -81,7 +82,12 @@
 //! [`render_map`] draws a function of direction into any layout;
 //! [`render_coefficients`] evaluates an expansion at every texel centre of a
 //! [`TexelGrid`], in batches and in parallel: the way back from
-//! coefficients to a map.
+//! coefficients to a map. [`render_lobe`] draws a scalar function as its
+//! lobe, the surface `|p| = |f(p / |p|)|` ([`LobeSurface`]) coloured by
+//! sign, seen by an orthographic [`LobeCamera`] (from
+//! [`default_lobe_view`] unless told, the picture [`LOBE_MARGIN`] times
+//! the lobe's radius; [`LobeError`] says why one cannot be drawn): rays
+//! marched with steps bounded by Bernstein's inequality and bisected.
 //!
 //! # References
 //!
@@ -101,6 +107,7 @@ pub(crate) mod directional_texels;
 pub(crate) mod equirect;
 pub(crate) mod irradiance_map;
 pub(crate) mod layout;
+pub(crate) mod lobe;
 pub(crate) mod orientation;
 pub(crate) mod projection;
 pub(crate) mod radiance_map;
@@ -118,6 +125,10 @@ pub use layout::cube::{CubeFace, FaceCell, cube_texel_solid_angle};
 pub use layout::env_map::EnvMap;
 pub use layout::kind::{Layout, LayoutSizeError, LayoutSizeErrorKind, ParseLayoutError};
 pub use layout::texel_grid::TexelGrid;
+pub use lobe::camera::{LOBE_MARGIN, LobeCamera, default_lobe_view};
+pub use lobe::error::LobeError;
+pub use lobe::render_lobe;
+pub use lobe::surface::LobeSurface;
 pub use orientation::MapOrientation;
 pub use projection::equirect_simple::project_equirect_simple;
 pub use projection::pole::to_frame;

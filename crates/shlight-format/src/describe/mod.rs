@@ -203,7 +203,7 @@ mod tests {
     use super::*;
     use crate::threejs_volume::{Precision, threejs_grid};
     use crate::{
-        ExportFormat, GlossyData, Quantity, Samples, ShprtFile, ShvolFile, bevy_volume,
+        ExportFormat, GlossyData, Quantity, SampledValues, ShprtFile, ShvolFile, bevy_volume,
         cube_map_ktx2, export, filament_ktx1,
     };
 
@@ -235,7 +235,7 @@ mod tests {
                 max_distance: 1.5,
                 moments: vec![0.25; probes * 8],
             }),
-            samples: 300,
+            rays_per_probe: 300,
             bounces: 3,
             seed: 11,
             scene: "room.obj".into(),
@@ -318,7 +318,7 @@ mod tests {
             vertex_count: 5,
             transfer: vec![0.25; 5 * 3 * 9],
             mode: "interreflected".into(),
-            samples: 99,
+            rays_per_vertex: 99,
             bounces: 2,
             seed: 4,
             albedo: None,
@@ -441,7 +441,7 @@ mod tests {
 
     #[test]
     fn samples_give_their_count_and_what_they_say() {
-        let s = Samples {
+        let s = SampledValues {
             quantity: "irradiance",
             values: vec![[1.0, 2.0, 3.0]; 4],
             about: serde_json::json!({"lookup": "trilinear", "provenance": {"seed": 8}}),

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
-use shlight_prt::{Brdf, Lobe};
+use shlight_prt::{Brdf, BrdfLobe};
 
 use super::SceneError;
 use super::scene_options::refuse;
@@ -63,8 +63,10 @@ pub fn set_transfer(
     };
     let brdf = Brdf::parse(&glossy.brdf).map_err(SceneError::Refused)?;
     match brdf.lobe(file.lmax) {
-        Lobe::Zonal(lambda) => renderer.set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))?,
-        Lobe::Ggx(lobe) => renderer.set_glossy(
+        BrdfLobe::Zonal(lambda) => {
+            renderer.set_glossy(ctx, &matrices, GlossyLobe::Zonal(&lambda))?
+        }
+        BrdfLobe::Ggx(lobe) => renderer.set_glossy(
             ctx,
             &matrices,
             GlossyLobe::Directions(&lobe.direction_table()),

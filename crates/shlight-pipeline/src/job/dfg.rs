@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use shlight_specular::{DfgForm, DfgTable, Engine};
+use shlight_specular::{DfgForm, DfgTable, TargetEngine};
 
 use crate::hooks::{Hooks, Progress};
 use crate::specular::write_dfg;
@@ -14,7 +14,7 @@ use crate::{PipelineError, Result};
 #[derive(Clone, Copy, Debug)]
 pub struct DfgRequest {
     /// The engine whose form (and masking term) to write.
-    pub engine: Engine,
+    pub engine: TargetEngine,
     /// Texels per side.
     pub size: usize,
     /// Samples per texel.
@@ -77,7 +77,7 @@ mod tests {
     #[test]
     fn limits_are_shlight_specular_s_named_per_front_end() {
         let big = DfgRequest {
-            engine: Engine::Filament,
+            engine: TargetEngine::Filament,
             size: DfgTable::MAX_SIZE + 1,
             samples: 1,
         };

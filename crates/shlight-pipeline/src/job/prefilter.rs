@@ -182,7 +182,7 @@ mod tests {
             output: Path::new("out.exr"),
             read: ReadSettings::default(),
             orientation: MapOrientation::default(),
-            settings: PrefilterSettings::new(shlight_specular::Engine::Filament),
+            settings: PrefilterSettings::new(shlight_specular::TargetEngine::Filament),
         };
         let e = request.check(Spelling::Python).unwrap_err();
         assert!(e.message().contains("output names a directory"), "{e}");

@@ -5,13 +5,13 @@
 use std::path::Path;
 
 use glam::DVec3;
-use shlight_core::map::{Layout, MapOrientation, luminance};
+use shlight_core::map::{Layout, MapOrientation, default_lobe_view, luminance};
 use shlight_core::sh::irradiance;
 use shlight_format::{CoeffFile, FileEncoding, Quantity};
 use shlight_io::{Image, ReadOptions, ToneMap, WriteOptions, write_image};
 
 use crate::hooks::{Hooks, StageCounter};
-use crate::lobe::{default_lobe_view, render_lobe};
+use crate::lobe::render_lobe;
 use crate::output_grid::{default_output_size, output_grid};
 use crate::output_path::refuse_overwriting;
 use crate::render::render_map;

@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs};
-use shlight_format::{SamplePoints, Samples, ShprtFile, ShvolFile};
-use shlight_prt::{View, file_shade};
+use shlight_format::{SamplePoints, SampledValues, ShprtFile, ShvolFile};
+use shlight_prt::{Observer, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax, relight_file};
 
 use crate::environment::Environment;
@@ -77,7 +77,7 @@ enum Kind {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Shading {
     /// The view of a glossy file.
-    pub view: Option<View>,
+    pub view: Option<Observer>,
     /// A glossy file's diffuse base.
     pub albedo: Option<[f32; 3]>,
     /// The highest degree shaded [default: the file's, at most
@@ -176,8 +176,8 @@ impl SampleRequest<'_> {
             }
         }
         let view = match (self.view, self.eye) {
-            (Some(d), _) => Some(View::Direction(d)),
-            (None, Some(e)) => Some(View::Eye(e)),
+            (Some(d), _) => Some(Observer::Direction(d)),
+            (None, Some(e)) => Some(Observer::Eye(e)),
             (None, None) => None,
         };
         Ok(Kind::Transfer {
@@ -199,8 +199,8 @@ impl SampleRequest<'_> {
 /// # Errors
 /// A file that cannot be read; the checks of [`volume_irradiance`] and
 /// [`transfer_radiance`]; the output cannot be written.
-pub fn sample(plan: &SamplePlan, hooks: &dyn Hooks) -> Result<Samples> {
-    let samples = match &plan.kind {
+pub fn sample(plan: &SamplePlan, hooks: &dyn Hooks) -> Result<SampledValues> {
+    let values = match &plan.kind {
         Kind::Volume {
             points,
             env,
@@ -208,8 +208,8 @@ pub fn sample(plan: &SamplePlan, hooks: &dyn Hooks) -> Result<Samples> {
         } => sample_volume(plan, points, env.as_deref(), *lookup, hooks)?,
         Kind::Transfer { light, shading } => sample_transfer(plan, light, shading, hooks)?,
     };
-    samples.write(&plan.output)?;
-    Ok(samples)
+    values.write(&plan.output)?;
+    Ok(values)
 }
 
 fn sample_volume(
@@ -218,7 +218,7 @@ fn sample_volume(
     env: Option<&Path>,
     lookup: Lookup,
     hooks: &dyn Hooks,
-) -> Result<Samples> {
+) -> Result<SampledValues> {
     let name = plan.file.display().to_string();
     let mut file = ShvolFile::read(&plan.file)?;
     // The lookup and lmax are checked before the points and light are read.
@@ -230,7 +230,7 @@ fn sample_volume(
     }
     let values = volume_irradiance(&file, Some(&name), lookup, &settled, &points, hooks);
     let LookupLmax { lmax, note } = settled;
-    Ok(Samples {
+    Ok(SampledValues {
         quantity: "irradiance",
         values,
         about: json!({
@@ -248,7 +248,7 @@ fn sample_volume(
                 "scene_hash": format!("fnv1a64:{:016x}", file.scene_hash),
                 "environment": file.environment,
                 "generator": file.generator,
-                "samples": file.samples,
+                "samples": file.rays_per_probe,
                 "bounces": file.bounces,
                 "seed": file.seed,
                 "relightable": file.relightable(),
@@ -262,7 +262,7 @@ fn sample_transfer(
     light_path: &Path,
     shading: &Shading,
     hooks: &dyn Hooks,
-) -> Result<Samples> {
+) -> Result<SampledValues> {
     let file = ShprtFile::read(&plan.file)?;
     let name = plan.file.display().to_string();
     let light = light_of(light_path, plan.frame, shlight_baked::LIGHT_MAX_LMAX, hooks)?;
@@ -270,11 +270,11 @@ fn sample_transfer(
         transfer_radiance(&file, Some(&name), &light, shading, plan.spelling, hooks)?;
     let glossy = file.glossy.as_ref();
     let (view, eye) = match shading.view {
-        Some(View::Direction(d)) => (Some(d.normalize().to_array()), None),
-        Some(View::Eye(e)) => (None, Some(e.to_array())),
+        Some(Observer::Direction(d)) => (Some(d.normalize().to_array()), None),
+        Some(Observer::Eye(e)) => (None, Some(e.to_array())),
         None => (None, None),
     };
-    Ok(Samples {
+    Ok(SampledValues {
         quantity: "radiance",
         values: values.into_iter().map(|v| v.to_array()).collect(),
         about: json!({
@@ -288,7 +288,7 @@ fn sample_transfer(
             "provenance": {
                 "mode": file.mode,
                 "transport": glossy.map(|g| g.transport.clone()),
-                "samples": file.samples,
+                "samples": file.rays_per_vertex,
                 "bounces": file.bounces,
                 "seed": file.seed,
                 "albedo": file.albedo.map_or(Value::Null, |a| json!(a)),
@@ -414,7 +414,7 @@ pub fn transfer_radiance(
                     spelling.option_number("eye", "X,Y,Z", "(x, y, z)"),
                 )));
             }
-            Some(View::Direction(d)) if d.length_squared() == 0.0 => {
+            Some(Observer::Direction(d)) if d.length_squared() == 0.0 => {
                 return Err(PipelineError::new(format!(
                     "{} has zero length: give the direction from the vertices towards the eye",
                     spelling.option_number("view", "0,0,0", "(0, 0, 0)")

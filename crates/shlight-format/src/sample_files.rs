@@ -1,5 +1,5 @@
 //! The files of `shlight sample`: [`SamplePoints`] read (where to ask a
-//! baked file for its light) and [`Samples`] written (what it answers),
+//! baked file for its light) and [`SampledValues`] written (what it answers),
 //! each as JSON or CSV by the file's extension (docs/cli.md, "sample").
 
 use std::path::Path;
@@ -166,7 +166,7 @@ impl SamplePoints {
 /// What a baked file answers: one linear RGB value per point (or vertex),
 /// the quantity it is, and how it was found.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Samples {
+pub struct SampledValues {
     /// `"irradiance"` (a volume: `E(p, n)`, which a Lambertian surface of
     /// albedo `rho` turns into `rho / pi E`) or `"radiance"` (PRT: each
     /// vertex's exit radiance).
@@ -182,7 +182,7 @@ pub struct Samples {
 /// The `format` of a samples JSON file.
 pub const SAMPLES_FORMAT: &str = "shlight-samples";
 
-impl Samples {
+impl SampledValues {
     /// The JSON document: `{"format": "shlight-samples", "format_version":
     /// 1, ...about, QUANTITY: [[r, g, b], ...]}`.
     #[must_use]
@@ -198,7 +198,7 @@ impl Samples {
         Value::Object(o)
     }
 
-    /// [`Samples::to_json`] as text: indented, one `[r, g, b]` row a line.
+    /// [`SampledValues::to_json`] as text: indented, one `[r, g, b]` row a line.
     #[must_use]
     pub fn to_json_text(&self) -> String {
         let mut head = self.to_json();
@@ -276,7 +276,7 @@ mod tests {
             vec![[1.0, 0.25, 1e-7]],
             vec![[0.5, 2.0, 3.0], [4.0, -0.0, 1e300]],
         ] {
-            let s = Samples {
+            let s = SampledValues {
                 quantity: "irradiance",
                 values,
                 about: json!({"lookup": "shlight", "provenance": {"seed": 3}}),
@@ -325,7 +325,7 @@ mod tests {
 
     #[test]
     fn samples_write_as_json_and_csv() {
-        let s = Samples {
+        let s = SampledValues {
             quantity: "irradiance",
             values: vec![[1.0, 2.0, 3.0], [0.5, 0.25, 0.0]],
             about: json!({"lookup": "trilinear"}),
@@ -335,7 +335,7 @@ mod tests {
         assert_eq!(j["lookup"], "trilinear");
         assert_eq!(j["irradiance"][1], json!([0.5, 0.25, 0.0]));
         assert_eq!(s.to_csv(), "r,g,b\n1,2,3\n0.5,0.25,0\n");
-        let bad = Samples {
+        let bad = SampledValues {
             values: vec![[f64::NAN, 0.0, 0.0]],
             ..s
         };

@@ -1,4 +1,4 @@
-//! [`Engine`]: whose shader reads the prefiltered cube, which fixes the
+//! [`TargetEngine`]: whose shader reads the prefiltered cube, which fixes the
 //! roughness of every mip, the mip count, the cube's axes and the DFG
 //! table's form.
 //!
@@ -24,11 +24,11 @@ use std::str::FromStr;
 
 use glam::{DMat3, DVec3};
 
-use crate::ggx::Visibility;
+use crate::ggx::MaskingShadowing;
 
 /// The engine a prefiltered cube and DFG table are made for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Engine {
+pub enum TargetEngine {
     /// Filament (and cmgen's `--ibl-ld`).
     Filament,
     /// Babylon.js (its `EXT_lights_image_based` loader).
@@ -39,23 +39,23 @@ pub enum Engine {
     Unreal,
 }
 
-impl Engine {
+impl TargetEngine {
     /// Every engine, in the order `--for` lists them.
-    pub const ALL: [Engine; 4] = [
-        Engine::Filament,
-        Engine::Babylon,
-        Engine::Bevy,
-        Engine::Unreal,
+    pub const ALL: [TargetEngine; 4] = [
+        TargetEngine::Filament,
+        TargetEngine::Babylon,
+        TargetEngine::Bevy,
+        TargetEngine::Unreal,
     ];
 
     /// The name `--for` takes.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
-            Engine::Filament => "filament",
-            Engine::Babylon => "babylon",
-            Engine::Bevy => "bevy",
-            Engine::Unreal => "unreal",
+            TargetEngine::Filament => "filament",
+            TargetEngine::Babylon => "babylon",
+            TargetEngine::Bevy => "bevy",
+            TargetEngine::Unreal => "unreal",
         }
     }
 
@@ -66,7 +66,7 @@ impl Engine {
     pub fn default_mips(self, size: usize) -> usize {
         let full = size.max(1).ilog2() as usize + 1;
         match self {
-            Engine::Filament if size > 16 => full - 4,
+            TargetEngine::Filament if size > 16 => full - 4,
             _ => full,
         }
     }
@@ -78,19 +78,19 @@ impl Engine {
     pub fn mip_alpha(self, level: usize, mips: usize, size: usize) -> f64 {
         if mips <= 1 || level == 0 {
             return match self {
-                Engine::Unreal if mips > 1 => unreal_perceptual(0, mips).powi(2),
+                TargetEngine::Unreal if mips > 1 => unreal_perceptual(0, mips).powi(2),
                 _ => 0.0,
             };
         }
         let t = level as f64 / (mips - 1) as f64;
         match self {
-            Engine::Filament => {
+            TargetEngine::Filament => {
                 let p = 1.0 - (1.0 - t.min(1.0)).sqrt();
                 p * p
             }
-            Engine::Babylon => (size as f64).powf(t - 1.0).min(1.0),
-            Engine::Bevy => t * t,
-            Engine::Unreal => unreal_perceptual(level, mips).powi(2),
+            TargetEngine::Babylon => (size as f64).powf(t - 1.0).min(1.0),
+            TargetEngine::Bevy => t * t,
+            TargetEngine::Unreal => unreal_perceptual(level, mips).powi(2),
         }
     }
 
@@ -112,20 +112,20 @@ impl Engine {
     pub fn world_from_cube(self) -> DMat3 {
         match self {
             // c = (-z, y, x)  =>  d = (c.z, c.y, -c.x)
-            Engine::Filament => DMat3::from_cols(DVec3::NEG_Z, DVec3::Y, DVec3::X),
+            TargetEngine::Filament => DMat3::from_cols(DVec3::NEG_Z, DVec3::Y, DVec3::X),
             // c = (z, y, x)  =>  d = (c.z, c.y, c.x)
-            Engine::Babylon => DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::X),
-            Engine::Bevy => DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0)),
-            Engine::Unreal => DMat3::IDENTITY,
+            TargetEngine::Babylon => DMat3::from_cols(DVec3::Z, DVec3::Y, DVec3::X),
+            TargetEngine::Bevy => DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0)),
+            TargetEngine::Unreal => DMat3::IDENTITY,
         }
     }
 
     /// The masking-shadowing term of the engine's DFG table.
     #[must_use]
-    pub fn visibility(self) -> Visibility {
+    pub fn masking_shadowing(self) -> MaskingShadowing {
         match self {
-            Engine::Unreal => Visibility::SchlickSmith,
-            _ => Visibility::HeightCorrelated,
+            TargetEngine::Unreal => MaskingShadowing::SchlickSmith,
+            _ => MaskingShadowing::HeightCorrelated,
         }
     }
 
@@ -134,7 +134,7 @@ impl Engine {
     /// Karis' `(scale, bias)`.
     #[must_use]
     pub fn multiscatter_dfg(self) -> bool {
-        matches!(self, Engine::Filament)
+        matches!(self, TargetEngine::Filament)
     }
 }
 
@@ -143,17 +143,17 @@ fn unreal_perceptual(level: usize, mips: usize) -> f64 {
     2f64.powf((1.0 - from_1x1) / 1.2).min(1.0)
 }
 
-impl fmt::Display for Engine {
+impl fmt::Display for TargetEngine {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-/// An engine name that is none of [`Engine::ALL`].
+/// An engine name that is none of [`TargetEngine::ALL`].
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseEngineError(pub String);
+pub struct ParseTargetEngineError(pub String);
 
-impl fmt::Display for ParseEngineError {
+impl fmt::Display for ParseTargetEngineError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
@@ -163,16 +163,16 @@ impl fmt::Display for ParseEngineError {
     }
 }
 
-impl std::error::Error for ParseEngineError {}
+impl std::error::Error for ParseTargetEngineError {}
 
-impl FromStr for Engine {
-    type Err = ParseEngineError;
+impl FromStr for TargetEngine {
+    type Err = ParseTargetEngineError;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Engine::ALL
+        TargetEngine::ALL
             .into_iter()
             .find(|e| e.name() == s)
-            .ok_or_else(|| ParseEngineError(s.to_owned()))
+            .ok_or_else(|| ParseTargetEngineError(s.to_owned()))
     }
 }
 
@@ -188,30 +188,30 @@ mod tests {
         for k in 1..mips {
             let n1 = (mips - 1) as f64;
             // Filament: lod = (N-1) r (2 - r).
-            let r = Engine::Filament.mip_alpha(k, mips, size).sqrt();
+            let r = TargetEngine::Filament.mip_alpha(k, mips, size).sqrt();
             assert!((n1 * r * (2.0 - r) - k as f64).abs() < 1e-9);
             // Babylon: lod = log2(S alpha) (N-1) / log2(S).
-            let a = Engine::Babylon.mip_alpha(k, mips, size);
+            let a = TargetEngine::Babylon.mip_alpha(k, mips, size);
             let lod = (size as f64 * a).log2() * n1 / (size as f64).log2();
             assert!((lod - k as f64).abs() < 1e-9);
             // Bevy: lod = r (N-1).
-            let r = Engine::Bevy.mip_alpha(k, mips, size).sqrt();
+            let r = TargetEngine::Bevy.mip_alpha(k, mips, size).sqrt();
             assert!((r * n1 - k as f64).abs() < 1e-9);
             // Unreal: mip = N - 1 - (1 - 1.2 log2 r), where r < 1.
-            let r = Engine::Unreal.mip_alpha(k, mips, size).sqrt();
+            let r = TargetEngine::Unreal.mip_alpha(k, mips, size).sqrt();
             if r < 1.0 {
                 let mip = n1 - (1.0 - 1.2 * r.log2());
                 assert!((mip - k as f64).abs() < 1e-9, "{k}: {mip}");
             }
         }
         // cmgen's levels for a 256 cube: 256 .. 16.
-        assert_eq!(Engine::Filament.default_mips(256), 5);
-        assert_eq!(Engine::Bevy.default_mips(256), 9);
+        assert_eq!(TargetEngine::Filament.default_mips(256), 5);
+        assert_eq!(TargetEngine::Bevy.default_mips(256), 9);
     }
 
     #[test]
     fn the_cube_frames_are_rotations_or_mirrors() {
-        for e in Engine::ALL {
+        for e in TargetEngine::ALL {
             let m = e.world_from_cube();
             assert!(
                 (m * m.transpose() - DMat3::IDENTITY)
@@ -222,11 +222,11 @@ mod tests {
             );
         }
         // Filament: the world's +X is at the cube's +Z.
-        let d = Engine::Filament.world_from_cube() * DVec3::Z;
+        let d = TargetEngine::Filament.world_from_cube() * DVec3::Z;
         assert!((d - DVec3::X).length() < 1e-12);
         // Babylon: the same, and the world's -Z at the cube's +X (a mirror
         // of Filament's +Z there).
-        let m = Engine::Babylon.world_from_cube();
+        let m = TargetEngine::Babylon.world_from_cube();
         assert!((m * DVec3::Z - DVec3::X).length() < 1e-12);
         assert!((m * DVec3::X - DVec3::Z).length() < 1e-12);
         assert!((m.determinant() + 1.0).abs() < 1e-12);
