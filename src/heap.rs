@@ -115,8 +115,15 @@ mod big_blocks {
         if let Some(p) = take(len) {
             return (p, false);
         }
+        // SAFETY: `len` is a whole number of huge pages.
+        (unsafe { map_aligned(len) }, true)
+    }
+
+    /// A fresh anonymous mapping of `len` bytes at a multiple of 2 MiB,
+    /// advised to be backed by huge pages; null if the kernel refuses.
+    unsafe fn map_aligned(len: usize) -> *mut u8 {
         let Some(over) = len.checked_add(HUGE_PAGE) else {
-            return (ptr::null_mut(), true);
+            return ptr::null_mut();
         };
         // SAFETY: an anonymous private mapping owned by nobody else; the
         // slack before and after the aligned range is unmapped again.
@@ -130,7 +137,7 @@ mod big_blocks {
                 0,
             );
             if raw == libc::MAP_FAILED {
-                return (ptr::null_mut(), true);
+                return ptr::null_mut();
             }
             let start = raw as usize;
             let aligned = (start + HUGE_PAGE - 1) & !(HUGE_PAGE - 1);
@@ -144,7 +151,7 @@ mod big_blocks {
             }
             // Only advice: a kernel without THP leaves base pages.
             libc::madvise(aligned as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
-            (aligned as *mut u8, true)
+            aligned as *mut u8
         }
     }
 

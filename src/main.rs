@@ -16,7 +16,6 @@ mod gpu_feature;
 mod heap;
 mod input;
 mod irradiance;
-mod output_path;
 mod prefilter;
 mod progress;
 mod project;

@@ -1,6 +1,7 @@
 //! End-to-end tests of the `shlight` binary: one test binary, a module per topic.
 
 mod accuracy;
+mod architecture;
 mod batch;
 mod encoding_snippets;
 mod encodings_cli;

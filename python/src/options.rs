@@ -68,34 +68,14 @@ impl RawOptions {
     pub fn options(&self) -> PyResult<ProjectOptions<'_>> {
         let frame = frame_of(&self.up)?;
         let layout = input_layout(&self.layout)?;
-        let quantity: Quantity = self
-            .quantity
-            .parse()
-            .map_err(|e| shlight_error(format!("quantity={:?}: {e}", self.quantity)))?;
-        let monte_carlo = match self.method.trim() {
-            "montecarlo" => true,
-            "quadrature" => false,
-            other => {
-                return Err(shlight_error(format!(
-                    "method={other:?}: expected \"quadrature\" or \"montecarlo\""
-                )));
-            }
-        };
-        // A sampler is parsed only for Monte Carlo; with quadrature it is
-        // refused as given, whatever its name.
-        let sampler = match &self.sampler {
-            None => None,
-            Some(_) if !monte_carlo => Some(SamplerKind::default()),
-            Some(name) => Some(
-                name.parse::<SamplerKind>()
-                    .map_err(|e| shlight_error(format!("sampler={name:?}: {e}")))?,
-            ),
-        };
-        let encoding: Encoding = self
-            .encoding
-            .trim()
-            .parse()
-            .map_err(|err| shlight_error(format!("encoding={:?}: {err}", self.encoding)))?;
+        let quantity: Quantity = Spelling::Python
+            .parse("quantity", &self.quantity)
+            .map_err(pipeline_error)?;
+        let monte_carlo = monte_carlo(&self.method)?;
+        let sampler = sampler_of(self.sampler.as_deref(), monte_carlo)?;
+        let encoding: Encoding = Spelling::Python
+            .parse("encoding", &self.encoding)
+            .map_err(pipeline_error)?;
         Ok(ProjectOptions {
             read: ReadSettings {
                 layout,
@@ -122,6 +102,30 @@ impl RawOptions {
             gpu: false,
             format: None,
         })
+    }
+}
+
+/// `method=`: whether it is Monte Carlo (else quadrature).
+fn monte_carlo(method: &str) -> PyResult<bool> {
+    match method.trim() {
+        "montecarlo" => Ok(true),
+        "quadrature" => Ok(false),
+        other => Err(shlight_error(format!(
+            "method={other:?}: expected \"quadrature\" or \"montecarlo\""
+        ))),
+    }
+}
+
+/// `sampler=`, parsed only for Monte Carlo; with quadrature it is kept as
+/// given (any name), for the check to refuse.
+fn sampler_of(sampler: Option<&str>, monte_carlo: bool) -> PyResult<Option<SamplerKind>> {
+    match sampler {
+        None => Ok(None),
+        Some(_) if !monte_carlo => Ok(Some(SamplerKind::default())),
+        Some(name) => Spelling::Python
+            .parse("sampler", name)
+            .map(Some)
+            .map_err(pipeline_error),
     }
 }
 

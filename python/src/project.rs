@@ -219,13 +219,9 @@ fn project_array(
     Ok((file, warnings))
 }
 
-/// The projection of six `(N, N, 3)` face arrays (+X -X +Y -Y +Z -Z), read
-/// in place when they are C-contiguous float32.
-fn project_faces(
-    py: Python<'_>,
-    faces: &[ArrayMap<'_>],
-    o: &Settings,
-) -> PyResult<(CoeffFile, Vec<String>)> {
+/// The size of six face arrays: square and of one size, read with the
+/// faces layout (or `auto`).
+fn face_size(faces: &[ArrayMap<'_>], o: &Settings) -> PyResult<usize> {
     if !matches!(
         o.read.layout,
         shlight_pipeline::InputLayout::Auto | shlight_pipeline::InputLayout::Faces
@@ -235,16 +231,28 @@ fn project_faces(
         ));
     }
     let n = faces[0].width;
-    for (k, f) in faces.iter().enumerate() {
-        if f.width != f.height || f.width != n {
-            return Err(shlight_error(format!(
-                "face {k} ({}): {}x{}; the six faces must be square and of one size ({n}x{n} like the first)",
-                shlight_pipeline::FACE_NAMES[k],
-                f.width,
-                f.height
-            )));
-        }
+    match faces
+        .iter()
+        .position(|f| f.width != f.height || f.width != n)
+    {
+        Some(k) => Err(shlight_error(format!(
+            "face {k} ({}): {}x{}; the six faces must be square and of one size ({n}x{n} like the first)",
+            shlight_pipeline::FACE_NAMES[k],
+            faces[k].width,
+            faces[k].height
+        ))),
+        None => Ok(n),
     }
+}
+
+/// The projection of six `(N, N, 3)` face arrays (+X -X +Y -Y +Z -Z), read
+/// in place when they are C-contiguous float32.
+fn project_faces(
+    py: Python<'_>,
+    faces: &[ArrayMap<'_>],
+    o: &Settings,
+) -> PyResult<(CoeffFile, Vec<String>)> {
+    let n = face_size(faces, o)?;
     let views: Vec<_> = faces.iter().map(|f| f.view(Layout::Strip)).collect();
     let pixels: Vec<Cow<'_, [[f32; 3]]>> = views
         .iter()

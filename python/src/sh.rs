@@ -11,16 +11,11 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use shlight_core::encoding::Encoding;
-use shlight_core::sh::{ShCoeffs, WindowTarget};
+use shlight_core::sh::{ORTHONORMAL_TOLERANCE, ShCoeffs, ShRotation, WindowTarget};
 use shlight_format::{CoeffFile, ExportFormat, Quantity};
 
 use crate::errors::{chained, shlight_error, warn_all};
 use crate::guard::guard;
-
-/// How far `R^T R` may be from the identity, and `det R` from 1, for `R`
-/// to count as a rotation: a matrix typed or computed in float64 is within
-/// 1e-12; one kept in float32 (a camera pose) within about 1e-6.
-const ROTATION_TOLERANCE: f64 = 1e-5;
 
 /// SH lighting: real orthonormal SH coefficients (Condon-Shortley phase,
 /// index l*(l+1)+m) of RGB radiance or irradiance in a y-up or z-up frame,
@@ -58,31 +53,7 @@ impl Sh {
 /// Directions from Python, (N, 3) or (3,) (`true`: one), checked and
 /// normalised.
 fn directions(dirs: &Bound<'_, PyAny>) -> PyResult<(Vec<DVec3>, bool)> {
-    let single = dirs.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>();
-    let (rows, one): (Vec<[f64; 3]>, bool) = match single {
-        Ok(d) if d.shape() == [3] => {
-            let a = d.as_array();
-            (vec![[a[0], a[1], a[2]]], true)
-        }
-        _ => {
-            let m = dirs
-                .extract::<PyArrayLike2<'_, f64, AllowTypeChange>>()
-                .map_err(|_| PyValueError::new_err("dirs must be an (N, 3) array of directions"))?;
-            if m.shape()[1] != 3 {
-                return Err(PyValueError::new_err(format!(
-                    "dirs must have shape (N, 3), not {:?}",
-                    m.shape()
-                )));
-            }
-            let a = m.as_array();
-            (
-                (0..a.nrows())
-                    .map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]])
-                    .collect(),
-                false,
-            )
-        }
-    };
+    let (rows, one) = direction_rows(dirs)?;
     if let Some(i) = rows.iter().position(|d| {
         let v = DVec3::from(*d);
         !v.is_finite() || v.length_squared() == 0.0
@@ -92,12 +63,30 @@ fn directions(dirs: &Bound<'_, PyAny>) -> PyResult<(Vec<DVec3>, bool)> {
             rows[i]
         )));
     }
-    Ok((
-        rows.into_iter()
-            .map(|d| DVec3::from(d).normalize())
-            .collect(),
-        one,
-    ))
+    let normalised = rows.into_iter().map(|d| DVec3::from(d).normalize());
+    Ok((normalised.collect(), one))
+}
+
+/// The rows of an (N, 3) array, or the one row of a (3,) array (`true`).
+fn direction_rows(dirs: &Bound<'_, PyAny>) -> PyResult<(Vec<[f64; 3]>, bool)> {
+    if let Ok(d) = dirs.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>()
+        && d.shape() == [3]
+    {
+        let a = d.as_array();
+        return Ok((vec![[a[0], a[1], a[2]]], true));
+    }
+    let m = dirs
+        .extract::<PyArrayLike2<'_, f64, AllowTypeChange>>()
+        .map_err(|_| PyValueError::new_err("dirs must be an (N, 3) array of directions"))?;
+    if m.shape()[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "dirs must have shape (N, 3), not {:?}",
+            m.shape()
+        )));
+    }
+    let a = m.as_array();
+    let rows = (0..a.nrows()).map(|i| [a[[i, 0]], a[[i, 1]], a[[i, 2]]]);
+    Ok((rows.collect(), false))
 }
 
 /// `values` as an (N, 3) float64 array, or (3,) when `one`.
@@ -128,40 +117,52 @@ fn rotation_of(r: &Bound<'_, PyAny>) -> PyResult<(DMat3, String)> {
         && m.shape() == [3, 3]
     {
         let a = m.as_array();
-        let rows: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[[i, j]]));
-        if !rows.iter().flatten().all(|v| v.is_finite()) {
-            return Err(PyValueError::new_err("the rotation matrix is not finite"));
-        }
-        let m = DMat3::from_cols_array_2d(&rows).transpose();
-        let off = (m.transpose() * m - DMat3::IDENTITY)
-            .to_cols_array()
-            .iter()
-            .fold(0.0_f64, |a, v| a.max(v.abs()));
-        if off > ROTATION_TOLERANCE || (m.determinant() - 1.0).abs() > ROTATION_TOLERANCE {
-            return Err(PyValueError::new_err(format!(
-                "{rows:?} is not a rotation (R^T R differs from I by {off:.2e}, det R = {:.6}); a mirror or a scale cannot rotate SH lighting",
-                m.determinant()
-            )));
-        }
-        return Ok((m, format!("matrix:{rows:?}")));
+        return matrix_rotation(std::array::from_fn(|i| std::array::from_fn(|j| a[[i, j]])));
     }
     if let Ok(q) = r.extract::<PyArrayLike1<'_, f64, AllowTypeChange>>()
         && q.shape() == [4]
     {
-        let v: Vec<f64> = q.as_array().to_vec();
-        let q = DQuat::from_xyzw(v[0], v[1], v[2], v[3]);
-        if !q.is_finite() || q.length_squared() == 0.0 {
-            return Err(PyValueError::new_err(format!(
-                "quaternion {v:?} is no rotation (zero or not finite)"
-            )));
-        }
-        return Ok((
-            DMat3::from_quat(q.normalize()),
-            format!("quat:{},{},{},{}", v[0], v[1], v[2], v[3]),
-        ));
+        let v = q.as_array();
+        return quaternion_rotation([v[0], v[1], v[2], v[3]]);
     }
     Err(PyValueError::new_err(
         "a rotation is a 3x3 matrix or a quaternion (x, y, z, w)",
+    ))
+}
+
+/// A rotation matrix given by rows, refused unless shlight-core takes it
+/// as a rotation ([`ShRotation::try_from_mat3`]: orthonormal within
+/// [`ORTHONORMAL_TOLERANCE`], determinant +1).
+fn matrix_rotation(rows: [[f64; 3]; 3]) -> PyResult<(DMat3, String)> {
+    if !rows.iter().flatten().all(|v| v.is_finite()) {
+        return Err(PyValueError::new_err("the rotation matrix is not finite"));
+    }
+    let m = DMat3::from_cols_array_2d(&rows).transpose();
+    if ShRotation::try_from_mat3(0, m).is_none() {
+        let off = (m.transpose() * m - DMat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .fold(0.0_f64, |a, v| a.max(v.abs()));
+        return Err(PyValueError::new_err(format!(
+            "{rows:?} is not a rotation (R^T R differs from I by {off:.2e}, det R = {:.6}; \
+             both are held to {ORTHONORMAL_TOLERANCE:e}); a mirror or a scale cannot rotate SH lighting",
+            m.determinant()
+        )));
+    }
+    Ok((m, format!("matrix:{rows:?}")))
+}
+
+/// A rotation given as a quaternion `(x, y, z, w)`, normalised.
+fn quaternion_rotation(v: [f64; 4]) -> PyResult<(DMat3, String)> {
+    let q = DQuat::from_array(v);
+    if !q.is_finite() || q.length_squared() == 0.0 {
+        return Err(PyValueError::new_err(format!(
+            "quaternion {v:?} is no rotation (zero or not finite)"
+        )));
+    }
+    Ok((
+        DMat3::from_quat(q.normalize()),
+        format!("quat:{},{},{},{}", v[0], v[1], v[2], v[3]),
     ))
 }
 

@@ -67,6 +67,31 @@ impl<'py> Source<'py> {
     }
 }
 
+/// The texels of a float32 or float64 array: borrowed when C-contiguous
+/// (and of native byte order), else copied (rounded to float32).
+fn texels_of<'py>(array: &Bound<'py, PyUntypedArray>, what: &str) -> PyResult<Texels<'py>> {
+    let dtype = array.dtype();
+    let contiguous = array.is_c_contiguous();
+    Ok(match (dtype.kind(), dtype.itemsize()) {
+        (b'f', 4) => match array.extract::<PyReadonlyArray3<'py, f32>>() {
+            Ok(a) if contiguous => Texels::F32(a),
+            Ok(a) => Texels::Copied(copy_texels(a.as_array().iter().copied())),
+            Err(_) => Texels::Copied(copy_any(array)?),
+        },
+        (b'f', 8) => match array.extract::<PyReadonlyArray3<'py, f64>>() {
+            Ok(a) if contiguous => Texels::F64(a),
+            Ok(a) => Texels::Copied(copy_texels(a.as_array().iter().map(|v| *v as f32))),
+            Err(_) => Texels::Copied(copy_any(array)?),
+        },
+        _ => {
+            return Err(PyTypeError::new_err(format!(
+                "{what} must be float32 or float64 (linear radiance), not {}",
+                dtype.str()?
+            )));
+        }
+    })
+}
+
 impl<'py> ArrayMap<'py> {
     /// Checks the shape `(H, W, 3)` and the dtype (float32 or float64) of
     /// `array`, named `what` in messages, and borrows its texels (in place
@@ -79,34 +104,7 @@ impl<'py> ArrayMap<'py> {
             )));
         }
         let (height, width) = (shape[0], shape[1]);
-        let dtype = array.dtype();
-        let kind = (dtype.kind(), dtype.itemsize());
-        let texels = match kind {
-            (b'f', 4) | (b'f', 8) => {
-                let contiguous = array.is_c_contiguous();
-                if kind.1 == 4 {
-                    match array.extract::<PyReadonlyArray3<'py, f32>>() {
-                        Ok(a) if contiguous => Texels::F32(a),
-                        Ok(a) => Texels::Copied(copy_texels(a.as_array().iter().copied())),
-                        Err(_) => Texels::Copied(copy_any(array)?),
-                    }
-                } else {
-                    match array.extract::<PyReadonlyArray3<'py, f64>>() {
-                        Ok(a) if contiguous => Texels::F64(a),
-                        Ok(a) => {
-                            Texels::Copied(copy_texels(a.as_array().iter().map(|v| *v as f32)))
-                        }
-                        Err(_) => Texels::Copied(copy_any(array)?),
-                    }
-                }
-            }
-            _ => {
-                return Err(PyTypeError::new_err(format!(
-                    "{what} must be float32 or float64 (linear radiance), not {}",
-                    dtype.str()?
-                )));
-            }
-        };
+        let texels = texels_of(array, what)?;
         Ok(Self {
             width,
             height,

@@ -14,8 +14,8 @@ use anyhow::{Context, Result, bail};
 use shlight_core::map::MapOrientation;
 use shlight_io::ReadOptions;
 use shlight_pipeline::{
-    CpuProjector, PreviewOptions, ProjectOptions, ProjectRequest, Projector, ReadSettings,
-    Spelling, StdoutForm, project_files,
+    CpuProjector, PreviewOptions, ProjectOptions, ProjectRequest, Projected, Projector,
+    ReadSettings, Spelling, StdoutForm, project_files,
 };
 
 use crate::progress::{Reporter, Ui};
@@ -39,6 +39,12 @@ pub fn run(args: &ProjectArgs, ui: &Ui) -> Result<()> {
     let reporter = Reporter::new(ui);
     let results = project_files(&plan, projector, &reporter)?;
     reporter.finish();
+    report(results, ui)
+}
+
+/// One input's error as the command's, its text on stdout; several
+/// inputs' errors each on its line, then a count.
+fn report(results: Vec<shlight_pipeline::Result<Projected>>, ui: &Ui) -> Result<()> {
     let total = results.len();
     if let [result] = results.as_slice() {
         if let Some(text) = &result.as_ref().map_err(Clone::clone)?.stdout {

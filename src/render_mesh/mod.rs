@@ -132,17 +132,8 @@ pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     #[cfg(feature = "gpu")]
     {
         let settings = request(args).check(shlight_pipeline::Spelling::CommandLine)?;
-        crate::output_path::refuse_overwriting(&args.output, &settings.inputs())?;
-        let bar = ui.spinner("");
-        let progress = |m: &str| bar.set_message(m.to_string());
-        let (warn, note) = (|m: &str| ui.warn(m), |m: &str| ui.note(m));
-        let hooks = shlight_gpu::SceneHooks {
-            progress: &progress,
-            warn: &warn,
-            note: &note,
-        };
-        shlight_gpu::render_mesh(&settings, &crate::bundled::BUILT_IN, &hooks)?;
-        bar.finish_and_clear();
+        let reporter = crate::progress::Reporter::new(ui);
+        shlight_gpu::render_mesh(&settings, &crate::bundled::BUILT_IN, &reporter)?;
         Ok(())
     }
     #[cfg(not(feature = "gpu"))]

@@ -87,13 +87,9 @@ pub fn run(args: &ViewArgs, ui: &Ui) -> Result<()> {
         let options = viewer_options(args);
         options.check(CommandLine)?;
         let settings = scene_options(args).check(CommandLine)?;
-        let (warn, note) = (|m: &str| ui.warn(m), |m: &str| ui.note(m));
-        let hooks = shlight_gpu::SceneHooks {
-            progress: &|_| {},
-            warn: &warn,
-            note: &note,
-        };
-        let scene = shlight_gpu::Scene::read(&settings, &crate::bundled::BUILT_IN, &hooks)?;
+        let reporter = crate::progress::Reporter::new(ui);
+        let scene = shlight_gpu::Scene::read(&settings, &crate::bundled::BUILT_IN, &reporter)?;
+        reporter.finish();
         note_transfer(args, &scene, ui);
         Ok(shlight_viewer::run(&options, scene)?)
     }

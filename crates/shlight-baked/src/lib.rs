@@ -49,6 +49,7 @@ mod probe_grid;
 mod shape_error;
 mod transfer_view;
 pub mod visibility;
+mod visibility_weights;
 mod volume_view;
 
 pub use dilate::dilate;

@@ -3,7 +3,9 @@
 
 use glam::Vec3;
 
-use crate::{ProbeGrid, ShapeError, Visibility};
+use crate::probe_grid::ProbeGrid;
+use crate::shape_error::ShapeError;
+use crate::visibility::Visibility;
 
 /// Highest lmax a volume's probes hold (a `.shvol` file, a bake).
 pub const MAX_LMAX: usize = 8;

@@ -4,40 +4,11 @@
 
 use std::path::Path;
 
-use glam::DVec3;
 use serde_json::Value;
-use shlight_core::sh::{Frame, ShCoeffs};
 
 use crate::export::{filament, gltf, threejs, unity};
-use crate::{CoeffFile, FormatError, Quantity, Result};
-
-/// Coefficients read back from an engine format.
-#[derive(Clone, Debug)]
-pub struct Imported {
-    /// shlight basis (CS phase), linear RGB.
-    pub coeffs: ShCoeffs<DVec3>,
-    /// What they hold.
-    pub quantity: Quantity,
-    /// The frame they are in (engines are y-up).
-    pub frame: Frame,
-    /// What was read, for the provenance (`layout`) of the coefficient file.
-    pub source: &'static str,
-}
-
-impl Imported {
-    /// A coefficient file holding these coefficients, its provenance naming
-    /// `name` as the input, what was read as the layout, and `convert` as
-    /// the method.
-    #[must_use]
-    pub fn into_coeff_file(self, name: &str) -> CoeffFile {
-        let mut file = CoeffFile::new(self.coeffs, self.frame, self.quantity);
-        file.provenance.input = name.to_string();
-        file.provenance.layout = self.source.to_string();
-        file.provenance.method = "convert".to_string();
-        file.provenance.window = "unknown".to_string();
-        file
-    }
-}
+use crate::imported::Imported;
+use crate::{CoeffFile, FormatError, Result};
 
 /// What `read_back` recognised in a file.
 enum Recognised {

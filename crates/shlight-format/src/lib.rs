@@ -71,6 +71,7 @@ mod export;
 mod file_encoding;
 mod header_line;
 mod import;
+mod imported;
 mod ktx1_file;
 mod ktx2;
 mod light_transforms;
@@ -92,7 +93,8 @@ pub use export::{
     ExportFormat, ExportInput, Exported, engine_frame, export, export_coeffs, export_gltf, gltf,
 };
 pub use file_encoding::FileEncoding;
-pub use import::{Imported, read_coefficients, read_coefficients_from_bytes};
+pub use import::{read_coefficients, read_coefficients_from_bytes};
+pub use imported::Imported;
 pub use ktx1_file::{GL_R11F_G11F_B10F, filament_ktx1, pack_r11g11b10, unpack_r11g11b10};
 pub use ktx2::{Ktx2Format, cube_map_ktx2, write_ktx2};
 pub use quantity::{Quantity, convert_quantity};

@@ -61,9 +61,9 @@ pub use projector::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
 pub use renderer::{DEPTH_FORMAT, GlossyLobe, Renderer};
 pub use scene::{
-    BuiltIn, RenderMeshRequest, RenderMeshSettings, Scene, SceneError, SceneHooks, SceneOptions,
-    SceneSettings, SceneVolume, Shot, VolumeLight, light_renderer, mesh_renderer, read_transfer,
-    render_mesh, set_transfer, write_frame,
+    BuiltIn, RenderMeshRequest, RenderMeshSettings, Scene, SceneError, SceneOptions, SceneSettings,
+    SceneVolume, Shot, VolumeLight, light_renderer, mesh_renderer, read_transfer, render_mesh,
+    set_transfer, write_frame,
 };
 pub use shading::{Background, Mode, Shading};
 pub use volume::{

@@ -12,7 +12,7 @@ use shlight_core::encoding::{DominantLightOptions, Encoded, Encoding, encode_map
 use shlight_core::map::MapOrientation;
 
 use crate::load::{LoadedMap, load_map};
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::{PipelineError, Result};
 
 /// What [`map_irradiance`] measures, decided before the map is read.

@@ -18,7 +18,8 @@ use crate::cpu_projector::CpuProjector;
 use crate::encoded_file::set_encoding;
 use crate::load::{LoadedMap, env_map, load_map};
 use crate::projector::Projector;
-use crate::settings::{Method, ProjectSettings, ReadSettings};
+use crate::read_settings::ReadSettings;
+use crate::settings::{Method, ProjectSettings};
 use crate::{PipelineError, Result};
 
 /// A light read from a file.

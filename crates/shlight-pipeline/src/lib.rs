@@ -1,17 +1,30 @@
-//! The steps of `shlight project` as a library, for every front end (the
+//! The jobs of shlight's commands as a library, for every front end (the
 //! `shlight` command line, the Python package) to run the same way.
 //!
-//! One job: an environment map (a file, six face files, or texels already
-//! in memory) in, shlight's coefficient file ([`shlight_format::CoeffFile`])
-//! out, through the same steps and with the same messages whoever calls
-//! them; and the way back, coefficients rendered to a map in any layout.
-//! No command-line, GPU or error-erasing dependency: the GPU's projection
-//! comes in as a [`Projector`], progress and warnings as callbacks
-//! ([`Hooks`]).
+//! One job per command, one file each under `src/job/`, all of one shape:
+//! a request as a front end was given it ([`RenderRequest`],
+//! [`ProjectRequest`], [`PrtRequest`], [`VolumeRequest`], [`SampleRequest`],
+//! [`PrefilterRequest`], [`DfgRequest`], [`SynthRequest`],
+//! [`ConvertRequest`], [`IrradianceRequest`], [`CompareRequest`],
+//! [`AccuracyRequest`]); its `check(spelling)`, which makes the job's plan
+//! with every refusal both front ends make, naming each setting as the
+//! front end spells it ([`Spelling`]: `--lmax 9` or `lmax=9`); and one
+//! function that reads the inputs, runs every step and writes the outputs
+//! ([`render`], [`project_files`], [`prt`], [`volume`], [`sample`],
+//! [`prefilter`], [`dfg`], [`synth`], [`convert`], [`irradiance`],
+//! [`compare`], [`accuracy`]), telling its progress, warnings and notes to
+//! [`Hooks`]. Front ends turn their arguments into the request, call, and
+//! show what comes back; the in-memory halves ([`render_light`],
+//! [`project_each`], [`synth_map`], [`volume_irradiance`],
+//! [`transfer_radiance`], [`relight_volume`]) serve a front end that keeps
+//! the data rather than files. No command-line, GPU or error-erasing
+//! dependency, and no mathematics of its own: the maths is shlight-core's,
+//! the bakes shlight-prt's and shlight-volume's, the files shlight-format's;
+//! the GPU's projection comes in as a [`Projector`].
 //!
-//! # Steps
-//! [`project`]`(source, settings, hooks)` sequences every step, the only
-//! place they are sequenced:
+//! # The projection's steps
+//! [`project`]`(source, settings, projector, hooks)` sequences every step
+//! of projecting one map, the only place they are sequenced:
 //! 1. [`load_map`]: read a map (or six `{face}` files laid out as a strip),
 //!    settle its [`InputLayout`], and check its values ([`check_values`]:
 //!    NaN and infinity refused, negatives kept with a warning) or
@@ -30,25 +43,11 @@
 //!    [`encode_file`], an encoding other than plain SH
 //!    ([`Settings::encoding`]).
 //!
-//! [`ProjectOptions::check`] makes its [`Settings`] from the options as a
-//! front end was given them, with the same refusals for every front end
-//! (each naming the options in the front end's [`Spelling`]).
+//! [`ProjectOptions::check`] makes its [`Settings`];
 //! [`project_with_warnings`] runs it on the CPU and hands the warnings
-//! back. [`layout_for_size`] settles the layout of texels in memory.
-//! [`render_map`] evaluates coefficients at every texel centre of a map in
-//! any layout, on the [`output_grid`] of a map shlight writes;
-//! [`render_lobe`] draws a function as its lobe, the surface
-//! `r(w) = |f(w)|` coloured by sign (shlight-core's
-//! [`shlight_core::map::render_lobe`]);
-//! [`preview_image`] draws `--preview`'s three panels. [`Environment`] is the
-//! distant light of the commands that shade a scene (a map projected, or a
-//! coefficient file), with its encodings and their WGSL snippets.
-//! [`map_irradiance`] and [`compare_encodings`] measure a map's encodings
-//! against its exact irradiance (`shlight irradiance`, `shlight compare`).
-//! [`prefilter_map`] prefilters a map for an engine's specular lighting
-//! (shlight-specular), [`write_prefiltered_faces`] writes its mips as
-//! cmgen names them and [`write_dfg`] the DFG table (`shlight prefilter`,
-//! `shlight dfg`).
+//! back. [`Environment`] is the distant light of the commands that shade a
+//! scene (a map projected, or a coefficient file), with its encodings and
+//! their WGSL snippets.
 //!
 //! # Conventions
 //! Coefficients are shlight's (real orthonormal SH with the Condon-Shortley
@@ -92,6 +91,7 @@ mod preview;
 mod project;
 mod project_options;
 mod projector;
+mod read_settings;
 mod render;
 mod rotation_spec;
 mod settings;
@@ -141,9 +141,10 @@ pub use preview::{PreviewOptions, preview_exposure, preview_image, write_preview
 pub use project::{Source, project, project_with_warnings};
 pub use project_options::ProjectOptions;
 pub use projector::{Projection, Projector};
+pub use read_settings::ReadSettings;
 pub use render::render_map;
 pub use rotation_spec::parse_rotation;
-pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, ReadSettings, Settings};
+pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, Settings};
 pub use source_stats::source_stats;
 pub use specular::{
     CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, cmgen_face_file, gltf_specular_images, prefilter_map,

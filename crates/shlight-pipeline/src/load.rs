@@ -9,7 +9,7 @@ use shlight_io::{Image, PixelStats, ReadOptions, read_image, read_image_by_rows}
 
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 use crate::map_info::MapInfo;
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 

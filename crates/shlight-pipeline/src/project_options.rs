@@ -11,8 +11,9 @@ use shlight_core::map::montecarlo::{DEFAULT_SEED, McOptions, SamplerKind};
 use shlight_core::sh::Window;
 use shlight_format::{ExportFormat, Quantity, RotationRecord};
 
+use crate::read_settings::ReadSettings;
 use crate::rotation_spec::parse_rotation;
-use crate::settings::{DEFAULT_SAMPLES, Method, ProjectSettings, ReadSettings, Settings};
+use crate::settings::{DEFAULT_SAMPLES, Method, ProjectSettings, Settings};
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 

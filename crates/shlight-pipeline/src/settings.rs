@@ -5,17 +5,14 @@
 
 use std::path::PathBuf;
 
+use crate::preview::PreviewOptions;
+use crate::read_settings::ReadSettings;
 use glam::DMat3;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::MapOrientation;
 use shlight_core::map::montecarlo::{McOptions, SamplerKind};
 use shlight_core::sh::Window;
 use shlight_format::{Quantity, RotationRecord};
-use shlight_io::ReadOptions;
-
-use crate::input_layout::InputLayout;
-use crate::preview::PreviewOptions;
-use crate::spelling::Spelling;
 
 /// Monte Carlo directions drawn when no count is given.
 pub const DEFAULT_SAMPLES: usize = 1 << 16;
@@ -87,21 +84,6 @@ impl ProjectSettings {
             quantity,
         }
     }
-}
-
-/// How input files are read: their layout, the reader's options, and
-/// whether bad values are replaced instead of refused.
-#[derive(Clone, Debug, Default)]
-pub struct ReadSettings {
-    /// The layout of the inputs (`auto` by aspect ratio).
-    pub layout: InputLayout,
-    /// EXR layer and pixel limit.
-    pub read: ReadOptions,
-    /// Replace NaN, infinities and negatives ([`crate::sanitize_image`]).
-    pub sanitize: bool,
-    /// How the loader's messages name these settings (`--sanitize`,
-    /// `sanitize`).
-    pub spelling: Spelling,
 }
 
 /// `--preview`: the three-panel picture of a projection, and where it goes.

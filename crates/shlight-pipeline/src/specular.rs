@@ -16,7 +16,7 @@ use shlight_specular::{
 };
 
 use crate::load::load_map;
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::{PipelineError, Result};
 
 /// cmgen's face names, in [`CubeFace::ALL`] order (`+X -X +Y -Y +Z -Z`).

@@ -23,11 +23,11 @@
 //! - [`Scene::render_headless`]: one frame as a [`Shot`] sees it;
 //!   [`RenderMeshRequest`] and [`render_mesh`]: read, render and write
 //!   (every step of `render-mesh`), progress, warnings and notes told to
-//!   the [`SceneHooks`].
+//!   shlight-pipeline's `Hooks`.
 //!
 //! Files: `scene_options.rs`, `scene.rs`, `scene_volume.rs`,
 //! `transfer_file.rs` (a `.shprt` file on its mesh), `scene_renderers.rs`,
-//! `shot.rs`, `render_mesh.rs`, `built_in.rs`, `scene_hooks.rs`,
+//! `shot.rs`, `render_mesh.rs`, `built_in.rs`,
 //! `scene_error.rs`. The renderers outside this module know no file
 //! format: they take meshes, texel slices and shlight-baked's views.
 
@@ -36,7 +36,6 @@ mod render_mesh;
 #[allow(clippy::module_inception)]
 mod scene;
 mod scene_error;
-mod scene_hooks;
 mod scene_options;
 mod scene_renderers;
 mod scene_volume;
@@ -47,7 +46,6 @@ pub use built_in::BuiltIn;
 pub use render_mesh::{RenderMeshRequest, RenderMeshSettings, render_mesh, write_frame};
 pub use scene::Scene;
 pub use scene_error::SceneError;
-pub use scene_hooks::SceneHooks;
 pub use scene_options::{SceneOptions, SceneSettings};
 pub use scene_renderers::{light_renderer, mesh_renderer};
 pub use scene_volume::{SceneVolume, VolumeLight};

@@ -7,8 +7,10 @@ use std::path::PathBuf;
 use shlight_io::{Format, Image, ToneMap, WriteOptions, write_image};
 use shlight_pipeline::Spelling;
 
+use shlight_pipeline::Hooks;
+
 use super::scene_options::refuse;
-use super::{BuiltIn, Scene, SceneError, SceneHooks, SceneOptions, SceneSettings, Shot};
+use super::{BuiltIn, Scene, SceneError, SceneOptions, SceneSettings, Shot};
 use crate::{Frame, GpuError};
 
 /// A headless frame's settings as a front end was given them.
@@ -70,20 +72,22 @@ impl RenderMeshRequest {
                 spelling.option_number("fov", fov, fov)
             ));
         }
-        Ok(RenderMeshSettings {
+        let settings = RenderMeshSettings {
             scene,
             shot: self.shot,
             format,
             exposure: self.exposure,
             tone_map: self.tone_map,
             output: self.output.clone(),
-        })
+        };
+        shlight_pipeline::refuse_overwriting(&self.output, &settings.inputs())?;
+        Ok(settings)
     }
 }
 
 impl RenderMeshSettings {
     /// The files read: the mesh, the light, the transfer, the volume and
-    /// its object (for a front end that keeps the output off them).
+    /// its object (the output is never one of them).
     #[must_use]
     pub fn inputs(&self) -> Vec<PathBuf> {
         let o = &self.scene.options;
@@ -105,7 +109,7 @@ impl RenderMeshSettings {
 pub fn render_mesh(
     settings: &RenderMeshSettings,
     built_in: &BuiltIn<'_>,
-    hooks: &SceneHooks<'_>,
+    hooks: &dyn Hooks,
 ) -> Result<(), SceneError> {
     let scene = Scene::read(&settings.scene, built_in, hooks)?;
     let frame = scene.render_headless(&settings.shot, hooks)?;

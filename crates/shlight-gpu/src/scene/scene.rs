@@ -11,9 +11,11 @@ use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 use shlight_pipeline::{Environment, Spelling};
 
+use shlight_pipeline::{Hooks, Progress};
+
 use super::scene_options::refuse;
 use super::transfer_file::read_transfer;
-use super::{BuiltIn, SceneError, SceneHooks, SceneSettings, SceneVolume, VolumeLight};
+use super::{BuiltIn, SceneError, SceneSettings, SceneVolume, VolumeLight};
 use crate::{Background, Mode};
 
 /// A mesh with its PRT transfer, the light (an environment map or a
@@ -71,14 +73,14 @@ impl Scene {
     pub fn read(
         settings: &SceneSettings,
         built_in: &BuiltIn<'_>,
-        hooks: &SceneHooks<'_>,
+        hooks: &dyn Hooks,
     ) -> Result<Self, SceneError> {
         let (options, spelling) = (&settings.options, settings.spelling);
-        (hooks.progress)(if options.volume.is_some() {
+        hooks.progress(Progress::Step(if options.volume.is_some() {
             "reading the scene"
         } else {
             "reading the mesh"
-        });
+        }));
         let (mesh, mesh_name) = match &options.mesh {
             Some(path) => (shlight_mesh::load(path)?, path.clone()),
             None => (built_in.mesh()?, PathBuf::from(built_in.mesh_name)),
@@ -97,12 +99,12 @@ impl Scene {
             )?),
             None => None,
         };
-        (hooks.progress)("reading the environment");
+        hooks.progress(Progress::Step("reading the environment"));
         let light = match &options.env {
             Some(path) => Environment::load(path, options.up, LIGHT_MAX_LMAX)?,
             None => built_in.environment(options.up, LIGHT_MAX_LMAX)?,
         };
-        light.warnings.iter().for_each(|w| (hooks.warn)(w));
+        light.warnings.iter().for_each(|w| hooks.warn(w));
         let has_map = light.map.is_some();
         let name = light.path.display();
         if options.encoding == Encoding::DominantSh && !has_map {
@@ -217,7 +219,7 @@ mod tests {
         Scene::read(
             &options.check(spelling).unwrap(),
             &NONE,
-            &SceneHooks::default(),
+            &shlight_pipeline::Silent,
         )
     }
 

@@ -12,8 +12,10 @@ use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
 use shlight_mesh::Mesh;
 
+use shlight_pipeline::Hooks;
+
 use super::scene_options::refuse;
-use super::{BuiltIn, SceneError, SceneHooks, SceneOptions};
+use super::{BuiltIn, SceneError, SceneOptions};
 use crate::{GpuContext, GpuError, VolumeInstance, VolumeRenderer, place};
 
 /// Whether the probes follow the light.
@@ -55,7 +57,7 @@ impl SceneVolume {
         options: &SceneOptions,
         (scene, scene_name): (&Mesh, &Path),
         built_in: &BuiltIn<'_>,
-        hooks: &SceneHooks<'_>,
+        hooks: &dyn Hooks,
     ) -> Result<Self, SceneError> {
         if !path.exists() {
             return refuse(format!("{}: no such volume file", path.display()));
@@ -63,7 +65,7 @@ impl SceneVolume {
         let file = ShvolFile::read(path)?;
         let name = path.display();
         if file.scene_hash != scene.content_hash() {
-            (hooks.warn)(&format!(
+            hooks.warn(&format!(
                 "{name} was baked in {} (fnv1a64:{:016x}), not in {} (fnv1a64:{:016x}): its light does not match this scene",
                 file.scene,
                 file.scene_hash,
@@ -72,7 +74,7 @@ impl SceneVolume {
             ));
         }
         if file.lmax > SHADED_MAX_LMAX {
-            (hooks.note)(&format!(
+            hooks.note(&format!(
                 "{name} holds lmax {}; the GPU shades volumes to lmax {SHADED_MAX_LMAX}",
                 file.lmax
             ));
@@ -94,7 +96,7 @@ impl SceneVolume {
         };
         let file = &volume.file;
         let valid = file.valid.iter().filter(|v| **v).count();
-        (hooks.note)(&format!(
+        hooks.note(&format!(
             "{name}: {}x{}x{} probes ({valid} valid of {}), lmax {}, {}",
             file.resolution[0],
             file.resolution[1],

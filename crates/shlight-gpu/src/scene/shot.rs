@@ -5,9 +5,11 @@ use glam::Vec3;
 use shlight_core::encoding::Encoding;
 use shlight_core::sh::Window;
 
+use shlight_pipeline::{Hooks, Progress};
+
 use super::scene_options::refuse;
 use super::scene_renderers::{light_renderer, mesh_renderer};
-use super::{Scene, SceneError, SceneHooks, VolumeLight};
+use super::{Scene, SceneError, VolumeLight};
 use crate::{Camera, Frame, GpuContext, HEADLESS_FORMAT, Mode, Offscreen, Shading, render_frame};
 
 /// What a headless frame shows of a scene, and at what size.
@@ -57,21 +59,17 @@ impl Scene {
     /// # Errors
     /// The light too short for its encoding, no GPU adapter, a scene the
     /// GPU cannot hold, the camera at its target.
-    pub fn render_headless(
-        mut self,
-        shot: &Shot,
-        hooks: &SceneHooks<'_>,
-    ) -> Result<Frame, SceneError> {
+    pub fn render_headless(mut self, shot: &Shot, hooks: &dyn Hooks) -> Result<Frame, SceneError> {
         if self.volume.is_some() {
             return self.render_volume(shot, hooks);
         }
         let snippet = match self.encoding {
             Encoding::Sh => None,
             encoding => {
-                (hooks.progress)(&format!("encoding the light as {encoding}"));
+                hooks.progress(Progress::Step(&format!("encoding the light as {encoding}")));
                 let (encoded, snippet) = self.light.encoded_light(encoding, self.lmax)?;
                 if matches!(encoding, Encoding::DominantSh | Encoding::SloanSh) {
-                    (hooks.note)(&format!(
+                    hooks.note(&format!(
                         "{encoding}: {} light(s) kept apart from the SH",
                         encoded.lights().len()
                     ));
@@ -80,7 +78,7 @@ impl Scene {
             }
         };
         self.light.radiance = self.turned_radiance(self.rotation);
-        (hooks.progress)("opening the GPU");
+        hooks.progress(Progress::Step("opening the GPU"));
         let ctx = GpuContext::headless()?;
         let mut renderer = mesh_renderer(
             &ctx,
@@ -108,23 +106,26 @@ impl Scene {
         };
         let held = self.light.radiance.lmax();
         if held < self.lmax {
-            (hooks.note)(&format!(
+            hooks.note(&format!(
                 "{} holds lmax {held}; shading to lmax {held}",
                 self.light.path.display()
             ));
         }
         let (w, h) = shot.size;
-        (hooks.progress)(&format!("rendering {w}x{h} on {}", ctx.adapter_name()));
+        hooks.progress(Progress::Step(&format!(
+            "rendering {w}x{h} on {}",
+            ctx.adapter_name()
+        )));
         Ok(render_frame(&ctx, &renderer, &camera, &shading, w, h)?)
     }
 
     /// [`Scene::render_headless`] with a volume: the mesh and the object
     /// lit per fragment by the probes, over the light's background.
-    fn render_volume(mut self, shot: &Shot, hooks: &SceneHooks<'_>) -> Result<Frame, SceneError> {
+    fn render_volume(mut self, shot: &Shot, hooks: &dyn Hooks) -> Result<Frame, SceneError> {
         self.light.radiance = self.turned_radiance(self.rotation);
         let mut volume = self.volume.take().expect("a scene with a volume");
         match volume.light() {
-            VolumeLight::Stored => (hooks.note)(&format!(
+            VolumeLight::Stored => hooks.note(&format!(
                 "{}: static volume, its stored light is shown ({} is the background only)",
                 volume.path.display(),
                 self.spelling.option("env")
@@ -132,7 +133,7 @@ impl Scene {
             VolumeLight::Relit => {
                 let held = self.light.radiance.lmax();
                 if held < volume.file.lmax {
-                    (hooks.note)(&format!(
+                    hooks.note(&format!(
                         "{} holds lmax {held}; the volume's lmax {} is relit with the higher bands zero",
                         self.light.path.display(),
                         volume.file.lmax
@@ -141,7 +142,7 @@ impl Scene {
                 volume.relight(&self.light.radiance);
             }
         }
-        (hooks.progress)("opening the GPU");
+        hooks.progress(Progress::Step("opening the GPU"));
         let ctx = GpuContext::headless()?;
         let mut background = light_renderer(&ctx, HEADLESS_FORMAT, &self.light);
         background.set_environment_rotation(self.rotation);
@@ -158,7 +159,10 @@ impl Scene {
             background: self.background,
         };
         let (w, h) = shot.size;
-        (hooks.progress)(&format!("rendering {w}x{h} on {}", ctx.adapter_name()));
+        hooks.progress(Progress::Step(&format!(
+            "rendering {w}x{h} on {}",
+            ctx.adapter_name()
+        )));
         let target = Offscreen::new(&ctx, w, h)?;
         let aspect = target.aspect();
         let frame = target

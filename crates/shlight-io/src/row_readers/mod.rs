@@ -20,17 +20,12 @@ use crate::{Format, Image, IoError, IoErrorKind, ReadOptions, read_image};
 
 mod png;
 mod radiance;
+mod row_sink;
 
 use self::png::PngRows;
 use self::radiance::RadianceRows;
-
-/// Where rows go: `sink(first_row, rows)`, `rows` whole rows of the
-/// image's width from `first_row` on.
-pub type RowSink<'a> = dyn Fn(usize, &[[f32; 3]]) + Sync + 'a;
-
-/// Texels per band that the row-by-row readers hand on at once (whole
-/// rows; at least one).
-const BLOCK_TEXELS: usize = 1 << 16;
+use self::row_sink::BLOCK_TEXELS;
+pub use self::row_sink::RowSink;
 
 /// An image that hands out its rows ([`open_rows`]).
 pub trait RowSource: Send + Sync {

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use png::{BitDepth, ColorType, Transformations};
 
 use crate::IoErrorKind;
-use crate::row_readers::{BLOCK_TEXELS, RowSink};
+use crate::row_readers::row_sink::{BLOCK_TEXELS, RowSink};
 use crate::srgb::{srgb8_table, srgb16_table};
 
 /// A PNG file whose header has been read.

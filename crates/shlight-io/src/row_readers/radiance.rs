@@ -11,7 +11,7 @@ use image::ImageDecoder;
 use image::codecs::hdr::HdrDecoder;
 
 use crate::IoErrorKind;
-use crate::row_readers::{BLOCK_TEXELS, RowSink};
+use crate::row_readers::row_sink::{BLOCK_TEXELS, RowSink};
 
 /// A Radiance file whose header has been read.
 pub(crate) struct RadianceRows {

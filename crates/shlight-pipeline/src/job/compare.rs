@@ -10,7 +10,7 @@ use shlight_core::map::MapOrientation;
 
 use crate::accuracy::{compare_encodings, compare_name};
 use crate::hooks::{Hooks, Progress};
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 

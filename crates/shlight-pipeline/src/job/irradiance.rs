@@ -15,7 +15,7 @@ use crate::accuracy::{IrradianceReport, IrradianceSettings, map_irradiance};
 use crate::hooks::{Hooks, StageCounter};
 use crate::output_grid::output_grid;
 use crate::output_path::refuse_overwriting;
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 

@@ -10,7 +10,7 @@ use shlight_specular::{PrefilterSettings, Prefiltered};
 
 use crate::hooks::{Hooks, StageCounter};
 use crate::output_path::{names_dir, refuse_overwriting};
-use crate::settings::ReadSettings;
+use crate::read_settings::ReadSettings;
 use crate::specular::{
     prefilter_map, write_prefiltered_faces, write_prefiltered_ktx1, write_prefiltered_ktx2,
 };
