@@ -499,7 +499,7 @@ impl Renderer {
             .min(ctx.device.limits().max_buffer_size);
         if bytes > limit || u32::try_from(floats).is_err() {
             return Err(GpuError::Invalid(format!(
-                "glossy transfer: {groups} group(s) x {} part(s) of {nc} RGB coefficients and the                  vertices' records take {bytes} bytes; the device's storage buffers hold {limit}                  (compress it: shlight prt --compress cpca:C,K)",
+                "glossy transfer: {groups} group(s) x {} part(s) of {nc} RGB coefficients and the                  vertices' records take {bytes} bytes; the device's storage buffers hold {limit}                  (compress its matrices by clustered PCA, cpca:C,K, first)",
                 vectors + 1
             )));
         }

@@ -24,12 +24,11 @@ pub fn read_transfer(path: &Path, mesh: &Mesh, mesh_name: &Path) -> Result<Shprt
     let file = ShprtFile::read(path)?;
     if file.vertex_count != mesh.vertex_count() {
         return refuse(format!(
-            "{}: baked for {} vertices, but {} has {} (bake it with `shlight prt {}`)",
+            "{}: baked for {} vertices, but {} has {} (bake its transfer for that mesh)",
             path.display(),
             file.vertex_count,
             mesh_name.display(),
-            mesh.vertex_count(),
-            mesh_name.display()
+            mesh.vertex_count()
         ));
     }
     if file.mesh_hash != mesh.content_hash() {
