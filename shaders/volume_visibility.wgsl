@@ -7,7 +7,7 @@
 // function shlight_volume_visibility(k, q, biased) that shlight-shader
 // writes and the module appends (crates/shlight-gpu/src/volume_expansion.rs:
 // the same lookup as the volume snippets of `shlight convert`, reading
-// these buffers). shlight-volume's irradiance_at (Lookup::Shlight) is what
+// these buffers). shlight-volume's PreparedLookup (Lookup::Shlight) is what
 // tests/volume_gpu.rs checks it against.
 //
 // Of the eight probes k around p (volume_loads_at: trilinear weights t_k

@@ -1,6 +1,7 @@
 //! Irradiance-volume shading on the GPU (`shaders/volume.wgsl`) against the
 //! CPU: the interpolation the fragments use, run as a compute pass, equals
-//! shlight-volume's `sample` (checked once by hand) followed by
+//! the radiance of shlight-volume's trilinear lookup
+//! (`PreparedLookup::radiance_at`, checked once by hand) followed by
 //! shlight-core's irradiance at random points and normals, on the grid's
 //! faces, edges and corners and far beyond them, on a grid with one probe
 //! along an axis, for lmax 0..4, both ways of interpolating
@@ -9,16 +10,16 @@
 //! of higher lmax is shaded to lmax 4; probe spheres (their own pipeline)
 //! show their own probe beside an interpolated object in one frame. A
 //! volume with distance maps (`shaders/volume_visibility.wgsl`) equals
-//! shlight-volume's `irradiance_at` with `Lookup::Shlight` beside a thin
+//! shlight-volume's `PreparedLookup` with `Lookup::Shlight` beside a thin
 //! wall, where trilinear interpolation is far off; `render-mesh --volume`
 //! shades the Cornell box as that lookup does and keeps the dark side of a
 //! wall between two sealed rooms dark.
 
 use glam::{DVec3, Vec3};
 use shlight_baked::{ProbeGrid, VolumeView};
-use shlight_core::sh::sh_count;
+use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_gpu::{GpuContext, HEADLESS_FORMAT, Shading, VolumeFetch, VolumeRenderer, wgpu};
-use shlight_volume::sample;
+use shlight_volume::{Lookup, PreparedLookup};
 
 use crate::util::gpu_context;
 
@@ -28,6 +29,33 @@ use crate::util::gpu_context;
 /// 1e-6 of the largest; a wrong weight, index or basis function is off by
 /// tenths.
 const VOLUME_TOL: f64 = 2e-5;
+
+/// The radiance shlight-volume's trilinear lookup reads at `p` off the
+/// probes of `grid` (`valid`, `radiance` of `lmax`), `None` where every
+/// probe around `p` is invalid.
+fn trilinear_radiance(
+    grid: &ProbeGrid,
+    valid: &[bool],
+    radiance: &[f32],
+    lmax: usize,
+    p: Vec3,
+) -> Option<ShCoeffs<DVec3>> {
+    let view = VolumeView {
+        grid: *grid,
+        lmax,
+        valid,
+        radiance,
+        offsets: None,
+        visibility: None,
+    };
+    PreparedLookup::new(&view, Lookup::Trilinear, lmax).radiance_at(p, Vec3::Y)
+}
+
+/// `lookup`'s irradiance at `p` facing `n`, the lookup prepared for the
+/// one point.
+fn irradiance_at(view: &VolumeView<'_>, lookup: Lookup, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
+    PreparedLookup::new(view, lookup, lmax).irradiance_at(p, n)
+}
 /// The same for `VolumeFetch::Filtered` on a hardware GPU, whose sampler
 /// rounds each axis's weight to its sub-texel precision (8 bits on most:
 /// steps of 1/256, so off by up to 1/512 per axis): three axes times 1/512
@@ -113,7 +141,7 @@ impl TestVolume {
     /// The CPU's irradiance at `p` facing `n` to `lmax`, `None` when every
     /// probe around `p` is invalid.
     fn cpu(&self, p: Vec3, n: Vec3, lmax: usize) -> Option<DVec3> {
-        let l = sample(&self.grid, &self.valid, &self.radiance, self.lmax, p)?;
+        let l = trilinear_radiance(&self.grid, &self.valid, &self.radiance, self.lmax, p)?;
         Some(shlight_core::sh::irradiance(&l.resized(lmax)).eval(n.as_dvec3()))
     }
 }
@@ -215,7 +243,7 @@ fn the_cpu_interpolation_matches_a_hand_computation() {
     // weights are 3/4 and 1/4; with probe 1 invalid, probe 0 alone.
     let grid = ProbeGrid::new([2, 1, 1], Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)).unwrap();
     let radiance = [4.0, 8.0, 12.0, 0.0, 4.0, 40.0];
-    let got = sample(
+    let got = trilinear_radiance(
         &grid,
         &[true, true],
         &radiance,
@@ -224,7 +252,7 @@ fn the_cpu_interpolation_matches_a_hand_computation() {
     )
     .unwrap();
     assert_eq!(got[0], DVec3::new(3.0, 7.0, 19.0));
-    let got = sample(
+    let got = trilinear_radiance(
         &grid,
         &[true, false],
         &radiance,
@@ -233,7 +261,7 @@ fn the_cpu_interpolation_matches_a_hand_computation() {
     )
     .unwrap();
     assert_eq!(got[0], DVec3::new(4.0, 8.0, 12.0));
-    assert!(sample(&grid, &[false, false], &radiance, 0, Vec3::splat(0.5)).is_none());
+    assert!(trilinear_radiance(&grid, &[false, false], &radiance, 0, Vec3::splat(0.5)).is_none());
 }
 
 #[test]
@@ -439,7 +467,6 @@ fn render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box() {
     use crate::util::{s, shlight_ok, temp_dir, write_obj, write_radiance_rows};
     use shlight_core::sh::ShRotation;
     use shlight_format::ShvolFile;
-    use shlight_volume::{Lookup, irradiance_at};
 
     if gpu_context("render_mesh_volume_pixels_match_cpu_shading_in_the_cornell_box").is_none() {
         return;
@@ -886,7 +913,7 @@ fn bad_volume_options_are_clear_errors() {
 }
 
 /// The GPU's visibility-weighted lookup (a volume with distance maps)
-/// against shlight-volume's `irradiance_at` with `Lookup::Shlight`, the one
+/// against shlight-volume's `PreparedLookup` with `Lookup::Shlight`, the one
 /// definition: each irradiance within this fraction of the largest among
 /// the queries. Both weigh every probe in f32 by the same operations
 /// (shlight-baked's `visibility_weights`, `shaders/volume_visibility.wgsl`);
@@ -921,7 +948,7 @@ const WALL_X: f32 = 0.1;
 /// which relocation moves out, baked with the default options (relocation
 /// and 16x16 distance maps) and relit by a sky bright towards +x: the
 /// probes behind the wall (-x) see its shaded side.
-fn walled_volume() -> (shlight_volume::ProbeVolume, Vec<f32>) {
+fn walled_volume() -> (shlight_volume::VolumeBake, Vec<f32>) {
     use shlight_mesh::generate::cuboid;
     let grid = ProbeGrid::new([6, 3, 3], Vec3::new(-1.5, 0.0, 0.0), Vec3::splat(1.5)).unwrap();
     let scene = merged(
@@ -957,27 +984,14 @@ fn walled_volume() -> (shlight_volume::ProbeVolume, Vec<f32>) {
     (volume, radiance)
 }
 
-fn view_of<'a>(volume: &'a shlight_volume::ProbeVolume, radiance: &'a [f32]) -> VolumeView<'a> {
-    VolumeView {
-        grid: volume.grid,
-        lmax: volume.lmax,
-        valid: &volume.valid,
-        radiance,
-        offsets: volume.offsets.as_deref(),
-        visibility: volume.visibility.as_ref().map(|v| v.view()),
-    }
-}
-
 #[test]
 fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
-    use shlight_volume::{Lookup, irradiance_at};
-
     let Some(ctx) = gpu_context("gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall")
     else {
         return;
     };
     let (volume, radiance) = walled_volume();
-    let view = view_of(&volume, &radiance);
+    let view = volume.view(&radiance);
     // Random points in and around the grid box, and as many between the
     // probe columns on either side of the wall (x in -0.25..0.25, outside
     // the wall), where four of the eight probes are behind it.
@@ -1011,7 +1025,7 @@ fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
         };
         points.push((p, unit(&mut rng)));
     }
-    // The pass takes unit normals as given; irradiance_at normalises its
+    // The pass takes unit normals as given; the lookup normalises its
     // normal first (a unit vector normalised again may move by a
     // rounding), so the pass gets that normal.
     let unit: Vec<(Vec3, Vec3)> = points.iter().map(|&(p, n)| (p, n.normalize())).collect();
@@ -1115,7 +1129,6 @@ fn gpu_visibility_weights_equal_the_cpu_lookup_beside_a_thin_wall() {
 fn render_mesh_volume_keeps_the_dark_side_of_a_wall_dark() {
     use crate::util::{bake_two_rooms, s, shlight_ok, temp_dir};
     use shlight_format::ShvolFile;
-    use shlight_volume::{Lookup, irradiance_at};
 
     if gpu_context("render_mesh_volume_keeps_the_dark_side_of_a_wall_dark").is_none() {
         return;

@@ -6,8 +6,9 @@
 //!   each cell's centre (`min + (i + 1/2) (max - min) / n`, the one formula
 //!   of a probe's place), probes numbered x fastest, then y, then z;
 //!   trilinear weights of a point, clamped to the grid.
-//! - [`VolumeView`]: a volume's probes borrowed (grid, lmax, validity,
-//!   radiance), checked for shape; [`MAX_LMAX`], the most a volume holds,
+//! - [`VolumeView`]: a volume's lit probes borrowed (grid, lmax, validity,
+//!   radiance), as a `.shvol` file or a bake relit holds them, checked for
+//!   shape; [`MAX_LMAX`], the most a volume holds,
 //!   and [`SHADED_MAX_LMAX`], the most the GPU's volume pass shades;
 //!   [`LIGHT_MAX_LMAX`], the most of a distant light the renderers shade;
 //!   the probes' offsets (where the bake moved them out of geometry) and

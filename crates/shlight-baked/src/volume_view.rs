@@ -18,8 +18,9 @@ pub const MAX_LMAX: usize = 8;
 /// same `--lmax`.
 pub const SHADED_MAX_LMAX: usize = 4;
 
-/// A volume's probes (the fields of a `.shvol` file: docs/shvol.md),
-/// borrowed.
+/// A volume's lit probes (the fields of a `.shvol` file: docs/shvol.md),
+/// borrowed: what every lookup of a volume and the GPU's volume pass
+/// read.
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeView<'a> {
     /// The probes' box and resolution.

@@ -147,7 +147,7 @@ pub const VOLUME_LOADS_MODULE: ShaderModuleSource = ShaderModuleSource {
 /// by its visibility of the shaded point (`volume_visibility.wgsl`: the
 /// probes' positions and distance maps in storage buffers), for a volume
 /// that holds distance maps; the same lookup as shlight-volume's
-/// `irradiance_at` with `Lookup::Shlight`.
+/// `PreparedLookup` with `Lookup::Shlight`.
 pub const VOLUME_VISIBILITY_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "volume visibility",
     files: &[

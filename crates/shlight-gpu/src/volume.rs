@@ -30,7 +30,7 @@
 //! eight loads per texel, each probe weighted by its trilinear weight times
 //! its visibility of the point, the lookup of
 //! [`shlight_baked::visibility::visibility_weights`] (shlight-volume's
-//! `irradiance_at` with `Lookup::Shlight`). The weights differ per probe,
+//! `PreparedLookup` with `Lookup::Shlight`). The weights differ per probe,
 //! so the sampler cannot apply them. The probes' positions (cell centre
 //! plus offset, as [`VolumeView::position`] computes them) and their maps
 //! go to the GPU as two storage buffers, read exactly (f32 as stored, the
@@ -781,7 +781,7 @@ impl VolumeRenderer {
 
     /// Whether this pass weighs each probe by its visibility of the shaded
     /// point (the volume holds distance maps), as shlight-volume's
-    /// `irradiance_at` does with `Lookup::Shlight`; else by its trilinear
+    /// `PreparedLookup` does with `Lookup::Shlight`; else by its trilinear
     /// weight alone.
     #[must_use]
     pub fn visibility(&self) -> bool {

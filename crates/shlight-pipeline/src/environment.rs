@@ -265,7 +265,10 @@ mod tests {
             "{e}"
         );
         // What to do, naming the lmax and no front end's flag.
-        assert!(e.message().contains("lmax 8") && !e.message().contains("--"), "{e}");
+        assert!(
+            e.message().contains("lmax 8") && !e.message().contains("--"),
+            "{e}"
+        );
         let mut image = Image::from_fn(16, 8, |_, _| [1.0; 3]);
         image.set(3, 2, [f32::NAN, 0.0, 0.0]);
         let e = from_image("nan.exr", image, Frame::YUp, 2).unwrap_err();

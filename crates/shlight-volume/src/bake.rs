@@ -12,14 +12,17 @@ use shlight_mesh::{Mesh, Subdivision};
 use shlight_prt::{Albedo, BakeOptions, Kernels, Mode, VertexRecords};
 use shlight_rays::{Direction, LANES, Occluder, Packet};
 
-use shlight_baked::visibility::{MomentFilter, ray_distance};
+use shlight_baked::visibility::MomentFilter;
 use shlight_baked::{ProbeGrid, ProbeVisibility, Visibility};
 
-use crate::{ProbeVolume, VolumeError};
+use crate::error::VolumeError;
+use crate::volume_bake::VolumeBake;
 
+mod hit;
 pub mod relocate;
 mod sums;
 
+use hit::Hit;
 use sums::{Rows, block_sum};
 
 /// What to bake.
@@ -89,7 +92,7 @@ pub enum Stage {
 }
 
 /// Bakes the probes of `grid` through `scene` (`None`: nothing in the
-/// way). The result is relightable: [`ProbeVolume::relight`] gives the
+/// way). The result is relightable: [`VolumeBake::relight`] gives the
 /// probes for any environment.
 ///
 /// `progress(stage, done, total)` is called from worker threads as work
@@ -174,7 +177,7 @@ pub fn bake(
     grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
-) -> Result<ProbeVolume, VolumeError> {
+) -> Result<VolumeBake, VolumeError> {
     bake_in_chunks(
         scene,
         grid,
@@ -194,7 +197,7 @@ fn bake_in_chunks(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     hits_memory: usize,
     kernels: Kernels,
-) -> Result<ProbeVolume, VolumeError> {
+) -> Result<VolumeBake, VolumeError> {
     let lmax = options.lmax;
     if lmax > shlight_baked::MAX_LMAX {
         return Err(VolumeError::Options(format!(
@@ -346,7 +349,7 @@ fn bake_in_chunks(
         .iter()
         .map(|&f| f <= options.invalid_backfaces)
         .collect();
-    Ok(ProbeVolume {
+    Ok(VolumeBake {
         grid: *grid,
         lmax,
         valid,
@@ -407,51 +410,6 @@ const BLOCK: usize = 64;
 /// Bytes of probe hits kept at a time: the probes are cast and summed in
 /// chunks of this many bytes of [`Hit`]s (12 a ray).
 const HITS_MEMORY: usize = 256 << 20;
-
-/// What one probe ray met: a triangle's front (its index and the
-/// barycentric weights of corners 1 and 2), a back face, or nothing; and
-/// how far away.
-#[derive(Clone, Copy, Debug)]
-struct Hit {
-    triangle: u32,
-    b1: f32,
-    b2: f32,
-    t: f32,
-}
-
-impl Hit {
-    /// [`Hit::triangle`] of a ray that escaped.
-    const ESCAPED_ID: u32 = u32::MAX;
-    /// [`Hit::triangle`] of a ray that met a back face.
-    const BACK_ID: u32 = u32::MAX - 1;
-    const ESCAPED: Hit = Hit {
-        triangle: Self::ESCAPED_ID,
-        b1: 0.0,
-        b2: 0.0,
-        t: f32::INFINITY,
-    };
-    const BACK: Hit = Hit {
-        triangle: Self::BACK_ID,
-        b1: 0.0,
-        b2: 0.0,
-        t: 0.0,
-    };
-
-    /// A back face at distance `t`.
-    fn back(t: f32) -> Hit {
-        Hit { t, ..Hit::BACK }
-    }
-
-    /// The distance the ray reaches for a distance map
-    /// ([`shlight_baked::visibility::ray_distance`]).
-    fn distance(&self, max_distance: f32) -> f32 {
-        match self.triangle {
-            Self::ESCAPED_ID => ray_distance(None, false, max_distance),
-            Self::BACK_ID => ray_distance(Some(self.t), true, max_distance),
-            _ => ray_distance(Some(self.t), false, max_distance),
-        }
-    }
-}
 
 /// The order in which the probes take the directions `dirs`, so that each
 /// block of [`BLOCK`] consecutive directions is a small patch of the

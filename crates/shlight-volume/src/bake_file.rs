@@ -16,7 +16,9 @@ use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
 use shlight_mesh::Mesh;
 
-use crate::{FileMeta, ProbeVolume, Stage, VolumeError, VolumeOptions, bake};
+use crate::bake::{Stage, VolumeOptions, bake};
+use crate::error::VolumeError;
+use crate::volume_bake::{FileMeta, VolumeBake};
 
 /// The frame a volume is baked in (its scene's): the environment is turned
 /// to it before [`bake_file`].
@@ -53,11 +55,11 @@ impl VolumeBakeSettings {
     }
 }
 
-/// A baked volume and its file.
+/// What [`bake_file`] makes: the bake and its file.
 #[derive(Clone, Debug)]
-pub struct BakedVolume {
+pub struct BakedFile {
     /// The bake (probe counts, relocation, rays cast).
-    pub volume: ProbeVolume,
+    pub bake: VolumeBake,
     /// The `.shvol` file: the probes lit by the environment, and its
     /// provenance.
     pub file: ShvolFile,
@@ -104,7 +106,7 @@ pub fn generator() -> String {
 /// `scene_path`) and makes its `.shvol` file: the grid
 /// ([`VolumeBakeSettings::grid`]), [`bake()`] (`progress` as there), the probes
 /// relit under `env` (radiance coefficients in the y-up frame, read from
-/// `env_path`; [`ProbeVolume::relight`]), and [`ProbeVolume::to_shvol`]
+/// `env_path`; [`VolumeBake::relight`]), and [`VolumeBake::to_shvol`]
 /// recording the frame, the inputs' file names and the generator
 /// (`shlight VERSION`).
 ///
@@ -118,7 +120,7 @@ pub fn bake_file(
     env_path: &Path,
     request: &VolumeBakeSettings,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
-) -> Result<BakedVolume, VolumeError> {
+) -> Result<BakedFile, VolumeError> {
     check_environment(env, env_path, request.options.lmax)?;
     let grid = request.grid(scene)?;
     let volume = bake(Some(scene), &grid, &request.options, progress)?;
@@ -130,7 +132,7 @@ pub fn bake_file(
         generator: generator(),
     };
     let file = volume.to_shvol(radiance, request.relightable, &meta);
-    Ok(BakedVolume { volume, file })
+    Ok(BakedFile { bake: volume, file })
 }
 
 #[cfg(test)]
@@ -169,7 +171,7 @@ mod tests {
         .unwrap();
         let grid = ProbeGrid::new([2, 1, 2], Vec3::splat(-1.0), Vec3::ONE).unwrap();
         let direct = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
-        assert_eq!(baked.volume, direct);
+        assert_eq!(baked.bake, direct);
         assert_eq!(baked.file.radiance, direct.relight(&env));
         assert_eq!(baked.file.transfer.as_ref(), Some(&direct.transfer));
         assert_eq!(

@@ -44,11 +44,11 @@ use shlight_baked::VolumeView;
 use shlight_core::sh::sh_count;
 use shlight_format::bevy_volume::{BevyTexture, light_probe_transform};
 
-use crate::lookup::texel_corners;
+use crate::texel_corners::texel_corners;
 
 /// A volume's Bevy export in memory, ready to be looked up as Bevy does.
 #[derive(Clone, Debug)]
-pub struct BevyLookup {
+pub(crate) struct BevyLookup {
     texture: BevyTexture,
     /// The light probe's translation (the box's centre) and scale (its size).
     centre: Vec3,
@@ -62,7 +62,7 @@ impl BevyLookup {
     /// the texels `shlight volume --format bevy` writes when `lmax` is the
     /// volume's.
     #[must_use]
-    pub fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
+    pub(crate) fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
         let lmax = lmax.min(view.lmax);
         let clipped;
         let view = if lmax == view.lmax {
@@ -92,16 +92,10 @@ impl BevyLookup {
         }
     }
 
-    /// The texture the lookup reads (what the KTX2 file holds).
-    #[must_use]
-    pub fn texture(&self) -> &BevyTexture {
-        &self.texture
-    }
-
     /// The irradiance `E = pi sum_a N_a^2 c_a` Bevy shades a point `p`
     /// facing `n` with (the module's docs); 0 outside the volume's box.
     #[must_use]
-    pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
+    pub(crate) fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
         let unit_pos = (p - self.centre) / self.size;
         if !unit_pos.abs().cmple(Vec3::splat(0.5)).all() {
             return DVec3::ZERO;
@@ -137,12 +131,4 @@ impl BevyLookup {
         }
         sum
     }
-}
-
-/// Bevy's irradiance at `p` facing `n` from `view`'s export, its probes
-/// kept to `lmax`: [`BevyLookup::irradiance_at`]. Builds the texture on
-/// every call; [`BevyLookup::new`] once for many points.
-#[must_use]
-pub fn irradiance_at(view: &VolumeView<'_>, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
-    BevyLookup::new(view, lmax).irradiance_at(p, n)
 }

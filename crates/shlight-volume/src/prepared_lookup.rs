@@ -1,169 +1,69 @@
-//! [`PreparedLookup`]: a [`Lookup`] made ready once for many points (the
-//! engines' lookups build their texture or dilated grid first), and
-//! [`lookup_lmax`], the lmax each lookup reads a volume to.
+//! [`PreparedLookup`]: a [`Lookup`] of one volume made ready for many
+//! points, the one way shlight reads a volume's light at a point: the
+//! engines' lookups build their texture (Bevy) or dilated grid (three.js)
+//! once, shlight's own the probes' irradiance coefficients.
 
 use glam::{DVec3, Vec3};
-use shlight_baked::{MAX_LMAX, SHADED_MAX_LMAX, VolumeView};
-use shlight_core::sh::{ShBasis, ShCoeffs, ZonalKernel, sh_count};
+use shlight_baked::VolumeView;
+use shlight_core::sh::ShCoeffs;
 
 use crate::bevy_lookup::BevyLookup;
-use crate::lookup::probe_weights;
-use crate::threejs_lookup::{THREEJS_LMAX, ThreeJsLookup};
-use crate::{Lookup, VolumeError, shaded_lmax};
+use crate::lookup::Lookup;
+use crate::probe_lookup::ProbeLookup;
+use crate::threejs_lookup::ThreeJsLookup;
 
-/// The lmax a lookup reads a volume to, and what the user should know
-/// about it.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LookupLmax {
-    /// The degrees read: `0..=lmax`.
-    pub lmax: usize,
-    /// Set when the volume holds degrees the lookup cannot read.
-    pub note: Option<String>,
-}
-
-/// The lmax `lookup` reads `view` to when asked for `requested` (`None`:
-/// the lookup's own choice), never above the volume's:
-///
-/// - `shlight`, `trilinear`: what the GPU's volume pass shades
-///   ([`shaded_lmax`]: the volume's, at most [`SHADED_MAX_LMAX`]);
-/// - `bevy`: the volume's, as the `--format bevy` export builds its ambient
-///   cubes from every degree;
-/// - `threejs`: at most 2, the nine coefficients of three.js's grid; a
-///   volume of higher lmax is clipped, with a note.
-///
-/// # Errors
-/// A `requested` lmax the lookup cannot shade: above [`SHADED_MAX_LMAX`]
-/// for shlight's lookups, above 2 for three.js's. The message says why;
-/// the caller names the option as its users spell it (`--lmax 5`,
-/// `lmax=5`).
-pub fn lookup_lmax(
-    view: &VolumeView<'_>,
-    lookup: Lookup,
-    requested: Option<usize>,
-) -> Result<LookupLmax, VolumeError> {
-    let refuse = |most: usize, why: &str| -> Result<(), VolumeError> {
-        match requested.filter(|&l| l > most) {
-            Some(_) => Err(VolumeError::Options(format!("{why} lmax {most} at most"))),
-            None => Ok(()),
-        }
-    };
-    match lookup {
-        Lookup::Bevy => Ok(LookupLmax {
-            lmax: requested.unwrap_or(view.lmax).min(view.lmax),
-            note: None,
-        }),
-        Lookup::ThreeJs => {
-            refuse(
-                THREEJS_LMAX,
-                "three.js's LightProbeGrid holds nine coefficients per probe,",
-            )?;
-            let lmax = requested.unwrap_or(THREEJS_LMAX).min(view.lmax);
-            let note = (requested.is_none() && view.lmax > THREEJS_LMAX).then(|| {
-                let left_out = if view.lmax == THREEJS_LMAX + 1 {
-                    format!("degree {} is", view.lmax)
-                } else {
-                    format!("degrees {} to {} are", THREEJS_LMAX + 1, view.lmax)
-                };
-                format!(
-                    "three.js's LightProbeGrid holds lmax {THREEJS_LMAX}: the volume's {left_out} left out"
-                )
-            });
-            Ok(LookupLmax { lmax, note })
-        }
-        _ => {
-            refuse(SHADED_MAX_LMAX, "volumes are shaded to")?;
-            Ok(LookupLmax {
-                lmax: shaded_lmax(view, requested),
-                note: None,
-            })
-        }
-    }
-}
-
-/// A lookup of one volume made ready for many points: the engines'
-/// lookups build their texture (Bevy) or dilated grid (three.js) once
-/// here; the others read the probes as [`irradiance_at`](crate::irradiance_at) does.
+/// A [`Lookup`] of one volume's probes (a [`VolumeView`]: a `.shvol`
+/// file's, or a bake's lit by [`crate::VolumeBake::relight`]) kept to an
+/// lmax ([`Lookup::lmax_for`] says which), made ready for many points:
+/// what `shlight sample`, the Python package's `Volume.irradiance` and the
+/// tests that hold the GPU's volume pass to the CPU read.
 #[derive(Clone, Debug)]
 pub struct PreparedLookup<'a> {
-    view: VolumeView<'a>,
-    lookup: Lookup,
-    lmax: usize,
-    precomputed: Precomputed,
+    precomputed: Precomputed<'a>,
 }
 
-/// What a [`PreparedLookup`] computes once for all its points.
+/// What each lookup makes ready.
 #[derive(Clone, Debug)]
-enum Precomputed {
-    /// The `shlight` and `trilinear` lookups: per probe its irradiance
-    /// coefficients `A_l L_lm` to the lookup's lmax, `[r, g, b]` rows.
-    Probes(Vec<DVec3>, ShBasis<f64>),
-    /// The `bevy` lookup: the volume as Bevy's texture.
+enum Precomputed<'a> {
+    /// The `shlight` and `trilinear` lookups: the probes' irradiance
+    /// coefficients and how the probes are weighed.
+    Probes(ProbeLookup<'a>),
+    /// Bevy's: the KTX2 export's texture.
     Bevy(BevyLookup),
-    /// The `threejs` lookup: the dilated grid in three.js's basis.
+    /// three.js's: the dilated grid in three.js's basis.
     ThreeJs(ThreeJsLookup),
 }
 
-impl PreparedLookup<'_> {
-    /// [`crate::irradiance_at`] of the `shlight` and `trilinear` lookups
-    /// from the probes' irradiance coefficients `e`: the same weights, the
-    /// weighted sum taken after the convolution (the same value, in
-    /// another order of sums).
-    fn probes_at(&self, e: &[DVec3], basis: &ShBasis<f64>, p: Vec3, n: Vec3) -> DVec3 {
-        let view = &self.view;
-        let weights = probe_weights(view, self.lookup, p, n);
-        if weights.is_empty() {
-            return DVec3::ZERO;
-        }
-        let lmax = view.lmax.min(self.lmax);
-        let nc = sh_count(lmax);
-        let mut y = [0.0f64; sh_count(MAX_LMAX)];
-        basis.eval(n.as_dvec3().normalize(), &mut y[..nc]);
-        let mut out = DVec3::ZERO;
-        for (k, w) in weights {
-            let probe = &e[k * nc..][..nc];
-            let mut sum = DVec3::ZERO;
-            for (c, yl) in probe.iter().zip(&y[..nc]) {
-                sum += *c * *yl;
-            }
-            out += w * sum;
-        }
-        out
-    }
-}
-
 impl<'a> PreparedLookup<'a> {
-    /// `lookup` of `view`'s probes kept to `lmax` (see [`lookup_lmax`]).
+    /// `lookup` of `view`'s probes kept to `lmax` (at most the volume's;
+    /// see [`Lookup::lmax_for`]).
     #[must_use]
     pub fn new(view: &VolumeView<'a>, lookup: Lookup, lmax: usize) -> Self {
         let precomputed = match lookup {
             Lookup::Bevy => Precomputed::Bevy(BevyLookup::new(view, lmax)),
             Lookup::ThreeJs => Precomputed::ThreeJs(ThreeJsLookup::new(view, lmax)),
-            _ => {
-                let shaded = view.lmax.min(lmax);
-                let per = sh_count(view.lmax);
-                let kernel = ZonalKernel::clamped_cosine(shaded);
-                let e = view
-                    .radiance
-                    .chunks_exact(3 * per)
-                    .flat_map(|probe| {
-                        let l = ShCoeffs::from_vec(
-                            probe[..3 * sh_count(shaded)]
-                                .chunks_exact(3)
-                                .map(|c| Vec3::from_slice(c).as_dvec3())
-                                .collect(),
-                        )
-                        .expect("whole degrees");
-                        kernel.apply(&l).as_slice().to_vec()
-                    })
-                    .collect();
-                Precomputed::Probes(e, ShBasis::new(shaded))
+            Lookup::Shlight | Lookup::Trilinear => {
+                let visibility = lookup.effective(view) == Lookup::Shlight;
+                Precomputed::Probes(ProbeLookup::new(view, visibility, lmax))
             }
         };
-        Self {
-            view: *view,
-            lookup,
-            lmax,
-            precomputed,
+        Self { precomputed }
+    }
+
+    /// The irradiance `E(p, n)` at `p` facing the normal `n` (any length
+    /// but 0): what the volume pass shades with (a Lambertian fragment of
+    /// albedo `rho` leaves `rho / pi E`). shlight's lookups: `E(p, n) =
+    /// sum_lm A_l L_lm(p) Y_lm(n)` of the radiance
+    /// [`PreparedLookup::radiance_at`] gives (Ramamoorthi & Hanrahan
+    /// 2001's `A_l`), 0 where no valid probe is around `p`, as on the GPU;
+    /// the engines' as their shaders compute it from shlight's export, 0
+    /// where their volume does not reach.
+    #[must_use]
+    pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
+        match &self.precomputed {
+            Precomputed::Probes(probes) => probes.irradiance_at(p, n),
+            Precomputed::Bevy(bevy) => bevy.irradiance_at(p, n),
+            Precomputed::ThreeJs(three) => three.irradiance_at(p, n),
         }
     }
 
@@ -187,14 +87,85 @@ impl<'a> PreparedLookup<'a> {
             .collect()
     }
 
-    /// The irradiance at `p` facing `n`: [`irradiance_at`](crate::irradiance_at) with this
-    /// lookup and lmax.
+    /// The radiance coefficients shlight's lookups read at `p` (facing
+    /// `n`, which the `shlight` lookup's visibility weights depend on),
+    /// kept to the lookup's lmax: `sum_k w_k L_k` over the probes around
+    /// `p`, the weights summing to 1 — the valid probes' trilinear weights
+    /// renormalised (`trilinear`), or shlight-baked's visibility weights
+    /// (`shlight` with distance maps). `None` where no valid probe is
+    /// around `p`, and for the engines' lookups, which blend no SH
+    /// radiance (Bevy's ambient cubes; three.js's own basis).
     #[must_use]
-    pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
+    pub fn radiance_at(&self, p: Vec3, n: Vec3) -> Option<ShCoeffs<DVec3>> {
         match &self.precomputed {
-            Precomputed::Bevy(b) => b.irradiance_at(p, n),
-            Precomputed::ThreeJs(t) => t.irradiance_at(p, n),
-            Precomputed::Probes(e, basis) => self.probes_at(e, basis, p, n),
+            Precomputed::Probes(probes) => probes.radiance_at(p, n),
+            Precomputed::Bevy(_) | Precomputed::ThreeJs(_) => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shlight_baked::ProbeGrid;
+    use std::f64::consts::PI;
+
+    /// Two probes along x, degree 1, probe 1 pointing its light along +x:
+    /// the irradiance is the closed form `E = pi a Y00 + 2 pi / 3 (b . n)
+    /// sqrt(3 / 4 pi)` of the interpolated coefficients, worked out here by
+    /// hand (`Y_00 = 1 / (2 sqrt(pi))`, `Y_1,1 = -sqrt(3 / 4 pi) x`).
+    #[test]
+    fn the_closed_form_of_interpolated_degree_one_probes() {
+        let grid = ProbeGrid::new([2, 1, 1], Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0)).unwrap();
+        // Per probe 4 rows of [r, g, b]: L00, L1-1, L10, L11.
+        let mut radiance = vec![0.0f32; 2 * 4 * 3];
+        radiance[..3].copy_from_slice(&[1.0, 2.0, 3.0]);
+        radiance[12..15].copy_from_slice(&[2.0, 2.0, 2.0]);
+        radiance[12 + 9..12 + 12].copy_from_slice(&[-0.5, -0.5, -0.5]);
+        let valid = [true, true];
+        let view = VolumeView {
+            grid,
+            lmax: 1,
+            valid: &valid,
+            radiance: &radiance,
+            offsets: None,
+            visibility: None,
+        };
+        let irradiance_at = |view: &VolumeView<'_>, lookup, lmax, p, n| {
+            PreparedLookup::new(view, lookup, lmax).irradiance_at(p, n)
+        };
+        let c1 = (3.0 / (4.0 * PI)).sqrt();
+        let y00 = 0.5 / PI.sqrt();
+        // A quarter of the way from probe 0 (x = 0.5) to probe 1 (x = 1.5).
+        let p = Vec3::new(0.75, 0.5, 0.5);
+        for n in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)] {
+            let got = irradiance_at(&view, Lookup::Trilinear, 1, p, n);
+            let nn = n.as_dvec3().normalize();
+            let l00 = 0.75 * DVec3::new(1.0, 2.0, 3.0) + 0.25 * DVec3::splat(2.0);
+            let l11 = 0.25 * DVec3::splat(-0.5);
+            let want = PI * l00 * y00 + 2.0 * PI / 3.0 * l11 * (-c1 * nn.x);
+            assert!((got - want).abs().max_element() < 1e-6, "{n}: {got} {want}");
+        }
+        // lmax 0 drops the directional term.
+        let got = irradiance_at(&view, Lookup::Shlight, 0, p, Vec3::X);
+        let want = PI * y00 * (0.75 * DVec3::new(1.0, 2.0, 3.0) + 0.25 * DVec3::splat(2.0));
+        assert!((got - want).abs().max_element() < 1e-6);
+        // An invalid probe takes no weight; none valid: no light.
+        let one = [false, true];
+        let view1 = VolumeView {
+            valid: &one,
+            ..view
+        };
+        let got = irradiance_at(&view1, Lookup::Trilinear, 0, p, Vec3::X);
+        assert!((got - PI * y00 * DVec3::splat(2.0)).abs().max_element() < 1e-6);
+        let none = [false, false];
+        let view0 = VolumeView {
+            valid: &none,
+            ..view
+        };
+        assert_eq!(
+            irradiance_at(&view0, Lookup::Trilinear, 1, p, Vec3::X),
+            DVec3::ZERO
+        );
     }
 }

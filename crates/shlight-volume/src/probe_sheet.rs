@@ -5,7 +5,7 @@
 use glam::{DVec3, Vec3};
 use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 
-use shlight_baked::ProbeGrid;
+use shlight_baked::VolumeView;
 
 /// Shaded colour of invalid probes (a flat mid grey).
 pub(crate) const INVALID: [f32; 3] = [0.18, 0.18, 0.18];
@@ -24,8 +24,8 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
     shlight_prt::vertex_exposure(&lit)
 }
 
-/// The probes of `radiance` (per probe `(lmax+1)^2` rows of `[r, g, b]`)
-/// as an image of `(width, height, pixels)`, row-major from the top.
+/// The lit probes of `view` as an image of `(width, height, pixels)`,
+/// row-major from the top.
 ///
 /// Each probe is a disc of `ball` pixels across: the ball of a white
 /// Lambertian surface seen from +Z (x to the right, y up), each pixel the
@@ -35,13 +35,14 @@ pub fn probe_sheet_exposure(pixels: &[[f32; 3]]) -> f32 {
 /// quarter ball. Invalid probes are flat mid-grey discs (0.18). Background
 /// black.
 #[must_use]
-pub fn probe_sheet(
-    grid: &ProbeGrid,
-    valid: &[bool],
-    radiance: &[f32],
-    lmax: usize,
-    ball: usize,
-) -> (usize, usize, Vec<[f32; 3]>) {
+pub fn probe_sheet(view: &VolumeView<'_>, ball: usize) -> (usize, usize, Vec<[f32; 3]>) {
+    let VolumeView {
+        grid,
+        lmax,
+        valid,
+        radiance,
+        ..
+    } = *view;
     let ball = ball.max(3);
     let gap = (ball / 4).max(1);
     let cell = ball + gap;
@@ -94,7 +95,25 @@ pub fn probe_sheet(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shlight_baked::ProbeGrid;
     use shlight_core::sh::closed_form;
+
+    /// `grid`'s probes with `radiance`, every probe at its centre.
+    fn view<'a>(
+        grid: ProbeGrid,
+        valid: &'a [bool],
+        radiance: &'a [f32],
+        lmax: usize,
+    ) -> VolumeView<'a> {
+        VolumeView {
+            grid,
+            lmax,
+            valid,
+            radiance,
+            offsets: None,
+            visibility: None,
+        }
+    }
 
     /// The background does not darken the picture: a sheet of balls of
     /// luminance 1 on black is shown at 0.25 whatever the black around.
@@ -122,7 +141,7 @@ mod tests {
         let mut valid = vec![true; 8];
         valid[5] = false;
         let ball = 16;
-        let (w, h, pixels) = probe_sheet(&grid, &valid, &radiance, lmax, ball);
+        let (w, h, pixels) = probe_sheet(&view(grid, &valid, &radiance, lmax), ball);
         let (gap, cell) = (4, 20);
         assert_eq!((w, h), (2 * (2 * cell + gap) + gap, 2 * cell + gap));
         for z in 0..2 {
@@ -157,7 +176,7 @@ mod tests {
             .iter()
             .flat_map(|c| c.as_vec3().to_array())
             .collect();
-        let (w, _, pixels) = probe_sheet(&grid, &[true], &radiance, lmax, 32);
+        let (w, _, pixels) = probe_sheet(&view(grid, &[true], &radiance, lmax), 32);
         let (top, bottom) = (pixels[(8 + 3) * w + 8 + 16], pixels[(8 + 29) * w + 8 + 16]);
         let e = irradiance(&light);
         assert!(top[0] > 2.0 * bottom[0]);

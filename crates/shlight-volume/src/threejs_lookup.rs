@@ -51,15 +51,14 @@
 
 use glam::{DVec3, Vec3};
 use shlight_baked::{ProbeGrid, VolumeView};
-pub use shlight_format::threejs_volume::THREEJS_LMAX;
 use shlight_format::threejs_volume::threejs_probes;
 
-use crate::lookup::texel_corners;
+use crate::texel_corners::texel_corners;
 
 /// A volume's probes as three.js's `LightProbeGrid` holds them, ready to
 /// be looked up as three.js does.
 #[derive(Clone, Debug)]
-pub struct ThreeJsLookup {
+pub(crate) struct ThreeJsLookup {
     grid: ProbeGrid,
     /// Per probe nine `[r, g, b]` coefficients in three.js's basis.
     probes: Vec<[[f32; 3]; 9]>,
@@ -67,11 +66,11 @@ pub struct ThreeJsLookup {
 
 impl ThreeJsLookup {
     /// The grid of `view`'s probes: dilated, kept to `lmax` (at most
-    /// [`THREEJS_LMAX`] and the volume's; the rest of the nine coefficients
+    /// [`THREEJS_LMAX`](shlight_format::threejs_volume::THREEJS_LMAX) and the volume's; the rest of the nine coefficients
     /// zero), in three.js's basis: the numbers the `--format threejs`
     /// export's atlas holds ([`threejs_probes`]).
     #[must_use]
-    pub fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
+    pub(crate) fn new(view: &VolumeView<'_>, lmax: usize) -> Self {
         Self {
             grid: view.grid,
             probes: threejs_probes(view, lmax),
@@ -81,7 +80,7 @@ impl ThreeJsLookup {
     /// The irradiance three.js shades a point `p` facing `n` with (the
     /// module's docs); 0 where the offset point is outside the grid's box.
     #[must_use]
-    pub fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
+    pub(crate) fn irradiance_at(&self, p: Vec3, n: Vec3) -> DVec3 {
         let world_normal = n.normalize();
         let (min, max) = (self.grid.min, self.grid.max);
         let res = Vec3::from_array(self.grid.resolution.map(|r| r as f32));
@@ -128,12 +127,4 @@ impl ThreeJsLookup {
         result += c[8] * 0.429043 * (x * x - y * y);
         result.max(DVec3::ZERO)
     }
-}
-
-/// three.js's irradiance at `p` facing `n` from `view`'s probes kept to
-/// `lmax`: [`ThreeJsLookup::irradiance_at`]. Prepares the grid on every
-/// call; [`ThreeJsLookup::new`] once for many points.
-#[must_use]
-pub fn irradiance_at(view: &VolumeView<'_>, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
-    ThreeJsLookup::new(view, lmax).irradiance_at(p, n)
 }

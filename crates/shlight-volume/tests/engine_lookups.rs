@@ -12,10 +12,16 @@ use rand::{Rng, SeedableRng};
 use shlight_baked::VolumeView;
 use shlight_format::ShvolFile;
 use shlight_format::bevy_volume::bevy_ktx2;
-use shlight_volume::{Lookup, PreparedLookup, irradiance_at, lookup_lmax};
+use shlight_volume::{Lookup, PreparedLookup};
 
 #[path = "../../shlight-format/tests/support/bevy_port.rs"]
 mod bevy_port;
+
+/// `lookup`'s irradiance at `p` facing `n`, the lookup prepared for the
+/// one point.
+fn irradiance_at(view: &VolumeView<'_>, lookup: Lookup, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
+    PreparedLookup::new(view, lookup, lmax).irradiance_at(p, n)
+}
 
 fn file(resolution: [usize; 3], bounds: ([f32; 3], [f32; 3]), lmax: usize) -> ShvolFile {
     let n = resolution.iter().product();
@@ -279,33 +285,35 @@ fn each_lookup_reads_its_own_lmax() {
     let g = Gradient::new();
     let f3 = g.file(3);
     let v3 = f3.view();
-    let three = lookup_lmax(&v3, Lookup::ThreeJs, None).unwrap();
+    let three = Lookup::ThreeJs.lmax_for(&v3, None).unwrap();
     assert_eq!(three.lmax, 2);
     assert!(three.note.unwrap().contains("degree 3 is left out"));
     let mut f5 = file([1, 1, 1], ([0.0; 3], [1.0; 3]), 5);
     f5.radiance[0] = 1.0;
-    let five = lookup_lmax(&f5.view(), Lookup::ThreeJs, None).unwrap();
+    let five = Lookup::ThreeJs.lmax_for(&f5.view(), None).unwrap();
     assert!(five.note.unwrap().contains("degrees 3 to 5 are left out"));
     assert!(
-        lookup_lmax(&v3, Lookup::ThreeJs, Some(3))
+        Lookup::ThreeJs
+            .lmax_for(&v3, Some(3))
             .unwrap_err()
             .to_string()
             .contains("lmax 2 at most")
     );
-    assert_eq!(lookup_lmax(&v3, Lookup::ThreeJs, Some(1)).unwrap().lmax, 1);
+    assert_eq!(Lookup::ThreeJs.lmax_for(&v3, Some(1)).unwrap().lmax, 1);
     let f1 = g.file(1);
-    let one = lookup_lmax(&f1.view(), Lookup::ThreeJs, None).unwrap();
+    let one = Lookup::ThreeJs.lmax_for(&f1.view(), None).unwrap();
     assert_eq!((one.lmax, one.note), (1, None));
     // Bevy's export reads every degree; shlight's lookups what the GPU
     // shades.
     let mut f6 = file([1, 1, 1], ([0.0; 3], [1.0; 3]), 6);
     f6.radiance[0] = 1.0;
     let v6 = f6.view();
-    assert_eq!(lookup_lmax(&v6, Lookup::Bevy, None).unwrap().lmax, 6);
-    assert_eq!(lookup_lmax(&v6, Lookup::Bevy, Some(8)).unwrap().lmax, 6);
-    assert_eq!(lookup_lmax(&v6, Lookup::Trilinear, None).unwrap().lmax, 4);
+    assert_eq!(Lookup::Bevy.lmax_for(&v6, None).unwrap().lmax, 6);
+    assert_eq!(Lookup::Bevy.lmax_for(&v6, Some(8)).unwrap().lmax, 6);
+    assert_eq!(Lookup::Trilinear.lmax_for(&v6, None).unwrap().lmax, 4);
     assert!(
-        lookup_lmax(&v6, Lookup::Shlight, Some(5))
+        Lookup::Shlight
+            .lmax_for(&v6, Some(5))
             .unwrap_err()
             .to_string()
             .contains("lmax 4 at most")

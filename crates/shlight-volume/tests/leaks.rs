@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3};
 use shlight_baked::{ProbeGrid, VolumeView};
 use shlight_core::sh::{ShCoeffs, irradiance, sh_count};
 use shlight_mesh::Mesh;
-use shlight_volume::{Lookup, ProbeVolume, VolumeOptions, bake, irradiance_at};
+use shlight_volume::{Lookup, PreparedLookup, VolumeBake, VolumeOptions, bake};
 
 /// The rooms' extent along y and z; along x the pair spans 0..4.
 const HEIGHT: f32 = 1.5;
@@ -120,19 +120,14 @@ fn options() -> VolumeOptions {
 }
 
 /// The probes' radiance: the lamp's light only (no sky reaches in).
-fn lit(volume: &ProbeVolume) -> Vec<f32> {
+fn lit(volume: &VolumeBake) -> Vec<f32> {
     volume.relight(&ShCoeffs::zeros(volume.lmax))
 }
 
-fn view<'a>(volume: &'a ProbeVolume, radiance: &'a [f32]) -> VolumeView<'a> {
-    VolumeView {
-        grid: volume.grid,
-        lmax: volume.lmax,
-        valid: &volume.valid,
-        radiance,
-        offsets: volume.offsets.as_deref(),
-        visibility: volume.visibility.as_ref().map(|v| v.view()),
-    }
+/// `lookup`'s irradiance at `p` facing `n`, the lookup prepared for the
+/// one point.
+fn irradiance_at(view: &VolumeView<'_>, lookup: Lookup, lmax: usize, p: Vec3, n: Vec3) -> DVec3 {
+    PreparedLookup::new(view, lookup, lmax).irradiance_at(p, n)
 }
 
 /// Luminance-free: the mean of the three channels.
@@ -155,7 +150,7 @@ fn the_dark_room_stays_dark_and_the_lit_room_lit_next_to_a_thin_wall() {
         let scene = two_rooms(wall);
         let volume = bake(Some(&scene), &grid, &options(), &|_, _, _| {}).unwrap();
         let radiance = lit(&volume);
-        let v = view(&volume, &radiance);
+        let v = volume.view(&radiance);
         let e = |lookup, p: Vec3| grey(irradiance_at(&v, lookup, 2, p, Vec3::Y));
         // The lit room's mean floor irradiance, on a grid of points.
         let (left, right) = (wall - HALF_WALL, wall + HALF_WALL);
@@ -279,7 +274,7 @@ fn a_grid_that_straddles_a_floor_keeps_the_storey_below_dark() {
         let volume = bake(Some(&scene), &grid, &options(), &|_, _, _| {}).unwrap();
         assert_eq!(volume.invalid_count(), 0, "relocation frees every probe");
         let radiance = lit(&volume);
-        let v = view(&volume, &radiance);
+        let v = volume.view(&radiance);
         let e = |lookup, p: Vec3, n: Vec3| grey(irradiance_at(&v, lookup, 2, p, n));
         // The upper floor's mean irradiance, facing up.
         let mut upper = Vec::new();
@@ -334,7 +329,7 @@ fn the_engines_lookups_leak_with_or_without_relocation() {
             };
             let volume = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
             let radiance = lit(&volume);
-            let v = view(&volume, &radiance);
+            let v = volume.view(&radiance);
             let e = |lookup, p: Vec3| grey(irradiance_at(&v, lookup, 2, p, Vec3::Y));
             let left = wall - HALF_WALL;
             let mut floor = Vec::new();
@@ -366,17 +361,18 @@ fn the_engines_lookups_leak_with_or_without_relocation() {
 }
 
 /// `shlight sample`'s prepared lookup (the probes' irradiance coefficients
-/// made once) gives what `irradiance_at` gives, visibility and all, at
-/// random points and normals through the two rooms, at every lmax.
+/// made once) gives the irradiance of the radiance it reads at the point
+/// (shlight-core's `irradiance` of the probes' weighted radiance),
+/// visibility and all, at random points and normals through the two
+/// rooms, at every lmax.
 #[test]
-fn the_prepared_lookup_is_irradiance_at() {
+fn the_prepared_lookup_is_the_irradiance_of_its_radiance() {
     use rand::{Rng, SeedableRng};
-    use shlight_volume::PreparedLookup;
     let grid = ProbeGrid::new([8, 3, 4], Vec3::ZERO, Vec3::new(4.0, HEIGHT, DEPTH)).unwrap();
     let scene = two_rooms(2.25);
     let volume = bake(Some(&scene), &grid, &options(), &|_, _, _| {}).unwrap();
     let radiance = lit(&volume);
-    let v = view(&volume, &radiance);
+    let v = volume.view(&radiance);
     let mut rng = rand::rngs::StdRng::seed_from_u64(5);
     for lookup in [Lookup::Shlight, Lookup::Trilinear] {
         for lmax in 0..=2 {
@@ -392,7 +388,9 @@ fn the_prepared_lookup_is_irradiance_at() {
                     rng.random_range(-1.0..1.0),
                     rng.random_range(-1.0..1.0),
                 );
-                let want = irradiance_at(&v, lookup, lmax, p, n);
+                let want = prepared.radiance_at(p, n).map_or(DVec3::ZERO, |l| {
+                    irradiance(&l).eval(n.as_dvec3().normalize())
+                });
                 let got = prepared.irradiance_at(p, n);
                 assert!(
                     (got - want).abs().max_element() <= 1e-12 * want.abs().max_element().max(1.0),

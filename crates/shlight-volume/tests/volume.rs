@@ -9,7 +9,7 @@ use glam::{DQuat, DVec3, Vec3};
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShCoeffs, ShRotation, closed_form, irradiance, sh_count};
 use shlight_mesh::{Mesh, generate};
-use shlight_volume::{VolumeOptions, bake, sample};
+use shlight_volume::{Lookup, PreparedLookup, VolumeOptions, bake};
 
 fn options(lmax: usize, samples: usize, bounces: u32, albedo: f32) -> VolumeOptions {
     VolumeOptions {
@@ -277,7 +277,9 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
     let radiance = volume.relight(&closed_form::constant(lmax, DVec3::ONE));
     // Halfway between the left and the middle probe: only the left counts.
     let p = grid.centre([0, 0, 0]).lerp(grid.centre([1, 0, 0]), 0.5);
-    let got = sample(&grid, &volume.valid, &radiance, lmax, p).unwrap();
+    let got = PreparedLookup::new(&volume.view(&radiance), Lookup::Trilinear, lmax)
+        .radiance_at(p, Vec3::Y)
+        .unwrap();
     assert!(max_difference(&got, &probe(&radiance, lmax, 0)) < 1e-6);
     // A grid of only invalid probes has nothing to give: a probe in a cell
     // too small to leave the block stays inside and invalid, relocation or
@@ -289,15 +291,11 @@ fn probes_inside_geometry_are_invalid_and_take_no_weight() {
         &|_, _, _| {},
     )
     .unwrap();
+    let inside_radiance = inside.relight(&closed_form::constant(lmax, DVec3::ONE));
     assert!(
-        sample(
-            &inside.grid,
-            &inside.valid,
-            &inside.relight(&closed_form::constant(lmax, DVec3::ONE)),
-            lmax,
-            Vec3::ZERO
-        )
-        .is_none()
+        PreparedLookup::new(&inside.view(&inside_radiance), Lookup::Trilinear, lmax)
+            .radiance_at(Vec3::ZERO, Vec3::Y)
+            .is_none()
     );
     assert!(!inside.valid[0] && inside.relocated_count() == 0);
 }

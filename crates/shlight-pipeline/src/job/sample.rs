@@ -12,7 +12,7 @@ use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::{SamplePoints, SampledValues, ShprtFile, ShvolFile};
 use shlight_prt::{Observer, file_shade};
-use shlight_volume::{Lookup, LookupLmax, PreparedLookup, lookup_lmax, relight_file};
+use shlight_volume::{Lookup, LookupLmax, PreparedLookup, relight_file};
 
 use crate::environment::Environment;
 use crate::hooks::Hooks;
@@ -334,7 +334,7 @@ pub fn relight_volume(
 }
 
 /// The lmax `lookup` reads `file` to when asked for `lmax`
-/// (shlight-volume's [`lookup_lmax`]), refused with the lookup and lmax
+/// ([`Lookup::lmax_for`]), refused with the lookup and lmax
 /// named as `spelling` does, after `name` where given.
 ///
 /// # Errors
@@ -346,7 +346,7 @@ pub fn volume_lookup(
     lmax: Option<usize>,
     spelling: Spelling,
 ) -> Result<LookupLmax> {
-    lookup_lmax(&file.view(), lookup, lmax).map_err(|e| {
+    lookup.lmax_for(&file.view(), lmax).map_err(|e| {
         let lmax = lmax
             .map(|l| format!("{}: ", spelling.option_number("lmax", l, l)))
             .unwrap_or_default();

@@ -14,7 +14,7 @@ use shlight_format::threejs_volume::Precision;
 use shlight_format::{ShvolFile, VolumeFormat};
 use shlight_io::{Image, WriteOptions, write_image};
 use shlight_volume::{
-    BakedVolume, ProbeVolume, Stage, VolumeBakeSettings, bake_file, check_environment, probe_sheet,
+    BakedFile, Stage, VolumeBake, VolumeBakeSettings, bake_file, check_environment, probe_sheet,
     probe_sheet_exposure,
 };
 
@@ -124,7 +124,7 @@ fn stage_label(stage: Stage) -> String {
 /// A light or scene that cannot be read; a light that stops below the
 /// bake's lmax; a grid or options the bake refuses; a file that cannot be
 /// written.
-pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedVolume> {
+pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
     let lmax = plan.bake.options.lmax;
     let light = Environment::load(&plan.env, Frame::YUp, lmax)?;
     light.warnings.iter().for_each(|w| hooks.warn(w));
@@ -167,9 +167,9 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedVolume> {
             });
         },
     )?;
-    note_bake(&baked.volume, start.elapsed().as_secs_f64(), hooks);
+    note_bake(&baked.bake, start.elapsed().as_secs_f64(), hooks);
     if let Some((path, ball)) = &plan.preview {
-        write_probe_sheet(path, &grid, &baked.file, *ball)?;
+        write_probe_sheet(path, &baked.file, *ball)?;
     }
     if let Some((path, format, precision)) = &plan.output {
         for note in baked.file.write_as(path, *format, *precision)? {
@@ -181,7 +181,7 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedVolume> {
 
 /// The note of a finished bake: its probes, how many are invalid or were
 /// moved, and its rays.
-fn note_bake(volume: &ProbeVolume, seconds: f64, hooks: &dyn Hooks) {
+fn note_bake(volume: &VolumeBake, seconds: f64, hooks: &dyn Hooks) {
     hooks.note(&format!(
         "{} probes ({} invalid: inside geometry; {} moved out of geometry, at most {:.2} of a cell), {} rays in {seconds:.2} s ({:.1} M rays/s)",
         volume.probe_count(),
@@ -194,8 +194,8 @@ fn note_bake(volume: &ProbeVolume, seconds: f64, hooks: &dyn Hooks) {
 }
 
 /// The picture of the probes ([`probe_sheet`]) at its exposure.
-fn write_probe_sheet(path: &Path, grid: &ProbeGrid, file: &ShvolFile, ball: usize) -> Result<()> {
-    let (w, h, pixels) = probe_sheet(grid, &file.valid, &file.radiance, file.lmax, ball);
+fn write_probe_sheet(path: &Path, file: &ShvolFile, ball: usize) -> Result<()> {
+    let (w, h, pixels) = probe_sheet(&file.view(), ball);
     let exposure = probe_sheet_exposure(&pixels);
     let image = Image::new(w, h, pixels)
         .map_err(|e| PipelineError::new(format!("{}: {e}", path.display())))?;

@@ -9,7 +9,7 @@
 
 use shlight_prt::{Kernels, VertexRecords};
 
-use super::Hit;
+use super::hit::Hit;
 
 /// What the rows of one probe's block are made from.
 pub(super) struct Rows<'a> {

@@ -1,17 +1,21 @@
-//! A baked volume: per probe a transfer matrix per channel and the
-//! emitters' light, relit for any environment.
+//! [`VolumeBake`]: a volume's bake, per probe a transfer matrix per
+//! channel and the emitters' light, relit for any environment into its
+//! lit probes; and [`relight_file`], the same for a `.shvol` file.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_format::ShvolFile;
 
-use shlight_baked::{ProbeGrid, ProbeVisibility};
+use shlight_baked::{ProbeGrid, ProbeVisibility, VolumeView};
 
-use crate::VolumeError;
+use crate::error::VolumeError;
 
-/// A baked, relightable probe volume ([`crate::bake()`]).
+/// A volume's bake ([`crate::bake()`]): per probe a transfer matrix per
+/// channel and the emitters' light, so that [`VolumeBake::relight`] gives
+/// its lit probes under any environment, and what the bake found (probes
+/// invalid, moved, their distance maps).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ProbeVolume {
+pub struct VolumeBake {
     /// Where the probes are.
     pub grid: ProbeGrid,
     /// Highest SH degree.
@@ -43,7 +47,7 @@ pub struct ProbeVolume {
     pub scene_hash: u64,
 }
 
-impl ProbeVolume {
+impl VolumeBake {
     /// Number of probes.
     #[must_use]
     pub fn probe_count(&self) -> usize {
@@ -84,7 +88,7 @@ impl ProbeVolume {
         out
     }
 
-    /// [`ProbeVolume::relight`] into a buffer of `probes * (lmax+1)^2 * 3`.
+    /// [`VolumeBake::relight`] into a buffer of `probes * (lmax+1)^2 * 3`.
     ///
     /// # Panics
     /// If `out` has another length.
@@ -92,7 +96,27 @@ impl ProbeVolume {
         relight(&self.transfer, &self.emitted, self.lmax, env, out);
     }
 
-    /// The file of this volume with `radiance` (from [`ProbeVolume::relight`]
+    /// The lit probes of this bake with `radiance` (from
+    /// [`VolumeBake::relight`]): what a lookup
+    /// ([`crate::PreparedLookup`]) or the GPU's volume pass reads.
+    ///
+    /// # Panics
+    /// If `radiance` holds another number of values than
+    /// [`VolumeBake::relight`] gives.
+    #[must_use]
+    pub fn view<'a>(&'a self, radiance: &'a [f32]) -> VolumeView<'a> {
+        assert_eq!(radiance.len(), self.emitted.len(), "the bake's lit probes");
+        VolumeView {
+            grid: self.grid,
+            lmax: self.lmax,
+            valid: &self.valid,
+            radiance,
+            offsets: self.offsets.as_deref(),
+            visibility: self.visibility.as_ref().map(ProbeVisibility::view),
+        }
+    }
+
+    /// The file of this volume with `radiance` (from [`VolumeBake::relight`]
     /// under the bake's environment); with `relightable`, the transfer and
     /// emitted light too.
     #[must_use]
@@ -174,61 +198,4 @@ fn relight(transfer: &[f32], emitted: &[f32], lmax: usize, env: &ShCoeffs<DVec3>
             }
         }
     }
-}
-
-/// The radiance SH at `p`: the trilinear interpolation of the valid probes
-/// among the eight around it, their weights renormalised to sum to 1
-/// (`radiance` as in [`ShvolFile::radiance`]). `None` when all of them are
-/// invalid.
-#[must_use]
-pub fn sample(
-    grid: &ProbeGrid,
-    valid: &[bool],
-    radiance: &[f32],
-    lmax: usize,
-    p: Vec3,
-) -> Option<ShCoeffs<DVec3>> {
-    weighted_radiance(radiance, lmax, &valid_trilinear(grid, valid, p))
-}
-
-/// The trilinear weights of the valid probes among the eight around `p`,
-/// renormalised to sum to 1 (empty when none is valid).
-pub(crate) fn valid_trilinear(grid: &ProbeGrid, valid: &[bool], p: Vec3) -> Vec<(usize, f64)> {
-    let corners: Vec<(usize, f32)> = grid
-        .trilinear(p)
-        .into_iter()
-        .filter(|&(i, _)| valid[i])
-        .collect();
-    let total: f64 = corners.iter().map(|&(_, w)| f64::from(w)).sum();
-    if total <= 0.0 {
-        return Vec::new();
-    }
-    corners
-        .into_iter()
-        .map(|(i, w)| (i, f64::from(w) / total))
-        .collect()
-}
-
-/// `sum_k w_k L_k` of the probes' `radiance` (as in
-/// [`ShvolFile::radiance`]) with `weights` (`None` when there are none).
-pub(crate) fn weighted_radiance(
-    radiance: &[f32],
-    lmax: usize,
-    weights: &[(usize, f64)],
-) -> Option<ShCoeffs<DVec3>> {
-    if weights.is_empty() {
-        return None;
-    }
-    let nc = sh_count(lmax);
-    let mut out = ShCoeffs::<DVec3>::zeros(lmax);
-    for &(i, w) in weights {
-        for (o, rgb) in out
-            .as_mut_slice()
-            .iter_mut()
-            .zip(radiance[i * 3 * nc..][..3 * nc].chunks_exact(3))
-        {
-            *o += w * Vec3::from_slice(rgb).as_dvec3();
-        }
-    }
-    Some(out)
 }
