@@ -14,8 +14,7 @@ use shlight_format::threejs_volume::Precision;
 use shlight_format::{ShvolFile, VolumeFormat};
 use shlight_io::{Image, WriteOptions, write_image};
 use shlight_volume::{
-    BakedFile, Stage, VolumeBake, VolumeBakeSettings, bake_file, check_environment, probe_sheet,
-    probe_sheet_exposure,
+    BakedFile, Stage, VolumeBake, VolumeBakeSettings, bake_file, probe_sheet, probe_sheet_exposure,
 };
 
 use crate::environment::Environment;
@@ -114,8 +113,9 @@ fn stage_label(stage: Stage) -> String {
     }
 }
 
-/// `shlight volume`: reads the light first (a bad or short light fails
-/// before a long bake), then the scene; notes the grid; bakes (progress
+/// `shlight volume`: reads the light first (a bad light fails before the
+/// scene is read; one short of the bake's lmax before it is baked, by
+/// shlight-volume's `bake_file`), then the scene; notes the grid; bakes (progress
 /// per stage: the surfaces' rays and bounces, relocation, the probes);
 /// notes what was baked and how fast; writes the picture of the probes and
 /// the file.
@@ -128,7 +128,6 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
     let lmax = plan.bake.options.lmax;
     let light = Environment::load(&plan.env, Frame::YUp, lmax)?;
     light.warnings.iter().for_each(|w| hooks.warn(w));
-    check_environment(&light.radiance, &plan.env, lmax)?;
     let radiance = light.radiance_in(Frame::YUp);
     let name = plan.scene.display().to_string();
     let scene = shlight_mesh::load(&plan.scene)?;
