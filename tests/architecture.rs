@@ -395,35 +395,37 @@ fn declared_modules(code: &str) -> Vec<String> {
     out
 }
 
-/// The statements of `code` that start with `keyword` (up to their `;`).
-fn statements(code: &str, keyword: &str) -> Vec<String> {
+/// Where the statements of `code` that start with `keyword` lie: from the
+/// keyword to their `;`.
+fn statement_spans(code: &str, keyword: &str) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
     let mut from = 0;
     while let Some(at) = code[from..].find(keyword).map(|k| k + from) {
         let end = code[at..].find(';').map_or(code.len(), |k| k + at);
         if at == 0 || code.as_bytes()[at - 1].is_ascii_whitespace() {
-            out.push(code[at + keyword.len()..end].to_string());
+            out.push((at, end));
         }
         from = end;
     }
     out
 }
 
+/// The statements of `code` that start with `keyword` (up to their `;`).
+fn statements(code: &str, keyword: &str) -> Vec<String> {
+    statement_spans(code, keyword)
+        .into_iter()
+        .map(|(at, end)| code[at + keyword.len()..end].to_string())
+        .collect()
+}
+
 /// `code` with the statements starting with any of `keywords` blanked.
 fn strip_statements(code: &str, keywords: &[&str]) -> String {
     let mut b = code.as_bytes().to_vec();
-    for keyword in keywords {
-        let mut from = 0;
-        while let Some(at) = code[from..].find(keyword).map(|k| k + from) {
-            let end = code[at..].find(';').map_or(code.len(), |k| k + at);
-            if at == 0 || code.as_bytes()[at - 1].is_ascii_whitespace() {
-                b[at..end]
-                    .iter_mut()
-                    .filter(|c| **c != b'\n')
-                    .for_each(|c| *c = b' ');
-            }
-            from = end;
-        }
+    for (at, end) in keywords.iter().flat_map(|k| statement_spans(code, k)) {
+        b[at..end]
+            .iter_mut()
+            .filter(|c| **c != b'\n')
+            .for_each(|c| *c = b' ');
     }
     String::from_utf8(b).expect("ASCII blanks in UTF-8 text")
 }

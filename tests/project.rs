@@ -513,6 +513,8 @@ fn too_large_and_empty_inputs_are_refused_with_the_file_named() {
         err.contains("big.exr") && err.contains("too large"),
         "{err}"
     );
+    // The setting that raises the limit, as the command line spells it.
+    assert!(err.contains("raise the limit with --max-pixels"), "{err}");
     let empty = dir.join("empty.exr");
     std::fs::write(&empty, b"").unwrap();
     let err = shlight_err(&["project", s(&empty), "-o", s(&out)]);

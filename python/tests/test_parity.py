@@ -292,3 +292,11 @@ def test_bake_volume_writes_the_clis_grid_and_probe_picture(cli, tmp_path, baked
     assert (tmp_path / "again.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
     with pytest.raises(shlight.ShlightError, match=r'^precision="double": '):
         v.write(tmp_path / "x.json", format="threejs", precision="double")
+
+
+def test_a_map_over_the_pixel_limit_names_the_keyword(cli, tmp_path):
+    code, _, err = run_cli(cli, "project", PARK, "--max-pixels", "1000", "-o", tmp_path / "x.json")
+    assert code != 0 and "raise the limit with --max-pixels" in cli_error(err)
+    with pytest.raises(shlight.ShlightError) as e:
+        shlight.project(str(PARK), max_pixels=1000)
+    assert str(e.value) == cli_error(err).replace("--max-pixels", "max_pixels")

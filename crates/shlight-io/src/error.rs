@@ -94,9 +94,7 @@ pub enum IoErrorKind {
     /// The image has more pixels than [`crate::ReadOptions::max_pixels`]
     /// allows. Reported from the file's header, before any pixel memory is
     /// allocated.
-    #[error(
-        "image too large ({width}x{height} pixels; the limit is {max_pixels} pixels: raise the max_pixels limit to read it)"
-    )]
+    #[error("image too large ({width}x{height} pixels; the limit is {max_pixels} pixels)")]
     TooLarge {
         /// Width in pixels, from the header.
         width: usize,

@@ -5,7 +5,9 @@ use std::path::Path;
 
 use shlight_core::map::{EnvMap, Layout, MapOrientation};
 use shlight_format::SanitizeCounts;
-use shlight_io::{Image, PixelStats, ReadOptions, read_image, read_image_by_rows};
+use shlight_io::{
+    Image, IoError, IoErrorKind, PixelStats, ReadOptions, read_image, read_image_by_rows,
+};
 
 use crate::input_layout::{FACE_NAMES, FACE_PLACEHOLDER, InputLayout, face_paths, is_faces};
 use crate::map_info::MapInfo;
@@ -127,7 +129,7 @@ fn read_faces(path: &Path, read: &ReadOptions, spelling: Spelling) -> Result<Ima
             )));
         }
         let image = read_image(&p, read)
-            .map_err(|e| PipelineError::from(e).context(format!("reading {}", p.display())))?;
+            .map_err(|e| read_error(e, spelling).context(format!("reading {}", p.display())))?;
         if image.width() != image.height() {
             return Err(PipelineError::new(format!(
                 "{}: a cube face must be square, not {}x{}",
@@ -194,9 +196,25 @@ pub fn load_map(path: &Path, read: &ReadSettings) -> Result<LoadedMap> {
         (false, _) => {
             // By rows: a large compressed map then takes its texels'
             // memory, not the file's besides.
-            let image = read_image_by_rows(path, &read.read)?;
+            let image =
+                read_image_by_rows(path, &read.read).map_err(|e| read_error(e, spelling))?;
             LoadedMap::from_image(&name.to_string(), image, read)
         }
+    }
+}
+
+/// A reader's error, with the setting that raises the pixel limit named as
+/// `spelling` does where the image was too large.
+pub(crate) fn read_error(e: IoError, spelling: Spelling) -> PipelineError {
+    let too_large = matches!(e.kind(), IoErrorKind::TooLarge { .. });
+    let error = PipelineError::from(e);
+    if too_large {
+        error.context_after(format!(
+            "raise the limit with {}",
+            spelling.option("max_pixels")
+        ))
+    } else {
+        error
     }
 }
 

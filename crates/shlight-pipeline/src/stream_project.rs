@@ -12,7 +12,7 @@ use shlight_io::{PixelStats, RowSource, SanitizeReport, open_rows, sanitize_pixe
 
 use crate::Result;
 use crate::hooks::{Hooks, Progress};
-use crate::load::{check_values, layout_for_size, sanitize_warning};
+use crate::load::{check_values, layout_for_size, read_error, sanitize_warning};
 use crate::map_info::MapInfo;
 use crate::projector::Projection;
 use crate::settings::Settings;
@@ -57,7 +57,7 @@ pub(crate) fn project_streaming(
     s: &Settings,
     hooks: &dyn Hooks,
 ) -> Result<Streamed> {
-    let rows = open_rows(path, &s.read.read)?;
+    let rows = open_rows(path, &s.read.read).map_err(|e| read_error(e, s.read.spelling))?;
     if !rows.streams() {
         let image = rows
             .into_image()

@@ -10,6 +10,7 @@
 //! arguments into the request, call, and show what comes back.
 
 pub mod accuracy;
+mod by_name;
 pub mod compare;
 pub mod convert;
 pub mod dfg;

@@ -20,6 +20,7 @@ use shlight_prt::{
 };
 
 use crate::hooks::{Hooks, Progress};
+use crate::job::by_name::by_name;
 use crate::output_path::refuse_overwriting;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
@@ -63,14 +64,9 @@ impl PrtMode {
 impl std::str::FromStr for PrtMode {
     type Err = String;
 
+    /// One of the [names](PrtMode::name).
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        PrtMode::ALL
-            .into_iter()
-            .find(|m| m.name() == s.trim())
-            .ok_or_else(|| {
-                "expected \"unshadowed\", \"shadowed\", \"interreflected\" or \"glossy\""
-                    .to_string()
-            })
+        by_name(&PrtMode::ALL, PrtMode::name, s, "mode")
     }
 }
 

@@ -11,6 +11,7 @@ use shlight_format::{CoeffFile, FileEncoding, Quantity};
 use shlight_io::{Image, ReadOptions, ToneMap, WriteOptions, write_image};
 
 use crate::hooks::{Hooks, StageCounter};
+use crate::job::by_name::by_name;
 use crate::lobe::render_lobe;
 use crate::output_grid::{default_output_size, output_grid};
 use crate::output_path::refuse_overwriting;
@@ -57,13 +58,7 @@ impl std::str::FromStr for RenderLayout {
 
     /// A [`Layout`]'s name or `lobe`, ASCII case-insensitive.
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        RenderLayout::ALL
-            .into_iter()
-            .find(|l| l.name().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| {
-                let names: Vec<&str> = RenderLayout::ALL.iter().map(|l| l.name()).collect();
-                format!("unknown layout (expected one of {})", names.join(", "))
-            })
+        by_name(&RenderLayout::ALL, RenderLayout::name, s, "layout")
     }
 }
 

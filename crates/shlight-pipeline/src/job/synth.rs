@@ -15,6 +15,7 @@ use shlight_core::map::{
 use shlight_io::{Image, ToneMap, WriteOptions, write_image};
 
 use crate::hooks::{Hooks, StageCounter};
+use crate::job::by_name::by_name;
 use crate::output_grid::{default_output_size, output_grid};
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
@@ -65,13 +66,7 @@ impl std::str::FromStr for SynthKind {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        SynthKind::ALL
-            .into_iter()
-            .find(|k| k.name().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| {
-                let names: Vec<&str> = SynthKind::ALL.iter().map(|k| k.name()).collect();
-                format!("unknown light (expected one of {})", names.join(", "))
-            })
+        by_name(&SynthKind::ALL, SynthKind::name, s, "light")
     }
 }
 
