@@ -147,7 +147,7 @@ pub use rotation_spec::parse_rotation;
 pub use settings::{DEFAULT_SAMPLES, Method, Preview, ProjectSettings, Settings};
 pub use source_stats::source_stats;
 pub use specular::{
-    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, cmgen_face_file, gltf_specular_images, prefilter_map,
-    write_dfg, write_prefiltered_faces, write_prefiltered_ktx1, write_prefiltered_ktx2,
+    CMGEN_FACE_NAMES, GLTF_SPECULAR_SIZE, cmgen_face_file, gltf_specular_images, write_dfg,
+    write_prefiltered_faces, write_prefiltered_ktx1, write_prefiltered_ktx2,
 };
 pub use spelling::Spelling;

@@ -23,12 +23,12 @@ use crate::{PipelineError, Result};
 pub const CMGEN_FACE_NAMES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// Reads the map at `path` (warnings to `warn`) and prefilters it with
-/// `settings` (shlight-specular's `prefilter`, `progress(rows)` as rows of
-/// faces are done).
+/// `settings`, checked by the caller (shlight-specular's `prefilter`,
+/// `progress(rows)` as rows of faces are done).
 ///
 /// # Errors
-/// The loader's ([`load_map`]) or refused settings, naming the input.
-pub fn prefilter_map(
+/// The loader's ([`load_map`]), naming the input.
+pub(crate) fn prefilter_map(
     path: &Path,
     read: &ReadSettings,
     orientation: MapOrientation,
@@ -36,9 +36,6 @@ pub fn prefilter_map(
     warn: &dyn Fn(&str),
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Prefiltered> {
-    settings
-        .check()
-        .map_err(|e| PipelineError::new(e.to_string()))?;
     let name = path.display().to_string();
     let loaded = load_map(path, read)?;
     for w in &loaded.warnings {
@@ -131,8 +128,7 @@ pub const GLTF_SPECULAR_SIZE: usize = 128;
 /// roughness per mip, the full chain from `size` down to 1 pixel,
 /// `samples` per texel, faces in the light's frame, Babylon's world), each
 /// face RGBD-encoded (Babylon's `toRGBD`) as an 8-bit RGBA PNG, its rows
-/// bottom first. `progress(rows)` as
-/// [`prefilter_map`]'s.
+/// bottom first. `progress(rows)` as rows of faces are done.
 ///
 /// # Errors
 /// The loader's, refused settings, or a PNG that cannot be encoded, naming
