@@ -15,19 +15,32 @@
 //! also finds points of the original triangles in the subdivided ones, so
 //! rays can be cast against the fewer original triangles); meshes may carry per-vertex
 //! emission ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
+//!
+//! A glTF file is also read as a [`Scene`]: unique [`Primitive`]s placed
+//! by [`Instance`]s, [`Material`]s with [`Texture`]s, and
+//! [`PunctualLight`]s; [`Scene::flatten`] gives the world-space mesh with
+//! each triangle's material ([`Surfaces`]).
 
 pub mod cornell_box;
 mod error;
 pub mod generate;
 mod load;
 mod load_options;
+mod material;
 mod mesh;
+mod punctual_light;
+mod scene;
 mod subdivide;
+mod texture;
 
 pub use error::MeshError;
 pub use load::{
     MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_with, parse_mtl_bytes,
 };
 pub use load_options::LoadOptions;
+pub use material::{AlphaMode, Material, SurfaceSample, TextureRef};
 pub use mesh::{Mesh, MeshReport};
+pub use punctual_light::{Arrival, LightKind, LightUnits, PunctualLight};
+pub use scene::{Instance, MAX_UV_SETS, Primitive, Scene, Surfaces};
 pub use subdivide::Subdivision;
+pub use texture::{Filter, Texture, Wrap};

@@ -67,6 +67,18 @@ impl Mesh {
         normals: Option<Vec<Vec3>>,
         colors: Option<Vec<Vec3>>,
     ) -> Result<Self, MeshError> {
+        Self::new_keeping(source, positions, triangles, normals, colors).map(|(mesh, _)| mesh)
+    }
+
+    /// [`Mesh::new`], also giving the index in `triangles` of each kept
+    /// triangle (in order), so that per-triangle data can follow.
+    pub(crate) fn new_keeping(
+        source: impl Into<PathBuf>,
+        positions: Vec<Vec3>,
+        triangles: Vec<[u32; 3]>,
+        normals: Option<Vec<Vec3>>,
+        colors: Option<Vec<Vec3>>,
+    ) -> Result<(Self, Vec<u32>), MeshError> {
         let path = source.into();
         let invalid = |message: String| MeshError::Invalid {
             path: path.clone(),
@@ -111,13 +123,15 @@ impl Mesh {
         let diag2 = (hi - lo).length_squared();
         let mut report = MeshReport::default();
         let mut kept = Vec::with_capacity(triangles.len());
-        for tri in triangles {
+        let mut kept_index = Vec::with_capacity(triangles.len());
+        for (t, tri) in triangles.into_iter().enumerate() {
             let [a, b, c] = tri.map(|i| positions[i as usize]);
             let area2 = (b - a).cross(c - a).length();
             if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || area2 <= 1e-12 * diag2 {
                 report.degenerate_triangles += 1;
             } else {
                 kept.push(tri);
+                kept_index.push(t as u32);
             }
         }
         if kept.is_empty() {
@@ -152,14 +166,17 @@ impl Mesh {
                 area_normals
             }
         };
-        Ok(Self {
-            positions,
-            normals,
-            colors,
-            emission: None,
-            triangles: kept,
-            report,
-        })
+        Ok((
+            Self {
+                positions,
+                normals,
+                colors,
+                emission: None,
+                triangles: kept,
+                report,
+            },
+            kept_index,
+        ))
     }
 
     /// The mesh with per-vertex emitted radiance (see [`Mesh::emission`]).
