@@ -736,3 +736,71 @@ fn emissive_strength_and_metallic_reach_the_material() {
     assert!(close(mesh.colors.unwrap()[0], Vec3::splat(0.6), 1e-6));
     assert_eq!(mesh.emission.unwrap()[3], Vec3::new(4.0, 2.0, 0.0));
 }
+
+#[test]
+fn meshopt_compressed_views_decode_to_the_original_data() {
+    let positions: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.25],
+    ];
+    let indices = [0u32, 1, 2, 0, 2, 3];
+    let vertices = meshopt::encoding::encode_vertex_buffer(&positions).unwrap();
+    let triangles = meshopt::encoding::encode_index_buffer(&indices, 4).unwrap();
+    let mut a = Asset::new();
+    let v0 = a.view(&vertices);
+    let v1 = a.view(&triangles);
+    // The views as the file gives them: over a fallback buffer without
+    // data, the compressed bytes in the GLB's chunk.
+    a.json["buffers"].as_array_mut().unwrap().push(
+        json!({"byteLength": 60, "extensions": {"EXT_meshopt_compression": {"fallback": true}}}),
+    );
+    for (view, offset, length, stride, count, mode) in [
+        (v0, 0, 48, 12, 4, "ATTRIBUTES"),
+        (v1, 48, 12, 2, 6, "TRIANGLES"),
+    ] {
+        let compressed = a.json["bufferViews"][view].clone();
+        a.json["bufferViews"][view] = json!({"buffer": 1, "byteOffset": offset, "byteLength": length,
+            "extensions": {"EXT_meshopt_compression": {"buffer": 0, "byteOffset": compressed["byteOffset"],
+                "byteLength": compressed["byteLength"], "byteStride": stride, "count": count, "mode": mode}}});
+    }
+    a.json["bufferViews"][v0]["byteStride"] = 12.into();
+    let p = a.push(
+        "accessors",
+        json!({"bufferView": v0, "componentType": 5126, "count": 4, "type": "VEC3",
+        "min": [0, 0, 0], "max": [1, 1, 0.25]}),
+    );
+    let i = a.push(
+        "accessors",
+        json!({"bufferView": v1, "componentType": 5123, "count": 6, "type": "SCALAR"}),
+    );
+    let m = a.mesh(json!({"attributes": {"POSITION": p}, "indices": i}));
+    a.root_node(json!({"mesh": m}));
+    a.extension("EXT_meshopt_compression", true);
+    let s = a.load().unwrap();
+    let mesh = &s.primitives[0].mesh;
+    let want: Vec<Vec3> = positions.iter().map(|p| Vec3::from_array(*p)).collect();
+    assert_eq!(mesh.positions, want);
+    assert_eq!(mesh.triangles, [[0, 1, 2], [0, 2, 3]]);
+    // A damaged stream is an error naming the view.
+    let mut bad = a.glb();
+    let at = bad.len() - a.bin.len();
+    bad[at..at + vertices.len()].fill(0xFF);
+    let e = load_scene_bytes(Path::new("t.glb"), &bad, &LoadOptions::default()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("buffer view 0: EXT_meshopt_compression"),
+        "{e}"
+    );
+}
+
+#[test]
+fn draco_is_refused_by_name_where_required() {
+    let mut a = Asset::new();
+    let m = square(&mut a, None);
+    a.root_node(json!({"mesh": m}));
+    a.extension("KHR_draco_mesh_compression", true);
+    let e = a.load().unwrap_err().to_string();
+    assert!(e.contains("requires extension KHR_draco_mesh_compression (Draco-compressed geometry), which shlight does not read"), "{e}");
+}

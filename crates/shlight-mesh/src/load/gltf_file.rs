@@ -16,7 +16,8 @@
 //! triangles are all degenerate), with `POSITION`, `NORMAL`, every
 //! `TEXCOORD_n` and `COLOR_0` in float or (`KHR_mesh_quantization`)
 //! integer form; `KHR_lights_punctual`, `KHR_texture_transform`,
-//! `KHR_materials_emissive_strength`; PNG and JPEG textures. Without any
+//! `KHR_materials_emissive_strength`; `EXT_meshopt_compression` ([`meshopt`]);
+//! PNG and JPEG textures. Without any
 //! scene, every mesh is placed once, untransformed.
 //!
 //! Flattened ([`read`]), the vertex order is: scene nodes depth-first in
@@ -34,6 +35,7 @@ mod accessor;
 mod document;
 mod light;
 mod material;
+mod meshopt;
 mod node;
 mod primitive;
 mod texture;
@@ -53,7 +55,7 @@ pub(crate) fn read_scene(
     bytes: &[u8],
     options: &LoadOptions,
 ) -> Result<Scene, MeshError> {
-    let parsed = document::parse(path, bytes)?;
+    let parsed = document::parse(path, bytes, options)?;
     let root = &parsed.root;
     let data = accessor::Data {
         root,

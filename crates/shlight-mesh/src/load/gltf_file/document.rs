@@ -10,8 +10,8 @@ use std::path::Path;
 
 use gltf::json;
 
-use super::uri;
-use crate::MeshError;
+use super::{meshopt, uri};
+use crate::{LoadOptions, MeshError};
 
 /// The extensions the loader reads (`KHR_texture_basisu` is refused per
 /// texture, where a material uses one without a PNG or JPEG fallback).
@@ -22,16 +22,17 @@ pub(super) const HANDLED: &[&str] = &[
     "KHR_mesh_quantization",
     "EXT_mesh_gpu_instancing",
     "KHR_texture_basisu",
+    super::meshopt::NAME,
 ];
 
 /// Extensions whose data shlight cannot read: a file requiring one is
 /// refused with the reason.
 const UNREAD: &[(&str, &str)] = &[
-    (
-        "EXT_meshopt_compression",
-        "meshoptimizer-compressed buffers",
-    ),
     ("KHR_draco_mesh_compression", "Draco-compressed geometry"),
+    (
+        "KHR_meshopt_compression",
+        "meshoptimizer-compressed buffers, Khronos's version",
+    ),
 ];
 
 /// A file read and validated.
@@ -46,7 +47,7 @@ pub(super) struct Parsed {
 
 /// Parses `bytes` (glTF JSON or GLB); `path` names the file in errors and
 /// locates external buffers.
-pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Parsed, MeshError> {
+pub(super) fn parse(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Parsed, MeshError> {
     let parse_error = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -102,7 +103,8 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Parsed, MeshError> {
             }
         }
     }
-    let buffers = load_buffers(path, &root, bin)?;
+    let mut buffers = load_buffers(path, &root, bin)?;
+    meshopt::decode(path, &mut root, &mut buffers, options)?;
     let root = gltf::Document::from_json(root)
         .map_err(|e| parse_error(format!("not a valid glTF file: {}", short(&e.to_string()))))?
         .into_json();
