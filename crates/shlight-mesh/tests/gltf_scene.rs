@@ -228,6 +228,7 @@ fn a_mesh_used_by_two_nodes_is_stored_once_and_flattened_twice() {
     // gives albedo).
     let m = load_bytes(Path::new("t.glb"), MeshFormat::Gltf, &a.glb()).unwrap();
     assert_eq!(m.vertex_count(), 8);
+    assert_eq!(m.report.computed_normals, 0, "the square has normals");
     assert_eq!(m.positions[6], Vec3::new(2.0, 2.0, 0.0));
     assert!(m.colors.is_none() && m.emission.is_none());
 }
@@ -719,6 +720,10 @@ fn points_and_all_degenerate_primitives_are_skipped_with_a_note() {
     assert_eq!(s.notes.len(), 2, "{:?}", s.notes);
     assert!(s.notes[0].contains("mesh 0 (mixed) primitive 0 draws points"));
     assert!(s.notes[1].contains("primitive 1") && s.notes[1].contains("degenerate"));
+    // Flattened by `load`, the kept primitive's normals were computed
+    // (it has none), once per placement.
+    let m = load_bytes(Path::new("t.glb"), MeshFormat::Gltf, &a.glb()).unwrap();
+    assert_eq!((m.vertex_count(), m.report.computed_normals), (3, 3));
 }
 
 #[test]
@@ -803,4 +808,19 @@ fn draco_is_refused_by_name_where_required() {
     a.extension("KHR_draco_mesh_compression", true);
     let e = a.load().unwrap_err().to_string();
     assert!(e.contains("requires extension KHR_draco_mesh_compression (Draco-compressed geometry), which shlight does not read"), "{e}");
+}
+
+#[test]
+fn uv_sets_are_read_in_order_and_a_far_one_is_not_a_burden() {
+    let mut a = Asset::new();
+    let p = a.positions(&[Vec3::ZERO, Vec3::X, Vec3::Y]);
+    let uv = a.floats(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], "VEC2", json!({}));
+    let m =
+        a.mesh(json!({"attributes": {"POSITION": p, "TEXCOORD_2": uv, "TEXCOORD_4000000000": uv}}));
+    a.root_node(json!({"mesh": m}));
+    let s = a.load().unwrap();
+    let uvs = &s.primitives[0].uvs;
+    assert_eq!(uvs.len(), 3);
+    assert_eq!(uvs[0], [Vec2::ZERO; 3]);
+    assert_eq!(uvs[2], [Vec2::ZERO, Vec2::X, Vec2::Y]);
 }

@@ -124,5 +124,12 @@ pub(crate) fn read(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<M
     if !gives_albedo {
         mesh.colors = None;
     }
+    // What validating each primitive found, once per placement, as when the
+    // whole file was validated at once.
+    for instance in &scene.instances {
+        let report = &scene.primitives[instance.primitive].mesh.report;
+        mesh.report.degenerate_triangles += report.degenerate_triangles;
+        mesh.report.computed_normals += report.computed_normals;
+    }
     Ok(mesh)
 }

@@ -15,6 +15,9 @@ use super::accessor::{self, Data};
 use crate::scene::Primitive;
 use crate::{Mesh, MeshError};
 
+/// The most `TEXCOORD_n` sets read per primitive.
+const MAX_SETS: usize = 8;
+
 /// What a primitive claims before it is read: its vertex and triangle
 /// counts, from its accessors' headers.
 pub(super) fn claimed(
@@ -125,12 +128,16 @@ pub(super) fn read(
         .attributes
         .keys()
         .filter_map(|s| match s {
-            Checked::Valid(Semantic::TexCoords(k)) => Some(*k as usize + 1),
+            Checked::Valid(Semantic::TexCoords(k)) if (*k as usize) < MAX_SETS => {
+                Some(*k as usize + 1)
+            }
             _ => None,
         })
         .max()
         .unwrap_or(0);
-    let mut uvs = Vec::with_capacity(sets.min(8));
+    // Sets past the eighth are not read (no material would name one), nor
+    // the empty sets below a far one that a file could claim.
+    let mut uvs = Vec::with_capacity(sets);
     for k in 0..sets {
         let set: Vec<Vec2> = match attribute(Semantic::TexCoords(k as u32)) {
             Some(i) => accessor::read_floats(data, i, &[Type::Vec2], max_vertices)
