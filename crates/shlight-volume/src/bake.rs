@@ -523,6 +523,7 @@ impl Surface {
             albedo,
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
+            surfaces: None,
         };
         let (t, offsets) = rayon::join(
             || {

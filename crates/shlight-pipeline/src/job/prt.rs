@@ -375,7 +375,7 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
         return glossy(plan, &mesh, brdf, &progress, hooks);
     }
     let start = Instant::now();
-    let (transfer, file) = bake_file(&mesh, &plan.mesh, &plan.bake, &progress);
+    let (transfer, file) = bake_file(&mesh, None, &plan.mesh, &plan.bake, &progress);
     let seconds = start.elapsed().as_secs_f64();
     hooks.note(&format!(
         "{name}: {} vertices, {} triangles, {} transfer, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
@@ -456,7 +456,7 @@ fn glossy(
         (lmax + 1) * (lmax + 1),
     ));
     let start = Instant::now();
-    let (transfer, mut file) = bake_glossy_file(mesh, &plan.mesh, &plan.bake, brdf, progress);
+    let (transfer, mut file) = bake_glossy_file(mesh, None, &plan.mesh, &plan.bake, brdf, progress);
     let seconds = start.elapsed().as_secs_f64();
     hooks.note(&format!(
         "{name}: {} vertices, {} triangles, glossy {} transfer for {brdf}, lmax {lmax}, {} directions; {} rays in {seconds:.2} s",
