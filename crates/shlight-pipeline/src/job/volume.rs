@@ -154,6 +154,7 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
     let start = Instant::now();
     let baked = bake_file(
         &scene,
+        None,
         &plan.scene,
         &radiance,
         &plan.env,
