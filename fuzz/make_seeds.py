@@ -255,6 +255,76 @@ binc = buf + b"\0" * (-len(buf) % 4)
 glb = struct.pack("<4sII", b"glTF", 2, 12 + 8 + len(js) + 8 + len(binc)) + struct.pack("<I4s", len(js), b"JSON") + js + struct.pack("<I4s", len(binc), b"BIN\0") + binc
 out("gltf", "pyramid.glb", glb)
 
+# A scene: the pyramid's positions quantized (normalized SHORT, padded to 8
+# bytes a vertex, dequantized by the node) with UVs, placed by a node and
+# three EXT_mesh_gpu_instancing instances, a 2x2 PNG base colour texture
+# with KHR_texture_transform, an emissive MASK material, and a light of
+# each kind under a turned parent; a GLB.
+import zlib
+
+
+def tiny_png(w, h, rgba):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\0" + bytes(rgba[y * w * 4 : (y + 1) * w * 4]) for y in range(h))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+qpos = b"".join(struct.pack("<4h", *[round(c * 32767) for c in v], 0) for v in verts)
+uvs = b"".join(struct.pack("<2f", v[0], v[2]) for v in verts)
+png_bytes = tiny_png(2, 2, [255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 255, 255, 255, 255, 0])
+inst_t = struct.pack("<9f", 0, 0, 0, 2, 0, 0, 0, 0, 2)
+inst_r = struct.pack("<12h", 0, 0, 0, 32767, 0, 23170, 0, 23170, 0, 0, 32767, 0)
+parts = [qpos, uvs, idx, png_bytes, inst_t, inst_r]
+views, sbuf = [], b""
+for p in parts:
+    views.append({"buffer": 0, "byteOffset": len(sbuf), "byteLength": len(p)})
+    sbuf += p + b"\0" * (-len(p) % 4)
+views[0]["byteStride"] = 8
+scene_doc = {
+    "asset": {"version": "2.0"},
+    "extensionsUsed": ["KHR_mesh_quantization", "EXT_mesh_gpu_instancing", "KHR_texture_transform",
+                       "KHR_lights_punctual", "KHR_materials_emissive_strength", "EXT_unknown"],
+    "extensionsRequired": ["KHR_mesh_quantization", "EXT_mesh_gpu_instancing"],
+    "extensions": {"KHR_lights_punctual": {"lights": [
+        {"type": "point", "intensity": 50, "range": 4},
+        {"type": "spot", "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}},
+        {"type": "directional", "color": [1, 0.9, 0.8]}]}},
+    "scene": 0,
+    "scenes": [{"nodes": [0, 1, 2]}],
+    "nodes": [
+        {"mesh": 0, "translation": [0, 0.5, 0], "scale": [1, 1, 1]},
+        {"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 3, "ROTATION": 4}}}},
+        {"rotation": [0.7071068, 0, 0, 0.7071068], "translation": [0, 3, 0], "children": [3, 4, 5]},
+        {"extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"translation": [1, 0, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"scale": [-1, 1, 1], "extensions": {"KHR_lights_punctual": {"light": 2}}},
+    ],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+    "materials": [{"alphaMode": "MASK", "alphaCutoff": 0.4, "emissiveFactor": [0.1, 0.1, 0],
+                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}},
+                   "pbrMetallicRoughness": {"metallicFactor": 0, "baseColorTexture": {"index": 0,
+                       "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 0.3, "scale": [2, 2]}}}}}],
+    "samplers": [{"magFilter": 9728, "wrapS": 33648}],
+    "images": [{"bufferView": 3, "mimeType": "image/png"}],
+    "textures": [{"source": 0, "sampler": 0}],
+    "accessors": [
+        {"bufferView": 0, "componentType": 5122, "normalized": True, "count": n, "type": "VEC3", "min": [0, 0, 0], "max": [32767, 32767, 32767]},
+        {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC2"},
+        {"bufferView": 2, "componentType": 5123, "count": 3 * len(faces), "type": "SCALAR"},
+        {"bufferView": 4, "componentType": 5126, "count": 3, "type": "VEC3"},
+        {"bufferView": 5, "componentType": 5122, "normalized": True, "count": 3, "type": "VEC4"},
+    ],
+    "bufferViews": views,
+    "buffers": [{"byteLength": len(sbuf)}],
+}
+js = json.dumps(scene_doc).encode()
+js += b" " * (-len(js) % 4)
+out("gltf", "scene.glb", struct.pack("<4sII", b"glTF", 2, 12 + 8 + len(js) + 8 + len(sbuf))
+    + struct.pack("<I4s", len(js), b"JSON") + js + struct.pack("<I4s", len(sbuf), b"BIN\0") + sbuf)
+
 # --- Coefficient files and the engine formats `convert` reads back ----------
 tmpdir = tempfile.mkdtemp()
 crop_exr = os.path.join(tmpdir, "crop.exr")

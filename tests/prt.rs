@@ -60,6 +60,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
         albedo: Albedo::Constant([0.5; 3]),
         seed: 4,
         emission: None,
+        surfaces: None,
     };
     let library = bake(&mesh, &options, &|_, _, _| {});
     assert_eq!(file.transfer, library.coeffs);

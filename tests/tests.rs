@@ -3,6 +3,7 @@
 mod accuracy;
 mod architecture;
 mod batch;
+mod cycles;
 mod encoding_snippets;
 mod encodings_cli;
 mod engine_frames;

@@ -11,10 +11,13 @@ pub const MAX_PIXELS: usize = 1 << 22;
 /// The mesh limits the mesh targets read with (`LoadOptions`): 2^20
 /// vertices and 2^21 triangles, so that docs/limits.md's bound (about 40
 /// bytes a vertex and 12 a triangle, plus a few times the file's size)
-/// stays far inside the targets' RSS limit.
+/// stays far inside the targets' RSS limit; and glTF textures of 2^18
+/// pixels (16 of them, 4 bytes a pixel: 16 MiB, and the decoder's 32
+/// bytes a pixel of one: 8 MiB).
 pub const MESH_LIMITS: shlight_mesh::LoadOptions = shlight_mesh::LoadOptions {
     max_vertices: 1 << 20,
     max_triangles: 1 << 21,
+    max_texture_pixels: 1 << 18,
 };
 
 /// Installs the targets' panic hook (call it from `fuzz_target!`'s `init`).

@@ -50,4 +50,18 @@ pub enum MeshError {
         /// The limit.
         max: usize,
     },
+    /// A glTF texture has more pixels than
+    /// [`crate::LoadOptions::max_texture_pixels`], judged from its image
+    /// header before it is decoded.
+    #[error("{path}: {texture} has {pixels} pixels, more than the texture limit of {max}")]
+    TextureTooLarge {
+        /// The glTF file.
+        path: PathBuf,
+        /// Which texture (`"texture 2 (wood)"`).
+        texture: String,
+        /// Its pixel count.
+        pixels: u64,
+        /// The limit.
+        max: usize,
+    },
 }

@@ -16,7 +16,7 @@
 //! rays can be cast against the fewer original triangles); meshes may carry per-vertex
 //! emission ([`Mesh::emission`]) from OBJ `Ke` or glTF `emissiveFactor`.
 //!
-//! A glTF file is also read as a [`Scene`]: unique [`Primitive`]s placed
+//! A glTF file is also read as a [`Scene`] ([`load_scene`]): unique [`Primitive`]s placed
 //! by [`Instance`]s, [`Material`]s with [`Texture`]s, and
 //! [`PunctualLight`]s; [`Scene::flatten`] gives the world-space mesh with
 //! each triangle's material ([`Surfaces`]).
@@ -35,7 +35,8 @@ mod texture;
 
 pub use error::MeshError;
 pub use load::{
-    MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_with, parse_mtl_bytes,
+    MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_scene, load_scene_bytes,
+    load_with, parse_mtl_bytes,
 };
 pub use load_options::LoadOptions;
 pub use material::{AlphaMode, Material, SurfaceSample, TextureRef};

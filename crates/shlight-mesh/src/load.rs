@@ -16,7 +16,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use crate::{LoadOptions, Mesh, MeshError};
+use crate::{LoadOptions, Mesh, MeshError, Scene};
 
 /// The mesh file formats shlight reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,6 +116,49 @@ pub fn load_bytes_with(
         MeshFormat::Gltf => gltf_file::read(path, bytes, options),
     };
     caught(path, format.name(), read)
+}
+
+/// Loads a glTF 2.0 file (`.gltf` or `.glb`) as a [`Scene`]: its unique
+/// primitives, their instances, materials with decoded textures, and
+/// punctual lights, under `options` (see the `gltf_file` module
+/// documentation for what is read and refused).
+/// [`Scene::flatten`] gives what [`load_with`] returns for the file, less
+/// the rule that a file giving no albedo has no colours.
+///
+/// # Errors
+/// An unreadable file or one without a `.gltf` / `.glb` extension, and
+/// everything [`load_scene_bytes`] refuses.
+pub fn load_scene(path: &Path, options: &LoadOptions) -> Result<Scene, MeshError> {
+    if MeshFormat::from_path(path) != Some(MeshFormat::Gltf) {
+        return Err(MeshError::UnknownFormat {
+            path: path.to_path_buf(),
+            expected: ".gltf or .glb (scenes are read from glTF files)",
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    load_scene_bytes(path, &bytes, options)
+}
+
+/// [`load_scene`] on glTF JSON or GLB bytes held in memory (told apart by
+/// the GLB magic); `path` names the file in errors and locates external
+/// buffers and images (relative to its directory).
+///
+/// # Errors
+/// A file that is not valid glTF 2.0, one that requires an extension
+/// shlight does not read (named), broken accessors or buffers, a
+/// non-finite or singular node transform (named), an invalid light
+/// (named), a texture that cannot be read or decoded (naming it and its
+/// file), and counts beyond the limits ([`MeshError::TooLarge`],
+/// [`MeshError::TextureTooLarge`]); every message starts with the path.
+pub fn load_scene_bytes(
+    path: &Path,
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<Scene, MeshError> {
+    caught(path, "glTF", || gltf_file::read_scene(path, bytes, options))
 }
 
 /// `read`, with a parser's panic on a malformed file (tobj and gltf panic

@@ -5,8 +5,9 @@ use std::path::Path;
 
 use crate::MeshError;
 
-/// How [`crate::load_with`] and [`crate::load_bytes_with`] read a mesh:
-/// the largest mesh accepted.
+/// How [`crate::load_with`], [`crate::load_bytes_with`],
+/// [`crate::load_scene`] and [`crate::load_scene_bytes`] read a mesh: the
+/// largest mesh and textures accepted.
 ///
 /// The counts are judged from headers (PLY element counts, OFF counts,
 /// glTF accessor counts) before the memory for them is allocated, and
@@ -23,6 +24,11 @@ pub struct LoadOptions {
     /// The most triangles accepted, counted before degenerate triangles
     /// are dropped. Default [`LoadOptions::DEFAULT_MAX_TRIANGLES`].
     pub max_triangles: usize,
+    /// The most pixels (width x height) of one glTF texture, judged from
+    /// the image header before it is decoded; all the textures of a file
+    /// together may hold 16 times this. Default
+    /// [`LoadOptions::DEFAULT_MAX_TEXTURE_PIXELS`].
+    pub max_texture_pixels: usize,
 }
 
 impl LoadOptions {
@@ -32,6 +38,9 @@ impl LoadOptions {
     /// The default [`LoadOptions::max_triangles`], 2^27 (134 million,
     /// 1.6 GB of indices).
     pub const DEFAULT_MAX_TRIANGLES: usize = 1 << 27;
+    /// The default [`LoadOptions::max_texture_pixels`], 2^26 (8192 x 8192,
+    /// 256 MiB of 8-bit RGBA texels).
+    pub const DEFAULT_MAX_TEXTURE_PIXELS: usize = 1 << 26;
 
     /// Refuses `count` vertices beyond [`LoadOptions::max_vertices`].
     pub(crate) fn check_vertices(&self, path: &Path, count: usize) -> Result<(), MeshError> {
@@ -49,6 +58,7 @@ impl Default for LoadOptions {
         Self {
             max_vertices: Self::DEFAULT_MAX_VERTICES,
             max_triangles: Self::DEFAULT_MAX_TRIANGLES,
+            max_texture_pixels: Self::DEFAULT_MAX_TEXTURE_PIXELS,
         }
     }
 }

@@ -23,7 +23,8 @@ pub struct Primitive {
     /// Positions, normals and triangles in the mesh's space; `colors` is
     /// `COLOR_0`'s RGB (linear) when the primitive has one.
     pub mesh: Mesh,
-    /// `TEXCOORD_0`, `TEXCOORD_1`, ...: one UV per vertex per set.
+    /// `TEXCOORD_0`, `TEXCOORD_1`, ... (at most 8 sets; a set missing
+    /// below one that is given reads as zeros): one UV per vertex per set.
     pub uvs: Vec<Vec<Vec2>>,
     /// `COLOR_0`'s alpha, when it has one.
     pub color_alpha: Option<Vec<f32>>,
@@ -52,7 +53,9 @@ pub struct Scene {
     /// Unique geometry.
     pub primitives: Vec<Primitive>,
     /// Placements, in the file's order (scene nodes depth-first in document
-    /// order, a node's primitives in order, then its GPU instances).
+    /// order, a node's primitives in order; a node with
+    /// `EXT_mesh_gpu_instancing` places its primitives once per instance,
+    /// in instance order, instead of once).
     pub instances: Vec<Instance>,
     /// Materials, in the file's order.
     pub materials: Vec<Material>,

@@ -138,14 +138,16 @@ fn bad_off_files_are_errors() {
 
 /// A glTF with one triangle primitive (a unit square in z = 0, indexed,
 /// with COLOR_0) placed twice: by a node translated +2 in x whose child is
-/// mirrored in x (scale -1), so the second copy must keep facing +z.
+/// mirrored in x (scale -1), so the second copy must keep facing +z. The
+/// material is a dielectric (`metallicFactor` 0; glTF's default, 1, is a
+/// metal, which has no diffuse albedo).
 fn gltf_json(buffer_uri: Option<&str>, bytes: usize) -> String {
     let uri = buffer_uri.map_or(String::new(), |u| format!("\"uri\": \"{u}\", "));
     format!(
         r#"{{"asset": {{"version": "2.0"}}, "scene": 0,
  "scenes": [{{"nodes": [0]}}],
  "nodes": [{{"mesh": 0, "translation": [2, 0, 0], "children": [1]}}, {{"mesh": 0, "scale": [-1, 1, 1]}}],
- "materials": [{{"pbrMetallicRoughness": {{"baseColorFactor": [0.5, 1, 1, 1]}}}}],
+ "materials": [{{"pbrMetallicRoughness": {{"baseColorFactor": [0.5, 1, 1, 1], "metallicFactor": 0}}}}],
  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "COLOR_0": 1}}, "indices": 2, "material": 0}}]}}],
  "buffers": [{{{uri}"byteLength": {bytes}}}],
  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 96, "byteLength": 12}}],

@@ -94,6 +94,7 @@ mod projector;
 mod read_settings;
 mod render;
 mod rotation_spec;
+mod scene_surfaces;
 mod settings;
 mod source_stats;
 mod specular;

@@ -34,6 +34,7 @@ fn main() {
         let mesh = shlight_mesh::load(&path).expect("a bundled mesh");
         let (_, file) = bake_glossy_file(
             &mesh,
+            None,
             &path,
             &request,
             Brdf::Phong { exponent: 32.0 },

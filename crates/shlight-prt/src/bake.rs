@@ -7,7 +7,7 @@ use shlight_rays::Occluder;
 use crate::cast::Cast;
 use crate::options::{BakeOptions, Mode, Stage};
 use crate::records::Kernels;
-use crate::transfer::Transfer;
+use crate::transfer::{IncidentTransfer, Transfer};
 
 /// Bakes the transfer of every vertex of `mesh` ([`Transfer`] states what
 /// it is).
@@ -30,6 +30,15 @@ use crate::transfer::Transfer;
 /// back of a triangle (an open mesh seen from behind) is blocked and brings
 /// no bounce light: surfaces are one-sided.
 ///
+/// With [`BakeOptions::surfaces`], rays pass the cut-outs of the triangles
+/// whose material cuts out ([`shlight_rays::CutOuts`]: a cut-out texel
+/// passes every ray, shadow rays too; partial coverage a deterministic
+/// share of them), and each front hit reads the albedo of the texel it met
+/// ([`shlight_mesh::Surfaces::sample`] at the hit's triangle and
+/// barycentric weights) once, as it is cast; a bounce then adds that
+/// albedo times the light arriving there, interpolated from the
+/// triangle's corners ([`Transfer`]).
+///
 /// Rays are cast direction by direction, directions in parallel (rayon):
 /// for each shared direction, the vertices facing it are taken in Morton
 /// order eight at a time, and each eight is traced as one
@@ -43,7 +52,8 @@ use crate::transfer::Transfer;
 /// [`Stage::Rays`] in directions, for the bounces in vertices.
 ///
 /// # Panics
-/// If a per-vertex albedo has another length than the mesh's vertices.
+/// If a per-vertex albedo has another length than the mesh's vertices, or
+/// the surfaces have another triangle count than the mesh.
 #[must_use]
 pub fn bake(
     mesh: &Mesh,
@@ -57,7 +67,8 @@ pub fn bake(
 /// `occluder.0` (`occluder.1` its map): the rays are cast against the
 /// original triangles (the same surface, fewer triangles) and their hits
 /// found in `mesh` by [`Subdivision::locate_each`], a direction's hits
-/// together. `None`: cast against `mesh`.
+/// together. `None`: cast against `mesh`. [`BakeOptions::surfaces`] are
+/// those of the mesh cast against (`occluder.0`).
 ///
 /// # Panics
 /// As [`bake`].
@@ -68,14 +79,21 @@ pub fn bake_with_occluder(
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Transfer {
-    let built = occluder.map(|(coarse, map)| (Occluder::new(coarse), map));
+    let built = occluder.map(|(coarse, map)| {
+        let occluder = match &options.surfaces {
+            Some(s) => Occluder::with_cut_outs(coarse, s.clone()),
+            None => Occluder::new(coarse),
+        };
+        (occluder, map)
+    });
     let occluder = built.as_ref().map(|(o, map)| (o, *map));
     bake_with(mesh, occluder, options, progress, Kernels::detect())
 }
 
 /// [`bake_with_occluder`] with the occluder made ready already
-/// ([`Occluder::new`] of the mesh `mesh` was subdivided from), for callers
-/// that cast rays of their own against it too.
+/// ([`Occluder::new`] of the mesh `mesh` was subdivided from, or
+/// [`Occluder::with_cut_outs`] of it and [`BakeOptions::surfaces`]), for
+/// callers that cast rays of their own against it too.
 ///
 /// # Panics
 /// As [`bake`].
@@ -100,16 +118,20 @@ fn bake_with(
     let shadowed = options.mode != Mode::Unshadowed;
     let bounces = options.mode.bounces();
     let cast = Cast::new(mesh, occluder, options, shadowed, bounces > 0, progress);
-    let (total, emitted) = cast.diffuse(options, bounces, kernels, progress);
+    let diffuse = cast.diffuse(options, bounces, kernels, progress);
     let stride = cast.channels * cast.nc;
     Transfer {
         lmax: options.lmax,
         channels: cast.channels,
         vertex_count: cast.order.len(),
-        coeffs: by_vertex(&total, stride, &cast.order),
+        coeffs: by_vertex(&diffuse.total, stride, &cast.order),
         samples: cast.dirs.len(),
         rays: cast.rays,
-        emitted: emitted.map(|e| by_vertex(&e, 1, &cast.order)),
+        emitted: diffuse.emitted.map(|e| by_vertex(&e, 1, &cast.order)),
+        incident: diffuse.incident.map(|i| IncidentTransfer {
+            coeffs: by_vertex(&i.coeffs, stride, &cast.order),
+            emitted: i.emitted.map(|e| by_vertex(&e, 1, &cast.order)),
+        }),
     }
 }
 
@@ -146,6 +168,7 @@ mod tests {
             albedo: Albedo::PerVertex(fine.colors.clone().unwrap()),
             seed: 5,
             emission: fine.emission.clone(),
+            surfaces: None,
         };
         let occluder = Occluder::new(&room);
         let run = |kernels| {

@@ -3,9 +3,10 @@
 //! file, so every front end bakes and records a mesh the same way.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use shlight_format::ShprtFile;
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Surfaces};
 
 use crate::bake::bake;
 use crate::brdf::Brdf;
@@ -51,6 +52,7 @@ impl BakeRequest {
             albedo,
             seed: self.seed,
             emission: None,
+            surfaces: None,
         };
         (options, recorded)
     }
@@ -81,18 +83,22 @@ pub fn mesh_name(path: &Path) -> String {
 /// `.shprt` file: the albedo chosen by [`BakeRequest::albedo`], [`bake`]
 /// (`progress` as there), and [`Transfer::to_shprt`] with the mode, seed,
 /// recorded albedo, the mesh's content hash and [`mesh_name`]. Returns the
-/// bake (its ray counts) and the file.
+/// bake (its ray counts) and the file. `surfaces`: a glTF scene's, whose
+/// mesh `mesh` is ([`BakeOptions::surfaces`]: cut-outs, and the albedo of
+/// the texel a bounce hits).
 ///
 /// # Panics
 /// As [`bake`].
 #[must_use]
 pub fn bake_file(
     mesh: &Mesh,
+    surfaces: Option<&Arc<Surfaces>>,
     mesh_path: &Path,
     request: &BakeRequest,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> (Transfer, ShprtFile) {
-    let (options, recorded) = request.options(mesh);
+    let (mut options, recorded) = request.options(mesh);
+    options.surfaces = surfaces.cloned();
     let transfer = bake(mesh, &options, progress);
     let file = transfer.to_shprt(
         request.mode,
@@ -106,19 +112,22 @@ pub fn bake_file(
 
 /// [`bake_file`] for glossy transfer: `request.mode` is the transport
 /// (its bounces the diffuse bounces the matrices gather), `brdf` the lobe
-/// the file records ([`bake_glossy`], [`GlossyTransfer::to_shprt`]).
+/// the file records ([`bake_glossy`], [`GlossyTransfer::to_shprt`]),
+/// `surfaces` as [`bake_file`]'s.
 ///
 /// # Panics
 /// As [`bake`].
 #[must_use]
 pub fn bake_glossy_file(
     mesh: &Mesh,
+    surfaces: Option<&Arc<Surfaces>>,
     mesh_path: &Path,
     request: &BakeRequest,
     brdf: Brdf,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> (GlossyTransfer, ShprtFile) {
-    let (options, recorded) = request.options(mesh);
+    let (mut options, recorded) = request.options(mesh);
+    options.surfaces = surfaces.cloned();
     let transfer = bake_glossy(mesh, &options, progress);
     let file = transfer.to_shprt(mesh, brdf, request.seed, recorded, &mesh_name(mesh_path));
     (transfer, file)
@@ -141,8 +150,13 @@ mod tests {
             albedo: None,
             seed: 3,
         };
-        let (transfer, file) =
-            bake_file(&sphere, Path::new("dir/ball.obj"), &request, &|_, _, _| {});
+        let (transfer, file) = bake_file(
+            &sphere,
+            None,
+            Path::new("dir/ball.obj"),
+            &request,
+            &|_, _, _| {},
+        );
         let options = BakeOptions {
             lmax: 2,
             samples: 64,
@@ -150,6 +164,7 @@ mod tests {
             albedo: Albedo::Constant(DEFAULT_ALBEDO),
             seed: 3,
             emission: None,
+            surfaces: None,
         };
         let direct = bake(&sphere, &options, &|_, _, _| {});
         assert_eq!(transfer.coeffs, direct.coeffs);

@@ -3,7 +3,8 @@
 //! direction from the vertices facing it, in Morton order, eight at a time
 //! as packets against the mesh made ready ([`shlight_rays::Occluder`]); one
 //! visibility bit per vertex and direction, and the front hits the bounces
-//! read.
+//! read (with [`BakeOptions::surfaces`], each with the albedo of the texel
+//! it met, and through cut-outs).
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
@@ -55,17 +56,27 @@ pub(crate) struct Cast {
     /// Per direction, its rays' front hits in rank order (empty unless
     /// kept).
     pub(crate) front_hits: Vec<Vec<FrontHit>>,
+    /// With surfaces ([`Cast::texel`]): per direction, the albedo at each of
+    /// its front hits (`Surfaces::sample` at the point of the original
+    /// triangle met, clamped to `0..=1`), in the order of `front_hits`.
+    pub(crate) hit_albedo: Vec<Vec<Vec3>>,
+    /// The bake has surfaces: a bounce takes the albedo of the texel hit.
+    pub(crate) texel: bool,
     /// Rays cast.
     pub(crate) rays: u64,
 }
 
 impl Cast {
-    /// Casts the rays of `options` (its lmax, samples, seed and albedo)
-    /// when `shadowed`, keeping the front hits when `keep_hits`.
+    /// Casts the rays of `options` (its lmax, samples, seed, albedo and
+    /// surfaces) when `shadowed`, keeping the front hits when `keep_hits`.
+    /// `occluder` must have been built with the surfaces' cut-outs
+    /// ([`Occluder::with_cut_outs`]) when there are surfaces; without one,
+    /// the occluder made of `mesh` is.
     ///
     /// # Panics
     /// If a per-vertex albedo or the emission has another length than the
-    /// mesh's vertices.
+    /// mesh's vertices, or the surfaces another triangle count than the
+    /// mesh the rays are cast against.
     pub(crate) fn new(
         mesh: &Mesh,
         occluder: Option<(&Occluder, &Subdivision)>,
@@ -81,9 +92,20 @@ impl Cast {
         if let Some(e) = &options.emission {
             assert_eq!(e.len(), n_vertices, "one emission per vertex");
         }
+        let surfaces = options.surfaces.as_deref();
+        if let Some(s) = surfaces {
+            let cast_against =
+                occluder.map_or(mesh.triangle_count(), |(_, m)| m.original_triangles());
+            assert_eq!(
+                s.mesh.triangle_count(),
+                cast_against,
+                "the surfaces are those of the mesh the rays are cast against"
+            );
+        }
+        let texel = surfaces.is_some();
         let lmax = options.lmax;
         let nc = sh_count(lmax);
-        let channels = options.albedo.channels();
+        let channels = options.channels();
         let dirs: Vec<Vec3> = stratified_directions(options.samples.max(1), options.seed)
             .iter()
             .map(|d| d.as_vec3())
@@ -116,6 +138,7 @@ impl Cast {
         // escapes.
         let mut visible = vec![0u64; if shadowed { dirs.len() * words } else { 0 }];
         let mut front_hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
+        let mut hit_albedo: Vec<Vec<Vec3>> = vec![Vec::new(); dirs.len()];
         let rays = AtomicU64::new(0);
         if shadowed {
             // What the rays are cast against: `mesh`, or the occluder.
@@ -123,9 +146,18 @@ impl Cast {
             let (occluder, map) = match occluder {
                 Some((o, m)) => (o, Some(m)),
                 None => {
-                    own = Occluder::new(mesh);
+                    own = match &options.surfaces {
+                        Some(s) => Occluder::with_cut_outs(mesh, s.clone()),
+                        None => Occluder::new(mesh),
+                    };
                     (&own, None)
                 }
+            };
+            // The albedo at a point of the triangles cast against.
+            let albedo_at = |triangle: u32, w: [f32; 3]| {
+                surfaces.map_or(Vec3::ZERO, |s| {
+                    s.sample(triangle, w).albedo.clamp(Vec3::ZERO, Vec3::ONE)
+                })
             };
             // Where the rays start, by rank.
             let origins = occluder.ray_origins(mesh);
@@ -133,11 +165,21 @@ impl Cast {
             let done = AtomicUsize::new(0);
             visible
                 .par_chunks_mut(words.max(1))
-                .zip(front_hits.par_iter_mut())
+                .zip(front_hits.par_iter_mut().zip(hit_albedo.par_iter_mut()))
                 .enumerate()
                 .for_each_init(
-                    || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                    |(local, facing, pending, coarse, located), (j, (row, hits))| {
+                    || {
+                        (
+                            Vec::new(),
+                            Vec::new(),
+                            Vec::new(),
+                            Vec::new(),
+                            Vec::new(),
+                            Vec::new(),
+                        )
+                    },
+                    |(local, facing, pending, coarse, located, pending_albedo),
+                     (j, (row, (hits, albedo)))| {
                         let d = dirs[j];
                         let dir = Direction::new(d);
                         local.clear();
@@ -165,6 +207,13 @@ impl Cast {
                                     let triangle = found.triangle[k];
                                     if !occluder.is_front(triangle, d) {
                                         continue;
+                                    }
+                                    if texel {
+                                        let a = albedo_at(triangle, found.barycentrics[k]);
+                                        match map {
+                                            None => albedo.push(a),
+                                            Some(_) => pending_albedo.push(a),
+                                        }
                                     }
                                     match map {
                                         None => {
@@ -196,7 +245,7 @@ impl Cast {
                         // together (their memory reads overlap).
                         if let Some(m) = map {
                             m.locate_each(coarse, located);
-                            for (&s, l) in pending.iter().zip(located.iter()) {
+                            for (i, (&s, l)) in pending.iter().zip(located.iter()).enumerate() {
                                 if let Some((triangle, [_, b1, b2])) = *l {
                                     hits.push(FrontHit {
                                         rank: s,
@@ -204,10 +253,14 @@ impl Cast {
                                         b1,
                                         b2,
                                     });
+                                    if texel {
+                                        albedo.push(pending_albedo[i]);
+                                    }
                                 }
                             }
                             pending.clear();
                             coarse.clear();
+                            pending_albedo.clear();
                         }
                         rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
                         progress(
@@ -231,6 +284,8 @@ impl Cast {
             visible,
             words,
             front_hits,
+            hit_albedo,
+            texel,
             rays: rays.into_inner(),
         }
     }

@@ -11,6 +11,14 @@
 //! time; portable loops elsewhere). Neighbouring vertices' hits along one
 //! direction land near one another, so the records they read are mostly in
 //! cache.
+//!
+//! Without surfaces a record is a vertex's exit transfer (its albedo
+//! folded in) and a hit reads the interpolation of its corners' records.
+//! With surfaces ([`crate::BakeOptions::surfaces`]) a record is the light
+//! arriving at the vertex before any albedo, and each hit's sum is
+//! multiplied, per channel, by the albedo of the texel it met (with AVX2,
+//! one permutation spreads the hit's three albedos over a vector of the
+//! record); emission is not multiplied by it.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -21,6 +29,7 @@ use shlight_core::sh::sh_count;
 use crate::cast::{Cast, FrontHit};
 use crate::options::{Albedo, BakeOptions, Stage};
 use crate::records::{self, Kernels, LINE, Line, flat, flat_mut};
+use crate::transfer::IncidentTransfer;
 
 const CHUNK: usize = 64;
 
@@ -32,18 +41,17 @@ const BOUNCE_CHUNK: usize = 1024;
 impl Cast {
     /// The diffuse transfer of `options` with `bounces` bounces gathered
     /// (its rays cast by [`Cast::new`], shadowed unless `visible` is empty,
-    /// front hits kept when `bounces > 0`), and the emitters' light: both
-    /// by rank.
+    /// front hits kept when `bounces > 0`), the emitters' light, and with
+    /// surfaces the light arriving before albedo: all by rank.
     pub(crate) fn diffuse(
         &self,
         options: &BakeOptions,
         bounces: u32,
         kernels: Kernels,
         progress: &(dyn Fn(Stage, usize, usize) + Sync),
-    ) -> (Vec<f32>, Option<Vec<Vec3>>) {
+    ) -> Diffuse {
         let Self {
             order,
-            triangles,
             normals,
             totals,
             dirs,
@@ -52,7 +60,6 @@ impl Cast {
             channels,
             visible,
             words,
-            front_hits,
             ..
         } = self;
         let (nc, channels, words) = (*nc, *channels, *words);
@@ -92,6 +99,9 @@ impl Cast {
                 }
             });
 
+        if self.texel {
+            return self.diffuse_texel(options, bounces, kernels, progress, &ranked);
+        }
         // T^0 = albedo x geometric transfer, per channel, by rank.
         let stride = channels * nc;
         let mut total = vec![0.0f32; n_vertices * stride];
@@ -116,11 +126,11 @@ impl Cast {
             .as_ref()
             .map(|e| order.iter().map(|&v| e[v as usize]).collect());
         if bounces > 0 {
-            let gather = Gather::new(order, normals, totals, triangles, dirs, front_hits, options);
+            let gather = Gather::new(self, options);
             let mut previous = records::build(&total, stride, emitted.as_deref());
             for bounce in 1..=bounces {
                 let done = AtomicUsize::new(0);
-                let next = gather.bounce(kernels, &previous, &|n| {
+                let next = gather.bounce(kernels, Scale::Vertex, &previous, &|n| {
                     progress(
                         Stage::Bounce(bounce),
                         done.fetch_add(n, Ordering::Relaxed) + n,
@@ -132,8 +142,116 @@ impl Cast {
             }
         }
 
-        (total, emitted)
+        Diffuse {
+            total,
+            emitted,
+            incident: None,
+        }
     }
+
+    /// [`diffuse`](Self::diffuse) with surfaces: the light arriving at
+    /// each vertex before albedo, `G^b` and `F^b` ([`crate::Transfer`]),
+    /// gathered with each hit's texel albedo, then the vertices' own albedo
+    /// applied; `geometric` is `G^0` by rank (`nc` per vertex).
+    fn diffuse_texel(
+        &self,
+        options: &BakeOptions,
+        bounces: u32,
+        kernels: Kernels,
+        progress: &(dyn Fn(Stage, usize, usize) + Sync),
+        geometric: &[f32],
+    ) -> Diffuse {
+        let (nc, channels, order) = (self.nc, self.channels, &self.order);
+        let n_vertices = order.len();
+        let stride = channels * nc;
+        // G^0, the same in every channel.
+        let mut incident = vec![0.0f32; n_vertices * stride];
+        for (t, g) in incident
+            .chunks_exact_mut(stride)
+            .zip(geometric.chunks_exact(nc))
+        {
+            for c in 0..channels {
+                t[c * nc..][..nc].copy_from_slice(g);
+            }
+        }
+        let emission: Option<Vec<Vec3>> = options
+            .emission
+            .as_ref()
+            .map(|e| order.iter().map(|&v| e[v as usize]).collect());
+        let mut arriving = emission.as_ref().map(|_| vec![Vec3::ZERO; n_vertices]);
+        if bounces > 0 {
+            let gather = Gather::new(self, options);
+            let mut previous = records::build(&incident, stride, emission.as_deref());
+            for bounce in 1..=bounces {
+                let done = AtomicUsize::new(0);
+                let scale = Scale::Texel {
+                    emission: bounce > 1,
+                };
+                let next = gather.bounce(kernels, scale, &previous, &|n| {
+                    progress(
+                        Stage::Bounce(bounce),
+                        done.fetch_add(n, Ordering::Relaxed) + n,
+                        n_vertices,
+                    );
+                });
+                gather.add(&next, &mut incident, arriving.as_deref_mut());
+                previous = next;
+            }
+        }
+        // The vertices' exit transfer and light: their albedo times what
+        // arrives (emission as it is).
+        let mut total = incident.clone();
+        for (t, &v) in total.chunks_exact_mut(stride).zip(order.iter()) {
+            for c in 0..channels {
+                let rho = options.albedo.get(v as usize, c);
+                for x in &mut t[c * nc..][..nc] {
+                    *x *= rho;
+                }
+            }
+        }
+        let emitted = emission.as_ref().zip(arriving.as_ref()).map(|(le, f)| {
+            le.iter()
+                .zip(f)
+                .zip(order.iter())
+                .map(|((le, f), &v)| {
+                    let rho =
+                        Vec3::from_array([0, 1, 2].map(|c| options.albedo.get(v as usize, c)));
+                    *le + rho * *f
+                })
+                .collect()
+        });
+        let kept = emission
+            .zip(arriving)
+            .map(|(le, f)| le.into_iter().zip(f).map(|(le, f)| [le, f]).collect());
+        Diffuse {
+            total,
+            emitted,
+            incident: Some(IncidentTransfer {
+                coeffs: incident,
+                emitted: kept,
+            }),
+        }
+    }
+}
+
+/// A diffuse bake's sums, by rank: the exit transfer (`channels x nc` per
+/// vertex), the exit radiance due to emitters, and, with surfaces, the
+/// light arriving before albedo.
+pub(crate) struct Diffuse {
+    pub(crate) total: Vec<f32>,
+    pub(crate) emitted: Option<Vec<Vec3>>,
+    pub(crate) incident: Option<IncidentTransfer>,
+}
+
+/// How a bounce's sums are scaled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scale {
+    /// Each vertex's sum by its own albedo: the records are exit radiance.
+    Vertex,
+    /// Each hit's interpolated record by the albedo of the texel hit, the
+    /// emitters' part too when `emission` (after the first bounce, whose
+    /// source is the emitted radiance itself).
+    Texel { emission: bool },
 }
 
 /// The bounces' gathering. A vertex's record holds its transfer of the
@@ -162,6 +280,12 @@ struct Gather<'a> {
     /// The mesh's triangles, corners by rank.
     triangles: &'a [[u32; 3]],
     albedo: &'a Albedo,
+    /// With surfaces: per direction, each front hit's albedo.
+    hit_albedo: &'a [Vec<Vec3>],
+    /// With surfaces: per float of a record (whole vectors of 8), which
+    /// entry of `[rho_r, rho_g, rho_b, e_r, e_g, e_b, 0, 0]` scales it
+    /// (`rho` the hit's albedo, `e` the scale of the emitters' part).
+    scale_index: Vec<[i32; 8]>,
     nc: usize,
     channels: usize,
     /// Floats used per record (`channels nc`, 3 more when the mesh emits).
@@ -171,15 +295,17 @@ struct Gather<'a> {
 }
 
 impl<'a> Gather<'a> {
-    fn new(
-        order: &'a [u32],
-        normals: &'a [Vec3],
-        totals: &'a [f64],
-        triangles: &'a [[u32; 3]],
-        dirs: &'a [Vec3],
-        hits: &'a [Vec<FrontHit>],
-        options: &'a BakeOptions,
-    ) -> Self {
+    fn new(cast: &'a Cast, options: &'a BakeOptions) -> Self {
+        let Cast {
+            order,
+            normals,
+            totals,
+            triangles,
+            dirs,
+            front_hits: hits,
+            hit_albedo,
+            ..
+        } = cast;
         let n = order.len();
         let chunks = n.div_ceil(BOUNCE_CHUNK);
         let mut starts = Vec::with_capacity(dirs.len() * (chunks + 1));
@@ -194,8 +320,27 @@ impl<'a> Gather<'a> {
             }
         }
         let nc = sh_count(options.lmax);
-        let channels = options.albedo.channels();
+        let channels = cast.channels;
         let len = channels * nc + if options.emission.is_some() { 3 } else { 0 };
+        let lines = records::lines(len);
+        let scale_index = if cast.texel {
+            (0..lines * LINE / 8)
+                .map(|k| {
+                    std::array::from_fn(|l| {
+                        let i = 8 * k + l;
+                        if i < channels * nc {
+                            (i / nc) as i32
+                        } else if i < len {
+                            (3 + i - channels * nc) as i32
+                        } else {
+                            6
+                        }
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         Self {
             order,
             normals,
@@ -206,18 +351,21 @@ impl<'a> Gather<'a> {
             row: chunks + 1,
             triangles,
             albedo: &options.albedo,
+            hit_albedo,
+            scale_index,
             nc,
             channels,
             len,
-            lines: records::lines(len),
+            lines,
         }
     }
 
-    /// The next bounce's records from the last one's, `progress(vertices)`
-    /// as chunks finish.
+    /// The next bounce's records from the last one's, scaled as `scale`
+    /// says, `progress(vertices)` as chunks finish.
     fn bounce(
         &self,
         kernels: Kernels,
+        scale: Scale,
         previous: &[Line],
         progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Line> {
@@ -228,6 +376,20 @@ impl<'a> Gather<'a> {
             .enumerate()
             .for_each(|(c, out)| {
                 let acc = flat_mut(out);
+                let rec = self.lines * LINE;
+                if let Scale::Texel { emission } = scale {
+                    #[cfg(target_arch = "x86_64")]
+                    if kernels == Kernels::Avx2 {
+                        // SAFETY: AVX2 and FMA were detected.
+                        unsafe { self.chunk_texel_avx2(c, prev, acc, emission) };
+                    } else {
+                        self.chunk_texel(c, prev, acc, emission);
+                    }
+                    #[cfg(not(target_arch = "x86_64"))]
+                    self.chunk_texel(c, prev, acc, emission);
+                    progress(acc.len() / rec);
+                    return;
+                }
                 #[cfg(target_arch = "x86_64")]
                 if kernels == Kernels::Avx2 {
                     // SAFETY: AVX2 and FMA were detected.
@@ -240,7 +402,6 @@ impl<'a> Gather<'a> {
                     let _ = kernels;
                     self.chunk(c, prev, acc);
                 }
-                let rec = self.lines * LINE;
                 for (k, r) in acc.chunks_exact_mut(rec).enumerate() {
                     let v = self.order[c * BOUNCE_CHUNK + k] as usize;
                     for ch in 0..self.channels {
@@ -263,17 +424,28 @@ impl<'a> Gather<'a> {
     }
 
     /// The hits of chunk `c`'s vertices, direction by direction in order:
-    /// `f(k, [w_j w_a, w_j w_b, w_j w_c], [a, b, c])` for each, `k` the
+    /// `f(k, [w_j w_a, w_j w_b, w_j w_c], [a, b, c], rho)` for each, `k` the
     /// vertex's place in the chunk, `w_j` its weight of the direction,
     /// `w_a`, `w_b`, `w_c` the hit's barycentric weights of the triangle's
-    /// corners and `a`, `b`, `c` their ranks. Inlined into both kernels,
-    /// the AVX2 one's `f` included.
+    /// corners, `a`, `b`, `c` their ranks and `rho` the hit's albedo when
+    /// `TEXEL` (zero otherwise). Inlined into the kernels, the AVX2 ones'
+    /// `f` included.
     #[inline(always)]
-    fn each_hit(&self, c: usize, mut f: impl FnMut(usize, [f32; 3], [usize; 3])) {
+    fn each_hit<const TEXEL: bool>(
+        &self,
+        c: usize,
+        mut f: impl FnMut(usize, [f32; 3], [usize; 3], Vec3),
+    ) {
         let first = c * BOUNCE_CHUNK;
         for (j, d) in self.dirs.iter().enumerate() {
             let starts = &self.starts[j * self.row + c..];
-            for h in &self.hits[j][starts[0] as usize..starts[1] as usize] {
+            let range = starts[0] as usize..starts[1] as usize;
+            let albedo = if TEXEL {
+                &self.hit_albedo[j][range.clone()]
+            } else {
+                &[]
+            };
+            for (i, h) in self.hits[j][range].iter().enumerate() {
                 let s = h.rank as usize;
                 let w = (f64::from(self.normals[s].dot(*d)) / self.totals[s]) as f32;
                 let [a, b, cc] = self.triangles[h.triangle as usize];
@@ -281,6 +453,7 @@ impl<'a> Gather<'a> {
                     s - first,
                     [w * (1.0 - h.b1 - h.b2), w * h.b1, w * h.b2],
                     [a as usize, b as usize, cc as usize],
+                    if TEXEL { albedo[i] } else { Vec3::ZERO },
                 );
             }
         }
@@ -291,7 +464,7 @@ impl<'a> Gather<'a> {
     /// `prev`.
     fn chunk(&self, c: usize, prev: &[f32], acc: &mut [f32]) {
         let (rec, len) = (self.lines * LINE, self.len);
-        self.each_hit(c, |v, [wa, wb, wc], [a, b, cc]| {
+        self.each_hit::<false>(c, |v, [wa, wb, wc], [a, b, cc], _| {
             let ra = &prev[a * rec..][..len];
             let rb = &prev[b * rec..][..len];
             let rc = &prev[cc * rec..][..len];
@@ -313,7 +486,7 @@ impl<'a> Gather<'a> {
         use std::arch::x86_64::*;
         let rec = self.lines * LINE;
         let vectors = self.len.div_ceil(8);
-        self.each_hit(c, |v, [wa, wb, wc], [a, b, cc]| {
+        self.each_hit::<false>(c, |v, [wa, wb, wc], [a, b, cc], _| {
             let ra = &prev[a * rec..][..rec];
             let rb = &prev[b * rec..][..rec];
             let rc = &prev[cc * rec..][..rec];
@@ -328,6 +501,61 @@ impl<'a> Gather<'a> {
                     let x = _mm256_fmadd_ps(wc, _mm256_loadu_ps(rc.as_ptr().add(8 * k)), x);
                     let o = out.as_mut_ptr().add(8 * k);
                     _mm256_storeu_ps(o, _mm256_add_ps(_mm256_loadu_ps(o), x));
+                }
+            }
+        });
+    }
+
+    /// [`chunk`](Self::chunk) with surfaces: each hit's interpolated
+    /// record scaled by its albedo, per channel (`scale_index`), the
+    /// emitters' part too when `emission`.
+    fn chunk_texel(&self, c: usize, prev: &[f32], acc: &mut [f32], emission: bool) {
+        let (rec, len) = (self.lines * LINE, self.len);
+        self.each_hit::<true>(c, |v, [wa, wb, wc], [a, b, cc], rho| {
+            let e = if emission { rho } else { Vec3::ONE };
+            let table = [rho.x, rho.y, rho.z, e.x, e.y, e.z, 0.0, 0.0];
+            let ra = &prev[a * rec..][..len];
+            let rb = &prev[b * rec..][..len];
+            let rc = &prev[cc * rec..][..len];
+            let out = &mut acc[v * rec..][..len];
+            for k in 0..len {
+                let s = table[self.scale_index[k / 8][k % 8] as usize];
+                out[k] += s * (wa * ra[k] + wb * rb[k] + wc * rc[k]);
+            }
+        });
+    }
+
+    /// [`chunk_texel`](Self::chunk_texel) with AVX2: per vector of a
+    /// record, the hit's scales put in place by one permutation.
+    ///
+    /// # Safety
+    /// AVX2 and FMA must be available.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn chunk_texel_avx2(&self, c: usize, prev: &[f32], acc: &mut [f32], emission: bool) {
+        use std::arch::x86_64::*;
+        let rec = self.lines * LINE;
+        let vectors = self.len.div_ceil(8);
+        let index = &self.scale_index[..vectors];
+        self.each_hit::<true>(c, |v, [wa, wb, wc], [a, b, cc], rho| {
+            let e = if emission { rho } else { Vec3::ONE };
+            let ra = &prev[a * rec..][..rec];
+            let rb = &prev[b * rec..][..rec];
+            let rc = &prev[cc * rec..][..rec];
+            let out = &mut acc[v * rec..][..rec];
+            // SAFETY: vector k covers floats 8k..8k+8 <= rec of each record
+            // and of `out`, and `index` holds `vectors` entries.
+            unsafe {
+                let table = _mm256_setr_ps(rho.x, rho.y, rho.z, e.x, e.y, e.z, 0.0, 0.0);
+                let (wa, wb, wc) = (_mm256_set1_ps(wa), _mm256_set1_ps(wb), _mm256_set1_ps(wc));
+                for (k, idx) in index.iter().enumerate() {
+                    let x = _mm256_mul_ps(wa, _mm256_loadu_ps(ra.as_ptr().add(8 * k)));
+                    let x = _mm256_fmadd_ps(wb, _mm256_loadu_ps(rb.as_ptr().add(8 * k)), x);
+                    let x = _mm256_fmadd_ps(wc, _mm256_loadu_ps(rc.as_ptr().add(8 * k)), x);
+                    let s =
+                        _mm256_permutevar8x32_ps(table, _mm256_loadu_si256(idx.as_ptr().cast()));
+                    let o = out.as_mut_ptr().add(8 * k);
+                    _mm256_storeu_ps(o, _mm256_fmadd_ps(s, x, _mm256_loadu_ps(o)));
                 }
             }
         });
@@ -368,16 +596,18 @@ mod tests {
         move || rng.random::<f32>()
     }
 
-    #[test]
-    fn f32_bounces_match_f64_sums_with_both_kernels() {
-        // Random front hits of random directions on a mesh whose vertices
-        // hold random transfer (3 channels of lmax 2) and emitted light:
-        // one bounce gathered in f32 by either kernel against the same sums
-        // in f64 here.
+    /// One bounce of random front hits of random directions on a mesh
+    /// whose vertices hold random transfer (3 channels of lmax 2) and
+    /// emitted light, gathered in f32 by either kernel, against the same
+    /// sums in f64 here: scaled by each vertex's albedo (`scale` vertex),
+    /// or each hit's sum by the hit's albedo, the emitted part too or not
+    /// (texel).
+    fn bounce_against_f64(scale: Scale) {
         let mesh = generate::uv_sphere(1.0, 12, 6);
         let n = mesh.vertex_count();
         let mut next = numbers(9);
         let albedo: Vec<Vec3> = (0..n).map(|_| Vec3::new(next(), next(), next())).collect();
+        let texel = scale != Scale::Vertex;
         let options = BakeOptions {
             lmax: 2,
             samples: 64,
@@ -385,6 +615,7 @@ mod tests {
             albedo: Albedo::PerVertex(albedo.clone()),
             seed: 0,
             emission: Some(vec![Vec3::ONE; n]),
+            surfaces: None,
         };
         let order: Vec<u32> = (0..n as u32).rev().collect();
         let triangles = ranked_triangles(&mesh.triangles, &order);
@@ -395,7 +626,8 @@ mod tests {
         let totals: Vec<f64> = (0..n).map(|_| 1.0 + f64::from(next()) * 10.0).collect();
         let ranked_totals: Vec<f64> = order.iter().map(|&v| totals[v as usize]).collect();
         let mut hits: Vec<Vec<FrontHit>> = vec![Vec::new(); dirs.len()];
-        for along in &mut hits {
+        let mut hit_albedo: Vec<Vec<Vec3>> = vec![Vec::new(); dirs.len()];
+        for (along, rho) in hits.iter_mut().zip(&mut hit_albedo) {
             for s in 0..n as u32 {
                 if next() < 0.4 {
                     continue;
@@ -412,17 +644,28 @@ mod tests {
                     b1,
                     b2,
                 });
+                if texel {
+                    rho.push(Vec3::new(next(), next(), next()));
+                }
             }
         }
-        let gather = Gather::new(
-            &order,
-            &normals,
-            &ranked_totals,
-            &triangles,
-            &dirs,
-            &hits,
-            &options,
-        );
+        let cast = Cast {
+            order: order.clone(),
+            triangles,
+            normals: normals.clone(),
+            totals: ranked_totals,
+            dirs: dirs.clone(),
+            ylm: Vec::new(),
+            nc: 9,
+            channels: 3,
+            visible: Vec::new(),
+            words: 0,
+            front_hits: hits.clone(),
+            hit_albedo: hit_albedo.clone(),
+            texel,
+            rays: 0,
+        };
+        let gather = Gather::new(&cast, &options);
         let stride = 27;
         let total: Vec<f32> = (0..n * stride).map(|_| next() * 2.0 - 1.0).collect();
         let emission: Vec<Vec3> = (0..n).map(|_| Vec3::new(next(), next(), next())).collect();
@@ -442,18 +685,26 @@ mod tests {
                 f64::from(emission[v][k - stride])
             }
         };
+        // The channel of entry k.
+        let channel = |k: usize| if k < stride { k / 9 } else { k - stride };
         let mut want = vec![0.0f64; n * 30];
         let mut size = vec![0.0f64; n * 30];
         for (j, d) in dirs.iter().enumerate() {
-            for h in &hits[j] {
+            for (i, h) in hits[j].iter().enumerate() {
                 let s = h.rank as usize;
                 let w = f64::from(normals[s].dot(*d)) / totals[order[s] as usize];
                 let ws = [1.0 - h.b1 - h.b2, h.b1, h.b2].map(|b| w * f64::from(b));
                 let corners = mesh.triangles[h.triangle as usize];
                 for k in 0..30 {
+                    let rho = match scale {
+                        Scale::Texel { emission } if k < stride || emission => {
+                            f64::from(hit_albedo[j][i][channel(k)])
+                        }
+                        _ => 1.0,
+                    };
                     let x: f64 = (0..3).map(|i| ws[i] * value(corners[i] as usize, k)).sum();
-                    want[s * 30 + k] += x;
-                    size[s * 30 + k] += x.abs();
+                    want[s * 30 + k] += rho * x;
+                    size[s * 30 + k] += (rho * x).abs();
                 }
             }
         }
@@ -466,12 +717,16 @@ mod tests {
         }
         // Without AVX2 and FMA both passes are the portable kernel.
         for kernels in [Kernels::Portable, Kernels::detect()] {
-            let got = gather.bounce(kernels, &previous, &|_| {});
+            let got = gather.bounce(kernels, scale, &previous, &|_| {});
             for s in 0..n {
                 let r = flat(&got[s * gather.lines..][..gather.lines]);
                 let v = order[s] as usize;
                 for k in 0..30 {
-                    let rho = f64::from(albedo[v][if k < stride { k / 9 } else { k - stride }]);
+                    let rho = if texel {
+                        1.0
+                    } else {
+                        f64::from(albedo[v][channel(k)])
+                    };
                     let want = rho * want[s * 30 + k];
                     // f32 sums of about `hits_per_vertex` terms: each
                     // addition rounds by at most half an ulp of a running
@@ -483,12 +738,23 @@ mod tests {
                         * size[s * 30 + k];
                     assert!(
                         (f64::from(r[k]) - want).abs() <= tol + 1e-12,
-                        "{kernels:?} rank {s} entry {k}: {} vs {want}",
+                        "{kernels:?} {scale:?} rank {s} entry {k}: {} vs {want}",
                         r[k]
                     );
                 }
                 assert!(r[30..].iter().all(|&x| x == 0.0), "padding stays zero");
             }
         }
+    }
+
+    #[test]
+    fn f32_bounces_match_f64_sums_with_both_kernels() {
+        bounce_against_f64(Scale::Vertex);
+    }
+
+    #[test]
+    fn texel_bounces_match_f64_sums_with_both_kernels() {
+        bounce_against_f64(Scale::Texel { emission: false });
+        bounce_against_f64(Scale::Texel { emission: true });
     }
 }

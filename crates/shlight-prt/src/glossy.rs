@@ -48,7 +48,10 @@ const CHUNK: usize = 64;
 /// with `B - 1` bounces, albedo over pi folded in; barycentric
 /// interpolation of its triangle's vertices), so `T^{B-1}(q) . L` is the
 /// radiance the diffuse mesh sends from `q` towards `p`: light that reached
-/// `p` after 1 to `B` diffuse bounces. A ray meeting the back of a triangle
+/// `p` after 1 to `B` diffuse bounces (with surfaces,
+/// [`BakeOptions::surfaces`], `T^{B-1}(q)` is the albedo of the texel hit
+/// times the light arriving there, interpolated, as in [`crate::Transfer`],
+/// and cut-outs let rays through). A ray meeting the back of a triangle
 /// brings nothing. Unshadowed, `V_p = 1` everywhere (the whole sphere) and
 /// `M_p` is the identity but for sampling error.
 ///
@@ -89,11 +92,12 @@ pub struct GlossyTransfer {
 }
 
 /// Channels of a glossy bake of `options`: 3 when its albedo is coloured
-/// and it gathers bounces, 1 otherwise.
+/// (or it has surfaces, [`BakeOptions::channels`]) and it gathers bounces,
+/// 1 otherwise.
 #[must_use]
 pub fn glossy_channels(options: &BakeOptions) -> usize {
     if options.mode.bounces() > 0 {
-        options.albedo.channels()
+        options.channels()
     } else {
         1
     }
@@ -148,9 +152,14 @@ pub fn bake_glossy(
     let shadowed = transport != Mode::Unshadowed;
     let cast = Cast::new(mesh, None, &options, shadowed, bounces > 0, progress);
     // The diffuse transfer the mesh sends back: B - 1 bounces.
+    // With surfaces, what arrives at the vertices, which a hit multiplies
+    // by its texel's albedo.
     let diffuse = if bounces > 0 {
-        cast.diffuse(&options, bounces - 1, Kernels::detect(), progress)
-            .0
+        let d = cast.diffuse(&options, bounces - 1, Kernels::detect(), progress);
+        match d.incident {
+            Some(arriving) => arriving.coeffs,
+            None => d.total,
+        }
     } else {
         Vec::new()
     };
@@ -194,7 +203,7 @@ pub fn bake_glossy(
                         while *c < hits.len() && (hits[*c].rank as usize) < s {
                             *c += 1;
                         }
-                        (*c < hits.len() && hits[*c].rank as usize == s).then(|| hits[*c])
+                        (*c < hits.len() && hits[*c].rank as usize == s).then(|| (hits[*c], *c))
                     } else {
                         None
                     };
@@ -216,7 +225,7 @@ pub fn bake_glossy(
                                 *r += a * b;
                             }
                         }
-                    } else if let Some(h) = hit {
+                    } else if let Some((h, index)) = hit {
                         let [a, b, c] = cast.triangles[h.triangle as usize];
                         let ws = [1.0 - h.b1 - h.b2, h.b1, h.b2];
                         tq.fill(0.0);
@@ -224,6 +233,12 @@ pub fn bake_glossy(
                             let r = &diffuse[corner as usize * dstride..][..dstride];
                             for (t, x) in tq.iter_mut().zip(r) {
                                 *t += f64::from(wc) * f64::from(*x);
+                            }
+                        }
+                        if cast.texel {
+                            let rho = cast.hit_albedo[j][index];
+                            for (ch, t) in tq.chunks_exact_mut(nc).enumerate() {
+                                t.iter_mut().for_each(|x| *x *= f64::from(rho[ch]));
                             }
                         }
                         for ch in 0..channels {

@@ -5,7 +5,9 @@
 //!
 //! # Main items
 //! - [`bake`]: unshadowed, shadowed and interreflected [`Transfer`] to any
-//!   lmax ([`BakeOptions`]: [`Mode`], [`Albedo`], samples, seed, emission),
+//!   lmax ([`BakeOptions`]: [`Mode`], [`Albedo`], samples, seed, emission,
+//!   and the surfaces of a glTF scene: cut-outs the rays pass and the
+//!   albedo of the texel a bounce hits, [`IncidentTransfer`]),
 //!   in parallel and deterministic for a seed ([`Transfer`] states the
 //!   definitions, [`bake`] the estimator); [`bake_with_occluder`] and
 //!   [`bake_against`] cast a subdivided mesh's rays against the mesh it was
@@ -88,4 +90,4 @@ pub use gltf_export::write_gltf;
 pub use options::{Albedo, BakeOptions, Mode, Stage};
 pub use preview::{render_preview, vertex_exposure};
 pub use records::{Kernels, VertexRecords};
-pub use transfer::Transfer;
+pub use transfer::{IncidentTransfer, Transfer};

@@ -1,7 +1,11 @@
 //! What a diffuse bake is asked for ([`BakeOptions`]: the transport, the
-//! albedo, the lmax, the directions) and where it is ([`Stage`]).
+//! albedo, the lmax, the directions, the surfaces the rays meet) and where
+//! it is ([`Stage`]).
+
+use std::sync::Arc;
 
 use glam::Vec3;
+use shlight_mesh::Surfaces;
 
 /// Which light transport the transfer holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,6 +90,32 @@ pub struct BakeOptions {
     /// [`shlight_mesh::Mesh::emission`]); with it the bake also gathers the light the
     /// emitters send around the mesh ([`Transfer::emitted`](crate::Transfer::emitted)).
     pub emission: Option<Vec<Vec3>>,
+    /// What the rays see where they meet the surface: a flattened glTF
+    /// scene ([`shlight_mesh::Scene::flatten`]) whose mesh is the one the
+    /// rays are cast against (the baked mesh, or the one it was subdivided
+    /// from). With it, triangles whose material cuts out let rays through
+    /// ([`shlight_rays::CutOuts`]), shadow rays too, and a bounce takes the
+    /// albedo of the texel it hit ([`Surfaces::sample`]) times the
+    /// irradiance interpolated there from the vertices
+    /// ([`Transfer::incident`](crate::Transfer::incident)); the transfer
+    /// then has three channels. [`albedo`](Self::albedo) stays the albedo
+    /// at the vertices, which their own transfer is multiplied by (the
+    /// scene's vertex albedo, `Surfaces::mesh`'s colours). `None`: every
+    /// triangle is opaque and a hit reads its corners' exit radiance.
+    pub surfaces: Option<Arc<Surfaces>>,
+}
+
+impl BakeOptions {
+    /// The transfer's channels: three with [`surfaces`](Self::surfaces),
+    /// the albedo's ([`Albedo::channels`]) otherwise.
+    #[must_use]
+    pub fn channels(&self) -> usize {
+        if self.surfaces.is_some() {
+            3
+        } else {
+            self.albedo.channels()
+        }
+    }
 }
 
 impl Default for BakeOptions {
@@ -97,6 +127,7 @@ impl Default for BakeOptions {
             albedo: Albedo::Constant([0.8; 3]),
             seed: 0,
             emission: None,
+            surfaces: None,
         }
     }
 }

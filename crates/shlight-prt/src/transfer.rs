@@ -30,6 +30,23 @@ use crate::records::VertexRecords;
 /// bounce `b-1` as in the paper's iteration). Albedo over pi is folded into
 /// `T`, so a renderer computes `T . L` and nothing else.
 ///
+/// With surfaces ([`BakeOptions::surfaces`](crate::BakeOptions::surfaces))
+/// the point hit leaves the albedo of its texel times the light arriving
+/// there, interpolated from the vertices, and cut-out surfaces let rays
+/// through (`V` is 1 for a ray that passes them):
+///
+/// ```text
+/// T   = rho(p) (G^0 + G^1 + ... + G^B)
+/// G^0_i(p) = 1/pi int max(n.s, 0) V(p, s) Y_i(s) ds
+/// G^b_i(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) rho(q) G^{b-1}_i(q) ds
+/// ```
+///
+/// `rho(q)` the surface's albedo at the texel hit and `G^{b-1}(q)` the
+/// barycentric interpolation of its triangle's vertex values (kept in
+/// [`Transfer::incident`]). Where the albedo is one colour per triangle
+/// corner, `rho(q)` is their interpolation, and `rho(q) G(q)` differs from
+/// the interpolated product above only where the corners differ in colour.
+///
 /// A bake ([`crate::bake`]) holds the vectors it made, and what produced
 /// them.
 #[derive(Clone, Debug)]
@@ -52,8 +69,30 @@ pub struct Transfer {
     /// `E^0 = Le` and `E^b(p) = rho/pi int max(n.s, 0) (1 - V(p, s))
     /// E^{b-1}(q(p, s)) ds`, the transfer's own iteration with the emission
     /// as the source, so the exit radiance of a vertex under light `L` is
-    /// `T . L + E`.
+    /// `T . L + E`. With surfaces, `E = Le + rho(p) (F^1 + ... + F^B)`,
+    /// `F^1(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) Le(q) ds` and
+    /// `F^b(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) rho(q) F^{b-1}(q) ds`:
+    /// emission is not multiplied by the albedo.
     pub emitted: Option<Vec<Vec3>>,
+    /// With surfaces: what a hit interpolates before its texel's albedo.
+    pub incident: Option<IncidentTransfer>,
+}
+
+/// The light arriving at each vertex of a bake with surfaces, before any
+/// albedo ([`Transfer`] states `G` and `F`): what a ray that hits the
+/// surface interpolates from the corners of the triangle it met, and then
+/// multiplies by the albedo of the texel there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IncidentTransfer {
+    /// Per vertex `channels x (lmax+1)^2`, laid out as
+    /// [`Transfer::coeffs`]: `G^0 + ... + G^B`, the transfer of the
+    /// irradiance over pi (so [`Transfer::coeffs`] is the vertex's albedo
+    /// times it).
+    pub coeffs: Vec<f32>,
+    /// With emitters, per vertex: `[Le, F^1 + ... + F^B]`, the emitted
+    /// radiance and the emitters' light arriving over pi, so that a point
+    /// of albedo `rho` leaves `Le + rho F`.
+    pub emitted: Option<Vec<[Vec3; 2]>>,
 }
 
 impl Transfer {
@@ -112,10 +151,15 @@ impl Transfer {
     /// The vectors as records for the summing kernels ([`VertexRecords`]):
     /// each vertex's `channels x (lmax+1)^2` transfer and, when the bake
     /// gathered emitters' light ([`BakeOptions::emission`](crate::BakeOptions::emission)), its exit
-    /// radiance due to them.
+    /// radiance due to them; for a bake with surfaces, what a hit
+    /// interpolates before its texel's albedo ([`IncidentTransfer`],
+    /// [`VertexRecords::incident`]).
     #[must_use]
     pub fn records(&self) -> VertexRecords {
         let stride = self.channels * sh_count(self.lmax);
-        VertexRecords::new(&self.coeffs, stride, self.emitted.as_deref())
+        match &self.incident {
+            Some(i) => VertexRecords::new_incident(&i.coeffs, stride, i.emitted.as_deref()),
+            None => VertexRecords::new(&self.coeffs, stride, self.emitted.as_deref()),
+        }
     }
 }

@@ -27,6 +27,7 @@ fn options(lmax: usize, samples: usize, mode: Mode, albedo: f32) -> BakeOptions 
         albedo: Albedo::Constant([albedo; 3]),
         seed: 7,
         emission: None,
+        surfaces: None,
     }
 }
 

@@ -22,6 +22,7 @@ fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
         albedo: Albedo::Constant([albedo; 3]),
         seed: 11,
         emission: None,
+        surfaces: None,
     };
     bake(mesh, &options, &|_, _, _| {})
 }
@@ -42,6 +43,7 @@ fn an_emitting_bowl_lights_itself_as_the_closed_form_says() {
             albedo: Albedo::Constant([rho; 3]),
             seed: 5,
             emission: Some(vec![le; bowl.vertex_count()]),
+            surfaces: None,
         };
         bake(&bowl, &options, &|_, _, _| {}).emitted.unwrap()
     };
@@ -353,6 +355,7 @@ fn casting_against_the_mesh_before_subdivision_gives_the_subdivided_bake() {
         albedo: Albedo::PerVertex(fine.colors.clone().unwrap()),
         seed: 5,
         emission: fine.emission.clone(),
+        surfaces: None,
     };
     let direct = bake(&fine, &options, &|_, _, _| {});
     let located = bake_with_occluder(&fine, Some((&room, &map)), &options, &|_, _, _| {});

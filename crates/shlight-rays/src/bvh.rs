@@ -28,6 +28,8 @@
 
 use glam::Vec3;
 
+use crate::cut_outs::CutOutTable;
+
 /// Where a ray hit a triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -55,6 +57,7 @@ pub(crate) struct WatertightRay {
 #[derive(Clone, Copy, Debug)]
 pub struct Ray {
     origin: Vec3,
+    dir: Vec3,
     inv_dir: Vec3,
     triangle: WatertightRay,
     t_max: f32,
@@ -92,6 +95,7 @@ impl Ray {
     pub fn new(origin: Vec3, dir: Vec3, t_max: f32) -> Self {
         Self {
             origin,
+            dir,
             inv_dir: safe_inverse(dir),
             triangle: WatertightRay::new(origin, dir),
             t_max,
@@ -267,6 +271,47 @@ impl Bvh {
     /// The nearest hit of `ray`, if any.
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        self.closest_accepting(ray, |_, _| true)
+    }
+
+    /// Whether anything blocks `ray` (the first hit found ends the search).
+    #[must_use]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.occluded_accepting(ray, |_, _| true)
+    }
+
+    /// [`closest_hit`](Self::closest_hit) through the cut-outs `cut`
+    /// (none: every triangle stops the ray).
+    #[must_use]
+    pub(crate) fn closest_hit_through(&self, ray: &Ray, cut: Option<&CutOutTable>) -> Option<Hit> {
+        match cut {
+            None => self.closest_hit(ray),
+            Some(c) => self.closest_accepting(ray, |k, w| {
+                !c.flagged(k) || c.stops(self.ids[k], w, ray.origin, ray.dir)
+            }),
+        }
+    }
+
+    /// [`occluded`](Self::occluded) through the cut-outs `cut` (none:
+    /// every triangle stops the ray).
+    #[must_use]
+    pub(crate) fn occluded_through(&self, ray: &Ray, cut: Option<&CutOutTable>) -> bool {
+        match cut {
+            None => self.occluded(ray),
+            Some(c) => self.occluded_accepting(ray, |k, w| {
+                !c.flagged(k) || c.stops(self.ids[k], w, ray.origin, ray.dir)
+            }),
+        }
+    }
+
+    /// The nearest hit of `ray` that `accept(k, weights)` takes (`k` the
+    /// triangle in leaf order); the others are passed over.
+    #[inline(always)]
+    fn closest_accepting(
+        &self,
+        ray: &Ray,
+        accept: impl Fn(usize, [f32; 3]) -> bool,
+    ) -> Option<Hit> {
         let mut best: Option<(f32, u32, [f32; 3])> = None;
         let mut t_max = ray.t_max;
         self.traverse(
@@ -274,6 +319,7 @@ impl Bvh {
             |t_max_now, first, count| {
                 for k in first..first + count {
                     if let Some((t, w)) = ray.triangle.hits_triangle(&self.triangles[k], *t_max_now)
+                        && accept(k, w)
                     {
                         *t_max_now = t;
                         best = Some((t, k as u32, w));
@@ -290,9 +336,10 @@ impl Bvh {
         })
     }
 
-    /// Whether anything blocks `ray` (the first hit found ends the search).
-    #[must_use]
-    pub fn occluded(&self, ray: &Ray) -> bool {
+    /// Whether a hit of `ray` that `accept` takes exists (as in
+    /// [`closest_accepting`](Self::closest_accepting)).
+    #[inline(always)]
+    fn occluded_accepting(&self, ray: &Ray, accept: impl Fn(usize, [f32; 3]) -> bool) -> bool {
         let mut t_max = ray.t_max;
         let mut hit = false;
         self.traverse(
@@ -301,7 +348,7 @@ impl Bvh {
                 hit = (first..first + count).any(|k| {
                     ray.triangle
                         .hits_triangle(&self.triangles[k], *t_max_now)
-                        .is_some()
+                        .is_some_and(|(_, w)| accept(k, w))
                 });
                 hit
             },

@@ -19,12 +19,32 @@
 //! - [`vertex_order`] and [`ranked_triangles`]: a mesh's vertices along a
 //!   Morton curve, so that rays from consecutive vertices make coherent
 //!   packets.
+//! - [`CutOuts`]: surfaces that let rays through, for an occluder built
+//!   [`Occluder::with_cut_outs`] (a flattened glTF scene's
+//!   [`shlight_mesh::Surfaces`]: `MASK` and `BLEND` materials).
 //! - [`brute_force_closest_hit`]: Möller-Trumbore in `f64` against every
 //!   triangle, the independent reference the hierarchy, the packets and
-//!   the bakes are tested against.
+//!   the bakes are tested against; [`brute_force_closest_hit_through`]
+//!   the same through cut-outs.
 //!
 //! Every query hits both sides of a triangle, and a ray through an edge or
 //! a vertex shared by triangles hits at least one of them.
+//!
+//! # Cut-outs and coverage
+//! An occluder built with [`CutOuts`] asks, for a candidate hit on a
+//! triangle that cuts out, its opacity at the hit's barycentric weights,
+//! and passes over the hit (the traversal goes on behind it, any-hit) unless
+//! the ray is stopped: always at opacity 1, never at 0 (a cut-out texel of
+//! a `MASK` material lets every ray through, shadow rays too), and in
+//! between (a `BLEND` material's alpha, coverage) when
+//! [`coverage_sample`]`(origin, direction, triangle)`, a hash of the ray's
+//! origin and direction bits and the triangle's index mapped to `[0, 1)`,
+//! is below the opacity. So the decision is deterministic (the same at any
+//! thread count, the same for [`Occluder::occluded`] and
+//! [`Occluder::closest_hit`], single rays and packets), and over many rays
+//! the fraction stopped is the coverage. Surfaces that do not cut out cost
+//! nothing more: an occluder without cut-outs takes the traversal without
+//! the test.
 //!
 //! ```
 //! use glam::Vec3;
@@ -55,14 +75,16 @@
 mod brute_force;
 mod bvh;
 mod cpu;
+mod cut_outs;
 mod occluder;
 mod origins;
 mod packet;
 mod vertex_order;
 
-pub use brute_force::brute_force_closest_hit;
+pub use brute_force::{brute_force_closest_hit, brute_force_closest_hit_through};
 pub use bvh::{Hit, Ray};
 pub use cpu::has_avx2_and_fma;
+pub use cut_outs::{CutOuts, coverage_sample};
 pub use occluder::Occluder;
 pub use origins::{OFFSET, SHORTER_OFFSETS};
 pub use packet::{Direction, LANES, Packet, PacketHits, packets_enabled, set_packets_enabled};

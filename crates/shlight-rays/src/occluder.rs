@@ -1,10 +1,13 @@
 //! [`Occluder`]: a mesh made ready to cast rays against, and every query
 //! on it.
 
+use std::sync::Arc;
+
 use glam::Vec3;
 use shlight_mesh::Mesh;
 
 use crate::bvh::{Bvh, Hit, Ray};
+use crate::cut_outs::{CutOutTable, CutOuts};
 use crate::origins;
 use crate::packet::{Direction, Packet, PacketBvh, PacketHits};
 use crate::vertex_order::{ranked_triangles, vertex_order};
@@ -30,16 +33,24 @@ use crate::vertex_order::{ranked_triangles, vertex_order};
 /// alone otherwise (the answers agree but for rays grazing an edge, where
 /// rounding differs).
 ///
+/// Built [`with_cut_outs`](Self::with_cut_outs), every query lets rays
+/// through the surfaces that cut out where their opacity says so
+/// ([`CutOuts`]: a cut-out texel passes every ray, partial coverage a
+/// deterministic fraction of them, and the ray goes on to what lies
+/// behind); built with [`new`](Self::new), or when no triangle cuts out,
+/// every triangle stops every ray and the queries cost what they did.
+///
 /// [`packets_enabled`]: crate::packets_enabled
 #[derive(Clone, Debug)]
 pub struct Occluder {
     positions: Vec<Vec3>,
     bvh: PacketBvh,
     faces: Vec<Vec3>,
+    cut: Option<CutOutTable>,
 }
 
 impl Occluder {
-    /// `mesh` made ready.
+    /// `mesh` made ready; every triangle stops every ray.
     #[must_use]
     pub fn new(mesh: &Mesh) -> Self {
         let order = vertex_order(&mesh.positions, mesh.bounds());
@@ -49,19 +60,38 @@ impl Occluder {
             bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
             positions,
             faces: face_normals(mesh),
+            cut: None,
         }
+    }
+
+    /// `mesh` made ready, its triangles letting rays through as
+    /// `cut_outs` says (triangle indices are `mesh`'s): for a flattened
+    /// glTF scene, its [`shlight_mesh::Surfaces`] (whose `mesh` this is).
+    /// The crate documentation states how a ray is decided.
+    #[must_use]
+    pub fn with_cut_outs(mesh: &Mesh, cut_outs: Arc<dyn CutOuts>) -> Self {
+        let mut occluder = Self::new(mesh);
+        occluder.cut = CutOutTable::new(cut_outs, &occluder.bvh.bvh().ids);
+        occluder
+    }
+
+    /// Whether some triangle may let rays through (built
+    /// [`with_cut_outs`](Self::with_cut_outs) and one cuts out).
+    #[must_use]
+    pub fn has_cut_outs(&self) -> bool {
+        self.cut.is_some()
     }
 
     /// Whether anything blocks `ray` (the first hit found ends the search).
     #[must_use]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        self.bvh.bvh().occluded(ray)
+        self.bvh.bvh().occluded_through(ray, self.cut.as_ref())
     }
 
     /// The nearest hit of `ray`, if any.
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        self.bvh.bvh().closest_hit(ray)
+        self.bvh.bvh().closest_hit_through(ray, self.cut.as_ref())
     }
 
     /// Whether a ray along `dir` meets triangle `triangle` (the mesh's
@@ -98,7 +128,7 @@ impl Occluder {
     /// If `local` holds fewer vertices than the occluder.
     #[must_use]
     pub fn packet_occluded(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
-        self.bvh.occluded(dir, local, packet)
+        self.bvh.occluded(dir, local, packet, self.cut.as_ref())
     }
 
     /// The nearest hit of each ray of `packet` (`local` as in
@@ -113,7 +143,7 @@ impl Occluder {
         local: &[[f32; 4]],
         packet: &Packet,
     ) -> PacketHits {
-        self.bvh.closest(dir, local, packet)
+        self.bvh.closest(dir, local, packet, self.cut.as_ref())
     }
 
     /// [`packet_closest`](Self::packet_closest) without the ray-space copy
@@ -123,11 +153,11 @@ impl Occluder {
     /// copy for every direction.
     #[must_use]
     pub fn packet_closest_direct(&self, dir: &Direction, packet: &Packet) -> PacketHits {
-        self.bvh.closest_direct(dir, packet)
+        self.bvh.closest_direct(dir, packet, self.cut.as_ref())
     }
 
     /// Where the rays of each vertex of `mesh` start, off its surface and
-    /// never across this occluder (`mesh` is the occluder's own mesh, or
+    /// never across this occluder's triangles, cut out or not (`mesh` is the occluder's own mesh, or
     /// one subdivided from it): `p + eps (n + c)`, `eps` = [`OFFSET`]
     /// times the bounding-box diagonal, `c` the unit vector in the tangent
     /// plane from `p` towards the mean centroid of the triangles that use

@@ -39,6 +39,7 @@ use glam::Vec3;
 
 use crate::bvh::{Bvh, INNER, Ray};
 use crate::cpu::has_avx2_and_fma;
+use crate::cut_outs::CutOutTable;
 
 /// Rays in a packet: one AVX register. Sixteen (two registers, rays from a
 /// wider patch of vertices) visited 1.5x the nodes per packet (105 against
@@ -262,21 +263,33 @@ impl PacketBvh {
     /// Which rays of `packet` (along `dir`, from `0 < t`) are blocked: bit
     /// `k` set for lane `k`. `local` holds the mesh's vertices in `dir`'s
     /// ray space ([`Direction::to_ray_space`], indexed like the positions the
-    /// hierarchy was built from).
+    /// hierarchy was built from). `cut`: the cut-outs rays pass through
+    /// (none: every triangle stops them).
     #[must_use]
-    pub fn occluded(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
+    pub fn occluded(
+        &self,
+        dir: &Direction,
+        local: &[[f32; 4]],
+        packet: &Packet,
+        cut: Option<&CutOutTable>,
+    ) -> u32 {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             assert!(self.bvh.corners_within(local.len()));
             // SAFETY: AVX2 and FMA are present (checked when `self` was
             // built), and every corner index is below `local.len()`.
-            return unsafe { avx2::occluded(self, dir, local, packet) };
+            return unsafe {
+                match cut {
+                    None => avx2::occluded::<false>(self, dir, local, packet, None),
+                    Some(_) => avx2::occluded::<true>(self, dir, local, packet, cut),
+                }
+            };
         }
         let _ = (local, self.avx2);
         let mut out = 0;
         for k in lanes(packet.live) {
             let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
-            if self.bvh.occluded(&ray) {
+            if self.bvh.occluded_through(&ray, cut) {
                 out |= 1 << k;
             }
         }
@@ -284,17 +297,28 @@ impl PacketBvh {
     }
 
     /// The nearest hit of each ray of `packet` (see
-    /// [`occluded`](Self::occluded) for `local`).
+    /// [`occluded`](Self::occluded) for `local` and `cut`).
     #[must_use]
-    pub fn closest(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> PacketHits {
+    pub fn closest(
+        &self,
+        dir: &Direction,
+        local: &[[f32; 4]],
+        packet: &Packet,
+        cut: Option<&CutOutTable>,
+    ) -> PacketHits {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             assert!(self.bvh.corners_within(local.len()));
             // SAFETY: as in `occluded`.
-            return unsafe { avx2::closest(self, dir, local, packet) };
+            return unsafe {
+                match cut {
+                    None => avx2::closest::<false>(self, dir, local, packet, None),
+                    Some(_) => avx2::closest::<true>(self, dir, local, packet, cut),
+                }
+            };
         }
         let _ = local;
-        self.closest_single(dir, packet)
+        self.closest_single(dir, packet, cut)
     }
 
     /// [`closest`](Self::closest) without the ray-space copy of the
@@ -303,18 +327,33 @@ impl PacketBvh {
     /// callers that take the directions in an order of their own, or whose
     /// mesh is too large to copy for every direction.
     #[must_use]
-    pub fn closest_direct(&self, dir: &Direction, packet: &Packet) -> PacketHits {
+    pub fn closest_direct(
+        &self,
+        dir: &Direction,
+        packet: &Packet,
+        cut: Option<&CutOutTable>,
+    ) -> PacketHits {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             // SAFETY: AVX2 and FMA are present (checked when `self` was
             // built).
-            return unsafe { avx2::closest_direct(self, dir, packet) };
+            return unsafe {
+                match cut {
+                    None => avx2::closest_direct::<false>(self, dir, packet, None),
+                    Some(_) => avx2::closest_direct::<true>(self, dir, packet, cut),
+                }
+            };
         }
-        self.closest_single(dir, packet)
+        self.closest_single(dir, packet, cut)
     }
 
     /// Each live ray of `packet` traced alone.
-    fn closest_single(&self, dir: &Direction, packet: &Packet) -> PacketHits {
+    fn closest_single(
+        &self,
+        dir: &Direction,
+        packet: &Packet,
+        cut: Option<&CutOutTable>,
+    ) -> PacketHits {
         let mut out = PacketHits {
             mask: 0,
             t: [f32::INFINITY; LANES],
@@ -323,7 +362,7 @@ impl PacketBvh {
         };
         for k in lanes(packet.live) {
             let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
-            if let Some(h) = self.bvh.closest_hit(&ray) {
+            if let Some(h) = self.bvh.closest_hit_through(&ray, cut) {
                 out.mask |= 1 << k;
                 out.t[k] = h.t;
                 out.triangle[k] = h.triangle;
@@ -361,6 +400,7 @@ mod avx2 {
 
     use super::{Direction, LANES, LEAF, Node2, Packet, PacketBvh, PacketHits, lanes, octant};
     use crate::bvh::{Bvh, FAR_SCALE, STACK, edge_functions};
+    use crate::cut_outs::CutOutTable;
 
     /// What every test of one traversal shares.
     struct Rays {
@@ -410,6 +450,38 @@ mod avx2 {
         for l in lanes(zeros) {
             (uvw[0][l], uvw[1][l], uvw[2][l]) = edge_functions(e.map(|x| x[l]));
         }
+    }
+
+    /// The lanes of `hits` (lanes meeting leaf-order triangle `k` with edge
+    /// functions `uvw` and `1/det` `inv`) that the triangle stops: all of
+    /// them unless it cuts out.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn stopped(
+        cut: &CutOutTable,
+        bvh: &Bvh,
+        k: usize,
+        hits: u32,
+        [u, v, w]: [__m256; 3],
+        inv: __m256,
+        packet: &Packet,
+        dir: &Direction,
+    ) -> u32 {
+        if hits == 0 || !cut.flagged(k) {
+            return hits;
+        }
+        // SAFETY: AVX2 is available (the caller's requirement).
+        let (u, v, w, inv) = unsafe { (store(u), store(v), store(w), store(inv)) };
+        let id = bvh.ids[k];
+        let mut kept = hits;
+        for l in lanes(hits) {
+            // The weights as `nearest` reports them.
+            let b = [u[l] * inv[l], v[l] * inv[l], w[l] * inv[l]];
+            if !cut.stops(id, b, packet.origins[l], dir.dir) {
+                kept &= !(1 << l);
+            }
+        }
+        kept
     }
 
     impl Rays {
@@ -665,17 +737,19 @@ mod avx2 {
         }
     }
 
-    /// Lanes of `packet` blocked along `dir`.
+    /// Lanes of `packet` blocked along `dir`, through the cut-outs `cut`
+    /// when `CUT`.
     ///
     /// # Safety
     /// AVX2 and FMA must be available, and every corner index of `tree`
-    /// below `local.len()`.
+    /// below `local.len()`; `cut` given when `CUT`.
     #[target_feature(enable = "avx2,fma")]
-    pub(super) unsafe fn occluded(
+    pub(super) unsafe fn occluded<const CUT: bool>(
         tree: &PacketBvh,
         dir: &Direction,
         local: &[[f32; 4]],
         packet: &Packet,
+        cut: Option<&CutOutTable>,
     ) -> u32 {
         unsafe {
             let rays = Rays::new(dir, packet);
@@ -689,7 +763,11 @@ mod avx2 {
                 &mut t_max,
                 |first, count, mut mask, t_max| {
                     for k in first..first + count {
-                        let (hits, ..) = rays.hits_triangle(&tree.bvh, local, k, mask, *t_max);
+                        let (mut hits, _, uvw, inv) =
+                            rays.hits_triangle(&tree.bvh, local, k, mask, *t_max);
+                        if CUT && let Some(c) = cut {
+                            hits = stopped(c, &tree.bvh, k, hits, uvw, inv, packet, dir);
+                        }
                         blocked |= hits;
                         mask &= !hits;
                         if mask == 0 {
@@ -708,15 +786,20 @@ mod avx2 {
     /// # Safety
     /// As [`occluded`].
     #[target_feature(enable = "avx2,fma")]
-    pub(super) unsafe fn closest(
+    pub(super) unsafe fn closest<const CUT: bool>(
         tree: &PacketBvh,
         dir: &Direction,
         local: &[[f32; 4]],
         packet: &Packet,
+        cut: Option<&CutOutTable>,
     ) -> PacketHits {
         unsafe {
             nearest(tree, dir, packet, |rays, k, mask, t_max| {
-                rays.hits_triangle(&tree.bvh, local, k, mask, t_max)
+                let (mut hits, t, uvw, inv) = rays.hits_triangle(&tree.bvh, local, k, mask, t_max);
+                if CUT && let Some(c) = cut {
+                    hits = stopped(c, &tree.bvh, k, hits, uvw, inv, packet, dir);
+                }
+                (hits, t, uvw, inv)
             })
         }
     }
@@ -725,12 +808,13 @@ mod avx2 {
     /// tested.
     ///
     /// # Safety
-    /// AVX2 and FMA must be available.
+    /// AVX2 and FMA must be available; `cut` given when `CUT`.
     #[target_feature(enable = "avx2,fma")]
-    pub(super) unsafe fn closest_direct(
+    pub(super) unsafe fn closest_direct<const CUT: bool>(
         tree: &PacketBvh,
         dir: &Direction,
         packet: &Packet,
+        cut: Option<&CutOutTable>,
     ) -> PacketHits {
         unsafe {
             nearest(tree, dir, packet, |rays, k, mask, t_max| {
@@ -742,7 +826,11 @@ mod avx2 {
                     dir.to_ray_space(pb),
                     dir.to_ray_space(pc),
                 );
-                rays.hits_corners(&a, &b, &c, mask, t_max)
+                let (mut hits, t, uvw, inv) = rays.hits_corners(&a, &b, &c, mask, t_max);
+                if CUT && let Some(cut) = cut {
+                    hits = stopped(cut, &tree.bvh, k, hits, uvw, inv, packet, dir);
+                }
+                (hits, t, uvw, inv)
             })
         }
     }
@@ -844,12 +932,12 @@ mod tests {
                     .map(|_| centre + random_unit(&mut rng) * rng.random_range(0.0..0.2))
                     .collect();
                 let packet = Packet::new(&dir, &origins);
-                let blocked = tree.occluded(&dir, &local, &packet);
-                let found = tree.closest(&dir, &local, &packet);
+                let blocked = tree.occluded(&dir, &local, &packet, None);
+                let found = tree.closest(&dir, &local, &packet, None);
                 // Corners put in ray space as they are tested: the same
                 // numbers, so the same hits to the bit (without AVX2 both
                 // are the single-ray traversal).
-                assert_eq!(tree.closest_direct(&dir, &packet), found);
+                assert_eq!(tree.closest_direct(&dir, &packet, None), found);
                 assert_eq!(blocked >> n, 0, "only live lanes");
                 assert_eq!(blocked, found.mask, "occlusion and closest hits agree");
                 for (k, o) in origins.iter().enumerate() {
@@ -920,12 +1008,12 @@ mod tests {
                 .collect();
             for eight in origins.chunks(LANES) {
                 let packet = Packet::new(&dir, eight);
-                let blocked = tree.occluded(&dir, &local, &packet);
+                let blocked = tree.occluded(&dir, &local, &packet, None);
                 cast += eight.len();
                 missed += eight.len() - blocked.count_ones() as usize;
                 // Without AVX2 these are the single-ray traversal thrice.
-                assert_eq!(tree.closest(&dir, &local, &packet).mask, blocked);
-                assert_eq!(tree.closest_direct(&dir, &packet).mask, blocked);
+                assert_eq!(tree.closest(&dir, &local, &packet, None).mask, blocked);
+                assert_eq!(tree.closest_direct(&dir, &packet, None).mask, blocked);
             }
         }
         assert!(cast > 3000, "{cast}");

@@ -2,13 +2,14 @@
 //! states what a probe holds, the estimator, and how the rays are cast and
 //! summed.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::Vec3;
 use rayon::prelude::*;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_core::sh::{ShBasis, sh_count};
-use shlight_mesh::{Mesh, Subdivision};
+use shlight_mesh::{Mesh, Subdivision, Surfaces};
 use shlight_prt::{Albedo, BakeOptions, Kernels, Mode, VertexRecords};
 use shlight_rays::{Direction, LANES, Occluder, Packet};
 
@@ -137,6 +138,16 @@ pub enum Stage {
 /// ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
 /// shadows.
 ///
+/// Through a glTF scene's surfaces ([`bake_surfaces`]) a ray passes the
+/// cut-outs of triangles whose material cuts out
+/// ([`shlight_rays::CutOuts`]: a cut-out texel lets every ray through, a
+/// `BLEND` material's alpha stops that share of them, deterministically),
+/// and the point it hits leaves the albedo `rho(q)` of the texel there
+/// ([`Surfaces::sample`] at the hit) times the light arriving, interpolated
+/// from the vertices ([`shlight_prt::IncidentTransfer`]):
+/// `T(q) = rho(q) G(q)` and `E(q) = Le(q) + rho(q) F(q)`, the emission
+/// itself not multiplied by it.
+///
 /// # Casting and summing
 /// The probes' rays along one direction are parallel: the probes are taken
 /// eight at a time in Morton order of their grid cells and traced as one
@@ -179,7 +190,7 @@ pub fn bake(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<VolumeBake, VolumeError> {
     bake_in_chunks(
-        scene,
+        scene.map(|m| (m, None)),
         grid,
         options,
         progress,
@@ -188,10 +199,34 @@ pub fn bake(
     )
 }
 
-/// [`bake`], keeping at most `hits_memory` bytes of probe hits at a time,
-/// the probes' sums with `kernels`.
+/// [`bake`] through a flattened glTF scene ([`shlight_mesh::Scene::flatten`]):
+/// its mesh, with cut-outs the rays pass and the albedo of the texel each
+/// ray hits ([`bake`] states both). The surfaces' vertex albedo is the
+/// mesh's colours; [`VolumeOptions::albedo`] is not read.
+///
+/// # Errors
+/// As [`bake`].
+pub fn bake_surfaces(
+    surfaces: &Arc<Surfaces>,
+    grid: &ProbeGrid,
+    options: &VolumeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Result<VolumeBake, VolumeError> {
+    bake_in_chunks(
+        Some((&surfaces.mesh, Some(surfaces))),
+        grid,
+        options,
+        progress,
+        HITS_MEMORY,
+        Kernels::detect(),
+    )
+}
+
+/// [`bake`] through `scene` and its surfaces, if any, keeping at most
+/// `hits_memory` bytes of probe hits at a time, the probes' sums with
+/// `kernels`.
 fn bake_in_chunks(
-    scene: Option<&Mesh>,
+    scene: Option<(&Mesh, Option<&Arc<Surfaces>>)>,
     grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
@@ -244,12 +279,14 @@ fn bake_in_chunks(
     // The surfaces, and the probes moved out of geometry before their rays
     // are cast (found while the surfaces are baked, reported after).
     let (surface, moved) = match scene {
-        Some(mesh) => {
-            let (s, o) = Surface::bake(mesh, options, options.relocate.then_some(grid), progress);
+        Some((mesh, surfaces)) => {
+            let relocate = options.relocate.then_some(grid);
+            let (s, o) = Surface::bake(mesh, surfaces, options, relocate, progress);
             (Some(s), o)
         }
         None => (None, None),
     };
+    let scene = scene.map(|(mesh, _)| mesh);
     let offsets: Option<Vec<Vec3>> = options.relocate.then(|| match moved {
         Some(o) => {
             progress(Stage::Relocate, 0, grid.probe_count());
@@ -299,9 +336,14 @@ fn bake_in_chunks(
             // Probes in Morton order, as many at a time as keep the hits
             // within HITS_MEMORY (whole packets).
             let order = probe_order(grid);
-            let per_chunk = (hits_memory / (std::mem::size_of::<Hit>() * dirs.len())).max(LANES)
-                / LANES
-                * LANES;
+            // A ray's hit, and with surfaces the albedo there.
+            let per_ray = std::mem::size_of::<Hit>()
+                + if s.texel {
+                    std::mem::size_of::<Vec3>()
+                } else {
+                    0
+                };
+            let per_chunk = (hits_memory / (per_ray * dirs.len())).max(LANES) / LANES * LANES;
             let chunks = order.len().div_ceil(per_chunk);
             let done = AtomicUsize::new(0);
             let total = chunks * dirs.len();
@@ -309,7 +351,7 @@ fn bake_in_chunks(
             let mut e = Vec::new();
             let mut back = Vec::new();
             for chunk in order.chunks(per_chunk) {
-                let hits = s.cast(chunk, &probes, &dirs, &|len| {
+                let (hits, albedo) = s.cast(chunk, &probes, &dirs, &|len| {
                     progress(
                         Stage::Probes,
                         done.fetch_add(len, Ordering::Relaxed) + len,
@@ -321,7 +363,7 @@ fn bake_in_chunks(
                 back.resize(chunk.len(), 0.0);
                 s.gather(
                     kernels,
-                    &hits,
+                    (&hits, &albedo),
                     &ylm32,
                     &all,
                     weight,
@@ -408,7 +450,8 @@ fn identity(n: usize) -> Vec<f64> {
 const BLOCK: usize = 64;
 
 /// Bytes of probe hits kept at a time: the probes are cast and summed in
-/// chunks of this many bytes of [`Hit`]s (12 a ray).
+/// chunks of this many bytes of [`Hit`]s (16 a ray, 28 with surfaces,
+/// whose albedo at each hit is kept beside it).
 const HITS_MEMORY: usize = 256 << 20;
 
 /// The order in which the probes take the directions `dirs`, so that each
@@ -463,8 +506,15 @@ fn probe_order(grid: &ProbeGrid) -> Vec<u32> {
 /// per vertex.
 struct Surface {
     mesh: Mesh,
-    /// The scene before subdivision, made ready to cast against.
+    /// The scene before subdivision, made ready to cast against (through
+    /// its cut-outs, with surfaces).
     occluder: Occluder,
+    /// A glTF scene's surfaces (of the scene before subdivision): a hit
+    /// takes the albedo of its texel.
+    surfaces: Option<Arc<Surfaces>>,
+    /// With surfaces: the records are incident, a hit multiplies them by
+    /// its albedo ([`VertexRecords::incident`]).
+    texel: bool,
     /// Where the scene's triangles went in `mesh`.
     map: Subdivision,
     /// Per vertex its `channels x nc` transfer and (when the scene emits)
@@ -485,6 +535,7 @@ impl Surface {
     /// bounces' set-up) leave no core idle.
     fn bake(
         mesh: &Mesh,
+        surfaces: Option<&Arc<Surfaces>>,
         options: &VolumeOptions,
         relocate: Option<&ProbeGrid>,
         progress: &(dyn Fn(Stage, usize, usize) + Sync),
@@ -501,7 +552,10 @@ impl Surface {
         // in the subdivided mesh.
         let ((mesh, map), occluder) = rayon::join(
             || coarse.subdivided_with_map(max_edge),
-            || Occluder::new(coarse),
+            || match surfaces {
+                Some(s) => Occluder::with_cut_outs(coarse, s.clone()),
+                None => Occluder::new(coarse),
+            },
         );
         let albedo = match &mesh.colors {
             Some(c) => {
@@ -523,6 +577,7 @@ impl Surface {
             albedo,
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
+            surfaces: surfaces.cloned(),
         };
         let (t, offsets) = rayon::join(
             || {
@@ -537,10 +592,13 @@ impl Surface {
             },
             || relocate.map(|grid| relocate::offsets(&occluder, grid, options.seed)),
         );
+        let records = t.records();
         let surface = Self {
             occluder,
             map,
-            records: t.records(),
+            surfaces: surfaces.cloned(),
+            texel: records.incident(),
+            records,
             channels: t.channels,
             nc: sh_count(t.lmax),
             emits: t.emitted.is_some(),
@@ -554,7 +612,9 @@ impl Surface {
     /// Morton order): per block of [`BLOCK`] directions, for each direction,
     /// the probes eight at a time as one packet. The hits of block `b` are
     /// `chunk.len() x len_b` records, the probes in the chunk's order, each
-    /// probe's directions in order. `progress(directions)` as blocks finish.
+    /// probe's directions in order; with surfaces, the albedo at each front
+    /// hit in the same places (empty without). `progress(directions)` as
+    /// blocks finish.
     ///
     /// Each packet of probes goes through every direction of the block in
     /// turn (a small patch of the sphere, [`direction_order`]), so that its
@@ -572,16 +632,41 @@ impl Surface {
         probes: &[Vec3],
         dirs: &[Vec3],
         progress: &(dyn Fn(usize) + Sync),
-    ) -> Vec<Hit> {
+    ) -> (Vec<Hit>, Vec<Vec3>) {
         let n = chunk.len();
         let nv = self.occluder.vertex_count();
         let small = nv * 4 * BLOCK <= LOCAL_FLOATS;
         let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
+        let mut albedo = vec![Vec3::ZERO; if self.texel { hits.len() } else { 0 }];
+        let mut albedo_blocks: Vec<&mut [Vec3]> = if self.texel {
+            albedo.chunks_mut(n * BLOCK).collect()
+        } else {
+            dirs.chunks(BLOCK)
+                .map(|_| <&mut [Vec3]>::default())
+                .collect()
+        };
+        // The albedo at a point of the scene's triangles.
+        let albedo_at = |triangle: u32, w: [f32; 3]| {
+            self.surfaces.as_ref().map_or(Vec3::ZERO, |s| {
+                s.sample(triangle, w).albedo.clamp(Vec3::ZERO, Vec3::ONE)
+            })
+        };
         hits.par_chunks_mut(n * BLOCK)
             .zip(dirs.par_chunks(BLOCK))
+            .zip(albedo_blocks.par_iter_mut())
             .for_each_init(
-                || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                |(local, front, located, slots, distances), (out, block)| {
+                || {
+                    (
+                        Vec::new(),
+                        Vec::new(),
+                        Vec::new(),
+                        Vec::new(),
+                        Vec::new(),
+                        Vec::new(),
+                    )
+                },
+                |(local, front, located, slots, distances, front_albedo),
+                 ((out, block), out_albedo)| {
                     let len = block.len();
                     let directions: Vec<Direction> =
                         block.iter().map(|d| Direction::new(*d)).collect();
@@ -617,14 +702,20 @@ impl Surface {
                                     front.push((coarse, found.barycentrics[k]));
                                     slots.push(slot);
                                     distances.push(found.t[k]);
+                                    if self.texel {
+                                        front_albedo.push(albedo_at(coarse, found.barycentrics[k]));
+                                    }
                                 }
                             }
                         }
                         // The packet's front hits in the block, found in
                         // the subdivided mesh together.
                         self.map.locate_each(front, located);
-                        for ((&i, found), &t) in
-                            slots.iter().zip(located.iter()).zip(distances.iter())
+                        for (f, ((&i, found), &t)) in slots
+                            .iter()
+                            .zip(located.iter())
+                            .zip(distances.iter())
+                            .enumerate()
                         {
                             out[i] = match *found {
                                 Some((triangle, [_, b1, b2])) => Hit {
@@ -635,15 +726,20 @@ impl Surface {
                                 },
                                 None => Hit::back(t),
                             };
+                            if self.texel {
+                                out_albedo[i] = front_albedo[f];
+                            }
                         }
                         front.clear();
                         slots.clear();
                         distances.clear();
+                        front_albedo.clear();
                     }
                     progress(len);
                 },
             );
-        hits
+        drop(albedo_blocks);
+        (hits, albedo)
     }
 
     /// How [`sums`] makes a probe's rows: `v = (Y, T, E)`, `Y` in
@@ -657,6 +753,7 @@ impl Surface {
             records: self.records.floats(),
             rec: self.records.stride(),
             len: self.records.used(),
+            incident: self.texel.then_some(self.channels * self.nc),
         }
     }
 
@@ -672,7 +769,7 @@ impl Surface {
         let back = [Hit::BACK; BLOCK];
         for block in ylm.chunks(BLOCK * nc) {
             let len = block.len() / nc;
-            rows.fill(kernels, &back[..len], block, &mut v);
+            rows.fill(kernels, &back[..len], &[], block, &mut v);
             block_sum(kernels, block, nc, &v, width, len, &mut acc);
             for (t, a) in total.iter_mut().zip(&acc) {
                 *t += f64::from(*a);
@@ -682,8 +779,9 @@ impl Surface {
     }
 
     /// Sums the rays of each probe of a chunk ([`cast`](Self::cast)'s
-    /// `hits`) into its transfer, emitted light and back-face fraction
-    /// (`out`, in the chunk's order); `all` is [`sum_all`](Self::sum_all).
+    /// `hits`, and with surfaces the albedo at each) into its transfer,
+    /// emitted light and back-face fraction (`out`, in the chunk's order);
+    /// `all` is [`sum_all`](Self::sum_all).
     ///
     /// Per block of [`BLOCK`] directions a probe sums, in `f32`, the
     /// products `Y_i(s) v(s)` with `v = (Y(s), T(q), E(q))` over its blocked
@@ -693,7 +791,7 @@ impl Surface {
     fn gather(
         &self,
         kernels: Kernels,
-        hits: &[Hit],
+        (hits, albedo): (&[Hit], &[Vec3]),
         ylm: &[f32],
         all: &[f64],
         weight: f64,
@@ -724,8 +822,14 @@ impl Surface {
                     let (mut escaped, mut back_count) = (0usize, 0usize);
                     for (b, ys) in ylm.chunks(BLOCK * nc).enumerate() {
                         let len = ys.len() / nc;
-                        let rays = &hits[b * BLOCK * n + p * len..][..len];
-                        let (out, backs) = rows.fill(kernels, rays, ys, v);
+                        let at = b * BLOCK * n + p * len;
+                        let rays = &hits[at..][..len];
+                        let rho = if self.texel {
+                            &albedo[at..][..len]
+                        } else {
+                            &[]
+                        };
+                        let (out, backs) = rows.fill(kernels, rays, rho, ys, v);
                         escaped += out;
                         back_count += backs;
                         if out == len {
@@ -792,7 +896,7 @@ mod tests {
         assert!(chunks >= 2, "{n} rays, {per_chunk} probes a chunk");
         let calls = AtomicUsize::new(0);
         let chunked = bake_in_chunks(
-            Some(&scene),
+            Some((&scene, None)),
             &grid,
             &options,
             &|stage, done, total| {
@@ -868,7 +972,7 @@ mod tests {
         };
         let run = |kernels| {
             bake_in_chunks(
-                Some(&room),
+                Some((&room, None)),
                 &grid,
                 &options,
                 &|_, _, _| {},

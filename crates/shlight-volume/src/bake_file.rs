@@ -9,14 +9,15 @@
 //! environment, and the file with its provenance.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Surfaces};
 
-use crate::bake::{Stage, VolumeOptions, bake};
+use crate::bake::{Stage, VolumeOptions, bake, bake_surfaces};
 use crate::error::VolumeError;
 use crate::volume_bake::{FileMeta, VolumeBake};
 
@@ -108,13 +109,16 @@ pub fn generator() -> String {
 /// relit under `env` (radiance coefficients in the y-up frame, read from
 /// `env_path`; [`VolumeBake::relight`]), and [`VolumeBake::to_shvol`]
 /// recording the frame, the inputs' file names and the generator
-/// (`shlight VERSION`).
+/// (`shlight VERSION`). `surfaces`: a glTF scene's, whose mesh `scene` is,
+/// baked through by [`bake_surfaces`] (cut-outs, and the albedo of the
+/// texel a ray hits).
 ///
 /// # Errors
 /// An environment too short for the bake ([`check_environment`]), a bad
-/// grid, or options [`bake()`] refuses.
+/// grid, surfaces of another mesh, or options [`bake()`] refuses.
 pub fn bake_file(
     scene: &Mesh,
+    surfaces: Option<&Arc<Surfaces>>,
     scene_path: &Path,
     env: &ShCoeffs<DVec3>,
     env_path: &Path,
@@ -123,7 +127,20 @@ pub fn bake_file(
 ) -> Result<BakedFile, VolumeError> {
     check_environment(env, env_path, request.options.lmax)?;
     let grid = request.grid(scene)?;
-    let volume = bake(Some(scene), &grid, &request.options, progress)?;
+    let volume = match surfaces {
+        Some(s) => {
+            if s.mesh.vertex_count() != scene.vertex_count()
+                || s.mesh.triangle_count() != scene.triangle_count()
+            {
+                return Err(VolumeError::Options(format!(
+                    "{}: the surfaces given are not those of the scene's mesh",
+                    scene_path.display()
+                )));
+            }
+            bake_surfaces(s, &grid, &request.options, progress)?
+        }
+        None => bake(Some(scene), &grid, &request.options, progress)?,
+    };
     let radiance = volume.relight(env);
     let meta = FileMeta {
         frame: BAKE_FRAME.into(),
@@ -162,6 +179,7 @@ mod tests {
         let env = closed_form::constant(2, DVec3::new(1.0, 0.5, 0.25));
         let baked = bake_file(
             &scene,
+            None,
             Path::new("dir/ball.obj"),
             &env,
             Path::new("maps/sky.exr"),
@@ -192,6 +210,7 @@ mod tests {
         );
         let baked = bake_file(
             &scene,
+            None,
             Path::new("ball.obj"),
             &env,
             Path::new("sky.exr"),
@@ -204,6 +223,7 @@ mod tests {
         let short = closed_form::constant(1, DVec3::ONE);
         let e = bake_file(
             &scene,
+            None,
             Path::new("ball.obj"),
             &short,
             Path::new("l1.json"),

@@ -9,7 +9,9 @@
 //! 1. **The bake.** [`bake()`] bakes the probes of a
 //!    [`shlight_baked::ProbeGrid`] (the probes' box and resolution, probes
 //!    at cell centres, x fastest) through a scene with [`VolumeOptions`]
-//!    into a [`VolumeBake`]: each probe's incident radiance as a transfer
+//!    into a [`VolumeBake`] ([`bake_surfaces`] through a glTF scene's
+//!    surfaces: cut-outs, and the albedo of the texel a ray hits): each
+//!    probe's incident radiance as a transfer
 //!    matrix per channel and the emitters' light, `L_probe = M L_env +
 //!    L_emitted`, through the scene's shadows and interreflections
 //!    ([`bake()`] states the estimator). [`bake_file()`] is a bake as a
@@ -88,7 +90,7 @@ mod texel_corners;
 mod threejs_lookup;
 mod volume_bake;
 
-pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake, relocate};
+pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces, relocate};
 pub use bake_file::{BakedFile, VolumeBakeSettings, bake_file, check_environment};
 pub use error::VolumeError;
 pub use lookup::{Lookup, LookupLmax};

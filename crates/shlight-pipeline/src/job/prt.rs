@@ -6,22 +6,24 @@
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
 use shlight_core::sh::ShCoeffs;
 use shlight_format::{CoeffFile, ShprtFile};
 use shlight_io::{ToneMap, WriteOptions, write_image};
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Surfaces};
 use shlight_prt::{
-    Albedo, BakeRequest, Brdf, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES, Mode, Stage,
-    bake_file, bake_glossy_file, compress_file, glossy_bytes, glossy_channels, parse_cpca,
-    render_preview, vertex_exposure, write_gltf,
+    Albedo, BakeRequest, Brdf, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES,
+    Mode, Stage, bake_file, bake_glossy_file, compress_file, glossy_bytes, glossy_channels,
+    parse_cpca, render_preview, vertex_exposure, write_gltf,
 };
 
 use crate::hooks::{Hooks, Progress};
 use crate::job::by_name::by_name;
 use crate::output_path::refuse_overwriting;
+use crate::scene_surfaces::load_scene_surfaces;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -354,7 +356,8 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
         })
         .transpose()?;
     let name = plan.mesh.display().to_string();
-    let mesh = shlight_mesh::load(&plan.mesh)?;
+    let default_albedo = Vec3::from_array(plan.bake.albedo.unwrap_or(DEFAULT_ALBEDO));
+    let (mesh, surfaces) = load_scene_surfaces(&plan.mesh, default_albedo)?;
     if mesh.report.degenerate_triangles > 0 {
         hooks.warn(&format!(
             "{name}: skipped {} degenerate triangles",
@@ -372,10 +375,10 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
         });
     };
     if let Some(brdf) = plan.brdf {
-        return glossy(plan, &mesh, brdf, &progress, hooks);
+        return glossy(plan, (&mesh, surfaces.as_ref()), brdf, &progress, hooks);
     }
     let start = Instant::now();
-    let (transfer, file) = bake_file(&mesh, &plan.mesh, &plan.bake, &progress);
+    let (transfer, file) = bake_file(&mesh, surfaces.as_ref(), &plan.mesh, &plan.bake, &progress);
     let seconds = start.elapsed().as_secs_f64();
     hooks.note(&format!(
         "{name}: {} vertices, {} triangles, {} transfer, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
@@ -411,14 +414,16 @@ fn mib(bytes: u64) -> f64 {
 /// bake, the compression, the `.shprt` file.
 fn glossy(
     plan: &PrtPlan,
-    mesh: &Mesh,
+    (mesh, surfaces): (&Mesh, Option<&Arc<Surfaces>>),
     brdf: Brdf,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     hooks: &dyn Hooks,
 ) -> Result<PrtBaked> {
     let name = plan.mesh.display().to_string();
     let (lmax, spelling) = (plan.bake.lmax, plan.spelling);
-    let channels = glossy_channels(&plan.bake.options(mesh).0);
+    let mut options = plan.bake.options(mesh).0;
+    options.surfaces = surfaces.cloned();
+    let channels = glossy_channels(&options);
     let size = |lmax| glossy_bytes(mesh.vertex_count(), channels, lmax).unwrap_or(u64::MAX);
     let bytes = size(lmax);
     let plural = if channels == 1 { "" } else { "s" };
@@ -456,7 +461,8 @@ fn glossy(
         (lmax + 1) * (lmax + 1),
     ));
     let start = Instant::now();
-    let (transfer, mut file) = bake_glossy_file(mesh, &plan.mesh, &plan.bake, brdf, progress);
+    let (transfer, mut file) =
+        bake_glossy_file(mesh, surfaces, &plan.mesh, &plan.bake, brdf, progress);
     let seconds = start.elapsed().as_secs_f64();
     hooks.note(&format!(
         "{name}: {} vertices, {} triangles, glossy {} transfer for {brdf}, lmax {lmax}, {} directions; {} rays in {seconds:.2} s",

@@ -20,6 +20,7 @@ use shlight_volume::{
 use crate::environment::Environment;
 use crate::hooks::{Hooks, Progress};
 use crate::output_path::refuse_overwriting;
+use crate::scene_surfaces::load_scene_surfaces;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -130,7 +131,8 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
     light.warnings.iter().for_each(|w| hooks.warn(w));
     let radiance = light.radiance_in(Frame::YUp);
     let name = plan.scene.display().to_string();
-    let scene = shlight_mesh::load(&plan.scene)?;
+    let albedo = Vec3::from_array(plan.bake.options.albedo);
+    let (scene, surfaces) = load_scene_surfaces(&plan.scene, albedo)?;
     if scene.report.degenerate_triangles > 0 {
         hooks.warn(&format!(
             "{name}: skipped {} degenerate triangles",
@@ -154,6 +156,7 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
     let start = Instant::now();
     let baked = bake_file(
         &scene,
+        surfaces.as_ref(),
         &plan.scene,
         &radiance,
         &plan.env,

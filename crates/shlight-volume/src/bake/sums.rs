@@ -6,7 +6,12 @@
 //! fused multiply-add per 8 entries and ray; elsewhere a portable loop
 //! computes the same sums in the same order (its roundings differ from the
 //! fused ones in the last bits).
+//!
+//! With surfaces the records are incident ([`VertexRecords::incident`]):
+//! a front hit's interpolated row is then multiplied by the albedo of the
+//! texel it met, per channel, and its emitters' part becomes `Le + rho F`.
 
+use glam::Vec3;
 use shlight_prt::{Kernels, VertexRecords};
 
 use super::hit::Hit;
@@ -23,6 +28,9 @@ pub(super) struct Rows<'a> {
     pub(super) records: &'a [f32],
     pub(super) rec: usize,
     pub(super) len: usize,
+    /// Incident records (`Some(channels nc)`, the transfer's floats): a
+    /// front hit's row takes its albedo.
+    pub(super) incident: Option<usize>,
 }
 
 impl Rows<'_> {
@@ -34,12 +42,14 @@ impl Rows<'_> {
 
     /// The rows of the rays `hits` (directions' coefficients `ylm`, `nc`
     /// per ray) into `v`: `(Y, 0)` at a back face, `(Y, T, E)` at a front
-    /// hit, zeros for an escaped ray. Returns the escaped and back-face
-    /// counts.
+    /// hit, zeros for an escaped ray. With incident records, `albedo`
+    /// holds each ray's albedo at its hit (else it is empty). Returns the
+    /// escaped and back-face counts.
     pub(super) fn fill(
         &self,
         kernels: Kernels,
         hits: &[Hit],
+        albedo: &[Vec3],
         ylm: &[f32],
         v: &mut [f32],
     ) -> (usize, usize) {
@@ -49,11 +59,20 @@ impl Rows<'_> {
                 && self.len <= self.rec
                 && self.nc + self.len <= self.width
         );
+        if let Some(stride) = self.incident {
+            assert!(
+                albedo.len() >= hits.len() || hits.iter().all(|h| h.triangle >= Hit::BACK_ID),
+                "an albedo per ray"
+            );
+            assert!(stride % 3 == 0 && (self.len == stride || self.len == stride + 6));
+        }
         #[cfg(target_arch = "x86_64")]
         if kernels == Kernels::Avx2 {
             // SAFETY: AVX2 and FMA were detected (`Kernels::detect`), and the
             // lengths are checked above.
-            return unsafe { avx2::fill(self, hits, ylm, v) };
+            let counts = unsafe { avx2::fill(self, hits, ylm, v) };
+            self.take_albedo(hits, albedo, v);
+            return counts;
         }
         let _ = kernels;
         let (nc, width, len) = (self.nc, self.width, self.len);
@@ -83,7 +102,36 @@ impl Rows<'_> {
             }
             row[..nc].copy_from_slice(&ylm[r * nc..][..nc]);
         }
+        self.take_albedo(hits, albedo, v);
         (escaped, back)
+    }
+
+    /// With incident records, each front hit's row of `v` (interpolated
+    /// records) turned into the light leaving the hit: the transfer of
+    /// channel `c` times the albedo's channel `c`, and the emitters' part
+    /// `Le + rho F` (the 3 floats of `F` then zero).
+    fn take_albedo(&self, hits: &[Hit], albedo: &[Vec3], v: &mut [f32]) {
+        let Some(stride) = self.incident else {
+            return;
+        };
+        let (nc, width) = (self.nc, self.width);
+        let per = stride / 3;
+        for (r, hit) in hits.iter().enumerate() {
+            if hit.triangle >= Hit::BACK_ID {
+                continue;
+            }
+            let rho = albedo[r];
+            let row = &mut v[r * width + nc..][..self.len];
+            for (c, t) in row[..stride].chunks_exact_mut(per).enumerate() {
+                t.iter_mut().for_each(|x| *x *= rho[c]);
+            }
+            if self.len > stride {
+                for c in 0..3 {
+                    row[stride + c] += rho[c] * row[stride + 3 + c];
+                    row[stride + 3 + c] = 0.0;
+                }
+            }
+        }
     }
 }
 
@@ -345,6 +393,7 @@ mod tests {
             records: &records,
             rec,
             len,
+            incident: None,
         };
         let mut hits = Vec::new();
         for k in 0..40 {
@@ -365,10 +414,13 @@ mod tests {
         let ylm: Vec<f32> = (0..hits.len() * nc).map(|_| next()).collect();
         let mut portable = vec![f32::NAN; rows.buffer(hits.len())];
         let mut simd = vec![f32::NAN; rows.buffer(hits.len())];
-        let counts = rows.fill(Kernels::Portable, &hits, &ylm, &mut portable);
+        let counts = rows.fill(Kernels::Portable, &hits, &[], &ylm, &mut portable);
         assert_eq!(counts, (8, 8));
         // Without AVX2 and FMA this compares the portable fill with itself.
-        assert_eq!(rows.fill(Kernels::detect(), &hits, &ylm, &mut simd), counts);
+        assert_eq!(
+            rows.fill(Kernels::detect(), &hits, &[], &ylm, &mut simd),
+            counts
+        );
         let used = hits.len() * width;
         for (r, (p, s)) in portable[..used]
             .chunks_exact(width)
