@@ -103,6 +103,7 @@ fn options(mode: Mode, samples: usize, surfaces: &Arc<Surfaces>, albedo: f32) ->
         seed: 7,
         emission: None,
         surfaces: Some(surfaces.clone()),
+        direct_irradiance: None,
     }
 }
 
@@ -186,6 +187,72 @@ fn a_two_coloured_floor_tints_the_ceiling_above_each_half() {
         checked += 1;
     }
     assert_eq!(checked, 8);
+}
+
+#[test]
+fn a_lit_floor_passes_its_texels_colour_to_the_ceiling_as_emitters_do_not() {
+    // The room above, its floor lit directly (BakeOptions::
+    // direct_irradiance: pi on every floor vertex, so the light arriving
+    // over pi is 1) and, the second time, emitting Le = 0.2 as well; the
+    // vertex albedo is 1 everywhere, the floor's texels red and blue. The
+    // lights' light is read times the albedo of the texel hit: the
+    // ceilings' bounce light is each half's texel albedo times its share of
+    // the view, as under a white sky; the emission reaches them as it is.
+    let floor = Material {
+        base_color_texture: Some(textured(0, 1.0)),
+        ..Material::default()
+    };
+    let (surfaces, [red, blue]) = two_colour_room(floor);
+    let mesh = &surfaces.mesh;
+    let on_floor = |p: &Vec3| p.y < 0.05;
+    let lit: Vec<Vec3> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            if on_floor(p) {
+                Vec3::splat(PI as f32)
+            } else {
+                Vec3::ZERO
+            }
+        })
+        .collect();
+    let le = Vec3::splat(0.2);
+    for emission in [None, Some(le)] {
+        let options = BakeOptions {
+            direct_irradiance: Some(lit.clone()),
+            emission: emission.map(|le| {
+                mesh.positions
+                    .iter()
+                    .map(|p| if on_floor(p) { le } else { Vec3::ZERO })
+                    .collect()
+            }),
+            ..options(Mode::Interreflected { bounces: 1 }, 8192, &surfaces, 1.0)
+        };
+        let emitted = bake(mesh, &options, &|_, _, _| {}).emitted.unwrap();
+        let mut checked = 0;
+        for (v, p) in mesh.positions.iter().enumerate() {
+            if on_floor(p) {
+                // Its own light: Le plus its albedo (1) times what arrives.
+                let want = emission.unwrap_or(Vec3::ZERO) + Vec3::ONE;
+                assert!(
+                    (emitted[v] - want).abs().max_element() < 1e-5,
+                    "{}",
+                    emitted[v]
+                );
+                continue;
+            }
+            let own = half_plane_view(f64::from(p.x.abs()), 0.1) as f32;
+            let (near, far) = if p.x < 0.0 { (red, blue) } else { (blue, red) };
+            let want = near * own + far * (1.0 - own) + emission.unwrap_or(Vec3::ZERO);
+            let got = emitted[v];
+            assert!(
+                (got - want).abs().max_element() < 0.012,
+                "{emission:?}: vertex at {p}: {got} vs {want}"
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 8);
+    }
 }
 
 #[test]
@@ -378,6 +445,7 @@ fn one_colour_per_triangle_bakes_as_it_does_without_surfaces() {
             seed: 3,
             emission: mesh.emission.clone(),
             surfaces: None,
+            direct_irradiance: None,
         };
         let with = BakeOptions {
             surfaces: Some(surfaces.clone()),
