@@ -476,3 +476,37 @@ fn one_colour_per_triangle_bakes_as_it_does_without_surfaces() {
         }
     }
 }
+
+#[test]
+fn glossy_matrices_through_one_colour_per_triangle_are_those_without_surfaces() {
+    // The glossy matrices gather the diffuse bounce light at their hits:
+    // with the albedo the same at a triangle's corners, reading it per hit
+    // (surfaces) or through the corners' exit transfer (without) agrees to
+    // rounding.
+    let surfaces = one_colour_scene();
+    let mesh = &surfaces.mesh;
+    let without = BakeOptions {
+        lmax: 2,
+        samples: 256,
+        mode: Mode::Interreflected { bounces: 2 },
+        albedo: Albedo::PerVertex(mesh.colors.clone().unwrap()),
+        seed: 9,
+        emission: None,
+        surfaces: None,
+    };
+    let with = BakeOptions {
+        surfaces: Some(surfaces.clone()),
+        ..without.clone()
+    };
+    let a = shlight_prt::bake_glossy(mesh, &without, &|_, _, _| {});
+    let b = shlight_prt::bake_glossy(mesh, &with, &|_, _, _| {});
+    assert_eq!((a.channels, b.channels), (3, 3));
+    let max = a.matrices.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+    let mut bounced = 0;
+    for (x, y) in a.matrices.iter().zip(&b.matrices) {
+        assert!((x - y).abs() <= 2e-5 * max, "{x} vs {y}");
+        bounced += usize::from(x != y);
+    }
+    // The bounce light is there (and read by each route its own way).
+    assert!(bounced > 0);
+}
