@@ -8,6 +8,7 @@ use glam::DVec3;
 use shlight_core::encoding::Encoding;
 use shlight_core::map::Layout;
 use shlight_format::{ExportFormat, Quantity, VolumeFormat};
+use shlight_mesh::LightUnits;
 use shlight_pipeline::RenderLayout;
 use shlight_specular::TargetEngine;
 
@@ -54,6 +55,11 @@ pub fn engine() -> impl TypedValueParser<Value = TargetEngine> {
         TargetEngine::Bevy => "Bevy EnvironmentMapLight: roughness linear in the mip",
         TargetEngine::Unreal => "Unreal Engine 4 reflection captures",
     })
+}
+
+/// `shlight volume --light-units NAME`.
+pub fn light_units() -> impl TypedValueParser<Value = LightUnits> {
+    one_of(&LightUnits::ALL, LightUnits::name, LightUnits::description)
 }
 
 /// `--encoding NAME`.

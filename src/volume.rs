@@ -12,6 +12,7 @@ use clap::{Args, ValueEnum};
 use shlight_baked::ProbeGrid;
 use shlight_format::VolumeFormat;
 use shlight_format::threejs_volume::Precision;
+use shlight_mesh::LightUnits;
 use shlight_pipeline::{Spelling, VolumeRequest, visibility_size, volume};
 use shlight_volume::{VolumeBakeSettings, VolumeOptions};
 
@@ -86,6 +87,12 @@ pub struct VolumeArgs {
     /// fraction of its rays hit back faces.
     #[arg(long, default_value_t = 0.5)]
     pub invalid_backfaces: f32,
+    /// How the intensities of the scene's punctual lights (glTF's
+    /// KHR_lights_punctual) become the units of --env's radiance: blender
+    /// divides glTF's candela and lux by 683, undoing Blender's exporter,
+    /// so a scene bakes to what Cycles renders.
+    #[arg(long, default_value = "blender", value_parser = crate::values::light_units())]
+    pub light_units: LightUnits,
     /// Seed of the ray directions (the same seed gives the same file at any
     /// thread count).
     #[arg(long, default_value_t = 0)]
@@ -140,6 +147,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
                 seed: args.seed,
                 relocate: !args.no_relocate,
                 visibility_size: visibility_size(!args.no_visibility),
+                light_units: args.light_units,
             },
             relightable: !args.static_only,
         },

@@ -8,6 +8,12 @@
 //! light's delta, convolved with the clamped cosine, is within 1.4% of
 //! `cos` at lmax 8 (the truncation oscillates with the angle, so it
 //! averages out over a floor).
+//!
+//! Held here: the point lamp, the sun through a window, the sky through a
+//! window and the instanced chairs. The spot, the textured floor, the
+//! cut-out skylight and the full room are checked in with their truths
+//! but not yet within these bounds (their figures are in
+//! `tests/scenes/README.md`).
 
 use std::path::Path;
 
@@ -150,9 +156,40 @@ fn compare(name: &str, target: usize, extra: &[&str]) -> (f64, f64) {
     (abs / n, signed / n)
 }
 
+/// Bakes `name` at the test's settings and prints and returns the figures
+/// of target `target`.
+fn measure(name: &str, target: usize) -> (f64, f64) {
+    let (mean, bias) = compare(name, target, &["--samples", "4096", "--bounces", "8"]);
+    eprintln!("{name} target {target}: mean relative error {mean:.4}, bias {bias:+.4}");
+    (mean, bias)
+}
+
 #[test]
 fn sky_through_a_window() {
-    let (mean, bias) = compare("sky", 0, &["--samples", "4096", "--bounces", "8"]);
-    eprintln!("sky: mean relative error {mean:.4}, bias {bias:+.4}");
-    assert!(mean <= 0.03 && bias.abs() <= 0.02, "{mean} {bias}");
+    within_bounds("sky");
+}
+
+/// The bounds the scenes below are held to: a mean relative error of 3%
+/// and a bias of 2% (E/pi above 1e-3 of Cycles', channel by channel).
+fn within_bounds(name: &str) {
+    let (mean, bias) = measure(name, 0);
+    assert!(
+        mean <= 0.03 && bias.abs() <= 0.02,
+        "{name}: mean relative error {mean}, bias {bias}"
+    );
+}
+
+#[test]
+fn a_point_lamp_in_a_closed_room() {
+    within_bounds("point");
+}
+
+#[test]
+fn a_sun_through_a_window() {
+    within_bounds("sun");
+}
+
+#[test]
+fn a_chair_instanced_three_times_under_a_point_lamp() {
+    within_bounds("instances");
 }

@@ -61,6 +61,7 @@ fn shprt_holds_the_library_bake_and_the_bowls_closed_form() {
         seed: 4,
         emission: None,
         surfaces: None,
+        direct_irradiance: None,
     };
     let library = bake(&mesh, &options, &|_, _, _| {});
     assert_eq!(file.transfer, library.coeffs);

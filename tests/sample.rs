@@ -43,6 +43,7 @@ fn two_probes(relightable: bool) -> ShvolFile {
         scene_hash: 0,
         environment: "by hand".into(),
         generator: "tests/sample.rs".into(),
+        lights: None,
     }
 }
 

@@ -1,7 +1,8 @@
 //! `shlight volume`: the bundled Cornell box is the published scene, the
 //! files hold the library's bake in the documented layout (binary and JSON
 //! agree), the bake is the same at any thread count, `--static` drops the
-//! transfer, and bad input is an error naming the problem with nothing
+//! transfer, a glTF's punctual light lights the probes in the units asked
+//! for, and bad input is an error naming the problem with nothing
 //! written.
 
 use std::path::Path;
@@ -218,4 +219,170 @@ fn bad_input_is_an_error_naming_the_problem_and_nothing_is_written() {
     std::fs::write(&out, b"{\"format\":\"shlight-volume\"}\n").unwrap();
     let e = ShvolFile::read(&out).unwrap_err().to_string();
     assert!(e.starts_with(&format!("{}: ", out.display())), "{e}");
+}
+
+/// A GLB of a 4 m floor (y = 0, facing +Y, no material) and a white point
+/// light of `intensity` cd 1 m above its centre (`KHR_lights_punctual`),
+/// assembled here: the JSON chunk, then the binary chunk of positions,
+/// normals and indices.
+fn floor_with_a_lamp_glb(intensity: f64) -> Vec<u8> {
+    let corners = [
+        [-2.0f32, 0.0, -2.0],
+        [2.0, 0.0, -2.0],
+        [2.0, 0.0, 2.0],
+        [-2.0, 0.0, 2.0],
+    ];
+    let mut bin = Vec::new();
+    for c in corners {
+        c.iter().for_each(|x| bin.extend(x.to_le_bytes()));
+    }
+    for _ in corners {
+        [0.0f32, 1.0, 0.0]
+            .iter()
+            .for_each(|x| bin.extend(x.to_le_bytes()));
+    }
+    // (b - a) x (c - a) along +Y for both triangles.
+    for i in [0u16, 3, 2, 0, 2, 1] {
+        bin.extend(i.to_le_bytes());
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let doc = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "point", "name": "lamp", "intensity": intensity, "color": [1, 1, 1]}
+        ]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [
+            {"mesh": 0},
+            {"translation": [0, 1, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}
+        ],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 96, "byteLength": 12}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+             "min": [-2, 0, -2], "max": [2, 0, 2]},
+            {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}
+        ]
+    });
+    let mut json = doc.to_string().into_bytes();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut glb = Vec::new();
+    glb.extend(b"glTF");
+    glb.extend(2u32.to_le_bytes());
+    glb.extend((total as u32).to_le_bytes());
+    glb.extend((json.len() as u32).to_le_bytes());
+    glb.extend(b"JSON");
+    glb.extend(json);
+    glb.extend((bin.len() as u32).to_le_bytes());
+    glb.extend(b"BIN\0");
+    glb.extend(bin);
+    glb
+}
+
+#[test]
+fn a_gltf_lamp_lights_the_volume_in_the_units_asked_for() {
+    // One probe 0.5 m above the floor, straight under a point light of
+    // 683 x 10 cd (Blender's exporter's 10 W/sr), a black sky, a black
+    // floor (only the lamp's own light): E_perp = 10 / 0.5^2 = 40 W/m2 from
+    // +Y, so the probe's SH are 40 Y_lm(+Y): Y_00 = 1 / (2 sqrt(pi)), Y_1-1
+    // = -sqrt(3 / (4 pi)) y (docs/conventions.md), Y_10 = Y_11 = 0.
+    // `--light-units as-written` reads the intensity as 6830 W/sr: 683
+    // times as much. A static file's probes hold the same light, and the
+    // file and `shlight show` say which lights were baked.
+    let dir = temp_dir("volume_gltf_lamp");
+    let scene = dir.join("floor.glb");
+    std::fs::write(&scene, floor_with_a_lamp_glb(6830.0)).unwrap();
+    let env = dir.join("black.json");
+    write_coefficient_rows(&env, &[[0.0; 3]; 9], "radiance");
+    let bake = |units: &str, out: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "volume",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--resolution",
+            "1x1x1",
+            "--bounds",
+            "-0.1,0.4,-0.1:0.1,0.6,0.1",
+            "--no-relocate",
+            "--no-visibility",
+            "--albedo",
+            "0",
+            "--bounces",
+            "0",
+            "--samples",
+            "256",
+            "--surface-samples",
+            "16",
+            "--light-units",
+            units,
+            "-o",
+            s(out),
+        ];
+        args.extend_from_slice(extra);
+        let run = shlight_ok(&args);
+        String::from_utf8_lossy(&run.stderr).into_owned()
+    };
+    let (blender, written, fixed) = (
+        dir.join("blender.json"),
+        dir.join("written.json"),
+        dir.join("static.json"),
+    );
+    let said = bake("blender", &blender, &[]);
+    assert!(
+        said.contains(
+            "1 punctual lights (1 point, 0 spot, 0 directional), intensities divided by 683"
+        ),
+        "{said}"
+    );
+    bake("as-written", &written, &[]);
+    bake("blender", &fixed, &["--static"]);
+    let y00 = 0.5 / std::f64::consts::PI.sqrt();
+    let y1 = -(3.0 / (4.0 * std::f64::consts::PI)).sqrt();
+    let rows = |path: &Path| -> Vec<[f64; 3]> {
+        read_json(path)["coefficients"][0]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| [0, 1, 2].map(|c| r[c].as_f64().unwrap()))
+            .collect()
+    };
+    for (path, e) in [(&blender, 40.0), (&written, 683.0 * 40.0), (&fixed, 40.0)] {
+        let got = rows(path);
+        for (i, want) in [e * y00, e * y1, 0.0, 0.0].iter().enumerate() {
+            for c in got[i] {
+                assert!(
+                    (c - want).abs() <= 1e-5 * e,
+                    "{}: row {i}: {c} vs {want}",
+                    path.display()
+                );
+            }
+        }
+    }
+    let lights = &read_json(&blender)["lights"];
+    assert_eq!(
+        *lights,
+        serde_json::json!({"units": "blender", "point": 1, "spot": 0, "directional": 0})
+    );
+    assert_eq!(read_json(&written)["lights"]["units"], "as-written");
+    assert_eq!(read_json(&fixed)["lights"], *lights);
+    let shown = shlight_ok(&["show", s(&blender)]);
+    let shown = String::from_utf8_lossy(&shown.stdout);
+    assert!(
+        shown.contains("1 point, 0 spot, 0 directional (punctual, in the static light); intensities divided by 683 (blender)"),
+        "{shown}"
+    );
 }

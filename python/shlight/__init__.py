@@ -597,6 +597,7 @@ def bake_volume(
     precision="half",
     preview=None,
     preview_ball=32,
+    light_units="blender",
 ):
     """Bake an irradiance volume through a scene (``shlight volume SCENE --env ENV -o OUT``).
 
@@ -666,6 +667,14 @@ def bake_volume(
         probes grey (``--preview``).
     preview_ball : int
         Each ball's diameter in pixels.
+    light_units : str
+        How the intensities of the scene's punctual lights (glTF's
+        ``KHR_lights_punctual``) become the units of ``env``'s radiance:
+        ``"blender"`` divides glTF's candela and lux by 683, undoing
+        Blender's exporter, so a scene bakes to what Cycles renders;
+        ``"as-written"`` takes them as they are (``--light-units``). The
+        lights' direct light reaches probes and surfaces through shadow
+        rays and is static: a relit volume keeps it.
 
     Returns
     -------
@@ -698,6 +707,7 @@ def bake_volume(
         precision=precision,
         preview=None if preview is None else str(preview),
         preview_ball=preview_ball,
+        light_units=light_units,
     )
 
 

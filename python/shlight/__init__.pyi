@@ -183,6 +183,10 @@ class Volume:
     @property
     def seed(self) -> int:
         """Seed of the ray directions."""
+    @property
+    def lights(self) -> Optional[dict[str, Union[str, int]]]:
+        """The punctual lights baked in: {"units", "point", "spot",
+        "directional"}; None for a scene without lights."""
     def relight(self, env: Union[PathLike, SH], *, up: Literal["y", "z"] = "y") -> "Volume":
         """A new Volume relit under a map, a radiance coefficient file or an
         SH of radiance (shlight sample --env); static volumes refuse."""
@@ -383,6 +387,7 @@ def bake_volume(
     precision: Literal["half", "f32"] = "half",
     preview: Optional[PathLike] = None,
     preview_ball: int = 32,
+    light_units: Literal["blender", "as-written"] = "blender",
 ) -> Volume:
     """An irradiance volume as shlight volume bakes it."""
 

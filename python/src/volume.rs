@@ -13,9 +13,11 @@ use numpy::{
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use shlight_baked::ProbeGrid;
 use shlight_format::threejs_volume::Precision;
 use shlight_format::{SamplePoints, ShvolFile, VolumeFormat};
+use shlight_mesh::LightUnits;
 use shlight_pipeline::{
     Spelling, VolumeRequest, relight_volume, visibility_size, volume, volume_irradiance,
     volume_lookup,
@@ -200,6 +202,22 @@ impl Volume {
         self.file.seed
     }
 
+    /// The punctual lights the bake took, as the file records them:
+    /// {"units": "blender" | "as-written", "point": n, "spot": n,
+    /// "directional": n}; None for a scene without lights.
+    #[getter]
+    fn lights<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(l) = &self.file.lights else {
+            return Ok(None);
+        };
+        let dict = PyDict::new(py);
+        dict.set_item("units", &l.units)?;
+        dict.set_item("point", l.point)?;
+        dict.set_item("spot", l.spot)?;
+        dict.set_item("directional", l.directional)?;
+        Ok(Some(dict))
+    }
+
     /// A new Volume, its probes relit under another light (`shlight
     /// sample VOLUME --env ENV`; this Volume is left as it is): per probe
     /// and channel `L = M L_env + L_emitted`, the transfer matrices of the
@@ -356,7 +374,7 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
 /// samples=1024, bounces=2, surface_samples=512, albedo=0.8,
 /// invalid_backfaces=0.5, seed=0, relocate=True, visibility=True,
 /// static_only=False, output=None, format=None, precision="half", preview=None,
-/// preview_ball=32) -> Volume
+/// preview_ball=32, light_units="blender") -> Volume
 /// --
 ///
 /// See the package documentation (`help(shlight.bake_volume)`).
@@ -364,7 +382,7 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
 #[pyo3(signature = (scene, env, resolution=None, bounds=None, lmax=2, samples=1024, bounces=2,
     surface_samples=512, albedo=None, invalid_backfaces=0.5, seed=0, relocate=true,
     visibility=true, static_only=false, output=None, format=None, precision="half", preview=None,
-    preview_ball=32))]
+    preview_ball=32, light_units="blender"))]
 pub fn bake_volume(
     py: Python<'_>,
     scene: PathBuf,
@@ -386,8 +404,12 @@ pub fn bake_volume(
     precision: &str,
     preview: Option<PathBuf>,
     preview_ball: usize,
+    light_units: &str,
 ) -> PyResult<Volume> {
     let (format, precision) = volume_format(format, precision)?;
+    let light_units: LightUnits = Spelling::Python
+        .parse("light_units", light_units)
+        .map_err(pipeline_error)?;
     let resolution = match resolution {
         Some(r) => resolution_of(r)?,
         None => [8, 4, 8],
@@ -412,6 +434,7 @@ pub fn bake_volume(
                 seed,
                 relocate,
                 visibility_size: visibility_size(visibility),
+                light_units,
             },
             relightable: !static_only,
         },

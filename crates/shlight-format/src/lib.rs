@@ -100,7 +100,7 @@ pub use ktx2::{Ktx2Format, cube_map_ktx2, write_ktx2};
 pub use quantity::{Quantity, convert_quantity};
 pub use sample_files::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, SampledValues};
 pub use shprt::{CpcaData, GlossyData, ShprtFile};
-pub use shvol::ShvolFile;
+pub use shvol::{ShvolFile, VolumeLights};
 pub use volume_format::VolumeFormat;
 pub use volume_shader::{
     ShaderLanguage, VolumeShader, VolumeTexture, WrittenVolumeShader, volume_shader,

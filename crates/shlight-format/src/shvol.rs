@@ -26,6 +26,11 @@
 //! A file with neither of the last two is written as version 1, as shlight
 //! wrote volumes before them.
 //!
+//! A volume baked with punctual lights says so in its header (`lights`:
+//! the units their intensities were read in and how many of each kind,
+//! [`VolumeLights`]); their light is in the sections above (the static
+//! light: `radiance` and `emitted`), so the layout is the same.
+//!
 //! The JSON form ([`ShvolFile::to_json`], `shlight volume --format json`)
 //! holds the same values with per-probe arrays.
 
@@ -48,6 +53,21 @@ pub const FORMAT: &str = "shlight-volume";
 pub const FORMAT_VERSION: u64 = 2;
 /// Longest header a reader accepts, in bytes.
 pub const MAX_HEADER: usize = 16 << 20;
+
+/// The punctual lights a volume was baked with (provenance: their light
+/// is in the probes' static light, `L_emitted`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VolumeLights {
+    /// How their intensities became radiometric units: `"blender"` (glTF's
+    /// candela and lux divided by 683) or `"as-written"`.
+    pub units: String,
+    /// Point lights.
+    pub point: u64,
+    /// Spot lights.
+    pub spot: u64,
+    /// Directional lights.
+    pub directional: u64,
+}
 
 /// A `.shvol` file's content.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,6 +113,9 @@ pub struct ShvolFile {
     pub environment: String,
     /// The program that wrote the file, e.g. `shlight 0.1.0`.
     pub generator: String,
+    /// The punctual lights of the bake (`None`: none; the header then has
+    /// no `lights` key).
+    pub lights: Option<VolumeLights>,
 }
 
 impl ShvolFile {
@@ -206,6 +229,17 @@ impl ShvolFile {
         let object = header.as_object_mut().expect("the header is an object");
         if self.offsets.is_some() {
             object.insert("relocated".into(), json!(self.relocated()));
+        }
+        if let Some(l) = &self.lights {
+            object.insert(
+                "lights".into(),
+                json!({
+                    "units": l.units,
+                    "point": l.point,
+                    "spot": l.spot,
+                    "directional": l.directional,
+                }),
+            );
         }
         if let Some(v) = &self.visibility {
             object.insert(
@@ -514,6 +548,29 @@ impl ShvolFile {
             valid[i] = false;
         }
         let scene_hash = header_line::hash(&header, "scene_hash", &name)?;
+        let lights = match header.get("lights") {
+            None => None,
+            Some(l) => {
+                let count = |kind: &str| l.get(kind).and_then(Value::as_u64);
+                let units = l.get("units").and_then(Value::as_str);
+                match (units, count("point"), count("spot"), count("directional")) {
+                    (Some(units), Some(point), Some(spot), Some(directional)) => {
+                        Some(VolumeLights {
+                            units: units.to_string(),
+                            point,
+                            spot,
+                            directional,
+                        })
+                    }
+                    _ => {
+                        return Err(bad(
+                            "bad header (\"lights\" is not {\"units\": text, \"point\", \"spot\", \"directional\": counts})"
+                                .into(),
+                        ));
+                    }
+                }
+            }
+        };
 
         let nc = sh_count(lmax);
         let per_probe = 3 * nc
@@ -579,6 +636,7 @@ impl ShvolFile {
             scene_hash,
             environment: text("environment").unwrap_or_default(),
             generator: text("generator").unwrap_or_default(),
+            lights,
         })
     }
 }
@@ -617,6 +675,7 @@ mod tests {
             scene_hash: 0xfeed_beef_0123_4567,
             environment: "sky.exr".into(),
             generator: "shlight test".into(),
+            lights: None,
         }
     }
 
@@ -713,6 +772,42 @@ mod tests {
         b.extend_from_slice(&bytes[nl..]);
         let e = ShvolFile::from_bytes(&b, Path::new("v.shvol")).unwrap_err();
         assert!(e.to_string().contains("\"holds\""), "{e}");
+    }
+
+    #[test]
+    fn the_lights_of_a_bake_are_recorded_and_read_back() {
+        let lit = ShvolFile {
+            lights: Some(VolumeLights {
+                units: "as-written".into(),
+                point: 2,
+                spot: 0,
+                directional: 1,
+            }),
+            ..moved(true)
+        };
+        let bytes = lit.to_bytes();
+        let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+        let header: Value = serde_json::from_slice(&bytes[..nl]).unwrap();
+        assert_eq!(
+            header["lights"],
+            json!({"units": "as-written", "point": 2, "spot": 0, "directional": 1})
+        );
+        // The data are as without lights.
+        let plain = moved(true).to_bytes();
+        let plain_nl = plain.iter().position(|&b| b == b'\n').unwrap();
+        assert_eq!(bytes[nl..], plain[plain_nl..]);
+        assert_eq!(
+            ShvolFile::from_bytes(&bytes, Path::new("v.shvol")).unwrap(),
+            lit
+        );
+        assert_eq!(lit.to_json()["lights"]["directional"], 1);
+        // A file without lights names none.
+        assert!(moved(true).header().get("lights").is_none());
+        let text = std::str::from_utf8(&bytes[..nl]).unwrap();
+        let mut b = text.replace("\"spot\":0", "\"spot\":-1").into_bytes();
+        b.extend_from_slice(&bytes[nl..]);
+        let e = ShvolFile::from_bytes(&b, Path::new("v.shvol")).unwrap_err();
+        assert!(e.to_string().contains("\"lights\""), "{e}");
     }
 
     #[test]

@@ -59,6 +59,7 @@ fn volume(valid: Vec<bool>) -> ShvolFile {
         scene_hash: 0,
         environment: "e".into(),
         generator: "test".into(),
+        lights: None,
     }
 }
 

@@ -48,11 +48,24 @@ pub enum LightUnits {
 }
 
 impl LightUnits {
+    /// Both, in the order of the command line's help.
+    pub const ALL: [LightUnits; 2] = [LightUnits::Blender, LightUnits::AsWritten];
+
     /// The name files and messages use: `"blender"` or `"as-written"`.
     pub fn name(self) -> &'static str {
         match self {
             LightUnits::Blender => "blender",
             LightUnits::AsWritten => "as-written",
+        }
+    }
+
+    /// What the units mean, in words (for help texts).
+    pub fn description(self) -> &'static str {
+        match self {
+            LightUnits::Blender => {
+                "glTF's candela and lux divided by 683, as Blender's exporter wrote them: what Cycles renders"
+            }
+            LightUnits::AsWritten => "glTF's intensities taken as radiometric as they are",
         }
     }
 
@@ -62,6 +75,19 @@ impl LightUnits {
             LightUnits::Blender => 1.0 / PunctualLight::LUMENS_PER_WATT,
             LightUnits::AsWritten => 1.0,
         }
+    }
+}
+
+impl std::str::FromStr for LightUnits {
+    type Err = String;
+
+    /// One of the [names](LightUnits::name) (trimmed, ASCII
+    /// case-insensitive).
+    fn from_str(s: &str) -> Result<Self, String> {
+        LightUnits::ALL
+            .into_iter()
+            .find(|u| u.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| "unknown light units (expected one of blender, as-written)".to_string())
     }
 }
 
@@ -195,6 +221,16 @@ mod tests {
             .arriving(Vec3::new(0.0, -1.0, 0.0), LightUnits::AsWritten)
             .unwrap();
         assert!((as_written.irradiance.x - 683.0 * e / 4.0).abs() < 1e-3 * e);
+    }
+
+    #[test]
+    fn units_are_read_by_name() {
+        for u in LightUnits::ALL {
+            assert_eq!(u.name().parse::<LightUnits>(), Ok(u));
+        }
+        assert_eq!(" As-Written ".parse(), Ok(LightUnits::AsWritten));
+        let e = "watts".parse::<LightUnits>().unwrap_err();
+        assert!(e.contains("blender, as-written"), "{e}");
     }
 
     #[test]

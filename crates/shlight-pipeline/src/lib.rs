@@ -132,7 +132,7 @@ pub use job::sample::{
     volume_irradiance, volume_lookup,
 };
 pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
-pub use job::volume::{VolumePlan, VolumeRequest, visibility_size, volume};
+pub use job::volume::{VolumePlan, VolumeRequest, VolumeScene, visibility_size, volume, volume_of};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use lobe::render_lobe;
 pub use map_info::MapInfo;

@@ -169,6 +169,7 @@ mod tests {
             seed: 5,
             emission: fine.emission.clone(),
             surfaces: None,
+            direct_irradiance: None,
         };
         let occluder = Occluder::new(&room);
         let run = |kernels| {

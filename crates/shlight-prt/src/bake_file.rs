@@ -53,6 +53,7 @@ impl BakeRequest {
             seed: self.seed,
             emission: None,
             surfaces: None,
+            direct_irradiance: None,
         };
         (options, recorded)
     }
@@ -165,6 +166,7 @@ mod tests {
             seed: 3,
             emission: None,
             surfaces: None,
+            direct_irradiance: None,
         };
         let direct = bake(&sphere, &options, &|_, _, _| {});
         assert_eq!(transfer.coeffs, direct.coeffs);

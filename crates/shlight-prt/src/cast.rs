@@ -74,9 +74,9 @@ impl Cast {
     /// the occluder made of `mesh` is.
     ///
     /// # Panics
-    /// If a per-vertex albedo or the emission has another length than the
-    /// mesh's vertices, or the surfaces another triangle count than the
-    /// mesh the rays are cast against.
+    /// If a per-vertex albedo, the emission or the direct irradiance has
+    /// another length than the mesh's vertices, or the surfaces another
+    /// triangle count than the mesh the rays are cast against.
     pub(crate) fn new(
         mesh: &Mesh,
         occluder: Option<(&Occluder, &Subdivision)>,
@@ -91,6 +91,9 @@ impl Cast {
         }
         if let Some(e) = &options.emission {
             assert_eq!(e.len(), n_vertices, "one emission per vertex");
+        }
+        if let Some(e) = &options.direct_irradiance {
+            assert_eq!(e.len(), n_vertices, "one direct irradiance per vertex");
         }
         let surfaces = options.surfaces.as_deref();
         if let Some(s) = surfaces {

@@ -18,7 +18,8 @@
 //! arriving at the vertex before any albedo, and each hit's sum is
 //! multiplied, per channel, by the albedo of the texel it met (with AVX2,
 //! one permutation spreads the hit's three albedos over a vector of the
-//! record); emission is not multiplied by it.
+//! record); emission is not multiplied by it, the direct light of lights
+//! the bake does not trace (arriving light) is.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -119,11 +120,12 @@ impl Cast {
         }
 
         // Bounces: T^b(v) = rho(v) sum_blocked w_j interp(T^{b-1}, hit), and
-        // the same for the emitters' light E (E^0 = Le, by rank), both in one
-        // pass over the hits.
+        // the same for the emitters' light E, both in one pass over the hits.
+        // E^0, by rank: the emission, plus albedo / pi times the direct
+        // irradiance of lights the bake does not trace (BakeOptions::
+        // exit_source).
         let mut emitted: Option<Vec<Vec3>> = options
-            .emission
-            .as_ref()
+            .exit_source()
             .map(|e| order.iter().map(|&v| e[v as usize]).collect());
         if bounces > 0 {
             let gather = Gather::new(self, options);
@@ -178,22 +180,46 @@ impl Cast {
             .emission
             .as_ref()
             .map(|e| order.iter().map(|&v| e[v as usize]).collect());
-        let mut arriving = emission.as_ref().map(|_| vec![Vec3::ZERO; n_vertices]);
+        // The lights' direct light arriving over pi, F^0 (BakeOptions::
+        // direct_irradiance): read times the albedo wherever it is read, as
+        // the environment's light is; bounce 1 takes it times the texel's
+        // and the emission as it is, in a pass each when there are both.
+        let direct: Option<Vec<Vec3>> = options.direct_irradiance.as_ref().map(|e| {
+            order
+                .iter()
+                .map(|&v| e[v as usize] * std::f32::consts::FRAC_1_PI)
+                .collect()
+        });
+        let mut arriving = (emission.is_some() || direct.is_some()).then(|| {
+            direct
+                .clone()
+                .unwrap_or_else(|| vec![Vec3::ZERO; n_vertices])
+        });
         if bounces > 0 {
             let gather = Gather::new(self, options);
-            let mut previous = records::build(&incident, stride, emission.as_deref());
+            let first = emission.as_deref().or(direct.as_deref());
+            let mut previous = records::build(&incident, stride, first);
             for bounce in 1..=bounces {
                 let done = AtomicUsize::new(0);
                 let scale = Scale::Texel {
-                    emission: bounce > 1,
+                    emission: bounce > 1 || emission.is_none(),
                 };
-                let next = gather.bounce(kernels, scale, &previous, &|n| {
+                let mut next = gather.bounce(kernels, scale, &previous, &|n| {
                     progress(
                         Stage::Bounce(bounce),
                         done.fetch_add(n, Ordering::Relaxed) + n,
                         n_vertices,
                     );
                 });
+                if let (1, Some(_), Some(d)) = (bounce, &emission, &direct) {
+                    let none = vec![0.0f32; incident.len()];
+                    let lit = records::build(&none, stride, Some(d));
+                    let lit =
+                        gather.bounce(kernels, Scale::Texel { emission: true }, &lit, &|_| {});
+                    for (n, l) in flat_mut(&mut next).iter_mut().zip(flat(&lit)) {
+                        *n += l;
+                    }
+                }
                 gather.add(&next, &mut incident, arriving.as_deref_mut());
                 previous = next;
             }
@@ -209,20 +235,19 @@ impl Cast {
                 }
             }
         }
-        let emitted = emission.as_ref().zip(arriving.as_ref()).map(|(le, f)| {
-            le.iter()
-                .zip(f)
+        let le = |s: usize| emission.as_ref().map_or(Vec3::ZERO, |e| e[s]);
+        let emitted = arriving.as_ref().map(|f| {
+            f.iter()
                 .zip(order.iter())
-                .map(|((le, f), &v)| {
+                .enumerate()
+                .map(|(s, (f, &v))| {
                     let rho =
                         Vec3::from_array([0, 1, 2].map(|c| options.albedo.get(v as usize, c)));
-                    *le + rho * *f
+                    le(s) + rho * *f
                 })
                 .collect()
         });
-        let kept = emission
-            .zip(arriving)
-            .map(|(le, f)| le.into_iter().zip(f).map(|(le, f)| [le, f]).collect());
+        let kept = arriving.map(|f| f.into_iter().enumerate().map(|(s, f)| [le(s), f]).collect());
         Diffuse {
             total,
             emitted,
@@ -321,7 +346,7 @@ impl<'a> Gather<'a> {
         }
         let nc = sh_count(options.lmax);
         let channels = cast.channels;
-        let len = channels * nc + if options.emission.is_some() { 3 } else { 0 };
+        let len = channels * nc + if options.has_exit_source() { 3 } else { 0 };
         let lines = records::lines(len);
         let scale_index = if cast.texel {
             (0..lines * LINE / 8)
@@ -616,6 +641,7 @@ mod tests {
             seed: 0,
             emission: Some(vec![Vec3::ONE; n]),
             surfaces: None,
+            direct_irradiance: None,
         };
         let order: Vec<u32> = (0..n as u32).rev().collect();
         let triangles = ranked_triangles(&mesh.triangles, &order);

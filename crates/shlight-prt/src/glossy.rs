@@ -145,6 +145,7 @@ pub fn bake_glossy(
 ) -> GlossyTransfer {
     let options = BakeOptions {
         emission: None,
+        direct_irradiance: None,
         ..options.clone()
     };
     let transport = options.mode;

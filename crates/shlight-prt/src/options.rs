@@ -103,6 +103,16 @@ pub struct BakeOptions {
     /// scene's vertex albedo, `Surfaces::mesh`'s colours). `None`: every
     /// triangle is opaque and a hit reads its corners' exit radiance.
     pub surfaces: Option<Arc<Surfaces>>,
+    /// Irradiance per vertex (linear RGB, W m^-2 per channel, one per
+    /// vertex) from lights the bake does not trace, such as punctual
+    /// lights the caller found with shadow rays; reflected diffusely: the
+    /// vertex leaves `albedo / pi E` as a source of exit radiance beside its
+    /// [`emission`](Self::emission), gathered and bounced as the emitters'
+    /// light is ([`Transfer::emitted`](crate::Transfer::emitted)). With
+    /// [`surfaces`](Self::surfaces) it is light arriving, `E / pi`, which
+    /// a ray that hits the surface takes times the albedo of the texel it
+    /// met, as it takes the environment's.
+    pub direct_irradiance: Option<Vec<Vec3>>,
 }
 
 impl BakeOptions {
@@ -116,6 +126,38 @@ impl BakeOptions {
             self.albedo.channels()
         }
     }
+
+    /// The exit radiance each vertex is a source of, in vertex order: its
+    /// emission plus `albedo / pi` times its direct irradiance (the
+    /// emission as it is without direct irradiance); `None` with neither.
+    pub(crate) fn exit_source(&self) -> Option<Vec<Vec3>> {
+        let Some(direct) = &self.direct_irradiance else {
+            return self.emission.clone();
+        };
+        Some(
+            direct
+                .iter()
+                .enumerate()
+                .map(|(v, e)| {
+                    let rho = Vec3::new(
+                        self.albedo.get(v, 0),
+                        self.albedo.get(v, 1),
+                        self.albedo.get(v, 2),
+                    );
+                    let reflected = rho * std::f32::consts::FRAC_1_PI * *e;
+                    self.emission
+                        .as_ref()
+                        .map_or(reflected, |le| le[v] + reflected)
+                })
+                .collect(),
+        )
+    }
+
+    /// Whether a vertex is a source of exit radiance of its own
+    /// ([`exit_source`](Self::exit_source) is not `None`).
+    pub(crate) fn has_exit_source(&self) -> bool {
+        self.emission.is_some() || self.direct_irradiance.is_some()
+    }
 }
 
 impl Default for BakeOptions {
@@ -128,6 +170,7 @@ impl Default for BakeOptions {
             seed: 0,
             emission: None,
             surfaces: None,
+            direct_irradiance: None,
         }
     }
 }

@@ -64,15 +64,20 @@ pub struct Transfer {
     pub samples: usize,
     /// Rays cast (directions above each vertex's tangent plane).
     pub rays: u64,
-    /// With [`BakeOptions::emission`](crate::BakeOptions::emission): each vertex's exit radiance due to
-    /// the emitters alone (linear RGB), `E = E^0 + ... + E^B` with
-    /// `E^0 = Le` and `E^b(p) = rho/pi int max(n.s, 0) (1 - V(p, s))
-    /// E^{b-1}(q(p, s)) ds`, the transfer's own iteration with the emission
-    /// as the source, so the exit radiance of a vertex under light `L` is
-    /// `T . L + E`. With surfaces, `E = Le + rho(p) (F^1 + ... + F^B)`,
-    /// `F^1(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) Le(q) ds` and
-    /// `F^b(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) rho(q) F^{b-1}(q) ds`:
-    /// emission is not multiplied by the albedo.
+    /// With [`BakeOptions::emission`](crate::BakeOptions::emission) or
+    /// [`BakeOptions::direct_irradiance`](crate::BakeOptions::direct_irradiance):
+    /// each vertex's exit radiance due to the emitters and those lights
+    /// alone (linear RGB), `E = E^0 + ... + E^B` with
+    /// `E^0 = Le + rho/pi E_direct` and `E^b(p) = rho/pi int max(n.s, 0)
+    /// (1 - V(p, s)) E^{b-1}(q(p, s)) ds`, the transfer's own iteration with
+    /// the emission and the directly lit surface as the source, so the exit
+    /// radiance of a vertex under light `L` is `T . L + E`. With surfaces,
+    /// `E = Le + rho(p) (F^0 + F^1 + ... + F^B)`, `F^0 = E_direct / pi`
+    /// (the lights' light arriving),
+    /// `F^1(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) (Le(q) + rho(q) F^0(q)) ds`
+    /// and `F^b(p) = 1/pi int max(n.s, 0) (1 - V(p, s)) rho(q) F^{b-1}(q) ds`:
+    /// emission is not multiplied by the albedo, the lights' light is (that
+    /// of the texel a ray hits).
     pub emitted: Option<Vec<Vec3>>,
     /// With surfaces: what a hit interpolates before its texel's albedo.
     pub incident: Option<IncidentTransfer>,
@@ -89,9 +94,10 @@ pub struct IncidentTransfer {
     /// irradiance over pi (so [`Transfer::coeffs`] is the vertex's albedo
     /// times it).
     pub coeffs: Vec<f32>,
-    /// With emitters, per vertex: `[Le, F^1 + ... + F^B]`, the emitted
-    /// radiance and the emitters' light arriving over pi, so that a point
-    /// of albedo `rho` leaves `Le + rho F`.
+    /// With emitters or direct irradiance, per vertex: `[Le, F^0 + F^1 +
+    /// ... + F^B]`, the emitted radiance and the light of the emitters and
+    /// of the lights arriving over pi, so that a point of albedo `rho`
+    /// leaves `Le + rho F`.
     pub emitted: Option<Vec<[Vec3; 2]>>,
 }
 

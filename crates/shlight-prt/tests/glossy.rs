@@ -28,6 +28,7 @@ fn options(lmax: usize, samples: usize, mode: Mode, albedo: f32) -> BakeOptions 
         seed: 7,
         emission: None,
         surfaces: None,
+        direct_irradiance: None,
     }
 }
 

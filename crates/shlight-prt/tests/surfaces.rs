@@ -103,6 +103,7 @@ fn options(mode: Mode, samples: usize, surfaces: &Arc<Surfaces>, albedo: f32) ->
         seed: 7,
         emission: None,
         surfaces: Some(surfaces.clone()),
+        direct_irradiance: None,
     }
 }
 
@@ -186,6 +187,72 @@ fn a_two_coloured_floor_tints_the_ceiling_above_each_half() {
         checked += 1;
     }
     assert_eq!(checked, 8);
+}
+
+#[test]
+fn a_lit_floor_passes_its_texels_colour_to_the_ceiling_as_emitters_do_not() {
+    // The room above, its floor lit directly (BakeOptions::
+    // direct_irradiance: pi on every floor vertex, so the light arriving
+    // over pi is 1) and, the second time, emitting Le = 0.2 as well; the
+    // vertex albedo is 1 everywhere, the floor's texels red and blue. The
+    // lights' light is read times the albedo of the texel hit: the
+    // ceilings' bounce light is each half's texel albedo times its share of
+    // the view, as under a white sky; the emission reaches them as it is.
+    let floor = Material {
+        base_color_texture: Some(textured(0, 1.0)),
+        ..Material::default()
+    };
+    let (surfaces, [red, blue]) = two_colour_room(floor);
+    let mesh = &surfaces.mesh;
+    let on_floor = |p: &Vec3| p.y < 0.05;
+    let lit: Vec<Vec3> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            if on_floor(p) {
+                Vec3::splat(PI as f32)
+            } else {
+                Vec3::ZERO
+            }
+        })
+        .collect();
+    let le = Vec3::splat(0.2);
+    for emission in [None, Some(le)] {
+        let options = BakeOptions {
+            direct_irradiance: Some(lit.clone()),
+            emission: emission.map(|le| {
+                mesh.positions
+                    .iter()
+                    .map(|p| if on_floor(p) { le } else { Vec3::ZERO })
+                    .collect()
+            }),
+            ..options(Mode::Interreflected { bounces: 1 }, 8192, &surfaces, 1.0)
+        };
+        let emitted = bake(mesh, &options, &|_, _, _| {}).emitted.unwrap();
+        let mut checked = 0;
+        for (v, p) in mesh.positions.iter().enumerate() {
+            if on_floor(p) {
+                // Its own light: Le plus its albedo (1) times what arrives.
+                let want = emission.unwrap_or(Vec3::ZERO) + Vec3::ONE;
+                assert!(
+                    (emitted[v] - want).abs().max_element() < 1e-5,
+                    "{}",
+                    emitted[v]
+                );
+                continue;
+            }
+            let own = half_plane_view(f64::from(p.x.abs()), 0.1) as f32;
+            let (near, far) = if p.x < 0.0 { (red, blue) } else { (blue, red) };
+            let want = near * own + far * (1.0 - own) + emission.unwrap_or(Vec3::ZERO);
+            let got = emitted[v];
+            assert!(
+                (got - want).abs().max_element() < 0.012,
+                "{emission:?}: vertex at {p}: {got} vs {want}"
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 8);
+    }
 }
 
 #[test]
@@ -378,6 +445,7 @@ fn one_colour_per_triangle_bakes_as_it_does_without_surfaces() {
             seed: 3,
             emission: mesh.emission.clone(),
             surfaces: None,
+            direct_irradiance: None,
         };
         let with = BakeOptions {
             surfaces: Some(surfaces.clone()),
@@ -407,4 +475,38 @@ fn one_colour_per_triangle_bakes_as_it_does_without_surfaces() {
             }
         }
     }
+}
+
+#[test]
+fn glossy_matrices_through_one_colour_per_triangle_are_those_without_surfaces() {
+    // The glossy matrices gather the diffuse bounce light at their hits:
+    // with the albedo the same at a triangle's corners, reading it per hit
+    // (surfaces) or through the corners' exit transfer (without) agrees to
+    // rounding.
+    let surfaces = one_colour_scene();
+    let mesh = &surfaces.mesh;
+    let without = BakeOptions {
+        lmax: 2,
+        samples: 256,
+        mode: Mode::Interreflected { bounces: 2 },
+        albedo: Albedo::PerVertex(mesh.colors.clone().unwrap()),
+        seed: 9,
+        emission: None,
+        surfaces: None,
+    };
+    let with = BakeOptions {
+        surfaces: Some(surfaces.clone()),
+        ..without.clone()
+    };
+    let a = shlight_prt::bake_glossy(mesh, &without, &|_, _, _| {});
+    let b = shlight_prt::bake_glossy(mesh, &with, &|_, _, _| {});
+    assert_eq!((a.channels, b.channels), (3, 3));
+    let max = a.matrices.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+    let mut bounced = 0;
+    for (x, y) in a.matrices.iter().zip(&b.matrices) {
+        assert!((x - y).abs() <= 2e-5 * max, "{x} vs {y}");
+        bounced += usize::from(x != y);
+    }
+    // The bounce light is there (and read by each route its own way).
+    assert!(bounced > 0);
 }

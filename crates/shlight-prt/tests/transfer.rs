@@ -23,6 +23,7 @@ fn run(mesh: &Mesh, mode: Mode, samples: usize, albedo: f32) -> Transfer {
         seed: 11,
         emission: None,
         surfaces: None,
+        direct_irradiance: None,
     };
     bake(mesh, &options, &|_, _, _| {})
 }
@@ -44,6 +45,7 @@ fn an_emitting_bowl_lights_itself_as_the_closed_form_says() {
             seed: 5,
             emission: Some(vec![le; bowl.vertex_count()]),
             surfaces: None,
+            direct_irradiance: None,
         };
         bake(&bowl, &options, &|_, _, _| {}).emitted.unwrap()
     };
@@ -66,6 +68,66 @@ fn an_emitting_bowl_lights_itself_as_the_closed_form_says() {
             .emitted
             .is_none()
     );
+}
+
+#[test]
+fn directly_lit_surfaces_are_a_source_bounced_as_emission_is() {
+    // Inside a closed sphere (normals turned in) every ray meets the
+    // inside, so a vertex's gathered light is the mean of what the sphere
+    // leaves: with direct irradiance E on every vertex, albedo rho per
+    // channel and emission Le, the source is S = Le + rho E / pi and after
+    // B bounces E_out = S (1 + rho + ... + rho^B), exactly (the weights sum
+    // to 1). The emission alone is what it was.
+    let outward = generate::uv_sphere(1.0, 24, 12);
+    let inside = Mesh::new(
+        "inside of a sphere",
+        outward.positions.clone(),
+        outward
+            .triangles
+            .iter()
+            .map(|&[a, b, c]| [a, c, b])
+            .collect(),
+        Some(outward.normals.iter().map(|n| -*n).collect()),
+        None,
+    )
+    .unwrap();
+    let n = inside.vertex_count();
+    let rho = Vec3::new(0.5, 0.6, 0.7);
+    let (e, le) = (Vec3::new(2.0, 1.0, 3.0), Vec3::new(0.25, 0.0, 0.5));
+    let bake_with = |bounces, emission: Option<Vec3>, direct: Option<Vec3>| {
+        let options = BakeOptions {
+            lmax: 1,
+            samples: 256,
+            mode: Mode::Interreflected { bounces },
+            albedo: Albedo::Constant(rho.to_array()),
+            seed: 3,
+            emission: emission.map(|le| vec![le; n]),
+            direct_irradiance: direct.map(|e| vec![e; n]),
+            surfaces: None,
+        };
+        bake(&inside, &options, &|_, _, _| {}).emitted
+    };
+    let source = le + rho * e / std::f32::consts::PI;
+    for bounces in [0u32, 2] {
+        let mut sum = Vec3::ZERO;
+        for b in 0..=bounces {
+            sum += rho.powf(b as f32);
+        }
+        let want = source * sum;
+        for got in bake_with(bounces, Some(le), Some(e)).unwrap() {
+            assert!(
+                (got - want).abs().max_element() <= 1e-5 * want.max_element(),
+                "{bounces} bounces: {got} vs {want}"
+            );
+        }
+        // Direct light alone, without emission, is a source too.
+        let want = rho * e / std::f32::consts::PI * sum;
+        for got in bake_with(bounces, None, Some(e)).unwrap() {
+            assert!((got - want).abs().max_element() <= 1e-5 * want.max_element());
+        }
+    }
+    assert_eq!(bake_with(0, Some(le), None).unwrap(), vec![le; n]);
+    assert!(bake_with(1, None, None).is_none());
 }
 
 /// A cosine-distributed direction about `n` (Malley's method).
@@ -356,6 +418,7 @@ fn casting_against_the_mesh_before_subdivision_gives_the_subdivided_bake() {
         seed: 5,
         emission: fine.emission.clone(),
         surfaces: None,
+        direct_irradiance: None,
     };
     let direct = bake(&fine, &options, &|_, _, _| {});
     let located = bake_with_occluder(&fine, Some((&room, &map)), &options, &|_, _, _| {});

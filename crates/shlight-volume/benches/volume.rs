@@ -203,6 +203,7 @@ fn volume_32x16x32() -> shlight_format::ShvolFile {
         scene_hash: 0,
         environment: "bench".into(),
         generator: "bench".into(),
+        lights: None,
     }
 }
 

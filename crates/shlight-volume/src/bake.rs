@@ -9,7 +9,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_core::sh::{ShBasis, sh_count};
-use shlight_mesh::{Mesh, Subdivision, Surfaces};
+use shlight_format::VolumeLights;
+use shlight_mesh::{LightKind, LightUnits, Mesh, PunctualLight, Subdivision, Surfaces};
 use shlight_prt::{Albedo, BakeOptions, Kernels, Mode, VertexRecords};
 use shlight_rays::{Direction, LANES, Occluder, Packet};
 
@@ -20,6 +21,7 @@ use crate::error::VolumeError;
 use crate::volume_bake::VolumeBake;
 
 mod hit;
+mod punctual;
 pub mod relocate;
 mod sums;
 
@@ -57,6 +59,9 @@ pub struct VolumeOptions {
     /// visibility-weighted lookup ([`shlight_baked::visibility`]); 0: no
     /// maps.
     pub visibility_size: usize,
+    /// How the intensities of the scene's punctual lights become
+    /// radiometric units ([`bake_with_lights`]; no effect without lights).
+    pub light_units: LightUnits,
 }
 
 /// Default subdivision: edges no longer than the scene's diagonal over this.
@@ -75,6 +80,7 @@ impl Default for VolumeOptions {
             seed: 0,
             relocate: true,
             visibility_size: shlight_baked::visibility::VISIBILITY_SIZE,
+            light_units: LightUnits::Blender,
         }
     }
 }
@@ -94,7 +100,8 @@ pub enum Stage {
 
 /// Bakes the probes of `grid` through `scene` (`None`: nothing in the
 /// way). The result is relightable: [`VolumeBake::relight`] gives the
-/// probes for any environment.
+/// probes for any environment. [`bake_with_lights`] bakes a scene with
+/// punctual lights.
 ///
 /// `progress(stage, done, total)` is called from worker threads as work
 /// finishes.
@@ -189,8 +196,41 @@ pub fn bake(
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<VolumeBake, VolumeError> {
+    bake_with_lights(scene, &[], grid, options, progress)
+}
+
+/// [`bake`] of a scene lit by punctual lights too (glTF's
+/// `KHR_lights_punctual`, their intensities read in
+/// [`VolumeOptions::light_units`]), as a path tracer such as Cycles lights
+/// it: they are deltas, so their direct light is found with a shadow ray
+/// wherever light is gathered.
+///
+/// - At each probe `x`, each light whose shadow ray from `x` reaches it
+///   adds the exact SH projection of its radiance `E_perp delta(s -
+///   toward)`, `E_perp Y_lm(toward)` ([`PunctualLight::arriving`] gives
+///   `E_perp` and `toward`), to the probe's static light `L_emitted`.
+/// - At each vertex of the subdivided surfaces, `E_direct = sum E_perp
+///   max(n . toward, 0)` over the lights its shadow ray (from where its
+///   transfer's rays start) reaches; a light behind the surface gives
+///   nothing. `albedo / pi E_direct` is then a source of exit radiance
+///   beside the emitters' ([`shlight_prt::BakeOptions::direct_irradiance`])
+///   and bounces as theirs does, so probes see lit surfaces in `E(q)`.
+///
+/// Their light is static, like the emitters': a relit volume keeps it.
+/// Without lights this is [`bake`], bit for bit.
+///
+/// # Errors
+/// As [`bake`].
+pub fn bake_with_lights(
+    scene: Option<&Mesh>,
+    lights: &[PunctualLight],
+    grid: &ProbeGrid,
+    options: &VolumeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Result<VolumeBake, VolumeError> {
     bake_in_chunks(
         scene.map(|m| (m, None)),
+        lights,
         grid,
         options,
         progress,
@@ -199,21 +239,26 @@ pub fn bake(
     )
 }
 
-/// [`bake`] through a flattened glTF scene ([`shlight_mesh::Scene::flatten`]):
-/// its mesh, with cut-outs the rays pass and the albedo of the texel each
-/// ray hits ([`bake`] states both). The surfaces' vertex albedo is the
-/// mesh's colours; [`VolumeOptions::albedo`] is not read.
+/// [`bake_with_lights`] through a flattened glTF scene
+/// ([`shlight_mesh::Scene::flatten`]) and its punctual `lights` (none for a
+/// scene without): its mesh, with cut-outs the rays pass (the lights'
+/// shadow rays too) and the albedo of the texel each ray hits ([`bake`]
+/// states both; the lights' light on a surface is read times that albedo
+/// as the environment's is). The surfaces' vertex albedo is the mesh's
+/// colours; [`VolumeOptions::albedo`] is not read.
 ///
 /// # Errors
 /// As [`bake`].
 pub fn bake_surfaces(
     surfaces: &Arc<Surfaces>,
+    lights: &[PunctualLight],
     grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<VolumeBake, VolumeError> {
     bake_in_chunks(
         Some((&surfaces.mesh, Some(surfaces))),
+        lights,
         grid,
         options,
         progress,
@@ -222,11 +267,12 @@ pub fn bake_surfaces(
     )
 }
 
-/// [`bake`] through `scene` and its surfaces, if any, keeping at most
-/// `hits_memory` bytes of probe hits at a time, the probes' sums with
-/// `kernels`.
+/// [`bake_with_lights`] through `scene` and its surfaces, if any, keeping
+/// at most `hits_memory` bytes of probe hits at a time, the probes' sums
+/// with `kernels`.
 fn bake_in_chunks(
     scene: Option<(&Mesh, Option<&Arc<Surfaces>>)>,
+    lights: &[PunctualLight],
     grid: &ProbeGrid,
     options: &VolumeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
@@ -281,7 +327,7 @@ fn bake_in_chunks(
     let (surface, moved) = match scene {
         Some((mesh, surfaces)) => {
             let relocate = options.relocate.then_some(grid);
-            let (s, o) = Surface::bake(mesh, surfaces, options, relocate, progress);
+            let (s, o) = Surface::bake(mesh, surfaces, lights, options, relocate, progress);
             (Some(s), o)
         }
         None => (None, None),
@@ -387,6 +433,16 @@ fn bake_in_chunks(
             }
         }
     }
+    if !lights.is_empty() {
+        punctual::add_to_probes(
+            surface.as_ref().map(|s| &s.occluder),
+            lights,
+            options.light_units,
+            &probes,
+            lmax,
+            &mut emitted,
+        );
+    }
     let valid = backfaces
         .iter()
         .map(|&f| f <= options.invalid_backfaces)
@@ -409,6 +465,22 @@ fn bake_in_chunks(
         seed: options.seed,
         rays: rays + surface.as_ref().map_or(0, |s| s.rays),
         scene_hash: scene.map_or(0, Mesh::content_hash),
+        lights: light_counts(lights, options.light_units),
+    })
+}
+
+/// What a file records of the bake's punctual lights: their units and
+/// how many of each kind (`None` without lights).
+fn light_counts(lights: &[PunctualLight], units: LightUnits) -> Option<VolumeLights> {
+    if lights.is_empty() {
+        return None;
+    }
+    let count = |f: fn(&LightKind) -> bool| lights.iter().filter(|l| f(&l.kind)).count() as u64;
+    Some(VolumeLights {
+        units: units.name().to_string(),
+        point: count(|k| matches!(k, LightKind::Point)),
+        spot: count(|k| matches!(k, LightKind::Spot { .. })),
+        directional: count(|k| matches!(k, LightKind::Directional)),
     })
 }
 
@@ -517,9 +589,9 @@ struct Surface {
     texel: bool,
     /// Where the scene's triangles went in `mesh`.
     map: Subdivision,
-    /// Per vertex its `channels x nc` transfer and (when the scene emits)
-    /// its exit radiance due to emitters, padded with zeros to whole
-    /// 64-byte lines.
+    /// Per vertex its `channels x nc` transfer and (when the scene emits or
+    /// has punctual lights) its exit radiance due to emitters and those
+    /// lights, padded with zeros to whole 64-byte lines.
     records: VertexRecords,
     channels: usize,
     nc: usize,
@@ -536,6 +608,7 @@ impl Surface {
     fn bake(
         mesh: &Mesh,
         surfaces: Option<&Arc<Surfaces>>,
+        lights: &[PunctualLight],
         options: &VolumeOptions,
         relocate: Option<&ProbeGrid>,
         progress: &(dyn Fn(Stage, usize, usize) + Sync),
@@ -578,6 +651,11 @@ impl Surface {
             seed: options.seed ^ 0x5eed_5eed_5eed_5eed,
             emission: mesh.emission.clone(),
             surfaces: surfaces.cloned(),
+            // The punctual lights' direct light on each vertex, through
+            // shadow rays (none without lights).
+            direct_irradiance: (!lights.is_empty()).then(|| {
+                punctual::surface_irradiance(&occluder, &mesh, lights, options.light_units)
+            }),
         };
         let (t, offsets) = rayon::join(
             || {
@@ -897,6 +975,7 @@ mod tests {
         let calls = AtomicUsize::new(0);
         let chunked = bake_in_chunks(
             Some((&scene, None)),
+            &[],
             &grid,
             &options,
             &|stage, done, total| {
@@ -973,6 +1052,7 @@ mod tests {
         let run = |kernels| {
             bake_in_chunks(
                 Some((&room, None)),
+                &[],
                 &grid,
                 &options,
                 &|_, _, _| {},

@@ -2,8 +2,8 @@
 //! settings to the `.shvol` file with its provenance.
 //!
 //! shlight-pipeline's `volume` job reads the inputs (the scene with
-//! [`shlight_mesh::load`], the light with its `Environment`, turned to the
-//! y-up frame); [`check_environment`] refuses a light too short for the
+//! [`shlight_mesh::load`] and its punctual lights, the light with its
+//! `Environment`, turned to the y-up frame); [`check_environment`] refuses a light too short for the
 //! bake before the scene is read; [`bake_file`] does the rest: the grid
 //! ([`VolumeBakeSettings::grid`]), the bake, the probes lit by the
 //! environment, and the file with its provenance.
@@ -15,9 +15,9 @@ use glam::{DVec3, Vec3};
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::ShCoeffs;
 use shlight_format::ShvolFile;
-use shlight_mesh::{Mesh, Surfaces};
+use shlight_mesh::{Mesh, PunctualLight, Surfaces};
 
-use crate::bake::{Stage, VolumeOptions, bake, bake_surfaces};
+use crate::bake::{Stage, VolumeOptions, bake_surfaces, bake_with_lights};
 use crate::error::VolumeError;
 use crate::volume_bake::{FileMeta, VolumeBake};
 
@@ -104,21 +104,24 @@ pub fn generator() -> String {
 }
 
 /// Bakes the volume `request` asks for through `scene` (read from
-/// `scene_path`) and makes its `.shvol` file: the grid
-/// ([`VolumeBakeSettings::grid`]), [`bake()`] (`progress` as there), the probes
+/// `scene_path`) lit by its punctual `lights` (none for a scene without)
+/// and makes its `.shvol` file: the grid
+/// ([`VolumeBakeSettings::grid`]), [`bake_with_lights`] (`progress` as there), the probes
 /// relit under `env` (radiance coefficients in the y-up frame, read from
 /// `env_path`; [`VolumeBake::relight`]), and [`VolumeBake::to_shvol`]
-/// recording the frame, the inputs' file names and the generator
-/// (`shlight VERSION`). `surfaces`: a glTF scene's, whose mesh `scene` is,
-/// baked through by [`bake_surfaces`] (cut-outs, and the albedo of the
-/// texel a ray hits).
+/// recording the frame, the inputs' file names, the generator
+/// (`shlight VERSION`) and the lights' units and kinds. `surfaces`: a glTF
+/// scene's, whose mesh `scene` is, baked through by [`bake_surfaces`]
+/// (cut-outs, and the albedo of the texel a ray hits).
 ///
 /// # Errors
 /// An environment too short for the bake ([`check_environment`]), a bad
-/// grid, surfaces of another mesh, or options [`bake()`] refuses.
+/// grid, surfaces of another mesh, or options [`bake()`](crate::bake())
+/// refuses.
 pub fn bake_file(
     scene: &Mesh,
     surfaces: Option<&Arc<Surfaces>>,
+    lights: &[PunctualLight],
     scene_path: &Path,
     env: &ShCoeffs<DVec3>,
     env_path: &Path,
@@ -137,9 +140,9 @@ pub fn bake_file(
                     scene_path.display()
                 )));
             }
-            bake_surfaces(s, &grid, &request.options, progress)?
+            bake_surfaces(s, lights, &grid, &request.options, progress)?
         }
-        None => bake(Some(scene), &grid, &request.options, progress)?,
+        None => bake_with_lights(Some(scene), lights, &grid, &request.options, progress)?,
     };
     let radiance = volume.relight(env);
     let meta = FileMeta {
@@ -180,6 +183,7 @@ mod tests {
         let baked = bake_file(
             &scene,
             None,
+            &[],
             Path::new("dir/ball.obj"),
             &env,
             Path::new("maps/sky.exr"),
@@ -188,7 +192,7 @@ mod tests {
         )
         .unwrap();
         let grid = ProbeGrid::new([2, 1, 2], Vec3::splat(-1.0), Vec3::ONE).unwrap();
-        let direct = bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
+        let direct = crate::bake(Some(&scene), &grid, &options, &|_, _, _| {}).unwrap();
         assert_eq!(baked.bake, direct);
         assert_eq!(baked.file.radiance, direct.relight(&env));
         assert_eq!(baked.file.transfer.as_ref(), Some(&direct.transfer));
@@ -211,6 +215,7 @@ mod tests {
         let baked = bake_file(
             &scene,
             None,
+            &[],
             Path::new("ball.obj"),
             &env,
             Path::new("sky.exr"),
@@ -224,6 +229,7 @@ mod tests {
         let e = bake_file(
             &scene,
             None,
+            &[],
             Path::new("ball.obj"),
             &short,
             Path::new("l1.json"),

@@ -14,7 +14,9 @@
 //!    probe's incident radiance as a transfer
 //!    matrix per channel and the emitters' light, `L_probe = M L_env +
 //!    L_emitted`, through the scene's shadows and interreflections
-//!    ([`bake()`] states the estimator). [`bake_file()`] is a bake as a
+//!    ([`bake()`] states the estimator); [`bake_with_lights`] adds a
+//!    scene's punctual lights (glTF's `KHR_lights_punctual`) to the
+//!    static part, by shadow rays at the probes and at the surfaces. [`bake_file()`] is a bake as a
 //!    front end asks for it (`shlight volume`, the Python package's
 //!    `bake_volume`): [`VolumeBakeSettings`] (the grid and the options)
 //!    over a scene and an environment to a [`BakedFile`], the bake and its
@@ -90,7 +92,9 @@ mod texel_corners;
 mod threejs_lookup;
 mod volume_bake;
 
-pub use bake::{SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces, relocate};
+pub use bake::{
+    SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces, bake_with_lights, relocate,
+};
 pub use bake_file::{BakedFile, VolumeBakeSettings, bake_file, check_environment};
 pub use error::VolumeError;
 pub use lookup::{Lookup, LookupLmax};

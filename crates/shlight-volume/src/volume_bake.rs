@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use shlight_core::sh::{ShCoeffs, sh_count};
-use shlight_format::ShvolFile;
+use shlight_format::{ShvolFile, VolumeLights};
 
 use shlight_baked::{ProbeGrid, ProbeVisibility, VolumeView};
 
@@ -33,7 +33,8 @@ pub struct VolumeBake {
     /// with `L_probe = M L_env + L_emitted`.
     pub transfer: Vec<f32>,
     /// Per probe `(lmax+1)^2` rows of `[r, g, b]`: the incident radiance
-    /// from emitters.
+    /// from emitters and punctual lights (directly and through the
+    /// surfaces they light).
     pub emitted: Vec<f32>,
     /// Rays per probe.
     pub samples: usize,
@@ -45,6 +46,9 @@ pub struct VolumeBake {
     pub rays: u64,
     /// The scene mesh's content hash (0 for an empty scene).
     pub scene_hash: u64,
+    /// The punctual lights baked in (`None`: none), their units and how
+    /// many of each kind ([`crate::bake_with_lights`]).
+    pub lights: Option<VolumeLights>,
 }
 
 impl VolumeBake {
@@ -139,6 +143,7 @@ impl VolumeBake {
             scene_hash: self.scene_hash,
             environment: meta.environment.clone(),
             generator: meta.generator.clone(),
+            lights: self.lights.clone(),
         }
     }
 }

@@ -43,6 +43,7 @@ fn file(resolution: [usize; 3], bounds: ([f32; 3], [f32; 3]), lmax: usize) -> Sh
         scene_hash: 0,
         environment: "e".into(),
         generator: "test".into(),
+        lights: None,
     }
 }
 

@@ -145,7 +145,7 @@ fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
         Vec3::new(0.3, 0.15, 0.1),
     )
     .unwrap();
-    let volume = bake_surfaces(&surfaces, &grid, &options(8192), &|_, _, _| {}).unwrap();
+    let volume = bake_surfaces(&surfaces, &[], &grid, &options(8192), &|_, _, _| {}).unwrap();
     let probes = lit(&volume);
     for (p, centre) in grid.centres().iter().enumerate() {
         let x = centre.as_dvec3();
@@ -195,7 +195,7 @@ fn under_ceiling(ceiling: Material, textures: Vec<Texture>, threads: usize) -> V
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| bake_surfaces(&surfaces, &grid, &options(16384), &|_, _, _| {}).unwrap())
+    pool.install(|| bake_surfaces(&surfaces, &[], &grid, &options(16384), &|_, _, _| {}).unwrap())
 }
 
 /// The solid angle of the square of half-side `a`, `h` above a point
@@ -305,7 +305,7 @@ fn one_colour_per_triangle_bakes_as_it_does_without_surfaces() {
         bounces: 2,
         ..VolumeOptions::default()
     };
-    let with = bake_surfaces(&surfaces, &grid, &options, &|_, _, _| {}).unwrap();
+    let with = bake_surfaces(&surfaces, &[], &grid, &options, &|_, _, _| {}).unwrap();
     let without = bake(Some(&surfaces.mesh), &grid, &options, &|_, _, _| {}).unwrap();
     assert_eq!(with.valid, without.valid);
     assert_eq!(with.backfaces, without.backfaces);

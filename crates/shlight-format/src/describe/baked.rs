@@ -187,6 +187,24 @@ fn volume_fields(h: &mut Header, header: &Value, invalid: usize, name: &str) -> 
             ),
         );
     }
+    if let Some(l) = header.get("lights") {
+        let count = |k: &str| l.get(k).map(plain).unwrap_or_default();
+        let units = l.get("units").map(plain).unwrap_or_default();
+        h.field(
+            "lights",
+            format!(
+                "{} point, {} spot, {} directional (punctual, in the static light); intensities {}",
+                count("point"),
+                count("spot"),
+                count("directional"),
+                match units.as_str() {
+                    "blender" => "divided by 683 (blender)".to_string(),
+                    "as-written" => "as written".to_string(),
+                    other => other.to_string(),
+                }
+            ),
+        );
+    }
     h.field("samples", format!("{} rays per probe", text("samples")));
     h.field("bounces", text("bounces"));
     h.field("seed", text("seed"));

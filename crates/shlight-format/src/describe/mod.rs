@@ -242,6 +242,12 @@ mod tests {
             scene_hash: 0x0123_4567_89ab_cdef,
             environment: "sky.exr".into(),
             generator: "shlight test".into(),
+            lights: Some(crate::VolumeLights {
+                units: "blender".into(),
+                point: 2,
+                spot: 1,
+                directional: 0,
+            }),
         }
     }
 
@@ -273,6 +279,12 @@ mod tests {
             assert_eq!(h.get("seed"), Some("11"));
             assert_eq!(h.get("scene"), Some("room.obj (fnv1a64:0123456789abcdef)"));
             assert_eq!(h.get("environment"), Some("sky.exr"));
+            assert_eq!(
+                h.get("lights"),
+                Some(
+                    "2 point, 1 spot, 0 directional (punctual, in the static light); intensities divided by 683 (blender)"
+                )
+            );
             assert!(h.get("holds").unwrap().contains("relightable"));
             assert!(
                 h.get("visibility")

@@ -1,18 +1,22 @@
 //! `volume`: an irradiance volume baked through a scene under a distant
 //! light — relightable SH probes on a grid, relocated out of geometry,
-//! with the distance maps of the visibility-weighted lookup — written as a
+//! with the distance maps of the visibility-weighted lookup, and the
+//! scene's punctual lights in the probes' static light — written as a
 //! `.shvol` file, its JSON, Bevy's KTX2 or three.js's grid, with a picture
-//! of the probes ([`VolumeRequest`] → [`VolumePlan`] → [`volume`]).
+//! of the probes ([`VolumeRequest`] → [`VolumePlan`] → [`volume`], or
+//! [`volume_of`] for a scene read already, [`VolumeScene`]).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use shlight_baked::ProbeGrid;
-use shlight_core::sh::Frame;
+use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::threejs_volume::Precision;
 use shlight_format::{ShvolFile, VolumeFormat};
 use shlight_io::{Image, WriteOptions, write_image};
+use shlight_mesh::{LightKind, Mesh, PunctualLight, Scene, Surfaces};
 use shlight_volume::{
     BakedFile, Stage, VolumeBake, VolumeBakeSettings, bake_file, probe_sheet, probe_sheet_exposure,
 };
@@ -20,7 +24,7 @@ use shlight_volume::{
 use crate::environment::Environment;
 use crate::hooks::{Hooks, Progress};
 use crate::output_path::refuse_overwriting;
-use crate::scene_surfaces::load_scene_surfaces;
+use crate::scene_surfaces::{load_scene_lights, load_scene_surfaces};
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -55,6 +59,53 @@ pub struct VolumePlan {
     output: Option<(PathBuf, VolumeFormat, Precision)>,
     bake: VolumeBakeSettings,
     preview: Option<(PathBuf, usize)>,
+}
+
+/// What a volume is baked through: the scene's mesh, a glTF scene's
+/// surfaces (materials with textures) and its punctual lights
+/// (`KHR_lights_punctual`, in world space).
+#[derive(Clone, Debug)]
+pub struct VolumeScene {
+    /// The mesh, with its albedo (vertex colours) and emission.
+    pub mesh: Mesh,
+    /// A glTF scene's surfaces, whose mesh `mesh` is: cut-outs and the
+    /// albedo of the texel a ray hits (`None`: the mesh alone).
+    pub surfaces: Option<Arc<Surfaces>>,
+    /// The punctual lights (none for a format that has no lights).
+    pub lights: Vec<PunctualLight>,
+}
+
+impl VolumeScene {
+    /// A loaded glTF scene as the volume bakes it: its instances flattened
+    /// into one world-space mesh with its surfaces ([`Scene::flatten`],
+    /// primitives without a material taking `albedo`) and its punctual
+    /// lights.
+    ///
+    /// # Errors
+    /// A transform or mesh the flattening refuses.
+    pub fn from_scene(scene: &Scene, albedo: [f32; 3]) -> Result<Self> {
+        let surfaces = Arc::new(scene.flatten(Vec3::from_array(albedo))?);
+        Ok(Self {
+            mesh: surfaces.mesh.clone(),
+            surfaces: Some(surfaces),
+            lights: scene.lights.clone(),
+        })
+    }
+
+    /// Reads the scene file at `path` (`albedo` for primitives without a
+    /// material): its mesh and surfaces as every bake reads them, and a
+    /// glTF file's punctual lights.
+    ///
+    /// # Errors
+    /// A file the loader refuses (an invalid light, named).
+    pub fn read(path: &Path, albedo: [f32; 3]) -> Result<Self> {
+        let (mesh, surfaces) = load_scene_surfaces(path, Vec3::from_array(albedo))?;
+        Ok(Self {
+            mesh,
+            surfaces,
+            lights: load_scene_lights(path)?,
+        })
+    }
 }
 
 impl VolumeRequest<'_> {
@@ -116,30 +167,56 @@ fn stage_label(stage: Stage) -> String {
 
 /// `shlight volume`: reads the light first (a bad light fails before the
 /// scene is read; one short of the bake's lmax before it is baked, by
-/// shlight-volume's `bake_file`), then the scene; notes the grid; bakes (progress
-/// per stage: the surfaces' rays and bounces, relocation, the probes);
-/// notes what was baked and how fast; writes the picture of the probes and
-/// the file.
+/// shlight-volume's `bake_file`), then the scene ([`VolumeScene::read`]);
+/// then as [`volume_of`].
 ///
 /// # Errors
 /// A light or scene that cannot be read; a light that stops below the
 /// bake's lmax; a grid or options the bake refuses; a file that cannot be
 /// written.
 pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
-    let lmax = plan.bake.options.lmax;
-    let light = Environment::load(&plan.env, Frame::YUp, lmax)?;
+    let radiance = environment(plan, hooks)?;
+    let scene = VolumeScene::read(&plan.scene, plan.bake.options.albedo)?;
+    bake_and_write(plan, &radiance, &scene, hooks)
+}
+
+/// The volume job through a scene read (or built) already: reads the
+/// light; notes the grid and the scene's lights; bakes (progress per
+/// stage: the surfaces' rays and bounces, relocation, the probes); notes
+/// what was baked and how fast; writes the picture of the probes and the
+/// file. The plan's scene path names the scene in notes and the file.
+///
+/// # Errors
+/// As [`volume`], the scene's reading aside.
+pub fn volume_of(plan: &VolumePlan, scene: &VolumeScene, hooks: &dyn Hooks) -> Result<BakedFile> {
+    let radiance = environment(plan, hooks)?;
+    bake_and_write(plan, &radiance, scene, hooks)
+}
+
+/// The plan's light as radiance coefficients in the bake's frame, its
+/// warnings told.
+fn environment(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<ShCoeffs<DVec3>> {
+    let light = Environment::load(&plan.env, Frame::YUp, plan.bake.options.lmax)?;
     light.warnings.iter().for_each(|w| hooks.warn(w));
-    let radiance = light.radiance_in(Frame::YUp);
+    Ok(light.radiance_in(Frame::YUp))
+}
+
+/// [`volume_of`]'s steps after the light is read.
+fn bake_and_write(
+    plan: &VolumePlan,
+    radiance: &ShCoeffs<DVec3>,
+    volume_scene: &VolumeScene,
+    hooks: &dyn Hooks,
+) -> Result<BakedFile> {
+    let scene = &volume_scene.mesh;
     let name = plan.scene.display().to_string();
-    let albedo = Vec3::from_array(plan.bake.options.albedo);
-    let (scene, surfaces) = load_scene_surfaces(&plan.scene, albedo)?;
     if scene.report.degenerate_triangles > 0 {
         hooks.warn(&format!(
             "{name}: skipped {} degenerate triangles",
             scene.report.degenerate_triangles
         ));
     }
-    let grid = plan.bake.grid(&scene)?;
+    let grid = plan.bake.grid(scene)?;
     let [nx, ny, nz] = plan.bake.resolution;
     hooks.note(&format!(
         "{name}: {} triangles, {}; grid {nx}x{ny}x{nz} over {}:{}",
@@ -153,12 +230,16 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
         grid.min,
         grid.max
     ));
+    if let Some(note) = lights_note(&volume_scene.lights, plan) {
+        hooks.note(&format!("{name}: {note}"));
+    }
     let start = Instant::now();
     let baked = bake_file(
-        &scene,
-        surfaces.as_ref(),
+        scene,
+        volume_scene.surfaces.as_ref(),
+        &volume_scene.lights,
         &plan.scene,
-        &radiance,
+        radiance,
         &plan.env,
         &plan.bake,
         &|stage, done, total| {
@@ -179,6 +260,27 @@ pub fn volume(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<BakedFile> {
         }
     }
     Ok(baked)
+}
+
+/// The note of a scene's punctual lights: how many of each kind and the
+/// units their intensities are read in (`None` without lights).
+fn lights_note(lights: &[PunctualLight], plan: &VolumePlan) -> Option<String> {
+    if lights.is_empty() {
+        return None;
+    }
+    let count = |f: fn(&LightKind) -> bool| lights.iter().filter(|l| f(&l.kind)).count();
+    let units = plan.bake.options.light_units;
+    Some(format!(
+        "{} punctual lights ({} point, {} spot, {} directional), intensities {}",
+        lights.len(),
+        count(|k| matches!(k, LightKind::Point)),
+        count(|k| matches!(k, LightKind::Spot { .. })),
+        count(|k| matches!(k, LightKind::Directional)),
+        match units {
+            shlight_mesh::LightUnits::Blender => "divided by 683 (blender units)",
+            shlight_mesh::LightUnits::AsWritten => "as written",
+        }
+    ))
 }
 
 /// The note of a finished bake: its probes, how many are invalid or were
@@ -249,6 +351,103 @@ mod tests {
             ..request()
         };
         assert!(over.check(Spelling::Python).is_err());
+    }
+
+    #[test]
+    fn a_scene_with_a_light_bakes_its_light_and_the_file_records_it() {
+        // A hand-built glTF scene: a 4 m floor (y = 0, the default
+        // material, albedo 0 so that only the light's direct part is seen)
+        // and a white point light of 683 x 10 cd 1 m above its centre; a
+        // black sky. The one probe, 0.5 m above the floor, straight under
+        // the light, gets E_perp = 10 / 0.5^2 = 40 W/m2 from +Y: its SH
+        // are 40 Y_lm(+Y), Y_00 = 1 / (2 sqrt(pi)), Y_1-1 = -sqrt(3 / 4 pi)
+        // y, the rest of degree 1 zero.
+        use crate::hooks::Collected;
+        use shlight_mesh::{Instance, Primitive, generate};
+        let dir =
+            std::env::temp_dir().join(format!("shlight-volume-lights-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let env = dir.join("black.json");
+        let doc = serde_json::json!({
+            "format": "shlight-sh", "format_version": 1, "lmax": 2, "frame": "y-up",
+            "mirror": false, "quantity": "radiance",
+            "coefficients": vec![[0.0; 3]; 9], "provenance": {},
+        });
+        std::fs::write(&env, doc.to_string()).unwrap();
+        let out = dir.join("floor.json");
+        let scene = Scene {
+            source: "floor.glb".into(),
+            primitives: vec![Primitive {
+                mesh: generate::plane(4.0, 1),
+                uvs: Vec::new(),
+                color_alpha: None,
+                material: None,
+                label: "mesh 0 primitive 0".into(),
+            }],
+            instances: vec![Instance {
+                primitive: 0,
+                transform: glam::Mat4::IDENTITY,
+            }],
+            lights: vec![PunctualLight {
+                name: Some("Lamp".into()),
+                kind: LightKind::Point,
+                color: Vec3::ONE,
+                intensity: 6830.0,
+                range: None,
+                position: Vec3::new(0.0, 1.0, 0.0),
+                direction: Vec3::NEG_Z,
+            }],
+            ..Scene::default()
+        };
+        let mut request = VolumeRequest {
+            scene: Path::new("floor.glb"),
+            env: &env,
+            output: Some(&out),
+            ..request()
+        };
+        request.bake = VolumeBakeSettings {
+            resolution: [1, 1, 1],
+            bounds: Some((Vec3::new(-0.1, 0.4, -0.1), Vec3::new(0.1, 0.6, 0.1))),
+            options: VolumeOptions {
+                samples: 256,
+                surface_samples: 16,
+                bounces: 0,
+                albedo: [0.0; 3],
+                relocate: false,
+                visibility_size: 0,
+                ..VolumeOptions::default()
+            },
+            relightable: true,
+        };
+        let plan = request.check(Spelling::Python).unwrap();
+        let lit = VolumeScene::from_scene(&scene, plan.bake.options.albedo).unwrap();
+        let hooks = Collected::new();
+        let baked = volume_of(&plan, &lit, &hooks).unwrap();
+        assert!(
+            hooks.notes().iter().any(|n| n
+                == "floor.glb: 1 punctual lights (1 point, 0 spot, 0 directional), intensities divided by 683 (blender units)"),
+            "{:?}",
+            hooks.notes()
+        );
+        let file: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        assert_eq!(
+            file["lights"],
+            serde_json::json!({"units": "blender", "point": 1, "spot": 0, "directional": 0})
+        );
+        let y00 = 0.5 / std::f64::consts::PI.sqrt();
+        let y1 = -(3.0 / (4.0 * std::f64::consts::PI)).sqrt();
+        let want = [40.0 * y00, 40.0 * y1, 0.0, 0.0];
+        for (i, w) in want.iter().enumerate() {
+            for ch in 0..3 {
+                let got = file["coefficients"][0][i][ch].as_f64().unwrap();
+                assert!((got - w).abs() <= 1e-5 * 40.0, "row {i}: {got} vs {w}");
+            }
+        }
+        // Relit or not, the light stays: the file's radiance under the black
+        // sky is the static part, and so is the bake's.
+        assert_eq!(baked.file.radiance, baked.bake.emitted);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
