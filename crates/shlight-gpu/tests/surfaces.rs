@@ -652,3 +652,134 @@ fn a_minified_checker_is_its_mean_light() {
     }
     eprintln!("minified checker: worst pixel {worst:.2e} from the mean light {grey:.4}");
 }
+
+/// Standard base64 of `bytes` (for a glTF buffer's data URI).
+fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// `render-mesh` on a `.gltf` file reads it as a scene (shlight-mesh's
+/// `load_scene`) and draws each primitive with its material: a quad of
+/// `baseColorFactor` (0.2, 0.5, 0.9) shows that colour under the white
+/// light (a mesh would show `--albedo`'s 0.8 grey), the same quad as a
+/// metal shows black, and a third node placing the coloured quad again
+/// shows it too.
+#[test]
+fn render_mesh_reads_a_gltf_file_as_a_scene_with_its_materials() {
+    if context("render_mesh_reads_a_gltf_file_as_a_scene_with_its_materials").is_none() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("shlight-gpu-surfaces-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // One quad facing +y: positions, normals, then two triangles.
+    let mut buffer = Vec::new();
+    for p in [
+        [-0.5f32, 0.0, -0.5],
+        [0.5, 0.0, -0.5],
+        [0.5, 0.0, 0.5],
+        [-0.5, 0.0, 0.5],
+    ] {
+        p.iter().for_each(|x| buffer.extend(x.to_le_bytes()));
+    }
+    for _ in 0..4 {
+        [0.0f32, 1.0, 0.0]
+            .iter()
+            .for_each(|x| buffer.extend(x.to_le_bytes()));
+    }
+    for i in [0u16, 2, 1, 0, 3, 2] {
+        buffer.extend(i.to_le_bytes());
+    }
+    let gltf = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 96}},
+                  {{"buffer": 0, "byteOffset": 96, "byteLength": 12}}],
+  "accessors": [
+    {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+      "min": [-0.5, 0, -0.5], "max": [0.5, 0, 0.5]}},
+    {{"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"}},
+    {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}}],
+  "materials": [
+    {{"pbrMetallicRoughness": {{"baseColorFactor": [0.2, 0.5, 0.9, 1], "metallicFactor": 0}}}},
+    {{"pbrMetallicRoughness": {{"metallicFactor": 1}}}}],
+  "meshes": [
+    {{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}, "indices": 2, "material": 0}}]}},
+    {{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}, "indices": 2, "material": 1}}]}}],
+  "nodes": [{{"mesh": 0, "translation": [-0.75, 0, 0]}}, {{"mesh": 1, "translation": [0.75, 0, 0]}},
+            {{"mesh": 0, "translation": [0, 0, 1.25]}}],
+  "scenes": [{{"nodes": [0, 1, 2]}}], "scene": 0}}"#,
+        len = buffer.len(),
+        data = base64(&buffer),
+    );
+    let path = dir.join("quads.gltf");
+    std::fs::write(&path, gltf).unwrap();
+    let light = dir.join("white.json");
+    let file = shlight_format::CoeffFile::new(
+        white(),
+        shlight_core::sh::Frame::YUp,
+        shlight_format::Quantity::Radiance,
+    );
+    std::fs::write(&light, file.to_json_string()).unwrap();
+    let options = shlight_gpu::SceneOptions {
+        mesh: Some(path),
+        env: Some(light),
+        ..shlight_gpu::SceneOptions::default()
+    };
+    let settings = options
+        .check(shlight_pipeline::Spelling::CommandLine)
+        .unwrap();
+    let built_in = shlight_gpu::BuiltIn {
+        mesh_name: "none.obj",
+        mesh_obj: b"",
+        map_name: "none.exr",
+        map: b"",
+    };
+    let scene = GpuScene::read(&settings, &built_in, &shlight_pipeline::Silent).unwrap();
+    assert!(scene.gltf.is_some(), "a .gltf file is read as a scene");
+    let eye = Vec3::new(0.0, 4.0, 0.4);
+    let shot = Shot {
+        camera: Some(eye),
+        target: Some(Vec3::new(0.0, 0.0, 0.4)),
+        fov_degrees: 0.6f32.to_degrees(),
+        size: (SIZE, SIZE),
+        window: shlight_core::sh::Window::None,
+    };
+    let camera = Camera::aimed(scene.mesh.bounds(), shot.camera, shot.target, 0.6, 1.0).unwrap();
+    let frame = scene
+        .render_headless(&shot, &shlight_pipeline::Silent)
+        .unwrap();
+    let coloured = Vec3::new(0.2, 0.5, 0.9);
+    assert_rgb(
+        pixel_at(&frame, &camera, Vec3::new(-0.75, 0.0, 0.1)),
+        coloured,
+        "node 0",
+    );
+    assert_rgb(
+        pixel_at(&frame, &camera, Vec3::new(0.75, 0.0, 0.1)),
+        Vec3::ZERO,
+        "the metal",
+    );
+    assert_rgb(
+        pixel_at(&frame, &camera, Vec3::new(0.1, 0.0, 1.25)),
+        coloured,
+        "node 2",
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

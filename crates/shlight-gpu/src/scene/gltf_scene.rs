@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use glam::Vec3;
-use shlight_mesh::{Mesh, MeshFormat, Surfaces};
+use shlight_mesh::{LoadOptions, Mesh, MeshFormat, Surfaces};
 
 use super::SceneError;
 
@@ -42,7 +42,8 @@ impl GltfScene {
     }
 
     /// The glTF scene of `path` when it names a `.gltf` or `.glb` file
-    /// (`None` for the other formats, read as plain meshes).
+    /// (shlight-mesh's `load_scene`, under the default limits), with its
+    /// flattening; `None` for the other formats, read as plain meshes.
     ///
     /// # Errors
     /// A file the glTF scene loader refuses, naming it.
@@ -50,16 +51,8 @@ impl GltfScene {
         if MeshFormat::from_path(path) != Some(MeshFormat::Gltf) {
             return Ok(None);
         }
-        // THE ONE PLACE the GPU scene reads a glTF file as a scene. The
-        // glTF scene loader (`shlight_mesh::load_scene`) is not in
-        // shlight-mesh yet; until it is, `.gltf`/`.glb` files are read as
-        // a flattened mesh without materials (`Ok(None)`: the caller then
-        // calls `shlight_mesh::load`). When it lands, this becomes:
-        //
-        //     let scene = shlight_mesh::load_scene(path, &shlight_mesh::LoadOptions::default())?;
-        //     Ok(Some(Self::new(scene, default_albedo)?))
-        let _ = default_albedo;
-        Ok(None)
+        let scene = shlight_mesh::load_scene(path, &LoadOptions::default())?;
+        Ok(Some(Self::new(scene, default_albedo)?))
     }
 
     /// The flattened scene's world-space mesh.
