@@ -135,7 +135,7 @@ fn compare(name: &str, target: usize, extra: &[&str]) -> (f64, f64) {
                 .min(resolution[a] - 1)
         });
         let probe = cell[0] + resolution[0] * (cell[1] + resolution[1] * cell[2]);
-        for c in 0..3 {
+        for (c, &want) in want.iter().enumerate() {
             let mut e = 0.0;
             for l in 0..=LMAX {
                 for m in 0..2 * l + 1 {
@@ -146,9 +146,9 @@ fn compare(name: &str, target: usize, extra: &[&str]) -> (f64, f64) {
                 }
             }
             let got = e / std::f64::consts::PI;
-            if want[c] > 1e-3 {
-                abs += (got / want[c] - 1.0).abs();
-                signed += got / want[c] - 1.0;
+            if want > 1e-3 {
+                abs += (got / want - 1.0).abs();
+                signed += got / want - 1.0;
                 n += 1.0;
             }
         }

@@ -493,6 +493,7 @@ fn glossy_matrices_through_one_colour_per_triangle_are_those_without_surfaces() 
         seed: 9,
         emission: None,
         surfaces: None,
+        direct_irradiance: None,
     };
     let with = BakeOptions {
         surfaces: Some(surfaces.clone()),

@@ -95,7 +95,11 @@ fn a_l(l: usize) -> f64 {
             let central: f64 = (1..=l / 2)
                 .map(|k| (2 * k - 1) as f64 / (2 * k) as f64)
                 .product();
-            let sign = if (l / 2 - 1) % 2 == 0 { 1.0 } else { -1.0 };
+            let sign = if (l / 2 - 1).is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
             2.0 * PI * sign * central / ((l + 2) as f64 * (l - 1) as f64)
         }
     }
@@ -342,7 +346,7 @@ fn a_spot_lights_inside_its_cones_only() {
     let lmax = 2;
     let bake = bake_with_lights(
         None,
-        &[spot.clone()],
+        std::slice::from_ref(&spot),
         &grid,
         &options(lmax, 0.0, 0),
         &|_, _, _| {},
@@ -409,7 +413,7 @@ fn a_sun_casts_a_shadow() {
     let lmax = 3;
     let bake = bake_with_lights(
         Some(&slab),
-        &[sun.clone()],
+        std::slice::from_ref(&sun),
         &grid,
         &options(lmax, 0.0, 0),
         &|_, _, _| {},
@@ -451,8 +455,14 @@ fn a_light_behind_a_surface_lights_neither_it_nor_what_faces_it() {
         light_units: LightUnits::AsWritten,
         ..options(lmax, 0.8, 2)
     };
-    let bake =
-        bake_with_lights(Some(&scene), &[lamp.clone()], &grid, &opts, &|_, _, _| {}).unwrap();
+    let bake = bake_with_lights(
+        Some(&scene),
+        std::slice::from_ref(&lamp),
+        &grid,
+        &opts,
+        &|_, _, _| {},
+    )
+    .unwrap();
     let [below, above] = [grid.centres()[0], grid.centres()[1]];
     assert!(below.z < 0.0 && above.z > 0.0);
     assert!(
