@@ -34,7 +34,9 @@ const DEFAULT_FOV: f32 = 35.0;
 /// Arguments of `shlight render-mesh`.
 #[derive(Args, Debug)]
 pub struct RenderMeshArgs {
-    /// The mesh (OBJ, PLY, OFF, glTF/GLB).
+    /// The mesh (OBJ, PLY, OFF), or a glTF/GLB scene, drawn with its
+    /// materials (base colour textures, cut-outs, double-sided faces) and
+    /// instances.
     pub mesh: PathBuf,
     /// The light: an equirect map (projected to lmax 8) or a radiance
     /// coefficient file (.json).

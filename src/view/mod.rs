@@ -28,7 +28,8 @@ use crate::values::parse_size;
 /// Arguments of `shlight view`.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// The mesh (OBJ, PLY, OFF, glTF/GLB) [default: the Stanford bunny,
+    /// The mesh (OBJ, PLY, OFF), or a glTF/GLB scene drawn with its
+    /// materials and instances [default: the Stanford bunny,
     /// meshes/bunny.obj, built into shlight].
     pub mesh: Option<PathBuf>,
     /// PRT transfer baked for this mesh by `shlight prt` (.shprt): starts in

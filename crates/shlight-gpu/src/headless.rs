@@ -1,8 +1,8 @@
 //! Rendering without a window: a frame into an offscreen `Rgba32Float`
 //! texture, read back to the CPU.
 
+use crate::pipeline::DEPTH_FORMAT;
 use crate::readback::TextureReadback;
-use crate::renderer::DEPTH_FORMAT;
 use crate::{Camera, GpuContext, GpuError, Renderer, Shading};
 
 /// Colour format of headless frames: linear 32-bit float RGBA.

@@ -8,18 +8,22 @@ use glam::{DMat3, DVec3};
 use shlight_core::map::MapOrientation;
 use shlight_core::sh::ShCoeffs;
 use shlight_io::Image;
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Scene, Surfaces};
 use wgpu::util::DeviceExt;
 
-use crate::shaders::{self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE};
+use crate::gpu_material::material_layout;
+use crate::pipeline::{Pass, READ, UNIFORM, buffer_entry, pipeline_layout, pipeline_of};
+use crate::scene_draws::SceneDraws;
+use crate::shaders::{
+    self, BACKGROUND_MODULE, ENCODED_MODULE, MESH_MODULE, MESH_SURFACE_MODULE,
+    SURFACE_ENCODED_MODULE,
+};
 use crate::shading::{FrameInputs, FrameUniform, GlossyInputs, Mode, Shading, shader_encodes_srgb};
+use crate::surface_pipelines::{SurfacePipelines, surface_pass};
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_baked::{GlossyView, TransferView};
 
 use crate::{Camera, GpuContext, GpuError};
-
-/// Depth buffer format of every frame.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// Coefficients the light buffer holds: `(LIGHT_MAX_LMAX + 1)^2`.
 const LIGHT_SLOTS: usize = (LIGHT_MAX_LMAX + 1) * (LIGHT_MAX_LMAX + 1);
@@ -96,7 +100,25 @@ pub struct Renderer {
     encoded_pipeline: Option<wgpu::RenderPipeline>,
     map_orientation: MapOrientation,
     environment_rotation: DMat3,
+    /// A glTF scene's surfaces, drawn instead of a mesh
+    /// ([`Renderer::set_scene`], [`Renderer::set_surfaces`]).
+    surfaces: Option<SceneDraws>,
+    /// Bind group 1 of the surface pipelines: a material.
+    material_layout: wgpu::BindGroupLayout,
+    /// `surface.wgsl`'s module per lmax, compiled on first use.
+    surface_modules: [OnceLock<wgpu::ShaderModule>; LIGHT_MAX_LMAX + 1],
+    surface_pipelines: SurfacePipelines,
+    /// `surface_encoded.wgsl` with the encoding's snippet
+    /// ([`Renderer::set_encoding`]), and its pipelines.
+    surface_encoded_module: Option<wgpu::ShaderModule>,
+    surface_encoded_pipelines: SurfacePipelines,
 }
+
+/// The surface pass of SH, PRT and normals modes (`surface.wgsl`).
+const SURFACE_PASS: Pass = surface_pass("surfaces", "vs_surface", "fs_surface");
+/// The surface pass of an encoding (`surface_encoded.wgsl`).
+const SURFACE_ENCODED_PASS: Pass =
+    surface_pass("encoded surfaces", "vs_surface", "fs_surface_encoded");
 
 impl std::fmt::Debug for Renderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -106,46 +128,6 @@ impl std::fmt::Debug for Renderer {
             .field("prt", &self.prt)
             .finish_non_exhaustive()
     }
-}
-
-/// A uniform block.
-pub(crate) const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
-/// A read-only storage buffer.
-pub(crate) const READ: wgpu::BufferBindingType =
-    wgpu::BufferBindingType::Storage { read_only: true };
-/// A read-write storage buffer.
-pub(crate) const WRITE: wgpu::BufferBindingType =
-    wgpu::BufferBindingType::Storage { read_only: false };
-
-/// A bind group layout entry for a buffer of type `ty` (the whole buffer,
-/// no dynamic offset).
-pub(crate) fn buffer_entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    ty: wgpu::BufferBindingType,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-/// A pipeline layout of one bind group, `layout`, without immediates.
-pub(crate) fn pipeline_layout(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-) -> wgpu::PipelineLayout {
-    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: None,
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    })
 }
 
 impl Renderer {
@@ -188,6 +170,12 @@ impl Renderer {
         });
         let mesh_pipeline_layout = pipeline_layout(device, &mesh_layout);
         let background_pipeline_layout = pipeline_layout(device, &background_layout);
+        let material_layout = material_layout(device);
+        let surfaces = |pass| {
+            SurfacePipelines::new(device, &mesh_layout, &material_layout, color_format, pass)
+        };
+        let (surface_pipelines, surface_encoded_pipelines) =
+            (surfaces(SURFACE_PASS), surfaces(SURFACE_ENCODED_PASS));
         let uniform = FrameUniform::buffer(device, "frame");
         let light = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("light"),
@@ -237,6 +225,12 @@ impl Renderer {
             encoded_pipeline: None,
             map_orientation: MapOrientation::default(),
             environment_rotation: DMat3::IDENTITY,
+            surfaces: None,
+            material_layout,
+            surface_modules: Default::default(),
+            surface_pipelines,
+            surface_encoded_module: None,
+            surface_encoded_pipelines,
         }
     }
 
@@ -273,8 +267,76 @@ impl Renderer {
             index_count: indices.len() as u32,
             vertex_count: mesh.vertex_count(),
         });
+        self.surfaces = None;
         if self.prt.is_some() {
             self.clear_transfer(ctx);
+        }
+    }
+
+    /// Uploads a glTF scene to draw instead of a mesh: each unique
+    /// primitive once, drawn once per instance (an instance buffer of
+    /// transforms), each with its material (`shaders/material.wgsl`): the
+    /// diffuse albedo `baseColorFactor x baseColorTexture x COLOR_0 x (1 -
+    /// metallic)` per fragment, the texture sRGB-decoded by the GPU and
+    /// mip-mapped, `MASK` cut out at its cutoff, `BLEND` as coverage by an
+    /// ordered dither, single-sided materials without back faces and
+    /// double-sided ones lit on the side seen. Primitives without a
+    /// material are untextured, opaque and single-sided, of albedo
+    /// `default_albedo`; [`Shading::albedo`] does not apply to the scene.
+    /// Drops the previous mesh or scene and any PRT transfer (which needs
+    /// [`Renderer::set_surfaces`]).
+    ///
+    /// # Errors
+    /// As shlight-gpu's scene draws: an instance of a missing primitive, a
+    /// singular transform, an index beyond the scene's materials or
+    /// textures, per-vertex arrays of the wrong length; GPU errors.
+    pub fn set_scene(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        default_albedo: [f32; 3],
+    ) -> Result<(), GpuError> {
+        let draws = SceneDraws::instanced(ctx, &self.material_layout, scene, default_albedo)?;
+        self.use_surfaces(ctx, draws);
+        Ok(())
+    }
+
+    /// Uploads a flattened glTF scene (shlight-mesh's [`Surfaces`]: every
+    /// instance's triangles in world space) to draw as
+    /// [`Renderer::set_scene`] draws a scene, one vertex per world vertex,
+    /// so that PRT transfer baked for the flattened mesh
+    /// ([`Renderer::set_transfer`], diffuse only) reaches each vertex. In
+    /// PRT mode each fragment shows the transferred radiance interpolated
+    /// times its albedo: the transfer must be per unit albedo (divided by
+    /// the albedo it was baked with).
+    ///
+    /// # Errors
+    /// Arrays of the wrong length, indices beyond the materials or
+    /// textures; GPU errors.
+    pub fn set_surfaces(&mut self, ctx: &GpuContext, surfaces: &Surfaces) -> Result<(), GpuError> {
+        let draws = SceneDraws::flattened(ctx, &self.material_layout, surfaces)?;
+        self.use_surfaces(ctx, draws);
+        Ok(())
+    }
+
+    /// Draws `draws` from now on, instead of a mesh.
+    fn use_surfaces(&mut self, ctx: &GpuContext, draws: SceneDraws) {
+        self.surfaces = Some(draws);
+        self.mesh = None;
+        if self.prt.is_some() {
+            self.clear_transfer(ctx);
+        }
+    }
+
+    /// The vertices on the GPU: the mesh's, or the scene's unique
+    /// primitives' together (an instanced scene's do not grow with its
+    /// instances); 0 with neither.
+    #[must_use]
+    pub fn vertex_count(&self) -> usize {
+        match (&self.surfaces, &self.mesh) {
+            (Some(s), _) => s.vertex_count(),
+            (None, Some(m)) => m.vertex_count,
+            (None, None) => 0,
         }
     }
 
@@ -369,13 +431,22 @@ impl Renderer {
                         label: Some(ENCODED_MODULE.name),
                         source: wgpu::ShaderSource::Wgsl(source.into()),
                     });
-                pipeline_of(
+                let pipeline = pipeline_of(
                     &ctx.device,
                     &self.mesh_pipeline_layout,
                     self.color_format,
                     &ENCODED_PASS,
                     &module,
-                )
+                );
+                let surfaces = ctx
+                    .device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(SURFACE_ENCODED_MODULE.name),
+                        source: wgpu::ShaderSource::Wgsl(
+                            shaders::surface_encoded_source(snippet).into(),
+                        ),
+                    });
+                (pipeline, surfaces)
             })
             .map_err(|e| match e {
                 GpuError::Runtime(why) => GpuError::Runtime(format!(
@@ -383,12 +454,27 @@ impl Renderer {
                 )),
                 other => other,
             })?;
+        let (pipeline, surfaces) = pipeline;
         self.encoded_pipeline = Some(pipeline);
+        self.surface_encoded_module = Some(surfaces);
+        self.surface_encoded_pipelines.forget(0);
         Ok(())
     }
 
     /// `what`, made for `count` vertices, fits the current mesh.
     fn check_vertices(&self, what: &str, count: usize) -> Result<(), GpuError> {
+        if let Some(s) = &self.surfaces {
+            return match s.world_vertices() {
+                Some(n) if n == count => Ok(()),
+                Some(n) => Err(GpuError::Invalid(format!(
+                    "{what} is for {count} vertices but the flattened scene has {n}"
+                ))),
+                None => Err(GpuError::Invalid(format!(
+                    "{what} is per world vertex: it needs the scene flattened (set_surfaces), \
+                     not instanced"
+                ))),
+            };
+        }
         match self.mesh.as_ref().map(|m| m.vertex_count) {
             Some(n) if n == count => Ok(()),
             None => Err(GpuError::Invalid(format!("{what} given before a mesh"))),
@@ -441,6 +527,11 @@ impl Renderer {
         matrices: &GlossyView<'_>,
         lobe: GlossyLobe<'_>,
     ) -> Result<(), GpuError> {
+        if self.surfaces.is_some() {
+            return Err(GpuError::Invalid(
+                "glossy transfer is shaded on a mesh, not on a glTF scene's surfaces".into(),
+            ));
+        }
         self.check_vertices("glossy transfer", matrices.vertex_count)?;
         let lmax = matrices.lmax;
         if lmax > LIGHT_MAX_LMAX {
@@ -681,7 +772,27 @@ impl Renderer {
             pass.set_bind_group(0, &self.background_bind, &[]);
             pass.draw(0..3, 0..1);
         }
-        if let Some(mesh) = &self.mesh {
+        if let Some(draws) = &self.surfaces {
+            pass.set_bind_group(0, &self.mesh_bind, &[]);
+            match (shading.mode, &self.surface_encoded_module) {
+                (Mode::Encoded, Some(module)) => draws.draw(&mut pass, |sides| {
+                    self.surface_encoded_pipelines
+                        .get(device, 0, || module.clone(), sides)
+                }),
+                (mode, _) => {
+                    // Only SH mode evaluates sh_reconstruct.
+                    let l = if mode == Mode::Sh { lmax } else { 0 };
+                    let module = || {
+                        self.surface_modules[l]
+                            .get_or_init(|| shaders::create(device, MESH_SURFACE_MODULE, l))
+                            .clone()
+                    };
+                    draws.draw(&mut pass, |sides| {
+                        self.surface_pipelines.get(device, l, module, sides)
+                    });
+                }
+            }
+        } else if let Some(mesh) = &self.mesh {
             // Only SH mode evaluates sh_reconstruct, and glossy PRT
             // glossy_radiance (to the transfer's lmax).
             let l = match (shading.mode, glossy, self.prt) {
@@ -719,24 +830,6 @@ impl Renderer {
     }
 }
 
-/// What the render pipelines ([`pipeline_of`]) differ in besides their
-/// shader module and layout: the mesh, encoded and background passes here,
-/// the volume pass's in `volume.rs`.
-pub(crate) struct Pass {
-    /// The pipeline's label.
-    pub label: &'static str,
-    /// The vertex and fragment entry points in the module.
-    pub vertex_entry: &'static str,
-    pub fragment_entry: &'static str,
-    /// The vertex buffers' layouts, in slot order.
-    pub vertex_buffers: &'static [Option<wgpu::VertexBufferLayout<'static>>],
-    /// Whether fragments write depth, and how they are tested against it.
-    pub depth_write: bool,
-    pub depth_compare: wgpu::CompareFunction,
-    /// Triangles, or one point per vertex.
-    pub topology: wgpu::PrimitiveTopology,
-}
-
 /// The mesh: positions and normals interleaved, depth tested and written,
 /// both faces drawn (meshes with inconsistent winding still show).
 const MESH_PASS: Pass = Pass {
@@ -751,6 +844,8 @@ const MESH_PASS: Pass = Pass {
     depth_write: true,
     depth_compare: wgpu::CompareFunction::Less,
     topology: wgpu::PrimitiveTopology::TriangleList,
+    cull_mode: None,
+    front_face: wgpu::FrontFace::Ccw,
 };
 
 /// The mesh's vertices as points ([`Renderer::set_points`]): [`MESH_PASS`]
@@ -778,55 +873,9 @@ const BACKGROUND_PASS: Pass = Pass {
     depth_write: false,
     depth_compare: wgpu::CompareFunction::Always,
     topology: wgpu::PrimitiveTopology::TriangleList,
+    cull_mode: None,
+    front_face: wgpu::FrontFace::Ccw,
 };
-
-/// The render pipeline of `pass` over a compiled `module`, for colour
-/// targets of `color_format` (written whole, no blending) and a
-/// [`DEPTH_FORMAT`] depth target, both faces drawn.
-pub(crate) fn pipeline_of(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    color_format: wgpu::TextureFormat,
-    pass: &Pass,
-    module: &wgpu::ShaderModule,
-) -> wgpu::RenderPipeline {
-    let targets = [Some(wgpu::ColorTargetState {
-        format: color_format,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    })];
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(pass.label),
-        layout: Some(layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some(pass.vertex_entry),
-            compilation_options: Default::default(),
-            buffers: pass.vertex_buffers,
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: pass.topology,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(pass.depth_write),
-            depth_compare: Some(pass.depth_compare),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some(pass.fragment_entry),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
-}
 
 /// The map's own y-up frame from world, as a matrix
 /// ([`MapOrientation::map_from_world`] applied to the axes).

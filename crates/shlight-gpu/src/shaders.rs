@@ -4,7 +4,8 @@
 //! WGSL has no `#include`, so a module is its prelude files followed by its
 //! own file: `sh.wgsl` (the SH basis) for all, `scene.wgsl` (frame uniform,
 //! light coefficients, tone maps) for the render passes (mesh, background,
-//! volume). The render
+//! volume), `material.wgsl` (a glTF material's albedo, cut-outs and
+//! instances) for the passes that draw a glTF scene's surfaces. The render
 //! passes' modules also get `sh_reconstruct`, written out for one lmax
 //! (`sh_expansion.rs`), and the projection's module its `ring_sums`
 //! (`ring_sums.rs`), so each is compiled once per lmax. [`MODULES`]
@@ -22,7 +23,7 @@ use shlight_baked::LIGHT_MAX_LMAX;
 pub type ShaderFile = (&'static str, &'static str);
 
 /// Every WGSL file in `shaders/`, by name.
-pub const FILES: [ShaderFile; 8] = [
+pub const FILES: [ShaderFile; 12] = [
     ("sh.wgsl", SH),
     ("scene.wgsl", SCENE),
     ("mesh.wgsl", MESH),
@@ -31,6 +32,10 @@ pub const FILES: [ShaderFile; 8] = [
     ("volume.wgsl", VOLUME),
     ("volume_visibility.wgsl", VOLUME_VISIBILITY),
     ("encoded.wgsl", ENCODED),
+    ("material.wgsl", MATERIAL),
+    ("surface.wgsl", SURFACE),
+    ("surface_encoded.wgsl", SURFACE_ENCODED),
+    ("volume_surface.wgsl", VOLUME_SURFACE),
 ];
 
 const SH: &str = include_str!("../shaders/sh.wgsl");
@@ -41,6 +46,10 @@ const PROJECT: &str = include_str!("../shaders/project.wgsl");
 const VOLUME: &str = include_str!("../shaders/volume.wgsl");
 const VOLUME_VISIBILITY: &str = include_str!("../shaders/volume_visibility.wgsl");
 const ENCODED: &str = include_str!("../shaders/encoded.wgsl");
+const MATERIAL: &str = include_str!("../shaders/material.wgsl");
+const SURFACE: &str = include_str!("../shaders/surface.wgsl");
+const SURFACE_ENCODED: &str = include_str!("../shaders/surface_encoded.wgsl");
+const VOLUME_SURFACE: &str = include_str!("../shaders/volume_surface.wgsl");
 
 /// A compiled unit: a name and its files in order.
 #[derive(Clone, Copy, Debug)]
@@ -198,6 +207,86 @@ pub fn encoded_source(snippet: &str) -> String {
     text
 }
 
+/// A glTF scene's surfaces (`material.wgsl`: the albedo from each
+/// fragment's material, cut-outs, instances) shaded as [`MESH_MODULE`]
+/// shades a mesh (`surface.wgsl`: SH, PRT per unit albedo, normals).
+pub const MESH_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "mesh surfaces",
+    files: &[
+        "sh.wgsl",
+        "scene.wgsl",
+        "mesh.wgsl",
+        "material.wgsl",
+        "surface.wgsl",
+    ],
+    generated: Some(mesh_generated),
+};
+
+/// A glTF scene's surfaces shaded with an encoding
+/// (`surface_encoded.wgsl`), as [`ENCODED_MODULE`] shades a mesh; the
+/// encoding's snippet appended by the caller
+/// ([`surface_encoded_source`]), [`SAMPLE_ENCODING`] when validated alone.
+pub const SURFACE_ENCODED_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "encoded surfaces",
+    files: &[
+        "sh.wgsl",
+        "scene.wgsl",
+        "mesh.wgsl",
+        "material.wgsl",
+        "surface.wgsl",
+        "surface_encoded.wgsl",
+    ],
+    generated: Some(sample_encoded),
+};
+
+/// [`SURFACE_ENCODED_MODULE`]'s source with an encoding's WGSL `snippet`
+/// appended.
+#[must_use]
+pub fn surface_encoded_source(snippet: &str) -> String {
+    let mut text = SURFACE_ENCODED_MODULE.files_text();
+    text.push('\n');
+    text.push_str(&encoded_generated(snippet));
+    text
+}
+
+/// A glTF scene's surfaces lit by an irradiance volume
+/// (`volume_surface.wgsl`), the texels filtered as [`VOLUME_MODULE`]
+/// filters them.
+pub const VOLUME_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume surfaces",
+    files: &[
+        "sh.wgsl",
+        "scene.wgsl",
+        "volume.wgsl",
+        "material.wgsl",
+        "volume_surface.wgsl",
+    ],
+    generated: Some(volume_wgsl_filtered),
+};
+
+/// [`VOLUME_SURFACE_MODULE`] reading the texels by loads, as
+/// [`VOLUME_LOADS_MODULE`].
+pub const VOLUME_LOADS_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume loads surfaces",
+    generated: Some(volume_wgsl_loads),
+    ..VOLUME_SURFACE_MODULE
+};
+
+/// [`VOLUME_SURFACE_MODULE`] weighing each probe by its visibility, as
+/// [`VOLUME_VISIBILITY_MODULE`].
+pub const VOLUME_VISIBILITY_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
+    name: "volume visibility surfaces",
+    files: &[
+        "sh.wgsl",
+        "scene.wgsl",
+        "volume.wgsl",
+        "volume_visibility.wgsl",
+        "material.wgsl",
+        "volume_surface.wgsl",
+    ],
+    generated: Some(volume_wgsl_visibility),
+};
+
 /// The SH basis alone (a module of functions, validated on its own).
 pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "sh",
@@ -206,7 +295,7 @@ pub const SH_MODULE: ShaderModuleSource = ShaderModuleSource {
 };
 
 /// Every module the crate compiles (and [`SH_MODULE`], checked on its own).
-pub const MODULES: [ShaderModuleSource; 8] = [
+pub const MODULES: [ShaderModuleSource; 13] = [
     SH_MODULE,
     MESH_MODULE,
     BACKGROUND_MODULE,
@@ -215,6 +304,11 @@ pub const MODULES: [ShaderModuleSource; 8] = [
     VOLUME_LOADS_MODULE,
     VOLUME_VISIBILITY_MODULE,
     ENCODED_MODULE,
+    MESH_SURFACE_MODULE,
+    SURFACE_ENCODED_MODULE,
+    VOLUME_SURFACE_MODULE,
+    VOLUME_LOADS_SURFACE_MODULE,
+    VOLUME_VISIBILITY_SURFACE_MODULE,
 ];
 
 /// Compiles a module on `device`, at `lmax` if it has generated code.

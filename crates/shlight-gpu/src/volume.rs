@@ -44,12 +44,18 @@
 use std::sync::OnceLock;
 
 use glam::{DMat3, Vec3};
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Scene};
 use wgpu::util::DeviceExt;
 
-use crate::renderer::{Pass, READ, UNIFORM, WRITE, buffer_entry, pipeline_layout, pipeline_of};
-use crate::shaders::{self, VOLUME_LOADS_MODULE, VOLUME_MODULE, VOLUME_VISIBILITY_MODULE};
+use crate::gpu_material::material_layout;
+use crate::pipeline::{Pass, READ, UNIFORM, WRITE, buffer_entry, pipeline_layout, pipeline_of};
+use crate::scene_draws::SceneDraws;
+use crate::shaders::{
+    self, VOLUME_LOADS_MODULE, VOLUME_LOADS_SURFACE_MODULE, VOLUME_MODULE, VOLUME_SURFACE_MODULE,
+    VOLUME_VISIBILITY_MODULE, VOLUME_VISIBILITY_SURFACE_MODULE,
+};
 use crate::shading::{FrameInputs, FrameUniform, Shading, shader_encodes_srgb};
+use crate::surface_pipelines::{SurfacePipelines, surface_pass};
 use crate::volume_expansion::{volume_coefficients, volume_texels};
 use crate::volume_fetch::VolumeFetch;
 use crate::{Camera, GpuContext, GpuError};
@@ -488,7 +494,14 @@ const VOLUME_PASS: Pass = Pass {
     depth_write: true,
     depth_compare: wgpu::CompareFunction::Less,
     topology: wgpu::PrimitiveTopology::TriangleList,
+    cull_mode: None,
+    front_face: wgpu::FrontFace::Ccw,
 };
+
+/// A glTF scene's surfaces lit by interpolation (`volume_surface.wgsl`),
+/// their albedo from their materials.
+const VOLUME_SURFACE_PASS: Pass =
+    surface_pass("volume surfaces", "vs_volume_surface", "fs_volume_surface");
 
 /// The probe spheres, each lit by its own probe: [`VOLUME_PASS`] with the
 /// fragment stage `fs_probe`.
@@ -530,6 +543,13 @@ pub struct VolumeRenderer {
     probe_count: usize,
     valid: Vec<bool>,
     scene: Option<VolumeMesh>,
+    /// The scene as a glTF scene's surfaces ([`VolumeRenderer::set_scene_surfaces`]),
+    /// in place of `scene`.
+    surfaces: Option<SceneDraws>,
+    material_layout: wgpu::BindGroupLayout,
+    /// `volume_surface.wgsl`'s module per shading lmax, as `modules`.
+    surface_modules: [OnceLock<wgpu::ShaderModule>; SHADED_MAX_LMAX + 1],
+    surface_pipelines: SurfacePipelines,
     object: Option<VolumeMesh>,
     spheres: VolumeMesh,
 }
@@ -738,6 +758,14 @@ impl VolumeRenderer {
         });
         let sphere = shlight_mesh::generate::uv_sphere(1.0, 16, 8);
         let spheres = VolumeMesh::new(ctx, &sphere, [1.0; 3], &probe_sphere_instances(probes));
+        let material_layout = material_layout(device);
+        let surface_pipelines = SurfacePipelines::new(
+            device,
+            &layout,
+            &material_layout,
+            color_format,
+            VOLUME_SURFACE_PASS,
+        );
         Ok(Self {
             color_format,
             fetch,
@@ -760,6 +788,10 @@ impl VolumeRenderer {
             probe_count: probes.probe_count(),
             valid: probes.valid.to_vec(),
             scene: None,
+            surfaces: None,
+            material_layout,
+            surface_modules: Default::default(),
+            surface_pipelines,
             object: None,
             spheres,
         })
@@ -844,6 +876,33 @@ impl VolumeRenderer {
     pub fn set_scene(&mut self, ctx: &GpuContext, mesh: &Mesh, albedo: [f32; 3]) {
         let instance = VolumeInstance::interpolated(Vec3::ZERO, 1.0);
         self.scene = Some(VolumeMesh::new(ctx, mesh, albedo, &[instance]));
+        self.surfaces = None;
+    }
+
+    /// The scene the volume was baked in as a glTF scene, in place of
+    /// [`VolumeRenderer::set_scene`]'s mesh: each unique primitive once,
+    /// drawn once per instance, its albedo from its material per fragment
+    /// (textures, cut-outs, double-sided faces; as
+    /// [`Renderer::set_scene`](crate::Renderer::set_scene) draws it, lit by
+    /// the volume), its emission added; primitives without a material of
+    /// `albedo`.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_scene`](crate::Renderer::set_scene).
+    pub fn set_scene_surfaces(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        albedo: [f32; 3],
+    ) -> Result<(), GpuError> {
+        self.surfaces = Some(SceneDraws::instanced(
+            ctx,
+            &self.material_layout,
+            scene,
+            albedo,
+        )?);
+        self.scene = None;
+        Ok(())
     }
 
     /// The dynamic object (its vertex colours as albedo, else `albedo`),
@@ -948,6 +1007,16 @@ impl VolumeRenderer {
         {
             draw(&mut pass, mesh);
         }
+        if let Some(draws) = &self.surfaces {
+            let module = || {
+                self.surface_modules[lmax]
+                    .get_or_init(|| self.surface_module(ctx, lmax))
+                    .clone()
+            };
+            draws.draw(&mut pass, |sides| {
+                self.surface_pipelines.get(&ctx.device, lmax, module, sides)
+            });
+        }
         if show_probes {
             pass.set_pipeline(
                 self.probe_pipelines[lmax].get_or_init(|| self.pipeline(ctx, &PROBE_PASS, lmax)),
@@ -968,6 +1037,17 @@ impl VolumeRenderer {
             };
             shaders::create(&ctx.device, source, lmax)
         })
+    }
+
+    /// `volume_surface.wgsl`'s module at `lmax`, read as
+    /// [`VolumeRenderer::module`] reads the texels.
+    fn surface_module(&self, ctx: &GpuContext, lmax: usize) -> wgpu::ShaderModule {
+        let source = match (self.visibility.is_some(), self.fetch) {
+            (true, _) => VOLUME_VISIBILITY_SURFACE_MODULE,
+            (false, VolumeFetch::Filtered) => VOLUME_SURFACE_MODULE,
+            (false, VolumeFetch::Loads) => VOLUME_LOADS_SURFACE_MODULE,
+        };
+        shaders::create(&ctx.device, source, lmax)
     }
 
     /// The render pipeline of `pass` (`VOLUME_PASS` or `PROBE_PASS`) at

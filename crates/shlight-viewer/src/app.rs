@@ -11,7 +11,7 @@ use shlight_core::sh::Window;
 use shlight_gpu::wgpu;
 use shlight_gpu::{
     Background, GpuContext, Mode, OrbitCamera, Renderer, Scene, Shading, light_renderer,
-    mesh_renderer,
+    scene_renderer,
 };
 use shlight_io::ToneMap;
 use winit::application::ApplicationHandler;
@@ -143,16 +143,10 @@ impl<'a> App<'a> {
         let renderer = match &mut self.volume {
             // The mesh is drawn by the volume pass, lit by its probes.
             Some(v) => {
-                v.start(&ctx, format, &scene.mesh, scene.albedo(Mode::Sh))?;
+                v.start(&ctx, format, scene.geometry(), scene.albedo(Mode::Sh))?;
                 light_renderer(&ctx, format, &scene.light)
             }
-            None => mesh_renderer(
-                &ctx,
-                format,
-                &scene.mesh,
-                scene.transfer.as_ref(),
-                &scene.light,
-            )?,
+            None => scene_renderer(&ctx, format, scene)?,
         };
         let depth = shlight_gpu::depth_view(&ctx, config.width, config.height);
         let egui_ctx = egui::Context::default();

@@ -11,9 +11,9 @@ use std::time::Duration;
 use glam::{DVec3, Vec3};
 use shlight_core::sh::ShCoeffs;
 use shlight_gpu::{
-    Camera, GpuContext, GpuError, SceneVolume, Shading, VolumeLight, VolumeRenderer, wgpu,
+    Camera, GpuContext, GpuError, SceneGeometry, SceneVolume, Shading, VolumeLight, VolumeRenderer,
+    wgpu,
 };
-use shlight_mesh::Mesh;
 
 /// The keys that move the object and the direction of each.
 pub const MOVE_KEYS: [(&str, Vec3); 6] = [
@@ -67,7 +67,7 @@ impl ViewVolume {
         &mut self,
         ctx: &GpuContext,
         format: wgpu::TextureFormat,
-        scene: &Mesh,
+        scene: SceneGeometry<'_>,
         albedo: [f32; 3],
     ) -> Result<(), GpuError> {
         self.renderer = Some(self.input.renderer(ctx, format, Some(scene), albedo)?);

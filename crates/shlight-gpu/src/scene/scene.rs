@@ -15,16 +15,24 @@ use shlight_pipeline::{Hooks, Progress};
 
 use super::scene_options::refuse;
 use super::transfer_file::read_transfer;
-use super::{BuiltIn, SceneError, SceneSettings, SceneVolume, VolumeLight};
+use super::{
+    BuiltIn, GltfScene, SceneError, SceneGeometry, SceneSettings, SceneVolume, VolumeLight,
+};
 use crate::{Background, Mode};
+
+/// The albedo of surfaces without colours or a material when none is asked.
+const DEFAULT_ALBEDO: [f32; 3] = [0.8; 3];
 
 /// A mesh with its PRT transfer, the light (an environment map or a
 /// coefficient file, to lmax [`LIGHT_MAX_LMAX`]), and an irradiance volume
 /// with an object moved through it; each setting resolved.
 #[derive(Clone, Debug)]
 pub struct Scene {
-    /// The mesh.
+    /// The mesh (a glTF scene's flattening, [`GltfScene::surfaces`]).
     pub mesh: Mesh,
+    /// A glTF file's scene, drawn with its materials, textures and
+    /// instances; `None` for the other formats.
+    pub gltf: Option<GltfScene>,
     /// What the mesh is called in messages: its path, or the built-in
     /// mesh's name.
     pub mesh_name: PathBuf,
@@ -81,9 +89,13 @@ impl Scene {
         } else {
             "reading the mesh"
         }));
-        let (mesh, mesh_name) = match &options.mesh {
-            Some(path) => (shlight_mesh::load(path)?, path.clone()),
-            None => (built_in.mesh()?, PathBuf::from(built_in.mesh_name)),
+        let default_albedo = options.albedo.unwrap_or(DEFAULT_ALBEDO);
+        let (mesh, mesh_name, gltf) = match &options.mesh {
+            Some(path) => match GltfScene::read(path, default_albedo)? {
+                Some(gltf) => (gltf.mesh().clone(), path.clone(), Some(gltf)),
+                None => (shlight_mesh::load(path)?, path.clone(), None),
+            },
+            None => (built_in.mesh()?, PathBuf::from(built_in.mesh_name), None),
         };
         let transfer = match &options.prt {
             Some(path) => Some(read_transfer(path, &mesh, &mesh_name)?),
@@ -145,6 +157,7 @@ impl Scene {
         });
         Ok(Self {
             mesh,
+            gltf,
             mesh_name,
             transfer,
             light,
@@ -167,7 +180,16 @@ impl Scene {
         match self.albedo {
             Some(albedo) => albedo,
             None if mode == Mode::Prt && glossy => [0.0; 3],
-            None => [0.8; 3],
+            None => DEFAULT_ALBEDO,
+        }
+    }
+
+    /// What the passes draw as the scene: the glTF scene, else the mesh.
+    #[must_use]
+    pub fn geometry(&self) -> SceneGeometry<'_> {
+        match &self.gltf {
+            Some(gltf) => SceneGeometry::Gltf(gltf),
+            None => SceneGeometry::Mesh(&self.mesh),
         }
     }
 

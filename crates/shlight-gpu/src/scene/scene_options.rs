@@ -19,7 +19,8 @@ use crate::{Background, Mode};
 /// parsed, before [`SceneOptions::check`] checks them together.
 #[derive(Clone, Debug)]
 pub struct SceneOptions {
-    /// The mesh (OBJ, PLY, OFF, glTF/GLB); `None`: the built-in mesh
+    /// The mesh (OBJ, PLY, OFF), or a glTF/GLB scene drawn with its
+    /// materials and instances; `None`: the built-in mesh
     /// ([`crate::BuiltIn`]).
     pub mesh: Option<PathBuf>,
     /// PRT transfer baked for the mesh (`.shprt`).

@@ -1,13 +1,17 @@
-//! The [`Renderer`]s of a scene: [`mesh_renderer`] (a mesh, its
-//! transfer, the light and its map) and [`light_renderer`] (the light and
-//! its map alone, the background behind a volume pass).
+//! The [`Renderer`]s of a scene: [`scene_renderer`] (the scene read,
+//! through one of the next two), [`mesh_renderer`] (a mesh, its transfer,
+//! the light and its map), [`gltf_renderer`] (a glTF scene with its
+//! materials, textures and instances, its transfer, the light and its
+//! map) and [`light_renderer`] (the light and its map alone, the
+//! background behind a volume pass).
 
+use shlight_baked::TransferView;
 use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
 
-use super::SceneError;
-use super::transfer_file::set_transfer;
+use super::transfer_file::{per_unit_albedo, set_transfer};
+use super::{GltfScene, Scene, SceneError};
 use crate::{GpuContext, Renderer};
 
 /// Gives `renderer` the light of `light` and its map, if it has one.
@@ -57,4 +61,66 @@ pub fn mesh_renderer(
     }
     set_light(&mut renderer, ctx, light);
     Ok(renderer)
+}
+
+/// A renderer for colour targets of `format` holding `gltf`, its
+/// `transfer` (if any) and the light of `light` and its map (if any):
+///
+/// - without a transfer, each unique primitive drawn once per instance
+///   with its material ([`Renderer::set_scene`]);
+/// - with a diffuse transfer (baked for the flattened scene, per world
+///   vertex), the flattened scene with its materials
+///   ([`Renderer::set_surfaces`]) and the transfer per unit albedo
+///   ([`per_unit_albedo`]): PRT mode shows the transferred radiance times
+///   each fragment's albedo;
+/// - with a glossy transfer, the flattened mesh as [`mesh_renderer`] draws
+///   a mesh (the glossy layer per vertex; no textures).
+///
+/// # Errors
+/// As [`mesh_renderer`], and a scene the GPU refuses (an index beyond its
+/// materials or textures, a singular transform).
+pub fn gltf_renderer(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    gltf: &GltfScene,
+    transfer: Option<&ShprtFile>,
+    light: &Environment,
+) -> Result<Renderer, SceneError> {
+    let mut renderer = Renderer::new(ctx, format);
+    match transfer {
+        None => renderer.set_scene(ctx, &gltf.scene, gltf.default_albedo)?,
+        Some(file) if file.glossy.is_none() => {
+            renderer.set_surfaces(ctx, &gltf.surfaces)?;
+            let albedo = gltf.mesh().colors.as_deref().unwrap_or(&[]);
+            let data = per_unit_albedo(file, albedo);
+            let view = TransferView::new(file.lmax, file.channels, file.vertex_count, &data)?;
+            renderer.set_transfer(ctx, &view)?;
+        }
+        Some(file) => return mesh_renderer(ctx, format, gltf.mesh(), Some(file), light),
+    }
+    set_light(&mut renderer, ctx, light);
+    Ok(renderer)
+}
+
+/// The renderer of `scene` for colour targets of `format`: its glTF scene
+/// ([`gltf_renderer`]) or its mesh ([`mesh_renderer`]), with its transfer
+/// and light.
+///
+/// # Errors
+/// As [`gltf_renderer`] and [`mesh_renderer`].
+pub fn scene_renderer(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    scene: &Scene,
+) -> Result<Renderer, SceneError> {
+    match &scene.gltf {
+        Some(gltf) => gltf_renderer(ctx, format, gltf, scene.transfer.as_ref(), &scene.light),
+        None => mesh_renderer(
+            ctx,
+            format,
+            &scene.mesh,
+            scene.transfer.as_ref(),
+            &scene.light,
+        ),
+    }
 }

@@ -15,7 +15,7 @@ use shlight_mesh::Mesh;
 use shlight_pipeline::Hooks;
 
 use super::scene_options::refuse;
-use super::{BuiltIn, SceneError, SceneOptions};
+use super::{BuiltIn, SceneError, SceneGeometry, SceneOptions};
 use crate::{GpuContext, GpuError, VolumeInstance, VolumeRenderer, place};
 
 /// Whether the probes follow the light.
@@ -161,21 +161,26 @@ impl SceneVolume {
         place(self.object.bounds(), at, self.size)
     }
 
-    /// The volume pass for colour targets of `format`: `scene` (if any)
-    /// and the object, both of `albedo` where they have no colours.
+    /// The volume pass for colour targets of `format`: `scene` (if any; a
+    /// glTF scene with its materials, textures and instances) and the
+    /// object, both of `albedo` where they have no colours or material.
     ///
     /// # Errors
-    /// Probes the GPU cannot hold.
+    /// Probes the GPU cannot hold, a glTF scene it refuses.
     pub fn renderer(
         &self,
         ctx: &GpuContext,
         format: wgpu::TextureFormat,
-        scene: Option<&Mesh>,
+        scene: Option<SceneGeometry<'_>>,
         albedo: [f32; 3],
     ) -> Result<VolumeRenderer, GpuError> {
         let mut r = VolumeRenderer::new(ctx, format, &self.probes())?;
-        if let Some(scene) = scene {
-            r.set_scene(ctx, scene, albedo);
+        match scene {
+            Some(SceneGeometry::Mesh(mesh)) => r.set_scene(ctx, mesh, albedo),
+            Some(SceneGeometry::Gltf(gltf)) => {
+                r.set_scene_surfaces(ctx, &gltf.scene, gltf.default_albedo)?;
+            }
+            None => {}
         }
         r.set_object(ctx, &self.object, albedo, self.placement(self.at));
         Ok(r)

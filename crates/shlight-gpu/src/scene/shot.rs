@@ -8,7 +8,7 @@ use shlight_core::sh::Window;
 use shlight_pipeline::{Hooks, Progress};
 
 use super::scene_options::refuse;
-use super::scene_renderers::{light_renderer, mesh_renderer};
+use super::scene_renderers::{light_renderer, scene_renderer};
 use super::{Scene, SceneError, VolumeLight};
 use crate::{Camera, Frame, GpuContext, HEADLESS_FORMAT, Mode, Offscreen, Shading, render_frame};
 
@@ -80,13 +80,7 @@ impl Scene {
         self.light.radiance = self.turned_radiance(self.rotation);
         hooks.progress(Progress::Step("opening the GPU"));
         let ctx = GpuContext::headless()?;
-        let mut renderer = mesh_renderer(
-            &ctx,
-            HEADLESS_FORMAT,
-            &self.mesh,
-            self.transfer.as_ref(),
-            &self.light,
-        )?;
+        let mut renderer = scene_renderer(&ctx, HEADLESS_FORMAT, &self)?;
         renderer.set_environment_rotation(self.rotation);
         if let Some(snippet) = &snippet {
             renderer.set_encoding(&ctx, snippet)?;
@@ -147,7 +141,7 @@ impl Scene {
         let mut background = light_renderer(&ctx, HEADLESS_FORMAT, &self.light);
         background.set_environment_rotation(self.rotation);
         let albedo = self.albedo(Mode::Sh);
-        let shaded = volume.renderer(&ctx, HEADLESS_FORMAT, Some(&self.mesh), albedo)?;
+        let shaded = volume.renderer(&ctx, HEADLESS_FORMAT, Some(self.geometry()), albedo)?;
         let camera = shot.camera(self.mesh.bounds(), &self)?;
         let shading = Shading {
             mode: Mode::Sh,

@@ -1,0 +1,37 @@
+// A glTF scene's surfaces lit as mesh.wgsl lights a mesh (shaders/README.md),
+// the albedo from each fragment's material (material.wgsl):
+//
+// MODE_SH: albedo/pi E(n), E the SH irradiance at the normal seen.
+// MODE_PRT: the vertex's transferred radiance per unit albedo (the renderer
+// uploads the transfer divided by the albedo it was baked with, vertex by
+// vertex), interpolated, times the fragment's albedo; the scene is then
+// drawn flattened, one vertex per world vertex, so the vertex index finds
+// its transfer.
+// MODE_NORMALS: the unit normal seen, as the colour.
+
+@vertex
+fn vs_surface(in: SurfaceVertexIn, @builtin(vertex_index) v: u32) -> SurfaceVertexOut {
+    var out = surface_vertex(in);
+    if frame.mode == MODE_PRT {
+        out.prt = prt_radiance(v);
+    }
+    return out;
+}
+
+@fragment
+fn fs_surface(in: SurfaceVertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    let albedo = surface_albedo(in);
+    let n = surface_normal(in.normal, front);
+    switch frame.mode {
+        case MODE_NORMALS: {
+            return vec4<f32>(n, 1.0);
+        }
+        case MODE_PRT: {
+            return finish(in.prt * albedo);
+        }
+        default: {
+            let e = sh_reconstruct(n, frame.irradiance_band);
+            return finish(albedo / SH_PI * e);
+        }
+    }
+}
