@@ -193,3 +193,11 @@ fn a_sun_through_a_window() {
 fn a_chair_instanced_three_times_under_a_point_lamp() {
     within_bounds("instances");
 }
+
+#[test]
+fn a_spot_in_a_closed_room() {
+    // Cycles' blend, which `--light-units blender` follows: the truth keeps
+    // the blocks inside both inner angles and outside the outer cone, whose
+    // bounced light depends on the whole pool's.
+    within_bounds("spot");
+}
