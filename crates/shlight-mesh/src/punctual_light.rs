@@ -18,7 +18,19 @@
 //! directional, as the file writes them), `c` the linear colour, `d` the
 //! distance and `cos_s` the cosine between the spot's axis and the
 //! direction from the light to `x`: the window and the cone falloff are
-//! the specification's. A surface with unit normal `n` at `x` receives
+//! the specification's. With [`LightUnits::Blender`] a spot falls off as
+//! Cycles renders it instead: Blender's exporter writes a spot of size
+//! `2 a` and blend `b` as `outer = a`, `inner = a (1 - b)`, and Cycles
+//! (4.x, `spot_attenuation`) scales it by
+//!
+//! ```text
+//! S = smoothstep(t), smoothstep(t) = t^2 (3 - 2 t),
+//! t = clamp((cos_s - cos_outer) / ((1 - cos_outer) b), 0, 1),  b = 1 - inner / outer
+//! ```
+//!
+//! (a hard edge at `outer` where `b` is 0): full from a wider angle than
+//! `inner`, and a softer edge, so the specification's falloff would give
+//! a Blender spot's pool less light. A surface with unit normal `n` at `x` receives
 //! `E = E_perp max(n . toward, 0)`, and a light probe at `x` receives the
 //! radiance `E_perp delta(s - toward)`, whose SH coefficients are
 //! `E_perp Y_lm(toward)` exactly.
@@ -39,7 +51,9 @@ use glam::Vec3;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LightUnits {
     /// The file's candela and lux divided by [`PunctualLight::LUMENS_PER_WATT`]
-    /// (what Blender's exporter multiplied them by).
+    /// (what Blender's exporter multiplied them by), and a spot's cone
+    /// falling off as Cycles renders the Blender spot the exporter wrote
+    /// (the module documentation).
     #[default]
     Blender,
     /// The file's numbers taken as they are (files authored in engines
@@ -176,9 +190,27 @@ impl PunctualLight {
                 outer_cone,
             } => {
                 let (cos_inner, cos_outer) = (inner_cone.cos(), outer_cone.cos());
-                let scale = 1.0 / (cos_inner - cos_outer).max(0.001);
-                let t = ((self.direction.dot(-toward) - cos_outer) * scale).clamp(0.0, 1.0);
-                t * t
+                let cos_s = self.direction.dot(-toward);
+                if units == LightUnits::Blender {
+                    let blend = if outer_cone > 0.0 {
+                        (1.0 - inner_cone / outer_cone).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let smooth = (1.0 - cos_outer) * blend;
+                    if smooth > 0.0 {
+                        let t = ((cos_s - cos_outer) / smooth).clamp(0.0, 1.0);
+                        t * t * (3.0 - 2.0 * t)
+                    } else if cos_s > cos_outer {
+                        1.0
+                    } else {
+                        0.0
+                    }
+                } else {
+                    let scale = 1.0 / (cos_inner - cos_outer).max(0.001);
+                    let t = ((cos_s - cos_outer) * scale).clamp(0.0, 1.0);
+                    t * t
+                }
             }
             _ => 1.0,
         };
@@ -234,22 +266,68 @@ mod tests {
     }
 
     #[test]
-    fn a_spot_is_full_inside_its_inner_cone_and_dark_outside_its_outer() {
+    fn a_spot_as_written_falls_off_as_the_specification_says() {
         let spot = point(LightKind::Spot {
             inner_cone: 0.3,
             outer_cone: 0.5,
         });
         let full = point(LightKind::Point);
         let at = |angle: f32| Vec3::new(angle.tan(), 0.0, 0.0);
-        let inside = spot.arriving(at(0.29), LightUnits::Blender).unwrap();
-        let reference = full.arriving(at(0.29), LightUnits::Blender).unwrap();
+        let inside = spot.arriving(at(0.29), LightUnits::AsWritten).unwrap();
+        let reference = full.arriving(at(0.29), LightUnits::AsWritten).unwrap();
         assert_eq!(inside.irradiance, reference.irradiance);
-        assert!(spot.arriving(at(0.51), LightUnits::Blender).is_none());
+        assert!(spot.arriving(at(0.51), LightUnits::AsWritten).is_none());
         // Half way in cosine: t = 0.5, S = 0.25.
         let mid = ((0.3f32.cos() + 0.5f32.cos()) / 2.0).acos();
-        let half = spot.arriving(at(mid), LightUnits::Blender).unwrap();
-        let r = full.arriving(at(mid), LightUnits::Blender).unwrap();
+        let half = spot.arriving(at(mid), LightUnits::AsWritten).unwrap();
+        let r = full.arriving(at(mid), LightUnits::AsWritten).unwrap();
         assert!((half.irradiance.x / r.irradiance.x - 0.25).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_blender_spot_falls_off_as_cycles_renders_it() {
+        // Blender's spot of size 60 degrees and blend 0.25, as its exporter
+        // writes it: outer 30 degrees, inner 22.5. Cycles keeps it full to
+        // acos(cos 30 + (1 - cos 30) 0.25) = 0.452129 rad (25.9 degrees),
+        // where the specification's t^2 has fallen to about 0.35, and at
+        // half way in cosine gives smoothstep(1/2) = 1/2.
+        let (outer, inner) = (30f32.to_radians(), 22.5f32.to_radians());
+        let spot = point(LightKind::Spot {
+            inner_cone: inner,
+            outer_cone: outer,
+        });
+        let full = point(LightKind::Point);
+        let at = |angle: f32| Vec3::new(angle.tan(), 0.0, 0.0);
+        let ratio = |angle: f32, units| {
+            spot.arriving(at(angle), units)
+                .map_or(0.0, |a| a.irradiance.x)
+                / full.arriving(at(angle), units).unwrap().irradiance.x
+        };
+        let edge = 0.452129f32;
+        assert!((ratio(edge - 0.002, LightUnits::Blender) - 1.0).abs() < 1e-5);
+        assert!(ratio(edge + 0.01, LightUnits::Blender) < 1.0);
+        let written = ratio(edge, LightUnits::AsWritten);
+        assert!(written > 0.3 && written < 0.4, "{written}");
+        let cos_mid = outer.cos() + 0.5 * (1.0 - outer.cos()) * 0.25;
+        assert!((ratio(cos_mid.acos(), LightUnits::Blender) - 0.5).abs() < 1e-3);
+        assert_eq!(ratio(outer + 0.01, LightUnits::Blender), 0.0);
+        // No blend: a hard edge.
+        let hard = point(LightKind::Spot {
+            inner_cone: outer,
+            outer_cone: outer,
+        });
+        assert_eq!(
+            hard.arriving(at(outer - 0.01), LightUnits::Blender)
+                .unwrap()
+                .irradiance,
+            full.arriving(at(outer - 0.01), LightUnits::Blender)
+                .unwrap()
+                .irradiance
+        );
+        assert!(
+            hard.arriving(at(outer + 0.01), LightUnits::Blender)
+                .is_none()
+        );
     }
 
     #[test]

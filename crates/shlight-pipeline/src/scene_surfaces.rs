@@ -1,14 +1,13 @@
 //! The scene a bake reads: its mesh and, for a glTF scene, its surfaces
 //! (materials with textures), which the PRT and volume bakes take so that
 //! cut-outs let rays through and a ray takes the albedo of the texel it
-//! hits ([`shlight_mesh::Surfaces`]), and its punctual lights, which the
-//! volume bake takes.
+//! hits ([`shlight_mesh::Surfaces`]).
 
 use std::path::Path;
 use std::sync::Arc;
 
 use glam::Vec3;
-use shlight_mesh::{LoadOptions, Mesh, MeshFormat, PunctualLight, Surfaces};
+use shlight_mesh::{Mesh, Surfaces};
 
 use crate::Result;
 
@@ -33,19 +32,4 @@ pub(crate) fn load_scene_surfaces(
     // Until then every file is read as a mesh and baked without surfaces.
     let _ = default_albedo;
     Ok((shlight_mesh::load(path)?, None))
-}
-
-/// A glTF scene's punctual lights (`KHR_lights_punctual`, in world space),
-/// from [`shlight_mesh::load_scene`]; none for another format.
-///
-/// # Errors
-/// A file the loader refuses.
-pub(crate) fn load_scene_lights(path: &Path) -> Result<Vec<PunctualLight>> {
-    // A second reading of the file beside `load_scene_surfaces`' (which
-    // reads it as a mesh); one `load_scene` can give both once the surfaces
-    // are read from it.
-    if MeshFormat::from_path(path) != Some(MeshFormat::Gltf) {
-        return Ok(Vec::new());
-    }
-    Ok(shlight_mesh::load_scene(path, &LoadOptions::default())?.lights)
 }

@@ -16,7 +16,7 @@ use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::threejs_volume::Precision;
 use shlight_format::{ShvolFile, VolumeFormat};
 use shlight_io::{Image, WriteOptions, write_image};
-use shlight_mesh::{LightKind, Mesh, PunctualLight, Scene, Surfaces};
+use shlight_mesh::{LightKind, LoadOptions, Mesh, MeshFormat, PunctualLight, Scene, Surfaces};
 use shlight_volume::{
     BakedFile, Stage, VolumeBake, VolumeBakeSettings, bake_file, probe_sheet, probe_sheet_exposure,
 };
@@ -24,7 +24,7 @@ use shlight_volume::{
 use crate::environment::Environment;
 use crate::hooks::{Hooks, Progress};
 use crate::output_path::refuse_overwriting;
-use crate::scene_surfaces::{load_scene_lights, load_scene_surfaces};
+use crate::scene_surfaces::load_scene_surfaces;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -93,17 +93,22 @@ impl VolumeScene {
     }
 
     /// Reads the scene file at `path` (`albedo` for primitives without a
-    /// material): its mesh and surfaces as every bake reads them, and a
-    /// glTF file's punctual lights.
+    /// material): a glTF file as a scene ([`shlight_mesh::load_scene`],
+    /// then [`VolumeScene::from_scene`]: its surfaces and its punctual
+    /// lights from one reading), another format as a mesh.
     ///
     /// # Errors
     /// A file the loader refuses (an invalid light, named).
     pub fn read(path: &Path, albedo: [f32; 3]) -> Result<Self> {
+        if MeshFormat::from_path(path) == Some(MeshFormat::Gltf) {
+            let scene = shlight_mesh::load_scene(path, &LoadOptions::default())?;
+            return Self::from_scene(&scene, albedo);
+        }
         let (mesh, surfaces) = load_scene_surfaces(path, Vec3::from_array(albedo))?;
         Ok(Self {
             mesh,
             surfaces,
-            lights: load_scene_lights(path)?,
+            lights: Vec::new(),
         })
     }
 }
