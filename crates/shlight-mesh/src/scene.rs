@@ -113,6 +113,16 @@ impl Surfaces {
         material.surface(&self.textures, &uvs[..self.uv_sets], color)
     }
 
+    /// The diffuse albedo a ray hitting triangle `triangle` at barycentric
+    /// coordinates `bary` reflects with: [`Surfaces::sample`]'s, each
+    /// channel clamped to `0..=1` (a surface reflects no more than it
+    /// receives).
+    pub fn reflectance(&self, triangle: u32, bary: [f32; 3]) -> Vec3 {
+        self.sample(triangle, bary)
+            .albedo
+            .clamp(Vec3::ZERO, Vec3::ONE)
+    }
+
     /// The material of triangle `triangle`.
     pub fn material(&self, triangle: u32) -> &Material {
         &self.materials[self.triangle_material[triangle as usize] as usize]

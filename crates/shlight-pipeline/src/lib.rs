@@ -94,7 +94,6 @@ mod projector;
 mod read_settings;
 mod render;
 mod rotation_spec;
-mod scene_surfaces;
 mod settings;
 mod source_stats;
 mod specular;

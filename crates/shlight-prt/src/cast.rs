@@ -158,9 +158,7 @@ impl Cast {
             };
             // The albedo at a point of the triangles cast against.
             let albedo_at = |triangle: u32, w: [f32; 3]| {
-                surfaces.map_or(Vec3::ZERO, |s| {
-                    s.sample(triangle, w).albedo.clamp(Vec3::ZERO, Vec3::ONE)
-                })
+                surfaces.map_or(Vec3::ZERO, |s| s.reflectance(triangle, w))
             };
             // Where the rays start, by rank.
             let origins = occluder.ray_origins(mesh);

@@ -725,9 +725,9 @@ impl Surface {
         };
         // The albedo at a point of the scene's triangles.
         let albedo_at = |triangle: u32, w: [f32; 3]| {
-            self.surfaces.as_ref().map_or(Vec3::ZERO, |s| {
-                s.sample(triangle, w).albedo.clamp(Vec3::ZERO, Vec3::ONE)
-            })
+            self.surfaces
+                .as_ref()
+                .map_or(Vec3::ZERO, |s| s.reflectance(triangle, w))
         };
         hits.par_chunks_mut(n * BLOCK)
             .zip(dirs.par_chunks(BLOCK))

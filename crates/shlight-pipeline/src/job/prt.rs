@@ -15,15 +15,14 @@ use shlight_format::{CoeffFile, ShprtFile};
 use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::{Mesh, Surfaces};
 use shlight_prt::{
-    Albedo, BakeRequest, Brdf, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES,
-    Mode, Stage, bake_file, bake_glossy_file, compress_file, glossy_bytes, glossy_channels,
-    parse_cpca, render_preview, vertex_exposure, write_gltf,
+    Albedo, BakeRequest, Brdf, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES, Mode, Stage,
+    bake_file, bake_glossy_file, compress_file, glossy_bytes, glossy_channels, parse_cpca,
+    render_preview, vertex_exposure, write_gltf,
 };
 
 use crate::hooks::{Hooks, Progress};
 use crate::job::by_name::by_name;
 use crate::output_path::refuse_overwriting;
-use crate::scene_surfaces::load_scene_surfaces;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -356,8 +355,10 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
         })
         .transpose()?;
     let name = plan.mesh.display().to_string();
-    let default_albedo = Vec3::from_array(plan.bake.albedo.unwrap_or(DEFAULT_ALBEDO));
-    let (mesh, surfaces) = load_scene_surfaces(&plan.mesh, default_albedo)?;
+    // Every file, glTF included, is baked as a mesh: a glTF scene's
+    // materials (texel albedo, cut-outs) do not reach the PRT bake yet.
+    let mesh = shlight_mesh::load(&plan.mesh)?;
+    let surfaces: Option<Arc<Surfaces>> = None;
     if mesh.report.degenerate_triangles > 0 {
         hooks.warn(&format!(
             "{name}: skipped {} degenerate triangles",

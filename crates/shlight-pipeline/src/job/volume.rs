@@ -24,7 +24,6 @@ use shlight_volume::{
 use crate::environment::Environment;
 use crate::hooks::{Hooks, Progress};
 use crate::output_path::refuse_overwriting;
-use crate::scene_surfaces::load_scene_surfaces;
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -104,10 +103,9 @@ impl VolumeScene {
             let scene = shlight_mesh::load_scene(path, &LoadOptions::default())?;
             return Self::from_scene(&scene, albedo);
         }
-        let (mesh, surfaces) = load_scene_surfaces(path, Vec3::from_array(albedo))?;
         Ok(Self {
-            mesh,
-            surfaces,
+            mesh: shlight_mesh::load(path)?,
+            surfaces: None,
             lights: Vec::new(),
         })
     }
