@@ -224,11 +224,16 @@ fn bake_and_write(
     hooks.note(&format!(
         "{name}: {} triangles, {}; grid {nx}x{ny}x{nz} over {}:{}",
         scene.triangle_count(),
-        match (&scene.colors, &scene.emission) {
-            (Some(_), Some(_)) => "albedo and emission from its materials",
-            (Some(_), None) => "albedo from its colours",
-            (None, Some(_)) => "emission from its materials",
-            (None, None) => "constant albedo",
+        match (&volume_scene.surfaces, &scene.colors, &scene.emission) {
+            (Some(s), _, _) => format!(
+                "{} materials and {} textures (albedo per texel)",
+                s.materials.len(),
+                s.textures.len()
+            ),
+            (None, Some(_), Some(_)) => "albedo and emission from its materials".into(),
+            (None, Some(_), None) => "albedo from its colours".into(),
+            (None, None, Some(_)) => "emission from its materials".into(),
+            (None, None, None) => "constant albedo".into(),
         },
         grid.min,
         grid.max
