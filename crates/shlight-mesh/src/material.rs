@@ -115,6 +115,12 @@ pub struct SurfaceSample {
 }
 
 impl Material {
+    /// Whether [`Material::surface`] reads a texture (base colour or
+    /// metallic), so needs the point's UV sets.
+    pub fn is_textured(&self) -> bool {
+        self.base_color_texture.is_some() || self.metallic_roughness_texture.is_some()
+    }
+
     /// The diffuse albedo and alpha at a point with UV sets `uvs` and
     /// vertex colour `color` (linear RGBA).
     pub fn surface(&self, textures: &[Texture], uvs: &[Vec2], color: Vec4) -> SurfaceSample {

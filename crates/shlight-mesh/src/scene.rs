@@ -101,14 +101,20 @@ impl Surfaces {
     pub fn sample(&self, triangle: u32, bary: [f32; 3]) -> SurfaceSample {
         let tri = self.mesh.triangles[triangle as usize];
         let material = &self.materials[self.triangle_material[triangle as usize] as usize];
-        let mut uvs = [Vec2::ZERO; MAX_UV_SETS];
         let mut color = Vec4::ZERO;
+        for (&v, &w) in tri.iter().zip(&bary) {
+            color += w * self.colors[v as usize];
+        }
+        if !material.is_textured() {
+            // Most hits: no texture to look up, so no UVs to interpolate.
+            return material.surface(&self.textures, &[], color);
+        }
+        let mut uvs = [Vec2::ZERO; MAX_UV_SETS];
         for (&v, &w) in tri.iter().zip(&bary) {
             let v = v as usize;
             for (k, uv) in uvs.iter_mut().enumerate().take(self.uv_sets) {
                 *uv += w * self.uvs[v * self.uv_sets + k];
             }
-            color += w * self.colors[v];
         }
         material.surface(&self.textures, &uvs[..self.uv_sets], color)
     }

@@ -25,7 +25,11 @@ use glam::{DQuat, DVec3, Vec3};
 use shlight_baked::ProbeGrid;
 use shlight_core::sh::{ShRotation, closed_form};
 use shlight_mesh::generate;
-use shlight_volume::{VolumeOptions, bake};
+use shlight_volume::{VolumeOptions, bake, bake_surfaces};
+
+#[path = "support/scan_scene.rs"]
+mod scan_scene;
+use scan_scene::scan_scene;
 
 fn main() {
     divan::main();
@@ -74,55 +78,6 @@ fn cornell_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool) {
     bench_bake(bencher, &room, visibility);
 }
 
-/// A room with two scans in it, the size of a scanned scene: the Cornell
-/// box subdivided to about 14,000 triangles, and on its floor two dense
-/// closed surfaces standing for scans (a torus and a sphere of about
-/// 65,000 triangles each, generated): about 145,000 triangles and 73,000
-/// vertices in all, every one of them a surface point the bake samples.
-fn scan_scene() -> shlight_mesh::Mesh {
-    let room = generate::cornell_box().subdivided(0.0257);
-    let (lo, hi) = room.bounds();
-    let size = hi - lo;
-    let floor = lo.y + 0.15 * size.y;
-    let place = |m: shlight_mesh::Mesh, x: f32| {
-        let at = Vec3::new(lo.x + x * size.x, floor, lo.z + 0.5 * size.z);
-        (m.positions.iter().map(|&p| p + at).collect::<Vec<_>>(), m)
-    };
-    let r = 0.12 * size.x;
-    let scans = [
-        place(generate::torus(r, 0.4 * r, 256, 128), 0.3),
-        place(generate::uv_sphere(r, 256, 128), 0.7),
-    ];
-    let mut positions = room.positions.clone();
-    let mut normals = room.normals.clone();
-    let mut triangles = room.triangles.clone();
-    let mut colors = room
-        .colors
-        .clone()
-        .unwrap_or_else(|| vec![Vec3::splat(0.7); positions.len()]);
-    let mut emission = room
-        .emission
-        .clone()
-        .unwrap_or_else(|| vec![Vec3::ZERO; positions.len()]);
-    for (moved, mesh) in scans {
-        let offset = positions.len() as u32;
-        triangles.extend(mesh.triangles.iter().map(|t| t.map(|i| i + offset)));
-        colors.extend(std::iter::repeat_n(Vec3::splat(0.7), moved.len()));
-        emission.extend(std::iter::repeat_n(Vec3::ZERO, moved.len()));
-        normals.extend(&mesh.normals);
-        positions.extend(moved);
-    }
-    shlight_mesh::Mesh::new(
-        "scan scene",
-        positions,
-        triangles,
-        Some(normals),
-        Some(colors),
-    )
-    .and_then(|m| m.with_emission("scan scene", emission))
-    .unwrap()
-}
-
 /// The scanned scene ([`scan_scene`]) baked on the same grid: the
 /// cost of a scene whose own vertices are many.
 #[divan::bench(sample_count = 1, sample_size = 1)]
@@ -146,6 +101,36 @@ fn cornell_dense_input_100k_16x8x16_4096_rays(bencher: Bencher, visibility: bool
         &generate::cornell_box().subdivided(0.0088),
         visibility,
     );
+}
+
+/// The bundled Blender room (`meshes/room.glb`: a checker-textured floor,
+/// alpha-masked leaves, three instanced chairs, a point lamp, a spot and a
+/// sun) on the 16x8x16 grid, 4,096 rays per probe, 2 bounces, subdivided
+/// to about 25k triangles: `true` as a glTF scene (texel albedo at every
+/// hit, cut-outs, the lamps' shadow rays), `false` the same triangles
+/// untextured and unlit (vertex colours, no lamps, no cut-outs). items/s
+/// is rays per second, each bake's own rays (the lamps' shadow rays
+/// counted).
+#[divan::bench(sample_count = 1, sample_size = 1, args = [true, false])]
+fn room_glb_16x8x16_4096_rays_textured_lit(bencher: Bencher, textured: bool) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/room.glb");
+    let scene = shlight_mesh::load_scene(&path, &shlight_mesh::LoadOptions::default()).unwrap();
+    let surfaces = std::sync::Arc::new(scene.flatten(Vec3::splat(0.8)).unwrap());
+    let grid = ProbeGrid::around([16, 8, 16], surfaces.mesh.bounds()).unwrap();
+    let options = VolumeOptions {
+        max_edge: Some(0.06),
+        ..options()
+    };
+    let run = || {
+        if textured {
+            bake_surfaces(&surfaces, &scene.lights, &grid, &options, &|_, _, _| {}).unwrap()
+        } else {
+            bake(Some(&surfaces.mesh), &grid, &options, &|_, _, _| {}).unwrap()
+        }
+    };
+    let rays = run().rays;
+    eprintln!("room.glb, textured and lit {textured}: {rays} rays");
+    bencher.counter(ItemsCount::new(rays)).bench(run);
 }
 
 #[divan::bench]
