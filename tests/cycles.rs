@@ -215,3 +215,11 @@ fn a_spot_in_a_closed_room() {
     // bounced light depends on the whole pool's.
     within_bounds("spot", 0);
 }
+
+#[test]
+fn a_leaf_cut_out_of_a_skylight() {
+    // The leaf plane's material is double-sided, as everything Blender's
+    // exporter writes: its underside, facing the room, reflects the room's
+    // light back down as its top does the sky's.
+    within_bounds("cutout", 0);
+}
