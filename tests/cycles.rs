@@ -9,11 +9,11 @@
 //! `cos` at lmax 8 (the truncation oscillates with the angle, so it
 //! averages out over a floor).
 //!
-//! Held here: the point lamp, the sun through a window, the sky through a
-//! window and the instanced chairs. The spot, the textured floor, the
-//! cut-out skylight and the full room are checked in with their truths
-//! but not yet within these bounds (their figures are in
-//! `tests/scenes/README.md`).
+//! Held here within a mean relative error of 3% and a bias of 2%: the
+//! point lamp, the spot, the sun and the sky through a window, the
+//! instanced chairs, the textured floor and the ceiling it lights, and the
+//! full room; the cut-out skylight, whose leaf plane is double-sided,
+//! within 4% and 3% (its figures are in `tests/scenes/README.md`).
 
 use std::path::Path;
 
@@ -214,4 +214,21 @@ fn a_spot_in_a_closed_room() {
     // the blocks inside both inner angles and outside the outer cone, whose
     // bounced light depends on the whole pool's.
     within_bounds("spot", 0);
+}
+
+#[test]
+fn a_leaf_cut_out_of_a_skylight() {
+    // The leaf plane's material is double-sided, as everything Blender's
+    // exporter writes: its underside, facing the room, reflects the room's
+    // light back down, as Cycles renders it. One-sided, it sent nothing
+    // and the floor was 6.6% below Cycles (bias -6.2%); double-sided it is
+    // 3.3% (bias -2.6%): held here to 4% and 3%, not yet to the 3% and 2%
+    // of the others. The rest is the sun's 0.25 m pattern held at the
+    // default subdivision's vertices (tests/scenes/README.md: a finer one
+    // gives 1.6%).
+    let (mean, bias) = measure("cutout", 0);
+    assert!(
+        mean <= 0.04 && bias.abs() <= 0.03,
+        "cutout: mean relative error {mean}, bias {bias}"
+    );
 }

@@ -40,7 +40,9 @@ pub struct Mesh {
     /// Linear Rec.709 emitted radiance per vertex (W sr^-1 m^-2 per channel,
     /// the same units as the environment's radiance), when the source has
     /// emitters: OBJ `Ke`, glTF `emissiveFactor` times
-    /// `KHR_materials_emissive_strength`. Emission leaves the front side only.
+    /// `KHR_materials_emissive_strength`. Emission leaves the front side
+    /// only (both sides of a double-sided material's triangles where a bake
+    /// reads [`crate::Surfaces`]' materials).
     pub emission: Option<Vec<Vec3>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,

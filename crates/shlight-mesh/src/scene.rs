@@ -134,6 +134,19 @@ impl Surfaces {
         &self.materials[self.triangle_material[triangle as usize] as usize]
     }
 
+    /// Whether triangle `triangle`'s material is double-sided: its back
+    /// reflects (and emits) as its front does.
+    pub fn double_sided(&self, triangle: u32) -> bool {
+        self.material(triangle).double_sided
+    }
+
+    /// Whether any triangle's material is double-sided.
+    pub fn any_double_sided(&self) -> bool {
+        self.triangle_material
+            .iter()
+            .any(|&m| self.materials[m as usize].double_sided)
+    }
+
     /// Whether any triangle's material cuts out (`MASK` or `BLEND`).
     pub fn any_cut_out(&self) -> bool {
         self.materials.iter().any(Material::cuts_out)

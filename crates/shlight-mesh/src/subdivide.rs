@@ -456,6 +456,26 @@ impl Subdivision {
         self.grids.len()
     }
 
+    /// Per triangle of the subdivided mesh, the original triangle it is a
+    /// piece of.
+    #[must_use]
+    pub fn originals(&self) -> Vec<u32> {
+        let mut pieces: Vec<(u32, u32)> = Vec::with_capacity(self.pieces.len() + self.grids.len());
+        for (t, &(r, first)) in self.grids.iter().enumerate() {
+            if r == 0 {
+                pieces.push((first, t as u32));
+            } else {
+                let span = self.spans[t] as usize..self.spans[t + 1] as usize;
+                pieces.extend(self.pieces[span].iter().map(|p| (p.triangle, t as u32)));
+            }
+        }
+        let mut out = vec![0u32; pieces.len()];
+        for (piece, original) in pieces {
+            out[piece as usize] = original;
+        }
+        out
+    }
+
     /// The cell of the point of original triangle `triangle` with weights
     /// `w`, when that triangle was split.
     #[inline]
@@ -722,6 +742,36 @@ mod tests {
         let (same, map) = quad.subdivided_with_map(f32::NAN);
         assert_eq!(same.triangles, quad.triangles);
         assert_eq!(map.locate(1, [0.2, 0.3, 0.5]), Some((1, [0.2, 0.3, 0.5])));
+    }
+
+    #[test]
+    fn each_subdivided_triangle_lies_in_its_original() {
+        // By geometry: the original's barycentric weights of each piece's
+        // centroid are within 0..=1 and reproduce it; and every original
+        // triangle has a piece.
+        let mesh = generate::cuboid(Vec3::new(1.0, 0.4, 2.0));
+        for max_edge in [0.17, f32::NAN] {
+            let (fine, map) = mesh.subdivided_with_map(max_edge);
+            let originals = map.originals();
+            assert_eq!(originals.len(), fine.triangle_count());
+            let mut has_piece = vec![false; mesh.triangle_count()];
+            for (tri, &t) in fine.triangles.iter().zip(&originals) {
+                has_piece[t as usize] = true;
+                let centroid = tri
+                    .iter()
+                    .map(|&i| fine.positions[i as usize])
+                    .sum::<Vec3>()
+                    / 3.0;
+                let [a, b, c] = mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]);
+                let n = (b - a).cross(c - a);
+                let w1 = (centroid - a).cross(c - a).dot(n) / n.length_squared();
+                let w2 = (b - a).cross(centroid - a).dot(n) / n.length_squared();
+                let w = [1.0 - w1 - w2, w1, w2];
+                assert!(w.iter().all(|x| (-1e-5..=1.0 + 1e-5).contains(x)), "{w:?}");
+                assert!((a * w[0] + b * w[1] + c * w[2]).distance(centroid) < 1e-5);
+            }
+            assert!(has_piece.iter().all(|&h| h));
+        }
     }
 
     /// The pieces of original triangle `t` that hold `q` (all weights at

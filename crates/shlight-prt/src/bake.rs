@@ -4,10 +4,13 @@
 use shlight_mesh::{Mesh, Subdivision};
 use shlight_rays::Occluder;
 
+use shlight_core::sh::sh_count;
+
+use crate::back_sides::BackSides;
 use crate::cast::Cast;
-use crate::options::{BakeOptions, Mode, Stage};
+use crate::options::{Albedo, BakeOptions, Mode, Stage};
 use crate::records::Kernels;
-use crate::transfer::{IncidentTransfer, Transfer};
+use crate::transfer::{BackTransfer, IncidentTransfer, Transfer};
 
 /// Bakes the transfer of every vertex of `mesh` ([`Transfer`] states what
 /// it is).
@@ -28,7 +31,15 @@ use crate::transfer::{IncidentTransfer, Transfer};
 /// towards the mean centroid of the vertex's triangles, so a vertex on a
 /// concave edge starts off the other surface's plane). A ray that hits the
 /// back of a triangle (an open mesh seen from behind) is blocked and brings
-/// no bounce light: surfaces are one-sided.
+/// no bounce light: surfaces are one-sided, but for the double-sided
+/// triangles of [`BakeOptions::surfaces`] (a glTF material's
+/// `doubleSided`): those have back sides ([`crate::BackSides`]: back copies
+/// of their vertices, whose transfer is baked with the mesh's, on the
+/// two-sided mesh), and a ray meeting their back reads the back copies'
+/// light as a front hit reads the corners'. The returned transfer holds the
+/// mesh's own vertices (their front side); the back copies' is in
+/// [`Transfer::back`]. A bake without double-sided triangles is the same,
+/// bit for bit, as one-sided.
 ///
 /// With [`BakeOptions::surfaces`], rays pass the cut-outs of the triangles
 /// whose material cuts out ([`shlight_rays::CutOuts`]: a cut-out texel
@@ -107,7 +118,9 @@ pub fn bake_against(
     bake_with(mesh, occluder, options, progress, Kernels::detect())
 }
 
-/// [`bake_with_occluder`], the bounces gathered with `kernels`.
+/// [`bake_with_occluder`], the bounces gathered with `kernels`: with
+/// surfaces that have double-sided triangles, over the two-sided mesh
+/// ([`BackSides`]), the back copies' sums kept apart ([`Transfer::back`]).
 fn bake_with(
     mesh: &Mesh,
     occluder: Option<(&Occluder, &Subdivision)>,
@@ -115,9 +128,74 @@ fn bake_with(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     kernels: Kernels,
 ) -> Transfer {
+    let sides = options
+        .surfaces
+        .as_deref()
+        .and_then(|s| BackSides::find(mesh, occluder.map(|(_, m)| m), s));
+    let Some(sides) = sides else {
+        let occluder = occluder.map(|(o, m)| (o, Some(m)));
+        return bake_sides(mesh, occluder, options, None, progress, kernels);
+    };
+    // The two-sided mesh, its back copies taking their vertices' albedo
+    // and emission; the rays cast against the scene's own triangles.
+    let two = sides.two_sided(mesh);
+    let mut two_options = options.clone();
+    if let Albedo::PerVertex(a) = &options.albedo {
+        two_options.albedo = Albedo::PerVertex(sides.extend(a));
+    }
+    two_options.emission = options.emission.as_deref().map(|e| sides.extend(e));
+    if let Some(e) = &options.direct_irradiance {
+        assert_eq!(
+            e.len(),
+            sides.two_sided_vertices(),
+            "one direct irradiance per vertex of the two-sided mesh"
+        );
+    }
+    let own;
+    let against = match occluder {
+        Some((o, m)) => (o, Some(m)),
+        None => {
+            let surfaces = options
+                .surfaces
+                .clone()
+                .expect("back sides come from surfaces");
+            own = Occluder::with_cut_outs(mesh, surfaces);
+            (&own, None)
+        }
+    };
+    let t = bake_sides(
+        &two,
+        Some(against),
+        &two_options,
+        Some(&sides),
+        progress,
+        kernels,
+    );
+    split_back(t, sides)
+}
+
+/// The bake of `mesh` (the two-sided mesh when `sides` are given) cast
+/// against `occluder` (its mesh's triangles, the subdivision's when one
+/// is given, the front triangles with `sides`; `None`: `mesh` itself).
+fn bake_sides(
+    mesh: &Mesh,
+    occluder: Option<(&Occluder, Option<&Subdivision>)>,
+    options: &BakeOptions,
+    sides: Option<&BackSides>,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+    kernels: Kernels,
+) -> Transfer {
     let shadowed = options.mode != Mode::Unshadowed;
     let bounces = options.mode.bounces();
-    let cast = Cast::new(mesh, occluder, options, shadowed, bounces > 0, progress);
+    let cast = Cast::new(
+        mesh,
+        occluder,
+        options,
+        sides,
+        shadowed,
+        bounces > 0,
+        progress,
+    );
     let diffuse = cast.diffuse(options, bounces, kernels, progress);
     let stride = cast.channels * cast.nc;
     Transfer {
@@ -132,7 +210,29 @@ fn bake_with(
             coeffs: by_vertex(&i.coeffs, stride, &cast.order),
             emitted: i.emitted.map(|e| by_vertex(&e, 1, &cast.order)),
         }),
+        back: None,
     }
+}
+
+/// The bake `t` of a two-sided mesh split into the mesh's vertices and
+/// the back copies of `sides` ([`Transfer::back`]).
+fn split_back(mut t: Transfer, sides: BackSides) -> Transfer {
+    let n = sides.front_vertices;
+    let stride = t.channels * sh_count(t.lmax);
+    let coeffs = t.coeffs.split_off(n * stride);
+    let emitted = t.emitted.as_mut().map(|e| e.split_off(n));
+    let incident = t.incident.as_mut().map(|i| IncidentTransfer {
+        coeffs: i.coeffs.split_off(n * stride),
+        emitted: i.emitted.as_mut().map(|e| e.split_off(n)),
+    });
+    t.vertex_count = n;
+    t.back = Some(BackTransfer {
+        sides,
+        coeffs,
+        emitted,
+        incident,
+    });
+    t
 }
 
 /// Rows of `width` values by rank (`order[s]` the vertex of rank `s`) in
@@ -148,7 +248,6 @@ fn by_vertex<T: Copy + Default>(ranked: &[T], width: usize, order: &[u32]) -> Ve
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::options::Albedo;
     use shlight_mesh::generate;
 
     #[test]

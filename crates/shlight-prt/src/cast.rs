@@ -15,6 +15,7 @@ use shlight_core::sh::{ShBasis, sh_count};
 use shlight_mesh::{Mesh, Subdivision};
 use shlight_rays::{Direction, LANES, Occluder, Packet, ranked_triangles, vertex_order};
 
+use crate::back_sides::BackSides;
 use crate::options::{Albedo, BakeOptions, Stage};
 
 /// A ray along one direction that met the front of a triangle: its
@@ -70,8 +71,14 @@ impl Cast {
     /// Casts the rays of `options` (its lmax, samples, seed, albedo and
     /// surfaces) when `shadowed`, keeping the front hits when `keep_hits`.
     /// `occluder` must have been built with the surfaces' cut-outs
-    /// ([`Occluder::with_cut_outs`]) when there are surfaces; without one,
+    /// ([`Occluder::with_cut_outs`]) when there are surfaces, of the mesh
+    /// `mesh` was subdivided from when a subdivision is given; without one,
     /// the occluder made of `mesh` is.
+    ///
+    /// With `sides`, `mesh` is the two-sided mesh ([`BackSides`]) and
+    /// `occluder` is given, made of the front triangles: a ray that meets
+    /// the back of a double-sided triangle is a front hit of its back
+    /// triangle.
     ///
     /// # Panics
     /// If a per-vertex albedo, the emission or the direct irradiance has
@@ -79,8 +86,9 @@ impl Cast {
     /// triangle count than the mesh the rays are cast against.
     pub(crate) fn new(
         mesh: &Mesh,
-        occluder: Option<(&Occluder, &Subdivision)>,
+        occluder: Option<(&Occluder, Option<&Subdivision>)>,
         options: &BakeOptions,
+        sides: Option<&BackSides>,
         shadowed: bool,
         keep_hits: bool,
         progress: &(dyn Fn(Stage, usize, usize) + Sync),
@@ -97,8 +105,10 @@ impl Cast {
         }
         let surfaces = options.surfaces.as_deref();
         if let Some(s) = surfaces {
-            let cast_against =
-                occluder.map_or(mesh.triangle_count(), |(_, m)| m.original_triangles());
+            let cast_against = match occluder {
+                Some((_, Some(m))) => m.original_triangles(),
+                _ => sides.map_or(mesh.triangle_count(), |s| s.back_triangles.len()),
+            };
             assert_eq!(
                 s.mesh.triangle_count(),
                 cast_against,
@@ -147,7 +157,7 @@ impl Cast {
             // What the rays are cast against: `mesh`, or the occluder.
             let own;
             let (occluder, map) = match occluder {
-                Some((o, m)) => (o, Some(m)),
+                Some((o, m)) => (o, m),
                 None => {
                     own = match &options.surfaces {
                         Some(s) => Occluder::with_cut_outs(mesh, s.clone()),
@@ -155,6 +165,20 @@ impl Cast {
                     };
                     (&own, None)
                 }
+            };
+            // With back sides, whether each triangle cast against is
+            // double-sided (empty: none is).
+            let double: Vec<bool> = match (sides, surfaces) {
+                (Some(_), Some(s)) => (0..s.mesh.triangle_count() as u32)
+                    .map(|t| s.double_sided(t))
+                    .collect(),
+                _ => Vec::new(),
+            };
+            // A front hit of triangle `t` (of `mesh`), or with `back` of its
+            // back triangle.
+            let side = |back: bool, t: u32, b1: f32, b2: f32| match (back, sides) {
+                (true, Some(s)) => s.back_hit(t, b1, b2).unwrap_or((t, b1, b2)),
+                _ => (t, b1, b2),
             };
             // The albedo at a point of the triangles cast against.
             let albedo_at = |triangle: u32, w: [f32; 3]| {
@@ -177,9 +201,10 @@ impl Cast {
                             Vec::new(),
                             Vec::new(),
                             Vec::new(),
+                            Vec::new(),
                         )
                     },
-                    |(local, facing, pending, coarse, located, pending_albedo),
+                    |(local, facing, pending, coarse, located, pending_albedo, pending_back),
                      (j, (row, (hits, albedo)))| {
                         let d = dirs[j];
                         let dir = Direction::new(d);
@@ -206,7 +231,10 @@ impl Cast {
                                         continue;
                                     }
                                     let triangle = found.triangle[k];
-                                    if !occluder.is_front(triangle, d) {
+                                    let back = !occluder.is_front(triangle, d);
+                                    if back
+                                        && !double.get(triangle as usize).copied().unwrap_or(false)
+                                    {
                                         continue;
                                     }
                                     if texel {
@@ -219,6 +247,7 @@ impl Cast {
                                     match map {
                                         None => {
                                             let [_, b1, b2] = found.barycentrics[k];
+                                            let (triangle, b1, b2) = side(back, triangle, b1, b2);
                                             hits.push(FrontHit {
                                                 rank: s,
                                                 triangle,
@@ -229,6 +258,7 @@ impl Cast {
                                         Some(_) => {
                                             pending.push(s);
                                             coarse.push((triangle, found.barycentrics[k]));
+                                            pending_back.push(back);
                                         }
                                     }
                                 }
@@ -248,6 +278,8 @@ impl Cast {
                             m.locate_each(coarse, located);
                             for (i, (&s, l)) in pending.iter().zip(located.iter()).enumerate() {
                                 if let Some((triangle, [_, b1, b2])) = *l {
+                                    let (triangle, b1, b2) =
+                                        side(pending_back[i], triangle, b1, b2);
                                     hits.push(FrontHit {
                                         rank: s,
                                         triangle,
@@ -262,6 +294,7 @@ impl Cast {
                             pending.clear();
                             coarse.clear();
                             pending_albedo.clear();
+                            pending_back.clear();
                         }
                         rays.fetch_add(facing.len() as u64, Ordering::Relaxed);
                         progress(

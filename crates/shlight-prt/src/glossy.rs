@@ -151,7 +151,7 @@ pub fn bake_glossy(
     let transport = options.mode;
     let bounces = transport.bounces();
     let shadowed = transport != Mode::Unshadowed;
-    let cast = Cast::new(mesh, None, &options, shadowed, bounces > 0, progress);
+    let cast = Cast::new(mesh, None, &options, None, shadowed, bounces > 0, progress);
     // The diffuse transfer the mesh sends back: B - 1 bounces.
     // With surfaces, what arrives at the vertices, which a hit multiplies
     // by its texel's albedo.

@@ -11,7 +11,10 @@
 //!   in parallel and deterministic for a seed ([`Transfer`] states the
 //!   definitions, [`bake`] the estimator); [`bake_with_occluder`] and
 //!   [`bake_against`] cast a subdivided mesh's rays against the mesh it was
-//!   subdivided from ([`shlight_rays::Occluder`]).
+//!   subdivided from ([`shlight_rays::Occluder`]). A glTF material's
+//!   `doubleSided` makes its triangles surfaces on both faces
+//!   ([`BackSides`]; their back's light in [`Transfer::back`],
+//!   [`BackTransfer`]).
 //! - [`bake_glossy`]: glossy transfer matrices `M_p` ([`GlossyTransfer`],
 //!   shadowed or with diffuse interreflections), and
 //!   [`glossy_exit_radiance`], the view-dependent exit radiance of a
@@ -58,6 +61,7 @@
 //! written through shlight-io's atomic writer; rays only through
 //! shlight-rays's public items.
 
+mod back_sides;
 mod bake;
 mod bake_file;
 mod brdf;
@@ -73,6 +77,7 @@ mod preview;
 mod records;
 mod transfer;
 
+pub use back_sides::BackSides;
 pub use bake::{bake, bake_against, bake_with_occluder};
 pub use bake_file::{
     BakeRequest, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
@@ -90,4 +95,4 @@ pub use gltf_export::write_gltf;
 pub use options::{Albedo, BakeOptions, Mode, Stage};
 pub use preview::{render_preview, vertex_exposure};
 pub use records::{Kernels, VertexRecords};
-pub use transfer::{IncidentTransfer, Transfer};
+pub use transfer::{BackTransfer, IncidentTransfer, Transfer};

@@ -98,7 +98,9 @@ pub struct BakeOptions {
     /// albedo of the texel it hit ([`Surfaces::sample`]) times the
     /// irradiance interpolated there from the vertices
     /// ([`Transfer::incident`](crate::Transfer::incident)); the transfer
-    /// then has three channels. [`albedo`](Self::albedo) stays the albedo
+    /// then has three channels. The triangles whose material is
+    /// double-sided are surfaces on both faces ([`crate::BackSides`]; the
+    /// diffuse bake only, glossy transfer stays one-sided). [`albedo`](Self::albedo) stays the albedo
     /// at the vertices, which their own transfer is multiplied by (the
     /// scene's vertex albedo, `Surfaces::mesh`'s colours). `None`: every
     /// triangle is opaque and a hit reads its corners' exit radiance.
@@ -111,7 +113,10 @@ pub struct BakeOptions {
     /// light is ([`Transfer::emitted`](crate::Transfer::emitted)). With
     /// [`surfaces`](Self::surfaces) it is light arriving, `E / pi`, which
     /// a ray that hits the surface takes times the albedo of the texel it
-    /// met, as it takes the environment's.
+    /// met, as it takes the environment's. With double-sided
+    /// [`surfaces`](Self::surfaces), one per vertex of the two-sided mesh
+    /// ([`crate::BackSides::two_sided`]: the mesh's vertices, then the
+    /// back copies, lit from the back).
     pub direct_irradiance: Option<Vec<Vec3>>,
 }
 

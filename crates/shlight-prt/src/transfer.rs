@@ -7,6 +7,7 @@ use glam::Vec3;
 use shlight_core::sh::{ShCoeffs, sh_count};
 use shlight_format::ShprtFile;
 
+use crate::back_sides::BackSides;
 use crate::options::Mode;
 use crate::records::VertexRecords;
 
@@ -80,6 +81,31 @@ pub struct Transfer {
     /// of the texel a ray hits).
     pub emitted: Option<Vec<Vec3>>,
     /// With surfaces: what a hit interpolates before its texel's albedo.
+    pub incident: Option<IncidentTransfer>,
+    /// With surfaces that have double-sided triangles
+    /// ([`crate::BakeOptions::surfaces`]): the light gathered on their back
+    /// sides ([`BackTransfer`]), which the bounces read where a ray meets a
+    /// back face; `None` for a one-sided scene. Everything above is the
+    /// mesh's own vertices (their front side) only.
+    pub back: Option<BackTransfer>,
+}
+
+/// The back sides of a bake's double-sided triangles ([`BackSides`]: a
+/// copy of each of their vertices, facing the other way) and what the bake
+/// gathered on them: per back copy, what [`Transfer`] holds per vertex
+/// (`coeffs`, `emitted`, `incident`, in the same layout). A `.shprt` file
+/// or glTF export holds the front side only; these are what a ray meeting
+/// the back of a double-sided triangle reads, in the bounces and in
+/// shlight-volume's probes ([`Transfer::records`]).
+#[derive(Clone, Debug)]
+pub struct BackTransfer {
+    /// Which vertices were copied, and the back triangles.
+    pub sides: BackSides,
+    /// As [`Transfer::coeffs`], per back copy.
+    pub coeffs: Vec<f32>,
+    /// As [`Transfer::emitted`], per back copy.
+    pub emitted: Option<Vec<Vec3>>,
+    /// As [`Transfer::incident`], per back copy.
     pub incident: Option<IncidentTransfer>,
 }
 
@@ -159,13 +185,46 @@ impl Transfer {
     /// gathered emitters' light ([`BakeOptions::emission`](crate::BakeOptions::emission)), its exit
     /// radiance due to them; for a bake with surfaces, what a hit
     /// interpolates before its texel's albedo ([`IncidentTransfer`],
-    /// [`VertexRecords::incident`]).
+    /// [`VertexRecords::incident`]). With [`Transfer::back`], the records
+    /// of the two-sided mesh ([`BackSides::two_sided`]): the mesh's
+    /// vertices, then the back copies.
     #[must_use]
     pub fn records(&self) -> VertexRecords {
         let stride = self.channels * sh_count(self.lmax);
-        match &self.incident {
-            Some(i) => VertexRecords::new_incident(&i.coeffs, stride, i.emitted.as_deref()),
-            None => VertexRecords::new(&self.coeffs, stride, self.emitted.as_deref()),
+        let Some(back) = &self.back else {
+            return match &self.incident {
+                Some(i) => VertexRecords::new_incident(&i.coeffs, stride, i.emitted.as_deref()),
+                None => VertexRecords::new(&self.coeffs, stride, self.emitted.as_deref()),
+            };
+        };
+        // The vertices of the two-sided mesh: the front's, then the back
+        // copies'.
+        fn joined<T: Copy>(front: &[T], back: &[T]) -> Vec<T> {
+            [front, back].concat()
+        }
+        match (&self.incident, &back.incident) {
+            (Some(i), Some(b)) => {
+                let emitted = match (&i.emitted, &b.emitted) {
+                    (Some(f), Some(e)) => Some(joined(f, e)),
+                    _ => None,
+                };
+                VertexRecords::new_incident(
+                    &joined(&i.coeffs, &b.coeffs),
+                    stride,
+                    emitted.as_deref(),
+                )
+            }
+            _ => {
+                let emitted = match (&self.emitted, &back.emitted) {
+                    (Some(f), Some(e)) => Some(joined(f, e)),
+                    _ => None,
+                };
+                VertexRecords::new(
+                    &joined(&self.coeffs, &back.coeffs),
+                    stride,
+                    emitted.as_deref(),
+                )
+            }
         }
     }
 }

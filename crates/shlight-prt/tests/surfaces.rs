@@ -123,15 +123,28 @@ fn half_plane_view(d: f64, h: f64) -> f64 {
 /// x > 0 (a 2 x 1 texture), and two small ceilings 0.1 above it facing
 /// down, over x = -0.1 and x = +0.1.
 fn two_colour_room(floor: Material) -> (Arc<Surfaces>, [Vec3; 2]) {
+    two_colour_room_from(floor, false)
+}
+
+/// [`two_colour_room`], or with `below` the small quads 0.1 under the
+/// floor facing up, towards its underside.
+fn two_colour_room_from(floor: Material, below: bool) -> (Arc<Surfaces>, [Vec3; 2]) {
     let texture = row_texture(vec![[188, 40, 40, 255], [40, 40, 188, 255]]);
     // The texels' linear colours, as the texture decodes them.
     let red = texture.sample(Vec2::new(0.25, 0.5), true).truncate();
     let blue = texture.sample(Vec2::new(0.75, 0.5), true).truncate();
+    let facing_floor = |x: f32| {
+        if below {
+            lying(Vec3::new(x, -0.1, 0.0), 0.02)
+        } else {
+            facing_down(Vec3::new(x, 0.1, 0.0), 0.02)
+        }
+    };
     let surfaces = scene(
         &[
             (1, lying(Vec3::ZERO, 20.0), 0),
-            (1, facing_down(Vec3::new(-0.1, 0.1, 0.0), 0.02), 1),
-            (1, facing_down(Vec3::new(0.1, 0.1, 0.0), 0.02), 1),
+            (1, facing_floor(-0.1), 1),
+            (1, facing_floor(0.1), 1),
         ],
         vec![floor, Material::default()],
         vec![texture],
@@ -248,6 +261,72 @@ fn a_lit_floor_passes_its_texels_colour_to_the_ceiling_as_emitters_do_not() {
             assert!(
                 (got - want).abs().max_element() < 0.012,
                 "{emission:?}: vertex at {p}: {got} vs {want}"
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 8);
+    }
+}
+
+#[test]
+fn a_double_sided_floor_tints_what_lies_under_it_as_its_top_does_above() {
+    // The two-coloured room upside down: the small quads under the floor,
+    // facing its underside. Double-sided, the underside is lit by the sky
+    // below and reflects it in its texels' colours: each quad's bounce
+    // light is each half's albedo times its share of the view, as above
+    // the floor; emitting, the underside emits as the top does. One-sided,
+    // the underside is a back face: no bounce light, no emission.
+    let le = Vec3::splat(0.2);
+    for double_sided in [true, false] {
+        let floor = Material {
+            base_color_texture: Some(textured(0, 1.0)),
+            double_sided,
+            ..Material::default()
+        };
+        let (surfaces, [red, blue]) = two_colour_room_from(floor, true);
+        let bounced = bounce_light(&surfaces, 1.0);
+        let mesh = &surfaces.mesh;
+        let on_floor = |p: &Vec3| p.y.abs() < 0.05;
+        let emission: Vec<Vec3> = mesh
+            .positions
+            .iter()
+            .map(|p| if on_floor(p) { le } else { Vec3::ZERO })
+            .collect();
+        let options = BakeOptions {
+            emission: Some(emission),
+            ..options(Mode::Interreflected { bounces: 1 }, 1024, &surfaces, 1.0)
+        };
+        let t = bake(mesh, &options, &|_, _, _| {});
+        // The transfer is the mesh's vertices' (their front); the floor's
+        // four corners have back copies when it is double-sided.
+        assert_eq!(t.vertex_count, mesh.vertex_count());
+        assert_eq!(t.coeffs.len(), mesh.vertex_count() * 3 * 9);
+        let back = t.back.as_ref().map(|b| b.sides.copies.len());
+        assert_eq!(back, double_sided.then_some(4));
+        let emitted = t.emitted.as_ref().unwrap();
+        let mut checked = 0;
+        for (v, p) in mesh.positions.iter().enumerate() {
+            if p.y > -0.05 {
+                continue;
+            }
+            let own = half_plane_view(f64::from(p.x.abs()), 0.1) as f32;
+            let (near, far) = if p.x < 0.0 { (red, blue) } else { (blue, red) };
+            let (want, want_emitted) = if double_sided {
+                // The floor's edges, 10 away, hide a ten-thousandth of the
+                // view.
+                (near * own + far * (1.0 - own), le)
+            } else {
+                (Vec3::ZERO, Vec3::ZERO)
+            };
+            let got = bounced[v];
+            assert!(
+                (got - want).abs().max_element() < 0.012,
+                "double-sided {double_sided}: vertex at {p}: {got} vs {want}"
+            );
+            assert!(
+                (emitted[v] - want_emitted).abs().max_element() < 1e-3,
+                "double-sided {double_sided}: vertex at {p}: {} vs {want_emitted}",
+                emitted[v]
             );
             checked += 1;
         }

@@ -11,7 +11,7 @@ use shlight_core::map::montecarlo::stratified_directions;
 use shlight_core::sh::{ShBasis, sh_count};
 use shlight_format::VolumeLights;
 use shlight_mesh::{LightKind, LightUnits, Mesh, PunctualLight, Subdivision, Surfaces};
-use shlight_prt::{Albedo, BakeOptions, Kernels, Mode, VertexRecords};
+use shlight_prt::{Albedo, BackSides, BakeOptions, Kernels, Mode, VertexRecords};
 use shlight_rays::{Direction, LANES, Occluder, Packet};
 
 use shlight_baked::visibility::MomentFilter;
@@ -140,7 +140,8 @@ pub enum Stage {
 /// comes from the smaller set. Surfaces are one-sided: a ray that meets the back of a
 /// triangle brings no light, and a probe for which more than
 /// [`VolumeOptions::invalid_backfaces`] of the rays do so is inside
-/// geometry and marked invalid. `T(q)` and `E(q)` are the barycentric
+/// geometry and marked invalid. The exception is a glTF material's
+/// `doubleSided` ([`bake_surfaces`]). `T(q)` and `E(q)` are the barycentric
 /// interpolation of the surface's vertex values; long edges are first split
 /// ([`shlight_mesh::Mesh::subdivided_with_map`]) so that vertices hold
 /// shadows.
@@ -153,7 +154,15 @@ pub enum Stage {
 /// ([`Surfaces::sample`] at the hit) times the light arriving, interpolated
 /// from the vertices ([`shlight_prt::IncidentTransfer`]):
 /// `T(q) = rho(q) G(q)` and `E(q) = Le(q) + rho(q) F(q)`, the emission
-/// itself not multiplied by it.
+/// itself not multiplied by it. A triangle whose material is double-sided
+/// ([`shlight_mesh::Material::double_sided`]) is a surface on both faces:
+/// its vertices have back copies facing the other way, whose light is
+/// baked as any vertex's ([`shlight_prt::BackSides`]), and a ray that
+/// meets its back is a front hit of its back triangle, reading the back
+/// copies' `G` and `F` (its emission too: a double-sided emitter emits
+/// from both faces); it is no back face for the probe's validity, its
+/// relocation ([`relocate::offsets_two_sided`]) or its distance map. A
+/// scene without a double-sided material bakes as before, bit for bit.
 ///
 /// # Casting and summing
 /// The probes' rays along one direction are parallel: the probes are taken
@@ -589,6 +598,11 @@ struct Surface {
     texel: bool,
     /// Where the scene's triangles went in `mesh`.
     map: Subdivision,
+    /// With double-sided triangles: per triangle of the scene, whether it
+    /// is double-sided (empty: none is), and the back sides of `mesh`'s
+    /// (which is then the two-sided mesh, [`BackSides::two_sided`]).
+    double: Vec<bool>,
+    sides: Option<BackSides>,
     /// Per vertex its `channels x nc` transfer and (when the scene emits or
     /// has punctual lights) its exit radiance due to emitters and those
     /// lights, padded with zeros to whole 64-byte lines.
@@ -630,6 +644,16 @@ impl Surface {
                 None => Occluder::new(coarse),
             },
         );
+        // The back sides of double-sided triangles (none in a scene
+        // without): vertices of their own, facing the other way.
+        let sides = surfaces.and_then(|s| BackSides::find(&mesh, Some(&map), s));
+        let two = sides.as_ref().map(|s| s.two_sided(&mesh));
+        let double: Vec<bool> = match (&sides, surfaces) {
+            (Some(_), Some(s)) => (0..coarse.triangle_count() as u32)
+                .map(|t| s.double_sided(t))
+                .collect(),
+            _ => Vec::new(),
+        };
         let albedo = match &mesh.colors {
             Some(c) => {
                 Albedo::PerVertex(c.iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect())
@@ -652,9 +676,11 @@ impl Surface {
             emission: mesh.emission.clone(),
             surfaces: surfaces.cloned(),
             // The punctual lights' direct light on each vertex, through
-            // shadow rays (none without lights).
+            // shadow rays (none without lights), on both sides of a
+            // double-sided triangle.
             direct_irradiance: (!lights.is_empty()).then(|| {
-                punctual::surface_irradiance(&occluder, &mesh, lights, options.light_units)
+                let lit = two.as_ref().unwrap_or(&mesh);
+                punctual::surface_irradiance(&occluder, lit, lights, options.light_units)
             }),
         };
         let (t, offsets) = rayon::join(
@@ -668,12 +694,17 @@ impl Surface {
                     },
                 )
             },
-            || relocate.map(|grid| relocate::offsets(&occluder, grid, options.seed)),
+            || {
+                relocate
+                    .map(|grid| relocate::offsets_two_sided(&occluder, &double, grid, options.seed))
+            },
         );
         let records = t.records();
         let surface = Self {
             occluder,
             map,
+            double,
+            sides,
             surfaces: surfaces.cloned(),
             texel: records.incident(),
             records,
@@ -681,7 +712,7 @@ impl Surface {
             nc: sh_count(t.lmax),
             emits: t.emitted.is_some(),
             rays: t.rays,
-            mesh,
+            mesh: two.unwrap_or(mesh),
         };
         (surface, offsets)
     }
@@ -741,9 +772,10 @@ impl Surface {
                         Vec::new(),
                         Vec::new(),
                         Vec::new(),
+                        Vec::new(),
                     )
                 },
-                |(local, front, located, slots, distances, front_albedo),
+                |(local, front, located, slots, distances, front_albedo, backs),
                  ((out, block), out_albedo)| {
                     let len = block.len();
                     let directions: Vec<Direction> =
@@ -774,10 +806,19 @@ impl Surface {
                                 }
                                 let coarse = found.triangle[k];
                                 let slot = (g * LANES + k) * len + jj;
-                                if !self.occluder.is_front(coarse, dir.dir()) {
+                                let back = !self.occluder.is_front(coarse, dir.dir());
+                                if back
+                                    && !self.double.get(coarse as usize).copied().unwrap_or(false)
+                                {
                                     out[slot] = Hit::back(found.t[k]);
                                 } else {
+                                    // A front hit, or the back of a
+                                    // double-sided triangle: its back
+                                    // triangle's front.
                                     front.push((coarse, found.barycentrics[k]));
+                                    if self.sides.is_some() {
+                                        backs.push(back);
+                                    }
                                     slots.push(slot);
                                     distances.push(found.t[k]);
                                     if self.texel {
@@ -796,12 +837,20 @@ impl Surface {
                             .enumerate()
                         {
                             out[i] = match *found {
-                                Some((triangle, [_, b1, b2])) => Hit {
-                                    triangle,
-                                    b1,
-                                    b2,
-                                    t,
-                                },
+                                Some((triangle, [_, b1, b2])) => {
+                                    let (triangle, b1, b2) = match &self.sides {
+                                        Some(s) if backs[f] => s
+                                            .back_hit(triangle, b1, b2)
+                                            .unwrap_or((triangle, b1, b2)),
+                                        _ => (triangle, b1, b2),
+                                    };
+                                    Hit {
+                                        triangle,
+                                        b1,
+                                        b2,
+                                        t,
+                                    }
+                                }
                                 None => Hit::back(t),
                             };
                             if self.texel {
@@ -812,6 +861,7 @@ impl Surface {
                         slots.clear();
                         distances.clear();
                         front_albedo.clear();
+                        backs.clear();
                     }
                     progress(len);
                 },

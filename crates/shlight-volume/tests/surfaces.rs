@@ -1,6 +1,9 @@
 //! Volumes baked through a glTF scene's surfaces: a probe over a
 //! two-coloured floor sees each half in its texels' colour (its SH against
-//! a brute-force projection of the radiance around it), a masked ceiling
+//! a brute-force projection of the radiance around it), and under it the
+//! underside in its colours when the floor is double-sided (no back face
+//! then: a probe under a double-sided plane is neither inside it nor
+//! invalid), a masked ceiling
 //! passes the sky through its transparent texels and a blended one its
 //! share, the same bits at any thread count, and a scene of one colour per
 //! triangle bakes as it does without surfaces.
@@ -106,10 +109,14 @@ fn project(radiance: impl Fn(DVec3) -> DVec3) -> [DVec3; 9] {
     out
 }
 
-#[test]
-fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
-    // A floor of 20 x 20 at y = 0, red for x < 0 and blue for x > 0, and
-    // two probes 0.1 above it at x = -0.15 and x = 0.15.
+/// A floor of 20 x 20 at y = 0 facing up, red for x < 0 and blue for
+/// x > 0, `double_sided` or not, and two probes 0.1 above it (or, with
+/// `below`, 0.1 under it) at x = -0.15 and x = 0.15, baked under a white
+/// sky. Each probe's SH is held to a brute-force projection of the
+/// radiance around it: the sky, and the floor's texel where a ray meets
+/// the floor's front (the side facing the probe when double-sided), lit
+/// by the whole sky on that side, its albedo times radiance 1.
+fn probes_by_a_two_coloured_floor(below: bool, double_sided: bool) -> VolumeBake {
     let texture = Texture {
         width: 2,
         height: 1,
@@ -132,6 +139,7 @@ fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
             tex_coord: 0,
             transform: Affine2::IDENTITY,
         }),
+        double_sided,
         ..Material::default()
     };
     let surfaces = scene(
@@ -139,21 +147,26 @@ fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
         vec![floor],
         vec![texture],
     );
+    let y = if below { -0.1 } else { 0.1 };
     let grid = ProbeGrid::new(
         [2, 1, 1],
-        Vec3::new(-0.3, 0.05, -0.1),
-        Vec3::new(0.3, 0.15, 0.1),
+        Vec3::new(-0.3, y - 0.05, -0.1),
+        Vec3::new(0.3, y + 0.05, 0.1),
     )
     .unwrap();
     let volume = bake_surfaces(&surfaces, &[], &grid, &options(8192), &|_, _, _| {}).unwrap();
+    if below && !double_sided {
+        return volume;
+    }
     let probes = lit(&volume);
     for (p, centre) in grid.centres().iter().enumerate() {
         let x = centre.as_dvec3();
-        // The sky above, and below the floor's texel under the ray, lit by
-        // the whole sky (radiance 1 times its albedo); beyond the floor's
-        // edge the sky again.
+        // The sky on the probe's side of the floor, and on the other the
+        // floor's texel under the ray, lit by the whole sky on the probe's
+        // side (radiance 1 times its albedo); beyond the floor's edge the
+        // sky again.
         let want = project(|s| {
-            if s.y >= 0.0 {
+            if s.y * x.y >= 0.0 {
                 return DVec3::ONE;
             }
             let q = x + s * (-x.y / s.y);
@@ -175,6 +188,88 @@ fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
         // across the floor would blur.
         assert!(want[3].x * want[3].z < -0.01, "{:?}", want[3]);
     }
+    volume
+}
+
+#[test]
+fn a_probe_over_a_two_coloured_floor_sees_each_half_in_its_colour() {
+    for double_sided in [false, true] {
+        let volume = probes_by_a_two_coloured_floor(false, double_sided);
+        assert!(volume.backfaces.iter().all(|&b| b == 0.0));
+    }
+}
+
+#[test]
+fn a_probe_under_a_double_sided_floor_sees_its_underside_in_its_colours() {
+    // Under the floor's back: lit by the sky below and reflecting it down
+    // in its texels' colours, no ray meets a back face.
+    let volume = probes_by_a_two_coloured_floor(true, true);
+    assert!(volume.backfaces.iter().all(|&b| b == 0.0));
+    assert!(volume.valid.iter().all(|&v| v));
+    // One-sided, the rays up meet its back: no light from there, and the
+    // rays within the floor's solid angle (about half: its edges are 10
+    // away; the probes' 0.15 off its centre change it by 1e-4) on back
+    // faces.
+    let one = probes_by_a_two_coloured_floor(true, false);
+    let up = square_solid_angle(10.0, 0.1) / (4.0 * PI);
+    for (p, (l, b)) in lit(&one).iter().zip(&one.backfaces).enumerate() {
+        assert!((f64::from(*b) - up).abs() < 0.01, "probe {p}: {b} vs {up}");
+        // L_00: the sky's, sqrt(4 pi), but for the floor's solid angle.
+        let want = (4.0 * PI).sqrt() * (1.0 - up);
+        for c in l[0] {
+            assert!(
+                (f64::from(c) - want).abs() < 0.02,
+                "probe {p}: {c} vs {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_probe_under_a_double_sided_plane_is_not_inside_it() {
+    // One probe cell of 1 m, its centre 0.3 under a white 20 x 20 plane
+    // facing up (clear of it by more than relocate::CLEARANCE of the
+    // cell): half its rays meet the plane's underside. A one-sided plane's
+    // underside is a back face: the probe is inside geometry (beyond
+    // relocate::INSIDE_BACKFACES and the bake's invalid_backfaces), so it
+    // is moved above the plane (the candidates under it are inside too),
+    // or, not relocated, marked invalid. Double-sided, it is in free
+    // space: it stays, and is valid.
+    let grid = ProbeGrid::new(
+        [1, 1, 1],
+        Vec3::new(-0.5, -0.8, -0.5),
+        Vec3::new(0.5, 0.2, 0.5),
+    )
+    .unwrap();
+    assert_eq!(grid.centres()[0], Vec3::new(0.0, -0.3, 0.0));
+    let run = |double_sided: bool, relocate: bool| {
+        let plane = Material {
+            double_sided,
+            ..Material::default()
+        };
+        let surfaces = scene(
+            &[(Mat4::from_scale(Vec3::splat(20.0)), 0)],
+            vec![plane],
+            vec![],
+        );
+        let options = VolumeOptions {
+            relocate,
+            invalid_backfaces: 0.25,
+            surface_samples: 64,
+            ..options(1024)
+        };
+        bake_surfaces(&surfaces, &[], &grid, &options, &|_, _, _| {}).unwrap()
+    };
+    let two = run(true, true);
+    assert_eq!(two.offsets.as_deref(), Some(&[0.0f32; 3][..]));
+    assert_eq!(two.backfaces, [0.0]);
+    assert_eq!(two.valid, [true]);
+    let one = run(false, true);
+    let moved = one.offsets.as_deref().unwrap();
+    assert!(moved[1] > 0.3, "{moved:?}");
+    let stuck = run(false, false);
+    assert!(stuck.backfaces[0] > 0.45, "{:?}", stuck.backfaces);
+    assert_eq!(stuck.valid, [false]);
 }
 
 /// A black ceiling of 200 x 200, 1 above four probes, facing them, cut

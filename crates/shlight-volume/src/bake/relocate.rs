@@ -6,7 +6,8 @@
 //!
 //! A position is *free* when at most [`INSIDE_BACKFACES`] of
 //! [`RELOCATION_RAYS`] rays from it meet back faces (DDGI's test for a probe
-//! inside geometry) and no ray meets a surface nearer than
+//! inside geometry; the back of a double-sided triangle is none,
+//! [`offsets_two_sided`]) and no ray meets a surface nearer than
 //! [`CLEARANCE`] of the cell's smallest side. A probe whose cell centre is
 //! free stays there. Otherwise the candidates are the offsets
 //! `(a, b, c) s` with `a, b, c` in `-3..=3` and `s = 0.15` of the cell per
@@ -47,6 +48,26 @@ pub const MAX_OFFSET: f32 = 0.45;
 /// Steps of the candidate lattice on each side of the centre.
 const STEPS: i32 = 3;
 
+/// What the rays are cast against: the occluder, and which of its
+/// triangles are double-sided (none when empty).
+struct Against<'a> {
+    occluder: &'a Occluder,
+    double_sided: &'a [bool],
+}
+
+impl Against<'_> {
+    /// Whether a ray along `dir` that met `triangle` met a back face: the
+    /// back of a one-sided triangle.
+    fn meets_back(&self, triangle: u32, dir: Vec3) -> bool {
+        !self.occluder.is_front(triangle, dir)
+            && !self
+                .double_sided
+                .get(triangle as usize)
+                .copied()
+                .unwrap_or(false)
+    }
+}
+
 /// What the rays from one position found.
 #[derive(Clone, Copy, Debug)]
 struct Look {
@@ -63,6 +84,23 @@ impl Look {
 /// Each probe's offset from its cell centre (`Vec3::ZERO` where it stays),
 /// in probe order, against `occluder`.
 pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
+    offsets_two_sided(occluder, &[], grid, seed)
+}
+
+/// [`offsets`] where the triangles `t` with `double_sided[t]` are
+/// double-sided (a glTF material's `doubleSided`): their back is a surface
+/// as their front is, so a ray that meets it meets no back face. An empty
+/// slice: every triangle is one-sided, as [`offsets`].
+pub fn offsets_two_sided(
+    occluder: &Occluder,
+    double_sided: &[bool],
+    grid: &ProbeGrid,
+    seed: u64,
+) -> Vec<Vec3> {
+    let occluder = &Against {
+        occluder,
+        double_sided,
+    };
     let dirs: Vec<Direction> = stratified_directions(RELOCATION_RAYS, seed ^ 0x0ff5_e7ed)
         .iter()
         .map(|d| Direction::new(d.as_vec3()))
@@ -132,7 +170,7 @@ pub fn offsets(occluder: &Occluder, grid: &ProbeGrid, seed: u64) -> Vec<Vec3> {
 /// and a candidate's rays stop once its nearest hit is below the most
 /// clearance found so far (it cannot be taken).
 fn place(
-    occluder: &Occluder,
+    occluder: &Against,
     dirs: &[Direction],
     centre: Vec3,
     centre_inside: bool,
@@ -189,7 +227,7 @@ fn place(
 /// and `inside` is false though the rest might have said otherwise) or
 /// its back faces are already too many; the packets stop when every
 /// point's answer is.
-fn look(occluder: &Occluder, dirs: &[Direction], points: &[Vec3], stop_within: f32) -> Vec<Look> {
+fn look(against: &Against, dirs: &[Direction], points: &[Vec3], stop_within: f32) -> Vec<Look> {
     let n = points.len();
     let limit = INSIDE_BACKFACES * dirs.len() as f32;
     let mut back = [0usize; LANES];
@@ -212,13 +250,13 @@ fn look(occluder: &Occluder, dirs: &[Direction], points: &[Vec3], stop_within: f
             }
         }
         let packet = Packet::new(dir, &open[..m]);
-        let found = occluder.packet_closest_direct(dir, &packet);
+        let found = against.occluder.packet_closest_direct(dir, &packet);
         for (j, &k) in lane_of[..m].iter().enumerate() {
             if found.mask >> j & 1 == 0 {
                 continue;
             }
             nearest[k] = nearest[k].min(found.t[j]);
-            if !occluder.is_front(found.triangle[j], dir.dir()) {
+            if against.meets_back(found.triangle[j], dir.dir()) {
                 back[k] += 1;
                 if back[k] as f32 > limit {
                     inside[k] = true;
