@@ -79,6 +79,12 @@ pub struct VolumeArgs {
     /// Directions per surface vertex for the surfaces' own light.
     #[arg(long, default_value_t = 512)]
     pub surface_samples: usize,
+    /// Surface light is held at the surfaces' vertices: edges longer than
+    /// this (scene units) are split first, so that the vertices are close
+    /// enough to hold shadows and patches of light [default: the scene's
+    /// bounding-box diagonal / 32].
+    #[arg(long, value_name = "LENGTH")]
+    pub max_edge: Option<f32>,
     /// Diffuse albedo of surfaces without colours, linear: one value or
     /// R,G,B.
     #[arg(long, default_value = "0.8", value_parser = crate::values::parse_albedo)]
@@ -141,7 +147,7 @@ pub fn run(args: &VolumeArgs, ui: &Ui) -> Result<()> {
                 samples: args.samples,
                 bounces: args.bounces,
                 surface_samples: args.surface_samples,
-                max_edge: None,
+                max_edge: args.max_edge,
                 albedo: args.albedo,
                 invalid_backfaces: args.invalid_backfaces,
                 seed: args.seed,

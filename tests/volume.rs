@@ -193,6 +193,14 @@ fn bad_input_is_an_error_naming_the_problem_and_nothing_is_written() {
         (vec!["--lmax", "9"], "lmax 9"),
         (vec!["--lmax", "3"], "lmax 2, the bake needs 3"),
         (vec!["--samples", "0"], "samples must be at least 1"),
+        (
+            vec!["--max-edge", "0"],
+            "--max-edge 0 is not a positive length",
+        ),
+        (
+            vec!["--max-edge", "0.00001"],
+            "would split the scene's 32 triangles into about",
+        ),
     ];
     for (extra, want) in cases {
         let mut args = vec![

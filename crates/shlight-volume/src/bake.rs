@@ -67,6 +67,43 @@ pub struct VolumeOptions {
 /// Default subdivision: edges no longer than the scene's diagonal over this.
 pub const SURFACE_DIVISIONS: f32 = 32.0;
 
+/// The most triangles a scene's surfaces may be subdivided into
+/// ([`VolumeOptions::max_edge`]), as estimated before subdividing.
+pub const MAX_SUBDIVIDED_TRIANGLES: usize = 20_000_000;
+
+/// Refuses a [`VolumeOptions::max_edge`] that is not a positive finite
+/// length, or that would split `mesh` into more than
+/// [`MAX_SUBDIVIDED_TRIANGLES`]: each triangle whose longest edge is `e`
+/// becomes about `2 (e / max_edge)^2` (halving the longest edge until none
+/// is longer makes that many at most, to within a small factor).
+fn check_max_edge(mesh: &Mesh, max_edge: Option<f32>) -> Result<(), VolumeError> {
+    let Some(max_edge) = max_edge else {
+        return Ok(());
+    };
+    if !(max_edge.is_finite() && max_edge > 0.0) {
+        return Err(VolumeError::Options(format!(
+            "a longest surface edge of {max_edge} is not a positive length"
+        )));
+    }
+    let estimate: f64 = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            let e = (b - a).length().max((c - b).length()).max((a - c).length());
+            (2.0 * (f64::from(e) / f64::from(max_edge)).powi(2)).max(1.0)
+        })
+        .sum();
+    if estimate > MAX_SUBDIVIDED_TRIANGLES as f64 {
+        return Err(VolumeError::Options(format!(
+            "a longest surface edge of {max_edge} would split the scene's {} triangles into about {:.0}; at most {MAX_SUBDIVIDED_TRIANGLES}",
+            mesh.triangle_count(),
+            estimate
+        )));
+    }
+    Ok(())
+}
+
 impl Default for VolumeOptions {
     fn default() -> Self {
         Self {
@@ -316,6 +353,9 @@ fn bake_in_chunks(
             "invalid_backfaces {} is not within 0..=1",
             options.invalid_backfaces
         )));
+    }
+    if let Some((mesh, _)) = scene {
+        check_max_edge(mesh, options.max_edge)?;
     }
     let nc = sh_count(lmax);
     // The directions in compact blocks (`direction_order`).

@@ -93,7 +93,8 @@ mod threejs_lookup;
 mod volume_bake;
 
 pub use bake::{
-    SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces, bake_with_lights, relocate,
+    MAX_SUBDIVIDED_TRIANGLES, SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces,
+    bake_with_lights, relocate,
 };
 pub use bake_file::{BakedFile, VolumeBakeSettings, bake_file, check_environment};
 pub use error::VolumeError;

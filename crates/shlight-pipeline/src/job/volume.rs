@@ -125,6 +125,14 @@ impl VolumeRequest<'_> {
         for out in self.output.iter().chain(&self.preview) {
             refuse_overwriting(out, &[self.scene, self.env])?;
         }
+        if let Some(e) = self.bake.options.max_edge
+            && !(e.is_finite() && e > 0.0)
+        {
+            return Err(PipelineError::new(format!(
+                "{} is not a positive length",
+                spelling.option_number("max_edge", e, e)
+            )));
+        }
         let lmax = self.bake.options.lmax;
         if lmax > shlight_baked::MAX_LMAX {
             return Err(PipelineError::new(format!(
