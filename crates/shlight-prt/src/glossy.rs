@@ -311,6 +311,7 @@ impl GlossyTransfer {
             albedo,
             mesh_hash: mesh.content_hash(),
             mesh: name.to_string(),
+            static_light: None,
             glossy: Some(GlossyData {
                 brdf: brdf.name(),
                 transport: self.transport.name().to_string(),

@@ -137,6 +137,7 @@ impl Transfer {
             mesh_hash,
             mesh: mesh.to_string(),
             glossy: None,
+            static_light: None,
         }
     }
 

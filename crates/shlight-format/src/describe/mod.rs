@@ -337,6 +337,7 @@ mod tests {
             mesh_hash: 0xfeed,
             mesh: "m.obj".into(),
             glossy: None,
+            static_light: None,
         };
         let h = header(describe_bytes(&diffuse.to_bytes(), "m.shprt").unwrap());
         assert_eq!(
@@ -361,6 +362,7 @@ mod tests {
             transfer: vec![0.5; 5 * 81],
             mode: "glossy".into(),
             albedo: Some([0.5, 0.25, 1.0]),
+            static_light: None,
             glossy: Some(GlossyData {
                 brdf: "ggx:0.25,0.04".into(),
                 transport: "shadowed".into(),
