@@ -20,7 +20,7 @@ use shlight_format::{SamplePoints, ShvolFile, VolumeFormat};
 use shlight_mesh::LightUnits;
 use shlight_pipeline::{
     Spelling, VolumeRequest, relight_volume, visibility_size, volume, volume_irradiance,
-    volume_lookup,
+    volume_lookup, volume_of_scene,
 };
 use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions};
 
@@ -28,6 +28,7 @@ use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
+use crate::scene::SceneArg;
 
 /// An irradiance volume (a `.shvol` file, docs/shvol.md): SH probes on a
 /// grid through a scene, with their validity, positions, distance maps
@@ -385,7 +386,7 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
     preview_ball=32, light_units="blender"))]
 pub fn bake_volume(
     py: Python<'_>,
-    scene: PathBuf,
+    scene: SceneArg,
     env: PathBuf,
     resolution: Option<&Bound<'_, PyAny>>,
     bounds: Option<&Bound<'_, PyAny>>,
@@ -406,6 +407,7 @@ pub fn bake_volume(
     preview_ball: usize,
     light_units: &str,
 ) -> PyResult<Volume> {
+    let (scene, loaded) = scene.split(py);
     let (format, precision) = volume_format(format, precision)?;
     let light_units: LightUnits = Spelling::Python
         .parse("light_units", light_units)
@@ -444,7 +446,15 @@ pub fn bake_volume(
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
     let hooks = PyHooks::new(false);
-    let baked = py.detach(|| guard(|| volume(&plan, &hooks).map_err(pipeline_error)));
+    let baked = py.detach(|| {
+        guard(|| {
+            match &loaded {
+                Some(s) => volume_of_scene(&plan, s, &hooks),
+                None => volume(&plan, &hooks),
+            }
+            .map_err(pipeline_error)
+        })
+    });
     warn_all(py, &hooks.warnings(), 2)?;
     Ok(Volume { file: baked?.file })
 }

@@ -536,7 +536,10 @@ fn static_lights(
     let shape = || {
         bad("bad header (\"static\" is not {\"lights\": null or {\"units\": text, \"point\", \"spot\", \"directional\": counts}, \"emission\": true or false})".into())
     };
-    let emission = s.get("emission").and_then(Value::as_bool).ok_or_else(shape)?;
+    let emission = s
+        .get("emission")
+        .and_then(Value::as_bool)
+        .ok_or_else(shape)?;
     let lights = match s.get("lights") {
         None | Some(Value::Null) => None,
         Some(l) => {
@@ -728,11 +731,18 @@ mod tests {
             json!({"units": "blender", "point": 2, "spot": 0, "directional": 1})
         );
         assert_eq!(header["static"]["emission"], false);
-        assert_eq!(ShprtFile::from_bytes(&bytes, Path::new("x.shprt")).unwrap(), f);
+        assert_eq!(
+            ShprtFile::from_bytes(&bytes, Path::new("x.shprt")).unwrap(),
+            f
+        );
         // Without the static term the file is version 1, as before.
         assert!(sample().to_bytes().starts_with(b"{"));
         let plain: Value = serde_json::from_slice(
-            &sample().to_bytes()[..sample().to_bytes().iter().position(|&b| b == b'\n').unwrap()],
+            &sample().to_bytes()[..sample()
+                .to_bytes()
+                .iter()
+                .position(|&b| b == b'\n')
+                .unwrap()],
         )
         .unwrap();
         assert_eq!(plain["format_version"], 1);
@@ -756,7 +766,10 @@ mod tests {
         let e = ShprtFile::from_bytes(&short, Path::new("x.shprt"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("truncated") && e.contains("static radiance"), "{e}");
+        assert!(
+            e.contains("truncated") && e.contains("static radiance"),
+            "{e}"
+        );
     }
 
     #[test]
