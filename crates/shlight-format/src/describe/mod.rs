@@ -357,6 +357,32 @@ mod tests {
         ] {
             assert_eq!(h.get(name), Some(want), "{name}");
         }
+        assert_eq!(h.get("static"), None);
+        let lit = ShprtFile {
+            static_light: Some(crate::StaticLight {
+                radiance: vec![[0.5; 3]; 5],
+                lights: Some(crate::VolumeLights {
+                    units: "blender".into(),
+                    point: 2,
+                    spot: 1,
+                    directional: 0,
+                }),
+                emission: true,
+            }),
+            ..diffuse.clone()
+        };
+        let h = header(describe_bytes(&lit.to_bytes(), "lit.shprt").unwrap());
+        assert_eq!(
+            h.kind,
+            "shlight PRT transfer (.shprt, format_version 3): diffuse"
+        );
+        assert_eq!(
+            h.get("static"),
+            Some(
+                "exit radiance per vertex added to T . L: 2 point, 1 spot, 0 directional \
+                 lights (blender units) and emissive materials"
+            )
+        );
         let glossy = ShprtFile {
             channels: 1,
             transfer: vec![0.5; 5 * 81],
