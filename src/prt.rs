@@ -1,4 +1,5 @@
-//! `shlight prt`: bake precomputed radiance transfer for a mesh, by
+//! `shlight prt`: bake precomputed radiance transfer for a mesh or a glTF
+//! scene, by
 //! shlight-pipeline's `prt` job: a `.shprt` file (docs/shprt.md) or a glTF
 //! with `_SH_TRANSFER_k` attributes; with `--light` and `--preview`, the
 //! vertices shaded under a coefficient file's radiance, rasterised.
@@ -7,6 +8,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::{Args, ValueEnum};
+use shlight_mesh::LightUnits;
 use shlight_pipeline::{PrtMode, PrtRequest, Spelling, prt};
 
 use crate::progress::{Reporter, Ui};
@@ -40,7 +42,9 @@ impl From<ModeArg> for PrtMode {
 /// Arguments of `shlight prt`.
 #[derive(Args, Debug)]
 pub struct PrtArgs {
-    /// The mesh: .obj, .ply, .off, .gltf or .glb.
+    /// The mesh (.obj, .ply, .off) or glTF scene (.gltf, .glb: its
+    /// materials' albedo and cut-outs, its punctual lights and emission in
+    /// a static term).
     pub mesh: PathBuf,
     /// Highest SH degree of the transfer ((lmax+1)^2 coefficients per channel).
     #[arg(long, default_value_t = 4)]
@@ -67,10 +71,16 @@ pub struct PrtArgs {
     /// clusters of K basis vectors each (e.g. cpca:64,8).
     #[arg(long)]
     pub compress: Option<String>,
-    /// Diffuse albedo, linear: one value or R,G,B [default: the mesh's vertex
-    /// colours if it has them, otherwise 0.8].
+    /// Diffuse albedo of every vertex of a mesh, linear: one value or R,G,B
+    /// [default: the mesh's vertex colours if it has them, otherwise 0.8];
+    /// a glTF scene's albedo is its materials'.
     #[arg(long, value_parser = parse_albedo)]
     pub albedo: Option<[f32; 3]>,
+    /// How a glTF scene's punctual lights' intensities become the units of
+    /// the light it is shaded with: blender divides glTF's candela and lux
+    /// by 683, undoing Blender's exporter [default: blender].
+    #[arg(long, value_parser = crate::values::light_units())]
+    pub light_units: Option<LightUnits>,
     /// Seed of the direction set (the same seed gives the same file).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -107,6 +117,7 @@ pub fn run(args: &PrtArgs, ui: &Ui) -> Result<()> {
         brdf: args.brdf.as_deref(),
         compress: args.compress.as_deref(),
         albedo: args.albedo,
+        light_units: args.light_units,
         seed: args.seed,
         output: args.output.as_deref(),
         light: args.light.as_deref(),

@@ -21,8 +21,10 @@ pub struct SampleArgs {
     /// A baked file: an irradiance volume (.shvol) or PRT transfer (.shprt).
     pub file: PathBuf,
     /// Where to sample a volume: JSON {"points": [[x, y, z], ...],
-    /// "normals": [[x, y, z], ...]}, or CSV rows x,y,z,nx,ny,nz (.csv).
-    #[arg(long, value_name = "POINTS.json|csv")]
+    /// "normals": [[x, y, z], ...]}, CSV rows x,y,z,nx,ny,nz (.csv), or a
+    /// mesh or glTF scene (.obj, .ply, .off, .gltf, .glb): every vertex
+    /// (a scene's flattened into world space) facing its normal.
+    #[arg(long, value_name = "POINTS.json|csv|MESH")]
     pub points: Option<PathBuf>,
     /// The answer: JSON (the values, the lookup, the file's provenance), or
     /// CSV rows r,g,b (.csv); written atomically.

@@ -448,3 +448,102 @@ fn glossy_files_are_sampled_toward_a_view_and_bad_glossy_input_is_refused() {
     );
     assert!(!keep.exists());
 }
+
+/// `tests/scenes/point.glb` (a closed room, one point lamp; its truth file
+/// gives the lamp's place and glTF intensity): baked shadowed, the file is
+/// format version 3 with a static term, and each vertex facing the lamp
+/// leaves `rho / pi I cos / d^2`, `I` the glTF intensity over 683 (the
+/// room is convex: every vertex sees the lamp), `rho` its material's
+/// albedo; `sample` under a black sky gives that term. A scene refuses
+/// `--albedo`, a mesh `--light-units`, and glTF output of a static term is
+/// refused.
+#[test]
+fn a_gltf_scene_bakes_its_lamp_into_a_static_term() {
+    let dir = temp_dir("prt_scene");
+    let out = dir.join("point.shprt");
+    shlight_ok(&[
+        "prt",
+        "tests/scenes/point.glb",
+        "--samples",
+        "64",
+        "--lmax",
+        "2",
+        "-o",
+        s(&out),
+    ]);
+    let file = ShprtFile::read(&out).unwrap();
+    let lit = file.static_light.as_ref().expect("a static term");
+    let lights = lit.lights.as_ref().unwrap();
+    assert_eq!((lights.units.as_str(), lights.point), ("blender", 1));
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("tests/scenes/point.truth.json").unwrap())
+            .unwrap();
+    let lamp = &truth["lights"][0];
+    let at = DVec3::from_array([0, 1, 2].map(|i| lamp["position"][i].as_f64().unwrap()));
+    let intensity = lamp["gltf_intensity"].as_f64().unwrap() / 683.0;
+    let scene =
+        shlight_mesh::load_scene(Path::new("tests/scenes/point.glb"), &Default::default()).unwrap();
+    let mesh = scene.flatten(glam::Vec3::splat(0.8)).unwrap().mesh;
+    assert_eq!(mesh.vertex_count(), file.vertex_count);
+    let colours = mesh.colors.as_ref().expect("the materials' albedo");
+    let mut checked = 0;
+    for (v, (p, n)) in mesh.positions.iter().zip(&mesh.normals).enumerate() {
+        let to = at - p.as_dvec3();
+        let cos = n.as_dvec3().dot(to.normalize());
+        let rho = colours[v].as_dvec3();
+        let want = rho / std::f64::consts::PI * intensity * cos.max(0.0) / to.length_squared();
+        let got = DVec3::from_array(lit.radiance[v].map(f64::from));
+        assert!(
+            (got - want).abs().max_element() <= 1e-4 * want.max_element().max(1e-3),
+            "vertex {v} at {p}: {got} vs {want}"
+        );
+        checked += usize::from(cos > 0.1);
+    }
+    assert!(checked > 10, "{checked} vertices face the lamp");
+    let black = dir.join("black.json");
+    write_constant_light(&black, 0.0, "radiance");
+    let sampled = dir.join("black-out.json");
+    shlight_ok(&["sample", s(&out), "--light", s(&black), "-o", s(&sampled)]);
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&sampled).unwrap()).unwrap();
+    for (i, row) in v["radiance"].as_array().unwrap().iter().enumerate() {
+        for c in 0..3 {
+            let got = row[c].as_f64().unwrap();
+            let want = f64::from(lit.radiance[i][c]);
+            assert!(
+                (got - want).abs() <= 1e-6 * want.abs().max(1.0),
+                "{i}: {got} vs {want}"
+            );
+        }
+    }
+
+    let err = shlight_err(&[
+        "prt",
+        "tests/scenes/point.glb",
+        "--albedo",
+        "0.5",
+        "-o",
+        s(&out),
+    ]);
+    assert!(
+        err.contains("tests/scenes/point.glb: a glTF scene's albedo is its materials'"),
+        "{err}"
+    );
+    let obj = dir.join("box.obj");
+    write_obj(&obj, &generate::cuboid(glam::Vec3::ONE));
+    let err = shlight_err(&["prt", s(&obj), "--light-units", "as-written", "-o", s(&out)]);
+    assert!(
+        err.contains("--light-units reads a glTF scene's punctual lights"),
+        "{err}"
+    );
+    let glb = dir.join("point-out.glb");
+    let err = shlight_err(&[
+        "prt",
+        "tests/scenes/point.glb",
+        "--samples",
+        "16",
+        "-o",
+        s(&glb),
+    ]);
+    assert!(err.contains("cannot carry the static light"), "{err}");
+}

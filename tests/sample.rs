@@ -723,3 +723,75 @@ fn a_bake_of_two_rooms_does_not_leak_through_the_wall() {
         100.0 * trilinear_leak
     );
 }
+
+/// `--points SCENE.glb` samples every vertex of the flattened scene facing
+/// its normal: a volume of 2 x 2 x 2 identical probes (L00 and L11, over a
+/// box holding the room) gives at each vertex the closed form
+/// `E(n) = pi L00 Y00 + 2 pi / 3 L11 Y11(n)`, with the normals of the
+/// scene's instances in world space; the same points written as a JSON
+/// points file give the same numbers.
+#[test]
+fn points_from_a_gltf_scene_are_its_vertices() {
+    let dir = temp_dir("sample-scene");
+    let nc = 4;
+    let mut radiance = vec![0.0f32; 8 * nc * 3];
+    for probe in radiance.chunks_exact_mut(nc * 3) {
+        probe[..3].copy_from_slice(&[1.0, 2.0, 3.0]);
+        probe[9..12].copy_from_slice(&[-0.5, -0.25, 0.5]);
+    }
+    let volume = ShvolFile {
+        lmax: 1,
+        resolution: [2, 2, 2],
+        bounds: ([-3.0, -1.0, -3.0], [3.0, 4.0, 3.0]),
+        valid: vec![true; 8],
+        radiance,
+        emitted: None,
+        transfer: None,
+        ..two_probes(false)
+    };
+    let vol = dir.join("room.shvol");
+    volume.write(&vol).unwrap();
+    let scene_path = Path::new("tests/scenes/instances.glb");
+    let out = dir.join("at-vertices.json");
+    shlight_ok(&["sample", s(&vol), "--points", s(scene_path), "-o", s(&out)]);
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(v["at"], "vertices");
+    let got = values(&v, "irradiance");
+    let scene = shlight_mesh::load_scene(scene_path, &Default::default()).unwrap();
+    assert!(scene.instances.len() > 3, "the chairs are instances");
+    let mesh = scene.flatten(glam::Vec3::ONE).unwrap().mesh;
+    assert_eq!(got.len(), mesh.vertex_count());
+    let y00 = 0.5 / PI.sqrt();
+    let y1 = (3.0 / (4.0 * PI)).sqrt();
+    for (e, n) in got.iter().zip(&mesh.normals) {
+        let n = n.as_dvec3().normalize();
+        let want = [[1.0, -0.5], [2.0, -0.25], [3.0, 0.5]]
+            .map(|[l00, l11]| PI * l00 * y00 + 2.0 * PI / 3.0 * l11 * (-y1 * n.x));
+        for c in 0..3 {
+            assert!((e[c] - want[c]).abs() <= 1e-5, "{n}: {e:?} vs {want:?}");
+        }
+    }
+    let points = dir.join("vertices.json");
+    let as_f64 =
+        |v: &[glam::Vec3]| -> Vec<[f64; 3]> { v.iter().map(|p| p.as_dvec3().to_array()).collect() };
+    write_points(&points, &as_f64(&mesh.positions), &as_f64(&mesh.normals));
+    let out_json = dir.join("at-points.json");
+    shlight_ok(&[
+        "sample",
+        s(&vol),
+        "--points",
+        s(&points),
+        "-o",
+        s(&out_json),
+    ]);
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out_json).unwrap()).unwrap();
+    let from_json = values(&v, "irradiance");
+    for (a, b) in got.iter().zip(&from_json) {
+        for c in 0..3 {
+            assert!(
+                (a[c] - b[c]).abs() <= 1e-6 * b[c].abs().max(1.0),
+                "{a:?} vs {b:?}"
+            );
+        }
+    }
+}

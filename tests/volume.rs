@@ -352,7 +352,7 @@ fn a_gltf_lamp_lights_the_volume_in_the_units_asked_for() {
     let said = bake("blender", &blender, &[]);
     assert!(
         said.contains(
-            "1 punctual lights (1 point, 0 spot, 0 directional), intensities divided by 683"
+            "1 punctual light (1 point, 0 spot, 0 directional), intensities divided by 683"
         ),
         "{said}"
     );

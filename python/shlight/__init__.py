@@ -29,10 +29,12 @@ warnings (negative texels, a stretched map) are ``UserWarning``.
 from ._shlight import (
     EXPORT_FORMATS,
     SH,
+    Scene,
     ShlightError,
     Transfer,
     Volume,
     load,
+    load_scene,
     read_image,
     render,
     write_image,
@@ -53,6 +55,7 @@ from ._shlight import sample as _sample
 __all__ = [
     "EXPORT_FORMATS",
     "SH",
+    "Scene",
     "ShlightError",
     "Transfer",
     "Volume",
@@ -64,6 +67,7 @@ __all__ = [
     "dfg",
     "irradiance",
     "load",
+    "load_scene",
     "prefilter",
     "project",
     "project_many",
@@ -489,6 +493,11 @@ def convert(input, output=None, *, format=None, into=None, precision="half", irr
     )
 
 
+def _scene_or_path(scene):
+    """A loaded ``Scene`` as it is, anything else as a path string."""
+    return scene if isinstance(scene, Scene) else str(scene)
+
+
 def bake_transfer(
     mesh,
     mode="shadowed",
@@ -505,6 +514,7 @@ def bake_transfer(
     preview=None,
     preview_size=(512, 512),
     preview_exposure=None,
+    light_units=None,
 ):
     """Bake precomputed radiance transfer for a mesh (``shlight prt MESH -o OUT``).
 
@@ -518,8 +528,11 @@ def bake_transfer(
 
     Parameters
     ----------
-    mesh : str | os.PathLike
-        .obj, .ply, .off, .gltf or .glb.
+    mesh : str | os.PathLike | Scene
+        .obj, .ply, .off, or a glTF scene (.gltf, .glb, or a ``Scene`` from
+        ``load_scene``): albedo from its materials (the texel a bounce
+        hits), rays through its cut-outs, its punctual lights and emission
+        in ``Transfer.static_radiance`` (docs/shprt.md, "glTF scenes").
     mode : "unshadowed" | "shadowed" | "interreflected" | "glossy"
         Cosine-weighted only; with self-shadowing; with self-shadowing and
         ``bounces`` bounces of diffuse interreflection; glossy matrices
@@ -533,8 +546,9 @@ def bake_transfer(
         Bounces of interreflection (``mode="interreflected"``, default 2;
         ``mode="glossy"``, default 0).
     albedo : None | float | (float, float, float)
-        Diffuse albedo, linear, in [0, 1]; None: the mesh's vertex colours
-        if it has them, otherwise 0.8.
+        Diffuse albedo of every vertex of a mesh, linear, in [0, 1]; None:
+        the mesh's vertex colours if it has them, otherwise 0.8. Refused
+        for a glTF scene, whose materials give it.
     seed : int
         Seed of the direction set (the same seed gives the same bake).
     brdf : None | str
@@ -551,6 +565,9 @@ def bake_transfer(
     light, preview, preview_size, preview_exposure :
         A radiance coefficient file, and the picture of the mesh shaded by
         it (diffuse transfer), as ``--light L --preview P``.
+    light_units : None | "blender" | "as-written"
+        How a glTF scene's punctual lights' intensities are read (default
+        "blender": glTF's candela and lux over 683); refused for a mesh.
 
     Returns
     -------
@@ -560,7 +577,7 @@ def bake_transfer(
         CLI's .shprt file byte for byte.
     """
     return _bake_transfer(
-        str(mesh),
+        _scene_or_path(mesh),
         mode,
         lmax,
         samples=samples,
@@ -574,6 +591,7 @@ def bake_transfer(
         preview=preview,
         preview_size=tuple(preview_size),
         preview_exposure=preview_exposure,
+        light_units=light_units,
     )
 
 
@@ -598,6 +616,7 @@ def bake_volume(
     preview=None,
     preview_ball=32,
     light_units="blender",
+    max_edge=None,
 ):
     """Bake an irradiance volume through a scene (``shlight volume SCENE --env ENV -o OUT``).
 
@@ -614,9 +633,10 @@ def bake_volume(
 
     Parameters
     ----------
-    scene : str | os.PathLike
+    scene : str | os.PathLike | Scene
         .obj (+ .mtl: Kd albedo, Ke emission), .ply, .off, .gltf or .glb
-        (baseColorFactor x COLOR_0 albedo, emissive materials).
+        (baseColorFactor x COLOR_0 albedo, emissive materials), or a ``Scene``
+        from ``load_scene``.
     env : str | os.PathLike
         The distant light: an equirect map (projected to ``lmax``, its top
         row facing +Y) or a radiance coefficient file (``SH.save``,
@@ -675,6 +695,11 @@ def bake_volume(
         ``"as-written"`` takes them as they are (``--light-units``). The
         lights' direct light reaches probes and surfaces through shadow
         rays and is static: a relit volume keeps it.
+    max_edge : None | float
+        The surfaces' light is held at their vertices: edges longer than
+        this (scene units) are split first (``--max-edge``); None: the
+        scene's bounding-box diagonal over 32. Give a smaller one where
+        shadows or patches of light are smaller than that.
 
     Returns
     -------
@@ -688,7 +713,7 @@ def bake_volume(
         ``lmax``, a bad option; the CLI's messages.
     """
     return _bake_volume(
-        str(scene),
+        _scene_or_path(scene),
         str(env),
         resolution,
         bounds,
@@ -708,6 +733,7 @@ def bake_volume(
         preview=None if preview is None else str(preview),
         preview_ball=preview_ball,
         light_units=light_units,
+        max_edge=max_edge,
     )
 
 
@@ -827,9 +853,11 @@ def sample(
     output : str | os.PathLike
         The answer: JSON (the values, the lookup, the file's provenance),
         or CSV rows ``r,g,b`` (``.csv``); written atomically.
-    points : str | os.PathLike
-        A volume's points: JSON ``{"points": [...], "normals": [...]}`` or
-        CSV rows ``x,y,z,nx,ny,nz``.
+    points : str | os.PathLike | Scene
+        A volume's points: JSON ``{"points": [...], "normals": [...]}``,
+        CSV rows ``x,y,z,nx,ny,nz``, or a mesh or glTF scene (a path, or a
+        ``Scene`` from ``load_scene``): every vertex (a scene's flattened
+        into world space) facing its normal.
     env : str | os.PathLike
         Relight a relightable volume under this light first (an equirect
         map or a radiance coefficient file).
@@ -856,7 +884,7 @@ def sample(
     _sample(
         file,
         output,
-        points=points,
+        points=None if points is None else _scene_or_path(points),
         env=env,
         light=light,
         up=up,

@@ -66,6 +66,40 @@ class SH:
     def from_json(text: str) -> "SH":
         """An SH from a coefficient file's JSON text (pickling uses it)."""
 
+class Scene:
+    """A glTF scene read once (load_scene), passed wherever a scene path is
+    taken (bake_transfer, bake_volume, sample's points)."""
+
+    @property
+    def path(self) -> str:
+        """The file it was read from."""
+    @property
+    def primitive_count(self) -> int:
+        """Unique primitives."""
+    @property
+    def instance_count(self) -> int:
+        """Instances placing them."""
+    @property
+    def triangle_count(self) -> int:
+        """Triangles of the flattened scene."""
+    @property
+    def vertex_count(self) -> int:
+        """Vertices of the flattened scene."""
+    @property
+    def materials(self) -> list[dict[str, Any]]:
+        """name, base_color, base_color_texture, emissive, alpha_mode,
+        alpha_cutoff, double_sided."""
+    @property
+    def lights(self) -> list[dict[str, Any]]:
+        """name, kind, color, intensity (as written), units ("cd" or
+        "lux"), range, position, direction (a spot's inner_cone,
+        outer_cone)."""
+
+SceneLike = Union[PathLike, Scene]
+
+def load_scene(path: PathLike) -> Scene:
+    """Reads a glTF scene (.gltf, .glb)."""
+
 class Transfer:
     """Per-vertex transfer of a mesh (a .shprt file): diffuse, whose exit
     radiance of vertex v under radiance SH L is coefficients[v, c] @ L[:n, c],
@@ -73,7 +107,11 @@ class Transfer:
 
     @staticmethod
     def load(path: PathLike) -> "Transfer":
-        """Reads a .shprt file (diffuse version 1, glossy version 2)."""
+        """Reads a .shprt file (diffuse version 1, glossy version 2, a
+        scene's diffuse transfer with its static term version 3)."""
+    @property
+    def static_radiance(self) -> Optional[npt.NDArray[np.float32]]:
+        """A scene's static term, (vertex_count, 3); None without one."""
     @property
     def brdf(self) -> Optional[str]:
         """A glossy file's BRDF ("phong:32"); None for diffuse transfer."""
@@ -348,7 +386,7 @@ def convert(
 ) -> Union[str, list[str], None]:
     """A coefficient file or volume in another format (shlight convert)."""
 def bake_transfer(
-    mesh: PathLike,
+    mesh: SceneLike,
     mode: Literal["unshadowed", "shadowed", "interreflected", "glossy"] = "shadowed",
     lmax: int = 4,
     *,
@@ -363,10 +401,11 @@ def bake_transfer(
     preview: Optional[PathLike] = None,
     preview_size: tuple[int, int] = (512, 512),
     preview_exposure: Optional[float] = None,
+    light_units: Optional[Literal["blender", "as-written"]] = None,
 ) -> Transfer:
     """PRT of a mesh as shlight prt bakes it."""
 def bake_volume(
-    scene: PathLike,
+    scene: SceneLike,
     env: PathLike,
     resolution: Union[tuple[int, int, int], str] = (8, 4, 8),
     bounds: Union[
@@ -388,6 +427,7 @@ def bake_volume(
     preview: Optional[PathLike] = None,
     preview_ball: int = 32,
     light_units: Literal["blender", "as-written"] = "blender",
+    max_edge: Optional[float] = None,
 ) -> Volume:
     """An irradiance volume as shlight volume bakes it."""
 
@@ -415,7 +455,7 @@ def sample(
     file: PathLike,
     output: PathLike,
     *,
-    points: Optional[PathLike] = None,
+    points: Optional[SceneLike] = None,
     env: Optional[PathLike] = None,
     light: Optional[PathLike] = None,
     up: Literal["y", "z"] = "y",

@@ -21,6 +21,7 @@ mod options;
 mod project;
 mod prt;
 mod sample;
+mod scene;
 mod sh;
 mod source;
 mod specular;
@@ -36,6 +37,8 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sh::Sh>()?;
     m.add_class::<prt::Transfer>()?;
     m.add_class::<volume::Volume>()?;
+    m.add_class::<scene::Scene>()?;
+    m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(project::project, m)?)?;
     m.add_function(wrap_pyfunction!(project::project_many, m)?)?;
     m.add_function(wrap_pyfunction!(sh::load, m)?)?;

@@ -10,13 +10,17 @@ use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyArray2, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use shlight_format::ShprtFile;
-use shlight_pipeline::{PrtRequest, Shading, Silent, Spelling, prt, transfer_radiance};
+use shlight_mesh::LightUnits;
+use shlight_pipeline::{
+    PrtRequest, Shading, Silent, Spelling, prt, prt_of_scene, transfer_radiance,
+};
 use shlight_prt::Observer;
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
+use crate::scene::SceneArg;
 
 /// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
 /// vectors, whose exit radiance under distant radiance SH `L` is
@@ -186,6 +190,20 @@ impl Transfer {
         self.file.vertex_count
     }
 
+    /// A glTF scene's static term (its punctual lights and emission):
+    /// (vertex_count, 3) float32 exit radiance added to `T . L`
+    /// (docs/shprt.md, "glTF scenes"); None without one.
+    #[getter]
+    fn static_radiance<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f32>>> {
+        let s = self.file.static_light.as_ref()?;
+        let flat: Vec<f32> = s.radiance.iter().flatten().copied().collect();
+        Some(
+            Array2::from_shape_vec((s.radiance.len(), 3), flat)
+                .expect("3 values per vertex")
+                .into_pyarray(py),
+        )
+    }
+
     /// (vertex_count, channels, (lmax+1)**2) float32: row l*(l+1)+m of a
     /// channel is the transfer of Y_l^m, albedo / pi folded in.
     /// Raises ShlightError for a glossy file (see `matrices`).
@@ -223,18 +241,18 @@ impl Transfer {
 
 /// bake_transfer(mesh, mode="shadowed", lmax=4, *, samples=1024,
 /// bounces=None, albedo=None, seed=0, brdf=None, compress=None, output=None,
-/// light=None, preview=None, preview_size=(512, 512), preview_exposure=None)
-/// -> Transfer
+/// light=None, preview=None, preview_size=(512, 512), preview_exposure=None,
+/// light_units=None) -> Transfer
 /// --
 ///
 /// See the package documentation (`help(shlight.bake_transfer)`).
 #[pyfunction]
 #[pyo3(signature = (mesh, mode="shadowed".to_string(), lmax=4, *, samples=1024, bounces=None,
     albedo=None, seed=0, brdf=None, compress=None, output=None, light=None, preview=None,
-    preview_size=(512, 512), preview_exposure=None))]
+    preview_size=(512, 512), preview_exposure=None, light_units=None))]
 pub fn bake_transfer(
     py: Python<'_>,
-    mesh: PathBuf,
+    mesh: SceneArg,
     mode: String,
     lmax: usize,
     samples: usize,
@@ -248,7 +266,13 @@ pub fn bake_transfer(
     preview: Option<PathBuf>,
     preview_size: (usize, usize),
     preview_exposure: Option<f32>,
+    light_units: Option<&str>,
 ) -> PyResult<Transfer> {
+    let (mesh, scene) = mesh.split(py);
+    let light_units: Option<LightUnits> = light_units
+        .map(|u| Spelling::Python.parse("light_units", u))
+        .transpose()
+        .map_err(pipeline_error)?;
     let plan = PrtRequest {
         mesh: &mesh,
         lmax,
@@ -260,6 +284,7 @@ pub fn bake_transfer(
         brdf: brdf.as_deref(),
         compress: compress.as_deref(),
         albedo: albedo.map(albedo_of).transpose()?,
+        light_units,
         seed,
         output: output.as_deref(),
         light: light.as_deref(),
@@ -270,7 +295,15 @@ pub fn bake_transfer(
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
     let hooks = PyHooks::new(false);
-    let baked = py.detach(|| guard(|| prt(&plan, &hooks).map_err(pipeline_error)));
+    let baked = py.detach(|| {
+        guard(|| {
+            match &scene {
+                Some(scene) => prt_of_scene(&plan, scene, &hooks),
+                None => prt(&plan, &hooks),
+            }
+            .map_err(pipeline_error)
+        })
+    });
     warn_all(py, &hooks.warnings(), 2)?;
     Ok(Transfer { file: baked?.file })
 }

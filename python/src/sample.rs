@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 use pyo3::prelude::*;
-use shlight_pipeline::{SampleRequest, Spelling, sample as sample_job};
+use shlight_pipeline::{SampleRequest, Spelling, sample as sample_job, sample_at, scene_points};
 use shlight_volume::Lookup;
 
 use crate::errors::{pipeline_error, warn_all};
@@ -13,6 +13,7 @@ use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
 use crate::options::frame_of;
+use crate::scene::SceneArg;
 
 /// sample(file, output, *, points=None, env=None, light=None, up="y",
 /// lookup="shlight", view=None, eye=None, albedo=None, lmax=None) -> None
@@ -26,7 +27,7 @@ pub fn sample(
     py: Python<'_>,
     file: PathBuf,
     output: PathBuf,
-    points: Option<PathBuf>,
+    points: Option<SceneArg>,
     env: Option<PathBuf>,
     light: Option<PathBuf>,
     up: String,
@@ -36,6 +37,8 @@ pub fn sample(
     albedo: Option<&Bound<'_, PyAny>>,
     lmax: Option<usize>,
 ) -> PyResult<()> {
+    let (points, scene) = points.map(|p| p.split(py)).unzip();
+    let scene = scene.flatten();
     let lookup: Lookup = Spelling::Python
         .parse("lookup", &lookup)
         .map_err(pipeline_error)?;
@@ -55,7 +58,15 @@ pub fn sample(
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
     let hooks = PyHooks::new(false);
-    let done = py.detach(|| guard(|| sample_job(&plan, &hooks).map_err(pipeline_error)));
+    let done = py.detach(|| {
+        guard(|| {
+            match &scene {
+                Some(s) => scene_points(s).and_then(|p| sample_at(&plan, &p, &hooks)),
+                None => sample_job(&plan, &hooks),
+            }
+            .map_err(pipeline_error)
+        })
+    });
     warn_all(py, &hooks.warnings(), 1)?;
     warn_all(py, &hooks.notes(), 1)?;
     done.map(|_| ())

@@ -20,7 +20,7 @@ use shlight_format::{SamplePoints, ShvolFile, VolumeFormat};
 use shlight_mesh::LightUnits;
 use shlight_pipeline::{
     Spelling, VolumeRequest, relight_volume, visibility_size, volume, volume_irradiance,
-    volume_lookup,
+    volume_lookup, volume_of_scene,
 };
 use shlight_volume::{Lookup, VolumeBakeSettings, VolumeOptions};
 
@@ -28,6 +28,7 @@ use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
+use crate::scene::SceneArg;
 
 /// An irradiance volume (a `.shvol` file, docs/shvol.md): SH probes on a
 /// grid through a scene, with their validity, positions, distance maps
@@ -374,7 +375,7 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
 /// samples=1024, bounces=2, surface_samples=512, albedo=0.8,
 /// invalid_backfaces=0.5, seed=0, relocate=True, visibility=True,
 /// static_only=False, output=None, format=None, precision="half", preview=None,
-/// preview_ball=32, light_units="blender") -> Volume
+/// preview_ball=32, light_units="blender", max_edge=None) -> Volume
 /// --
 ///
 /// See the package documentation (`help(shlight.bake_volume)`).
@@ -382,10 +383,10 @@ fn bounds_of(bounds: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(Vec3, Vec3)>
 #[pyo3(signature = (scene, env, resolution=None, bounds=None, lmax=2, samples=1024, bounces=2,
     surface_samples=512, albedo=None, invalid_backfaces=0.5, seed=0, relocate=true,
     visibility=true, static_only=false, output=None, format=None, precision="half", preview=None,
-    preview_ball=32, light_units="blender"))]
+    preview_ball=32, light_units="blender", max_edge=None))]
 pub fn bake_volume(
     py: Python<'_>,
-    scene: PathBuf,
+    scene: SceneArg,
     env: PathBuf,
     resolution: Option<&Bound<'_, PyAny>>,
     bounds: Option<&Bound<'_, PyAny>>,
@@ -405,7 +406,9 @@ pub fn bake_volume(
     preview: Option<PathBuf>,
     preview_ball: usize,
     light_units: &str,
+    max_edge: Option<f32>,
 ) -> PyResult<Volume> {
+    let (scene, loaded) = scene.split(py);
     let (format, precision) = volume_format(format, precision)?;
     let light_units: LightUnits = Spelling::Python
         .parse("light_units", light_units)
@@ -428,7 +431,7 @@ pub fn bake_volume(
                 samples,
                 bounces,
                 surface_samples,
-                max_edge: None,
+                max_edge,
                 albedo: albedo.map(albedo_of).transpose()?.unwrap_or([0.8; 3]),
                 invalid_backfaces,
                 seed,
@@ -444,7 +447,15 @@ pub fn bake_volume(
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
     let hooks = PyHooks::new(false);
-    let baked = py.detach(|| guard(|| volume(&plan, &hooks).map_err(pipeline_error)));
+    let baked = py.detach(|| {
+        guard(|| {
+            match &loaded {
+                Some(s) => volume_of_scene(&plan, s, &hooks),
+                None => volume(&plan, &hooks),
+            }
+            .map_err(pipeline_error)
+        })
+    });
     warn_all(py, &hooks.warnings(), 2)?;
     Ok(Volume { file: baked?.file })
 }

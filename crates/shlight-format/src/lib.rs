@@ -99,7 +99,7 @@ pub use ktx1_file::{GL_R11F_G11F_B10F, filament_ktx1, pack_r11g11b10, unpack_r11
 pub use ktx2::{Ktx2Format, cube_map_ktx2, write_ktx2};
 pub use quantity::{Quantity, convert_quantity};
 pub use sample_files::{MAX_POINTS, SAMPLES_FORMAT, SamplePoints, SampledValues};
-pub use shprt::{CpcaData, GlossyData, ShprtFile};
+pub use shprt::{CpcaData, GlossyData, ShprtFile, StaticLight};
 pub use shvol::{ShvolFile, VolumeLights};
 pub use volume_format::VolumeFormat;
 pub use volume_shader::{

@@ -19,13 +19,19 @@
 //! (`"compression":"cpca:C,K"`), the cluster means, bases, each vertex's
 //! cluster index and weights instead of the matrices. Diffuse files stay
 //! version 1.
+//!
+//! Diffuse transfer of a scene with light of its own (punctual lights,
+//! emissive materials) is format version 3: the header adds `static`
+//! ([`StaticLight`]), and after the transfer come `3 * vertex_count`
+//! little-endian `f32`, each vertex's static exit radiance (linear R, G, B),
+//! so that the vertex leaves `T . L + S` under distant light `L`.
 
 use std::path::Path;
 
 use serde_json::{Value, json};
 use shlight_core::sh::sh_count;
 
-use crate::{FormatError, Result, header_line};
+use crate::{FormatError, Result, VolumeLights, header_line};
 
 /// The `format` key's value.
 pub const FORMAT: &str = "shlight-prt";
@@ -34,6 +40,9 @@ pub const FORMAT_VERSION: u64 = 1;
 /// The layout version of glossy transfer matrices (and the newest this
 /// build reads).
 pub const GLOSSY_FORMAT_VERSION: u64 = 2;
+/// The layout version of diffuse transfer with a static term per vertex
+/// ([`StaticLight`]; the newest this build reads).
+pub const STATIC_FORMAT_VERSION: u64 = 3;
 /// Longest header a reader accepts, in bytes.
 pub const MAX_HEADER: usize = 1 << 20;
 
@@ -70,6 +79,24 @@ pub struct ShprtFile {
     /// transferred radiance's coefficients) of `(lmax+1)^2` columns (the
     /// light's), and this what shading it needs besides.
     pub glossy: Option<GlossyData>,
+    /// Diffuse transfer of a scene with light of its own (format version
+    /// 3): each vertex's static exit radiance, added to `T . L`.
+    pub static_light: Option<StaticLight>,
+}
+
+/// The light a scene's vertices leave whatever the distant light: the
+/// direct light of its punctual lights, reflected by the vertex's albedo,
+/// its emissive materials' emission, and both bounced as the transfer
+/// bounces the distant light. A renderer shades vertex `v` as
+/// `T_v . L + radiance[v]` per channel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StaticLight {
+    /// Per vertex, linear RGB exit radiance (W sr^-1 m^-2 per channel).
+    pub radiance: Vec<[f32; 3]>,
+    /// The punctual lights it holds and their units (`None`: none).
+    pub lights: Option<VolumeLights>,
+    /// Whether it holds emissive materials' light.
+    pub emission: bool,
 }
 
 /// What a glossy `.shprt` file holds besides its matrices.
@@ -181,7 +208,7 @@ impl ShprtFile {
     pub fn header(&self) -> Value {
         let mut header = json!({
             "format": FORMAT,
-            "format_version": if self.glossy.is_some() { GLOSSY_FORMAT_VERSION } else { FORMAT_VERSION },
+            "format_version": self.format_version(),
             "lmax": self.lmax,
             "vertex_count": self.vertex_count,
             "channels": self.channels,
@@ -197,6 +224,22 @@ impl ShprtFile {
             "mesh": self.mesh,
             "data": "f32 little-endian, vertex-major, then channel, then SH index l(l+1)+m",
         });
+        if let Some(s) = &self.static_light {
+            header["static"] = json!({
+                "quantity": "exit radiance, linear RGB per vertex, added to T . L",
+                "lights": s.lights.as_ref().map(|l| json!({
+                    "units": l.units,
+                    "point": l.point,
+                    "spot": l.spot,
+                    "directional": l.directional,
+                })),
+                "emission": s.emission,
+            });
+            header["data"] = json!(
+                "f32 little-endian: transfer vertex-major, then channel, then SH index \
+                 l(l+1)+m; then each vertex's static exit radiance [r, g, b]"
+            );
+        }
         if let Some(g) = &self.glossy {
             header["brdf"] = json!(g.brdf);
             header["transport"] = json!(g.transport);
@@ -219,11 +262,29 @@ impl ShprtFile {
         header
     }
 
+    /// The layout version the file is written in: 1 for diffuse transfer,
+    /// 2 for glossy, 3 for diffuse transfer with a static term.
+    #[must_use]
+    pub fn format_version(&self) -> u64 {
+        match (&self.glossy, &self.static_light) {
+            (Some(_), _) => GLOSSY_FORMAT_VERSION,
+            (None, Some(_)) => STATIC_FORMAT_VERSION,
+            (None, None) => FORMAT_VERSION,
+        }
+    }
+
     /// The whole file as bytes.
     #[must_use]
     pub fn to_bytes(&self) -> Vec<u8> {
         match &self.glossy {
-            None => header_line::to_bytes(&self.header(), &self.transfer),
+            None => match &self.static_light {
+                None => header_line::to_bytes(&self.header(), &self.transfer),
+                Some(s) => {
+                    let mut data = self.transfer.clone();
+                    data.extend(s.radiance.iter().flatten());
+                    header_line::to_bytes(&self.header(), &data)
+                }
+            },
             Some(g) => {
                 let mut data = Vec::with_capacity(6 * self.vertex_count + self.transfer.len());
                 data.extend(g.positions.iter().flatten());
@@ -272,9 +333,9 @@ impl ShprtFile {
         let (header, data) = header_line::split(bytes, &name, FORMAT, ".shprt", MAX_HEADER)?;
         let uint = |key: &str| header_line::uint(&header, key, &name);
         let version = uint("format_version")?;
-        if version == 0 || version > GLOSSY_FORMAT_VERSION {
+        if version == 0 || version > STATIC_FORMAT_VERSION {
             return Err(bad(format!(
-                "format_version {version} is not supported (this build reads 1..={GLOSSY_FORMAT_VERSION})"
+                "format_version {version} is not supported (this build reads 1..={STATIC_FORMAT_VERSION})"
             )));
         }
         let lmax = uint("lmax")? as usize;
@@ -306,13 +367,20 @@ impl ShprtFile {
         let glossy = (mode == "glossy") != (version == GLOSSY_FORMAT_VERSION);
         if glossy {
             return Err(bad(format!(
-                "bad header (mode \"{mode}\" in format_version {version}: glossy transfer is version {GLOSSY_FORMAT_VERSION}, diffuse version {FORMAT_VERSION})"
+                "bad header (mode \"{mode}\" in format_version {version}: glossy transfer is version {GLOSSY_FORMAT_VERSION}, diffuse versions {FORMAT_VERSION} and {STATIC_FORMAT_VERSION})"
             )));
         }
         let glossy = version == GLOSSY_FORMAT_VERSION;
+        let lights = static_lights(&header, version, &bad)?;
         let nc = sh_count(lmax);
         let per_channel = if glossy { nc * nc } else { nc };
-        let vectors = if glossy { 6 * vertex_count } else { 0 };
+        // Glossy files' positions and normals before the matrices; a static
+        // term's radiance after the transfer.
+        let vectors = match (glossy, &lights) {
+            (true, _) => 6 * vertex_count,
+            (false, Some(_)) => 3 * vertex_count,
+            (false, None) => 0,
+        };
         // A compressed glossy file: its clusters and vectors per cluster.
         let compression = match header.get("compression") {
             None => None,
@@ -351,6 +419,7 @@ impl ShprtFile {
             return Err(bad(format!(
                 "truncated: {vertex_count} vertices x {channels} channels x {per_channel} {} need {} bytes of data, the file has {}",
                 match (glossy, compression) {
+                    (false, _) if lights.is_some() => "coefficients (with the static radiance)",
                     (false, _) => "coefficients",
                     (true, None) => "matrix entries (with positions and normals)",
                     (true, Some(_)) => "matrix entries, compressed (with positions and normals)",
@@ -367,6 +436,18 @@ impl ShprtFile {
             )));
         }
         let mut transfer = header_line::f32s(data);
+        let static_light = lights.map(|(lights, emission)| {
+            let radiance = transfer
+                .split_off(vertex_count * dim)
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect();
+            StaticLight {
+                radiance,
+                lights,
+                emission,
+            }
+        });
         let glossy = if glossy {
             let text = |key: &str| header_line::text(&header, key, &name);
             let (brdf, transport) = (text("brdf")?, text("transport")?);
@@ -415,6 +496,7 @@ impl ShprtFile {
         };
         Ok(Self {
             glossy,
+            static_light,
             lmax,
             channels,
             vertex_count,
@@ -432,6 +514,49 @@ impl ShprtFile {
                 .to_string(),
         })
     }
+}
+
+/// A version 3 header's `static` key: its punctual lights and whether it
+/// holds emission (`None` for versions 1 and 2, which have none).
+fn static_lights(
+    header: &Value,
+    version: u64,
+    bad: &dyn Fn(String) -> FormatError,
+) -> Result<Option<(Option<VolumeLights>, bool)>> {
+    let found = header.get("static");
+    if (version == STATIC_FORMAT_VERSION) != found.is_some() {
+        return Err(bad(format!(
+            "bad header (format_version {version} {} \"static\": diffuse transfer with a static term is version {STATIC_FORMAT_VERSION})",
+            if found.is_some() { "with" } else { "without" }
+        )));
+    }
+    let Some(s) = found else {
+        return Ok(None);
+    };
+    let shape = || {
+        bad("bad header (\"static\" is not {\"lights\": null or {\"units\": text, \"point\", \"spot\", \"directional\": counts}, \"emission\": true or false})".into())
+    };
+    let emission = s
+        .get("emission")
+        .and_then(Value::as_bool)
+        .ok_or_else(shape)?;
+    let lights = match s.get("lights") {
+        None | Some(Value::Null) => None,
+        Some(l) => {
+            let count = |kind: &str| l.get(kind).and_then(Value::as_u64);
+            let units = l.get("units").and_then(Value::as_str);
+            match (units, count("point"), count("spot"), count("directional")) {
+                (Some(units), Some(point), Some(spot), Some(directional)) => Some(VolumeLights {
+                    units: units.to_string(),
+                    point,
+                    spot,
+                    directional,
+                }),
+                _ => return Err(shape()),
+            }
+        }
+    };
+    Ok(Some((lights, emission)))
 }
 
 #[cfg(test)]
@@ -452,6 +577,7 @@ mod tests {
             mesh_hash: 0x0123_4567_89ab_cdef,
             mesh: "m.obj".into(),
             glossy: None,
+            static_light: None,
         }
     }
 
@@ -464,6 +590,7 @@ mod tests {
             mode: "glossy".into(),
             bounces: 0,
             albedo: Some([0.8; 3]),
+            static_light: None,
             glossy: Some(GlossyData {
                 brdf: "phong:32".into(),
                 transport: "shadowed".into(),
@@ -571,6 +698,77 @@ mod tests {
         assert_eq!(
             ShprtFile::from_bytes(&grey.to_bytes(), Path::new("x.shprt")).unwrap(),
             grey
+        );
+    }
+
+    #[test]
+    fn a_static_term_is_version_3_after_the_transfer_and_round_trips() {
+        let mut f = sample();
+        f.static_light = Some(StaticLight {
+            radiance: vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.5]],
+            lights: Some(VolumeLights {
+                units: "blender".into(),
+                point: 2,
+                spot: 0,
+                directional: 1,
+            }),
+            emission: false,
+        });
+        let bytes = f.to_bytes();
+        let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+        // The transfer's 24 values, then 2 x 3 of static radiance, the last
+        // vertex 1's blue.
+        assert_eq!(bytes.len(), nl + 1 + (24 + 6) * 4);
+        assert_eq!(&bytes[bytes.len() - 4..], &6.5f32.to_le_bytes());
+        assert_eq!(
+            &bytes[nl + 1 + 23 * 4..nl + 1 + 24 * 4],
+            &(23.0f32 * 0.5 - 3.0).to_le_bytes()
+        );
+        let header: Value = serde_json::from_slice(&bytes[..nl]).unwrap();
+        assert_eq!(header["format_version"], 3);
+        assert_eq!(
+            header["static"]["lights"],
+            json!({"units": "blender", "point": 2, "spot": 0, "directional": 1})
+        );
+        assert_eq!(header["static"]["emission"], false);
+        assert_eq!(
+            ShprtFile::from_bytes(&bytes, Path::new("x.shprt")).unwrap(),
+            f
+        );
+        // Without the static term the file is version 1, as before.
+        assert!(sample().to_bytes().starts_with(b"{"));
+        let plain: Value = serde_json::from_slice(
+            &sample().to_bytes()[..sample()
+                .to_bytes()
+                .iter()
+                .position(|&b| b == b'\n')
+                .unwrap()],
+        )
+        .unwrap();
+        assert_eq!(plain["format_version"], 1);
+        // A version 3 header without "static", or a version 1 with it, is refused.
+        let text = String::from_utf8_lossy(&bytes[..nl]).into_owned();
+        let err = |h: String| {
+            let mut b = h.into_bytes();
+            b.extend_from_slice(&bytes[nl..]);
+            ShprtFile::from_bytes(&b, Path::new("x.shprt"))
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err(text.replace("\"format_version\":3", "\"format_version\":1"));
+        assert!(e.contains("format_version 1 with \"static\""), "{e}");
+        let e = err(text.replace("\"emission\":false", "\"emission\":7"));
+        assert!(e.contains("\"static\" is not"), "{e}");
+        let e = err(text.replace("\"format_version\":3", "\"format_version\":4"));
+        assert!(e.contains("format_version 4 is not supported"), "{e}");
+        let mut short = bytes.clone();
+        short.truncate(bytes.len() - 4);
+        let e = ShprtFile::from_bytes(&short, Path::new("x.shprt"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("truncated") && e.contains("static radiance"),
+            "{e}"
         );
     }
 

@@ -558,6 +558,7 @@ fn render_mesh_draws_a_gltf_scene_with_its_textures_in_sh_and_prt_modes() {
         mesh_hash: gltf.mesh().content_hash(),
         mesh: "hand-made.glb".into(),
         glossy: None,
+        static_light: None,
     };
     let eye = Vec3::new(0.0, 2.0, 0.0);
     let shot = Shot {

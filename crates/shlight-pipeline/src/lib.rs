@@ -124,14 +124,16 @@ pub use job::project::{
     Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,
     project_files, write_coeff_file,
 };
-pub use job::prt::{PrtBaked, PrtMode, PrtOutput, PrtPlan, PrtRequest, prt};
+pub use job::prt::{PrtBaked, PrtMode, PrtOutput, PrtPlan, PrtRequest, prt, prt_of_scene};
 pub use job::render::{RenderLayout, RenderPlan, RenderRequest, render, render_light};
 pub use job::sample::{
-    SamplePlan, SampleRequest, Shading, relight_volume, sample, transfer_radiance,
-    volume_irradiance, volume_lookup,
+    SamplePlan, SampleRequest, Shading, mesh_points, relight_volume, sample, sample_at,
+    scene_points, transfer_radiance, volume_irradiance, volume_lookup,
 };
 pub use job::synth::{SynthKind, SynthPlan, SynthRequest, synth, synth_map};
-pub use job::volume::{VolumePlan, VolumeRequest, VolumeScene, visibility_size, volume, volume_of};
+pub use job::volume::{
+    VolumePlan, VolumeRequest, VolumeScene, visibility_size, volume, volume_of, volume_of_scene,
+};
 pub use load::{LoadedMap, check_values, layout_for_size, load_map, sanitize_image};
 pub use lobe::render_lobe;
 pub use map_info::MapInfo;

@@ -5,13 +5,17 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use shlight_format::ShprtFile;
-use shlight_mesh::{Mesh, Surfaces};
+use glam::Vec3;
+use shlight_format::{ShprtFile, StaticLight};
+use shlight_mesh::{LightUnits, Mesh, PunctualLight, Surfaces};
+use shlight_rays::Occluder;
 
+use crate::back_sides::BackSides;
 use crate::bake::bake;
 use crate::brdf::Brdf;
 use crate::glossy::{GlossyTransfer, bake_glossy};
 use crate::options::{Albedo, BakeOptions, Mode, Stage};
+use crate::punctual::{light_counts, punctual_irradiance};
 use crate::transfer::Transfer;
 
 /// The albedo of a mesh without vertex colours baked with no albedo given.
@@ -108,6 +112,96 @@ pub fn bake_file(
         mesh.content_hash(),
         &mesh_name(mesh_path),
     );
+    (transfer, file)
+}
+
+/// A glTF scene as the PRT bake reads it: its surfaces flattened
+/// ([`shlight_mesh::Scene::flatten`]), whose mesh is baked, and its
+/// punctual lights with the units their intensities are read in.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneLighting<'a> {
+    /// The scene's surfaces (their mesh is the one baked).
+    pub surfaces: &'a Arc<Surfaces>,
+    /// Its punctual lights, in world space.
+    pub lights: &'a [PunctualLight],
+    /// How their intensities become radiometric units.
+    pub units: LightUnits,
+}
+
+impl SceneLighting<'_> {
+    /// The bake's options for the scene's mesh: the vertices' albedo from
+    /// the materials (`Surfaces::mesh`'s colours, clamped to `0..=1`, as a
+    /// bounce reads a texel's), its surfaces (cut-outs, the albedo of the
+    /// texel a bounce hits), its emission, and the punctual lights' direct
+    /// irradiance at each vertex ([`punctual_irradiance`], shadow rays
+    /// through the cut-outs; none without lights).
+    #[must_use]
+    pub fn options(&self, request: &BakeRequest) -> BakeOptions {
+        let mesh = &self.surfaces.mesh;
+        let albedo = match &mesh.colors {
+            Some(c) => {
+                Albedo::PerVertex(c.iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect())
+            }
+            None => Albedo::Constant(DEFAULT_ALBEDO),
+        };
+        // At every vertex of the two-sided mesh where triangles are
+        // double-sided (their back copies lit from behind), as the bake
+        // gathers over it.
+        let direct_irradiance = (!self.lights.is_empty()).then(|| {
+            let occluder = Occluder::with_cut_outs(mesh, self.surfaces.clone());
+            match BackSides::find(mesh, None, self.surfaces) {
+                Some(sides) => {
+                    let two = sides.two_sided(mesh);
+                    punctual_irradiance(&occluder, &two, self.lights, self.units)
+                }
+                None => punctual_irradiance(&occluder, mesh, self.lights, self.units),
+            }
+        });
+        BakeOptions {
+            lmax: request.lmax,
+            samples: request.samples,
+            mode: request.mode,
+            albedo,
+            seed: request.seed,
+            emission: mesh.emission.clone(),
+            surfaces: Some(self.surfaces.clone()),
+            direct_irradiance,
+        }
+    }
+}
+
+/// [`bake_file`] for a glTF scene ([`SceneLighting::options`]; the request's
+/// albedo is not read: the scene's materials give it): the transfer of the
+/// distant light, three channels, recorded with the albedo `"vertex"`;
+/// and where the scene has light of its own (emission, punctual lights),
+/// each vertex's static exit radiance ([`Transfer::emitted`]) as the
+/// file's [`StaticLight`] (format version 3), so that the vertex leaves
+/// `T . L + S`.
+///
+/// # Panics
+/// As [`bake`].
+#[must_use]
+pub fn bake_scene_file(
+    scene: SceneLighting<'_>,
+    scene_path: &Path,
+    request: &BakeRequest,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> (Transfer, ShprtFile) {
+    let mesh = &scene.surfaces.mesh;
+    let options = scene.options(request);
+    let transfer = bake(mesh, &options, progress);
+    let mut file = transfer.to_shprt(
+        request.mode,
+        request.seed,
+        None,
+        mesh.content_hash(),
+        &mesh_name(scene_path),
+    );
+    file.static_light = transfer.emitted.as_ref().map(|e| StaticLight {
+        radiance: e.iter().map(|v| v.to_array()).collect(),
+        lights: light_counts(scene.lights, scene.units),
+        emission: mesh.emission.is_some(),
+    });
     (transfer, file)
 }
 

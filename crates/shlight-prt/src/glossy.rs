@@ -311,6 +311,7 @@ impl GlossyTransfer {
             albedo,
             mesh_hash: mesh.content_hash(),
             mesh: name.to_string(),
+            static_light: None,
             glossy: Some(GlossyData {
                 brdf: brdf.name(),
                 transport: self.transport.name().to_string(),
@@ -496,6 +497,7 @@ pub fn glossy_shade(
 
 /// A `.shprt` file's exit radiance per vertex under `light` (radiance
 /// coefficients, index `l(l+1)+m`, any lmax): a diffuse file's `T . L`
+/// (plus its static term `S` where it has one, a scene's lights)
 /// (`view` ignored), a glossy file's glossy layer [`glossy_exit_radiance`] seen
 /// from `view` ([`file_shade`] with no diffuse base).
 ///
@@ -523,7 +525,14 @@ pub fn file_shade(
     diffuse: DVec3,
 ) -> Result<Vec<DVec3>, String> {
     let Some(glossy) = &file.glossy else {
-        return Ok(file.view().map_err(|e| e.to_string())?.exit_radiance(light));
+        let mut radiance = file.view().map_err(|e| e.to_string())?.exit_radiance(light);
+        // A scene's static term: `T . L + S`.
+        if let Some(s) = &file.static_light {
+            for (r, s) in radiance.iter_mut().zip(&s.radiance) {
+                *r += Vec3::from_array(*s).as_dvec3();
+            }
+        }
+        return Ok(radiance);
     };
     let Some(view) = view else {
         return Err(

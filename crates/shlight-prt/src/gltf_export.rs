@@ -226,6 +226,7 @@ mod tests {
             mesh_hash: mesh.content_hash(),
             mesh: "torus".into(),
             glossy: None,
+            static_light: None,
         }
     }
 

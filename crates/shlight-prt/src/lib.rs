@@ -29,6 +29,9 @@
 //! - [`bake_file`]: a bake as a front end asks for it ([`BakeRequest`],
 //!   `shlight prt`'s options: the albedo chosen, the bake, its `.shprt`
 //!   file), for the command line and the Python package alike.
+//! - [`bake_scene_file`]: a glTF scene's bake ([`SceneLighting`]: its
+//!   surfaces and punctual lights, [`punctual_irradiance`]), the transfer
+//!   and a static term per vertex in one `.shprt` file.
 //! - [`write_gltf`]: the mesh with `_SH_TRANSFER_k` attributes.
 //! - [`render_preview`]: a CPU z-buffer rasteriser of vertex colours;
 //!   [`vertex_exposure`] the exposure to show them at.
@@ -74,14 +77,15 @@ mod glossy;
 mod gltf_export;
 mod options;
 mod preview;
+mod punctual;
 mod records;
 mod transfer;
 
 pub use back_sides::BackSides;
 pub use bake::{bake, bake_against, bake_with_occluder};
 pub use bake_file::{
-    BakeRequest, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, bake_file, bake_glossy_file,
-    mesh_name,
+    BakeRequest, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, SceneLighting, bake_file,
+    bake_glossy_file, bake_scene_file, mesh_name,
 };
 pub use brdf::{Brdf, BrdfLobe, MAX_PHONG_EXPONENT};
 pub use cpca::{CompressionError, Cpca, compress, compress_file, parse_cpca, reconstruct_data};
@@ -94,5 +98,6 @@ pub use glossy::{
 pub use gltf_export::write_gltf;
 pub use options::{Albedo, BakeOptions, Mode, Stage};
 pub use preview::{render_preview, vertex_exposure};
+pub use punctual::{light_counts, light_reaches, punctual_irradiance};
 pub use records::{Kernels, VertexRecords};
 pub use transfer::{BackTransfer, IncidentTransfer, Transfer};

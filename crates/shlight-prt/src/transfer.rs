@@ -163,6 +163,7 @@ impl Transfer {
             mesh_hash,
             mesh: mesh.to_string(),
             glossy: None,
+            static_light: None,
         }
     }
 

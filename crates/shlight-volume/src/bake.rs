@@ -9,8 +9,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use shlight_core::map::montecarlo::stratified_directions;
 use shlight_core::sh::{ShBasis, sh_count};
-use shlight_format::VolumeLights;
-use shlight_mesh::{LightKind, LightUnits, Mesh, PunctualLight, Subdivision, Surfaces};
+use shlight_mesh::{LightUnits, Mesh, PunctualLight, Subdivision, Surfaces};
 use shlight_prt::{Albedo, BackSides, BakeOptions, Kernels, Mode, VertexRecords};
 use shlight_rays::{Direction, LANES, Occluder, Packet};
 
@@ -514,22 +513,7 @@ fn bake_in_chunks(
         seed: options.seed,
         rays: rays + surface.as_ref().map_or(0, |s| s.rays),
         scene_hash: scene.map_or(0, Mesh::content_hash),
-        lights: light_counts(lights, options.light_units),
-    })
-}
-
-/// What a file records of the bake's punctual lights: their units and
-/// how many of each kind (`None` without lights).
-fn light_counts(lights: &[PunctualLight], units: LightUnits) -> Option<VolumeLights> {
-    if lights.is_empty() {
-        return None;
-    }
-    let count = |f: fn(&LightKind) -> bool| lights.iter().filter(|l| f(&l.kind)).count() as u64;
-    Some(VolumeLights {
-        units: units.name().to_string(),
-        point: count(|k| matches!(k, LightKind::Point)),
-        spot: count(|k| matches!(k, LightKind::Spot { .. })),
-        directional: count(|k| matches!(k, LightKind::Directional)),
+        lights: shlight_prt::light_counts(lights, options.light_units),
     })
 }
 
@@ -720,7 +704,7 @@ impl Surface {
             // double-sided triangle.
             direct_irradiance: (!lights.is_empty()).then(|| {
                 let lit = two.as_ref().unwrap_or(&mesh);
-                punctual::surface_irradiance(&occluder, lit, lights, options.light_units)
+                shlight_prt::punctual_irradiance(&occluder, lit, lights, options.light_units)
             }),
         };
         let (t, offsets) = rayon::join(

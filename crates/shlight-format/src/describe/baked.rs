@@ -115,6 +115,28 @@ pub(super) fn prt_fields(h: &mut Header, header: &Value, name: &str) -> Result<(
     h.field("bounces", text("bounces"));
     h.field("seed", text("seed"));
     h.field("mesh", format!("{} ({})", text("mesh"), text("mesh_hash")));
+    if let Some(s) = header.get("static") {
+        let lights = s.get("lights").filter(|l| !l.is_null()).map(|l| {
+            let count = |k: &str| l.get(k).map(plain).unwrap_or_default();
+            format!(
+                "{} point, {} spot, {} directional lights ({} units)",
+                count("point"),
+                count("spot"),
+                count("directional"),
+                l.get("units").map(plain).unwrap_or_default()
+            )
+        });
+        let emission = (s.get("emission") == Some(&Value::Bool(true)))
+            .then(|| "emissive materials".to_string());
+        let sources: Vec<String> = lights.into_iter().chain(emission).collect();
+        h.field(
+            "static",
+            format!(
+                "exit radiance per vertex added to T . L: {}",
+                sources.join(" and ")
+            ),
+        );
+    }
     Ok(())
 }
 

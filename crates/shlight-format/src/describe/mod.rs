@@ -337,6 +337,7 @@ mod tests {
             mesh_hash: 0xfeed,
             mesh: "m.obj".into(),
             glossy: None,
+            static_light: None,
         };
         let h = header(describe_bytes(&diffuse.to_bytes(), "m.shprt").unwrap());
         assert_eq!(
@@ -356,11 +357,38 @@ mod tests {
         ] {
             assert_eq!(h.get(name), Some(want), "{name}");
         }
+        assert_eq!(h.get("static"), None);
+        let lit = ShprtFile {
+            static_light: Some(crate::StaticLight {
+                radiance: vec![[0.5; 3]; 5],
+                lights: Some(crate::VolumeLights {
+                    units: "blender".into(),
+                    point: 2,
+                    spot: 1,
+                    directional: 0,
+                }),
+                emission: true,
+            }),
+            ..diffuse.clone()
+        };
+        let h = header(describe_bytes(&lit.to_bytes(), "lit.shprt").unwrap());
+        assert_eq!(
+            h.kind,
+            "shlight PRT transfer (.shprt, format_version 3): diffuse"
+        );
+        assert_eq!(
+            h.get("static"),
+            Some(
+                "exit radiance per vertex added to T . L: 2 point, 1 spot, 0 directional \
+                 lights (blender units) and emissive materials"
+            )
+        );
         let glossy = ShprtFile {
             channels: 1,
             transfer: vec![0.5; 5 * 81],
             mode: "glossy".into(),
             albedo: Some([0.5, 0.25, 1.0]),
+            static_light: None,
             glossy: Some(GlossyData {
                 brdf: "ggx:0.25,0.04".into(),
                 transport: "shadowed".into(),

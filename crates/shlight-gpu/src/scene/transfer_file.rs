@@ -140,6 +140,7 @@ mod tests {
             mesh_hash: 0,
             mesh: "quad.glb".into(),
             glossy: None,
+            static_light: None,
         }
     }
 

@@ -2,7 +2,11 @@
 //! vectors (unshadowed, shadowed, interreflected) or glossy transfer
 //! matrices for a BRDF, compressed or not — written as a `.shprt` file or a
 //! glTF with `_SH_TRANSFER_k` attributes, and a preview of the mesh under a
-//! light ([`PrtRequest`] → [`PrtPlan`] → [`prt`]).
+//! light ([`PrtRequest`] → [`PrtPlan`] → [`prt`], or [`prt_of_scene`] for a
+//! glTF scene read already). A glTF file is baked as a scene: its instances
+//! flattened, the albedo of the texel a bounce hits, rays through its
+//! cut-outs, and its punctual lights and emission in a static term per
+//! vertex (docs/shprt.md).
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -13,11 +17,12 @@ use glam::{DVec3, Vec3};
 use shlight_core::sh::ShCoeffs;
 use shlight_format::{CoeffFile, ShprtFile};
 use shlight_io::{ToneMap, WriteOptions, write_image};
-use shlight_mesh::{Mesh, Surfaces};
+use shlight_mesh::{LightUnits, LoadOptions, Mesh, MeshFormat, Scene, Surfaces};
 use shlight_prt::{
-    Albedo, BakeRequest, Brdf, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES, Mode, Stage,
-    bake_file, bake_glossy_file, compress_file, glossy_bytes, glossy_channels, parse_cpca,
-    render_preview, vertex_exposure, write_gltf,
+    Albedo, BakeRequest, Brdf, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES,
+    Mode, SceneLighting, Stage, bake_file, bake_glossy_file, bake_scene_file, compress_file,
+    file_exit_radiance, glossy_bytes, glossy_channels, parse_cpca, render_preview, vertex_exposure,
+    write_gltf,
 };
 
 use crate::hooks::{Hooks, Progress};
@@ -74,7 +79,7 @@ impl std::str::FromStr for PrtMode {
 /// A PRT bake as a front end asks for it, before [`PrtRequest::check`].
 #[derive(Clone, Copy, Debug)]
 pub struct PrtRequest<'a> {
-    /// The mesh: `.obj`, `.ply`, `.off`, `.gltf` or `.glb`.
+    /// The mesh: `.obj`, `.ply`, `.off`, or a glTF scene (`.gltf`, `.glb`).
     pub mesh: &'a Path,
     /// Highest SH degree of the transfer.
     pub lmax: usize,
@@ -88,8 +93,13 @@ pub struct PrtRequest<'a> {
     pub brdf: Option<&'a str>,
     /// Glossy matrices compressed: `cpca:C,K`.
     pub compress: Option<&'a str>,
-    /// Diffuse albedo, linear [default: the mesh's vertex colours, or 0.8].
+    /// Diffuse albedo, linear, for every vertex of a mesh [default: the
+    /// mesh's vertex colours, or 0.8]; refused for a glTF scene, whose
+    /// materials give it.
     pub albedo: Option<[f32; 3]>,
+    /// How a glTF scene's punctual lights' intensities are read [default:
+    /// [`LightUnits::Blender`]]; refused for a mesh, which has no lights.
+    pub light_units: Option<LightUnits>,
     /// Seed of the direction set.
     pub seed: u64,
     /// The file to write: `.shprt`, or a glTF (`.gltf`, `.glb`) with the
@@ -140,6 +150,8 @@ pub struct PrtPlan {
     compress: Option<(usize, usize)>,
     output: Option<(PathBuf, PrtOutput)>,
     preview: Option<PreviewPlan>,
+    /// A glTF scene: its lights' units (`None`: a mesh).
+    scene: Option<LightUnits>,
     spelling: Spelling,
 }
 
@@ -199,6 +211,7 @@ impl PrtRequest<'_> {
             (None, _) => None,
         };
         let preview = self.preview_plan(glossy, spelling)?;
+        let scene = self.scene_plan(spelling)?;
         if self.samples == 0 {
             return fail(format!("{} must be at least 1", spelling.option("samples")));
         }
@@ -232,8 +245,32 @@ impl PrtRequest<'_> {
             compress,
             output,
             preview,
+            scene,
             spelling,
         })
+    }
+
+    /// A glTF file is a scene: no albedo of the request's (its materials
+    /// give it), its lights read in the units given; a mesh takes no light
+    /// units.
+    fn scene_plan(&self, spelling: Spelling) -> Result<Option<LightUnits>> {
+        let scene = MeshFormat::from_path(self.mesh) == Some(MeshFormat::Gltf);
+        if scene && self.albedo.is_some() {
+            return Err(PipelineError::new(format!(
+                "{}: a glTF scene's albedo is its materials' (base colour, vertex colours and \
+                 textures); {} sets one albedo for every vertex of a mesh (.obj, .ply, .off)",
+                self.mesh.display(),
+                spelling.option("albedo")
+            )));
+        }
+        if !scene && self.light_units.is_some() {
+            return Err(PipelineError::new(format!(
+                "{} reads a glTF scene's punctual lights; {} is a mesh, without lights",
+                spelling.option("light_units"),
+                self.mesh.display()
+            )));
+        }
+        Ok(scene.then(|| self.light_units.unwrap_or(LightUnits::Blender)))
     }
 
     /// shlight-prt's [`Mode`]: the transport with its bounces.
@@ -354,9 +391,11 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
                 .map(|f| f.coeffs)
         })
         .transpose()?;
+    if plan.scene.is_some() {
+        let scene = shlight_mesh::load_scene(&plan.mesh, &LoadOptions::default())?;
+        return scene_bake(plan, &scene, light.as_ref(), hooks);
+    }
     let name = plan.mesh.display().to_string();
-    // Every file, glTF included, is baked as a mesh: a glTF scene's
-    // materials (texel albedo, cut-outs) do not reach the PRT bake yet.
     let mesh = shlight_mesh::load(&plan.mesh)?;
     let surfaces: Option<Arc<Surfaces>> = None;
     if mesh.report.degenerate_triangles > 0 {
@@ -398,6 +437,126 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
     }
     if let (Some(preview), Some(light)) = (&plan.preview, &light) {
         write_preview(preview, &mesh, &file, light)?;
+    }
+    Ok(PrtBaked {
+        file,
+        samples: transfer.samples,
+        rays: transfer.rays,
+    })
+}
+
+/// [`prt`] on a glTF scene read (or built) already, for a plan made from
+/// a glTF path (whose name the notes and the file take).
+///
+/// # Errors
+/// A plan made for a mesh; as [`prt`], the reading of the scene aside.
+pub fn prt_of_scene(plan: &PrtPlan, scene: &Scene, hooks: &dyn Hooks) -> Result<PrtBaked> {
+    if plan.scene.is_none() {
+        return Err(PipelineError::new(format!(
+            "{}: a scene is baked from a .gltf or .glb path",
+            plan.mesh.display()
+        )));
+    }
+    let light = plan
+        .preview
+        .as_ref()
+        .map(|p| {
+            CoeffFile::read_radiance(&p.light, "PRT shading", "project the map as radiance")
+                .map(|f| f.coeffs)
+        })
+        .transpose()?;
+    scene_bake(plan, scene, light.as_ref(), hooks)
+}
+
+/// A glTF scene's bake: flattened (primitives without a material taking
+/// [`DEFAULT_ALBEDO`]), its lights noted, glTF output of a static term
+/// refused before the bake, then [`bake_scene_file`] (glossy transfer
+/// through the surfaces, the lights and emission left out with a warning)
+/// and the outputs as [`prt`] writes them.
+fn scene_bake(
+    plan: &PrtPlan,
+    scene: &Scene,
+    light: Option<&ShCoeffs<DVec3>>,
+    hooks: &dyn Hooks,
+) -> Result<PrtBaked> {
+    let name = plan.mesh.display().to_string();
+    let units = plan.scene.unwrap_or(LightUnits::Blender);
+    let surfaces = Arc::new(scene.flatten(Vec3::from_array(DEFAULT_ALBEDO))?);
+    let mesh = &surfaces.mesh;
+    if mesh.report.degenerate_triangles > 0 {
+        hooks.warn(&format!(
+            "{name}: skipped {} degenerate triangles",
+            mesh.report.degenerate_triangles
+        ));
+    }
+    hooks.note(&format!(
+        "{name}: a glTF scene, {} instances of {} primitives, {} materials{}: albedo from its materials{}",
+        scene.instances.len(),
+        scene.primitives.len(),
+        scene.materials.len(),
+        if surfaces.any_cut_out() { " (cut-outs let rays through)" } else { "" },
+        match scene.lights.len() {
+            0 => String::new(),
+            n => format!(
+                "; {n} punctual light{}, intensities {}",
+                if n == 1 { "" } else { "s" },
+                match units {
+                    LightUnits::Blender => "divided by 683 (blender units)",
+                    LightUnits::AsWritten => "as written",
+                }
+            ),
+        }
+    ));
+    let own_light = !scene.lights.is_empty() || mesh.emission.is_some();
+    let progress = |stage: Stage, done: usize, total: usize| {
+        hooks.progress(Progress::Count {
+            stage: &stage_label(stage),
+            done,
+            total,
+        });
+    };
+    if let Some(brdf) = plan.brdf {
+        if own_light {
+            hooks.warn(&format!(
+                "{name}: glossy transfer holds the distant light only: the scene's punctual \
+                 lights and emission are left out (bake diffuse transfer for their static term)"
+            ));
+        }
+        return glossy(plan, (mesh, Some(&surfaces)), brdf, &progress, hooks);
+    }
+    if let (Some((path, PrtOutput::Gltf)), true) = (&plan.output, own_light) {
+        return Err(PipelineError::new(format!(
+            "{}: glTF's transfer attributes cannot carry the static light of {name}'s punctual \
+             lights and emission; write a .shprt file (format version 3 holds it)",
+            path.display()
+        )));
+    }
+    let lighting = SceneLighting {
+        surfaces: &surfaces,
+        lights: &scene.lights,
+        units,
+    };
+    let start = Instant::now();
+    let (transfer, file) = bake_scene_file(lighting, &plan.mesh, &plan.bake, &progress);
+    let seconds = start.elapsed().as_secs_f64();
+    hooks.note(&format!(
+        "{name}: {} vertices, {} triangles, {} transfer{}, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        mesh.vertex_count(),
+        mesh.triangle_count(),
+        plan.bake.mode.name(),
+        if file.static_light.is_some() { " and a static term" } else { "" },
+        plan.bake.lmax,
+        transfer.samples,
+        transfer.rays,
+        transfer.rays as f64 / seconds.max(1e-9) / 1e6,
+    ));
+    match &plan.output {
+        Some((path, PrtOutput::Shprt)) => file.write(path)?,
+        Some((path, PrtOutput::Gltf)) => write_gltf(path, mesh, &file)?,
+        None => {}
+    }
+    if let (Some(preview), Some(light)) = (&plan.preview, light) {
+        write_preview(preview, mesh, &file, light)?;
     }
     Ok(PrtBaked {
         file,
@@ -495,7 +654,8 @@ fn glossy(
     })
 }
 
-/// Shades every vertex (`T . L`, shlight-baked's `TransferView`) and
+/// Shades every vertex (`T . L`, shlight-baked's `TransferView`, plus a
+/// scene's static term: shlight-prt's `file_exit_radiance`) and
 /// rasterises the mesh into the preview's picture, ACES tone mapped.
 fn write_preview(
     preview: &PreviewPlan,
@@ -503,11 +663,9 @@ fn write_preview(
     file: &ShprtFile,
     light: &ShCoeffs<DVec3>,
 ) -> Result<()> {
-    let view = file
-        .view()
-        .map_err(|e| PipelineError::new(format!("{}: {e}", preview.path.display())))?;
-    let radiance: Vec<Vec3> = view
-        .exit_radiance(light.as_slice())
+    // `T . L`, plus a scene's static term.
+    let radiance: Vec<Vec3> = file_exit_radiance(file, light.as_slice(), None)
+        .map_err(|e| PipelineError::new(format!("{}: {e}", preview.path.display())))?
         .iter()
         .map(|c| c.as_vec3())
         .collect();
@@ -542,6 +700,7 @@ mod tests {
             brdf: None,
             compress: None,
             albedo: None,
+            light_units: None,
             seed: 0,
             output: Some(Path::new("bunny.shprt")),
             light: None,
@@ -553,6 +712,157 @@ mod tests {
 
     fn message(r: &PrtRequest<'_>, spelling: Spelling) -> String {
         r.check(spelling).unwrap_err().message().to_string()
+    }
+
+    #[test]
+    fn a_scene_takes_no_albedo_and_a_mesh_no_light_units() {
+        let coloured = PrtRequest {
+            mesh: Path::new("room.glb"),
+            albedo: Some([0.5; 3]),
+            ..request()
+        };
+        assert_eq!(
+            message(&coloured, Spelling::CommandLine),
+            "room.glb: a glTF scene's albedo is its materials' (base colour, vertex colours and \
+             textures); --albedo sets one albedo for every vertex of a mesh (.obj, .ply, .off)"
+        );
+        let lit = PrtRequest {
+            light_units: Some(LightUnits::AsWritten),
+            ..request()
+        };
+        assert_eq!(
+            message(&lit, Spelling::Python),
+            "light_units reads a glTF scene's punctual lights; bunny.obj is a mesh, without lights"
+        );
+        let plan = PrtRequest {
+            mesh: Path::new("room.gltf"),
+            ..request()
+        }
+        .check(Spelling::Python)
+        .unwrap();
+        assert_eq!(plan.scene, Some(LightUnits::Blender));
+        assert_eq!(request().check(Spelling::Python).unwrap().scene, None);
+    }
+
+    /// A hand-built glTF scene: a 4 m floor (y = 0, 8 x 8 cells) of albedo
+    /// (0.2, 0.4, 0.6), a second 4 m sheet over it at y = 0.5 (`blocker`:
+    /// its material), and a white point light of 683 x 10 cd at (0, 1, 0),
+    /// 10 W/sr in Blender's units.
+    fn floor_scene(blocker: shlight_mesh::Material) -> Scene {
+        use shlight_mesh::{Instance, LightKind, Material, Primitive, PunctualLight, generate};
+        let primitive = |mesh: Mesh, material| Primitive {
+            mesh,
+            uvs: Vec::new(),
+            color_alpha: None,
+            material: Some(material),
+            label: format!("primitive {material}"),
+        };
+        let mut sheet = generate::plane(4.0, 1);
+        sheet.positions.iter_mut().for_each(|p| p.y = 0.5);
+        Scene {
+            source: "floor.glb".into(),
+            primitives: vec![primitive(generate::plane(4.0, 8), 0), primitive(sheet, 1)],
+            instances: (0..2)
+                .map(|primitive| Instance {
+                    primitive,
+                    transform: glam::Mat4::IDENTITY,
+                })
+                .collect(),
+            materials: vec![
+                Material {
+                    base_color: glam::Vec4::new(0.2, 0.4, 0.6, 1.0),
+                    ..Material::default()
+                },
+                blocker,
+            ],
+            lights: vec![PunctualLight {
+                name: Some("Lamp".into()),
+                kind: LightKind::Point,
+                color: Vec3::ONE,
+                intensity: 6830.0,
+                range: None,
+                position: Vec3::new(0.0, 1.0, 0.0),
+                direction: Vec3::NEG_Z,
+            }],
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn a_scene_bakes_its_lights_through_its_cut_outs_into_a_static_term() {
+        use crate::hooks::Collected;
+        use shlight_core::sh::closed_form;
+        use shlight_mesh::{AlphaMode, Material};
+        let dir = std::env::temp_dir().join(format!("shlight-prt-scene-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("floor.shprt");
+        let plan = PrtRequest {
+            mesh: Path::new("floor.glb"),
+            lmax: 2,
+            samples: 256,
+            output: Some(&out),
+            ..request()
+        }
+        .check(Spelling::Python)
+        .unwrap();
+        // The sheet cut out everywhere (alpha 0 under a mask): the light and
+        // the sky reach the floor through it.
+        let cut = Material {
+            base_color: glam::Vec4::new(1.0, 1.0, 1.0, 0.0),
+            alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
+            ..Material::default()
+        };
+        let hooks = Collected::new();
+        let baked = prt_of_scene(&plan, &floor_scene(cut), &hooks).unwrap();
+        assert!(
+            hooks.notes().iter().any(|n| n.contains("1 punctual lights")
+                && n.contains("cut-outs let rays through")),
+            "{:?}",
+            hooks.notes()
+        );
+        let file = ShprtFile::read(&out).unwrap();
+        assert_eq!(file, baked.file);
+        assert_eq!((file.channels, file.albedo), (3, None));
+        let lit = file.static_light.as_ref().expect("a static term");
+        assert_eq!(
+            (lit.lights.as_ref().unwrap().units.as_str(), lit.emission),
+            ("blender", false)
+        );
+        let bytes = std::fs::read(&out).unwrap();
+        let nl = bytes.iter().position(|&b| b == b'\n').unwrap();
+        let header: serde_json::Value = serde_json::from_slice(&bytes[..nl]).unwrap();
+        assert_eq!(header["format_version"], 3);
+        // Each floor vertex (the first 81) leaves rho / pi E, E = I h / d^3;
+        // under constant radiance 1 it leaves rho more (every ray escapes).
+        let rho = DVec3::new(0.2, 0.4, 0.6);
+        let white = closed_form::constant(2, DVec3::ONE);
+        let lit_up = file_exit_radiance(&file, white.as_slice(), None).unwrap();
+        let floor = generate_floor();
+        for (v, p) in floor.positions.iter().enumerate() {
+            let d = f64::from(p.distance(Vec3::new(0.0, 1.0, 0.0)));
+            let want = rho / std::f64::consts::PI * 10.0 / (d * d * d);
+            let got = Vec3::from_array(lit.radiance[v]).as_dvec3();
+            assert!(
+                (got - want).abs().max_element() <= 1e-5 * want.max_element(),
+                "{p}: {got} vs {want}"
+            );
+            let total = lit_up[v] - got;
+            assert!((total - rho).abs().max_element() <= 1e-5, "{p}: {total}");
+        }
+        // The sheet opaque: no light reaches the floor.
+        std::fs::remove_file(&out).unwrap();
+        let dark = prt_of_scene(&plan, &floor_scene(Material::default()), &hooks).unwrap();
+        let dark = dark.file.static_light.unwrap();
+        assert!(
+            dark.radiance[..floor.vertex_count()]
+                .iter()
+                .all(|r| *r == [0.0; 3])
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    fn generate_floor() -> Mesh {
+        shlight_mesh::generate::plane(4.0, 8)
     }
 
     #[test]

@@ -11,6 +11,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use shlight_core::sh::{Frame, ShCoeffs};
 use shlight_format::{SamplePoints, SampledValues, ShprtFile, ShvolFile};
+use shlight_mesh::{LoadOptions, MeshFormat, Scene};
 use shlight_prt::{Observer, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, relight_file};
 
@@ -27,7 +28,9 @@ pub struct SampleRequest<'a> {
     pub file: &'a Path,
     /// Where the answer goes: JSON, or CSV rows `r,g,b` (`.csv`).
     pub output: &'a Path,
-    /// Where to sample a volume (JSON or CSV points and normals).
+    /// Where to sample a volume: JSON or CSV points and normals, or a mesh
+    /// or glTF scene file, whose every vertex is sampled facing its normal
+    /// ([`mesh_points`]).
     pub points: Option<&'a Path>,
     /// A light to relight a relightable volume under first.
     pub env: Option<&'a Path>,
@@ -200,12 +203,34 @@ impl SampleRequest<'_> {
 /// A file that cannot be read; the checks of [`volume_irradiance`] and
 /// [`transfer_radiance`]; the output cannot be written.
 pub fn sample(plan: &SamplePlan, hooks: &dyn Hooks) -> Result<SampledValues> {
+    sample_with(plan, None, hooks)
+}
+
+/// [`sample`] of a volume at points read already (a glTF scene's
+/// vertices, [`scene_points`]), in place of the plan's points file, whose
+/// path names them in the answer; a `.shprt` plan as [`sample`].
+///
+/// # Errors
+/// As [`sample`].
+pub fn sample_at(
+    plan: &SamplePlan,
+    points: &SamplePoints,
+    hooks: &dyn Hooks,
+) -> Result<SampledValues> {
+    sample_with(plan, Some(points), hooks)
+}
+
+fn sample_with(
+    plan: &SamplePlan,
+    given: Option<&SamplePoints>,
+    hooks: &dyn Hooks,
+) -> Result<SampledValues> {
     let values = match &plan.kind {
         Kind::Volume {
             points,
             env,
             lookup,
-        } => sample_volume(plan, points, env.as_deref(), *lookup, hooks)?,
+        } => sample_volume(plan, (points, given), env.as_deref(), *lookup, hooks)?,
         Kind::Transfer { light, shading } => sample_transfer(plan, light, shading, hooks)?,
     };
     values.write(&plan.output)?;
@@ -214,7 +239,7 @@ pub fn sample(plan: &SamplePlan, hooks: &dyn Hooks) -> Result<SampledValues> {
 
 fn sample_volume(
     plan: &SamplePlan,
-    points_path: &Path,
+    (points_path, given): (&Path, Option<&SamplePoints>),
     env: Option<&Path>,
     lookup: Lookup,
     hooks: &dyn Hooks,
@@ -223,7 +248,12 @@ fn sample_volume(
     let mut file = ShvolFile::read(&plan.file)?;
     // The lookup and lmax are checked before the points and light are read.
     let settled = volume_lookup(&file, Some(&name), lookup, plan.lmax, plan.spelling)?;
-    let points = SamplePoints::read(points_path)?;
+    let (points, at) = match (given, MeshFormat::from_path(points_path)) {
+        (Some(p), Some(_)) => (p.clone(), "vertices"),
+        (Some(p), None) => (p.clone(), "points"),
+        (None, Some(_)) => (mesh_points(points_path)?, "vertices"),
+        (None, None) => (SamplePoints::read(points_path)?, "points"),
+    };
     if let Some(env) = env {
         let light = light_of(env, plan.frame, shlight_baked::MAX_LMAX, hooks)?;
         relight_volume(&mut file, Some(&name), &light, plan.spelling)?;
@@ -236,6 +266,7 @@ fn sample_volume(
         about: json!({
             "file": name,
             "points": points_path.display().to_string(),
+            "at": at,
             "lookup": lookup.effective(&file.view()).name(),
             "visibility": file.visibility.is_some(),
             "relocated": file.relocated().len(),
@@ -296,6 +327,40 @@ fn sample_transfer(
             },
         }),
     })
+}
+
+/// The points a volume is sampled at from a mesh or scene file: every
+/// vertex, facing its normal, in the vertex order of a `.shprt` file baked
+/// from it (docs/shprt.md). A glTF file is read as a scene and flattened
+/// ([`scene_points`]); `.obj`, `.ply` and `.off` as a mesh.
+///
+/// # Errors
+/// A file the loader refuses.
+pub fn mesh_points(path: &Path) -> Result<SamplePoints> {
+    if MeshFormat::from_path(path) == Some(MeshFormat::Gltf) {
+        let scene = shlight_mesh::load_scene(path, &LoadOptions::default())?;
+        return scene_points(&scene);
+    }
+    let mesh = shlight_mesh::load(path)?;
+    vertex_points(&mesh, &path.display().to_string())
+}
+
+/// Every vertex of a glTF scene flattened into world space
+/// ([`Scene::flatten`]: each instance's vertices by its transform, normals
+/// by its inverse transpose), facing its normal.
+///
+/// # Errors
+/// A transform or mesh the flattening refuses.
+pub fn scene_points(scene: &Scene) -> Result<SamplePoints> {
+    let surfaces = scene.flatten(glam::Vec3::ONE)?;
+    vertex_points(&surfaces.mesh, &scene.source.display().to_string())
+}
+
+/// A mesh's vertices and normals as sample points, named `name`.
+fn vertex_points(mesh: &shlight_mesh::Mesh, name: &str) -> Result<SamplePoints> {
+    let points = mesh.positions.iter().map(|p| p.to_array()).collect();
+    let normals = mesh.normals.iter().map(|n| n.to_array()).collect();
+    Ok(SamplePoints::new(points, normals, name)?)
 }
 
 /// The radiance coefficients of the light at `path` (a map projected, or a

@@ -204,6 +204,17 @@ pub fn volume_of(plan: &VolumePlan, scene: &VolumeScene, hooks: &dyn Hooks) -> R
     bake_and_write(plan, &radiance, scene, hooks)
 }
 
+/// [`volume_of`] through a glTF scene loaded already
+/// ([`VolumeScene::from_scene`], primitives without a material taking the
+/// plan's albedo), as [`volume`] bakes a glTF path.
+///
+/// # Errors
+/// As [`volume_of`]; a transform or mesh the flattening refuses.
+pub fn volume_of_scene(plan: &VolumePlan, scene: &Scene, hooks: &dyn Hooks) -> Result<BakedFile> {
+    let lit = VolumeScene::from_scene(scene, plan.bake.options.albedo)?;
+    volume_of(plan, &lit, hooks)
+}
+
 /// The plan's light as radiance coefficients in the bake's frame, its
 /// warnings told.
 fn environment(plan: &VolumePlan, hooks: &dyn Hooks) -> Result<ShCoeffs<DVec3>> {
@@ -287,8 +298,9 @@ fn lights_note(lights: &[PunctualLight], plan: &VolumePlan) -> Option<String> {
     let count = |f: fn(&LightKind) -> bool| lights.iter().filter(|l| f(&l.kind)).count();
     let units = plan.bake.options.light_units;
     Some(format!(
-        "{} punctual lights ({} point, {} spot, {} directional), intensities {}",
+        "{} punctual light{} ({} point, {} spot, {} directional), intensities {}",
         lights.len(),
+        if lights.len() == 1 { "" } else { "s" },
         count(|k| matches!(k, LightKind::Point)),
         count(|k| matches!(k, LightKind::Spot { .. })),
         count(|k| matches!(k, LightKind::Directional)),
