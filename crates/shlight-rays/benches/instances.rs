@@ -120,9 +120,8 @@ fn print_memory(s: &Setup) {
     let flat = Occluder::new(&s.flat).heap_bytes();
     let two_level = InstancedOccluder::new(&s.scene).unwrap().heap_bytes();
     let (tlas, blas, _) = obvhs_two_level(s);
-    let cwbvh = |b: &CwBvh| {
-        b.nodes.len() * size_of_val(&b.nodes[0]) + b.primitive_indices.len() * 4
-    };
+    let cwbvh =
+        |b: &CwBvh| b.nodes.len() * size_of_val(&b.nodes[0]) + b.primitive_indices.len() * 4;
     let obvhs_flat = build_cwbvh_from_tris(
         &obvhs_tris(&s.flat),
         BvhBuildParams::medium_build(),
