@@ -76,10 +76,10 @@
 //! decides it. Packets are traced lane by lane through the two levels (a
 //! packet's rays stay parallel in an instance's space, but no packet path
 //! takes them there yet). On probe rays through 100 instances of a
-//! 10,000-triangle mesh the two levels cast 1.5x to 1.7x the flat
-//! hierarchy's single rays per second, in 0.3% of its memory, and come
-//! within 6% to 15% of obvhs's CWBVH8 in two levels (docs/benchmarks.md,
-//! "Instanced scenes").
+//! 10,000-triangle mesh the two levels cast 1.5x to 1.8x the flat
+//! hierarchy's single rays per second, in 0.3% of its memory, on a par
+//! with obvhs's CWBVH8 in two levels (within the run-to-run spread;
+//! docs/benchmarks.md, "Instanced scenes").
 //!
 //! ```
 //! use glam::Vec3;
