@@ -19,10 +19,13 @@
 //! A glTF file is also read as a [`Scene`] ([`load_scene`]): unique [`Primitive`]s placed
 //! by [`Instance`]s, [`Material`]s with [`Texture`]s, and
 //! [`PunctualLight`]s; [`Scene::flatten`] gives the world-space mesh with
-//! each triangle's material ([`Surfaces`]).
+//! each triangle's material ([`Surfaces`]), and [`Scene::flat_layout`]
+//! where each instance's triangles land in it without building it
+//! ([`FlatLayout`]: for ray casting over the unique primitives).
 
 pub mod cornell_box;
 mod error;
+mod flat_layout;
 pub mod generate;
 mod load;
 mod load_options;
@@ -34,6 +37,7 @@ mod subdivide;
 mod texture;
 
 pub use error::MeshError;
+pub use flat_layout::FlatLayout;
 pub use load::{
     MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_scene, load_scene_bytes,
     load_with, parse_mtl_bytes,

@@ -127,9 +127,7 @@ impl Mesh {
         let mut kept = Vec::with_capacity(triangles.len());
         let mut kept_index = Vec::with_capacity(triangles.len());
         for (t, tri) in triangles.into_iter().enumerate() {
-            let [a, b, c] = tri.map(|i| positions[i as usize]);
-            let area2 = (b - a).cross(c - a).length();
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || area2 <= 1e-12 * diag2 {
+            if is_degenerate(tri, &positions, diag2) {
                 report.degenerate_triangles += 1;
             } else {
                 kept.push(tri);
@@ -290,7 +288,16 @@ impl Fnv1a {
     }
 }
 
-fn bounds(positions: &[Vec3]) -> (Vec3, Vec3) {
+/// Whether [`Mesh::new`] drops triangle `tri` of `positions` as
+/// degenerate: two corners the same vertex, or twice its area at most
+/// `1e-12` of `diag2`, the squared diagonal of the mesh's bounding box.
+pub(crate) fn is_degenerate(tri: [u32; 3], positions: &[Vec3], diag2: f32) -> bool {
+    let [a, b, c] = tri.map(|i| positions[i as usize]);
+    let area2 = (b - a).cross(c - a).length();
+    tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || area2 <= 1e-12 * diag2
+}
+
+pub(crate) fn bounds(positions: &[Vec3]) -> (Vec3, Vec3) {
     positions.iter().fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(lo, hi), &p| (lo.min(p), hi.max(p)),

@@ -157,6 +157,25 @@ impl Surfaces {
 pub const MAX_UV_SETS: usize = 4;
 
 impl Scene {
+    /// `instance`'s linear part and its determinant.
+    ///
+    /// # Errors
+    /// A non-finite or singular transform, naming the primitive.
+    pub(crate) fn check_transform(&self, instance: &Instance) -> Result<(Mat3, f32), MeshError> {
+        let linear = Mat3::from_mat4(instance.transform);
+        let det = linear.determinant();
+        if !instance.transform.is_finite() || det == 0.0 || !det.is_finite() {
+            return Err(MeshError::Invalid {
+                path: self.source.clone(),
+                message: format!(
+                    "{} is placed by a non-finite or singular transform",
+                    self.primitives[instance.primitive].label
+                ),
+            });
+        }
+        Ok((linear, det))
+    }
+
     /// Every instance's triangles in world space: positions by the
     /// transform, normals by its inverse transpose, the winding reversed
     /// under a mirroring transform. Primitives without a material take
@@ -188,14 +207,7 @@ impl Scene {
         let (mut triangles, mut triangle_material) = (Vec::new(), Vec::new());
         for instance in &self.instances {
             let p = &self.primitives[instance.primitive];
-            let linear = Mat3::from_mat4(instance.transform);
-            let det = linear.determinant();
-            if !instance.transform.is_finite() || det == 0.0 || !det.is_finite() {
-                return Err(invalid(format!(
-                    "{} is placed by a non-finite or singular transform",
-                    p.label
-                )));
-            }
+            let (linear, det) = self.check_transform(instance)?;
             let normal_matrix = linear.inverse().transpose();
             let base = positions.len() as u32;
             let m = &p.mesh;

@@ -102,6 +102,21 @@ impl Ray {
         }
     }
 
+    /// The origin.
+    pub(crate) fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// The direction, as given.
+    pub(crate) fn dir(&self) -> Vec3 {
+        self.dir
+    }
+
+    /// The far limit.
+    pub(crate) fn t_max(&self) -> f32 {
+        self.t_max
+    }
+
     /// Entry distance into the box, or `None` when missed within `(0, t_max)`.
     #[inline(always)]
     fn hits_box(&self, node: &Node, t_max: f32) -> Option<f32> {
@@ -216,6 +231,8 @@ pub(crate) struct Bvh {
 }
 
 struct Builder<'a> {
+    max_leaf: usize,
+    node_cost: f32,
     bounds: Vec<(Vec3, Vec3)>,
     centroids: Vec<Vec3>,
     order: &'a mut [u32],
@@ -237,22 +254,7 @@ impl Bvh {
             .iter()
             .fold(0.0f32, |m, p| m.max(p.abs().max_element()));
         let bounds: Vec<(Vec3, Vec3)> = corners.iter().map(|c| padded_box(c, scale)).collect();
-        let centroids = bounds.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
-        let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
-        let mut builder = Builder {
-            bounds,
-            centroids,
-            order: &mut order,
-            nodes: Vec::with_capacity(2 * triangles.len().div_ceil(MAX_LEAF).max(1)),
-        };
-        builder.nodes.push(Node {
-            min: Vec3::ZERO,
-            first: 0,
-            max: Vec3::ZERO,
-            kind: 0,
-        });
-        builder.build(0, 0, triangles.len(), 0);
-        let nodes = builder.nodes;
+        let (nodes, order) = build_nodes(bounds, MAX_LEAF, NODE_COST);
         Self {
             nodes,
             triangles: order.iter().map(|&i| corners[i as usize]).collect(),
@@ -307,7 +309,7 @@ impl Bvh {
     /// The nearest hit of `ray` that `accept(k, weights)` takes (`k` the
     /// triangle in leaf order); the others are passed over.
     #[inline(always)]
-    fn closest_accepting(
+    pub(crate) fn closest_accepting(
         &self,
         ray: &Ray,
         accept: impl Fn(usize, [f32; 3]) -> bool,
@@ -339,7 +341,11 @@ impl Bvh {
     /// Whether a hit of `ray` that `accept` takes exists (as in
     /// [`closest_accepting`](Self::closest_accepting)).
     #[inline(always)]
-    fn occluded_accepting(&self, ray: &Ray, accept: impl Fn(usize, [f32; 3]) -> bool) -> bool {
+    pub(crate) fn occluded_accepting(
+        &self,
+        ray: &Ray,
+        accept: impl Fn(usize, [f32; 3]) -> bool,
+    ) -> bool {
         let mut t_max = ray.t_max;
         let mut hit = false;
         self.traverse(
@@ -357,62 +363,122 @@ impl Bvh {
         hit
     }
 
-    /// Visits the leaves `ray` may reach, nearer child first; `leaf` gets the
-    /// current far limit (which it may shrink), the first triangle and the
-    /// count, and returns `true` to stop.
+    /// Visits the leaves `ray` may reach ([`traverse`]).
     #[inline(always)]
     fn traverse(
         &self,
         ray: &Ray,
-        mut leaf: impl FnMut(&mut f32, usize, usize) -> bool,
+        leaf: impl FnMut(&mut f32, usize, usize) -> bool,
         t_max: &mut f32,
     ) {
-        let root = &self.nodes[0];
-        if ray.hits_box(root, *t_max).is_none() {
-            return;
-        }
-        let mut stack = [0u32; STACK];
-        let mut top = 0;
-        let mut node = root;
-        loop {
-            if node.kind < INNER {
-                if leaf(t_max, node.first as usize, node.kind as usize) {
-                    return;
-                }
-            } else {
-                let (l, r) = (
-                    &self.nodes[node.first as usize],
-                    &self.nodes[node.first as usize + 1],
-                );
-                match (ray.hits_box(l, *t_max), ray.hits_box(r, *t_max)) {
-                    (Some(a), Some(b)) => {
-                        let (near, far) = if a <= b {
-                            (node.first, node.first + 1)
-                        } else {
-                            (node.first + 1, node.first)
-                        };
-                        stack[top] = far;
-                        top += 1;
-                        node = &self.nodes[near as usize];
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = r;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            if top == 0 {
+        traverse(&self.nodes, ray, leaf, t_max);
+    }
+
+    /// The root's box (the triangles' padded boxes together).
+    pub(crate) fn bounds(&self) -> (Vec3, Vec3) {
+        (self.nodes[0].min, self.nodes[0].max)
+    }
+
+    /// Bytes held on the heap.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.nodes.capacity() * size_of::<Node>()
+            + self.triangles.capacity() * size_of::<[Vec3; 3]>()
+            + self.corners.capacity() * size_of::<[u32; 3]>()
+            + self.ids.capacity() * size_of::<u32>()
+    }
+
+    /// Leaves out the triangles' vertex indices, which only the packet
+    /// traversal and the ray origins read.
+    pub(crate) fn without_corners(mut self) -> Self {
+        self.corners = Vec::new();
+        self.max_corner = None;
+        self
+    }
+}
+
+/// The nodes of a hierarchy over items whose boxes are `bounds`, built as
+/// the crate's triangle hierarchy is (binned SAH, a node visit costing
+/// `node_cost` items, leaves of at most `max_leaf` items where the
+/// heuristic allows), and the items in leaf order: a leaf's `first..first +
+/// kind` index that order.
+pub(crate) fn build_nodes(
+    bounds: Vec<(Vec3, Vec3)>,
+    max_leaf: usize,
+    node_cost: f32,
+) -> (Vec<Node>, Vec<u32>) {
+    let n = bounds.len();
+    let centroids = bounds.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    let mut builder = Builder {
+        max_leaf,
+        node_cost,
+        bounds,
+        centroids,
+        order: &mut order,
+        nodes: Vec::with_capacity(2 * n.div_ceil(max_leaf).max(1)),
+    };
+    builder.nodes.push(Node {
+        min: Vec3::ZERO,
+        first: 0,
+        max: Vec3::ZERO,
+        kind: 0,
+    });
+    builder.build(0, 0, n, 0);
+    (builder.nodes, order)
+}
+
+/// Visits the leaves of `nodes` that `ray` may reach, nearer child first;
+/// `leaf` gets the current far limit (which it may shrink), the first item
+/// and the count, and returns `true` to stop.
+#[inline(always)]
+pub(crate) fn traverse(
+    nodes: &[Node],
+    ray: &Ray,
+    mut leaf: impl FnMut(&mut f32, usize, usize) -> bool,
+    t_max: &mut f32,
+) {
+    let root = &nodes[0];
+    if ray.hits_box(root, *t_max).is_none() {
+        return;
+    }
+    let mut stack = [0u32; STACK];
+    let mut top = 0;
+    let mut node = root;
+    loop {
+        if node.kind < INNER {
+            if leaf(t_max, node.first as usize, node.kind as usize) {
                 return;
             }
-            top -= 1;
-            node = &self.nodes[stack[top] as usize];
+        } else {
+            let (l, r) = (&nodes[node.first as usize], &nodes[node.first as usize + 1]);
+            match (ray.hits_box(l, *t_max), ray.hits_box(r, *t_max)) {
+                (Some(a), Some(b)) => {
+                    let (near, far) = if a <= b {
+                        (node.first, node.first + 1)
+                    } else {
+                        (node.first + 1, node.first)
+                    };
+                    stack[top] = far;
+                    top += 1;
+                    node = &nodes[near as usize];
+                    continue;
+                }
+                (Some(_), None) => {
+                    node = l;
+                    continue;
+                }
+                (None, Some(_)) => {
+                    node = r;
+                    continue;
+                }
+                (None, None) => {}
+            }
         }
+        if top == 0 {
+            return;
+        }
+        top -= 1;
+        node = &nodes[stack[top] as usize];
     }
 }
 
@@ -422,7 +488,11 @@ impl Bvh {
 /// box touches, also when the triangle test works in a rotated frame
 /// ([`crate::packet`]).
 fn padded_box([a, b, c]: &[Vec3; 3], scale: f32) -> (Vec3, Vec3) {
-    let (lo, hi) = (a.min(*b).min(*c), a.max(*b).max(*c));
+    padded((a.min(*b).min(*c), a.max(*b).max(*c)), scale)
+}
+
+/// The box `(lo, hi)` grown by [`BOX_PADDING`] of `scale`.
+pub(crate) fn padded((lo, hi): (Vec3, Vec3), scale: f32) -> (Vec3, Vec3) {
     let pad = Vec3::splat(scale * BOX_PADDING + f32::MIN_POSITIVE);
     (lo - pad, hi + pad)
 }
@@ -457,7 +527,7 @@ impl Builder<'_> {
         if extent[axis] <= 0.0 {
             // Every centroid in one point: no split can separate them.
             self.nodes[index] = leaf;
-            if n > MAX_LEAF {
+            if n > self.max_leaf {
                 self.split_at(index, start, end, start + n / 2, lo, hi, axis, depth);
             }
             return;
@@ -516,10 +586,10 @@ impl Builder<'_> {
         let scale = BINS as f32 / extent[axis];
         let bin_of = |c: Vec3| (((c[axis] - clo[axis]) * scale) as usize).min(BINS - 1);
         let parent_area = area((lo, hi));
-        let split_cost = NODE_COST + best_cost / parent_area.max(f32::MIN_POSITIVE);
-        if n <= MAX_LEAF && split_cost >= n as f32 || best_cost == f32::INFINITY {
+        let split_cost = self.node_cost + best_cost / parent_area.max(f32::MIN_POSITIVE);
+        if n <= self.max_leaf && split_cost >= n as f32 || best_cost == f32::INFINITY {
             self.nodes[index] = leaf;
-            if n > MAX_LEAF {
+            if n > self.max_leaf {
                 self.split_at(index, start, end, start + n / 2, lo, hi, axis, depth);
             }
             return;

@@ -131,6 +131,11 @@ impl CutOutTable {
         any.then_some(Self { flagged, source })
     }
 
+    /// Bytes held on the heap (the flags; the source is shared).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.flagged.capacity() * 8
+    }
+
     /// Whether leaf-order triangle `k` cuts out.
     #[inline(always)]
     pub(crate) fn flagged(&self, k: usize) -> bool {

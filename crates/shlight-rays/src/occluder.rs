@@ -82,6 +82,19 @@ impl Occluder {
         self.cut.is_some()
     }
 
+    /// Bytes the occluder holds on the heap: the hierarchy (its nodes,
+    /// its triangles' corners and indices, the packet layouts), the
+    /// vertices, the face normals and the cut-out flags. The acceleration
+    /// structure's memory, as docs/benchmarks.md compares it with an
+    /// [`InstancedOccluder`](crate::InstancedOccluder)'s.
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.bvh.heap_bytes()
+            + self.positions.capacity() * size_of::<Vec3>()
+            + self.faces.capacity() * size_of::<Vec3>()
+            + self.cut.as_ref().map_or(0, CutOutTable::heap_bytes)
+    }
+
     /// Whether anything blocks `ray` (the first hit found ends the search).
     #[must_use]
     pub fn occluded(&self, ray: &Ray) -> bool {

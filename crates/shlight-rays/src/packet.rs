@@ -138,6 +138,23 @@ impl Packet {
     }
 }
 
+impl Packet {
+    /// Each ray of the packet: its lane and origin.
+    pub(crate) fn rays(&self) -> impl Iterator<Item = (usize, Vec3)> + '_ {
+        lanes(self.live).map(|k| (k, self.origins[k]))
+    }
+}
+
+impl PacketHits {
+    /// No lane hit.
+    pub(crate) const NONE: Self = Self {
+        mask: 0,
+        t: [f32::INFINITY; LANES],
+        triangle: [0; LANES],
+        barycentrics: [[0.0; 3]; LANES],
+    };
+}
+
 /// The nearest hits of a packet's rays.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PacketHits {
@@ -222,6 +239,17 @@ impl PacketBvh {
     #[must_use]
     pub fn bvh(&self) -> &Bvh {
         &self.bvh
+    }
+
+    /// Bytes held on the heap: the hierarchy and its octant layouts.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.bvh.heap_bytes()
+            + self.octants.capacity() * size_of::<Vec<Node2>>()
+            + self
+                .octants
+                .iter()
+                .map(|o| o.capacity() * size_of::<Node2>())
+                .sum::<usize>()
     }
 
     /// Appends the node for inner binary node `n` and its subtree, for
@@ -354,12 +382,7 @@ impl PacketBvh {
         packet: &Packet,
         cut: Option<&CutOutTable>,
     ) -> PacketHits {
-        let mut out = PacketHits {
-            mask: 0,
-            t: [f32::INFINITY; LANES],
-            triangle: [0; LANES],
-            barycentrics: [[0.0; 3]; LANES],
-        };
+        let mut out = PacketHits::NONE;
         for k in lanes(packet.live) {
             let ray = Ray::new(packet.origins[k], dir.dir, f32::INFINITY);
             if let Some(h) = self.bvh.closest_hit_through(&ray, cut) {
