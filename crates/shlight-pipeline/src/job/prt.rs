@@ -815,7 +815,7 @@ mod tests {
         let hooks = Collected::new();
         let baked = prt_of_scene(&plan, &floor_scene(cut), &hooks).unwrap();
         assert!(
-            hooks.notes().iter().any(|n| n.contains("1 punctual lights")
+            hooks.notes().iter().any(|n| n.contains("1 punctual light,")
                 && n.contains("cut-outs let rays through")),
             "{:?}",
             hooks.notes()

@@ -453,7 +453,7 @@ mod tests {
         let baked = volume_of(&plan, &lit, &hooks).unwrap();
         assert!(
             hooks.notes().iter().any(|n| n
-                == "floor.glb: 1 punctual lights (1 point, 0 spot, 0 directional), intensities divided by 683 (blender units)"),
+                == "floor.glb: 1 punctual light (1 point, 0 spot, 0 directional), intensities divided by 683 (blender units)"),
             "{:?}",
             hooks.notes()
         );
