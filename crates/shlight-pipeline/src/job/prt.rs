@@ -383,14 +383,7 @@ fn stage_label(stage: Stage) -> Cow<'static, str> {
 /// matrices beyond [`MAX_GLOSSY_BYTES`] or a compression with more basis
 /// vectors than a vertex's matrices hold; an output that cannot be written.
 pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
-    let light = plan
-        .preview
-        .as_ref()
-        .map(|p| {
-            CoeffFile::read_radiance(&p.light, "PRT shading", "project the map as radiance")
-                .map(|f| f.coeffs)
-        })
-        .transpose()?;
+    let light = preview_light(plan)?;
     if plan.scene.is_some() {
         let scene = shlight_mesh::load_scene(&plan.mesh, &LoadOptions::default())?;
         return scene_bake(plan, &scene, light.as_ref(), hooks);
@@ -445,6 +438,19 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
     })
 }
 
+/// The light of the plan's preview picture, read before anything is
+/// baked (none without a preview).
+fn preview_light(plan: &PrtPlan) -> Result<Option<ShCoeffs<DVec3>>> {
+    Ok(plan
+        .preview
+        .as_ref()
+        .map(|p| {
+            CoeffFile::read_radiance(&p.light, "PRT shading", "project the map as radiance")
+                .map(|f| f.coeffs)
+        })
+        .transpose()?)
+}
+
 /// [`prt`] on a glTF scene read (or built) already, for a plan made from
 /// a glTF path (whose name the notes and the file take).
 ///
@@ -457,14 +463,7 @@ pub fn prt_of_scene(plan: &PrtPlan, scene: &Scene, hooks: &dyn Hooks) -> Result<
             plan.mesh.display()
         )));
     }
-    let light = plan
-        .preview
-        .as_ref()
-        .map(|p| {
-            CoeffFile::read_radiance(&p.light, "PRT shading", "project the map as radiance")
-                .map(|f| f.coeffs)
-        })
-        .transpose()?;
+    let light = preview_light(plan)?;
     scene_bake(plan, scene, light.as_ref(), hooks)
 }
 
