@@ -20,9 +20,9 @@ use shlight_io::{ToneMap, WriteOptions, write_image};
 use shlight_mesh::{LightUnits, LoadOptions, Mesh, MeshFormat, Scene, Surfaces};
 use shlight_prt::{
     Albedo, BakeRequest, Brdf, DEFAULT_ALBEDO, DEFAULT_BOUNCES, MAX_BAKE_LMAX, MAX_GLOSSY_BYTES,
-    Mode, SceneLighting, Stage, bake_file, bake_glossy_file, bake_scene_file, compress_file,
-    file_exit_radiance, glossy_bytes, glossy_channels, parse_cpca, render_preview, vertex_exposure,
-    write_gltf,
+    Mode, SceneLighting, Stage, Transfer, bake_file, bake_glossy_file, bake_scene_file,
+    compress_file, file_exit_radiance, glossy_bytes, glossy_channels, parse_cpca, render_preview,
+    vertex_exposure, write_gltf,
 };
 
 use crate::hooks::{Hooks, Progress};
@@ -411,31 +411,8 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
         return glossy(plan, (&mesh, surfaces.as_ref()), brdf, &progress, hooks);
     }
     let start = Instant::now();
-    let (transfer, file) = bake_file(&mesh, surfaces.as_ref(), &plan.mesh, &plan.bake, &progress);
-    let seconds = start.elapsed().as_secs_f64();
-    hooks.note(&format!(
-        "{name}: {} vertices, {} triangles, {} transfer, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
-        mesh.vertex_count(),
-        mesh.triangle_count(),
-        plan.bake.mode.name(),
-        plan.bake.lmax,
-        transfer.samples,
-        transfer.rays,
-        transfer.rays as f64 / seconds.max(1e-9) / 1e6,
-    ));
-    match &plan.output {
-        Some((path, PrtOutput::Shprt)) => file.write(path)?,
-        Some((path, PrtOutput::Gltf)) => write_gltf(path, &mesh, &file)?,
-        None => {}
-    }
-    if let (Some(preview), Some(light)) = (&plan.preview, &light) {
-        write_preview(preview, &mesh, &file, light)?;
-    }
-    Ok(PrtBaked {
-        file,
-        samples: transfer.samples,
-        rays: transfer.rays,
-    })
+    let baked = bake_file(&mesh, surfaces.as_ref(), &plan.mesh, &plan.bake, &progress);
+    finish_diffuse(plan, &mesh, baked, start, light.as_ref(), hooks)
 }
 
 /// The light of the plan's preview picture, read before anything is
@@ -536,10 +513,25 @@ fn scene_bake(
         units,
     };
     let start = Instant::now();
-    let (transfer, file) = bake_scene_file(lighting, &plan.mesh, &plan.bake, &progress);
+    let baked = bake_scene_file(lighting, &plan.mesh, &plan.bake, &progress);
+    finish_diffuse(plan, mesh, baked, start, light, hooks)
+}
+
+/// The end of a diffuse bake of [`prt`] begun at `start`: its figures
+/// noted, its file written (`.shprt` or glTF) and its preview drawn under
+/// `light`.
+fn finish_diffuse(
+    plan: &PrtPlan,
+    mesh: &Mesh,
+    (transfer, file): (Transfer, ShprtFile),
+    start: Instant,
+    light: Option<&ShCoeffs<DVec3>>,
+    hooks: &dyn Hooks,
+) -> Result<PrtBaked> {
     let seconds = start.elapsed().as_secs_f64();
     hooks.note(&format!(
-        "{name}: {} vertices, {} triangles, {} transfer{}, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        "{}: {} vertices, {} triangles, {} transfer{}, lmax {}, {} directions; {} rays in {seconds:.2} s ({:.1} M rays/s)",
+        plan.mesh.display(),
         mesh.vertex_count(),
         mesh.triangle_count(),
         plan.bake.mode.name(),
