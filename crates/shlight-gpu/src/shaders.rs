@@ -201,7 +201,14 @@ fn encoded_generated(snippet: &str) -> String {
 /// defines `shlight_irradiance(n: vec3<f32>) -> vec3<f32>`) appended.
 #[must_use]
 pub fn encoded_source(snippet: &str) -> String {
-    let mut text = ENCODED_MODULE.files_text();
+    with_encoding(&ENCODED_MODULE, snippet)
+}
+
+/// `module`'s files followed by [`encoded_generated`]`(snippet)`: the
+/// source of a module whose fragment stage calls an encoding's
+/// `shlight_irradiance`.
+fn with_encoding(module: &ShaderModuleSource, snippet: &str) -> String {
+    let mut text = module.files_text();
     text.push('\n');
     text.push_str(&encoded_generated(snippet));
     text
@@ -243,10 +250,7 @@ pub const SURFACE_ENCODED_MODULE: ShaderModuleSource = ShaderModuleSource {
 /// appended.
 #[must_use]
 pub fn surface_encoded_source(snippet: &str) -> String {
-    let mut text = SURFACE_ENCODED_MODULE.files_text();
-    text.push('\n');
-    text.push_str(&encoded_generated(snippet));
-    text
+    with_encoding(&SURFACE_ENCODED_MODULE, snippet)
 }
 
 /// A glTF scene's surfaces lit by an irradiance volume

@@ -184,13 +184,7 @@ mod tests {
         // beside the rest that some of its triangles are degenerate in the
         // world box, and a plane: the flattened mesh's triangles, in its
         // order, are the layout's, corner for corner.
-        let primitive = |mesh, label: &str| Primitive {
-            mesh,
-            uvs: Vec::new(),
-            color_alpha: None,
-            material: None,
-            label: label.into(),
-        };
+        let primitive = |mesh, label: &str| Primitive::new(mesh, None, label);
         let scene = Scene {
             source: "layout.glb".into(),
             primitives: vec![
@@ -252,13 +246,11 @@ mod tests {
     fn a_layout_refuses_what_flattening_refuses() {
         let scene = Scene {
             source: "bad.glb".into(),
-            primitives: vec![Primitive {
-                mesh: generate::plane(1.0, 1),
-                uvs: Vec::new(),
-                color_alpha: None,
-                material: None,
-                label: "mesh 0 primitive 0".into(),
-            }],
+            primitives: vec![Primitive::new(
+                generate::plane(1.0, 1),
+                None,
+                "mesh 0 primitive 0",
+            )],
             instances: vec![Instance {
                 primitive: 0,
                 transform: Mat4::from_scale(Vec3::new(1.0, 1.0, 0.0)),

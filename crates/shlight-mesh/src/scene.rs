@@ -36,6 +36,21 @@ pub struct Primitive {
     pub label: String,
 }
 
+impl Primitive {
+    /// A primitive of `mesh` with no UV sets and no `COLOR_0` alpha (a
+    /// scene built in code rather than read), of material `material`,
+    /// named `label` in messages.
+    pub fn new(mesh: Mesh, material: Option<usize>, label: impl Into<String>) -> Self {
+        Primitive {
+            mesh,
+            uvs: Vec::new(),
+            color_alpha: None,
+            material,
+            label: label.into(),
+        }
+    }
+}
+
 /// A primitive placed in the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Instance {

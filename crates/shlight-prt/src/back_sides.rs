@@ -178,13 +178,7 @@ mod tests {
     fn scene(double_sided: bool) -> Surfaces {
         let plane = generate::plane(1.0, 2);
         let cube = generate::cuboid(Vec3::splat(0.5));
-        let primitive = |mesh: Mesh, material| Primitive {
-            mesh,
-            uvs: Vec::new(),
-            color_alpha: None,
-            material: Some(material),
-            label: "test".into(),
-        };
+        let primitive = |mesh: Mesh, material| Primitive::new(mesh, Some(material), "test");
         Scene {
             source: "sides.glb".into(),
             primitives: vec![primitive(plane, 0), primitive(cube, 1)],

@@ -97,7 +97,7 @@ pub fn bake_with_occluder(
         };
         (occluder, map)
     });
-    let occluder = built.as_ref().map(|(o, map)| (o, *map));
+    let occluder = built.as_ref().map(|(o, map)| (o, Some(*map)));
     bake_with(mesh, occluder, options, progress, Kernels::detect())
 }
 
@@ -115,15 +115,37 @@ pub fn bake_against(
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Transfer {
+    let occluder = occluder.map(|(o, m)| (o, Some(m)));
     bake_with(mesh, occluder, options, progress, Kernels::detect())
 }
 
-/// [`bake_with_occluder`], the bounces gathered with `kernels`: with
+/// [`bake`] of `mesh` cast against `occluder`, made ready from `mesh`
+/// itself ([`Occluder::with_cut_outs`] of it and
+/// [`BakeOptions::surfaces`], or [`Occluder::new`]) by a caller that
+/// casts rays of its own against it too (a scene's punctual lights).
+pub(crate) fn bake_cast_against(
+    mesh: &Mesh,
+    occluder: &Occluder,
+    options: &BakeOptions,
+    progress: &(dyn Fn(Stage, usize, usize) + Sync),
+) -> Transfer {
+    bake_with(
+        mesh,
+        Some((occluder, None)),
+        options,
+        progress,
+        Kernels::detect(),
+    )
+}
+
+/// [`bake_with_occluder`], the bounces gathered with `kernels` (`occluder`:
+/// the occluder made ready and, when `mesh` was subdivided from its mesh,
+/// the subdivision; `None`: one made here from `mesh`): with
 /// surfaces that have double-sided triangles, over the two-sided mesh
 /// ([`BackSides`]), the back copies' sums kept apart ([`Transfer::back`]).
 fn bake_with(
     mesh: &Mesh,
-    occluder: Option<(&Occluder, &Subdivision)>,
+    occluder: Option<(&Occluder, Option<&Subdivision>)>,
     options: &BakeOptions,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
     kernels: Kernels,
@@ -131,9 +153,8 @@ fn bake_with(
     let sides = options
         .surfaces
         .as_deref()
-        .and_then(|s| BackSides::find(mesh, occluder.map(|(_, m)| m), s));
+        .and_then(|s| BackSides::find(mesh, occluder.and_then(|(_, m)| m), s));
     let Some(sides) = sides else {
-        let occluder = occluder.map(|(o, m)| (o, Some(m)));
         return bake_sides(mesh, occluder, options, None, progress, kernels);
     };
     // The two-sided mesh, its back copies taking their vertices' albedo
@@ -153,7 +174,7 @@ fn bake_with(
     }
     let own;
     let against = match occluder {
-        Some((o, m)) => (o, Some(m)),
+        Some(given) => given,
         None => {
             let surfaces = options
                 .surfaces
@@ -274,7 +295,7 @@ mod tests {
         let run = |kernels| {
             bake_with(
                 &fine,
-                Some((&occluder, &map)),
+                Some((&occluder, Some(&map))),
                 &options,
                 &|_, _, _| {},
                 kernels,

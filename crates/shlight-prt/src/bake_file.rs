@@ -11,7 +11,7 @@ use shlight_mesh::{LightUnits, Mesh, PunctualLight, Surfaces};
 use shlight_rays::Occluder;
 
 use crate::back_sides::BackSides;
-use crate::bake::bake;
+use crate::bake::{bake, bake_cast_against};
 use crate::brdf::Brdf;
 use crate::glossy::{GlossyTransfer, bake_glossy};
 use crate::options::{Albedo, BakeOptions, Mode, Stage};
@@ -134,9 +134,10 @@ impl SceneLighting<'_> {
     /// bounce reads a texel's), its surfaces (cut-outs, the albedo of the
     /// texel a bounce hits), its emission, and the punctual lights' direct
     /// irradiance at each vertex ([`punctual_irradiance`], shadow rays
-    /// through the cut-outs; none without lights).
+    /// through the cut-outs, cast against `occluder`, the scene's mesh
+    /// made ready with its surfaces' cut-outs; none without lights).
     #[must_use]
-    pub fn options(&self, request: &BakeRequest) -> BakeOptions {
+    pub fn options(&self, request: &BakeRequest, occluder: &Occluder) -> BakeOptions {
         let mesh = &self.surfaces.mesh;
         let albedo = match &mesh.colors {
             Some(c) => {
@@ -147,16 +148,14 @@ impl SceneLighting<'_> {
         // At every vertex of the two-sided mesh where triangles are
         // double-sided (their back copies lit from behind), as the bake
         // gathers over it.
-        let direct_irradiance = (!self.lights.is_empty()).then(|| {
-            let occluder = Occluder::with_cut_outs(mesh, self.surfaces.clone());
-            match BackSides::find(mesh, None, self.surfaces) {
+        let direct_irradiance =
+            (!self.lights.is_empty()).then(|| match BackSides::find(mesh, None, self.surfaces) {
                 Some(sides) => {
                     let two = sides.two_sided(mesh);
-                    punctual_irradiance(&occluder, &two, self.lights, self.units)
+                    punctual_irradiance(occluder, &two, self.lights, self.units)
                 }
-                None => punctual_irradiance(&occluder, mesh, self.lights, self.units),
-            }
-        });
+                None => punctual_irradiance(occluder, mesh, self.lights, self.units),
+            });
         BakeOptions {
             lmax: request.lmax,
             samples: request.samples,
@@ -188,8 +187,10 @@ pub fn bake_scene_file(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> (Transfer, ShprtFile) {
     let mesh = &scene.surfaces.mesh;
-    let options = scene.options(request);
-    let transfer = bake(mesh, &options, progress);
+    // Made ready once, for the lights' shadow rays and the bake's rays.
+    let occluder = Occluder::with_cut_outs(mesh, scene.surfaces.clone());
+    let options = scene.options(request, &occluder);
+    let transfer = bake_cast_against(mesh, &occluder, &options, progress);
     let mut file = transfer.to_shprt(
         request.mode,
         request.seed,

@@ -71,13 +71,7 @@ fn setup() -> &'static Setup {
             .collect();
         let scene = Scene {
             source: "grid.glb".into(),
-            primitives: vec![Primitive {
-                mesh: torus,
-                uvs: Vec::new(),
-                color_alpha: None,
-                material: None,
-                label: "torus".into(),
-            }],
+            primitives: vec![Primitive::new(torus, None, "torus")],
             instances,
             ..Scene::default()
         };

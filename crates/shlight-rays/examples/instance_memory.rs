@@ -20,13 +20,7 @@ fn main() {
     let side = (n as f64).sqrt().ceil() as usize;
     let scene = Scene {
         source: "grid.glb".into(),
-        primitives: vec![Primitive {
-            mesh: torus,
-            uvs: Vec::new(),
-            color_alpha: None,
-            material: None,
-            label: "torus".into(),
-        }],
+        primitives: vec![Primitive::new(torus, None, "torus")],
         instances: (0..n)
             .map(|i| Instance {
                 primitive: 0,

@@ -7,6 +7,8 @@ use std::sync::Arc;
 
 use glam::{Affine2, Mat4, Vec2, Vec3, Vec4};
 use rand::{Rng, SeedableRng, rngs::StdRng};
+
+mod support;
 use shlight_mesh::{
     AlphaMode, Filter, Instance, Material, Mesh, Primitive, Scene, Surfaces, Texture, TextureRef,
     Wrap, generate,
@@ -15,6 +17,7 @@ use shlight_rays::{
     CutOuts, Direction, LANES, Occluder, Packet, Ray, brute_force_closest_hit,
     brute_force_closest_hit_through, coverage_sample,
 };
+use support::random_unit;
 
 /// A 16x16 texture, nearest-filtered, whose texels are opaque (alpha 255)
 /// with probability `p`, transparent (alpha 0) otherwise; and the exact
@@ -234,16 +237,7 @@ fn cut_out_queries_agree_with_a_brute_force_reference() {
     let (mut hits, mut passed, mut mismatched, mut rays) = (0, 0, 0, 0);
     for _ in 0..200 {
         // Eight parallel rays from a small patch, as bakes make them.
-        let d = loop {
-            let v = Vec3::new(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            );
-            if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
-                break v.normalize();
-            }
-        };
+        let d = random_unit(&mut rng);
         let dir = Direction::new(d);
         let centre = Vec3::new(
             rng.random_range(-0.8..0.8),

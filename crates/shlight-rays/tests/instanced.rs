@@ -9,6 +9,8 @@ use std::sync::Arc;
 
 use glam::{Affine2, Mat4, Quat, Vec2, Vec3, Vec4};
 use rand::{Rng, SeedableRng, rngs::StdRng};
+
+mod support;
 use shlight_mesh::{
     AlphaMode, Filter, Instance, Material, Mesh, Primitive, Scene, Texture, TextureRef, Wrap,
     generate,
@@ -17,6 +19,7 @@ use shlight_rays::{
     CutOuts, Direction, InstancedOccluder, LANES, Occluder, Packet, Ray, brute_force_closest_hit,
     brute_force_closest_hit_through,
 };
+use support::random_unit;
 
 fn primitive(mesh: Mesh, material: Option<usize>, label: &str) -> Primitive {
     let uv = mesh
@@ -37,19 +40,6 @@ fn place(primitive: usize, transform: Mat4) -> Instance {
     Instance {
         primitive,
         transform,
-    }
-}
-
-fn random_unit(rng: &mut StdRng) -> Vec3 {
-    loop {
-        let v = Vec3::new(
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-        );
-        if v.length_squared() > 0.01 && v.length_squared() <= 1.0 {
-            return v.normalize();
-        }
     }
 }
 

@@ -400,13 +400,7 @@ pub fn prt(plan: &PrtPlan, hooks: &dyn Hooks) -> Result<PrtBaked> {
     if matches!(plan.bake.albedo(&mesh).0, Albedo::PerVertex(_)) {
         hooks.note(&format!("{name}: albedo from the mesh's vertex colours"));
     }
-    let progress = |stage: Stage, done: usize, total: usize| {
-        hooks.progress(Progress::Count {
-            stage: &stage_label(stage),
-            done,
-            total,
-        });
-    };
+    let progress = bake_progress(hooks);
     if let Some(brdf) = plan.brdf {
         return glossy(plan, (&mesh, surfaces.as_ref()), brdf, &progress, hooks);
     }
@@ -484,13 +478,7 @@ fn scene_bake(
         }
     ));
     let own_light = !scene.lights.is_empty() || mesh.emission.is_some();
-    let progress = |stage: Stage, done: usize, total: usize| {
-        hooks.progress(Progress::Count {
-            stage: &stage_label(stage),
-            done,
-            total,
-        });
-    };
+    let progress = bake_progress(hooks);
     if let Some(brdf) = plan.brdf {
         if own_light {
             hooks.warn(&format!(
@@ -515,6 +503,17 @@ fn scene_bake(
     let start = Instant::now();
     let baked = bake_scene_file(lighting, &plan.mesh, &plan.bake, &progress);
     finish_diffuse(plan, mesh, baked, start, light, hooks)
+}
+
+/// The bakes' progress, told to `hooks` under each stage's label.
+fn bake_progress(hooks: &dyn Hooks) -> impl Fn(Stage, usize, usize) + Sync + '_ {
+    move |stage, done, total| {
+        hooks.progress(Progress::Count {
+            stage: &stage_label(stage),
+            done,
+            total,
+        });
+    }
 }
 
 /// The end of a diffuse bake of [`prt`] begun at `start`: its figures
@@ -741,12 +740,8 @@ mod tests {
     /// 10 W/sr in Blender's units.
     fn floor_scene(blocker: shlight_mesh::Material) -> Scene {
         use shlight_mesh::{Instance, LightKind, Material, Primitive, PunctualLight, generate};
-        let primitive = |mesh: Mesh, material| Primitive {
-            mesh,
-            uvs: Vec::new(),
-            color_alpha: None,
-            material: Some(material),
-            label: format!("primitive {material}"),
+        let primitive = |mesh: Mesh, material| {
+            Primitive::new(mesh, Some(material), format!("primitive {material}"))
         };
         let mut sheet = generate::plane(4.0, 1);
         sheet.positions.iter_mut().for_each(|p| p.y = 0.5);

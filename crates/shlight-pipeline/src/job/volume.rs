@@ -405,13 +405,11 @@ mod tests {
         let out = dir.join("floor.json");
         let scene = Scene {
             source: "floor.glb".into(),
-            primitives: vec![Primitive {
-                mesh: generate::plane(4.0, 1),
-                uvs: Vec::new(),
-                color_alpha: None,
-                material: None,
-                label: "mesh 0 primitive 0".into(),
-            }],
+            primitives: vec![Primitive::new(
+                generate::plane(4.0, 1),
+                None,
+                "mesh 0 primitive 0",
+            )],
             instances: vec![Instance {
                 primitive: 0,
                 transform: glam::Mat4::IDENTITY,
