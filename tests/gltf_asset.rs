@@ -8,7 +8,7 @@ use std::process::Command;
 use base64::Engine as _;
 use serde_json::{Value, json};
 
-use crate::util::{s, shlight_err, shlight_ok, skip, temp_dir, write_radiance_rows};
+use crate::util::{glb, s, shlight_err, shlight_ok, skip, temp_dir, write_radiance_rows};
 
 /// A light to add: a sun and a sky, nine radiance rows (y-up).
 const LIGHT: [[f64; 3]; 9] = [
@@ -49,26 +49,6 @@ fn positions() -> Vec<u8> {
         .iter()
         .flat_map(|v| v.to_le_bytes())
         .collect()
-}
-
-/// A GLB: the header, a JSON chunk (space-padded) and a BIN chunk.
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut j = serde_json::to_vec(json).unwrap();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let length = 12 + 8 + j.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend((length as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(j);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(bin);
-    out
 }
 
 /// The JSON and BIN chunks of a GLB, checked against its header.

@@ -15,7 +15,7 @@ use shlight_format::ShvolFile;
 use shlight_mesh::generate;
 use shlight_volume::{VolumeOptions, bake};
 
-use crate::util::{read_json, s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows};
+use crate::util::{glb, read_json, s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows};
 
 const SCENE: &str = "meshes/cornell_box.obj";
 
@@ -282,22 +282,7 @@ fn floor_with_a_lamp_glb(intensity: f64) -> Vec<u8> {
             {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}
         ]
     });
-    let mut json = doc.to_string().into_bytes();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut glb = Vec::new();
-    glb.extend(b"glTF");
-    glb.extend(2u32.to_le_bytes());
-    glb.extend((total as u32).to_le_bytes());
-    glb.extend((json.len() as u32).to_le_bytes());
-    glb.extend(b"JSON");
-    glb.extend(json);
-    glb.extend((bin.len() as u32).to_le_bytes());
-    glb.extend(b"BIN\0");
-    glb.extend(bin);
-    glb
+    glb(&doc, &bin)
 }
 
 #[test]

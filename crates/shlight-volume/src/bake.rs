@@ -831,9 +831,7 @@ impl Surface {
                                 let coarse = found.triangle[k];
                                 let slot = (g * LANES + k) * len + jj;
                                 let back = !self.occluder.is_front(coarse, dir.dir());
-                                if back
-                                    && !self.double.get(coarse as usize).copied().unwrap_or(false)
-                                {
+                                if back && !relocate::double_sided(&self.double, coarse) {
                                     out[slot] = Hit::back(found.t[k]);
                                 } else {
                                     // A front hit, or the back of a

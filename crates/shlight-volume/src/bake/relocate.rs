@@ -59,13 +59,15 @@ impl Against<'_> {
     /// Whether a ray along `dir` that met `triangle` met a back face: the
     /// back of a one-sided triangle.
     fn meets_back(&self, triangle: u32, dir: Vec3) -> bool {
-        !self.occluder.is_front(triangle, dir)
-            && !self
-                .double_sided
-                .get(triangle as usize)
-                .copied()
-                .unwrap_or(false)
+        !self.occluder.is_front(triangle, dir) && !double_sided(self.double_sided, triangle)
     }
+}
+
+/// Whether `triangle` is double-sided by `flags` (one per triangle, empty
+/// when none is), so its back is no back face: for relocation and the
+/// probes' rays alike.
+pub(crate) fn double_sided(flags: &[bool], triangle: u32) -> bool {
+    flags.get(triangle as usize).copied().unwrap_or(false)
 }
 
 /// What the rays from one position found.
