@@ -234,6 +234,13 @@ fn bad_input_is_an_error_naming_the_problem_and_nothing_is_written() {
 /// assembled here: the JSON chunk, then the binary chunk of positions,
 /// normals and indices.
 fn floor_with_a_lamp_glb(intensity: f64) -> Vec<u8> {
+    floor_tiles_with_a_lamp_glb(intensity, &[], false)
+}
+
+/// [`floor_with_a_lamp_glb`] with the floor placed again at each of
+/// `more` (translations): by the same glTF mesh (`copies` false), or each
+/// by a mesh of its own (the same accessors).
+fn floor_tiles_with_a_lamp_glb(intensity: f64, more: &[[f32; 3]], copies: bool) -> Vec<u8> {
     let corners = [
         [-2.0f32, 0.0, -2.0],
         [2.0, 0.0, -2.0],
@@ -263,7 +270,7 @@ fn floor_with_a_lamp_glb(intensity: f64) -> Vec<u8> {
             {"type": "point", "name": "lamp", "intensity": intensity, "color": [1, 1, 1]}
         ]}},
         "scene": 0,
-        "scenes": [{"nodes": [0, 1]}],
+        "scenes": [{"nodes": (0..more.len() + 2).collect::<Vec<_>>()}],
         "nodes": [
             {"mesh": 0},
             {"translation": [0, 1, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}
@@ -282,7 +289,86 @@ fn floor_with_a_lamp_glb(intensity: f64) -> Vec<u8> {
             {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}
         ]
     });
+    let mut doc = doc;
+    for (k, at) in more.iter().enumerate() {
+        let mesh = if copies { k + 1 } else { 0 };
+        if copies {
+            let first = doc["meshes"][0].clone();
+            doc["meshes"].as_array_mut().unwrap().push(first);
+        }
+        doc["nodes"]
+            .as_array_mut()
+            .unwrap()
+            .push(serde_json::json!({"mesh": mesh, "translation": at}));
+    }
     glb(&doc, &bin)
+}
+
+#[test]
+fn a_mesh_placed_by_several_nodes_bakes_through_two_levels_to_the_light_of_copies() {
+    // Four floor tiles by one glTF mesh, placed by four nodes, and the same
+    // tiles by four meshes of their own: the first bakes through the
+    // unique tile and its instances (and says so), the second through one
+    // hierarchy of every triangle; the probes see the same light.
+    let dir = temp_dir("volume_gltf_instances");
+    let env = dir.join("sky.json");
+    let mut sky = [[0.0; 3]; 9];
+    sky[0] = [1.0, 0.8, 0.6];
+    sky[2] = [0.5, 0.4, 0.3];
+    write_coefficient_rows(&env, &sky, "radiance");
+    let more = [[4.0, 0.0, 0.0], [0.0, 0.0, 4.0], [4.0, 0.5, 4.0]];
+    let bake = |copies: bool| {
+        let scene = dir.join(if copies {
+            "copies.glb"
+        } else {
+            "instances.glb"
+        });
+        std::fs::write(&scene, floor_tiles_with_a_lamp_glb(6830.0, &more, copies)).unwrap();
+        let out = dir.join(if copies {
+            "copies.json"
+        } else {
+            "instances.json"
+        });
+        let run = shlight_ok(&[
+            "volume",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--resolution",
+            "3x2x3",
+            "--bounces",
+            "1",
+            "--samples",
+            "256",
+            "--surface-samples",
+            "32",
+            "-o",
+            s(&out),
+        ]);
+        let said = String::from_utf8_lossy(&run.stderr).into_owned();
+        let rows: Vec<f64> = read_json(&out)["coefficients"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|p| p.as_array().unwrap().clone())
+            .flat_map(|r| [0, 1, 2].map(|c| r[c].as_f64().unwrap()))
+            .collect();
+        (said, rows)
+    };
+    let (said, instanced) = bake(false);
+    assert!(
+        said.contains("rays cast through its unique geometry (1 primitive, 2 triangles) placed 4 times, not through 8 flattened triangles"),
+        "{said}"
+    );
+    let (said, copied) = bake(true);
+    assert!(!said.contains("rays cast through"), "{said}");
+    assert_eq!(instanced.len(), copied.len());
+    assert_eq!(instanced.len(), 18 * 9 * 3);
+    let max = copied.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(max > 1.0, "{max}");
+    for (a, b) in instanced.iter().zip(&copied) {
+        assert!((a - b).abs() <= 2e-4 * max, "{a} vs {b} of {max}");
+    }
 }
 
 #[test]

@@ -9,6 +9,7 @@
 //! used by several instances is stored once.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
@@ -107,6 +108,13 @@ pub struct Surfaces {
     pub materials: Vec<Material>,
     /// The textures the materials read.
     pub textures: Vec<Texture>,
+    /// The scene's geometry and placements (its primitives and instances;
+    /// no materials, textures or lights) when some primitive is placed
+    /// more than once: what a hierarchy of the unique primitives is built
+    /// from, so that rays need not be cast against every copy
+    /// (`shlight_rays::Occluder::for_surfaces`). `None` when every
+    /// primitive is placed once.
+    pub placement: Option<Arc<Scene>>,
 }
 
 impl Surfaces {
@@ -191,6 +199,28 @@ impl Scene {
         Ok((linear, det))
     }
 
+    /// The primitives some instance places, and their triangles (each
+    /// counted once, however many instances place it).
+    pub fn unique_geometry(&self) -> (usize, usize) {
+        let mut used = vec![false; self.primitives.len()];
+        self.instances.iter().for_each(|i| used[i.primitive] = true);
+        self.primitives
+            .iter()
+            .zip(&used)
+            .filter(|(_, u)| **u)
+            .fold((0, 0), |(n, t), (p, _)| {
+                (n + 1, t + p.mesh.triangle_count())
+            })
+    }
+
+    /// Whether some primitive is placed by more than one instance.
+    pub fn repeats_primitives(&self) -> bool {
+        let mut placed = vec![false; self.primitives.len()];
+        self.instances
+            .iter()
+            .any(|i| std::mem::replace(&mut placed[i.primitive], true))
+    }
+
     /// Every instance's triangles in world space: positions by the
     /// transform, normals by its inverse transpose, the winding reversed
     /// under a mirroring transform. Primitives without a material take
@@ -270,6 +300,14 @@ impl Scene {
             triangle_material,
             materials,
             textures: self.textures.clone(),
+            placement: self.repeats_primitives().then(|| {
+                Arc::new(Scene {
+                    source: self.source.clone(),
+                    primitives: self.primitives.clone(),
+                    instances: self.instances.clone(),
+                    ..Scene::default()
+                })
+            }),
         };
         // Per-vertex albedo and emission, at each vertex's own UV, with
         // the material of a triangle that uses it.

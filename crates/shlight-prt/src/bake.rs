@@ -92,7 +92,7 @@ pub fn bake_with_occluder(
 ) -> Transfer {
     let built = occluder.map(|(coarse, map)| {
         let occluder = match &options.surfaces {
-            Some(s) => Occluder::with_cut_outs(coarse, s.clone()),
+            Some(s) => Occluder::for_surfaces(s),
             None => Occluder::new(coarse),
         };
         (occluder, map)
@@ -180,7 +180,7 @@ fn bake_with(
                 .surfaces
                 .clone()
                 .expect("back sides come from surfaces");
-            own = Occluder::with_cut_outs(mesh, surfaces);
+            own = Occluder::for_surfaces(&surfaces);
             (&own, None)
         }
     };

@@ -188,7 +188,7 @@ pub fn bake_scene_file(
 ) -> (Transfer, ShprtFile) {
     let mesh = &scene.surfaces.mesh;
     // Made ready once, for the lights' shadow rays and the bake's rays.
-    let occluder = Occluder::with_cut_outs(mesh, scene.surfaces.clone());
+    let occluder = Occluder::for_surfaces(scene.surfaces);
     let options = scene.options(request, &occluder);
     let transfer = bake_cast_against(mesh, &occluder, &options, progress);
     let mut file = transfer.to_shprt(

@@ -160,7 +160,7 @@ impl Cast {
                 Some((o, m)) => (o, m),
                 None => {
                     own = match &options.surfaces {
-                        Some(s) => Occluder::with_cut_outs(mesh, s.clone()),
+                        Some(s) => Occluder::for_surfaces(s),
                         None => Occluder::new(mesh),
                     };
                     (&own, None)

@@ -287,6 +287,16 @@ impl InstancedOccluder {
     /// Whether anything blocks `ray` (the first hit found ends the search).
     #[must_use]
     pub fn occluded(&self, ray: &Ray) -> bool {
+        self.occluded_through(ray, true)
+    }
+
+    /// Whether any triangle, cut out or not, blocks `ray`.
+    pub(crate) fn occluded_opaque(&self, ray: &Ray) -> bool {
+        self.occluded_through(ray, false)
+    }
+
+    /// Whether anything blocks `ray`, through the cut-outs when `cut`.
+    fn occluded_through(&self, ray: &Ray, cut: bool) -> bool {
         let mut t_max = ray.t_max();
         let mut hit = false;
         bvh::traverse(
@@ -300,7 +310,11 @@ impl InstancedOccluder {
                     object
                         .bvh
                         .occluded_accepting(&p.local(ray, *t_now), |k, w| {
-                            self.accepts(i, p, object.bvh.ids[k], w, ray)
+                            if cut {
+                                self.accepts(i, p, object.bvh.ids[k], w, ray)
+                            } else {
+                                self.layout.triangle(i, object.bvh.ids[k]).is_some()
+                            }
                         })
                 });
                 hit

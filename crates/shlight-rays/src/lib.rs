@@ -122,7 +122,7 @@ pub use bvh::{Hit, Ray};
 pub use cpu::has_avx2_and_fma;
 pub use cut_outs::{CutOuts, coverage_sample};
 pub use instanced::InstancedOccluder;
-pub use occluder::Occluder;
+pub use occluder::{Occluder, TWO_LEVEL_REPEATS};
 pub use origins::{OFFSET, SHORTER_OFFSETS};
 pub use packet::{Direction, LANES, Packet, PacketHits, packets_enabled, set_packets_enabled};
 pub use vertex_order::{ranked_triangles, vertex_order};

@@ -4,10 +4,11 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use shlight_mesh::Mesh;
+use shlight_mesh::{Mesh, Surfaces};
 
 use crate::bvh::{Bvh, Hit, Ray};
 use crate::cut_outs::{CutOutTable, CutOuts};
+use crate::instanced::InstancedOccluder;
 use crate::origins;
 use crate::packet::{Direction, Packet, PacketBvh, PacketHits};
 use crate::vertex_order::{ranked_triangles, vertex_order};
@@ -40,27 +41,51 @@ use crate::vertex_order::{ranked_triangles, vertex_order};
 /// behind); built with [`new`](Self::new), or when no triangle cuts out,
 /// every triangle stops every ray and the queries cost what they did.
 ///
+/// Built [`for_surfaces`](Self::for_surfaces) from a glTF scene whose
+/// instances repeat its primitives ([`TWO_LEVEL_REPEATS`]), it casts
+/// through the scene's [`InstancedOccluder`] instead: one hierarchy per
+/// unique primitive and one over the instances, answering the same
+/// queries with the same triangle indices (the flattened scene's), so
+/// that its memory grows with the unique triangles, not the copies. Its
+/// packets are then traced ray by ray and it has no ray-space copy of the
+/// vertices ([`vertex_count`](Self::vertex_count) is 0).
+///
 /// [`packets_enabled`]: crate::packets_enabled
 #[derive(Clone, Debug)]
 pub struct Occluder {
+    kind: Kind,
+}
+
+/// How an [`Occluder`] holds its triangles.
+#[derive(Clone, Debug)]
+enum Kind {
+    /// Every triangle in one hierarchy.
+    Flat(Flat),
+    /// A glTF scene's unique primitives and their instances.
+    Instanced(InstancedOccluder),
+}
+
+/// One hierarchy over every triangle.
+#[derive(Clone, Debug)]
+struct Flat {
     positions: Vec<Vec3>,
     bvh: PacketBvh,
     faces: Vec<Vec3>,
     cut: Option<CutOutTable>,
 }
 
+/// [`Occluder::for_surfaces`] casts through the two-level hierarchy when
+/// the flattened scene has at least this many times the triangles of its
+/// unique primitives (below it, one hierarchy over every triangle costs
+/// little more memory and its packets are traced together).
+pub const TWO_LEVEL_REPEATS: usize = 2;
+
 impl Occluder {
     /// `mesh` made ready; every triangle stops every ray.
     #[must_use]
     pub fn new(mesh: &Mesh) -> Self {
-        let order = vertex_order(&mesh.positions, mesh.bounds());
-        let triangles = ranked_triangles(&mesh.triangles, &order);
-        let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
         Self {
-            bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
-            positions,
-            faces: face_normals(mesh),
-            cut: None,
+            kind: Kind::Flat(Flat::new(mesh)),
         }
     }
 
@@ -70,41 +95,103 @@ impl Occluder {
     /// The crate documentation states how a ray is decided.
     #[must_use]
     pub fn with_cut_outs(mesh: &Mesh, cut_outs: Arc<dyn CutOuts>) -> Self {
-        let mut occluder = Self::new(mesh);
-        occluder.cut = CutOutTable::new(cut_outs, &occluder.bvh.bvh().ids);
-        occluder
+        let mut flat = Flat::new(mesh);
+        flat.cut = CutOutTable::new(cut_outs, &flat.bvh.bvh().ids);
+        Self {
+            kind: Kind::Flat(flat),
+        }
+    }
+
+    /// A flattened glTF scene made ready, through its cut-outs, its
+    /// triangles named as `surfaces.mesh` names them: through the scene's
+    /// unique primitives and their instances ([`InstancedOccluder`]) when
+    /// the flattened scene has at least [`TWO_LEVEL_REPEATS`] times their
+    /// triangles ([`Surfaces::placement`]), else
+    /// [`with_cut_outs`](Self::with_cut_outs) of `surfaces.mesh`.
+    #[must_use]
+    pub fn for_surfaces(surfaces: &Arc<Surfaces>) -> Self {
+        let cut_outs = || -> Arc<dyn CutOuts> { surfaces.clone() };
+        if let Some(scene) = surfaces
+            .placement
+            .as_ref()
+            .filter(|_| Self::casts_two_level(surfaces))
+        {
+            // The flattening that made `surfaces` accepted the scene, so
+            // the two-level build does too.
+            if let Ok(two) = InstancedOccluder::with_cut_outs(scene, cut_outs()) {
+                return Self {
+                    kind: Kind::Instanced(two),
+                };
+            }
+        }
+        Self::with_cut_outs(&surfaces.mesh, cut_outs())
+    }
+
+    /// Whether [`for_surfaces`](Self::for_surfaces) casts `surfaces`
+    /// through two levels: it has a placement, and at least
+    /// [`TWO_LEVEL_REPEATS`] times the triangles of the unique primitives
+    /// its instances use.
+    #[must_use]
+    pub fn casts_two_level(surfaces: &Surfaces) -> bool {
+        let Some(scene) = &surfaces.placement else {
+            return false;
+        };
+        let (_, unique) = scene.unique_geometry();
+        surfaces.mesh.triangle_count() >= TWO_LEVEL_REPEATS * unique
+    }
+
+    /// Whether rays are cast through a scene's unique primitives and their
+    /// instances (built [`for_surfaces`](Self::for_surfaces) from a scene
+    /// that repeats them), rather than one hierarchy of every triangle.
+    #[must_use]
+    pub fn is_two_level(&self) -> bool {
+        matches!(self.kind, Kind::Instanced(_))
     }
 
     /// Whether some triangle may let rays through (built
     /// [`with_cut_outs`](Self::with_cut_outs) and one cuts out).
     #[must_use]
     pub fn has_cut_outs(&self) -> bool {
-        self.cut.is_some()
+        match &self.kind {
+            Kind::Flat(f) => f.cut.is_some(),
+            Kind::Instanced(i) => i.has_cut_outs(),
+        }
     }
 
     /// Bytes the occluder holds on the heap: the hierarchy (its nodes,
     /// its triangles' corners and indices, the packet layouts), the
     /// vertices, the face normals and the cut-out flags. The acceleration
     /// structure's memory, as docs/benchmarks.md compares it with an
-    /// [`InstancedOccluder`](crate::InstancedOccluder)'s.
+    /// [`InstancedOccluder`]'s (a two-level occluder's is that).
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        self.bvh.heap_bytes()
-            + self.positions.capacity() * size_of::<Vec3>()
-            + self.faces.capacity() * size_of::<Vec3>()
-            + self.cut.as_ref().map_or(0, CutOutTable::heap_bytes)
+        match &self.kind {
+            Kind::Flat(f) => {
+                f.bvh.heap_bytes()
+                    + f.positions.capacity() * size_of::<Vec3>()
+                    + f.faces.capacity() * size_of::<Vec3>()
+                    + f.cut.as_ref().map_or(0, CutOutTable::heap_bytes)
+            }
+            Kind::Instanced(i) => i.heap_bytes(),
+        }
     }
 
     /// Whether anything blocks `ray` (the first hit found ends the search).
     #[must_use]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        self.bvh.bvh().occluded_through(ray, self.cut.as_ref())
+        match &self.kind {
+            Kind::Flat(f) => f.bvh.bvh().occluded_through(ray, f.cut.as_ref()),
+            Kind::Instanced(i) => i.occluded(ray),
+        }
     }
 
     /// The nearest hit of `ray`, if any.
     #[must_use]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        self.bvh.bvh().closest_hit_through(ray, self.cut.as_ref())
+        match &self.kind {
+            Kind::Flat(f) => f.bvh.bvh().closest_hit_through(ray, f.cut.as_ref()),
+            Kind::Instanced(i) => i.closest_hit(ray),
+        }
     }
 
     /// Whether a ray along `dir` meets triangle `triangle` (the mesh's
@@ -112,13 +199,26 @@ impl Occluder {
     #[inline]
     #[must_use]
     pub fn is_front(&self, triangle: u32, dir: Vec3) -> bool {
-        self.faces[triangle as usize].dot(dir) < 0.0
+        match &self.kind {
+            Kind::Flat(f) => f.faces[triangle as usize].dot(dir) < 0.0,
+            Kind::Instanced(i) => i.is_front(triangle, dir),
+        }
     }
 
-    /// The mesh's vertices: the length of [`ray_space`](Self::ray_space).
+    /// The vertices the packet queries read in ray space: the length of
+    /// [`ray_space`](Self::ray_space) (0 for a two-level occluder, whose
+    /// packets are traced ray by ray and read none).
     #[must_use]
     pub fn vertex_count(&self) -> usize {
-        self.positions.len()
+        self.positions().len()
+    }
+
+    /// The occluder's own copy of the vertices (none when two-level).
+    fn positions(&self) -> &[Vec3] {
+        match &self.kind {
+            Kind::Flat(f) => &f.positions,
+            Kind::Instanced(_) => &[],
+        }
     }
 
     /// The vertices in `dir`'s ray space ([`Direction::to_ray_space`]), in
@@ -130,7 +230,7 @@ impl Occluder {
         &'a self,
         dir: &'a Direction,
     ) -> impl ExactSizeIterator<Item = [f32; 4]> + 'a {
-        self.positions.iter().map(|p| dir.to_ray_space(*p))
+        self.positions().iter().map(|p| dir.to_ray_space(*p))
     }
 
     /// Which rays of `packet` (along `dir`, from `0 < t`) are blocked: bit
@@ -141,7 +241,10 @@ impl Occluder {
     /// If `local` holds fewer vertices than the occluder.
     #[must_use]
     pub fn packet_occluded(&self, dir: &Direction, local: &[[f32; 4]], packet: &Packet) -> u32 {
-        self.bvh.occluded(dir, local, packet, self.cut.as_ref())
+        match &self.kind {
+            Kind::Flat(f) => f.bvh.occluded(dir, local, packet, f.cut.as_ref()),
+            Kind::Instanced(i) => i.packet_occluded(dir, packet),
+        }
     }
 
     /// The nearest hit of each ray of `packet` (`local` as in
@@ -156,7 +259,10 @@ impl Occluder {
         local: &[[f32; 4]],
         packet: &Packet,
     ) -> PacketHits {
-        self.bvh.closest(dir, local, packet, self.cut.as_ref())
+        match &self.kind {
+            Kind::Flat(f) => f.bvh.closest(dir, local, packet, f.cut.as_ref()),
+            Kind::Instanced(i) => i.packet_closest(dir, packet),
+        }
     }
 
     /// [`packet_closest`](Self::packet_closest) without the ray-space copy
@@ -166,7 +272,10 @@ impl Occluder {
     /// copy for every direction.
     #[must_use]
     pub fn packet_closest_direct(&self, dir: &Direction, packet: &Packet) -> PacketHits {
-        self.bvh.closest_direct(dir, packet, self.cut.as_ref())
+        match &self.kind {
+            Kind::Flat(f) => f.bvh.closest_direct(dir, packet, f.cut.as_ref()),
+            Kind::Instanced(i) => i.packet_closest(dir, packet),
+        }
     }
 
     /// Where the rays of each vertex of `mesh` start, off its surface and
@@ -188,7 +297,25 @@ impl Occluder {
     /// [`SHORTER_OFFSETS`]: crate::SHORTER_OFFSETS
     #[must_use]
     pub fn ray_origins(&self, mesh: &Mesh) -> Vec<Vec3> {
-        origins::ray_origins(mesh, self.bvh.bvh())
+        match &self.kind {
+            Kind::Flat(f) => origins::ray_origins(mesh, |ray| f.bvh.bvh().occluded(ray)),
+            Kind::Instanced(i) => origins::ray_origins(mesh, |ray| i.occluded_opaque(ray)),
+        }
+    }
+}
+
+impl Flat {
+    /// `mesh` in one hierarchy, its vertices in Morton order; no cut-outs.
+    fn new(mesh: &Mesh) -> Self {
+        let order = vertex_order(&mesh.positions, mesh.bounds());
+        let triangles = ranked_triangles(&mesh.triangles, &order);
+        let positions: Vec<Vec3> = order.iter().map(|&v| mesh.positions[v as usize]).collect();
+        Self {
+            bvh: PacketBvh::new(Bvh::new(&positions, &triangles)),
+            positions,
+            faces: face_normals(mesh),
+            cut: None,
+        }
     }
 }
 

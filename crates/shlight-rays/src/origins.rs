@@ -13,7 +13,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use shlight_mesh::Mesh;
 
-use crate::bvh::{Bvh, Ray};
+use crate::bvh::Ray;
 
 /// Ray origins are offset along the normal by this times the bounding box
 /// diagonal.
@@ -28,10 +28,10 @@ pub const SHORTER_OFFSETS: usize = 8;
 const OWN_TRIANGLES: f32 = 1e-3;
 
 /// [`Occluder::ray_origins`](crate::Occluder::ray_origins): the segment
-/// from each vertex of `mesh` to its rays' origin tested against `bvh`, the
-/// surface cast against (the mesh's own, or the one it was subdivided
-/// from).
-pub(crate) fn ray_origins(mesh: &Mesh, bvh: &Bvh) -> Vec<Vec3> {
+/// from each vertex of `mesh` to its rays' origin tested with `occluded`
+/// against the surface cast against (the mesh's own, or the one it was
+/// subdivided from), every triangle opaque.
+pub(crate) fn ray_origins(mesh: &Mesh, occluded: impl Fn(&Ray) -> bool + Sync) -> Vec<Vec3> {
     let bounds = mesh.bounds();
     let eps = OFFSET * (bounds.1 - bounds.0).length();
     let mut centroids = vec![(DVec3::ZERO, 0u32); mesh.vertex_count()];
@@ -51,7 +51,7 @@ pub(crate) fn ray_origins(mesh: &Mesh, bvh: &Bvh) -> Vec<Vec3> {
     // other than those through `p`.
     let crosses = |p: Vec3, offset: Vec3| {
         let start = p + OWN_TRIANGLES * offset;
-        bvh.occluded(&Ray::new(start, offset, 1.0 - OWN_TRIANGLES))
+        occluded(&Ray::new(start, offset, 1.0 - OWN_TRIANGLES))
     };
     mesh.positions
         .par_iter()

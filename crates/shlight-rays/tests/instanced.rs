@@ -396,3 +396,76 @@ fn memory_grows_with_the_unique_triangles_not_the_instances() {
     // 1,000 instances in less than two unique meshes' worth.
     assert!(thousand < 2 * one, "{thousand} vs {one}");
 }
+
+#[test]
+fn an_occluder_for_repeating_surfaces_casts_through_two_levels_as_the_flat_one() {
+    // The placed scene repeats its sphere and torus: its flattened
+    // surfaces carry the placement, and `Occluder::for_surfaces` casts
+    // through two levels, answering every query the bakers ask (packets
+    // without a ray-space copy, where rays start, which side is met) as
+    // one hierarchy over the flattened triangles does.
+    let surfaces = Arc::new(placed_scene().flatten(Vec3::ONE).unwrap());
+    assert!(surfaces.placement.is_some());
+    let two = Occluder::for_surfaces(&surfaces);
+    let flat = Occluder::new(&surfaces.mesh);
+    assert!(two.is_two_level() && !flat.is_two_level());
+    assert_eq!(two.vertex_count(), 0);
+    assert!(two.heap_bytes() * 2 < flat.heap_bytes());
+    // Where rays start: the same points, up to the two levels' rounding.
+    let (a, b) = (
+        two.ray_origins(&surfaces.mesh),
+        flat.ray_origins(&surfaces.mesh),
+    );
+    let off = a
+        .iter()
+        .zip(&b)
+        .filter(|(p, q)| p.distance(**q) > 1e-5)
+        .count();
+    assert!(off <= 2, "{off} ray origins differ");
+    let mut rng = StdRng::seed_from_u64(9);
+    let (mut hits, mut differ) = (0, 0);
+    for _ in 0..100 {
+        let dir = Direction::new(random_unit(&mut rng));
+        let origins: Vec<Vec3> = (0..LANES)
+            .map(|_| {
+                Vec3::new(
+                    rng.random_range(-3.0..3.0),
+                    rng.random_range(-0.5..2.5),
+                    rng.random_range(-3.0..3.0),
+                )
+            })
+            .collect();
+        let packet = Packet::new(&dir, &origins);
+        let local: Vec<[f32; 4]> = flat.ray_space(&dir).collect();
+        let want = flat.packet_closest(&dir, &local, &packet);
+        let got = two.packet_closest(&dir, &[], &packet);
+        assert_eq!(got.mask, two.packet_closest_direct(&dir, &packet).mask);
+        assert_eq!(got.mask, two.packet_occluded(&dir, &[], &packet));
+        for k in 0..LANES {
+            let lane =
+                |h: &shlight_rays::PacketHits| (h.mask >> k & 1 == 1).then_some(h.triangle[k]);
+            differ += usize::from(lane(&got) != lane(&want));
+            if let Some(t) = lane(&got) {
+                hits += 1;
+                assert_eq!(two.is_front(t, dir.dir()), flat.is_front(t, dir.dir()));
+            }
+        }
+    }
+    assert!(hits > 200, "{hits}");
+    assert!(
+        differ <= 2,
+        "{differ} lanes differ from the flat occluder's"
+    );
+}
+
+#[test]
+fn a_scene_that_places_each_primitive_once_casts_through_one_hierarchy() {
+    let mut scene = placed_scene();
+    scene.instances.retain({
+        let mut seen = [false; 4];
+        move |i| !std::mem::replace(&mut seen[i.primitive], true)
+    });
+    let surfaces = Arc::new(scene.flatten(Vec3::ONE).unwrap());
+    assert!(surfaces.placement.is_none());
+    assert!(!Occluder::for_surfaces(&surfaces).is_two_level());
+}

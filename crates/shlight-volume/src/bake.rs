@@ -664,7 +664,7 @@ impl Surface {
         let ((mesh, map), occluder) = rayon::join(
             || coarse.subdivided_with_map(max_edge),
             || match surfaces {
-                Some(s) => Occluder::with_cut_outs(coarse, s.clone()),
+                Some(s) => Occluder::for_surfaces(s),
                 None => Occluder::new(coarse),
             },
         );

@@ -477,6 +477,9 @@ fn scene_bake(
             ),
         }
     ));
+    if let Some(note) = super::volume::two_level_note(&surfaces) {
+        hooks.note(&format!("{name}: {note}"));
+    }
     let own_light = !scene.lights.is_empty() || mesh.emission.is_some();
     let progress = bake_progress(hooks);
     if let Some(brdf) = plan.brdf {

@@ -260,6 +260,9 @@ fn bake_and_write(
     if let Some(note) = lights_note(&volume_scene.lights, plan) {
         hooks.note(&format!("{name}: {note}"));
     }
+    if let Some(note) = volume_scene.surfaces.as_deref().and_then(two_level_note) {
+        hooks.note(&format!("{name}: {note}"));
+    }
     let start = Instant::now();
     let baked = bake_file(
         scene,
@@ -308,6 +311,23 @@ fn lights_note(lights: &[PunctualLight], plan: &VolumePlan) -> Option<String> {
             shlight_mesh::LightUnits::Blender => "divided by 683 (blender units)",
             shlight_mesh::LightUnits::AsWritten => "as written",
         }
+    ))
+}
+
+/// The note of a scene whose rays are cast through its unique primitives
+/// and their instances ([`shlight_rays::Occluder::casts_two_level`]);
+/// `None` when they go through one hierarchy of every triangle.
+pub(crate) fn two_level_note(surfaces: &Surfaces) -> Option<String> {
+    let scene = surfaces
+        .placement
+        .as_ref()
+        .filter(|_| shlight_rays::Occluder::casts_two_level(surfaces))?;
+    let (primitives, unique) = scene.unique_geometry();
+    Some(format!(
+        "rays cast through its unique geometry ({primitives} primitive{}, {unique} triangles) placed {} times, not through {} flattened triangles",
+        if primitives == 1 { "" } else { "s" },
+        scene.instances.len(),
+        surfaces.mesh.triangle_count()
     ))
 }
 
