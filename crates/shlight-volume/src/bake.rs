@@ -444,8 +444,9 @@ fn bake_in_chunks(
             let mut m = Vec::new();
             let mut e = Vec::new();
             let mut back = Vec::new();
+            let (mut hits, mut albedo) = (Vec::new(), Vec::new());
             for chunk in order.chunks(per_chunk) {
-                let (hits, albedo) = s.cast(chunk, &probes, &dirs, &|len| {
+                s.cast(chunk, &probes, &dirs, (&mut hits, &mut albedo), &|len| {
                     progress(
                         Stage::Probes,
                         done.fetch_add(len, Ordering::Relaxed) + len,
@@ -556,8 +557,11 @@ const BLOCK: usize = 64;
 
 /// Bytes of probe hits kept at a time: the probes are cast and summed in
 /// chunks of this many bytes of [`Hit`]s (16 a ray, 28 with surfaces,
-/// whose albedo at each hit is kept beside it).
-const HITS_MEMORY: usize = 256 << 20;
+/// whose albedo at each hit is kept beside it), in one buffer reused from
+/// chunk to chunk. Small enough that the system's first touch of its
+/// pages (on one thread) costs little, large enough for whole packets of
+/// probes at thousands of rays each.
+const HITS_MEMORY: usize = 32 << 20;
 
 /// The order in which the probes take the directions `dirs`, so that each
 /// block of [`BLOCK`] consecutive directions is a small patch of the
@@ -743,8 +747,8 @@ impl Surface {
 
     /// Casts the rays of the probes `chunk` (indices into `probes`, in
     /// Morton order): per block of [`BLOCK`] directions, for each direction,
-    /// the probes eight at a time as one packet. The hits of block `b` are
-    /// `chunk.len() x len_b` records, the probes in the chunk's order, each
+    /// the probes eight at a time as one packet, into `hits` and `albedo`
+    /// (resized). The hits of block `b` are `chunk.len() x len_b` records, the probes in the chunk's order, each
     /// probe's directions in order; with surfaces, the albedo at each front
     /// hit in the same places (empty without). `progress(directions)` as
     /// blocks finish.
@@ -764,13 +768,23 @@ impl Surface {
         chunk: &[u32],
         probes: &[Vec3],
         dirs: &[Vec3],
+        (hits, albedo): (&mut Vec<Hit>, &mut Vec<Vec3>),
         progress: &(dyn Fn(usize) + Sync),
-    ) -> (Vec<Hit>, Vec<Vec3>) {
+    ) {
         let n = chunk.len();
         let nv = self.occluder.vertex_count();
         let small = nv * 4 * BLOCK <= LOCAL_FLOATS;
-        let mut hits = vec![Hit::ESCAPED; n * dirs.len()];
-        let mut albedo = vec![Vec3::ZERO; if self.texel { hits.len() } else { 0 }];
+        // The buffers of the last chunk, reused, and each block reset by
+        // the thread that casts it: the system zeroes a fresh allocation's
+        // pages at their first touch, a cost paid once, on every thread
+        // (a parallel extension writes in place).
+        fn fit<T: Copy + Send + Sync>(buffer: &mut Vec<T>, len: usize, fill: T) {
+            let more = len.saturating_sub(buffer.len());
+            buffer.truncate(len);
+            buffer.par_extend(rayon::iter::repeat_n(fill, more));
+        }
+        fit(hits, n * dirs.len(), Hit::ESCAPED);
+        fit(albedo, if self.texel { hits.len() } else { 0 }, Vec3::ZERO);
         let mut albedo_blocks: Vec<&mut [Vec3]> = if self.texel {
             albedo.chunks_mut(n * BLOCK).collect()
         } else {
@@ -801,6 +815,8 @@ impl Surface {
                 },
                 |(local, front, located, slots, distances, front_albedo, backs),
                  ((out, block), out_albedo)| {
+                    out.fill(Hit::ESCAPED);
+                    out_albedo.fill(Vec3::ZERO);
                     let len = block.len();
                     let directions: Vec<Direction> =
                         block.iter().map(|d| Direction::new(*d)).collect();
@@ -888,8 +904,6 @@ impl Surface {
                     progress(len);
                 },
             );
-        drop(albedo_blocks);
-        (hits, albedo)
     }
 
     /// How [`sums`] makes a probe's rows: `v = (Y, T, E)`, `Y` in
