@@ -71,8 +71,10 @@ struct SurfaceVertexOut {
     @location(3) uv_metal: vec2<f32>,
     @location(4) color: vec4<f32>,
     @location(5) emission: vec3<f32>,
-    // PRT: the vertex's transferred radiance per unit albedo (surface.wgsl).
+    // PRT: the vertex's transferred radiance per unit albedo, and its
+    // static exit radiance (surface.wgsl).
     @location(6) prt: vec3<f32>,
+    @location(7) prt_static: vec3<f32>,
 }
 
 // The vertex placed by its instance.
@@ -89,6 +91,7 @@ fn surface_vertex(in: SurfaceVertexIn) -> SurfaceVertexOut {
     out.color = in.color;
     out.emission = in.emission;
     out.prt = vec3<f32>(0.0);
+    out.prt_static = vec3<f32>(0.0);
     return out;
 }
 

@@ -2,8 +2,9 @@
 //
 // MODE_SH: per fragment, irradiance E(n) = sum_l A_l w_l sum_m L_lm Y_lm(n)
 // at the interpolated unit normal, outgoing radiance rho/pi E(n).
-// MODE_PRT: per vertex, radiance sum_i T_vi L_i (the transfer T from a
-// storage buffer, one or three channels), interpolated.
+// MODE_PRT: per vertex, radiance sum_i T_vi L_i + S_v (the transfer T from a
+// storage buffer, one or three channels; S the static term a glTF scene's
+// lights and emission leave, zero without one), interpolated.
 // MODE_GLOSSY: per vertex, glossy PRT (docs/shprt.md, "Glossy transfer"):
 // a diffuse base of albedo rho under the glossy layer,
 //   L_o = sum_lm (rho/pi A_l Y_lm(n) + Lambda_l Y_lm(R)) T_lm,
@@ -20,6 +21,8 @@
 // frame.glossy_parts the parts, group-major, K + 1 parts of (prt_lmax + 1)^2
 // RGB coefficients each (part 0 the cluster mean's M L, part k the k-th
 // basis vector's), written by the renderer whenever the light changes.
+// Diffuse with a static term: after the transfer, from frame.prt_static,
+// each vertex's static exit radiance S_v as R, G, B at prt_static + 3 v.
 @group(0) @binding(2) var<storage, read> transfer: array<f32>;
 
 // The vertex's record and the first f32 of its group's parts (glossy).
@@ -141,6 +144,14 @@ fn prt_radiance(v: u32) -> vec3<f32> {
     return sum;
 }
 
+// The static exit radiance S_v of vertex v (docs/shprt.md, "Format version
+// 3"), to add to the transfer's radiance where frame.prt_static is not 0
+// (radiance without a static term stays as it was, bit for bit).
+fn static_radiance(v: u32) -> vec3<f32> {
+    let at = frame.prt_static + 3u * v;
+    return vec3<f32>(transfer[at], transfer[at + 1u], transfer[at + 2u]);
+}
+
 @vertex
 fn vs_mesh(in: VertexIn, @builtin(vertex_index) v: u32) -> VertexOut {
     var out: VertexOut;
@@ -149,6 +160,9 @@ fn vs_mesh(in: VertexIn, @builtin(vertex_index) v: u32) -> VertexOut {
     out.prt = vec3<f32>(0.0);
     if frame.mode == MODE_PRT {
         out.prt = prt_radiance(v);
+        if frame.prt_static != 0u {
+            out.prt = out.prt + static_radiance(v);
+        }
     }
     if frame.mode == MODE_GLOSSY {
         let n = normalize(in.normal);

@@ -48,6 +48,11 @@ struct Frame {
     // weights in the transfer buffer, and their rows (0: a zonal lobe).
     ggx_table: u32,
     ggx_rows: u32,
+    // Diffuse transfer with a static term (a glTF scene's lights and
+    // emission, docs/shprt.md "Format version 3"): the first f32 of the
+    // per-vertex RGB static exit radiance in the transfer buffer, after the
+    // transfer (mesh.wgsl); 0 without one.
+    prt_static: u32,
 }
 
 const MODE_SH: u32 = 0u;

@@ -4,7 +4,9 @@
 // MODE_SH: albedo/pi E(n), E the SH irradiance at the normal seen.
 // MODE_PRT: the vertex's transferred radiance per unit albedo (the renderer
 // uploads the transfer divided by the albedo it was baked with, vertex by
-// vertex), interpolated, times the fragment's albedo; the scene is then
+// vertex), interpolated, times the fragment's albedo, plus the vertex's
+// static exit radiance (the scene's lights and emission, its albedo already
+// in it; zero without a static term), interpolated; the scene is then
 // drawn flattened, one vertex per world vertex, so the vertex index finds
 // its transfer.
 // MODE_NORMALS: the unit normal seen, as the colour.
@@ -14,6 +16,9 @@ fn vs_surface(in: SurfaceVertexIn, @builtin(vertex_index) v: u32) -> SurfaceVert
     var out = surface_vertex(in);
     if frame.mode == MODE_PRT {
         out.prt = prt_radiance(v);
+        if frame.prt_static != 0u {
+            out.prt_static = static_radiance(v);
+        }
     }
     return out;
 }
@@ -27,7 +32,11 @@ fn fs_surface(in: SurfaceVertexOut, @builtin(front_facing) front: bool) -> @loca
             return vec4<f32>(n, 1.0);
         }
         case MODE_PRT: {
-            return finish(in.prt * albedo);
+            var radiance = in.prt * albedo;
+            if frame.prt_static != 0u {
+                radiance = radiance + in.prt_static;
+            }
+            return finish(radiance);
         }
         default: {
             let e = sh_reconstruct(n, frame.irradiance_band);

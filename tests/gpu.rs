@@ -376,9 +376,10 @@ fn gpu_commands_refuse_bad_input_by_name() {
 
 /// An X server for the viewer: our own Xvfb on a free display number,
 /// killed (by its process id) when dropped.
-struct Xvfb {
+pub(crate) struct Xvfb {
     child: Child,
-    display: String,
+    /// The display to name in `DISPLAY`.
+    pub(crate) display: String,
 }
 
 impl Xvfb {
@@ -439,7 +440,7 @@ impl Drop for Xvfb {
 
 /// An adapter and a running Xvfb for a windowed test, or `None` after a
 /// SKIPPED line (a failure under the CI switches).
-fn gpu_and_xvfb(test: &str) -> Option<Xvfb> {
+pub(crate) fn gpu_and_xvfb(test: &str) -> Option<Xvfb> {
     if !have_gpu(test) {
         return None;
     }

@@ -22,6 +22,8 @@ mod lean;
 mod montecarlo_cli;
 mod project;
 mod prt;
+#[cfg(feature = "gpu")]
+mod prt_static_gpu;
 mod readme;
 mod render;
 mod sample;

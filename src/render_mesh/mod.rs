@@ -5,7 +5,8 @@
 //! Y_lm(n)` at its interpolated unit normal (`--mode sh`), or `ρ/π E(n)`
 //! with `E` the irradiance of another encoding of the light
 //! (`--encoding`), the per-vertex
-//! PRT radiance `T_v · L` of a `.shprt` file, interpolated (`--mode prt`),
+//! PRT radiance `T_v · L` of a `.shprt` file (plus a glTF scene's static
+//! term `S_v`), interpolated (`--mode prt`),
 //! or the world normal itself (`--mode normals`, background 0). The frame is rendered in
 //! linear `f32`: EXR output holds those values untouched (no exposure, no
 //! tone map); PNG output gets `--exposure` and `--tone-map` on the CPU, as
@@ -50,7 +51,8 @@ pub struct RenderMeshArgs {
     #[arg(long, value_enum)]
     pub mode: Option<RenderMode>,
     /// PRT transfer baked for this mesh by `shlight prt` (.shprt): each
-    /// vertex shows transfer · light (albedo is in the transfer); a glossy
+    /// vertex shows transfer · light (albedo is in the transfer), plus a
+    /// glTF scene's lamps and emission where the file holds them; a glossy
     /// file's vertices their exit radiance toward the camera (--albedo: a
     /// diffuse base under the glossy layer).
     #[arg(long, value_name = "FILE.shprt")]

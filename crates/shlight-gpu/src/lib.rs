@@ -75,7 +75,7 @@ pub use scene::{
     BuiltIn, GltfScene, RenderMeshRequest, RenderMeshSettings, Scene, SceneError, SceneGeometry,
     SceneOptions, SceneSettings, SceneVolume, Shot, VolumeLight, gltf_renderer, light_renderer,
     mesh_renderer, per_unit_albedo, read_transfer, render_mesh, scene_renderer, set_transfer,
-    write_frame,
+    static_radiance, write_frame,
 };
 pub use shading::{Background, Mode, Shading};
 pub use volume::{

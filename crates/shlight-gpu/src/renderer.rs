@@ -92,6 +92,9 @@ pub struct Renderer {
     /// The light's coefficients as uploaded (glossy transfer's `M L`).
     light_coeffs: Vec<[f32; 3]>,
     prt: Option<(usize, usize)>,
+    /// Where a diffuse transfer's static term starts in the transfer
+    /// buffer, in `f32`s (`None`: no static term).
+    prt_static: Option<usize>,
     glossy: Option<GlossyTransfer>,
     /// Draw the mesh's vertices as points instead of its triangles.
     points: bool,
@@ -126,6 +129,7 @@ impl std::fmt::Debug for Renderer {
             .field("color_format", &self.color_format)
             .field("light_lmax", &self.light_lmax)
             .field("prt", &self.prt)
+            .field("prt_static", &self.prt_static)
             .finish_non_exhaustive()
     }
 }
@@ -219,6 +223,7 @@ impl Renderer {
             light_lmax: 0,
             light_coeffs: Vec::new(),
             prt: None,
+            prt_static: None,
             glossy: None,
             points: false,
             point_pipelines: Default::default(),
@@ -489,15 +494,55 @@ impl Renderer {
     /// # Errors
     /// [`GpuError::Invalid`] without a mesh, or when the vertex counts differ.
     pub fn set_transfer(&mut self, ctx: &GpuContext, t: &TransferView<'_>) -> Result<(), GpuError> {
+        self.set_transfer_with_static(ctx, t, &[])
+    }
+
+    /// Uploads PRT transfer vectors for the current mesh with a static
+    /// exit radiance per vertex (linear RGB; a `.shprt` file's static term,
+    /// a glTF scene's punctual lights and emission, docs/shprt.md "Format
+    /// version 3"), so that [`Mode::Prt`] shades vertex `v` with `T_v . L +
+    /// static_radiance[v]`. The term is added after the fragment's albedo
+    /// multiplies a glTF scene's transfer ([`Renderer::set_surfaces`]): it
+    /// is exit radiance, its albedo already in it. An empty
+    /// `static_radiance` is none: [`Renderer::set_transfer`].
+    ///
+    /// # Errors
+    /// [`GpuError::Invalid`] without a mesh, when the vertex counts differ,
+    /// or for a static term of another length than the vertices.
+    pub fn set_transfer_with_static(
+        &mut self,
+        ctx: &GpuContext,
+        t: &TransferView<'_>,
+        static_radiance: &[[f32; 3]],
+    ) -> Result<(), GpuError> {
         self.check_vertices("PRT transfer", t.vertex_count)?;
+        if !static_radiance.is_empty() && static_radiance.len() != t.vertex_count {
+            return Err(GpuError::Invalid(format!(
+                "the static term holds {} vertices but the PRT transfer {}",
+                static_radiance.len(),
+                t.vertex_count
+            )));
+        }
+        // The static term after the transfer, in the same buffer: a file
+        // without one binds nothing more. A non-empty transfer puts it at
+        // a non-zero offset, so the shaders read 0 as none.
+        let (data, prt_static) = if static_radiance.is_empty() || t.data.is_empty() {
+            (std::borrow::Cow::Borrowed(t.data), None)
+        } else {
+            let mut data = Vec::with_capacity(t.data.len() + 3 * static_radiance.len());
+            data.extend_from_slice(t.data);
+            data.extend(static_radiance.iter().flatten());
+            (std::borrow::Cow::Owned(data), Some(t.data.len()))
+        };
         self.transfer = ctx
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("transfer"),
-                contents: bytemuck::cast_slice(t.data),
+                contents: bytemuck::cast_slice(&data),
                 usage: wgpu::BufferUsages::STORAGE,
             });
         self.prt = Some((t.lmax, t.channels));
+        self.prt_static = prt_static;
         self.glossy = None;
         self.rebind_mesh(ctx);
         Ok(())
@@ -612,6 +657,7 @@ impl Renderer {
         }
         self.transfer = buffer;
         self.prt = Some((lmax, matrices.channels));
+        self.prt_static = None;
         self.glossy = Some(GlossyTransfer {
             matrices: matrices.clone().into_owned(),
             band,
@@ -657,6 +703,7 @@ impl Renderer {
 
     fn clear_transfer(&mut self, ctx: &GpuContext) {
         self.prt = None;
+        self.prt_static = None;
         self.glossy = None;
         self.transfer = no_transfer(&ctx.device);
         self.rebind_mesh(ctx);
@@ -723,6 +770,7 @@ impl Renderer {
             light_from_world: self.environment_rotation.transpose(),
             lmax,
             prt: self.prt,
+            prt_static: self.prt_static,
             glossy,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),

@@ -13,7 +13,9 @@ pub enum Mode {
     #[default]
     Sh,
     /// Per-vertex PRT: a diffuse file's transfer dotted with the light
-    /// coefficients, or a glossy file's exit radiance toward the camera
+    /// coefficients, plus its static term where it has one
+    /// ([`Renderer::set_transfer_with_static`](crate::Renderer::set_transfer_with_static)),
+    /// or a glossy file's exit radiance toward the camera
     /// ([`Renderer::set_glossy`](crate::Renderer::set_glossy)).
     Prt,
     /// World-space unit normals as colours (exposure and tone map not applied).
@@ -140,6 +142,8 @@ pub(crate) struct FrameUniform {
     glossy_parts: u32,
     ggx_table: u32,
     ggx_rows: u32,
+    prt_static: u32,
+    _pad: [u32; 3],
 }
 
 /// What the glossy path adds to a frame's uniform block: the lobe's
@@ -167,6 +171,9 @@ pub(crate) struct FrameInputs<'a> {
     /// The light's lmax after clamping.
     pub lmax: usize,
     pub prt: Option<(usize, usize)>,
+    /// Where a diffuse transfer's static term starts in the transfer
+    /// buffer, in `f32`s (`None`: none).
+    pub prt_static: Option<usize>,
     /// The glossy transfer's lobe and layout, when the PRT transfer is
     /// glossy (PRT mode then shades it view by view).
     pub glossy: Option<GlossyInputs>,
@@ -243,6 +250,8 @@ impl FrameUniform {
             glossy_parts: f.glossy.map_or(0, |g| g.parts),
             ggx_table: f.glossy.and_then(|g| g.table).map_or(0, |t| t.0),
             ggx_rows: f.glossy.and_then(|g| g.table).map_or(0, |t| t.1),
+            prt_static: f.prt_static.map_or(0, |at| at as u32),
+            _pad: [0; 3],
         }
     }
 }
@@ -255,7 +264,8 @@ mod tests {
     fn the_uniform_block_has_the_wgsl_size() {
         // Frame in scene.wgsl: four mat4x4 (256), two array<vec4, 3> (96),
         // one vec4 (16), eight 4-byte scalars (32); then the eye (16), the
-        // lobe's bands (48), two scalars and the padding to 16 bytes (16).
-        assert_eq!(std::mem::size_of::<FrameUniform>(), 480);
+        // lobe's bands (48), four scalars (16), and the static term's
+        // offset with the padding to 16 bytes (16).
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 496);
     }
 }

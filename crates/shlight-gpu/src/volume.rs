@@ -941,6 +941,7 @@ impl VolumeRenderer {
             light_from_world: DMat3::IDENTITY,
             lmax,
             prt: None,
+            prt_static: None,
             glossy: None,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),

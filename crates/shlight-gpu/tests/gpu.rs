@@ -260,7 +260,8 @@ fn quads(n: usize) -> Mesh {
 }
 
 /// Rasterised PRT against CPU dot products: each quad's 4 vertices share a
-/// transfer vector, so its pixels show exactly `T . L` (up to f32 sums).
+/// transfer vector (and a static term, in the RGB cases), so its pixels
+/// show exactly `T . L` (`T . L + S`) up to f32 sums.
 const PRT_TOL: f64 = 1e-5;
 
 #[test]
@@ -286,10 +287,26 @@ fn prt_shading_shows_the_cpu_dot_products() {
             }
         }
         let transfer = TransferView::new(lmax, channels, mesh.vertex_count(), &data).unwrap();
+        // Quad q, channel c: a static exit radiance (none for grey files).
+        let lit = |q: usize, c: usize| {
+            if channels == 3 {
+                ((q * 5 + c * 11) % 13) as f32 / 20.0
+            } else {
+                0.0
+            }
+        };
+        let static_radiance: Vec<[f32; 3]> = match channels {
+            3 => (0..mesh.vertex_count())
+                .map(|v| [0, 1, 2].map(|c| lit(v / 4, c)))
+                .collect(),
+            _ => Vec::new(),
+        };
         let mut renderer = Renderer::new(&ctx, HEADLESS_FORMAT);
         renderer.set_mesh(&ctx, &mesh);
         renderer.set_light(&ctx, &light);
-        renderer.set_transfer(&ctx, &transfer).unwrap();
+        renderer
+            .set_transfer_with_static(&ctx, &transfer, &static_radiance)
+            .unwrap();
         let shading = Shading {
             mode: Mode::Prt,
             lmax: 8,
@@ -308,10 +325,12 @@ fn prt_shading_shows_the_cpu_dot_products() {
                 let c = if channels == 3 { k } else { 0 };
                 let want: f64 = (0..used)
                     .map(|i| f64::from(value(q, c, i)) * light[i][k])
-                    .sum();
+                    .sum::<f64>()
+                    + f64::from(lit(q, k));
                 let scale = (0..used)
                     .map(|i| (f64::from(value(q, c, i)) * light[i][k]).abs())
-                    .sum::<f64>();
+                    .sum::<f64>()
+                    + f64::from(lit(q, k));
                 assert!(
                     (f64::from(got[k]) - want).abs() <= PRT_TOL * scale,
                     "lmax {lmax} x{channels} quad {q} channel {k}: {} vs {want}",
@@ -400,6 +419,19 @@ fn transfer_shape_and_mode_errors_are_reported() {
     let t = TransferView::new(2, 1, 1, &data).unwrap();
     let err = renderer.set_transfer(&ctx, &t).unwrap_err().to_string();
     assert!(err.contains("mesh has"), "{err}");
+    let data = vec![0.0; 9 * mesh.vertex_count()];
+    let t = TransferView::new(2, 1, mesh.vertex_count(), &data).unwrap();
+    let err = renderer
+        .set_transfer_with_static(&ctx, &t, &[[1.0; 3]])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains(&format!(
+            "the static term holds 1 vertices but the PRT transfer {}",
+            mesh.vertex_count()
+        )),
+        "{err}"
+    );
     let camera = Camera::framing(mesh.bounds(), Vec3::Z, 0.6, 1.0);
     let shading = Shading {
         mode: Mode::Prt,

@@ -21,10 +21,11 @@
 //!   holds the mesh and map a front end uses when none is named.
 //! - [`scene_renderer`], [`mesh_renderer`], [`gltf_renderer`] and
 //!   [`light_renderer`]: the [`Renderer`](crate::Renderer) of the scene, of
-//!   a mesh, its transfer (diffuse vectors, or glossy matrices with their
-//!   lobe from shlight-prt's `Brdf`) and a light, of a glTF scene (its
-//!   primitives per instance with their materials; flattened under a
-//!   diffuse transfer, taken per unit albedo: [`per_unit_albedo`]), or of
+//!   a mesh, its transfer (diffuse vectors with a scene's static term,
+//!   [`static_radiance`], or glossy matrices with their lobe from
+//!   shlight-prt's `Brdf`) and a light, of a glTF scene (its primitives
+//!   per instance with their materials; flattened under a diffuse
+//!   transfer, taken per unit albedo: [`per_unit_albedo`]), or of
 //!   the light alone; [`SceneVolume::renderer`] the volume's pass over a
 //!   [`SceneGeometry`].
 //! - [`Scene::render_headless`]: one frame as a [`Shot`] sees it;
@@ -59,4 +60,4 @@ pub use scene_options::{SceneOptions, SceneSettings};
 pub use scene_renderers::{gltf_renderer, light_renderer, mesh_renderer, scene_renderer};
 pub use scene_volume::{SceneVolume, VolumeLight};
 pub use shot::Shot;
-pub use transfer_file::{per_unit_albedo, read_transfer, set_transfer};
+pub use transfer_file::{per_unit_albedo, read_transfer, set_transfer, static_radiance};

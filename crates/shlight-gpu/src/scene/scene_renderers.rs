@@ -10,7 +10,7 @@ use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
 use shlight_pipeline::Environment;
 
-use super::transfer_file::{per_unit_albedo, set_transfer};
+use super::transfer_file::{per_unit_albedo, set_transfer, static_radiance};
 use super::{GltfScene, Scene, SceneError};
 use crate::{GpuContext, Renderer};
 
@@ -42,8 +42,9 @@ pub fn light_renderer(
 }
 
 /// A renderer for colour targets of `format` holding `mesh`, its
-/// `transfer` (if any: diffuse transfer vectors, or glossy matrices with
-/// their lobe), the light of `light` and its map (if any).
+/// `transfer` (if any: diffuse transfer vectors with their static term,
+/// or glossy matrices with their lobe), the light of `light` and its map
+/// (if any).
 ///
 /// # Errors
 /// A transfer the GPU cannot hold, or a glossy file's unknown BRDF.
@@ -70,9 +71,10 @@ pub fn mesh_renderer(
 ///   with its material ([`Renderer::set_scene`]);
 /// - with a diffuse transfer (baked for the flattened scene, per world
 ///   vertex), the flattened scene with its materials
-///   ([`Renderer::set_surfaces`]) and the transfer per unit albedo
-///   ([`per_unit_albedo`]): PRT mode shows the transferred radiance times
-///   each fragment's albedo;
+///   ([`Renderer::set_surfaces`]), the transfer per unit albedo
+///   ([`per_unit_albedo`]) and the file's static term
+///   ([`static_radiance`]): PRT mode shows the transferred radiance times
+///   each fragment's albedo, plus the static exit radiance interpolated;
 /// - with a glossy transfer, the flattened mesh as [`mesh_renderer`] draws
 ///   a mesh (the glossy layer per vertex; no textures).
 ///
@@ -94,7 +96,7 @@ pub fn gltf_renderer(
             let albedo = gltf.mesh().colors.as_deref().unwrap_or(&[]);
             let data = per_unit_albedo(file, albedo);
             let view = TransferView::new(file.lmax, file.channels, file.vertex_count, &data)?;
-            renderer.set_transfer(ctx, &view)?;
+            renderer.set_transfer_with_static(ctx, &view, static_radiance(file))?;
         }
         Some(file) => return mesh_renderer(ctx, format, gltf.mesh(), Some(file), light),
     }

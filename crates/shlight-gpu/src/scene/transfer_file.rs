@@ -1,9 +1,10 @@
 //! A `.shprt` file on its mesh: read and checked against the mesh
 //! ([`read_transfer`]), and handed to a [`Renderer`] as diffuse transfer
-//! vectors or as glossy matrices with their BRDF's lobe
-//! ([`set_transfer`]); a diffuse file's transfer per unit albedo
-//! ([`per_unit_albedo`]), for surfaces whose albedo varies within a
-//! triangle (a glTF scene's textures).
+//! vectors with their static term, if any, or as glossy matrices with
+//! their BRDF's lobe ([`set_transfer`]); a diffuse file's transfer per
+//! unit albedo ([`per_unit_albedo`]), for surfaces whose albedo varies
+//! within a triangle (a glTF scene's textures); its static term
+//! ([`static_radiance`]).
 
 use std::path::Path;
 
@@ -49,7 +50,9 @@ pub fn read_transfer(path: &Path, mesh: &Mesh, mesh_name: &Path) -> Result<Shprt
 }
 
 /// Gives `renderer` (holding the file's mesh) the transfer of `file`:
-/// a diffuse file's vectors, or a glossy file's matrices with its BRDF's
+/// a diffuse file's vectors and its static term ([`static_radiance`]:
+/// PRT mode then shades `T . L + S`, as shlight-prt's
+/// `file_exit_radiance`), or a glossy file's matrices with its BRDF's
 /// lobe (shlight-prt's [`Brdf`]: Phong's zonal `Lambda_l`, or GGX's
 /// direction table).
 ///
@@ -61,7 +64,7 @@ pub fn set_transfer(
     file: &ShprtFile,
 ) -> Result<(), SceneError> {
     let (Some(matrices), Some(glossy)) = (file.glossy_view()?, &file.glossy) else {
-        return Ok(renderer.set_transfer(ctx, &file.view()?)?);
+        return Ok(renderer.set_transfer_with_static(ctx, &file.view()?, static_radiance(file))?);
     };
     let brdf = Brdf::parse(&glossy.brdf).map_err(SceneError::Refused)?;
     match brdf.lobe(file.lmax) {
@@ -75,6 +78,16 @@ pub fn set_transfer(
         )?,
     }
     Ok(())
+}
+
+/// The static term of `file` (format version 3, docs/shprt.md): each
+/// vertex's static exit radiance `S` as linear RGB, added to `T . L`;
+/// empty for a file without one.
+#[must_use]
+pub fn static_radiance(file: &ShprtFile) -> &[[f32; 3]] {
+    file.static_light
+        .as_ref()
+        .map_or(&[], |s| s.radiance.as_slice())
 }
 
 /// The diffuse transfer of `file` per unit albedo: each vertex's rows
