@@ -384,6 +384,14 @@ pub(crate) struct Xvfb {
 
 impl Xvfb {
     fn start() -> Option<Self> {
+        // One start at a time in this process: tests run on threads, and
+        // two of them finding the same display free would each clear its
+        // lock and socket and start a server there, and the second would
+        // break the first's connections.
+        static STARTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+        let _one = STARTING
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
         for n in 90..110 {
             let socket = format!("/tmp/.X11-unix/X{n}");
             // Taken while its lock names a live process; a lock or socket
