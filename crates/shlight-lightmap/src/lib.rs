@@ -17,6 +17,15 @@
 //!   interiors overlap in a UV set ([`UvOverlap`]), found through a uniform
 //!   grid over the triangles' boxes in near-linear time; shared edges and
 //!   corners are no overlap.
+//! - [`TexelFormat`]: what a texel holds for an engine ([`Engine`]:
+//!   three.js, Bevy, Godot, Unity with Bakery) in a basis ([`TexelBasis`]:
+//!   irradiance, L1 SH, MonoSH), with its [`L1Reconstruction`]:
+//!   [`TexelFormat::pack`] turns a texel's lmax-1 radiance SH into the
+//!   engine's layers ([`PackedTexel`]), [`TexelFormat::reconstruct`] ports
+//!   the engine's shader back to light. Under them, [`DiffuseL1`] (the
+//!   irradiance `a + b . n` per channel, in [`TexelUnits`]) and
+//!   [`geomerics_l1`] (the non-linear reconstruction). docs/lightmaps.md
+//!   quotes each shader.
 //! - [`dilate`]: empty texels filled from the mean of their valid
 //!   neighbours, pass by pass, for any value that can be averaged
 //!   ([`Blend`]).
@@ -48,18 +57,26 @@
 //! - **Errors.** An index past the UVs or a UV that is not finite is an
 //!   error naming the triangle ([`UvError`]); nothing panics on bad input.
 //!
-//! No I/O, no GPU, no SH: the bakers above put light into the texels.
+//! No I/O, no GPU: the bakers above put light into the texels.
 
+mod diffuse_l1;
 mod dilate;
+mod engine_packing;
+mod geomerics;
 mod placement;
 mod polygon;
+mod texel_format;
 mod texel_raster;
 mod uv_error;
 mod uv_overlap;
 mod uv_triangles;
 
+pub use diffuse_l1::{DiffuseL1, TexelUnits};
 pub use dilate::{Blend, GridShapeError, dilate};
+pub use engine_packing::PackedTexel;
+pub use geomerics::geomerics_l1;
 pub use placement::Placement;
+pub use texel_format::{Engine, L1Reconstruction, TexelBasis, TexelFormat, TexelFormatError};
 pub use texel_raster::{MAX_SIDE, TexelPiece, TexelRaster, TexelSample, texel_pieces};
 pub use uv_error::UvError;
 pub use uv_overlap::{OVERLAP_TOLERANCE, UvOverlap, first_uv_overlap};
