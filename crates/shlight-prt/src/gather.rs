@@ -394,7 +394,10 @@ impl<'a> Gather<'a> {
         previous: &[Line],
         progress: &(dyn Fn(usize) + Sync),
     ) -> Vec<Line> {
-        let mut next = vec![Line::ZERO; previous.len()];
+        // Zeroed in parallel: the system zeroes a fresh allocation's pages
+        // at their first touch, on whichever thread touches them.
+        let mut next = Vec::with_capacity(previous.len());
+        next.par_extend(rayon::iter::repeat_n(Line::ZERO, previous.len()));
         let prev = flat(previous);
         let stride = self.channels * self.nc;
         next.par_chunks_mut(BOUNCE_CHUNK * self.lines)
