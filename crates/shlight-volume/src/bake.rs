@@ -23,9 +23,11 @@ mod hit;
 mod punctual;
 pub mod relocate;
 mod sums;
+mod surface_points;
 
 use hit::Hit;
 use sums::{Rows, block_sum};
+pub use surface_points::{SurfaceLight, SurfacePoint, SurfacePointsBake, gather_at_surface_points};
 
 /// What to bake.
 #[derive(Clone, Debug, PartialEq)]
@@ -132,6 +134,9 @@ pub enum Stage {
     Relocate,
     /// Casting the probes' rays (`done` and `total` in directions).
     Probes,
+    /// Gathering light at surface points
+    /// ([`gather_at_surface_points`]; `done` and `total` in points).
+    Points,
 }
 
 /// Bakes the probes of `grid` through `scene` (`None`: nothing in the
@@ -324,35 +329,8 @@ fn bake_in_chunks(
     hits_memory: usize,
     kernels: Kernels,
 ) -> Result<VolumeBake, VolumeError> {
+    check_options(options)?;
     let lmax = options.lmax;
-    if lmax > shlight_baked::MAX_LMAX {
-        return Err(VolumeError::Options(format!(
-            "lmax {lmax} is beyond {}, the most a volume holds",
-            shlight_baked::MAX_LMAX
-        )));
-    }
-    if options.samples == 0 || options.surface_samples == 0 {
-        return Err(VolumeError::Options("samples must be at least 1".into()));
-    }
-    if !options.albedo.iter().all(|a| (0.0..=1.0).contains(a)) {
-        return Err(VolumeError::Options(format!(
-            "albedo {:?} is not within 0..=1",
-            options.albedo
-        )));
-    }
-    if options.visibility_size > shlight_baked::visibility::MAX_VISIBILITY_SIZE {
-        return Err(VolumeError::Options(format!(
-            "visibility maps of {0}x{0} texels: at most {1}x{1}",
-            options.visibility_size,
-            shlight_baked::visibility::MAX_VISIBILITY_SIZE
-        )));
-    }
-    if !(0.0..=1.0).contains(&options.invalid_backfaces) {
-        return Err(VolumeError::Options(format!(
-            "invalid_backfaces {} is not within 0..=1",
-            options.invalid_backfaces
-        )));
-    }
     if let Some((mesh, _)) = scene {
         check_max_edge(mesh, options.max_edge)?;
     }
@@ -516,6 +494,42 @@ fn bake_in_chunks(
         scene_hash: scene.map_or(0, Mesh::content_hash),
         lights: shlight_prt::light_counts(lights, options.light_units),
     })
+}
+
+/// Refuses what no bake can take: an lmax beyond
+/// [`shlight_baked::MAX_LMAX`], no samples, an albedo or
+/// `invalid_backfaces` outside 0..=1, visibility maps over their limit.
+fn check_options(options: &VolumeOptions) -> Result<(), VolumeError> {
+    if options.lmax > shlight_baked::MAX_LMAX {
+        return Err(VolumeError::Options(format!(
+            "lmax {} is beyond {}, the most a volume holds",
+            options.lmax,
+            shlight_baked::MAX_LMAX
+        )));
+    }
+    if options.samples == 0 || options.surface_samples == 0 {
+        return Err(VolumeError::Options("samples must be at least 1".into()));
+    }
+    if !options.albedo.iter().all(|a| (0.0..=1.0).contains(a)) {
+        return Err(VolumeError::Options(format!(
+            "albedo {:?} is not within 0..=1",
+            options.albedo
+        )));
+    }
+    if options.visibility_size > shlight_baked::visibility::MAX_VISIBILITY_SIZE {
+        return Err(VolumeError::Options(format!(
+            "visibility maps of {0}x{0} texels: at most {1}x{1}",
+            options.visibility_size,
+            shlight_baked::visibility::MAX_VISIBILITY_SIZE
+        )));
+    }
+    if !(0.0..=1.0).contains(&options.invalid_backfaces) {
+        return Err(VolumeError::Options(format!(
+            "invalid_backfaces {} is not within 0..=1",
+            options.invalid_backfaces
+        )));
+    }
+    Ok(())
 }
 
 /// The distance maps of a chunk's probes from their hits (laid out as

@@ -93,8 +93,9 @@ mod threejs_lookup;
 mod volume_bake;
 
 pub use bake::{
-    MAX_SUBDIVIDED_TRIANGLES, SURFACE_DIVISIONS, Stage, VolumeOptions, bake, bake_surfaces,
-    bake_with_lights, relocate,
+    MAX_SUBDIVIDED_TRIANGLES, SURFACE_DIVISIONS, Stage, SurfaceLight, SurfacePoint,
+    SurfacePointsBake, VolumeOptions, bake, bake_surfaces, bake_with_lights,
+    gather_at_surface_points, relocate,
 };
 pub use bake_file::{BakedFile, VolumeBakeSettings, bake_file, check_environment};
 pub use error::VolumeError;

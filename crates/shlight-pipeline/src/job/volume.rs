@@ -173,6 +173,7 @@ fn stage_label(stage: Stage) -> String {
         Stage::Surface(shlight_prt::Stage::Matrices) => "matrices".into(),
         Stage::Relocate => "relocate".into(),
         Stage::Probes => "probes".into(),
+        Stage::Points => "points".into(),
     }
 }
 
