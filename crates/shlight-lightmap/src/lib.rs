@@ -57,25 +57,40 @@
 //! - **Errors.** An index past the UVs or a UV that is not finite is an
 //!   error naming the triangle ([`UvError`]); nothing panics on bad input.
 //!
-//! No I/O, no GPU: the bakers above put light into the texels.
+//! - [`bake_scene_lightmap`]: a glTF scene's lightmap: a square region of
+//!   one atlas per placed node ([`pack_squares`]), its texels rasterised
+//!   onto its second UV set and the light gathered at each
+//!   (`shlight_volume::gather_at_surface_points`), texels inside geometry
+//!   and the padding filled by dilation; [`SceneLightmap::layers`] packs
+//!   it for an engine.
+//!
+//! No I/O, no GPU.
 
+mod atlas;
 mod diffuse_l1;
 mod dilate;
 mod engine_packing;
 mod geomerics;
+mod lightmap_error;
 mod placement;
 mod polygon;
+mod scene_lightmap;
 mod texel_format;
 mod texel_raster;
 mod uv_error;
 mod uv_overlap;
 mod uv_triangles;
 
+pub use atlas::{TexelRect, pack_squares, smallest_atlas};
 pub use diffuse_l1::{DiffuseL1, TexelUnits};
 pub use dilate::{Blend, GridShapeError, dilate};
 pub use engine_packing::PackedTexel;
 pub use geomerics::geomerics_l1;
+pub use lightmap_error::LightmapError;
 pub use placement::Placement;
+pub use scene_lightmap::{
+    LightmapRegion, LightmapSettings, LightmapSize, SceneLightmap, TexelLight, bake_scene_lightmap,
+};
 pub use texel_format::{Engine, L1Reconstruction, TexelBasis, TexelFormat, TexelFormatError};
 pub use texel_raster::{MAX_SIDE, TexelPiece, TexelRaster, TexelSample, texel_pieces};
 pub use uv_error::UvError;

@@ -46,6 +46,6 @@ pub use load_options::LoadOptions;
 pub use material::{AlphaMode, Material, SurfaceSample, TextureRef};
 pub use mesh::{Mesh, MeshReport};
 pub use punctual_light::{Arrival, LightKind, LightUnits, PunctualLight};
-pub use scene::{Instance, MAX_UV_SETS, Primitive, Scene, Surfaces};
+pub use scene::{Instance, InstanceSource, MAX_UV_SETS, Primitive, Scene, Surfaces};
 pub use subdivide::Subdivision;
 pub use texture::{Filter, Texture, Wrap};

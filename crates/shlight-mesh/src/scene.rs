@@ -82,6 +82,23 @@ pub struct Scene {
     /// What the loader passed over and says so (an optional extension it
     /// does not use, a primitive that is not triangles).
     pub notes: Vec<String>,
+    /// Per instance, where the file placed it ([`InstanceSource`]); empty
+    /// for a scene built in code or read from a file without scenes.
+    pub instance_sources: Vec<InstanceSource>,
+}
+
+/// Where an [`Instance`] of a loaded scene came from: the glTF node that
+/// placed it and the glTF mesh it belongs to (the primitives of one mesh
+/// share its UV layouts), and which `EXT_mesh_gpu_instancing` instance
+/// of the node it is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct InstanceSource {
+    /// Index of the node in the file's `nodes`.
+    pub node: usize,
+    /// Index of the mesh in the file's `meshes`.
+    pub mesh: usize,
+    /// The node's GPU instance (`EXT_mesh_gpu_instancing`), if it has them.
+    pub gpu_instance: Option<u32>,
 }
 
 /// The scene flattened: every instance's triangles in world space, and per

@@ -217,6 +217,13 @@ fn a_mesh_used_by_two_nodes_is_stored_once_and_flattened_twice() {
         assert_eq!(s.primitives.len(), 1);
         assert_eq!(s.instances.len(), 2);
         assert!(s.instances.iter().all(|i| i.primitive == 0));
+        // Nodes 0 and 1 place mesh 0 (the square is the first mesh).
+        let sources: Vec<_> = s
+            .instance_sources
+            .iter()
+            .map(|i| (i.node, i.mesh, i.gpu_instance))
+            .collect();
+        assert_eq!(sources, [(0, m, None), (1, m, None)]);
         let f = s.flatten(Vec3::splat(0.5)).unwrap();
         assert_eq!(f.mesh.vertex_count(), 8);
         // Vertex 2, (1, 1, 0): first translated by z + 5, then doubled.
@@ -263,6 +270,12 @@ fn gpu_instancing_places_each_instance_after_the_node() {
     let scene = a.load().unwrap();
     assert_eq!(scene.primitives.len(), 1);
     assert_eq!(scene.instances.len(), 3);
+    let gpu: Vec<_> = scene
+        .instance_sources
+        .iter()
+        .map(|i| (i.node, i.gpu_instance))
+        .collect();
+    assert_eq!(gpu, [(0, Some(0)), (0, Some(1)), (0, Some(2))]);
     let f = scene.flatten(Vec3::ONE).unwrap();
     assert_eq!(f.mesh.vertex_count(), 12);
     // Vertex 1 of the square is (1, 0, 0); the node lifts everything by y 1.

@@ -23,7 +23,7 @@ use json::accessor::Type;
 
 use super::accessor::{self, Data};
 use super::{light, primitive};
-use crate::scene::{Instance, Scene};
+use crate::scene::{Instance, InstanceSource, Scene};
 use crate::{LoadOptions, MeshError};
 
 /// The walk's state: what it has gathered so far.
@@ -213,6 +213,11 @@ impl<'a> Walk<'a> {
                 })?;
             for &p in &primitives {
                 self.place(p, transform)?;
+                self.scene.instance_sources.push(InstanceSource {
+                    node: index,
+                    mesh,
+                    gpu_instance: instancing.is_some().then_some(k as u32),
+                });
             }
         }
         Ok(())
