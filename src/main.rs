@@ -16,6 +16,7 @@ mod gpu_feature;
 mod heap;
 mod input;
 mod irradiance;
+mod lightmap;
 mod prefilter;
 mod progress;
 mod project;
@@ -72,6 +73,9 @@ enum Command {
     Prt(prt::PrtArgs),
     /// Bake an irradiance volume: relightable SH probes on a grid through a scene.
     Volume(volume::VolumeArgs),
+    /// Bake a glTF scene's lightmap on its second UV set (irradiance, L1
+    /// SH or MonoSH) for three.js, Bevy, Godot or Unity.
+    Lightmap(lightmap::LightmapArgs),
     /// What a baked file shades with: a volume's irradiance at points, a
     /// PRT file's exit radiance per vertex.
     Sample(sample::SampleArgs),
@@ -116,6 +120,7 @@ fn run(command: Command, ui: &progress::Ui) -> anyhow::Result<()> {
         Command::View(args) => view::run(&args, ui),
         Command::Prt(args) => prt::run(&args, ui),
         Command::Volume(args) => volume::run(&args, ui),
+        Command::Lightmap(args) => lightmap::run(&args, ui),
         Command::Sample(args) => sample::run(&args, ui),
         Command::Prefilter(args) => prefilter::run(&args, ui),
         Command::Dfg(args) => dfg::run(&args, ui),

@@ -19,6 +19,7 @@ mod guide;
 mod layouts_cli;
 #[cfg(not(feature = "gpu"))]
 mod lean;
+mod lightmap;
 mod montecarlo_cli;
 mod project;
 mod prt;

@@ -162,10 +162,22 @@ impl TexelFormat {
     /// (L0, then the direction).
     #[must_use]
     pub fn layer_count(self) -> usize {
-        match self.basis {
-            TexelBasis::Irradiance => 1,
-            TexelBasis::ShL1 => 4,
-            TexelBasis::MonoSh => 2,
+        self.layer_names().len()
+    }
+
+    /// The layers' names, in order, as files and shlight's glTF extension
+    /// name them: `irradiance`; `l0`, then `l1x`, `l1y`, `l1z` (three.js,
+    /// shlight's layout), `l1y`, `l1z`, `l1x` (Godot's order), or `rnm0`,
+    /// `rnm1`, `rnm2` (Bakery's SH textures, for x, y, z); MonoSH's `l0`
+    /// and `direction`.
+    #[must_use]
+    pub fn layer_names(self) -> &'static [&'static str] {
+        match (self.basis, self.engine) {
+            (TexelBasis::Irradiance, _) => &["irradiance"],
+            (TexelBasis::MonoSh, _) => &["l0", "direction"],
+            (TexelBasis::ShL1, Engine::Godot) => &["l0", "l1y", "l1z", "l1x"],
+            (TexelBasis::ShL1, Engine::Unity) => &["l0", "rnm0", "rnm1", "rnm2"],
+            (TexelBasis::ShL1, _) => &["l0", "l1x", "l1y", "l1z"],
         }
     }
 }

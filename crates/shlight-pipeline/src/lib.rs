@@ -119,6 +119,10 @@ pub use job::dfg::{DfgPlan, DfgRequest, dfg, dfg_channels};
 pub use job::irradiance::{
     ERROR_MAP_TOP, IrradiancePlan, IrradianceRequest, irradiance, summary as irradiance_summary,
 };
+pub use job::lightmap::{
+    LightmapBaked, LightmapPlan, LightmapRequest, engine_name, lightmap, lightmap_description,
+    lightmap_of_scene,
+};
 pub use job::prefilter::{PrefilterOutput, PrefilterPlan, PrefilterRequest, prefilter};
 pub use job::project::{
     Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,

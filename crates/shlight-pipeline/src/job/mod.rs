@@ -15,6 +15,7 @@ pub mod compare;
 pub mod convert;
 pub mod dfg;
 pub mod irradiance;
+pub mod lightmap;
 pub mod prefilter;
 pub mod project;
 pub mod prt;

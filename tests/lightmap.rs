@@ -1,0 +1,184 @@
+//! `shlight lightmap` end to end: a glTF floor with a second UV set under
+//! a point lamp baked to the closed form `E = I cos / d^2` in each
+//! engine's units (its layers read back from the OpenEXR files), and bad
+//! scenes refused by name with nothing written.
+
+use std::path::Path;
+
+use shlight_io::{ReadOptions, read_image};
+
+use crate::util::{glb, s, shlight_err, shlight_ok, temp_dir, write_coefficient_rows};
+
+/// A 2 m floor (y = 0, facing up) whose UV sets are both `(x / 2 + 1/2, z
+/// / 2 + 1/2)` (only the first with `uv1: false`), and a white point lamp
+/// of `candela` at `lamp`.
+fn floor_glb(candela: f64, lamp: [f32; 3], uv1: bool) -> Vec<u8> {
+    let corners = [
+        [-1.0f32, 0.0, -1.0],
+        [1.0, 0.0, -1.0],
+        [1.0, 0.0, 1.0],
+        [-1.0, 0.0, 1.0],
+    ];
+    let mut bin = Vec::new();
+    for c in corners {
+        c.iter().for_each(|x| bin.extend(x.to_le_bytes()));
+    }
+    for _ in corners {
+        [0.0f32, 1.0, 0.0]
+            .iter()
+            .for_each(|x| bin.extend(x.to_le_bytes()));
+    }
+    for c in corners {
+        [c[0] / 2.0 + 0.5, c[2] / 2.0 + 0.5]
+            .iter()
+            .for_each(|x| bin.extend(x.to_le_bytes()));
+    }
+    for i in [0u16, 3, 2, 0, 2, 1] {
+        bin.extend(i.to_le_bytes());
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let mut attributes = serde_json::json!({"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2});
+    if uv1 {
+        attributes["TEXCOORD_1"] = 2.into();
+    }
+    let doc = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "point", "name": "lamp", "intensity": candela, "color": [1, 1, 1]}
+        ]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [
+            {"mesh": 0, "name": "Floor"},
+            {"translation": lamp, "extensions": {"KHR_lights_punctual": {"light": 0}}}
+        ],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}],
+        "meshes": [{"name": "Floor", "primitives": [{"attributes": attributes, "indices": 3, "material": 0}]}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 96, "byteLength": 32},
+            {"buffer": 0, "byteOffset": 128, "byteLength": 12}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+             "min": [-1, 0, -1], "max": [1, 0, 1]},
+            {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+            {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}
+        ]
+    });
+    glb(&doc, &bin)
+}
+
+fn black_sky(dir: &Path) -> std::path::PathBuf {
+    let env = dir.join("black.json");
+    write_coefficient_rows(&env, &[[0.0; 3]; 9], "radiance");
+    env
+}
+
+#[test]
+fn a_floor_under_a_lamp_bakes_to_i_cos_over_d_squared_for_each_engine() {
+    let dir = temp_dir("lightmap_floor");
+    let scene = dir.join("floor.glb");
+    // 683 x 6 cd in Blender's units: 6 W/sr.
+    let lamp = [0.3f32, 1.5, -0.2];
+    std::fs::write(&scene, floor_glb(683.0 * 6.0, lamp, true)).unwrap();
+    let env = black_sky(&dir);
+    for (engine, scale) in [("threejs", 1.0), ("bevy", 1.0 / std::f64::consts::PI)] {
+        let prefix = dir.join(engine);
+        let run = shlight_ok(&[
+            "lightmap",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--for",
+            engine,
+            "--size",
+            "64",
+            "--samples",
+            "16",
+            "--surface-samples",
+            "16",
+            "--exr",
+            s(&prefix),
+        ]);
+        let said = String::from_utf8_lossy(&run.stderr);
+        assert!(said.contains("64 x 64 lightmap, 1 regions"), "{said}");
+        let image = read_image(
+            &dir.join(format!("{engine}.irradiance.exr")),
+            &ReadOptions::default(),
+        )
+        .unwrap();
+        assert_eq!((image.width(), image.height()), (64, 64));
+        // The region: padding 2, so texels 2..62 hold the floor (its side
+        // the largest that fits: 60).
+        let (mut checked, mut worst) = (0, 0.0f64);
+        for y in 2..62 {
+            for x in 2..62 {
+                let uv = [(x - 2) as f32 + 0.5, (y - 2) as f32 + 0.5].map(|t| t / 60.0);
+                let p = [uv[0] * 2.0 - 1.0, 0.0, uv[1] * 2.0 - 1.0];
+                let d = [lamp[0] - p[0], lamp[1] - p[1], lamp[2] - p[2]];
+                let d2 = f64::from(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                let want = 6.0 * f64::from(d[1]) / d2.powf(1.5) * scale;
+                let got = f64::from(image.get(x, y)[0]);
+                worst = worst.max((got / want - 1.0).abs());
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 3600);
+        // Each texel is sampled within half a texel of its centre (1.7 cm),
+        // where the lamp's light changes by under 1.5%.
+        assert!(worst < 0.015, "{engine}: worst {worst}");
+    }
+}
+
+#[test]
+fn a_scene_without_a_second_uv_set_is_refused_by_name_and_nothing_is_written() {
+    let dir = temp_dir("lightmap_no_uv1");
+    let scene = dir.join("floor.glb");
+    std::fs::write(&scene, floor_glb(683.0, [0.0, 1.0, 0.0], false)).unwrap();
+    let env = black_sky(&dir);
+    let prefix = dir.join("out");
+    let e = shlight_err(&[
+        "lightmap",
+        s(&scene),
+        "--env",
+        s(&env),
+        "--size",
+        "32",
+        "--exr",
+        s(&prefix),
+    ]);
+    assert!(
+        e.contains("floor.glb")
+            && e.contains("(Floor)")
+            && e.contains("has no UV set 1 (TEXCOORD_1)"),
+        "{e}"
+    );
+    assert!(!dir.join("out.irradiance.exr").exists());
+    let e = shlight_err(&[
+        "lightmap",
+        s(&scene),
+        "--env",
+        s(&env),
+        "--basis",
+        "monosh",
+        "--for",
+        "godot",
+    ]);
+    assert!(e.contains("--basis monosh with --for godot"), "{e}");
+    let e = shlight_err(&[
+        "lightmap",
+        s(&scene),
+        "--env",
+        s(&env),
+        "-o",
+        s(&dir.join("out.gltf")),
+    ]);
+    assert!(e.contains("a .glb file"), "{e}");
+}
