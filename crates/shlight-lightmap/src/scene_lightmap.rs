@@ -115,6 +115,49 @@ pub struct SceneLightmap {
 }
 
 impl SceneLightmap {
+    /// The light a GPU's bilinear filter reads at `uv` of region `region`'s
+    /// UV set: the region's placement takes it to the atlas, where texel
+    /// `(x, y)` is centred at `((x + 1/2) / side, (y + 1/2) / side)`; the
+    /// four texels around the point are weighted bilinearly (clamped at
+    /// the atlas's edge), those without light left out and the rest's
+    /// weights renormalised. `None` when none of the four has light or the
+    /// region does not exist.
+    #[must_use]
+    pub fn bilinear(&self, region: usize, uv: Vec2) -> Option<TexelLight> {
+        let r = self.regions.get(region)?;
+        let at = r.placement.apply(uv.as_dvec2()) * f64::from(self.side) - 0.5;
+        let (x0, y0) = (at.x.floor(), at.y.floor());
+        let (fx, fy) = (at.x - x0, at.y - y0);
+        let max = i64::from(self.side) - 1;
+        let mut sum = [0.0f64; 16];
+        let mut weight = 0.0;
+        let mut normal = Vec3::ZERO;
+        for (dy, wy) in [(0, 1.0 - fy), (1, fy)] {
+            for (dx, wx) in [(0, 1.0 - fx), (1, fx)] {
+                let x = (x0 as i64 + dx).clamp(0, max) as usize;
+                let y = (y0 as i64 + dy).clamp(0, max) as usize;
+                let w = wx * wy;
+                if w <= 0.0 {
+                    continue;
+                }
+                let Some(t) = self.texels[y * self.side as usize + x] else {
+                    continue;
+                };
+                for (s, v) in sum.iter_mut().zip(to_array(t)) {
+                    *s += w * v;
+                }
+                normal += w as f32 * t.normal;
+                weight += w;
+            }
+        }
+        if weight <= 0.0 {
+            return None;
+        }
+        let mut t = from_array(sum.map(|s| s / weight));
+        t.normal = normal.normalize_or(t.normal);
+        Some(t)
+    }
+
     /// The lightmap's texels as `format` stores them: one grid of RGBA
     /// per layer ([`TexelFormat::layer_count`]), row by row; texels with
     /// no light are zero. The irradiance basis stores the gathered

@@ -305,3 +305,26 @@ fn a_primitive_without_the_uv_set_or_with_overlapping_uvs_is_refused_by_name() {
     .to_string();
     assert!(e.contains("from 4 to"), "{e}");
 }
+
+#[test]
+fn the_bilinear_read_interpolates_texel_centres_and_skips_empty_texels() {
+    // A floor lit by a lamp: at a texel's centre the read is the texel,
+    // halfway between two it is their mean.
+    let light = lamp(Vec3::new(0.2, 1.0, -0.1), 3.0);
+    let s = scene(vec![floor(2.0)], &[(0, Mat4::IDENTITY)], vec![light]);
+    let map = bake(&s, &settings(LightmapSize::Side(32)), DVec3::ZERO).unwrap();
+    let r = &map.regions[0];
+    let side = f64::from(r.rect.side);
+    let texel = |x: u32, y: u32| {
+        map.texels[((r.rect.y + y) * map.side + r.rect.x + x) as usize]
+            .unwrap()
+            .irradiance
+    };
+    let centre = |x: f64, y: f64| Vec2::new(((x + 0.5) / side) as f32, ((y + 0.5) / side) as f32);
+    let at = map.bilinear(0, centre(5.0, 7.0)).unwrap().irradiance;
+    assert!((at - texel(5, 7)).abs().max_element() < 1e-4 * texel(5, 7).max_element());
+    let mid = map.bilinear(0, centre(5.5, 7.0)).unwrap().irradiance;
+    let want = (texel(5, 7) + texel(6, 7)) / 2.0;
+    assert!((mid - want).abs().max_element() < 1e-4 * want.max_element());
+    assert!(map.bilinear(1, centre(1.0, 1.0)).is_none());
+}
