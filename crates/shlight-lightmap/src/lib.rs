@@ -75,6 +75,7 @@ mod lightmap_error;
 mod placement;
 mod polygon;
 mod scene_lightmap;
+mod seams;
 mod texel_format;
 mod texel_raster;
 mod uv_error;
@@ -91,6 +92,7 @@ pub use placement::Placement;
 pub use scene_lightmap::{
     LightmapRegion, LightmapSettings, LightmapSize, SceneLightmap, TexelLight, bake_scene_lightmap,
 };
+pub use seams::{SMOOTH_COS, STITCH_SWEEPS, Seam, SeamCorner, find_seams, stitch_seams};
 pub use texel_format::{Engine, L1Reconstruction, TexelBasis, TexelFormat, TexelFormatError};
 pub use texel_raster::{MAX_SIDE, TexelPiece, TexelRaster, TexelSample, texel_pieces};
 pub use uv_error::UvError;

@@ -13,6 +13,7 @@ use crate::atlas::{TexelRect, pack_squares, smallest_atlas};
 use crate::dilate::dilate;
 use crate::lightmap_error::LightmapError;
 use crate::placement::Placement;
+use crate::seams::{SeamCorner, find_seams, stitch_seams};
 use crate::texel_format::{TexelBasis, TexelFormat};
 use crate::texel_raster::{MAX_SIDE, TexelRaster};
 use crate::uv_overlap::first_uv_overlap;
@@ -108,6 +109,11 @@ pub struct SceneLightmap {
     pub texels: Vec<Option<TexelLight>>,
     /// Texels found inside geometry (seeing mostly back faces) and filled.
     pub invalid: usize,
+    /// UV seams stitched ([`crate::find_seams`]).
+    pub seams: usize,
+    /// The largest difference of the red irradiance read on the two sides
+    /// of a seam, before and after stitching ([`crate::stitch_seams`]).
+    pub seam_gap: [f64; 2],
     /// Rays per texel.
     pub samples: usize,
     /// Rays cast in all.
@@ -369,10 +375,21 @@ pub fn bake_scene_lightmap(
     let mut blend: Vec<Option<[f64; 16]>> = texels.iter().map(|t| t.map(to_array)).collect();
     dilate(&mut blend, width, padding.max(1) + DILATE_EXTRA)
         .map_err(|e| LightmapError::Settings(e.to_string()))?;
+    // Then the seams of each node's charts.
+    let mut seams = Vec::new();
+    for (uvs, rect) in nodes.iter().zip(&rects) {
+        seams.extend(find_seams(&seam_corners(scene, uvs, rect)));
+    }
+    let (before, after) = stitch_seams(&mut blend, width, &seams);
     for (t, b) in texels.iter_mut().zip(&blend) {
-        if t.is_none() {
-            *t = b.map(from_array);
-        }
+        *t = match (*t, b) {
+            (Some(own), Some(b)) => Some(TexelLight {
+                normal: own.normal,
+                ..from_array(*b)
+            }),
+            (None, b) => b.map(from_array),
+            (own, None) => own,
+        };
     }
     Ok(SceneLightmap {
         side,
@@ -380,6 +397,8 @@ pub fn bake_scene_lightmap(
         regions,
         texels,
         invalid,
+        seams: seams.len(),
+        seam_gap: [before, after],
         samples: gathered.samples,
         rays: gathered.rays,
     })
@@ -577,4 +596,24 @@ fn surface_point(scene: &Scene, instance: usize, local: u32, w: [f32; 3]) -> (Ve
         world_n
     };
     (placed.transform.transform_point3(p), world_n)
+}
+
+/// A node's triangles as [`find_seams`] reads them: corners in the mesh's
+/// space with their normals, and their place in the atlas (the region's
+/// square at `rect`).
+fn seam_corners(scene: &Scene, uvs: &NodeUvs, rect: &TexelRect) -> Vec<[SeamCorner; 3]> {
+    let origin = glam::DVec2::new(f64::from(rect.x), f64::from(rect.y));
+    uvs.triangles
+        .iter()
+        .zip(&uvs.owners)
+        .map(|(tri, &(i, local))| {
+            let mesh = &scene.primitives[scene.instances[i].primitive].mesh;
+            let corners = mesh.triangles[local as usize];
+            std::array::from_fn(|k| SeamCorner {
+                position: mesh.positions[corners[k] as usize],
+                normal: mesh.normals[corners[k] as usize],
+                texel: origin + uvs.uvs[tri[k] as usize].as_dvec2() * f64::from(rect.side),
+            })
+        })
+        .collect()
 }

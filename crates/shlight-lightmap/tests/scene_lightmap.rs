@@ -328,3 +328,54 @@ fn the_bilinear_read_interpolates_texel_centres_and_skips_empty_texels() {
     assert!((mid - want).abs().max_element() < 1e-4 * want.max_element());
     assert!(map.bilinear(1, centre(1.0, 1.0)).is_none());
 }
+
+#[test]
+fn a_seam_between_two_charts_reads_the_same_light_on_both_sides() {
+    // A 2 x 1 m floor as two 1 m quads sharing the edge x = 0, laid out in
+    // two charts of TEXCOORD_1 apart from each other; a lamp low over the
+    // seam makes the light change fast across it.
+    let mut positions = Vec::new();
+    let mut uv = Vec::new();
+    for (x0, u0) in [(-1.0f32, 0.05f32), (0.0, 0.55)] {
+        for (x, z) in [(0.0, -0.5), (1.0, -0.5), (1.0, 0.5), (0.0, 0.5)] {
+            positions.push(Vec3::new(x0 + x, 0.0, z));
+            uv.push(Vec2::new(u0 + 0.4 * x, 0.3 + 0.4 * (z + 0.5)));
+        }
+    }
+    let triangles = vec![[0, 2, 1], [0, 3, 2], [4, 6, 5], [4, 7, 6]];
+    let mesh = shlight_mesh::Mesh::new(
+        "two quads",
+        positions,
+        triangles,
+        Some(vec![Vec3::Y; 8]),
+        None,
+    )
+    .unwrap();
+    let mut p = Primitive::new(mesh, Some(0), "mesh 0 (Split) primitive 0");
+    p.uvs = vec![uv.clone(), uv];
+    let light = lamp(Vec3::new(0.05, 0.3, 0.1), 2.0);
+    let s = scene(vec![p], &[(0, Mat4::IDENTITY)], vec![light.clone()]);
+    let map = bake(&s, &settings(LightmapSize::Density(32.0)), DVec3::ZERO).unwrap();
+    assert_eq!(map.seams, 1);
+    let [before, after] = map.seam_gap;
+    println!("seam gap: {before:.3e} before stitching, {after:.3e} after");
+    for k in 0..40 {
+        let z = -0.5 + (k as f32 + 0.5) / 40.0;
+        let v = 0.3 + 0.4 * (z + 0.5);
+        let a = map.bilinear(0, Vec2::new(0.45, v)).unwrap().irradiance;
+        let b = map.bilinear(0, Vec2::new(0.55, v)).unwrap().irradiance;
+        let to = light.position - Vec3::new(0.0, 0.0, z);
+        let exact = 2.0 * f64::from(to.normalize().y) / f64::from(to.length_squared());
+        assert!(
+            (a - b).abs().max_element() < 1e-3 * exact,
+            "z {z}: {a:?} against {b:?}"
+        );
+        // The stitched light is still the lamp's (within what bilinear
+        // reading of a steep falloff allows).
+        assert!(
+            (a.x / (exact * f64::from(light.color.x)) - 1.0).abs() < 0.05,
+            "z {z}: {a:?}, exact {exact}"
+        );
+    }
+    assert!(before > 20.0 * after, "gap {before} before, {after} after");
+}
