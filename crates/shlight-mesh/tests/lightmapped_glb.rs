@@ -589,3 +589,110 @@ fn bad_requests_and_paths_are_errors_naming_the_file() {
         "{e}"
     );
 }
+
+/// A `.gltf` whose positions, indices and `TEXCOORD_1` are
+/// `EXT_meshopt_compression` views: the compressed bytes in data-URI
+/// buffers 0 and 2, decoded into fallback buffer 1. The output re-points
+/// the compressed sources into the BIN chunk, keeps the fallback, and the
+/// unshared `TEXCOORD_1` is read decompressed.
+#[test]
+fn meshopt_compressed_views_are_re_pointed_and_read() {
+    let dir = temp_dir("meshopt");
+    let positions: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.25],
+    ];
+    let uv1: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, 0.75]];
+    let indices = [0u32, 1, 2, 0, 2, 3];
+    let vertices = meshopt::encoding::encode_vertex_buffer(&positions).unwrap();
+    let index_stream = meshopt::encoding::encode_index_buffer(&indices, 4).unwrap();
+    let uvs = meshopt::encoding::encode_vertex_buffer(&uv1).unwrap();
+    let mut first = vertices.clone();
+    first.resize(first.len().next_multiple_of(4), 0);
+    let at = first.len();
+    first.extend(&index_stream);
+    let b64 = |b: &[u8]| base64::engine::general_purpose::STANDARD.encode(b);
+    let compressed = |buffer: usize,
+                      offset: usize,
+                      length: usize,
+                      stride: usize,
+                      count: usize,
+                      mode: &str| {
+        json!({"EXT_meshopt_compression": {"buffer": buffer, "byteOffset": offset, "byteLength": length,
+               "byteStride": stride, "count": count, "mode": mode}})
+    };
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["EXT_meshopt_compression"],
+        "extensionsRequired": ["EXT_meshopt_compression"],
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_1": 2}, "indices": 1}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0.25]},
+            {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+            {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}
+        ],
+        "bufferViews": [
+            {"buffer": 1, "byteOffset": 0, "byteLength": 48, "byteStride": 12,
+             "extensions": compressed(0, 0, vertices.len(), 12, 4, "ATTRIBUTES")},
+            {"buffer": 1, "byteOffset": 48, "byteLength": 12,
+             "extensions": compressed(0, at, index_stream.len(), 2, 6, "TRIANGLES")},
+            {"buffer": 1, "byteOffset": 60, "byteLength": 32, "byteStride": 8,
+             "extensions": compressed(2, 0, uvs.len(), 8, 4, "ATTRIBUTES")}
+        ],
+        "buffers": [
+            {"uri": format!("data:application/octet-stream;base64,{}", b64(&first)), "byteLength": first.len()},
+            {"byteLength": 92, "extensions": {"EXT_meshopt_compression": {"fallback": true}}},
+            {"uri": format!("data:application/octet-stream;base64,{}", b64(&uvs)), "byteLength": uvs.len()}
+        ]
+    });
+    let input = dir.join("packed.gltf");
+    std::fs::write(&input, serde_json::to_vec(&doc).unwrap()).unwrap();
+    let output = dir.join("packed.glb");
+    let request = LightmapRequest {
+        images: vec![LightmapImage {
+            name: "lm".into(),
+            format: LightmapImageFormat::Png,
+            bytes: png("lm"),
+            intensity: 1.0,
+        }],
+        nodes: vec![node(0, 0, true, [0.5, 0.5, 0.25, 0.5])],
+        root_extension: json!({}),
+    };
+    let made = write_lightmapped_glb(&input, &output, &request).unwrap();
+    let bytes = std::fs::read(&output).unwrap();
+    let (after, bin) = split(&bytes);
+    // The merged buffer, then the fallback as it was.
+    assert_eq!(after["buffers"][1], doc["buffers"][1]);
+    assert_eq!(after["buffers"].as_array().unwrap().len(), 2);
+    for (v, given) in [(0, &vertices), (1, &index_stream), (2, &uvs)] {
+        let ext = &after["bufferViews"][v]["extensions"]["EXT_meshopt_compression"];
+        assert_eq!(ext["buffer"], 0, "view {v}");
+        let offset = ext["byteOffset"].as_u64().unwrap() as usize;
+        assert_eq!(&bin[offset..offset + given.len()], &given[..], "view {v}");
+        assert_eq!(after["bufferViews"][v]["buffer"], 1);
+    }
+    // shlight's loader reads the output: the same triangles, and the
+    // unshared TEXCOORD_1 (a plain float accessor) moved into the rectangle.
+    assert_eq!(triangles(&input), triangles(&output));
+    let scene = load_scene(&output, &LoadOptions::default()).unwrap();
+    let moved: Vec<[f32; 2]> = scene.primitives[0].uvs[1]
+        .iter()
+        .map(|v| v.to_array())
+        .collect();
+    let want: Vec<[f32; 2]> = uv1
+        .iter()
+        .map(|[u, v]| {
+            [
+                (f64::from(*u) * 0.5 + 0.25) as f32,
+                (f64::from(*v) * 0.5 + 0.5) as f32,
+            ]
+        })
+        .collect();
+    assert_eq!(moved, want);
+    assert_eq!(made.meshes, [1]);
+}
