@@ -113,6 +113,8 @@ pub struct LightmapRequest {
     pub nodes: Vec<BakedNode>,
     /// The root's `extensions.SHLIGHT_lightmap` (basis, units, packing).
     pub root_extension: Value,
+    /// The limits the input is read under, as [`crate::load_scene`]'s.
+    pub load_options: LoadOptions,
 }
 
 /// What [`write_lightmapped_glb`] made.
@@ -168,7 +170,7 @@ pub fn lightmapped_glb(
         path: input.to_path_buf(),
         message,
     };
-    let parsed = document::parse(input, bytes, &LoadOptions::default())?;
+    let parsed = document::parse(input, bytes, &request.load_options)?;
     let json_bytes = if bytes.starts_with(b"glTF") {
         document::split_glb(bytes)
             .map_err(|e| parse_error(format!("not a valid glTF file: {e}")))?

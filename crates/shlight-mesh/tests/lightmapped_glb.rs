@@ -213,6 +213,7 @@ fn instances_keep_their_data_and_gain_lightmaps() {
             node(5, 0, true, rects[4]),
         ],
         root_extension: json!({"basis": "irradiance", "units": "E"}),
+        load_options: LoadOptions::default(),
     };
     let made = write_lightmapped_glb(&input, &output, &request).unwrap();
     let bytes = std::fs::read(&output).unwrap();
@@ -453,6 +454,7 @@ fn a_gltf_with_external_and_data_uri_buffers_becomes_one_glb() {
             node(1, 0, false, [0.5, 0.5, 0.0, 0.0]),
         ],
         root_extension: json!({"packing": "three"}),
+        load_options: LoadOptions::default(),
     };
     let made = write_lightmapped_glb(&input, &output, &request).unwrap();
     assert!(made.notes.is_empty(), "{:?}", made.notes);
@@ -561,6 +563,7 @@ fn bad_requests_and_paths_are_errors_naming_the_file() {
             images: vec![image(), image()],
             nodes,
             root_extension: Value::Null,
+            load_options: LoadOptions::default(),
         };
         let e = write_lightmapped_glb(&input, &output, &request).unwrap_err();
         let text = e.to_string();
@@ -574,6 +577,7 @@ fn bad_requests_and_paths_are_errors_naming_the_file() {
         images: vec![image()],
         nodes: vec![node(1, 0, false, [1.0; 4])],
         root_extension: Value::Null,
+        load_options: LoadOptions::default(),
     };
     let unwritable = dir.join("missing-dir").join("out.glb");
     let e = write_lightmapped_glb(&input, &unwritable, &request).unwrap_err();
@@ -662,6 +666,7 @@ fn meshopt_compressed_views_are_re_pointed_and_read() {
         }],
         nodes: vec![node(0, 0, true, [0.5, 0.5, 0.25, 0.5])],
         root_extension: json!({}),
+        load_options: LoadOptions::default(),
     };
     let made = write_lightmapped_glb(&input, &output, &request).unwrap();
     let bytes = std::fs::read(&output).unwrap();
