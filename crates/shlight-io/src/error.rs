@@ -121,6 +121,17 @@ pub enum IoErrorKind {
     #[error("unsupported: {0}")]
     Unsupported(String),
 
+    /// The texels given to a writer are not `width * height` values.
+    #[error("{given} texels given for a {width}x{height} image")]
+    TexelCount {
+        /// Width in texels.
+        width: usize,
+        /// Height in texels.
+        height: usize,
+        /// How many texels were given.
+        given: usize,
+    },
+
     /// Writing the file failed; the destination is unchanged.
     #[error("cannot write the file ({0})")]
     Write(io::Error),

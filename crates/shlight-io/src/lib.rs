@@ -25,6 +25,9 @@
 //! - [`write_image`] with [`WriteOptions`] (exposure, [`ToneMap`] for PNG):
 //!   the format is named by the extension; [`auto_exposure`] picks the
 //!   exposure that brings a mean luminance to a grey.
+//! - [`write_ktx2`] and [`encode_ktx2`]: linear float lightmaps as KTX 2.0
+//!   files ([`Ktx2TexelFormat`]: half-float RGBA or packed unsigned
+//!   B10G11R11 floats), read back by [`read_ktx2`].
 //! - [`write_atomically`]: every file is written to a temporary file and
 //!   renamed into place, so a failed write never leaves a half-written
 //!   file or damages an existing one.
@@ -87,6 +90,7 @@ mod format;
 mod image;
 mod image_codecs;
 mod image_info;
+mod ktx2;
 mod openexr;
 mod panic_message;
 mod read;
@@ -107,6 +111,10 @@ pub use crate::format::Format;
 pub use crate::image::{Image, PixelCountError};
 pub use crate::image_codecs::encode_png_rgba8;
 pub use crate::image_info::{ImageInfo, image_info};
+pub use crate::ktx2::{
+    Ktx2Image, Ktx2TexelFormat, decode_ktx2, encode_ktx2, f16_bits_to_f32, f32_to_f16_bits,
+    pack_b10g11r11, read_ktx2, unpack_b10g11r11, write_ktx2,
+};
 pub use crate::read::{read_image, read_image_bytes};
 pub use crate::read_options::ReadOptions;
 pub use crate::row_readers::{RowSink, RowSource, open_rows, read_image_by_rows};

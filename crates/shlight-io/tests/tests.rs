@@ -23,6 +23,8 @@ mod row_readers;
 mod bad_files;
 // Inputs that once stopped a fuzz target (fuzz/).
 mod fuzz_regressions;
+// KTX2 lightmaps: layout and descriptor read by the ktx2 crate, encodings.
+mod ktx2_files;
 // Atomic writes: failures leave the destination and no temporary file.
 mod atomic;
 // The environment maps bundled in envmaps/.

@@ -50,6 +50,9 @@ pub enum MeshError {
         /// The limit.
         max: usize,
     },
+    /// An output file could not be written (the error names it).
+    #[error(transparent)]
+    Write(shlight_io::IoError),
     /// A glTF texture has more pixels than
     /// [`crate::LoadOptions::max_texture_pixels`], judged from its image
     /// header before it is decoded.

@@ -22,11 +22,18 @@
 //! each triangle's material ([`Surfaces`]), and [`Scene::flat_layout`]
 //! where each instance's triangles land in it without building it
 //! ([`FlatLayout`]: for ray casting over the unique primitives).
+//!
+//! [`write_lightmapped_glb`] rewrites a glTF scene as one GLB that keeps
+//! everything it held and adds a baker's lightmaps ([`LightmapRequest`]:
+//! the encoded pages, each baked node's atlas rectangle and page;
+//! `MOZ_lightmap` on materials, `SHLIGHT_lightmap` on nodes and the root,
+//! meshes copied per node where asked).
 
 pub mod cornell_box;
 mod error;
 mod flat_layout;
 pub mod generate;
+mod lightmapped_glb;
 mod load;
 mod load_options;
 mod material;
@@ -38,6 +45,10 @@ mod texture;
 
 pub use error::MeshError;
 pub use flat_layout::FlatLayout;
+pub use lightmapped_glb::{
+    BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest, LightmappedGlb,
+    lightmapped_glb, write_lightmapped_glb,
+};
 pub use load::{
     MeshFormat, MtlMaterial, load, load_bytes, load_bytes_with, load_scene, load_scene_bytes,
     load_with, parse_mtl_bytes,

@@ -4,7 +4,7 @@
 //! below, [`ply`], [`off`], [`gltf_file`]); that order is the order of the
 //! per-vertex records of a `.shprt` file baked from the mesh.
 
-mod gltf_file;
+pub(crate) mod gltf_file;
 mod mtl;
 mod off;
 mod ply;

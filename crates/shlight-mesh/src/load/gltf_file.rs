@@ -31,15 +31,15 @@
 //! each material's emitted radiance (with its emissive texture), or none
 //! when nothing emits.
 
-mod accessor;
-mod document;
+pub(crate) mod accessor;
+pub(crate) mod document;
 mod light;
 mod material;
 mod meshopt;
 mod node;
 mod primitive;
 mod texture;
-mod uri;
+pub(crate) mod uri;
 
 use std::path::Path;
 

@@ -14,7 +14,7 @@ use json::accessor::{ComponentType, Type};
 
 /// The buffers' bytes (by buffer index) and the document that lays them out.
 #[derive(Clone, Copy)]
-pub(super) struct Data<'a> {
+pub(crate) struct Data<'a> {
     /// The validated document.
     pub root: &'a json::Root,
     /// Each buffer's bytes (at least its `byteLength`).
@@ -24,7 +24,7 @@ pub(super) struct Data<'a> {
 #[derive(Debug)]
 /// Floats read from an accessor: `count x components` values, element
 /// after element.
-pub(super) struct Floats {
+pub(crate) struct Floats {
     /// Values per element (3 for a `VEC3`).
     pub components: usize,
     /// The values, integers converted as the accessor says (`normalized`
@@ -73,7 +73,7 @@ pub(super) fn component(data: Data, index: usize) -> Result<(ComponentType, bool
 
 /// Reads accessor `index` as floats: its type must be one of `types`, and
 /// it may hold at most `max_count` elements.
-pub(super) fn read_floats(
+pub(crate) fn read_floats(
     data: Data,
     index: usize,
     types: &[Type],

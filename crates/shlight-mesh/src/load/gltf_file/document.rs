@@ -36,7 +36,7 @@ const UNREAD: &[(&str, &str)] = &[
 ];
 
 /// A file read and validated.
-pub(super) struct Parsed {
+pub(crate) struct Parsed {
     /// The validated document.
     pub root: json::Root,
     /// Each buffer's bytes (at least its `byteLength`).
@@ -47,7 +47,7 @@ pub(super) struct Parsed {
 
 /// Parses `bytes` (glTF JSON or GLB); `path` names the file in errors and
 /// locates external buffers.
-pub(super) fn parse(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Parsed, MeshError> {
+pub(crate) fn parse(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Parsed, MeshError> {
     let parse_error = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -126,7 +126,7 @@ fn short(message: &str) -> String {
 }
 
 /// A GLB's JSON chunk and its BIN chunk, if any.
-fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
+pub(crate) fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
     let word = |at: usize| -> Option<u32> {
         bytes
             .get(at..at + 4)

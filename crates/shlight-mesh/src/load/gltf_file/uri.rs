@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use base64::Engine as _;
 
 /// Where a URI's bytes come from, for messages.
-pub(super) enum Origin {
+pub(crate) enum Origin {
     /// A `data:` URI.
     Data,
     /// A file.
@@ -16,7 +16,7 @@ pub(super) enum Origin {
 /// The bytes of `uri`, resolved against the directory of `gltf` (the
 /// glTF file), and where they came from; an error says why not, naming
 /// the file.
-pub(super) fn read(gltf: &Path, uri: &str) -> Result<(Vec<u8>, Origin), String> {
+pub(crate) fn read(gltf: &Path, uri: &str) -> Result<(Vec<u8>, Origin), String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, data) = rest
             .split_once(";base64,")
