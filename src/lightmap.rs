@@ -105,6 +105,11 @@ pub struct LightmapArgs {
     /// thread count).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// In the written scene, give every baked node its own copy of its
+    /// mesh with TEXCOORD_1 moved into its region (for loaders without a
+    /// per-node rectangle; always so with --for threejs).
+    #[arg(long)]
+    pub unshare_instances: bool,
     /// Also write each layer as OpenEXR: PREFIX.LAYER.exr.
     #[arg(long, value_name = "PREFIX")]
     pub exr: Option<PathBuf>,
@@ -159,6 +164,7 @@ pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
             },
         },
         albedo: args.albedo,
+        unshare_instances: args.unshare_instances,
         exr: args.exr.as_deref(),
         preview: args.preview.as_deref(),
     }

@@ -182,3 +182,125 @@ fn a_scene_without_a_second_uv_set_is_refused_by_name_and_nothing_is_written() {
     ]);
     assert!(e.contains("a .glb file"), "{e}");
 }
+
+/// The JSON and binary chunks of a GLB file (glTF 2.0, section 4.4).
+fn glb_chunks(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+    let json_len = word(12);
+    let json = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let bin_at = 20 + json_len;
+    let bin_len = word(bin_at);
+    (json, bytes[bin_at + 8..bin_at + 8 + bin_len].to_vec())
+}
+
+#[test]
+fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
+    let dir = temp_dir("lightmap_glb");
+    let scene = dir.join("floor.glb");
+    let lamp = [0.3f32, 1.5, -0.2];
+    std::fs::write(&scene, floor_glb(683.0 * 6.0, lamp, true)).unwrap();
+    let env = black_sky(&dir);
+    for (engine, basis, layers) in [
+        ("threejs", "irradiance", vec!["irradiance"]),
+        ("godot", "sh-l1", vec!["l0", "l1y", "l1z", "l1x"]),
+    ] {
+        let out = dir.join(format!("{engine}.glb"));
+        let prefix = dir.join(engine);
+        shlight_ok(&[
+            "lightmap",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--for",
+            engine,
+            "--basis",
+            basis,
+            "--size",
+            "32",
+            "--samples",
+            "16",
+            "--surface-samples",
+            "16",
+            "-o",
+            s(&out),
+            "--exr",
+            s(&prefix),
+        ]);
+        let (doc, bin) = glb_chunks(&std::fs::read(&out).unwrap());
+        let root = &doc["extensions"]["SHLIGHT_lightmap"];
+        assert_eq!(root["basis"], basis);
+        assert_eq!(root["engine"], engine);
+        assert_eq!(
+            root["units"],
+            if engine == "threejs" {
+                "irradiance"
+            } else {
+                "irradiance/pi"
+            }
+        );
+        assert_eq!(root["layers"], serde_json::json!(layers));
+        assert_eq!(root["size"], serde_json::json!([32, 32]));
+        let node = &doc["nodes"][0]["extensions"]["SHLIGHT_lightmap"];
+        assert_eq!(node["rect"], serde_json::json!([2, 2, 28]));
+        // The material reads the first page through MOZ_lightmap, its
+        // intensity bringing the texels back to irradiance.
+        let material = doc["meshes"][doc["nodes"][0]["mesh"].as_u64().unwrap() as usize]["primitives"][0]["material"]
+            .as_u64()
+            .unwrap() as usize;
+        let moz = &doc["materials"][material]["extensions"]["MOZ_lightmap"];
+        assert_eq!(moz["texCoord"], 1);
+        let intensity = moz["intensity"].as_f64().unwrap();
+        let want = if engine == "threejs" {
+            1.0
+        } else {
+            std::f64::consts::PI
+        };
+        assert!((intensity - want).abs() < 1e-6, "{intensity}");
+        // Each page is a half-float KTX2 file holding the layer the EXR
+        // holds, to half-float rounding.
+        for (k, name) in layers.iter().enumerate() {
+            let texture = &doc["textures"][moz["index"].as_u64().unwrap() as usize + k];
+            let image = &doc["images"][texture["extensions"]["KHR_texture_basisu"]["source"]
+                .as_u64()
+                .unwrap() as usize];
+            assert_eq!(image["mimeType"], "image/ktx2");
+            let view = &doc["bufferViews"][image["bufferView"].as_u64().unwrap() as usize];
+            let at = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+            let len = view["byteLength"].as_u64().unwrap() as usize;
+            let page = shlight_io::decode_ktx2(&bin[at..at + len]).unwrap();
+            assert_eq!((page.width, page.height), (32, 32));
+            let exr = read_image(
+                &dir.join(format!("{engine}.{name}.exr")),
+                &ReadOptions::default(),
+            )
+            .unwrap();
+            for (t, p) in page.texels.iter().zip(exr.pixels()) {
+                for c in 0..3 {
+                    assert!(
+                        (t[c] - p[c]).abs() <= 1e-3 * p[c].abs().max(1e-3),
+                        "{name}: {t:?} against {p:?}"
+                    );
+                }
+            }
+        }
+        // three.js reads no per-node rectangle: the floor's TEXCOORD_1 was
+        // moved into its region. The scene still loads with its triangle.
+        let loaded = shlight_mesh::load_scene(&out, &shlight_mesh::LoadOptions::default()).unwrap();
+        let uv1 = &loaded.primitives[0].uvs[1];
+        let (lo, hi) = (2.0 / 32.0, 30.0 / 32.0);
+        if engine == "threejs" {
+            assert!(
+                uv1.iter()
+                    .all(|uv| (uv.x - lo).abs() < 1e-6 || (uv.x - hi).abs() < 1e-6),
+                "{uv1:?}"
+            );
+        } else {
+            assert!(
+                uv1.iter()
+                    .all(|uv| uv.x.abs() < 1e-6 || (uv.x - 1.0).abs() < 1e-6),
+                "{uv1:?}"
+            );
+        }
+        assert_eq!(loaded.primitives[0].mesh.triangle_count(), 2);
+    }
+}

@@ -10,12 +10,15 @@ use std::time::Instant;
 use glam::Vec3;
 use serde_json::{Value, json};
 use shlight_core::sh::Frame;
-use shlight_io::{Image, ToneMap, WriteOptions, write_image};
+use shlight_io::{Image, Ktx2TexelFormat, ToneMap, WriteOptions, encode_ktx2, write_image};
 use shlight_lightmap::{
     Engine, L1Reconstruction, LightmapSettings, LightmapSize, SceneLightmap, TexelBasis,
     TexelFormat, TexelUnits, bake_scene_lightmap,
 };
-use shlight_mesh::{LoadOptions, Scene};
+use shlight_mesh::{
+    BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest as GlbRequest, LoadOptions,
+    Scene, write_lightmapped_glb,
+};
 use shlight_volume::Stage;
 
 use crate::environment::Environment;
@@ -45,6 +48,10 @@ pub struct LightmapRequest<'a> {
     pub settings: LightmapSettings,
     /// The albedo of primitives without a material.
     pub albedo: [f32; 3],
+    /// In the written scene, every baked node gets its own copy of its
+    /// mesh, its `TEXCOORD_1` moved into its region (always for three.js,
+    /// which reads no per-node rectangle).
+    pub unshare_instances: bool,
     /// Each layer also as OpenEXR, `PREFIX.LAYER.exr`.
     pub exr: Option<&'a Path>,
     /// A picture of the lightmap's irradiance (PNG, EXR or HDR).
@@ -60,6 +67,7 @@ pub struct LightmapPlan {
     format: TexelFormat,
     settings: LightmapSettings,
     albedo: [f32; 3],
+    unshare_instances: bool,
     exr: Option<PathBuf>,
     preview: Option<PathBuf>,
 }
@@ -89,7 +97,14 @@ impl LightmapRequest<'_> {
                 PipelineError::new(format!(
                     "{} with {}: {e}",
                     spelling.option_value("basis", self.basis.name()),
-                    spelling.option_value("for", engine_name(self.engine))
+                    spelling.option_value(
+                        match spelling {
+                            // `for` is a keyword in Python.
+                            Spelling::CommandLine => "for",
+                            Spelling::Python => "engine",
+                        },
+                        engine_name(self.engine)
+                    )
                 ))
             })?;
         if let Some(out) = self.output
@@ -136,6 +151,7 @@ impl LightmapRequest<'_> {
             format,
             settings: self.settings.clone(),
             albedo: self.albedo,
+            unshare_instances: self.unshare_instances || self.engine == Engine::ThreeJs,
             exr: self.exr.map(Path::to_path_buf),
             preview: self.preview.map(Path::to_path_buf),
         })
@@ -264,7 +280,9 @@ pub fn lightmap_of_scene(
         layers,
     };
     if let Some(out) = &plan.output {
-        write_scene(plan, &baked, out)?;
+        for note in write_scene(plan, &baked, out)? {
+            hooks.note(&format!("{}: {note}", out.display()));
+        }
         hooks.note(&format!("wrote {}", out.display()));
     }
     Ok(baked)
@@ -337,11 +355,76 @@ pub fn lightmap_description(plan: &LightmapPlan, baked: &LightmapBaked) -> Value
     })
 }
 
-/// Writes the scene with its lightmaps.
-fn write_scene(plan: &LightmapPlan, baked: &LightmapBaked, out: &Path) -> Result<()> {
-    let _ = (plan, baked, out);
-    Err(PipelineError::new(format!(
-        "{}: writing the lightmapped scene is not built yet",
-        out.display()
-    )))
+/// Writes the scene with its lightmaps: the input glTF kept as it was,
+/// each layer a half-float KTX2 page (`KHR_texture_basisu`) named
+/// `"<scene> lightmap <layer>"`, appended in the layers' order; the
+/// materials of every baked node reading the first layer through
+/// `MOZ_lightmap` (its `intensity` turning the engine's units back into
+/// irradiance); `SHLIGHT_lightmap` on the root ([`lightmap_description`])
+/// and on each baked node (its region and `TEXCOORD_1` scale and offset);
+/// each node's mesh copied with its `TEXCOORD_1` moved into its region
+/// where the plan unshares instances. Returns the writer's notes.
+fn write_scene(plan: &LightmapPlan, baked: &LightmapBaked, out: &Path) -> Result<Vec<String>> {
+    let map = &baked.lightmap;
+    let stem = plan
+        .scene
+        .file_stem()
+        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+    let intensity = (1.0 / plan.format.units().scale()) as f32;
+    let mut images = Vec::with_capacity(baked.layers.len());
+    for (layer, name) in baked.layers.iter().zip(plan.format.layer_names()) {
+        let bytes = encode_ktx2(
+            Ktx2TexelFormat::Rgba16Float,
+            map.side as usize,
+            map.side as usize,
+            layer,
+        )
+        .map_err(|e| PipelineError::new(format!("{}: {e}", out.display())))?;
+        images.push(LightmapImage {
+            name: format!("{stem} lightmap {name}"),
+            format: LightmapImageFormat::Ktx2,
+            bytes,
+            intensity,
+        });
+    }
+    let mut nodes = Vec::with_capacity(map.regions.len());
+    for r in &map.regions {
+        let Some(node) = r.node else {
+            return Err(PipelineError::new(format!(
+                "{}: {} was not placed by a node of the file",
+                out.display(),
+                r.label
+            )));
+        };
+        if r.gpu_instance.is_some() {
+            return Err(PipelineError::new(format!(
+                "{}: node {node} ({}) places its mesh by EXT_mesh_gpu_instancing, whose instances glTF gives no lightmap of their own",
+                out.display(),
+                r.label
+            )));
+        }
+        let (scale, offset) = (r.placement.scale, r.placement.offset);
+        nodes.push(BakedNode {
+            node,
+            scale: scale.to_array(),
+            offset: offset.to_array(),
+            image: Some(0),
+            unshare: plan.unshare_instances,
+            extension: json!({
+                "rect": [r.rect.x, r.rect.y, r.rect.side],
+                "scaleOffset": [scale.x, scale.y, offset.x, offset.y],
+                "texCoordMoved": plan.unshare_instances,
+            }),
+        });
+    }
+    let mut root = lightmap_description(plan, baked);
+    root["images"] = json!(images.iter().map(|i| i.name.clone()).collect::<Vec<_>>());
+    let request = GlbRequest {
+        images,
+        nodes,
+        root_extension: root,
+        load_options: LoadOptions::default(),
+    };
+    let made = write_lightmapped_glb(&plan.scene, out, &request)?;
+    Ok(made.notes)
 }
