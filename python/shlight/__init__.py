@@ -29,6 +29,7 @@ warnings (negative texels, a stretched map) are ``UserWarning``.
 from ._shlight import (
     EXPORT_FORMATS,
     SH,
+    Lightmap,
     Scene,
     ShlightError,
     Transfer,
@@ -43,6 +44,7 @@ from ._shlight import accuracy_suite as _accuracy
 from ._shlight import bake_transfer as _bake_transfer
 from ._shlight import convert as _convert
 from ._shlight import synth as _synth
+from ._shlight import bake_lightmap as _bake_lightmap
 from ._shlight import bake_volume as _bake_volume
 from ._shlight import compare as _compare
 from ._shlight import dfg as _dfg
@@ -54,12 +56,14 @@ from ._shlight import sample as _sample
 
 __all__ = [
     "EXPORT_FORMATS",
+    "Lightmap",
     "SH",
     "Scene",
     "ShlightError",
     "Transfer",
     "Volume",
     "accuracy",
+    "bake_lightmap",
     "bake_transfer",
     "bake_volume",
     "compare",
@@ -497,6 +501,121 @@ def _scene_or_path(scene):
     """A loaded ``Scene`` as it is, anything else as a path string."""
     return scene if isinstance(scene, Scene) else str(scene)
 
+
+
+def bake_lightmap(
+    scene,
+    env,
+    output=None,
+    *,
+    basis="irradiance",
+    engine="threejs",
+    non_linear=False,
+    size=None,
+    texel_density=None,
+    padding=2,
+    samples=256,
+    bounces=2,
+    surface_samples=512,
+    max_edge=None,
+    lmax=2,
+    albedo=0.8,
+    invalid_backfaces=0.5,
+    light_units="blender",
+    seed=0,
+    unshare_instances=False,
+    exr=None,
+    preview=None,
+):
+    """Bake a glTF scene's lightmap (``shlight lightmap SCENE --env ENV -o OUT.glb``).
+
+    Every placed node gets a square region of one atlas laid on its
+    ``TEXCOORD_1``; each texel its triangles cover gathers the light
+    arriving at its point (the environment, the scene's punctual lights
+    by shadow rays, emitters, and ``bounces`` of interreflection with the
+    textures' albedo); texels inside geometry and the padding are filled
+    from their neighbours, and UV seams stitched. docs/lightmaps.md
+    describes the file. The same options give the CLI's files.
+
+    Parameters
+    ----------
+    scene : str | os.PathLike | Scene
+        A .gltf or .glb file (or a ``Scene`` from ``load_scene``); every
+        mesh needs a second UV set (``TEXCOORD_1``) within the unit
+        square, its triangles not overlapping.
+    env : str | os.PathLike
+        The distant light: an equirect map or a radiance coefficient file.
+    output : None | str | os.PathLike
+        Also write the scene with its lightmaps (``.glb``).
+    basis : str
+        What a texel holds: ``"irradiance"``, ``"sh-l1"`` (L0 and L1 per
+        channel) or ``"monosh"`` (Bakery's MonoSH).
+    engine : str
+        The engine that reads it (``--for``): ``"threejs"`` (texels are
+        irradiance E), ``"bevy"``, ``"godot"``, ``"unity"`` (E / pi), each
+        with its packing.
+    non_linear : bool
+        SH texels read back with Geomerics' non-linear reconstruction.
+    size, texel_density : None | int, None | float
+        The atlas's side in texels (the regions as large as fit; 512 when
+        neither is given), or texels per metre of surface.
+    padding : int
+        Empty texels around each region, filled by dilation.
+    samples, bounces, surface_samples, max_edge, lmax, seed
+        Rays per texel, interreflection bounces, directions per surface
+        vertex, the longest surface edge, the environment's lmax and the
+        seed, as ``bake_volume`` takes them.
+    albedo : float | (float, float, float)
+        Albedo of primitives without a material.
+    invalid_backfaces : float
+        A texel is inside geometry (filled from its neighbours) when more
+        than this fraction of its rays meet back faces.
+    light_units : str
+        ``"blender"`` (glTF's candela and lux over 683) or ``"as-written"``.
+    unshare_instances : bool
+        In the written scene, give every baked node its own copy of its
+        mesh with ``TEXCOORD_1`` moved into its region (always so for
+        three.js).
+    exr, preview : None | str | os.PathLike
+        Also write each layer as ``EXR.LAYER.exr``, and a picture of the
+        irradiance.
+
+    Returns
+    -------
+    Lightmap
+        ``layers`` (float32, ``(layers, side, side, 4)``, named by
+        ``layer_names``), ``irradiance`` (``(side, side, 3)``, NaN where
+        no surface is), ``regions``, ``texels_per_metre``.
+
+    Raises
+    ------
+    ShlightError
+        A missing scene or light, a mesh without ``TEXCOORD_1`` or with
+        overlapping lightmap UVs (named), a bad option; the CLI's messages.
+    """
+    return _bake_lightmap(
+        _scene_or_path(scene),
+        str(env),
+        None if output is None else str(output),
+        basis,
+        engine,
+        non_linear,
+        size,
+        texel_density,
+        padding,
+        samples,
+        bounces,
+        surface_samples,
+        max_edge,
+        lmax,
+        albedo,
+        invalid_backfaces,
+        light_units,
+        seed,
+        unshare_instances,
+        None if exr is None else str(exr),
+        None if preview is None else str(preview),
+    )
 
 def bake_transfer(
     mesh,

@@ -17,6 +17,7 @@ mod guard;
 mod hooks;
 mod images;
 mod light;
+mod lightmap;
 mod options;
 mod project;
 mod prt;
@@ -37,6 +38,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sh::Sh>()?;
     m.add_class::<prt::Transfer>()?;
     m.add_class::<volume::Volume>()?;
+    m.add_class::<lightmap::Lightmap>()?;
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(project::project, m)?)?;
@@ -52,6 +54,7 @@ fn _shlight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(accuracy::accuracy_suite, m)?)?;
     m.add_function(wrap_pyfunction!(prt::bake_transfer, m)?)?;
     m.add_function(wrap_pyfunction!(volume::bake_volume, m)?)?;
+    m.add_function(wrap_pyfunction!(lightmap::bake_lightmap, m)?)?;
     m.add_function(wrap_pyfunction!(sample::sample, m)?)?;
     m.add_function(wrap_pyfunction!(specular::prefilter, m)?)?;
     m.add_function(wrap_pyfunction!(specular::dfg, m)?)?;
