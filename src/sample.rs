@@ -18,9 +18,11 @@ use crate::values::parse_vec3;
 /// Arguments of `shlight sample`.
 #[derive(Args, Debug)]
 pub struct SampleArgs {
-    /// A baked file: an irradiance volume (.shvol) or PRT transfer (.shprt).
+    /// A baked file: an irradiance volume (.shvol), PRT transfer (.shprt),
+    /// or a lightmapped scene (.glb from `shlight lightmap`: the irradiance
+    /// its lightmap gives at each point, read as the engine's shader does).
     pub file: PathBuf,
-    /// Where to sample a volume: JSON {"points": [[x, y, z], ...],
+    /// Where to sample a volume or lightmap: JSON {"points": [[x, y, z], ...],
     /// "normals": [[x, y, z], ...]}, CSV rows x,y,z,nx,ny,nz (.csv), or a
     /// mesh or glTF scene (.obj, .ply, .off, .gltf, .glb): every vertex
     /// (a scene's flattened into world space) facing its normal.

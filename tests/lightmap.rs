@@ -304,3 +304,115 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
         assert_eq!(loaded.primitives[0].mesh.triangle_count(), 2);
     }
 }
+
+#[test]
+fn sample_reads_the_lightmapped_scene_as_the_engines_shader_does() {
+    // The floor under the lamp, for three.js (irradiance) and for Godot
+    // (sh-l1): `sample` at points of the floor gives I cos / d^2 for the
+    // floor's normal, and for Godot's L1 also, for tilted normals, the
+    // lmax-1 closed form of one point light, E_perp (1/4 + n . t / 2).
+    let dir = temp_dir("lightmap_sample");
+    let scene = dir.join("floor.glb");
+    let lamp = [0.3f32, 1.5, -0.2];
+    std::fs::write(&scene, floor_glb(683.0 * 6.0, lamp, true)).unwrap();
+    let env = black_sky(&dir);
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    for k in 0..20 {
+        let t = k as f32 / 19.0;
+        let p = [-0.8 + 1.6 * t, 0.0, 0.7 - 1.4 * (t * 7.0).fract()];
+        let tilt = (k % 4) as f32 * 0.3;
+        points.push(p);
+        normals.push([tilt.sin(), tilt.cos(), 0.0]);
+    }
+    let points_file = dir.join("points.json");
+    std::fs::write(
+        &points_file,
+        serde_json::json!({"points": points, "normals": normals}).to_string(),
+    )
+    .unwrap();
+    for (engine, basis) in [("threejs", "irradiance"), ("godot", "sh-l1")] {
+        let out = dir.join(format!("{engine}.glb"));
+        shlight_ok(&[
+            "lightmap",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--for",
+            engine,
+            "--basis",
+            basis,
+            "--size",
+            "128",
+            "--samples",
+            "16",
+            "--surface-samples",
+            "16",
+            "-o",
+            s(&out),
+        ]);
+        let answer = dir.join(format!("{engine}.json"));
+        shlight_ok(&[
+            "sample",
+            s(&out),
+            "--points",
+            s(&points_file),
+            "-o",
+            s(&answer),
+        ]);
+        let doc = crate::util::read_json(&answer);
+        assert_eq!(doc["lightmap"]["engine"], engine);
+        let values = doc["irradiance"].as_array().unwrap();
+        for ((p, n), v) in points.iter().zip(&normals).zip(values) {
+            let d = [lamp[0] - p[0], lamp[1] - p[1], lamp[2] - p[2]];
+            let d2 = f64::from(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            let toward = d.map(|x| f64::from(x) / d2.sqrt());
+            let perp = 6.0 / d2;
+            let cos = f64::from(n[0]) * toward[0] + f64::from(n[1]) * toward[1];
+            let want = if basis == "irradiance" {
+                // The lightmap holds E for the floor's normal, whatever
+                // the point's.
+                perp * toward[1]
+            } else {
+                perp * (0.25 + 0.5 * cos)
+            };
+            let got = v[0].as_f64().unwrap();
+            assert!(
+                (got / want - 1.0).abs() < 0.02,
+                "{engine} at {p:?} facing {n:?}: {got} against {want}"
+            );
+        }
+    }
+    // A point off every surface is named.
+    let off = dir.join("off.json");
+    std::fs::write(
+        &off,
+        serde_json::json!({"points": [[0, 1, 0]], "normals": [[0, 1, 0]]}).to_string(),
+    )
+    .unwrap();
+    let e = shlight_err(&[
+        "sample",
+        s(&dir.join("threejs.glb")),
+        "--points",
+        s(&off),
+        "-o",
+        s(&dir.join("off-answer.json")),
+    ]);
+    assert!(
+        e.contains("point 0") && e.contains("is on no surface"),
+        "{e}"
+    );
+    // A GLB without a lightmap is refused by name.
+    let e = shlight_err(&[
+        "sample",
+        s(&scene),
+        "--points",
+        s(&points_file),
+        "-o",
+        s(&dir.join("none.json")),
+    ]);
+    assert!(
+        e.contains("floor.glb") && e.contains("no SHLIGHT_lightmap"),
+        "{e}"
+    );
+}

@@ -27,12 +27,14 @@
 //! everything it held and adds a baker's lightmaps ([`LightmapRequest`]:
 //! the encoded pages, each baked node's atlas rectangle and page;
 //! `MOZ_lightmap` on materials, `SHLIGHT_lightmap` on nodes and the root,
-//! meshes copied per node where asked).
+//! meshes copied per node where asked); [`read_lightmap_pages`] reads
+//! them back.
 
 pub mod cornell_box;
 mod error;
 mod flat_layout;
 pub mod generate;
+mod lightmap_pages;
 mod lightmapped_glb;
 mod load;
 mod load_options;
@@ -45,6 +47,7 @@ mod texture;
 
 pub use error::MeshError;
 pub use flat_layout::FlatLayout;
+pub use lightmap_pages::{LightmapPages, read_lightmap_pages};
 pub use lightmapped_glb::{
     BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest, LightmappedGlb,
     lightmapped_glb, write_lightmapped_glb,

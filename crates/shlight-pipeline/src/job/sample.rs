@@ -15,6 +15,7 @@ use shlight_mesh::{LoadOptions, MeshFormat, Scene};
 use shlight_prt::{Observer, file_shade};
 use shlight_volume::{Lookup, LookupLmax, PreparedLookup, relight_file};
 
+use super::lightmap_sample::lightmap_irradiance;
 use crate::environment::Environment;
 use crate::hooks::Hooks;
 use crate::output_path::refuse_overwriting;
@@ -73,6 +74,9 @@ enum Kind {
         light: PathBuf,
         shading: Shading,
     },
+    Lightmap {
+        points: PathBuf,
+    },
 }
 
 /// How a PRT file is shaded besides its light: toward a view, over a
@@ -118,9 +122,10 @@ impl SampleRequest<'_> {
         let kind = match ext.as_deref() {
             Some("shvol") => self.volume_kind(spelling)?,
             Some("shprt") => self.transfer_kind(spelling)?,
+            Some("glb") => self.lightmap_kind(spelling)?,
             _ => {
                 return Err(PipelineError::new(format!(
-                    "{}: sample reads irradiance volumes (.shvol) and PRT transfer (.shprt)",
+                    "{}: sample reads irradiance volumes (.shvol), PRT transfer (.shprt) and lightmapped scenes (.glb)",
                     self.file.display()
                 )));
             }
@@ -156,6 +161,29 @@ impl SampleRequest<'_> {
             points: points.to_path_buf(),
             env: self.env.map(Path::to_path_buf),
             lookup: self.lookup,
+        })
+    }
+
+    fn lightmap_kind(&self, spelling: Spelling) -> Result<Kind> {
+        let Some(points) = self.points else {
+            return Err(PipelineError::new(format!(
+                "sampling a lightmapped scene needs {}: where to read it",
+                spelling.pick(
+                    "--points POINTS.json (or .csv)",
+                    "points (a .json or .csv file)"
+                )
+            )));
+        };
+        for (given, what) in [(self.env.is_some(), "env"), (self.light.is_some(), "light")] {
+            if given {
+                return Err(PipelineError::new(format!(
+                    "{} does not apply to a lightmap, whose light is baked",
+                    spelling.option(what)
+                )));
+            }
+        }
+        Ok(Kind::Lightmap {
+            points: points.to_path_buf(),
         })
     }
 
@@ -232,6 +260,7 @@ fn sample_with(
             lookup,
         } => sample_volume(plan, (points, given), env.as_deref(), *lookup, hooks)?,
         Kind::Transfer { light, shading } => sample_transfer(plan, light, shading, hooks)?,
+        Kind::Lightmap { points } => sample_lightmap(plan, (points, given))?,
     };
     values.write(&plan.output)?;
     Ok(values)
@@ -283,6 +312,47 @@ fn sample_volume(
                 "bounces": file.bounces,
                 "seed": file.seed,
                 "relightable": file.relightable(),
+            },
+        }),
+    })
+}
+
+fn sample_lightmap(
+    plan: &SamplePlan,
+    (points_path, given): (&Path, Option<&SamplePoints>),
+) -> Result<SampledValues> {
+    let name = plan.file.display().to_string();
+    let pages = shlight_mesh::read_lightmap_pages(&plan.file)?;
+    let scene = shlight_mesh::load_scene(&plan.file, &LoadOptions::default())?;
+    let (points, at) = match (given, MeshFormat::from_path(points_path)) {
+        (Some(p), Some(_)) => (p.clone(), "vertices"),
+        (Some(p), None) => (p.clone(), "points"),
+        (None, Some(_)) => (mesh_points(points_path)?, "vertices"),
+        (None, None) => (SamplePoints::read(points_path)?, "points"),
+    };
+    let values = lightmap_irradiance(&name, &scene, &pages, &points)?;
+    let root = &pages.root;
+    Ok(SampledValues {
+        quantity: "irradiance",
+        values,
+        about: json!({
+            "file": name,
+            "points": points_path.display().to_string(),
+            "at": at,
+            "lightmap": {
+                "basis": root["basis"],
+                "engine": root["engine"],
+                "reconstruction": root["reconstruction"],
+                "units": root["units"],
+                "size": root["size"],
+                "read": "bilinear, as the engine's shader reconstructs it, over its units",
+            },
+            "provenance": {
+                "generator": root["generator"],
+                "environment": root["environment"],
+                "samples": root["samples"],
+                "bounces": root["bounces"],
+                "seed": root["seed"],
             },
         }),
     })
