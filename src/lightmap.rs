@@ -8,9 +8,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use shlight_lightmap::{Engine, L1Reconstruction, LightmapSettings, LightmapSize, TexelBasis};
+use shlight_lightmap::{Engine, LightmapSettings, TexelBasis};
 use shlight_mesh::LightUnits;
-use shlight_pipeline::{LightmapRequest, Spelling, lightmap};
+use shlight_pipeline::{LightmapRequest, Spelling, lightmap, lightmap_size, reconstruction};
 use shlight_volume::VolumeOptions;
 
 use crate::progress::{Reporter, Ui};
@@ -118,33 +118,37 @@ pub struct LightmapArgs {
     pub preview: Option<PathBuf>,
 }
 
-/// Runs `shlight lightmap`.
-pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
-    let size = match (args.size, args.texel_density) {
-        (_, Some(d)) => LightmapSize::Density(d),
-        (Some(s), None) => LightmapSize::Side(s),
-        (None, None) => LightmapSize::Side(512),
-    };
-    let plan = LightmapRequest {
-        scene: &args.scene,
-        env: &args.env,
-        output: args.output.as_deref(),
-        basis: match args.basis {
+impl From<BasisArg> for TexelBasis {
+    fn from(b: BasisArg) -> Self {
+        match b {
             BasisArg::Irradiance => TexelBasis::Irradiance,
             BasisArg::ShL1 => TexelBasis::ShL1,
             BasisArg::Monosh => TexelBasis::MonoSh,
-        },
-        engine: match args.engine {
+        }
+    }
+}
+
+impl From<EngineArg> for Engine {
+    fn from(e: EngineArg) -> Self {
+        match e {
             EngineArg::Threejs => Engine::ThreeJs,
             EngineArg::Bevy => Engine::Bevy,
             EngineArg::Godot => Engine::Godot,
             EngineArg::Unity => Engine::Unity,
-        },
-        reconstruction: if args.non_linear {
-            L1Reconstruction::NonLinear
-        } else {
-            L1Reconstruction::Linear
-        },
+        }
+    }
+}
+
+/// Runs `shlight lightmap`.
+pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
+    let size = lightmap_size(args.size, args.texel_density, Spelling::CommandLine)?;
+    let plan = LightmapRequest {
+        scene: &args.scene,
+        env: &args.env,
+        output: args.output.as_deref(),
+        basis: args.basis.into(),
+        engine: args.engine.into(),
+        reconstruction: reconstruction(args.non_linear),
         settings: LightmapSettings {
             uv_set: 1,
             size,

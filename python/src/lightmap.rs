@@ -8,12 +8,15 @@ use numpy::ndarray::{Array3, Array4};
 use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use shlight_lightmap::{Engine, L1Reconstruction, LightmapSettings, LightmapSize, TexelBasis};
+use shlight_lightmap::LightmapSettings;
 use shlight_mesh::LightUnits;
-use shlight_pipeline::{LightmapBaked, LightmapRequest, Spelling, lightmap, lightmap_of_scene};
+use shlight_pipeline::{
+    LightmapBaked, LightmapRequest, Spelling, engine_by_name, lightmap, lightmap_of_scene,
+    lightmap_size, reconstruction, texel_basis,
+};
 use shlight_volume::VolumeOptions;
 
-use crate::errors::{pipeline_error, shlight_error, warn_all};
+use crate::errors::{pipeline_error, warn_all};
 use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
@@ -142,32 +145,6 @@ impl Lightmap {
     }
 }
 
-/// `basis=`, `engine=` as the CLI's `--basis` and `--for` name them.
-fn texel_choice(basis: &str, engine: &str) -> PyResult<(TexelBasis, Engine)> {
-    let basis = match basis {
-        "irradiance" => TexelBasis::Irradiance,
-        "sh-l1" => TexelBasis::ShL1,
-        "monosh" => TexelBasis::MonoSh,
-        other => {
-            return Err(shlight_error(format!(
-                "basis=\"{other}\": expected \"irradiance\", \"sh-l1\" or \"monosh\""
-            )));
-        }
-    };
-    let engine = match engine {
-        "threejs" => Engine::ThreeJs,
-        "bevy" => Engine::Bevy,
-        "godot" => Engine::Godot,
-        "unity" => Engine::Unity,
-        other => {
-            return Err(shlight_error(format!(
-                "engine=\"{other}\": expected \"threejs\", \"bevy\", \"godot\" or \"unity\""
-            )));
-        }
-    };
-    Ok((basis, engine))
-}
-
 /// bake_lightmap(scene, env, ...) -> Lightmap
 /// --
 ///
@@ -202,34 +179,20 @@ pub fn bake_lightmap(
     preview: Option<PathBuf>,
 ) -> PyResult<Lightmap> {
     let (scene, loaded) = scene.split(py);
-    let (basis, engine) = texel_choice(basis, engine)?;
-    let light_units: LightUnits = Spelling::Python
+    let py_spelling = Spelling::Python;
+    let light_units: LightUnits = py_spelling
         .parse("light_units", light_units)
         .map_err(pipeline_error)?;
-    let size = match (size, texel_density) {
-        (Some(_), Some(_)) => {
-            return Err(shlight_error(
-                "size= and texel_density= both given: the lightmap takes one".to_string(),
-            ));
-        }
-        (_, Some(d)) => LightmapSize::Density(d),
-        (Some(s), None) => LightmapSize::Side(s),
-        (None, None) => LightmapSize::Side(512),
-    };
     let plan = LightmapRequest {
         scene: &scene,
         env: &env,
         output: output.as_deref(),
-        basis,
-        engine,
-        reconstruction: if non_linear {
-            L1Reconstruction::NonLinear
-        } else {
-            L1Reconstruction::Linear
-        },
+        basis: texel_basis(basis, py_spelling).map_err(pipeline_error)?,
+        engine: engine_by_name(engine, py_spelling).map_err(pipeline_error)?,
+        reconstruction: reconstruction(non_linear),
         settings: LightmapSettings {
             uv_set: 1,
-            size,
+            size: lightmap_size(size, texel_density, py_spelling).map_err(pipeline_error)?,
             padding,
             gather: VolumeOptions {
                 lmax,

@@ -120,8 +120,8 @@ pub use job::irradiance::{
     ERROR_MAP_TOP, IrradiancePlan, IrradianceRequest, irradiance, summary as irradiance_summary,
 };
 pub use job::lightmap::{
-    LightmapBaked, LightmapPlan, LightmapRequest, engine_name, lightmap, lightmap_description,
-    lightmap_of_scene,
+    DEFAULT_SIDE, LightmapBaked, LightmapPlan, LightmapRequest, engine_by_name, engine_name,
+    lightmap, lightmap_description, lightmap_of_scene, lightmap_size, reconstruction, texel_basis,
 };
 pub use job::prefilter::{PrefilterOutput, PrefilterPlan, PrefilterRequest, prefilter};
 pub use job::project::{

@@ -158,6 +158,85 @@ impl LightmapRequest<'_> {
     }
 }
 
+/// The lightmap's size from a front end's two settings: a side (`--size`,
+/// `size=`), a texel density (`--texel-density`, `texel_density=`), or
+/// neither (a 512 x 512 atlas).
+///
+/// # Errors
+/// Both given, named as `spelling` names them.
+pub fn lightmap_size(
+    size: Option<u32>,
+    texel_density: Option<f64>,
+    spelling: Spelling,
+) -> Result<LightmapSize> {
+    match (size, texel_density) {
+        (Some(_), Some(_)) => Err(PipelineError::new(format!(
+            "give {} or {}, not both",
+            spelling.option("size"),
+            spelling.option("texel_density")
+        ))),
+        (_, Some(d)) => Ok(LightmapSize::Density(d)),
+        (Some(s), None) => Ok(LightmapSize::Side(s)),
+        (None, None) => Ok(LightmapSize::Side(DEFAULT_SIDE)),
+    }
+}
+
+/// How SH texels are read back: Geomerics' non-linear reconstruction
+/// (`--non-linear`, `non_linear=True`) or the linear one.
+#[must_use]
+pub fn reconstruction(non_linear: bool) -> L1Reconstruction {
+    if non_linear {
+        L1Reconstruction::NonLinear
+    } else {
+        L1Reconstruction::Linear
+    }
+}
+
+/// The atlas's side without a size or density.
+pub const DEFAULT_SIDE: u32 = 512;
+
+/// The basis named `name` (`irradiance`, `sh-l1`, `monosh`).
+///
+/// # Errors
+/// Another name, with the names there are.
+pub fn texel_basis(name: &str, spelling: Spelling) -> Result<TexelBasis> {
+    [TexelBasis::Irradiance, TexelBasis::ShL1, TexelBasis::MonoSh]
+        .into_iter()
+        .find(|b| b.name() == name)
+        .ok_or_else(|| {
+            PipelineError::new(format!(
+                "{}: expected irradiance, sh-l1 or monosh",
+                spelling.option_value("basis", name)
+            ))
+        })
+}
+
+/// The engine named `name` as `--for` names it (`threejs`, `bevy`,
+/// `godot`, `unity`).
+///
+/// # Errors
+/// Another name, with the names there are.
+pub fn engine_by_name(name: &str, spelling: Spelling) -> Result<Engine> {
+    [Engine::ThreeJs, Engine::Bevy, Engine::Godot, Engine::Unity]
+        .into_iter()
+        .find(|e| engine_name(*e) == name)
+        .ok_or_else(|| {
+            PipelineError::new(format!(
+                "{}: expected threejs, bevy, godot or unity",
+                spelling.option_value(engine_option(spelling), name)
+            ))
+        })
+}
+
+/// How a front end names the engine's setting (`for` is a keyword in
+/// Python).
+fn engine_option(spelling: Spelling) -> &'static str {
+    match spelling {
+        Spelling::CommandLine => "for",
+        Spelling::Python => "engine",
+    }
+}
+
 /// The engine as `--for` names it.
 pub fn engine_name(engine: Engine) -> &'static str {
     match engine {
