@@ -13,6 +13,12 @@ use crate::util::{glb, s, shlight_err, shlight_ok, temp_dir, write_coefficient_r
 /// / 2 + 1/2)` (only the first with `uv1: false`), and a white point lamp
 /// of `candela` at `lamp`.
 fn floor_glb(candela: f64, lamp: [f32; 3], uv1: bool) -> Vec<u8> {
+    turned_floor_glb(candela, lamp, uv1, [0.0, 0.0, 0.0, 1.0])
+}
+
+/// [`floor_glb`] with the floor's node turned by the quaternion `rotation`
+/// (x, y, z, w).
+pub fn turned_floor_glb(candela: f64, lamp: [f32; 3], uv1: bool, rotation: [f32; 4]) -> Vec<u8> {
     let corners = [
         [-1.0f32, 0.0, -1.0],
         [1.0, 0.0, -1.0],
@@ -52,7 +58,7 @@ fn floor_glb(candela: f64, lamp: [f32; 3], uv1: bool) -> Vec<u8> {
         "scene": 0,
         "scenes": [{"nodes": [0, 1]}],
         "nodes": [
-            {"mesh": 0, "name": "Floor"},
+            {"mesh": 0, "name": "Floor", "rotation": rotation},
             {"translation": lamp, "extensions": {"KHR_lights_punctual": {"light": 0}}}
         ],
         "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}],
@@ -75,7 +81,7 @@ fn floor_glb(candela: f64, lamp: [f32; 3], uv1: bool) -> Vec<u8> {
     glb(&doc, &bin)
 }
 
-fn black_sky(dir: &Path) -> std::path::PathBuf {
+pub fn black_sky(dir: &Path) -> std::path::PathBuf {
     let env = dir.join("black.json");
     write_coefficient_rows(&env, &[[0.0; 3]; 9], "radiance");
     env

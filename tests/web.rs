@@ -1359,3 +1359,104 @@ fn read_threejs_grid(text: &str) -> ([usize; 3], Vec<[f32; 4]>) {
             .collect(),
     )
 }
+
+/// `loadLightmappedScene` in three.js r187 lights a floor `shlight
+/// lightmap --for threejs` baked under a lamp as `shlight sample` reads the
+/// file: each pixel of the white-lit floor is `albedo / pi E` with `E` the
+/// sampled irradiance at the pixel's point, for the `irradiance` basis and
+/// for `sh-l1` reconstructed for the normal of a floor turned 35 degrees
+/// (so that every L1 page counts). Fails if a page is not found, read in
+/// the wrong channel or units, or an L1 axis is swapped.
+#[test]
+fn threejs_renders_the_lightmapped_scene_as_sample_reads_it() {
+    let test = "web::threejs_renders_the_lightmapped_scene_as_sample_reads_it";
+    let dir = temp_dir("web-lightmap");
+    let (s35, c35) = (17.5f32.to_radians().sin(), 17.5f32.to_radians().cos());
+    // Turned about (1, 0, 1)/sqrt 2 by 35 degrees: the normal leaves y
+    // towards both x and z.
+    let axis = glam::Vec3::new(1.0, 0.0, 1.0).normalize() * s35;
+    let rotation = [axis.x, axis.y, axis.z, c35];
+    let normal = glam::Quat::from_array(rotation) * glam::Vec3::Y;
+    let scene = dir.join("floor.glb");
+    std::fs::write(
+        &scene,
+        crate::lightmap::turned_floor_glb(683.0 * 6.0, [0.3, 1.5, -0.2], true, rotation),
+    )
+    .unwrap();
+    let env = crate::lightmap::black_sky(&dir);
+    for basis in ["irradiance", "sh-l1"] {
+        let lit_glb = dir.join(format!("lit-{basis}.glb"));
+        shlight_ok(&[
+            "lightmap",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--for",
+            "threejs",
+            "--basis",
+            basis,
+            "--size",
+            "64",
+            "--samples",
+            "16",
+            "--surface-samples",
+            "16",
+            "-o",
+            s(&lit_glb),
+        ]);
+        let page = format!(
+            "/tests/web/lightmap.html?scene=/data/lit-{basis}.glb&centre=[0,0,0]&normal=[{},{},{}]&extent=0.6",
+            normal.x, normal.y, normal.z
+        );
+        let Some(r) = run_page(test, &dir, &page) else {
+            return;
+        };
+        assert_eq!(r["basis"], basis);
+        assert_eq!(r["hasLightMap"], true);
+        assert_eq!(r["lightMapChannel"], 1);
+        assert_eq!(r["lights"], 1, "the lamp is taken out of the page's scene");
+        let albedo = floats(&r["albedo"]);
+        let (lit, position) = (pixels(&r, "lit"), pixels(&r, "position"));
+        let covered: Vec<usize> = (0..lit.len()).filter(|&i| position[i][3] == 1.0).collect();
+        assert_eq!(covered.len(), lit.len(), "the floor fills the view");
+        let points = dir.join("points.json");
+        std::fs::write(
+            &points,
+            json!({
+                "points": covered.iter().map(|&i| &position[i][..3]).collect::<Vec<_>>(),
+                "normals": vec![normal.to_array(); covered.len()],
+            })
+            .to_string(),
+        )
+        .unwrap();
+        let out = dir.join("sampled.json");
+        shlight_ok(&["sample", s(&lit_glb), "--points", s(&points), "-o", s(&out)]);
+        let sampled: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        let want: Vec<Vec<f64>> = sampled["irradiance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(floats)
+            .collect();
+        let (mut worst, mut peak) = (0.0f64, 0.0f64);
+        for (&i, w) in covered.iter().zip(&want) {
+            for c in 0..3 {
+                let w = albedo[c] * w[c] / std::f64::consts::PI;
+                worst = worst.max((lit[i][c] - w).abs());
+                peak = peak.max(w);
+            }
+        }
+        eprintln!(
+            "{test}: {basis}: {} pixels, worst |three.js - albedo/pi sample| = {worst:.3e} ({:.2e} of the peak {peak:.4}); loadLightmappedScene {:.1} ms",
+            covered.len(),
+            worst / peak,
+            r["loadMs"].as_f64().unwrap_or(f64::NAN)
+        );
+        assert!(peak > 0.1, "the floor is lit ({peak})");
+        // The GPU's filter weights and f32 arithmetic against sample's.
+        assert!(
+            worst <= 2e-3 * peak,
+            "{basis}: worst {worst:.3e} of peak {peak:.4}"
+        );
+    }
+}

@@ -1,5 +1,6 @@
 // shlight's lighting in three.js: load a baked irradiance volume as a
-// LightProbeGridWebGL, and an SH environment light as a LightProbe.
+// LightProbeGridWebGL, an SH environment light as a LightProbe, and a
+// lightmapped glTF scene with its lightmaps on its materials.
 //
 // An ES module with no build step. It imports `three` and `three/addons/`
 // through the page's import map (three.js r187 or a later r18x: the
@@ -15,6 +16,7 @@
 //   shlight volume SCENE --env ENV --format threejs -o grid.json
 //   shlight convert VOLUME.shvol --format threejs -o grid.json
 //   shlight project MAP --lmax 2 --format threejs -o probe.json
+//   shlight lightmap SCENE.glb --env ENV -o lit.glb   (docs/lightmaps.md)
 //
 // Every failure (a missing file, a truncated or foreign document, numbers
 // that do not fit the grid) rejects with a ShlightLoadError whose message
@@ -28,9 +30,12 @@ import {
 	LinearFilter,
 	ObjectLoader,
 	RGBAFormat,
+	ShaderChunk,
 	Vector3
 } from 'three';
 import { LightProbeGridWebGL } from 'three/addons/lighting/LightProbeGridWebGL.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 
 /** The `metadata.type` of shlight's three.js grid document. */
 export const GRID_DOCUMENT_TYPE = 'shlight.LightProbeGrid';
@@ -299,5 +304,147 @@ export async function loadLightProbe( url ) {
 export function lightFromJSON( doc, name = 'light' ) {
 
 	return doc?.metadata?.type === GRID_DOCUMENT_TYPE ? lightProbeGridFromJSON( doc, name ) : lightProbeFromJSON( doc, name );
+
+}
+
+/**
+ * A GLTFLoader plugin for `MOZ_lightmap`: the material's `lightMap` is
+ * the texture it names, read through its `texCoord` (shlight writes 1,
+ * GLTFLoader's `uv1`), `lightMapIntensity` its `intensity` (shlight
+ * writes what turns the texels into irradiance E, which three.js's
+ * shader multiplies by `BRDF_Lambert = albedo / pi`).
+ */
+class MozLightmapPlugin {
+
+	constructor( parser ) {
+
+		this.parser = parser;
+		this.name = 'MOZ_lightmap';
+
+	}
+
+	async extendMaterialParams( materialIndex, params ) {
+
+		const ext = this.parser.json.materials[ materialIndex ]?.extensions?.MOZ_lightmap;
+		if ( ! ext ) return;
+		const map = await this.parser.getDependency( 'texture', ext.index );
+		map.channel = ext.texCoord ?? 1;
+		params.lightMap = map;
+		params.lightMapIntensity = ext.intensity ?? 1;
+
+	}
+
+}
+
+/**
+ * Makes a material that holds the L0 page of an `sh-l1` lightmap as its
+ * `lightMap` read the full L1 irradiance for its shading normal: `E(n) =
+ * L0 + n.x L1x + n.y L1y + n.z L1z` per channel (shlight's layout for
+ * three.js, world axes), times `lightMapIntensity`.
+ *
+ * @param {Material} material
+ * @param {Texture[]} l1 - the `l1x`, `l1y`, `l1z` pages.
+ */
+function reconstructL1( material, l1 ) {
+
+	for ( const t of l1 ) t.channel = material.lightMap.channel;
+	material.onBeforeCompile = ( shader ) => {
+
+		shader.uniforms.shlightL1x = { value: l1[ 0 ] };
+		shader.uniforms.shlightL1y = { value: l1[ 1 ] };
+		shader.uniforms.shlightL1z = { value: l1[ 2 ] };
+		// three.js's own chunk, its lightmap line read as the L1 irradiance
+		// for the shading normal in world axes (a view matrix's inverse on a
+		// direction is its transpose).
+		const chunk = ShaderChunk.lights_fragment_maps.replace(
+			'vec3 lightMapIrradiance = lightMapTexel.rgb * lightMapIntensity;',
+			/* glsl */`vec3 shlightN = normalize( ( vec4( normal, 0.0 ) * viewMatrix ).xyz );
+		vec3 lightMapIrradiance = ( lightMapTexel.rgb
+			+ shlightN.x * texture2D( shlightL1x, vLightMapUv ).rgb
+			+ shlightN.y * texture2D( shlightL1y, vLightMapUv ).rgb
+			+ shlightN.z * texture2D( shlightL1z, vLightMapUv ).rgb ) * lightMapIntensity;` );
+		if ( chunk === ShaderChunk.lights_fragment_maps ) throw new ShlightLoadError( 'this three.js has no lightmap line to read L1 from (written for r187)' );
+		shader.fragmentShader = shader.fragmentShader
+			.replace( '#include <lights_fragment_maps>', chunk )
+			.replace( 'void main() {', 'uniform sampler2D shlightL1x;\nuniform sampler2D shlightL1y;\nuniform sampler2D shlightL1z;\nvoid main() {' );
+
+	};
+	material.customProgramCacheKey = () => 'shlight-l1';
+	material.needsUpdate = true;
+
+}
+
+/**
+ * Loads a scene that `shlight lightmap --for threejs -o SCENE.glb` wrote,
+ * with its lightmaps: each baked material gets its page as `lightMap`
+ * (through `MOZ_lightmap`, linear, `uv1`); for the `sh-l1` basis each
+ * also reconstructs the L1 irradiance for its shading normal, so normal
+ * maps reshade it. The pages are half-float KTX2 images, read by a
+ * KTX2Loader made ready for `renderer`. Resolves to GLTFLoader's result;
+ * its `userData.shlightLightmap` is the file's `SHLIGHT_lightmap`
+ * (docs/lightmaps.md).
+ *
+ * @param {string} url
+ * @param {WebGLRenderer} renderer
+ * @return {Promise<Object>}
+ */
+export async function loadLightmappedScene( url, renderer ) {
+
+	const ktx2 = new KTX2Loader().detectSupport( renderer );
+	const loader = new GLTFLoader().setKTX2Loader( ktx2 );
+	loader.register( ( parser ) => new MozLightmapPlugin( parser ) );
+	let gltf;
+	try {
+
+		gltf = await loader.loadAsync( url );
+
+	} catch ( e ) {
+
+		throw new ShlightLoadError( `${url}: ${e.message}` );
+
+	} finally {
+
+		ktx2.dispose();
+
+	}
+
+	const info = gltf.parser.json.extensions?.SHLIGHT_lightmap;
+	if ( ! info ) throw new ShlightLoadError( `${url}: holds no SHLIGHT_lightmap: not a lightmap shlight wrote` );
+	if ( info.engine !== 'threejs' ) throw new ShlightLoadError( `${url}: baked for ${info.engine} (units ${info.units}); three.js reads --for threejs` );
+	gltf.userData.shlightLightmap = info;
+	if ( info.basis === 'sh-l1' ) {
+
+		// The pages after the first, by name, in the layers' order.
+		const images = gltf.parser.json.images ?? [];
+		const textures = gltf.parser.json.textures ?? [];
+		const l1 = [];
+		for ( const name of info.images.slice( 1 ) ) {
+
+			const image = images.findIndex( ( i ) => i.name === name );
+			const texture = textures.findIndex( ( t ) => ( t.extensions?.KHR_texture_basisu?.source ?? t.source ) === image );
+			if ( texture < 0 ) throw new ShlightLoadError( `${url}: its page ${name} has no texture` );
+			l1.push( await gltf.parser.getDependency( 'texture', texture ) );
+
+		}
+
+		gltf.scene.traverse( ( object ) => {
+
+			const materials = Array.isArray( object.material ) ? object.material : object.material ? [ object.material ] : [];
+			for ( const m of materials ) if ( m.lightMap && ! m.userData.shlightL1 ) {
+
+				m.userData.shlightL1 = true;
+				reconstructL1( m, l1 );
+
+			}
+
+		} );
+
+	} else if ( info.basis !== 'irradiance' ) {
+
+		throw new ShlightLoadError( `${url}: its basis ${info.basis} has no three.js reading` );
+
+	}
+
+	return gltf;
 
 }
