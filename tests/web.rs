@@ -1453,9 +1453,10 @@ fn threejs_renders_the_lightmapped_scene_as_sample_reads_it() {
             r["loadMs"].as_f64().unwrap_or(f64::NAN)
         );
         assert!(peak > 0.1, "the floor is lit ({peak})");
-        // The GPU's filter weights and f32 arithmetic against sample's.
+        // The GPU's filter weights and f32 arithmetic against sample's (a
+        // few 1e-7 of the peak on SwiftShader).
         assert!(
-            worst <= 2e-3 * peak,
+            worst <= 1e-4 * peak,
             "{basis}: worst {worst:.3e} of peak {peak:.4}"
         );
     }
