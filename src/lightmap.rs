@@ -77,8 +77,9 @@ pub struct LightmapArgs {
     /// Rays per texel (a stratified set of about this many).
     #[arg(long, default_value_t = 256)]
     pub samples: usize,
-    /// Interreflection bounces of the surfaces' light.
-    #[arg(long, default_value_t = 2)]
+    /// Interreflection bounces of the surfaces' light (a closed room loses
+    /// about a tenth of its light with 2; docs/lightmaps.md).
+    #[arg(long, default_value_t = 8)]
     pub bounces: u32,
     /// Directions per surface vertex for the surfaces' own light.
     #[arg(long, default_value_t = 512)]

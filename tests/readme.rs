@@ -1,6 +1,7 @@
 //! Every `cargo run --release -- ...` line of README.md's `sh` blocks runs,
 //! in order, in one directory holding the bundled `envmaps/` and `meshes/`
-//! (as a fresh clone has them), against the built binary.
+//! and the Blender scenes of `tests/scenes/` (as a fresh clone has them),
+//! against the built binary.
 //!
 //! Lines ending in `# needs: gpu` run when a Vulkan adapter exists (and
 //! fail the test under `SHLIGHT_REQUIRE_GPU=1` when none does); lines
@@ -113,6 +114,9 @@ fn every_readme_command_runs_in_order_from_a_fresh_clone() {
     for bundled in ["envmaps", "meshes"] {
         std::os::unix::fs::symlink(root.join(bundled), dir.join(bundled)).unwrap();
     }
+    // The Blender test scenes, which the README's lightmap commands bake.
+    std::fs::create_dir_all(dir.join("tests")).unwrap();
+    std::os::unix::fs::symlink(root.join("tests/scenes"), dir.join("tests/scenes")).unwrap();
     let gpu = adapter();
     let exe = env!("CARGO_BIN_EXE_shlight");
     for line in &lines {

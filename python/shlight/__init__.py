@@ -515,7 +515,7 @@ def bake_lightmap(
     texel_density=None,
     padding=2,
     samples=256,
-    bounces=2,
+    bounces=8,
     surface_samples=512,
     max_edge=None,
     lmax=2,

@@ -151,7 +151,7 @@ impl Lightmap {
 /// See the package documentation (`help(shlight.bake_lightmap)`).
 #[pyfunction]
 #[pyo3(signature = (scene, env, output=None, basis="irradiance", engine="threejs",
-    non_linear=false, size=None, texel_density=None, padding=2, samples=256, bounces=2,
+    non_linear=false, size=None, texel_density=None, padding=2, samples=256, bounces=8,
     surface_samples=512, max_edge=None, lmax=2, albedo=None, invalid_backfaces=0.5,
     light_units="blender", seed=0, unshare_instances=false, exr=None, preview=None))]
 pub fn bake_lightmap(

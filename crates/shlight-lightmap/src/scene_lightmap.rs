@@ -53,6 +53,7 @@ impl Default for LightmapSettings {
             padding: 2,
             gather: VolumeOptions {
                 samples: 256,
+                bounces: 8,
                 relocate: false,
                 visibility_size: 0,
                 ..VolumeOptions::default()
@@ -102,6 +103,10 @@ pub struct SceneLightmap {
     pub density: f64,
     /// A region per placed node, in the scene's order.
     pub regions: Vec<LightmapRegion>,
+    /// The nodes not baked, none of their primitives having the UV set
+    /// (named by their first primitive): they still cast shadows and
+    /// reflect light.
+    pub skipped: Vec<String>,
     /// Row by row, texel `(x, y)` at `y side + x`: the texels the surfaces
     /// cover, the texels inside geometry filled from their neighbours, and
     /// the padding dilated ([`LightmapSettings::padding`] passes); `None`
@@ -207,8 +212,10 @@ struct NodeUvs {
 ///
 /// - **Regions.** The instances a glTF node places (its mesh's
 ///   primitives) share one square region; a node's GPU instances each get
-///   their own. Every primitive needs the UV set
-///   [`LightmapSettings::uv_set`], within the unit square, with no two
+///   their own. A node none of whose primitives has the UV set
+///   [`LightmapSettings::uv_set`] is not baked ([`SceneLightmap::skipped`]:
+///   it still casts shadows and reflects light); in a baked node every
+///   primitive needs it, within the unit square, with no two
 ///   triangles of one mesh overlapping there. A region's side is `density
 ///   sqrt(A_world / A_uv)` texels (at least 2), so that a texel covers about
 ///   `1 / density` metres of its surface whatever the UVs' scale.
@@ -226,7 +233,8 @@ struct NodeUvs {
 /// `progress(stage, done, total)` as [`gather_at_surface_points`] reports.
 ///
 /// # Errors
-/// A primitive without the UV set, UVs that are not finite, leave the
+/// No node with the UV set, a baked node's primitive without it, UVs that
+/// are not finite, leave the
 /// unit square or overlap (naming the mesh and triangles), a layout that
 /// does not fit [`MAX_SIDE`], and what the gather refuses.
 pub fn bake_scene_lightmap(
@@ -238,7 +246,23 @@ pub fn bake_scene_lightmap(
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<SceneLightmap, LightmapError> {
     let layout = scene.flat_layout().map_err(LightmapError::Scene)?;
-    let groups = node_groups(scene);
+    // Nodes none of whose primitives has the UV set are not baked (they
+    // still cast shadows and reflect light).
+    let (groups, skipped): (Vec<NodeGroup>, Vec<NodeGroup>) =
+        node_groups(scene).into_iter().partition(|g| {
+            g.instances.iter().any(|&i| {
+                scene.primitives[scene.instances[i].primitive].uvs.len() > settings.uv_set
+            })
+        });
+    if groups.is_empty() {
+        let label = skipped
+            .first()
+            .map_or_else(String::new, |g| g.label.clone());
+        return Err(LightmapError::NoUvs {
+            label,
+            uv_set: settings.uv_set,
+        });
+    }
     let mut nodes = Vec::with_capacity(groups.len());
     let mut checked = std::collections::HashSet::new();
     let mut naturals = Vec::with_capacity(groups.len());
@@ -395,6 +419,7 @@ pub fn bake_scene_lightmap(
         side,
         density,
         regions,
+        skipped: skipped.into_iter().map(|g| g.label).collect(),
         texels,
         invalid,
         seams: seams.len(),

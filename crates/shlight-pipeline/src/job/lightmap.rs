@@ -310,6 +310,14 @@ pub fn lightmap_of_scene(
     )
     .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
     let seconds = start.elapsed().as_secs_f64();
+    if !map.skipped.is_empty() {
+        hooks.note(&format!(
+            "{name}: {} node{} without TEXCOORD_1 not baked (they still cast shadows and reflect light): {}",
+            map.skipped.len(),
+            if map.skipped.len() == 1 { "" } else { "s" },
+            map.skipped.join(", ")
+        ));
+    }
     let covered: usize = map.regions.iter().map(|r| r.covered).sum();
     hooks.note(&format!(
         "{} x {} lightmap, {} regions at {:.1} texels per metre; {covered} texels baked ({} inside geometry, filled), {} rays each; {} rays in {seconds:.2} s ({:.1} M rays/s)",
