@@ -19,7 +19,6 @@ use shlight_mesh::{
     BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest as GlbRequest, LoadOptions,
     Scene, write_lightmapped_glb,
 };
-use shlight_volume::Stage;
 
 use crate::environment::Environment;
 use crate::hooks::{Hooks, Progress};
@@ -302,7 +301,7 @@ pub fn lightmap_of_scene(
         &plan.settings,
         &|stage, done, total| {
             hooks.progress(Progress::Count {
-                stage: &stage_label(stage),
+                stage: &super::volume::stage_label(stage),
                 done,
                 total,
             });
@@ -389,18 +388,6 @@ fn write_layer(path: &Path, side: u32, layer: &[[f32; 4]], options: &WriteOption
         .map_err(|e| PipelineError::new(format!("{}: {e}", path.display())))?;
     write_image(path, &image, options)?;
     Ok(())
-}
-
-/// The label of a bake stage's progress.
-fn stage_label(stage: Stage) -> String {
-    match stage {
-        Stage::Surface(shlight_prt::Stage::Rays) => "surface rays".into(),
-        Stage::Surface(shlight_prt::Stage::Bounce(k)) => format!("bounce {k}"),
-        Stage::Surface(shlight_prt::Stage::Matrices) => "matrices".into(),
-        Stage::Relocate => "relocate".into(),
-        Stage::Probes => "probes".into(),
-        Stage::Points => "texels".into(),
-    }
 }
 
 /// What the lightmap holds, as shlight's glTF extension `SHLIGHT_lightmap`

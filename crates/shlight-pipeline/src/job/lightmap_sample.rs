@@ -8,10 +8,12 @@ use glam::{Vec2, Vec3};
 use serde_json::Value;
 use shlight_format::SamplePoints;
 use shlight_io::{Ktx2Image, decode_ktx2};
-use shlight_lightmap::{Engine, L1Reconstruction, PackedTexel, TexelBasis, TexelFormat};
+use shlight_lightmap::{PackedTexel, TexelFormat};
 use shlight_mesh::{LightmapPages, Scene};
 use shlight_rays::{Occluder, Ray};
 
+use super::lightmap::{engine_by_name, reconstruction, texel_basis};
+use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
 /// How far from a surface a point may be, as a fraction of the scene's
@@ -25,24 +27,16 @@ fn format_of(root: &Value, name: &str) -> Result<TexelFormat> {
             "{name}: its SHLIGHT_lightmap has no {what} shlight knows"
         ))
     };
-    let basis = match root["basis"].as_str() {
-        Some("irradiance") => TexelBasis::Irradiance,
-        Some("sh-l1") => TexelBasis::ShL1,
-        Some("monosh") => TexelBasis::MonoSh,
-        _ => return Err(fail("basis")),
-    };
-    let engine = match root["engine"].as_str() {
-        Some("threejs") => Engine::ThreeJs,
-        Some("bevy") => Engine::Bevy,
-        Some("godot") => Engine::Godot,
-        Some("unity") => Engine::Unity,
-        _ => return Err(fail("engine")),
-    };
-    let reconstruction = match root["reconstruction"].as_str() {
-        Some("non-linear") => L1Reconstruction::NonLinear,
-        _ => L1Reconstruction::Linear,
-    };
-    TexelFormat::new(basis, engine, reconstruction).map_err(|e| fail(&e.to_string()))
+    let word = |key: &str| root[key].as_str().unwrap_or_default();
+    let basis = texel_basis(word("basis"), Spelling::CommandLine).map_err(|_| fail("basis"))?;
+    let engine =
+        engine_by_name(word("engine"), Spelling::CommandLine).map_err(|_| fail("engine"))?;
+    TexelFormat::new(
+        basis,
+        engine,
+        reconstruction(word("reconstruction") == "non-linear"),
+    )
+    .map_err(|e| fail(&e.to_string()))
 }
 
 /// The irradiance `E` (W/m2, whatever the engine's units) a GPU shading

@@ -165,15 +165,16 @@ pub fn visibility_size(visibility: bool) -> usize {
     }
 }
 
-/// The label of a bake stage's progress.
-fn stage_label(stage: Stage) -> String {
+/// The label of a bake stage's progress (a volume's, or a lightmap's,
+/// whose points are texels).
+pub(crate) fn stage_label(stage: Stage) -> String {
     match stage {
         Stage::Surface(shlight_prt::Stage::Rays) => "surface rays".into(),
         Stage::Surface(shlight_prt::Stage::Bounce(k)) => format!("bounce {k}"),
         Stage::Surface(shlight_prt::Stage::Matrices) => "matrices".into(),
         Stage::Relocate => "relocate".into(),
         Stage::Probes => "probes".into(),
-        Stage::Points => "points".into(),
+        Stage::Points => "texels".into(),
     }
 }
 
