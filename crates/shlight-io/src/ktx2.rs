@@ -272,8 +272,12 @@ pub fn decode_ktx2(bytes: &[u8]) -> Result<Ktx2Image, IoErrorKind> {
         return Err(IoErrorKind::EmptyImage { width, height });
     }
     let (offset, length) = (u64_at(80), u64_at(88));
-    let expected = (width as u64) * (height as u64) * format.texel_bytes() as u64;
-    if length != expected {
+    // At most (2^32 - 1)^2 texels of 8 bytes: past u64, so checked.
+    let expected = (width as u64)
+        .checked_mul(height as u64)
+        .and_then(|n| n.checked_mul(format.texel_bytes() as u64));
+    if Some(length) != expected {
+        let expected = expected.map_or_else(|| "more than 2^64".to_string(), |e| e.to_string());
         return Err(IoErrorKind::Corrupt(format!(
             "the level holds {length} bytes, a {width}x{height} image of {} takes {expected}",
             format.name()

@@ -357,3 +357,15 @@ fn bad_sizes_and_paths_are_errors_naming_the_file() {
         Err(IoErrorKind::Unsupported(_))
     ));
 }
+
+#[test]
+fn a_header_whose_size_overflows_is_corrupt_not_a_panic() {
+    // A 1 x 1 file whose header claims (2^32 - 1)^2 texels of 8 bytes: more
+    // bytes than 64 bits count.
+    let mut bytes =
+        shlight_io::encode_ktx2(Ktx2TexelFormat::Rgba16Float, 1, 1, &[[1.0; 4]]).unwrap();
+    bytes[20..24].copy_from_slice(&u32::MAX.to_le_bytes());
+    bytes[24..28].copy_from_slice(&u32::MAX.to_le_bytes());
+    let e = shlight_io::decode_ktx2(&bytes).unwrap_err().to_string();
+    assert!(e.contains("more than 2^64"), "{e}");
+}

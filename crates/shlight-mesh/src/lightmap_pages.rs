@@ -33,6 +33,14 @@ pub fn read_lightmap_pages(path: &Path) -> Result<LightmapPages, MeshError> {
         path: path.to_path_buf(),
         source,
     })?;
+    lightmap_pages_from_bytes(path, &bytes)
+}
+
+/// [`read_lightmap_pages`] of `bytes`, the file `path` (named in errors).
+///
+/// # Errors
+/// As [`read_lightmap_pages`], the reading aside.
+pub fn lightmap_pages_from_bytes(path: &Path, bytes: &[u8]) -> Result<LightmapPages, MeshError> {
     let fail = |message: String| MeshError::Invalid {
         path: path.to_path_buf(),
         message,
@@ -42,7 +50,7 @@ pub fn read_lightmap_pages(path: &Path) -> Result<LightmapPages, MeshError> {
             "a lightmapped scene is a binary glTF (.glb) file".into(),
         ));
     }
-    let (json, bin) = split_glb(&bytes).map_err(|e| fail(format!("not a valid GLB: {e}")))?;
+    let (json, bin) = split_glb(bytes).map_err(|e| fail(format!("not a valid GLB: {e}")))?;
     let doc: Value =
         serde_json::from_slice(json).map_err(|e| fail(format!("its JSON chunk: {e}")))?;
     let root = doc["extensions"]["SHLIGHT_lightmap"].clone();
