@@ -232,6 +232,12 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
             "--exr",
             s(&prefix),
         ]);
+        // `show` says what the file holds.
+        let shown = String::from_utf8_lossy(&shlight_ok(&["show", s(&out)]).stdout).into_owned();
+        assert!(shown.contains("a scene with shlight's lightmap"), "{shown}");
+        assert!(shown.contains(&format!("{basis} for {engine}")), "{shown}");
+        assert!(shown.contains(&format!("layers {}", layers.join(", "))), "{shown}");
+        assert!(shown.contains("baked nodes  1"), "{shown}");
         let (doc, bin) = glb_chunks(&std::fs::read(&out).unwrap());
         let root = &doc["extensions"]["SHLIGHT_lightmap"];
         assert_eq!(root["basis"], basis);

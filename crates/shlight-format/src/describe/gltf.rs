@@ -10,6 +10,59 @@ use super::{Header, baked, plain};
 use crate::Result;
 use crate::export::gltf::{EXTENSION, read};
 
+/// What `shlight lightmap -o` wrote: the root's `SHLIGHT_lightmap` `m`
+/// and the nodes that carry one (docs/lightmaps.md).
+fn lightmap_fields(h: &mut Header, v: &Value, m: &Value) {
+    let text = |key: &str| m.get(key).map(plain).unwrap_or_default();
+    h.field(
+        "lightmap",
+        format!(
+            "{} for {} ({} reconstruction), texels in {}",
+            text("basis"),
+            text("engine"),
+            text("reconstruction"),
+            text("units")
+        ),
+    );
+    let size = m
+        .get("size")
+        .and_then(Value::as_array)
+        .map(|s| s.iter().map(plain).collect::<Vec<_>>().join(" x "))
+        .unwrap_or_default();
+    let layers = m
+        .get("layers")
+        .and_then(Value::as_array)
+        .map(|l| l.iter().map(plain).collect::<Vec<_>>().join(", "))
+        .unwrap_or_default();
+    h.field(
+        "atlas",
+        format!(
+            "{size} texels on TEXCOORD_{}, {} texels per metre; layers {layers} (half-float KTX2 pages)",
+            text("texCoord"),
+            text("texelsPerMetre")
+        ),
+    );
+    let nodes = v.get("nodes").and_then(Value::as_array).map_or(0, |n| {
+        n.iter()
+            .filter(|n| n.pointer("/extensions/SHLIGHT_lightmap").is_some())
+            .count()
+    });
+    h.field("baked nodes", nodes.to_string());
+    h.field(
+        "baked with",
+        format!(
+            "{} rays per texel, {} bounces, lmax {} of {}, seed {}, lights in {} units; {}",
+            text("samples"),
+            text("bounces"),
+            text("lmax"),
+            text("environment"),
+            text("seed"),
+            text("lightUnits"),
+            text("generator")
+        ),
+    );
+}
+
 /// The asset's document `v` (a GLB's JSON chunk when `binary`).
 pub(super) fn describe(v: &Value, name: &str, binary: bool) -> Result<Header> {
     let count = |key: &str| v.get(key).and_then(Value::as_array).map_or(0, Vec::len);
@@ -21,7 +74,9 @@ pub(super) fn describe(v: &Value, name: &str, binary: bool) -> Result<Header> {
         .filter_map(|m| m.pointer("/extras/shlight_prt"))
         .collect();
     let light = v.pointer(&format!("/extensions/{EXTENSION}"));
+    let lightmap = v.pointer("/extensions/SHLIGHT_lightmap");
     let holds = match (prt.is_empty(), light.is_none()) {
+        (true, true) if lightmap.is_some() => ": a scene with shlight's lightmap",
         (false, false) => {
             ": a mesh with shlight's PRT transfer, and an EXT_lights_image_based light"
         }
@@ -52,6 +107,9 @@ pub(super) fn describe(v: &Value, name: &str, binary: bool) -> Result<Header> {
             count("images")
         ),
     );
+    if let Some(m) = lightmap {
+        lightmap_fields(&mut h, v, m);
+    }
     for header in prt {
         let attributes = v
             .get("meshes")
