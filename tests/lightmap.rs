@@ -163,7 +163,8 @@ fn a_scene_without_a_second_uv_set_is_refused_by_name_and_nothing_is_written() {
     assert!(
         e.contains("floor.glb")
             && e.contains("(Floor)")
-            && e.contains("has no UV set 1 (TEXCOORD_1)"),
+            && e.contains("has no UV set 1 (TEXCOORD_1)")
+            && e.contains("does not unwrap"),
         "{e}"
     );
     assert!(!dir.join("out.irradiance.exr").exists());
@@ -236,7 +237,10 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
         let shown = String::from_utf8_lossy(&shlight_ok(&["show", s(&out)]).stdout).into_owned();
         assert!(shown.contains("a scene with shlight's lightmap"), "{shown}");
         assert!(shown.contains(&format!("{basis} for {engine}")), "{shown}");
-        assert!(shown.contains(&format!("layers {}", layers.join(", "))), "{shown}");
+        assert!(
+            shown.contains(&format!("layers {}", layers.join(", "))),
+            "{shown}"
+        );
         assert!(shown.contains("baked nodes  1"), "{shown}");
         let (doc, bin) = glb_chunks(&std::fs::read(&out).unwrap());
         let root = &doc["extensions"]["SHLIGHT_lightmap"];

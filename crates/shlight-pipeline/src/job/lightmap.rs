@@ -12,8 +12,8 @@ use serde_json::{Value, json};
 use shlight_core::sh::Frame;
 use shlight_io::{Image, Ktx2TexelFormat, ToneMap, WriteOptions, encode_ktx2, write_image};
 use shlight_lightmap::{
-    Engine, L1Reconstruction, LightmapSettings, LightmapSize, SceneLightmap, TexelBasis,
-    TexelFormat, TexelUnits, bake_scene_lightmap,
+    Engine, L1Reconstruction, LightmapError, LightmapSettings, LightmapSize, SceneLightmap,
+    TexelBasis, TexelFormat, TexelUnits, bake_scene_lightmap,
 };
 use shlight_mesh::{
     BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest as GlbRequest, LoadOptions,
@@ -307,7 +307,15 @@ pub fn lightmap_of_scene(
             });
         },
     )
-    .map_err(|e| PipelineError::new(format!("{name}: {e}")))?;
+    .map_err(|e| {
+        let hint = match e {
+            LightmapError::NoUvs { .. } => {
+                "; shlight does not unwrap meshes yet: give the meshes to bake a second UV map (in Blender, a second UV map laid out with Lightmap Pack), which glTF's exporters write as TEXCOORD_1"
+            }
+            _ => "",
+        };
+        PipelineError::new(format!("{name}: {e}{hint}"))
+    })?;
     let seconds = start.elapsed().as_secs_f64();
     if !map.skipped.is_empty() {
         hooks.note(&format!(
