@@ -74,6 +74,11 @@ pub struct LightmapArgs {
     /// Empty texels around each node's region, filled by dilation.
     #[arg(long, default_value_t = 2)]
     pub padding: u32,
+    /// Radius in texels of the edge-aware filter over the baked texels,
+    /// guided by their positions and normals (never across a geometric
+    /// edge); 0: none.
+    #[arg(long, value_name = "TEXELS", default_value_t = shlight_lightmap::DEFAULT_DENOISE)]
+    pub denoise: u32,
     /// Rays per texel (a stratified set of about this many).
     #[arg(long, default_value_t = 256)]
     pub samples: usize,
@@ -154,6 +159,7 @@ pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
             uv_set: 1,
             size,
             padding: args.padding,
+            denoise: args.denoise,
             gather: VolumeOptions {
                 lmax: args.lmax,
                 samples: args.samples,

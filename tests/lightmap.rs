@@ -207,9 +207,9 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
     let lamp = [0.3f32, 1.5, -0.2];
     std::fs::write(&scene, floor_glb(683.0 * 6.0, lamp, true)).unwrap();
     let env = black_sky(&dir);
-    for (engine, basis, layers) in [
-        ("threejs", "irradiance", vec!["irradiance"]),
-        ("godot", "sh-l1", vec!["l0", "l1y", "l1z", "l1x"]),
+    for (engine, basis, layers, denoise) in [
+        ("threejs", "irradiance", vec!["irradiance"], "3"),
+        ("godot", "sh-l1", vec!["l0", "l1y", "l1z", "l1x"], "0"),
     ] {
         let out = dir.join(format!("{engine}.glb"));
         let prefix = dir.join(engine);
@@ -228,6 +228,8 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
             "16",
             "--surface-samples",
             "16",
+            "--denoise",
+            denoise,
             "-o",
             s(&out),
             "--exr",
@@ -242,6 +244,10 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
             "{shown}"
         );
         assert!(shown.contains("baked nodes  1"), "{shown}");
+        assert!(
+            shown.contains(&format!("denoised over {denoise} texels")),
+            "{shown}"
+        );
         let (doc, bin) = glb_chunks(&std::fs::read(&out).unwrap());
         let root = &doc["extensions"]["SHLIGHT_lightmap"];
         assert_eq!(root["basis"], basis);
@@ -256,6 +262,7 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
         );
         assert_eq!(root["layers"], serde_json::json!(layers));
         assert_eq!(root["size"], serde_json::json!([32, 32]));
+        assert_eq!(root["denoise"].to_string(), denoise);
         let node = &doc["nodes"][0]["extensions"]["SHLIGHT_lightmap"];
         assert_eq!(node["rect"], serde_json::json!([2, 2, 28]));
         // The material reads the first page through MOZ_lightmap, its

@@ -514,6 +514,7 @@ def bake_lightmap(
     size=None,
     texel_density=None,
     padding=2,
+    denoise=2,
     samples=256,
     bounces=8,
     surface_samples=512,
@@ -561,6 +562,10 @@ def bake_lightmap(
         neither is given), or texels per metre of surface.
     padding : int
         Empty texels around each region, filled by dilation.
+    denoise : int
+        Radius in texels of the edge-aware filter over the baked texels,
+        guided by their positions and normals (never across a geometric
+        edge); 0: none.
     samples, bounces, surface_samples, max_edge, lmax, seed
         Rays per texel, interreflection bounces, directions per surface
         vertex, the longest surface edge, the environment's lmax and the
@@ -603,6 +608,7 @@ def bake_lightmap(
         size,
         texel_density,
         padding,
+        denoise,
         samples,
         bounces,
         surface_samples,

@@ -151,7 +151,7 @@ impl Lightmap {
 /// See the package documentation (`help(shlight.bake_lightmap)`).
 #[pyfunction]
 #[pyo3(signature = (scene, env, output=None, basis="irradiance", engine="threejs",
-    non_linear=false, size=None, texel_density=None, padding=2, samples=256, bounces=8,
+    non_linear=false, size=None, texel_density=None, padding=2, denoise=2, samples=256, bounces=8,
     surface_samples=512, max_edge=None, lmax=2, albedo=None, invalid_backfaces=0.5,
     light_units="blender", seed=0, unshare_instances=false, exr=None, preview=None))]
 pub fn bake_lightmap(
@@ -165,6 +165,7 @@ pub fn bake_lightmap(
     size: Option<u32>,
     texel_density: Option<f64>,
     padding: u32,
+    denoise: u32,
     samples: usize,
     bounces: u32,
     surface_samples: usize,
@@ -194,6 +195,7 @@ pub fn bake_lightmap(
             uv_set: 1,
             size: lightmap_size(size, texel_density, py_spelling).map_err(pipeline_error)?,
             padding,
+            denoise,
             gather: VolumeOptions {
                 lmax,
                 samples,

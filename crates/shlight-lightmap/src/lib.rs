@@ -26,6 +26,9 @@
 //!   irradiance `a + b . n` per channel, in [`TexelUnits`]) and
 //!   [`geomerics_l1`] (the non-linear reconstruction). docs/lightmaps.md
 //!   quotes each shader.
+//! - [`denoise`]: an edge-aware filter over a lightmap's texels, guided
+//!   by each texel's position and normal ([`TexelGuide`]), never across a
+//!   geometric edge.
 //! - [`dilate`]: empty texels filled from the mean of their valid
 //!   neighbours, pass by pass, for any value that can be averaged
 //!   ([`Blend`]).
@@ -67,6 +70,7 @@
 //! No I/O, no GPU.
 
 mod atlas;
+mod denoise;
 mod diffuse_l1;
 mod dilate;
 mod engine_packing;
@@ -83,6 +87,7 @@ mod uv_overlap;
 mod uv_triangles;
 
 pub use atlas::{TexelRect, pack_squares, smallest_atlas};
+pub use denoise::{FACING_POWER, TexelGuide, denoise};
 pub use diffuse_l1::{DiffuseL1, TexelUnits};
 pub use dilate::{Blend, GridShapeError, dilate};
 pub use engine_packing::PackedTexel;
@@ -90,7 +95,8 @@ pub use geomerics::geomerics_l1;
 pub use lightmap_error::LightmapError;
 pub use placement::Placement;
 pub use scene_lightmap::{
-    LightmapRegion, LightmapSettings, LightmapSize, SceneLightmap, TexelLight, bake_scene_lightmap,
+    DEFAULT_DENOISE, LightmapRegion, LightmapSettings, LightmapSize, SceneLightmap, TexelLight,
+    bake_scene_lightmap,
 };
 pub use seams::{SMOOTH_COS, STITCH_SWEEPS, Seam, SeamCorner, find_seams, stitch_seams};
 pub use texel_format::{Engine, L1Reconstruction, TexelBasis, TexelFormat, TexelFormatError};

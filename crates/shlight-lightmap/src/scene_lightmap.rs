@@ -10,6 +10,7 @@ use shlight_mesh::{PunctualLight, Scene, Surfaces};
 use shlight_volume::{Stage, SurfaceLight, SurfacePoint, VolumeOptions, gather_at_surface_points};
 
 use crate::atlas::{TexelRect, pack_squares, smallest_atlas};
+use crate::denoise::{TexelGuide, denoise};
 use crate::dilate::dilate;
 use crate::lightmap_error::LightmapError;
 use crate::placement::Placement;
@@ -29,6 +30,10 @@ pub enum LightmapSize {
     Density(f64),
 }
 
+/// [`LightmapSettings::denoise`]'s default: a filter of radius 2 texels
+/// (the noise of an evenly lit surface divided by about 3).
+pub const DEFAULT_DENOISE: u32 = 2;
+
 /// What to bake.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightmapSettings {
@@ -38,6 +43,9 @@ pub struct LightmapSettings {
     pub size: LightmapSize,
     /// Empty texels around each region, filled by dilation.
     pub padding: u32,
+    /// The radius, in texels, of the edge-aware filter over the gathered
+    /// texels ([`crate::denoise`]); 0: none.
+    pub denoise: u32,
     /// The gather: rays per texel ([`VolumeOptions::samples`]), the
     /// surfaces' bounces and samples, the lmax of the environment read,
     /// the seed, the lights' units, and the back-face fraction above
@@ -51,6 +59,7 @@ impl Default for LightmapSettings {
             uv_set: 1,
             size: LightmapSize::Side(512),
             padding: 2,
+            denoise: DEFAULT_DENOISE,
             gather: VolumeOptions {
                 samples: 256,
                 bounces: 8,
@@ -225,6 +234,9 @@ struct NodeUvs {
 ///   facing the interpolated normal; the light there is gathered by
 ///   [`gather_at_surface_points`], seeded by the texel's index in the
 ///   atlas.
+/// - **Noise.** The gathered texels are filtered by [`denoise`] over
+///   [`LightmapSettings::denoise`] texels, guided by their positions and
+///   normals (never across a geometric edge).
 /// - **Invalid texels.** A texel whose rays meet back faces more than
 ///   [`VolumeOptions::invalid_backfaces`] of the time is inside geometry
 ///   (under a wall standing on the floor); it is emptied and filled from
@@ -343,6 +355,7 @@ pub fn bake_scene_lightmap(
     let width = side as usize;
     let mut points = Vec::new();
     let mut slots = Vec::new();
+    let mut owners = Vec::new();
     let mut regions = Vec::with_capacity(groups.len());
     for ((g, uvs), rect) in groups.iter().zip(&nodes).zip(&rects) {
         let raster = TexelRaster::new(&uvs.uvs, &uvs.triangles, None, rect.side, rect.side)
@@ -367,6 +380,7 @@ pub fn bake_scene_lightmap(
                 id: at as u64,
             });
             slots.push(at);
+            owners.push(regions.len() as u32);
             covered += 1;
         }
         let scale = rect.side as f32 / side as f32;
@@ -387,16 +401,24 @@ pub fn bake_scene_lightmap(
         gather_at_surface_points(surfaces, lights, env, &points, &settings.gather, progress)
             .map_err(LightmapError::Gather)?;
     let mut texels: Vec<Option<TexelLight>> = vec![None; width * width];
+    let mut guides: Vec<Option<TexelGuide>> = vec![None; width * width];
     let mut invalid = 0;
-    for ((&slot, p), l) in slots.iter().zip(&points).zip(&gathered.light) {
+    for (((&slot, p), l), &region) in slots.iter().zip(&points).zip(&gathered.light).zip(&owners) {
         if l.backfaces > settings.gather.invalid_backfaces {
             invalid += 1;
             continue;
         }
         texels[slot] = Some(texel_light(p, l));
+        guides[slot] = Some(TexelGuide {
+            position: p.position,
+            normal: p.normal,
+            region,
+        });
     }
+    // The noise filtered, guided by the texels' places on the surface.
+    let blend: Vec<Option<[f64; 16]>> = texels.iter().map(|t| t.map(to_array)).collect();
+    let mut blend = denoise(&blend, &guides, width, settings.denoise, 1.0 / density);
     // Invalid texels, then the padding: filled from their neighbours.
-    let mut blend: Vec<Option<[f64; 16]>> = texels.iter().map(|t| t.map(to_array)).collect();
     dilate(&mut blend, width, padding.max(1) + DILATE_EXTRA)
         .map_err(|e| LightmapError::Settings(e.to_string()))?;
     // Then the seams of each node's charts.

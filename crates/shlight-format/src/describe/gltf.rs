@@ -51,9 +51,10 @@ fn lightmap_fields(h: &mut Header, v: &Value, m: &Value) {
     h.field(
         "baked with",
         format!(
-            "{} rays per texel, {} bounces, lmax {} of {}, seed {}, lights in {} units; {}",
+            "{} rays per texel, {} bounces, denoised over {} texels, lmax {} of {}, seed {}, lights in {} units; {}",
             text("samples"),
             text("bounces"),
+            text("denoise"),
             text("lmax"),
             text("environment"),
             text("seed"),

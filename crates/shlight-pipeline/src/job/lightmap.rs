@@ -420,6 +420,7 @@ pub fn lightmap_description(plan: &LightmapPlan, baked: &LightmapBaked) -> Value
         "size": [map.side, map.side],
         "texelsPerMetre": map.density,
         "padding": plan.settings.padding,
+        "denoise": plan.settings.denoise,
         "frame": "glTF (y up, metres)",
         "colorSpace": "linear Rec.709",
         "basisConvention": "real orthonormal SH, index l(l+1)+m, Condon-Shortley phase",
