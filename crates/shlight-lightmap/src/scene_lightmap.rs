@@ -149,7 +149,7 @@ impl SceneLightmap {
         let (x0, y0) = (at.x.floor(), at.y.floor());
         let (fx, fy) = (at.x - x0, at.y - y0);
         let max = i64::from(self.side) - 1;
-        let mut sum = [0.0f64; 16];
+        let mut sum = [0.0f64; 15];
         let mut weight = 0.0;
         let mut normal = Vec3::ZERO;
         for (dy, wy) in [(0, 1.0 - fy), (1, fy)] {
@@ -400,7 +400,12 @@ pub fn bake_scene_lightmap(
     let gathered =
         gather_at_surface_points(surfaces, lights, env, &points, &settings.gather, progress)
             .map_err(LightmapError::Gather)?;
-    let mut texels: Vec<Option<TexelLight>> = vec![None; width * width];
+    // The texels' light as numbers to filter and blend, their normals and
+    // guides; what the gather returned is let go before the filter doubles
+    // the light's memory.
+    let (samples, rays) = (gathered.samples, gathered.rays);
+    let mut blend: Vec<Option<[f64; 15]>> = vec![None; width * width];
+    let mut normals: Vec<Option<Vec3>> = vec![None; width * width];
     let mut guides: Vec<Option<TexelGuide>> = vec![None; width * width];
     let mut invalid = 0;
     for (((&slot, p), l), &region) in slots.iter().zip(&points).zip(&gathered.light).zip(&owners) {
@@ -408,16 +413,20 @@ pub fn bake_scene_lightmap(
             invalid += 1;
             continue;
         }
-        texels[slot] = Some(texel_light(p, l));
+        blend[slot] = Some(to_array(texel_light(p, l)));
+        normals[slot] = Some(p.normal);
         guides[slot] = Some(TexelGuide {
             position: p.position,
             normal: p.normal,
             region,
         });
     }
+    drop((gathered, points, slots, owners));
     // The noise filtered, guided by the texels' places on the surface.
-    let blend: Vec<Option<[f64; 16]>> = texels.iter().map(|t| t.map(to_array)).collect();
-    let mut blend = denoise(&blend, &guides, width, settings.denoise, 1.0 / density);
+    if settings.denoise > 0 {
+        blend = denoise(&blend, &guides, width, settings.denoise, 1.0 / density);
+    }
+    drop(guides);
     // Invalid texels, then the padding: filled from their neighbours.
     dilate(&mut blend, width, padding.max(1) + DILATE_EXTRA)
         .map_err(|e| LightmapError::Settings(e.to_string()))?;
@@ -427,16 +436,21 @@ pub fn bake_scene_lightmap(
         seams.extend(find_seams(&seam_corners(scene, uvs, rect)));
     }
     let (before, after) = stitch_seams(&mut blend, width, &seams);
-    for (t, b) in texels.iter_mut().zip(&blend) {
-        *t = match (*t, b) {
-            (Some(own), Some(b)) => Some(TexelLight {
-                normal: own.normal,
-                ..from_array(*b)
-            }),
-            (None, b) => b.map(from_array),
-            (own, None) => own,
-        };
-    }
+    // A baked texel keeps the normal it was gathered for; a filled one
+    // takes its light's direction.
+    let texels: Vec<Option<TexelLight>> = blend
+        .into_iter()
+        .zip(normals)
+        .map(|(b, normal)| {
+            b.map(|b| {
+                let t = from_array(b);
+                TexelLight {
+                    normal: normal.unwrap_or(t.normal),
+                    ..t
+                }
+            })
+        })
+        .collect();
     Ok(SceneLightmap {
         side,
         density,
@@ -446,8 +460,8 @@ pub fn bake_scene_lightmap(
         invalid,
         seams: seams.len(),
         seam_gap: [before, after],
-        samples: gathered.samples,
-        rays: gathered.rays,
+        samples,
+        rays,
     })
 }
 
@@ -466,8 +480,8 @@ fn texel_light(p: &SurfacePoint, l: &SurfaceLight) -> TexelLight {
 }
 
 /// A texel's light as numbers to average (dilation).
-fn to_array(t: TexelLight) -> [f64; 16] {
-    let mut a = [0.0; 16];
+fn to_array(t: TexelLight) -> [f64; 15] {
+    let mut a = [0.0; 15];
     a[..3].copy_from_slice(&t.irradiance.to_array());
     a[3..7].copy_from_slice(&t.sh.r);
     a[7..11].copy_from_slice(&t.sh.g);
@@ -477,7 +491,7 @@ fn to_array(t: TexelLight) -> [f64; 16] {
 
 /// [`to_array`] back; the normal of a filled texel is not known, and the
 /// SH's own direction is used (`+y` where it has none).
-fn from_array(a: [f64; 16]) -> TexelLight {
+fn from_array(a: [f64; 15]) -> TexelLight {
     let sh = ShL1Rgb {
         r: [a[3], a[4], a[5], a[6]],
         g: [a[7], a[8], a[9], a[10]],
