@@ -610,3 +610,50 @@ fn render_lightmapped_floor(floor: &str, degrees: f64, report: &mut Vec<String>)
         }
     }
 }
+
+/// A scene without a lightmap: `render-mesh` without `--env` says it
+/// needs one, and `--lightmap` says the scene holds none; nothing is
+/// written either way.
+#[cfg(feature = "gpu")]
+#[test]
+fn render_mesh_refuses_a_lightmap_the_scene_does_not_hold() {
+    let dir = temp_dir("lightmap_render_refused");
+    let scene = dir.join("floor.glb");
+    std::fs::write(&scene, floor_glb(683.0, [0.0, 1.0, 0.0], true)).unwrap();
+    let env = black_sky(&dir);
+    let out = dir.join("frame.exr");
+    let e = shlight_err(&["render-mesh", s(&scene), "-o", s(&out)]);
+    assert!(
+        e.contains("floor.glb") && e.contains("holds no lightmap") && e.contains("--env"),
+        "{e}"
+    );
+    let e = shlight_err(&[
+        "render-mesh",
+        s(&scene),
+        "--env",
+        s(&env),
+        "--lightmap",
+        "-o",
+        s(&out),
+    ]);
+    assert!(
+        e.contains("floor.glb") && e.contains("--lightmap") && e.contains("no SHLIGHT_lightmap"),
+        "{e}"
+    );
+    let e = shlight_err(&[
+        "render-mesh",
+        s(&scene),
+        "--env",
+        s(&env),
+        "--lightmap",
+        "--mode",
+        "normals",
+        "-o",
+        s(&out),
+    ]);
+    assert!(
+        e.contains("--lightmap") && e.contains("--mode normals"),
+        "{e}"
+    );
+    assert!(!out.exists());
+}
