@@ -657,3 +657,80 @@ fn render_mesh_refuses_a_lightmap_the_scene_does_not_hold() {
     );
     assert!(!out.exists());
 }
+
+/// `view OUT.glb` (no `--env`) draws the lightmapped floor as
+/// `render-mesh OUT.glb` does: the screenshot against render-mesh's PNG
+/// at the same default camera, within 0.02 a channel (PNG, tone-mapped
+/// alike); the floor lit (its only light is the lightmap's) and the
+/// background black (no built-in map).
+#[cfg(feature = "gpu")]
+#[test]
+fn view_draws_a_lightmapped_floor_as_render_mesh_does() {
+    use std::process::Command;
+    let Some(x) = crate::gpu::gpu_and_xvfb("view_draws_a_lightmapped_floor_as_render_mesh_does")
+    else {
+        return;
+    };
+    let dir = temp_dir("lightmap_view");
+    let scene = dir.join("floor.glb");
+    std::fs::write(&scene, floor_glb(683.0 * 6.0, [0.3, 1.5, -0.2], true)).unwrap();
+    let env = black_sky(&dir);
+    let baked = dir.join("baked.glb");
+    shlight_ok(&[
+        "lightmap",
+        s(&scene),
+        "--env",
+        s(&env),
+        "--for",
+        "godot",
+        "--basis",
+        "sh-l1",
+        "--size",
+        "32",
+        "--samples",
+        "16",
+        "--surface-samples",
+        "16",
+        "-o",
+        s(&baked),
+    ]);
+    let (shot, png) = (dir.join("view.png"), dir.join("render.png"));
+    let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
+        .args(["view", s(&baked)])
+        .args(["--size", "160x120", "--frames", "3", "--hide-panel"])
+        .args(["--screenshot", s(&shot)])
+        .env("DISPLAY", &x.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    drop(x);
+    assert!(
+        out.status.success(),
+        "view failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    shlight_ok(&["render-mesh", s(&baked), "--size", "160x120", "-o", s(&png)]);
+    let (view, render) = (
+        read_image(&shot, &ReadOptions::default()).unwrap(),
+        read_image(&png, &ReadOptions::default()).unwrap(),
+    );
+    assert_eq!((view.width(), view.height()), (160, 120));
+    let worst = view
+        .pixels()
+        .iter()
+        .zip(render.pixels())
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    let brightest = view
+        .pixels()
+        .iter()
+        .map(|p| p[0].max(p[1]).max(p[2]))
+        .fold(0.0f32, f32::max);
+    let corner = view.get(0, 0);
+    eprintln!(
+        "view vs render-mesh of a lightmapped floor: worst {worst:.2e}; brightest {brightest:.3}"
+    );
+    assert!(brightest > 0.05, "the lightmap's light shows: {brightest}");
+    assert_eq!(corner, [0.0; 3], "no background");
+    assert!(worst < 0.02, "view and render-mesh differ by {worst}");
+}
