@@ -173,7 +173,7 @@ impl Scene {
             // A lightmap and no light: the nodes it skipped are black.
             (None, Some(_)) => Environment {
                 path: PathBuf::from("no light"),
-                radiance: ShCoeffs::zeros(0),
+                radiance: ShCoeffs::zeros(LIGHT_MAX_LMAX),
                 map: None,
                 orientation: Default::default(),
                 warnings: Vec::new(),
