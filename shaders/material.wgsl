@@ -61,6 +61,10 @@ struct SurfaceVertexIn {
     @location(10) normal_0: vec4<f32>,
     @location(11) normal_1: vec4<f32>,
     @location(12) normal_2: vec4<f32>,
+    // TEXCOORD_1 (0 without one), and per instance its node's lightmap
+    // scaleOffset (su, sv, ou, ov): all 0 where the node has no lightmap.
+    @location(13) uv_lightmap: vec2<f32>,
+    @location(14) lightmap_scale_offset: vec4<f32>,
 }
 
 struct SurfaceVertexOut {
@@ -75,6 +79,9 @@ struct SurfaceVertexOut {
     // static exit radiance (surface.wgsl).
     @location(6) prt: vec3<f32>,
     @location(7) prt_static: vec3<f32>,
+    // The lightmap atlas UV, and 1 where the instance's node is baked.
+    @location(8) lightmap_uv: vec2<f32>,
+    @location(9) @interpolate(flat) lightmap_baked: u32,
 }
 
 // The vertex placed by its instance.
@@ -92,6 +99,9 @@ fn surface_vertex(in: SurfaceVertexIn) -> SurfaceVertexOut {
     out.emission = in.emission;
     out.prt = vec3<f32>(0.0);
     out.prt_static = vec3<f32>(0.0);
+    let so = in.lightmap_scale_offset;
+    out.lightmap_uv = in.uv_lightmap * so.xy + so.zw;
+    out.lightmap_baked = select(0u, 1u, any(so.xy != vec2<f32>(0.0)));
     return out;
 }
 

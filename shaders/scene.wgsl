@@ -53,6 +53,10 @@ struct Frame {
     // per-vertex RGB static exit radiance in the transfer buffer, after the
     // transfer (mesh.wgsl); 0 without one.
     prt_static: u32,
+    // A lightmapped scene's texel format (LIGHTMAP_* of lightmap.wgsl; 0:
+    // none) and its engine's units' scale (E = light / scale).
+    lightmap: u32,
+    lightmap_scale: f32,
 }
 
 const MODE_SH: u32 = 0u;

@@ -1,7 +1,9 @@
 // A glTF scene's surfaces lit as mesh.wgsl lights a mesh (shaders/README.md),
 // the albedo from each fragment's material (material.wgsl):
 //
-// MODE_SH: albedo/pi E(n), E the SH irradiance at the normal seen.
+// MODE_SH: albedo/pi E(n), E the SH irradiance at the normal seen; on a
+// lightmapped scene's baked instances (frame.lightmap set, the instance's
+// scaleOffset not 0), E the lightmap's (lightmap.wgsl) at the normal seen.
 // MODE_PRT: the vertex's transferred radiance per unit albedo (the renderer
 // uploads the transfer divided by the albedo it was baked with, vertex by
 // vertex), interpolated, times the fragment's albedo, plus the vertex's
@@ -39,6 +41,9 @@ fn fs_surface(in: SurfaceVertexOut, @builtin(front_facing) front: bool) -> @loca
             return finish(radiance);
         }
         default: {
+            if frame.lightmap != LIGHTMAP_NONE && in.lightmap_baked == 1u {
+                return finish(albedo / SH_PI * lightmap_irradiance(in.lightmap_uv, n));
+            }
             let e = sh_reconstruct(n, frame.irradiance_band);
             return finish(albedo / SH_PI * e);
         }

@@ -113,3 +113,20 @@ def test_a_scene_without_a_second_uv_set_raises_the_clis_message(cli, tmp_path):
     assert "has no UV set 1 (TEXCOORD_1)" in str(e.value)
     with pytest.raises(shlight.ShlightError, match='basis="monosh" with engine="godot"'):
         shlight.bake_lightmap(scene, sky, basis="monosh", engine="godot")
+
+
+def test_denoise_is_the_clis_flag(cli, tmp_path):
+    """denoise=0 bakes what `--denoise 0` bakes, byte for byte, and not what
+    the default filter (radius 2) bakes."""
+    scene = floor_glb(tmp_path / "floor.glb")
+    sky = black_sky(tmp_path / "black.json")
+    flags = ["--size", "32", "--samples", "16", "--surface-samples", "16"]
+    code, _, err = run_cli(cli, "lightmap", scene, "--env", sky, *flags, "--denoise", "0",
+                           "--exr", tmp_path / "cli")
+    assert code == 0, err
+    for name, radius in (("raw", 0), ("filtered", 2)):
+        shlight.bake_lightmap(scene, sky, size=32, samples=16, surface_samples=16,
+                              denoise=radius, exr=tmp_path / name)
+    cli_bytes = (tmp_path / "cli.irradiance.exr").read_bytes()
+    assert (tmp_path / "raw.irradiance.exr").read_bytes() == cli_bytes
+    assert (tmp_path / "filtered.irradiance.exr").read_bytes() != cli_bytes

@@ -7,7 +7,9 @@
 //! (`--encoding`), the per-vertex
 //! PRT radiance `T_v · L` of a `.shprt` file (plus a glTF scene's static
 //! term `S_v`), interpolated (`--mode prt`),
-//! or the world normal itself (`--mode normals`, background 0). The frame is rendered in
+//! or the world normal itself (`--mode normals`, background 0); a
+//! lightmapped scene's baked nodes `ρ/π E` with `E` its lightmap's
+//! irradiance (without `--env`, or with `--lightmap`). The frame is rendered in
 //! linear `f32`: EXR output holds those values untouched (no exposure, no
 //! tone map); PNG output gets `--exposure` and `--tone-map` on the CPU, as
 //! `shlight render` does.
@@ -40,9 +42,19 @@ pub struct RenderMeshArgs {
     /// instances.
     pub mesh: PathBuf,
     /// The light: an equirect map (projected to lmax 8) or a radiance
-    /// coefficient file (.json).
+    /// coefficient file (.json). Needed unless MESH is a lightmapped scene
+    /// (`shlight lightmap -o OUT.glb`), which is then drawn by its lightmap
+    /// alone (the nodes it skipped black).
     #[arg(long)]
-    pub env: PathBuf,
+    pub env: Option<PathBuf>,
+    /// Draw a lightmapped scene (`shlight lightmap -o OUT.glb`) by its
+    /// lightmap even with --env given: each baked node shows albedo/pi x
+    /// the lightmap's irradiance, read as `shlight sample` reads it; the
+    /// nodes it skipped keep --env's light. Without --env, a lightmapped
+    /// scene is drawn so anyway. Not with --prt, --volume, --mode
+    /// prt/normals or --encoding.
+    #[arg(long)]
+    pub lightmap: bool,
     /// Which world axis a map's top row faces.
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
@@ -135,6 +147,15 @@ pub enum BackgroundArg {
 pub fn run(args: &RenderMeshArgs, ui: &Ui) -> Result<()> {
     #[cfg(feature = "gpu")]
     {
+        if args.env.is_none() {
+            let lightmapped = shlight_mesh::read_lightmap_pages_if_any(&args.mesh)?.is_some();
+            if !lightmapped {
+                anyhow::bail!(
+                    "{}: holds no lightmap, so render-mesh needs --env LIGHT (a map or a coefficient file)",
+                    args.mesh.display()
+                );
+            }
+        }
         let settings = request(args).check(shlight_pipeline::Spelling::CommandLine)?;
         let reporter = crate::progress::Reporter::new(ui);
         shlight_gpu::render_mesh(&settings, &crate::bundled::BUILT_IN, &reporter)?;
@@ -155,7 +176,8 @@ fn request(args: &RenderMeshArgs) -> shlight_gpu::RenderMeshRequest {
         scene: shlight_gpu::SceneOptions {
             mesh: Some(args.mesh.clone()),
             prt: args.prt.clone(),
-            env: Some(args.env.clone()),
+            env: args.env.clone(),
+            lightmap: args.lightmap,
             up: crate::input::frame_of(&args.up),
             mode: args.mode.map(|m| match m {
                 RenderMode::Sh => Mode::Sh,

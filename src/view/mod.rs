@@ -38,9 +38,16 @@ pub struct ViewArgs {
     #[arg(long, value_name = "FILE.shprt")]
     pub prt: Option<PathBuf>,
     /// The light: an equirect map or a radiance coefficient file (.json)
-    /// [default: envmaps/default.exr, built into shlight].
+    /// [default: envmaps/default.exr, built into shlight; none for a
+    /// lightmapped scene, drawn by its lightmap, the nodes it skipped
+    /// black].
     #[arg(long)]
     pub env: Option<PathBuf>,
+    /// Draw a lightmapped scene (`shlight lightmap -o OUT.glb`) by its
+    /// lightmap even with --env given (which then lights the nodes the
+    /// lightmap skipped). Not with --prt, --volume or --encoding.
+    #[arg(long)]
+    pub lightmap: bool,
     /// Which world axis a map's top row faces.
     #[arg(long, default_value = "y", value_parser = ["y", "z"])]
     pub up: String,
@@ -139,6 +146,7 @@ fn scene_options(args: &ViewArgs) -> shlight_gpu::SceneOptions {
         lmax: args.lmax,
         encoding: args.encoding,
         albedo: args.albedo.map(|a| a.to_array()),
+        lightmap: args.lightmap,
         ..args.volume.options()
     }
 }

@@ -70,12 +70,12 @@ pub use orbit_camera::OrbitCamera;
 pub use pipeline::DEPTH_FORMAT;
 pub use projector::{GpuProjector, project_equirect};
 pub use readback::{read_buffer, read_srgb8_texture};
-pub use renderer::{GlossyLobe, Renderer};
+pub use renderer::{GlossyLobe, LightmapTexels, Renderer};
 pub use scene::{
     BuiltIn, GltfScene, RenderMeshRequest, RenderMeshSettings, Scene, SceneError, SceneGeometry,
-    SceneOptions, SceneSettings, SceneVolume, Shot, VolumeLight, gltf_renderer, light_renderer,
-    mesh_renderer, per_unit_albedo, read_transfer, render_mesh, scene_renderer, set_transfer,
-    static_radiance, write_frame,
+    SceneLightmap, SceneOptions, SceneSettings, SceneVolume, Shot, VolumeLight, gltf_renderer,
+    light_renderer, mesh_renderer, per_unit_albedo, read_transfer, render_mesh, scene_renderer,
+    set_transfer, static_radiance, write_frame,
 };
 pub use shading::{Background, Mode, Shading};
 pub use volume::{

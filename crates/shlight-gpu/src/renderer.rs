@@ -22,6 +22,7 @@ use crate::shading::{FrameInputs, FrameUniform, GlossyInputs, Mode, Shading, sha
 use crate::surface_pipelines::{SurfacePipelines, surface_pass};
 use shlight_baked::LIGHT_MAX_LMAX;
 use shlight_baked::{GlossyView, TransferView};
+use shlight_lightmap::{Engine, L1Reconstruction, TexelBasis, TexelFormat};
 
 use crate::{Camera, GpuContext, GpuError};
 
@@ -70,6 +71,36 @@ pub enum GlossyLobe<'a> {
     Directions(&'a [f32]),
 }
 
+/// A lightmapped scene's lightmap as [`Renderer::set_scene_with_lightmap`]
+/// takes it: the texel format, the pages (each `side x side` linear RGBA
+/// texels, row 0 at `v = 0`, in the format's layer order) and each
+/// instance's `scaleOffset` into them (`[0; 4]`: an instance the lightmap
+/// skipped).
+#[derive(Clone, Copy, Debug)]
+pub struct LightmapTexels<'a> {
+    /// What a texel holds and how the engine's shader reconstructs it.
+    pub format: TexelFormat,
+    /// The pages' side in texels.
+    pub side: usize,
+    /// The pages, [`TexelFormat::layer_count`] of them.
+    pub layers: &'a [&'a [[f32; 4]]],
+    /// Per instance of the scene (its `instances` order), the `scaleOffset`
+    /// `[su, sv, ou, ov]` taking `TEXCOORD_1` into the atlas.
+    pub instances: &'a [[f32; 4]],
+}
+
+/// `LIGHTMAP_*` of `lightmap.wgsl` for `format`.
+fn lightmap_code(format: TexelFormat) -> u32 {
+    let non_linear = u32::from(format.reconstruction() == L1Reconstruction::NonLinear);
+    match (format.basis(), format.engine()) {
+        (TexelBasis::Irradiance, _) => 1,
+        (TexelBasis::ShL1, Engine::Godot) => 4,
+        (TexelBasis::ShL1, Engine::Unity) => 5 + non_linear,
+        (TexelBasis::MonoSh, _) => 7 + non_linear,
+        (TexelBasis::ShL1, _) => 2 + non_linear,
+    }
+}
+
 /// Draws meshes lit by SH coefficients into targets of one colour format.
 pub struct Renderer {
     color_format: wgpu::TextureFormat,
@@ -115,6 +146,13 @@ pub struct Renderer {
     /// ([`Renderer::set_encoding`]), and its pipelines.
     surface_encoded_module: Option<wgpu::ShaderModule>,
     surface_encoded_pipelines: SurfacePipelines,
+    /// A lightmapped scene's pages (a 1x1 black page without one) and
+    /// their linear, clamp-to-edge sampler: bindings 3 and 4 of the mesh
+    /// bind group.
+    lightmap_pages: wgpu::TextureView,
+    lightmap_sampler: wgpu::Sampler,
+    /// The lightmap's `LIGHTMAP_*` code and units' scale, when set.
+    lightmap: Option<(u32, f32)>,
 }
 
 /// The surface pass of SH, PRT and normals modes (`surface.wgsl`).
@@ -153,6 +191,22 @@ impl Renderer {
                 buffer_entry(0, vf, UNIFORM),
                 buffer_entry(1, vf, UNIFORM),
                 buffer_entry(2, wgpu::ShaderStages::VERTEX, READ),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
             ],
         });
         let background_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -189,13 +243,23 @@ impl Renderer {
         });
         let transfer = no_transfer(device);
         let environment = environment_texture(ctx, 1, 1, &[[0.0; 3]]);
-        let mesh_bind = bind_group(
+        let lightmap_pages = lightmap_texture(ctx, 1, &[&[[0.0; 4]]]);
+        let lightmap_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("lightmap"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            address_mode_w: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+            ..Default::default()
+        });
+        let mesh_bind = mesh_bind_group(
             device,
             &mesh_layout,
-            "mesh",
-            &uniform,
-            &light,
-            transfer.as_entire_binding(),
+            [&uniform, &light, &transfer],
+            &lightmap_pages,
+            &lightmap_sampler,
         );
         let background_bind = bind_group(
             device,
@@ -236,6 +300,9 @@ impl Renderer {
             surface_pipelines,
             surface_encoded_module: None,
             surface_encoded_pipelines,
+            lightmap_pages,
+            lightmap_sampler,
+            lightmap: None,
         }
     }
 
@@ -301,8 +368,62 @@ impl Renderer {
         scene: &Scene,
         default_albedo: [f32; 3],
     ) -> Result<(), GpuError> {
-        let draws = SceneDraws::instanced(ctx, &self.material_layout, scene, default_albedo)?;
+        let draws = SceneDraws::instanced(ctx, &self.material_layout, scene, default_albedo, &[])?;
         self.use_surfaces(ctx, draws);
+        Ok(())
+    }
+
+    /// [`Renderer::set_scene`] with a lightmap baked for the scene
+    /// (`shaders/lightmap.wgsl`): in [`Mode::Sh`] each instance with a
+    /// `scaleOffset` shows `albedo / pi E`, `E` the lightmap's irradiance
+    /// at the fragment as `shlight sample` reads a lightmapped scene (its
+    /// `TEXCOORD_1` through the `scaleOffset`, each page filtered
+    /// bilinearly, clamped to the edge, the engine's reconstruction at the
+    /// normal seen, the engine's units undone); the other instances keep
+    /// the SH light ([`Renderer::set_light`]). The pages are uploaded as
+    /// an `Rgba16Float` array, the half floats of shlight's KTX2 pages
+    /// unchanged.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_scene`]; pages of another count than the
+    /// format's layers or another size than `side x side`, or larger than
+    /// the device's textures.
+    pub fn set_scene_with_lightmap(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        default_albedo: [f32; 3],
+        lightmap: &LightmapTexels<'_>,
+    ) -> Result<(), GpuError> {
+        let side = lightmap.side;
+        let limit = ctx.device.limits().max_texture_dimension_2d as usize;
+        if side == 0
+            || side > limit
+            || lightmap.layers.len() != lightmap.format.layer_count()
+            || lightmap.layers.iter().any(|l| l.len() != side * side)
+        {
+            return Err(GpuError::Invalid(format!(
+                "a lightmap of {} pages for {} ({} expected) of {side} x {side} texels \
+                 (at most {limit} on this device)",
+                lightmap.layers.len(),
+                lightmap.format.basis().name(),
+                lightmap.format.layer_count()
+            )));
+        }
+        let draws = SceneDraws::instanced(
+            ctx,
+            &self.material_layout,
+            scene,
+            default_albedo,
+            lightmap.instances,
+        )?;
+        self.use_surfaces(ctx, draws);
+        self.lightmap_pages = ctx.checked(|| lightmap_texture(ctx, side, lightmap.layers))?;
+        self.lightmap = Some((
+            lightmap_code(lightmap.format),
+            lightmap.format.units().scale() as f32,
+        ));
+        self.rebind_mesh(ctx);
         Ok(())
     }
 
@@ -324,10 +445,12 @@ impl Renderer {
         Ok(())
     }
 
-    /// Draws `draws` from now on, instead of a mesh.
+    /// Draws `draws` from now on, instead of a mesh (without a lightmap
+    /// until one is set).
     fn use_surfaces(&mut self, ctx: &GpuContext, draws: SceneDraws) {
         self.surfaces = Some(draws);
         self.mesh = None;
+        self.lightmap = None;
         if self.prt.is_some() {
             self.clear_transfer(ctx);
         }
@@ -711,13 +834,12 @@ impl Renderer {
 
     /// The mesh pass's bind group over the current transfer buffer.
     fn rebind_mesh(&mut self, ctx: &GpuContext) {
-        self.mesh_bind = bind_group(
+        self.mesh_bind = mesh_bind_group(
             &ctx.device,
             &self.mesh_layout,
-            "mesh",
-            &self.uniform,
-            &self.light,
-            self.transfer.as_entire_binding(),
+            [&self.uniform, &self.light, &self.transfer],
+            &self.lightmap_pages,
+            &self.lightmap_sampler,
         );
     }
 
@@ -774,6 +896,7 @@ impl Renderer {
             glossy,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
+            lightmap: self.lightmap,
         });
         ctx.queue
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
@@ -962,6 +1085,78 @@ fn bind_group(
                 resource: third,
             },
         ],
+    })
+}
+
+/// The mesh pass's bind group: the frame uniform, the light, the transfer
+/// (`buffers`), and the lightmap's pages and sampler.
+fn mesh_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buffers: [&wgpu::Buffer; 3],
+    pages: &wgpu::TextureView,
+    sampler: &wgpu::Sampler,
+) -> wgpu::BindGroup {
+    let [uniform, light, transfer] = buffers;
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("mesh"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: light.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: transfer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::TextureView(pages),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            },
+        ],
+    })
+}
+
+/// An `Rgba16Float` array texture of `layers`, each `side x side` linear
+/// RGBA texels (rounded to half floats: exact for shlight's half-float
+/// pages).
+fn lightmap_texture(ctx: &GpuContext, side: usize, layers: &[&[[f32; 4]]]) -> wgpu::TextureView {
+    let halves: Vec<u16> = layers
+        .iter()
+        .flat_map(|l| l.iter().flatten())
+        .map(|&x| half::f16::from_f32(x).to_bits())
+        .collect();
+    let texture = ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("lightmap"),
+            size: wgpu::Extent3d {
+                width: side as u32,
+                height: side as u32,
+                depth_or_array_layers: layers.len() as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&halves),
+    );
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
     })
 }
 

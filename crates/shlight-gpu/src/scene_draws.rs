@@ -40,20 +40,24 @@ struct SurfaceVertex {
     uv_metal: [f32; 2],
     color: [f32; 4],
     emission: [f32; 3],
+    uv_lightmap: [f32; 2],
 }
 
-/// One instance: world from the primitive's space, and the inverse
-/// transpose of its linear part for normals (three columns, `w` 0).
+/// One instance: world from the primitive's space, the inverse transpose
+/// of its linear part for normals (three columns, `w` 0), and its node's
+/// lightmap `scaleOffset` (all 0 without one).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 struct SurfaceInstance {
     model: [[f32; 4]; 4],
     normal: [[f32; 4]; 3],
+    lightmap: [f32; 4],
 }
 
 impl SurfaceInstance {
     fn new(model: Mat4, normal: Mat3) -> Self {
         Self {
+            lightmap: [0.0; 4],
             model: model.to_cols_array_2d(),
             normal: [
                 normal.x_axis.extend(0.0).to_array(),
@@ -71,7 +75,7 @@ pub(crate) const SURFACE_VERTEX_BUFFERS: &[Option<wgpu::VertexBufferLayout<'stat
         step_mode: wgpu::VertexStepMode::Vertex,
         attributes: &wgpu::vertex_attr_array![
             0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x2,
-            4 => Float32x4, 5 => Float32x3
+            4 => Float32x4, 5 => Float32x3, 13 => Float32x2
         ],
     }),
     Some(wgpu::VertexBufferLayout {
@@ -79,7 +83,7 @@ pub(crate) const SURFACE_VERTEX_BUFFERS: &[Option<wgpu::VertexBufferLayout<'stat
         step_mode: wgpu::VertexStepMode::Instance,
         attributes: &wgpu::vertex_attr_array![
             6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4,
-            10 => Float32x4, 11 => Float32x4, 12 => Float32x4
+            10 => Float32x4, 11 => Float32x4, 12 => Float32x4, 14 => Float32x4
         ],
     }),
 ];
@@ -166,13 +170,16 @@ fn vertex(
         uv_metal: texture_uv(material.metallic_roughness_texture.as_ref(), uvs).to_array(),
         color: color.to_array(),
         emission: emission.to_array(),
+        uv_lightmap: uvs.get(1).copied().unwrap_or(Vec2::ZERO).to_array(),
     }
 }
 
 impl SceneDraws {
     /// `scene`'s unique primitives, each drawn once per instance; a
     /// primitive without a material gets an untextured, opaque,
-    /// single-sided one of albedo `default_albedo`.
+    /// single-sided one of albedo `default_albedo`. `lightmap` holds each
+    /// instance's lightmap `scaleOffset` (`[0; 4]`: none); empty, none
+    /// has one.
     ///
     /// # Errors
     /// [`GpuError::Invalid`] for an instance of a primitive the scene does
@@ -184,6 +191,7 @@ impl SceneDraws {
         layout: &wgpu::BindGroupLayout,
         scene: &Scene,
         default_albedo: [f32; 3],
+        lightmap: &[[f32; 4]],
     ) -> Result<Self, GpuError> {
         let invalid =
             |message: String| GpuError::Invalid(format!("{}: {message}", scene.source.display()));
@@ -214,7 +222,9 @@ impl SceneDraws {
                 )));
             }
             let normal = linear.inverse().transpose();
-            slot[usize::from(det < 0.0)].push(SurfaceInstance::new(instance.transform, normal));
+            let mut placed = SurfaceInstance::new(instance.transform, normal);
+            placed.lightmap = lightmap.get(k).copied().unwrap_or([0.0; 4]);
+            slot[usize::from(det < 0.0)].push(placed);
         }
         let device = &ctx.device;
         let mut primitives = Vec::new();
@@ -480,10 +490,12 @@ mod tests {
 
     #[test]
     fn vertex_and_instance_records_have_the_layouts_sizes() {
-        // position, normal (3 + 3), two UVs (2 + 2), colour (4), emission (3).
-        assert_eq!(std::mem::size_of::<SurfaceVertex>(), 17 * 4);
-        // Four model columns and three normal columns of vec4.
-        assert_eq!(std::mem::size_of::<SurfaceInstance>(), 7 * 16);
+        // position, normal (3 + 3), two UVs (2 + 2), colour (4), emission
+        // (3), TEXCOORD_1 (2).
+        assert_eq!(std::mem::size_of::<SurfaceVertex>(), 19 * 4);
+        // Four model columns, three normal columns and the lightmap's
+        // scaleOffset, each a vec4.
+        assert_eq!(std::mem::size_of::<SurfaceInstance>(), 8 * 16);
     }
 
     #[test]

@@ -23,7 +23,7 @@ use shlight_baked::LIGHT_MAX_LMAX;
 pub type ShaderFile = (&'static str, &'static str);
 
 /// Every WGSL file in `shaders/`, by name.
-pub const FILES: [ShaderFile; 12] = [
+pub const FILES: [ShaderFile; 13] = [
     ("sh.wgsl", SH),
     ("scene.wgsl", SCENE),
     ("mesh.wgsl", MESH),
@@ -33,6 +33,7 @@ pub const FILES: [ShaderFile; 12] = [
     ("volume_visibility.wgsl", VOLUME_VISIBILITY),
     ("encoded.wgsl", ENCODED),
     ("material.wgsl", MATERIAL),
+    ("lightmap.wgsl", LIGHTMAP),
     ("surface.wgsl", SURFACE),
     ("surface_encoded.wgsl", SURFACE_ENCODED),
     ("volume_surface.wgsl", VOLUME_SURFACE),
@@ -47,6 +48,7 @@ const VOLUME: &str = include_str!("../shaders/volume.wgsl");
 const VOLUME_VISIBILITY: &str = include_str!("../shaders/volume_visibility.wgsl");
 const ENCODED: &str = include_str!("../shaders/encoded.wgsl");
 const MATERIAL: &str = include_str!("../shaders/material.wgsl");
+const LIGHTMAP: &str = include_str!("../shaders/lightmap.wgsl");
 const SURFACE: &str = include_str!("../shaders/surface.wgsl");
 const SURFACE_ENCODED: &str = include_str!("../shaders/surface_encoded.wgsl");
 const VOLUME_SURFACE: &str = include_str!("../shaders/volume_surface.wgsl");
@@ -216,7 +218,9 @@ fn with_encoding(module: &ShaderModuleSource, snippet: &str) -> String {
 
 /// A glTF scene's surfaces (`material.wgsl`: the albedo from each
 /// fragment's material, cut-outs, instances) shaded as [`MESH_MODULE`]
-/// shades a mesh (`surface.wgsl`: SH, PRT per unit albedo, normals).
+/// shades a mesh (`surface.wgsl`: SH, PRT per unit albedo, normals), a
+/// lightmapped scene's baked instances by their lightmap
+/// (`lightmap.wgsl`).
 pub const MESH_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
     name: "mesh surfaces",
     files: &[
@@ -224,6 +228,7 @@ pub const MESH_SURFACE_MODULE: ShaderModuleSource = ShaderModuleSource {
         "scene.wgsl",
         "mesh.wgsl",
         "material.wgsl",
+        "lightmap.wgsl",
         "surface.wgsl",
     ],
     generated: Some(mesh_generated),
@@ -240,6 +245,7 @@ pub const SURFACE_ENCODED_MODULE: ShaderModuleSource = ShaderModuleSource {
         "scene.wgsl",
         "mesh.wgsl",
         "material.wgsl",
+        "lightmap.wgsl",
         "surface.wgsl",
         "surface_encoded.wgsl",
     ],

@@ -143,7 +143,9 @@ pub(crate) struct FrameUniform {
     ggx_table: u32,
     ggx_rows: u32,
     prt_static: u32,
-    _pad: [u32; 3],
+    lightmap: u32,
+    lightmap_scale: f32,
+    _pad: u32,
 }
 
 /// What the glossy path adds to a frame's uniform block: the lobe's
@@ -180,6 +182,10 @@ pub(crate) struct FrameInputs<'a> {
     /// The camera's position (glossy shading's `w_o`).
     pub eye: glam::Vec3,
     pub encode_srgb: bool,
+    /// A lightmapped scene's texel format (`LIGHTMAP_*` of
+    /// `lightmap.wgsl`) and its engine's units' scale; `None` without a
+    /// lightmap.
+    pub lightmap: Option<(u32, f32)>,
 }
 
 /// Whether the shaders sRGB-encode a frame for targets of `format`: 8-bit
@@ -251,7 +257,9 @@ impl FrameUniform {
             ggx_table: f.glossy.and_then(|g| g.table).map_or(0, |t| t.0),
             ggx_rows: f.glossy.and_then(|g| g.table).map_or(0, |t| t.1),
             prt_static: f.prt_static.map_or(0, |at| at as u32),
-            _pad: [0; 3],
+            lightmap: f.lightmap.map_or(0, |l| l.0),
+            lightmap_scale: f.lightmap.map_or(1.0, |l| l.1),
+            _pad: 0,
         }
     }
 }
@@ -265,7 +273,8 @@ mod tests {
         // Frame in scene.wgsl: four mat4x4 (256), two array<vec4, 3> (96),
         // one vec4 (16), eight 4-byte scalars (32); then the eye (16), the
         // lobe's bands (48), four scalars (16), and the static term's
-        // offset with the padding to 16 bytes (16).
+        // offset, the lightmap's format and scale, and the padding to 16
+        // bytes (16).
         assert_eq!(std::mem::size_of::<FrameUniform>(), 496);
     }
 }

@@ -900,6 +900,7 @@ impl VolumeRenderer {
             &self.material_layout,
             scene,
             albedo,
+            &[],
         )?);
         self.scene = None;
         Ok(())
@@ -945,6 +946,7 @@ impl VolumeRenderer {
             glossy: None,
             eye: camera.eye,
             encode_srgb: shader_encodes_srgb(self.color_format),
+            lightmap: None,
         });
         ctx.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(&uniform));

@@ -591,6 +591,7 @@ fn render_mesh_draws_a_gltf_scene_with_its_textures_in_sh_and_prt_modes() {
             background: Background::None,
             volume: None,
             spelling: shlight_pipeline::Spelling::CommandLine,
+            lightmap: None,
         };
         let frame = scene
             .render_headless(&shot, &shlight_pipeline::Silent)

@@ -47,7 +47,9 @@ mod texture;
 
 pub use error::MeshError;
 pub use flat_layout::FlatLayout;
-pub use lightmap_pages::{LightmapPages, lightmap_pages_from_bytes, read_lightmap_pages};
+pub use lightmap_pages::{
+    LightmapPages, lightmap_pages_from_bytes, read_lightmap_pages, read_lightmap_pages_if_any,
+};
 pub use lightmapped_glb::{
     BakedNode, LightmapImage, LightmapImageFormat, LightmapRequest, LightmappedGlb,
     lightmapped_glb, write_lightmapped_glb,

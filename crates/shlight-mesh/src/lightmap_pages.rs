@@ -36,6 +36,34 @@ pub fn read_lightmap_pages(path: &Path) -> Result<LightmapPages, MeshError> {
     lightmap_pages_from_bytes(path, &bytes)
 }
 
+/// The lightmaps of `path` when it is a GLB file with a root
+/// `SHLIGHT_lightmap` extension (a scene `shlight lightmap` wrote), read
+/// as [`read_lightmap_pages`] reads them; `None` for any other file (a
+/// `.gltf`, a GLB without the extension), which a renderer then draws
+/// without a lightmap.
+///
+/// # Errors
+/// A file that cannot be read; a GLB with the extension whose pages
+/// [`read_lightmap_pages`] refuses.
+pub fn read_lightmap_pages_if_any(path: &Path) -> Result<Option<LightmapPages>, MeshError> {
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if !bytes.starts_with(b"glTF") {
+        return Ok(None);
+    }
+    let Ok((json, _)) = split_glb(&bytes) else {
+        return Ok(None);
+    };
+    let has_root = serde_json::from_slice::<Value>(json)
+        .is_ok_and(|doc| doc["extensions"]["SHLIGHT_lightmap"].is_object());
+    if !has_root {
+        return Ok(None);
+    }
+    lightmap_pages_from_bytes(path, &bytes).map(Some)
+}
+
 /// [`read_lightmap_pages`] of `bytes`, the file `path` (named in errors).
 ///
 /// # Errors

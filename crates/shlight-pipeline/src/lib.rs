@@ -123,6 +123,7 @@ pub use job::lightmap::{
     DEFAULT_SIDE, LightmapBaked, LightmapPlan, LightmapRequest, engine_by_name, engine_name,
     lightmap, lightmap_description, lightmap_of_scene, lightmap_size, reconstruction, texel_basis,
 };
+pub use job::lightmap_sample::{LightmapAtlas, node_scale_offset};
 pub use job::prefilter::{PrefilterOutput, PrefilterPlan, PrefilterRequest, prefilter};
 pub use job::project::{
     Dest, PlannedMap, ProjectPlan, ProjectRequest, Projected, StdoutForm, project_each,

@@ -54,7 +54,7 @@ mod transfer_file;
 pub use built_in::BuiltIn;
 pub use gltf_scene::{GltfScene, SceneGeometry};
 pub use render_mesh::{RenderMeshRequest, RenderMeshSettings, render_mesh, write_frame};
-pub use scene::Scene;
+pub use scene::{Scene, SceneLightmap};
 pub use scene_error::SceneError;
 pub use scene_options::{SceneOptions, SceneSettings};
 pub use scene_renderers::{gltf_renderer, light_renderer, mesh_renderer, scene_renderer};

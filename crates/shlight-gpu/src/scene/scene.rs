@@ -9,7 +9,7 @@ use shlight_core::encoding::Encoding;
 use shlight_core::sh::{ShCoeffs, ShRotation};
 use shlight_format::ShprtFile;
 use shlight_mesh::Mesh;
-use shlight_pipeline::{Environment, Spelling};
+use shlight_pipeline::{Environment, LightmapAtlas, Spelling, node_scale_offset};
 
 use shlight_pipeline::{Hooks, Progress};
 
@@ -61,6 +61,49 @@ pub struct Scene {
     pub volume: Option<SceneVolume>,
     /// How the front end names its settings.
     pub spelling: Spelling,
+    /// A lightmapped scene's lightmap, when the scene is drawn by it
+    /// ([`SceneOptions::wants_lightmap`](crate::SceneOptions::wants_lightmap)).
+    pub lightmap: Option<SceneLightmap>,
+}
+
+/// A lightmapped scene's lightmap as the renderer draws it: its atlas and
+/// each instance's `scaleOffset` (`[0; 4]` for an instance of a node the
+/// lightmap skipped).
+#[derive(Clone, Debug)]
+pub struct SceneLightmap {
+    /// The texel format and the pages.
+    pub atlas: LightmapAtlas,
+    /// Per instance of the glTF scene, its node's `scaleOffset`.
+    pub instances: Vec<[f32; 4]>,
+}
+
+impl SceneLightmap {
+    /// The lightmap of `gltf`, read from `path`, when the file holds one
+    /// (a GLB with a root `SHLIGHT_lightmap`).
+    ///
+    /// # Errors
+    /// A lightmap shlight cannot read (its pages, a node's `scaleOffset`),
+    /// or a scene whose instances are not placed by nodes.
+    pub fn read(path: &std::path::Path, gltf: &GltfScene) -> Result<Option<Self>, SceneError> {
+        let Some(pages) = shlight_mesh::read_lightmap_pages_if_any(path)? else {
+            return Ok(None);
+        };
+        let name = path.display().to_string();
+        let atlas = LightmapAtlas::new(&name, &pages)?;
+        let scene = &gltf.scene;
+        if scene.instance_sources.len() != scene.instances.len() {
+            return refuse(format!("{name}: its instances are not placed by nodes"));
+        }
+        let instances = scene
+            .instance_sources
+            .iter()
+            .map(|source| match pages.nodes.get(&source.node) {
+                Some(ext) => node_scale_offset(&name, source.node, ext),
+                None => Ok([0.0; 4]),
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Some(Self { atlas, instances }))
+    }
 }
 
 impl Scene {
@@ -111,10 +154,31 @@ impl Scene {
             )?),
             None => None,
         };
+        let lightmap = match (&gltf, &options.mesh) {
+            (Some(gltf), Some(path)) if options.wants_lightmap() => {
+                SceneLightmap::read(path, gltf)?
+            }
+            _ => None,
+        };
+        if options.lightmap && lightmap.is_none() {
+            return refuse(format!(
+                "{}: {} draws a scene by its lightmap, and it holds none (no SHLIGHT_lightmap: bake one with shlight lightmap)",
+                mesh_name.display(),
+                spelling.option("lightmap")
+            ));
+        }
         hooks.progress(Progress::Step("reading the environment"));
-        let light = match &options.env {
-            Some(path) => Environment::load(path, options.up, LIGHT_MAX_LMAX)?,
-            None => built_in.environment(options.up, LIGHT_MAX_LMAX)?,
+        let light = match (&options.env, &lightmap) {
+            (Some(path), _) => Environment::load(path, options.up, LIGHT_MAX_LMAX)?,
+            // A lightmap and no light: the nodes it skipped are black.
+            (None, Some(_)) => Environment {
+                path: PathBuf::from("no light"),
+                radiance: ShCoeffs::zeros(LIGHT_MAX_LMAX),
+                map: None,
+                orientation: Default::default(),
+                warnings: Vec::new(),
+            },
+            (None, None) => built_in.environment(options.up, LIGHT_MAX_LMAX)?,
         };
         light.warnings.iter().for_each(|w| hooks.warn(w));
         let has_map = light.map.is_some();
@@ -136,6 +200,7 @@ impl Scene {
             }
             Some(background) => background,
             None if has_map => Background::Map,
+            None if options.env.is_none() && lightmap.is_some() => Background::None,
             None => Background::Sh,
         };
         if let Some(v) = &volume
@@ -169,6 +234,7 @@ impl Scene {
             background,
             volume,
             spelling,
+            lightmap,
         })
     }
 

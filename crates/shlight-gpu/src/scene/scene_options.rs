@@ -58,6 +58,12 @@ pub struct SceneOptions {
     /// The object's bounding-box diagonal [default: a third of the volume
     /// box's shortest side].
     pub object_size: Option<f32>,
+    /// Draw a lightmapped scene (a GLB `shlight lightmap` wrote) by its
+    /// lightmap even with a light given (which then lights the nodes the
+    /// lightmap skipped). Without it the lightmap is used when no light is
+    /// given ([`SceneOptions::env`] `None`), no transfer or volume either,
+    /// in SH mode.
+    pub lightmap: bool,
 }
 
 impl Default for SceneOptions {
@@ -79,6 +85,7 @@ impl Default for SceneOptions {
             object: None,
             at: None,
             object_size: None,
+            lightmap: false,
         }
     }
 }
@@ -117,6 +124,7 @@ impl SceneOptions {
     /// The first check that fails, naming the settings as `spelling` does.
     pub fn check(&self, spelling: Spelling) -> Result<SceneSettings, SceneError> {
         self.check_volume(spelling)?;
+        self.check_lightmap(spelling)?;
         if let Some(lmax) = self.lmax.filter(|&l| l > LIGHT_MAX_LMAX) {
             return refuse(format!(
                 "{}: the GPU shades to lmax {LIGHT_MAX_LMAX}",
@@ -216,6 +224,56 @@ impl SceneOptions {
             ));
         }
         Ok(())
+    }
+
+    /// Step 1 of [`SceneOptions::check`], for `lightmap`: a lightmap
+    /// lights a named scene in SH mode, without a transfer, a volume or
+    /// another encoding.
+    fn check_lightmap(&self, spelling: Spelling) -> Result<(), SceneError> {
+        if !self.lightmap {
+            return Ok(());
+        }
+        let lightmap = spelling.option("lightmap");
+        let other = if self.mesh.is_none() {
+            Some(
+                match spelling {
+                    Spelling::CommandLine => {
+                        "the built-in mesh (give the lightmapped scene as MESH)"
+                    }
+                    Spelling::Python => "the built-in mesh (give the lightmapped scene as mesh)",
+                }
+                .to_string(),
+            )
+        } else if self.prt.is_some() {
+            Some(spelling.option("prt"))
+        } else if self.volume.is_some() {
+            Some(spelling.option("volume"))
+        } else if let Some(mode) = self.mode.filter(|&m| m != Mode::Sh) {
+            Some(spelling.option_value("mode", mode.name()))
+        } else if self.encoding != Encoding::Sh {
+            Some(spelling.option_value("encoding", self.encoding.name()))
+        } else {
+            None
+        };
+        match other {
+            Some(other) => refuse(format!(
+                "{lightmap} draws a lightmapped scene by its baked light: it does not take {other}"
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether a lightmapped scene is drawn by its lightmap: asked
+    /// ([`SceneOptions::lightmap`]), or no light, transfer or volume given
+    /// and SH mode.
+    #[must_use]
+    pub fn wants_lightmap(&self) -> bool {
+        self.lightmap
+            || (self.env.is_none()
+                && self.prt.is_none()
+                && self.volume.is_none()
+                && self.mode.is_none_or(|m| m == Mode::Sh)
+                && self.encoding == Encoding::Sh)
     }
 
     /// Step 3 of [`SceneOptions::check`]: the mode, resolved.
@@ -360,6 +418,24 @@ mod tests {
             ),
             (
                 SceneOptions {
+                    mesh: Some("room.glb".into()),
+                    prt: Some("room.shprt".into()),
+                    lightmap: true,
+                    ..Default::default()
+                },
+                "--lightmap draws a lightmapped scene by its baked light: it does not take --prt",
+                "lightmap draws a lightmapped scene by its baked light: it does not take prt",
+            ),
+            (
+                SceneOptions {
+                    lightmap: true,
+                    ..Default::default()
+                },
+                "--lightmap draws a lightmapped scene by its baked light: it does not take the built-in mesh (give the lightmapped scene as MESH)",
+                "lightmap draws a lightmapped scene by its baked light: it does not take the built-in mesh (give the lightmapped scene as mesh)",
+            ),
+            (
+                SceneOptions {
                     lmax: Some(9),
                     ..Default::default()
                 },
@@ -387,6 +463,45 @@ mod tests {
         for (options, cli, python) in cases {
             assert_eq!(message(&options, CommandLine), cli);
             assert_eq!(message(&options, Python), python);
+        }
+    }
+
+    /// A lightmap is used when asked, or when nothing else lights the
+    /// scene.
+    #[test]
+    fn the_lightmap_is_wanted_when_no_other_light_is_given() {
+        let scene = SceneOptions {
+            mesh: Some("room.glb".into()),
+            ..Default::default()
+        };
+        assert!(scene.wants_lightmap());
+        let lit = SceneOptions {
+            env: Some("sky.json".into()),
+            ..scene.clone()
+        };
+        assert!(!lit.wants_lightmap());
+        assert!(
+            SceneOptions {
+                lightmap: true,
+                ..lit
+            }
+            .wants_lightmap()
+        );
+        for other in [
+            SceneOptions {
+                mode: Some(Mode::Normals),
+                ..scene.clone()
+            },
+            SceneOptions {
+                encoding: Encoding::Zh3,
+                ..scene.clone()
+            },
+            SceneOptions {
+                prt: Some("room.shprt".into()),
+                ..scene
+            },
+        ] {
+            assert!(!other.wants_lightmap(), "{other:?}");
         }
     }
 

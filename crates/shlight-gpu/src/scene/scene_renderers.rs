@@ -12,7 +12,7 @@ use shlight_pipeline::Environment;
 
 use super::transfer_file::{per_unit_albedo, set_transfer, static_radiance};
 use super::{GltfScene, Scene, SceneError};
-use crate::{GpuContext, Renderer};
+use crate::{GpuContext, LightmapTexels, Renderer};
 
 /// Gives `renderer` the light of `light` and its map, if it has one.
 fn set_light(renderer: &mut Renderer, ctx: &GpuContext, light: &Environment) {
@@ -105,8 +105,9 @@ pub fn gltf_renderer(
 }
 
 /// The renderer of `scene` for colour targets of `format`: its glTF scene
-/// ([`gltf_renderer`]) or its mesh ([`mesh_renderer`]), with its transfer
-/// and light.
+/// ([`gltf_renderer`]; drawn by its lightmap with
+/// [`Renderer::set_scene_with_lightmap`] when it has one) or its mesh
+/// ([`mesh_renderer`]), with its transfer and light.
 ///
 /// # Errors
 /// As [`gltf_renderer`] and [`mesh_renderer`].
@@ -115,9 +116,33 @@ pub fn scene_renderer(
     format: wgpu::TextureFormat,
     scene: &Scene,
 ) -> Result<Renderer, SceneError> {
-    match &scene.gltf {
-        Some(gltf) => gltf_renderer(ctx, format, gltf, scene.transfer.as_ref(), &scene.light),
-        None => mesh_renderer(
+    match (&scene.gltf, &scene.lightmap) {
+        (Some(gltf), Some(lightmap)) => {
+            let mut renderer = Renderer::new(ctx, format);
+            let layers: Vec<&[[f32; 4]]> = lightmap
+                .atlas
+                .layers
+                .iter()
+                .map(|l| l.texels.as_slice())
+                .collect();
+            renderer.set_scene_with_lightmap(
+                ctx,
+                &gltf.scene,
+                gltf.default_albedo,
+                &LightmapTexels {
+                    format: lightmap.atlas.format,
+                    side: lightmap.atlas.side,
+                    layers: &layers,
+                    instances: &lightmap.instances,
+                },
+            )?;
+            set_light(&mut renderer, ctx, &scene.light);
+            Ok(renderer)
+        }
+        (Some(gltf), None) => {
+            gltf_renderer(ctx, format, gltf, scene.transfer.as_ref(), &scene.light)
+        }
+        (None, _) => mesh_renderer(
             ctx,
             format,
             &scene.mesh,

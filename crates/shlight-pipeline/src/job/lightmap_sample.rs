@@ -39,43 +39,113 @@ fn format_of(root: &Value, name: &str) -> Result<TexelFormat> {
     .map_err(|e| fail(&e.to_string()))
 }
 
+/// A lightmapped scene's atlas as a renderer reads it: the texel format
+/// the root `SHLIGHT_lightmap` names and its pages decoded, each `side x
+/// side` texels of linear RGBA.
+#[derive(Clone, Debug)]
+pub struct LightmapAtlas {
+    /// What a texel holds and how the engine's shader reconstructs it.
+    pub format: TexelFormat,
+    /// The pages' side in texels.
+    pub side: usize,
+    /// The pages, [`TexelFormat::layer_count`] of them, in the format's
+    /// layer order.
+    pub layers: Vec<Ktx2Image>,
+}
+
+impl LightmapAtlas {
+    /// The atlas of `pages` (read from `name`).
+    ///
+    /// # Errors
+    /// A root extension whose basis, engine or reconstruction shlight does
+    /// not know, pages that do not decode, or pages of another count or
+    /// size than the root names.
+    pub fn new(name: &str, pages: &LightmapPages) -> Result<Self> {
+        let format = format_of(&pages.root, name)?;
+        let side = pages.root["size"][0].as_u64().unwrap_or(0) as usize;
+        let layers: Vec<Ktx2Image> = pages
+            .pages
+            .iter()
+            .map(|bytes| {
+                decode_ktx2(bytes).map_err(|e| PipelineError::new(format!("{name}: a page: {e}")))
+            })
+            .collect::<Result<_>>()?;
+        if side == 0
+            || layers.len() != format.layer_count()
+            || layers.iter().any(|l| l.width != side || l.height != side)
+        {
+            return Err(PipelineError::new(format!(
+                "{name}: {} pages of {side} x {side} texels expected for {}",
+                format.layer_count(),
+                format.basis().name()
+            )));
+        }
+        Ok(Self {
+            format,
+            side,
+            layers,
+        })
+    }
+
+    /// What one divides the reconstructed light by to get the irradiance
+    /// `E` in W/m2: the engine's units' scale (1 for `E`, `1/pi` for `E /
+    /// pi`).
+    #[must_use]
+    pub fn units_scale(&self) -> f64 {
+        self.format.units().scale()
+    }
+}
+
+/// The `scaleOffset` `[su, sv, ou, ov]` that takes node `node`'s
+/// `TEXCOORD_1` into the atlas (`uv * (su, sv) + (ou, ov)`), from its
+/// `SHLIGHT_lightmap` extension `ext` (of the file `name`): `[1, 1, 0,
+/// 0]` when the file moved the UVs already (`texCoordMoved`).
+///
+/// # Errors
+/// An extension with neither a moved `TEXCOORD_1` nor a `scaleOffset` of
+/// four numbers.
+pub fn node_scale_offset(name: &str, node: usize, ext: &Value) -> Result<[f32; 4]> {
+    let so: Vec<f32> = ext["scaleOffset"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(Value::as_f64)
+                .map(|x| x as f32)
+                .collect()
+        })
+        .unwrap_or_default();
+    match (ext["texCoordMoved"].as_bool(), so.as_slice()) {
+        (Some(true), _) => Ok([1.0, 1.0, 0.0, 0.0]),
+        (_, &[su, sv, ou, ov]) => Ok([su, sv, ou, ov]),
+        _ => Err(PipelineError::new(format!(
+            "{name}: node {node}'s SHLIGHT_lightmap has no scaleOffset"
+        ))),
+    }
+}
+
 /// The irradiance `E` (W/m2, whatever the engine's units) a GPU shading
 /// the lightmapped scene `scene` (read from `name`, its lightmaps
 /// `pages`) reads at each of `points` for its normal: the nearest surface
 /// along the normal (within [`SURFACE_REACH`] of the scene's diagonal),
 /// its `TEXCOORD_1` (moved into the node's region by its `scaleOffset`
-/// unless the file moved it already), each page read with bilinear
-/// filtering (texel centres at `(x + 1/2) / side`, clamped to the edge),
-/// and the texel turned into light by the port of the engine's shader
-/// ([`TexelFormat::reconstruct`]), divided by the engine's units.
+/// unless the file moved it already: [`node_scale_offset`]), each page
+/// read with bilinear filtering (texel centres at `(x + 1/2) / side`,
+/// clamped to the edge), and the texel turned into light by the port of
+/// the engine's shader ([`TexelFormat::reconstruct`]), divided by the
+/// engine's units.
 ///
 /// # Errors
-/// A file whose extension or pages shlight cannot read, or a point on no
-/// surface with a lightmap (named by its number).
+/// A file whose extension or pages shlight cannot read
+/// ([`LightmapAtlas::new`]), or a point on no surface with a lightmap
+/// (named by its number).
 pub fn lightmap_irradiance(
     name: &str,
     scene: &Scene,
     pages: &LightmapPages,
     points: &SamplePoints,
 ) -> Result<Vec<[f64; 3]>> {
-    let format = format_of(&pages.root, name)?;
-    let side = pages.root["size"][0].as_u64().unwrap_or(0) as usize;
-    let layers: Vec<Ktx2Image> = pages
-        .pages
-        .iter()
-        .map(|bytes| {
-            decode_ktx2(bytes).map_err(|e| PipelineError::new(format!("{name}: a page: {e}")))
-        })
-        .collect::<Result<_>>()?;
-    if layers.len() != format.layer_count()
-        || layers.iter().any(|l| l.width != side || l.height != side)
-    {
-        return Err(PipelineError::new(format!(
-            "{name}: {} pages of {side} x {side} texels expected for {}",
-            format.layer_count(),
-            format.basis().name()
-        )));
-    }
+    let atlas = LightmapAtlas::new(name, pages)?;
+    let (format, layers) = (atlas.format, &atlas.layers);
     let surfaces = scene.flatten(Vec3::splat(0.5))?;
     let layout = scene.flat_layout()?;
     if surfaces.uv_sets < 2 || scene.instance_sources.len() != scene.instances.len() {
@@ -86,7 +156,7 @@ pub fn lightmap_irradiance(
     let occluder = Occluder::new(&surfaces.mesh);
     let (lo, hi) = surfaces.mesh.bounds();
     let reach = SURFACE_REACH * (hi - lo).length();
-    let scale = format.units().scale();
+    let scale = atlas.units_scale();
     points
         .points
         .iter()
@@ -113,19 +183,8 @@ pub fn lightmap_irradiance(
                     "{name}: point {i} ({p}) lies on node {node}, which has no lightmap"
                 ))
             })?;
-            let so: Vec<f32> = ext["scaleOffset"]
-                .as_array()
-                .map(|a| a.iter().filter_map(|x| x.as_f64()).map(|x| x as f32).collect())
-                .unwrap_or_default();
-            let atlas = match (ext["texCoordMoved"].as_bool(), so.as_slice()) {
-                (Some(true), _) => uv,
-                (_, [su, sv, ou, ov]) => uv * Vec2::new(*su, *sv) + Vec2::new(*ou, *ov),
-                _ => {
-                    return Err(PipelineError::new(format!(
-                        "{name}: node {node}'s SHLIGHT_lightmap has no scaleOffset"
-                    )));
-                }
-            };
+            let [su, sv, ou, ov] = node_scale_offset(name, node, ext)?;
+            let atlas = uv * Vec2::new(su, sv) + Vec2::new(ou, ov);
             let texel: Vec<[f32; 4]> = layers.iter().map(|l| bilinear(l, atlas)).collect();
             let light = format.reconstruct(&PackedTexel::from_layers(&texel), n);
             Ok(light.as_dvec3().to_array().map(|c| c / scale))

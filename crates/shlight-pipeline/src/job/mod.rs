@@ -16,7 +16,7 @@ pub mod convert;
 pub mod dfg;
 pub mod irradiance;
 pub mod lightmap;
-mod lightmap_sample;
+pub(crate) mod lightmap_sample;
 pub mod prefilter;
 pub mod project;
 pub mod prt;
