@@ -111,3 +111,20 @@ fn describe(adapter: &wgpu::Adapter) -> String {
     let info = adapter.get_info();
     format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend)
 }
+
+/// A sampler that filters bilinearly between texel centres (and linearly
+/// between a 3D texture's slices), clamped at the edges, with no mip
+/// blending: what the volume's probes and a lightmap's pages are read
+/// with.
+pub(crate) fn linear_clamp_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: wgpu::AddressMode::ClampToEdge,
+        address_mode_v: wgpu::AddressMode::ClampToEdge,
+        address_mode_w: wgpu::AddressMode::ClampToEdge,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+        ..Default::default()
+    })
+}

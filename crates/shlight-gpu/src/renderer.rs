@@ -244,16 +244,7 @@ impl Renderer {
         let transfer = no_transfer(device);
         let environment = environment_texture(ctx, 1, 1, &[[0.0; 3]]);
         let lightmap_pages = lightmap_texture(ctx, 1, &[&[[0.0; 4]]]);
-        let lightmap_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("lightmap"),
-            address_mode_u: wgpu::AddressMode::ClampToEdge,
-            address_mode_v: wgpu::AddressMode::ClampToEdge,
-            address_mode_w: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
-            ..Default::default()
-        });
+        let lightmap_sampler = crate::context::linear_clamp_sampler(device, "lightmap");
         let mesh_bind = mesh_bind_group(
             device,
             &mesh_layout,

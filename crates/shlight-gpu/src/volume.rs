@@ -739,16 +739,7 @@ impl VolumeRenderer {
             bytemuck::cast_slice(&texels.data),
         );
         let texture_view = texture.create_view(&Default::default());
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("volume probes"),
-            address_mode_u: wgpu::AddressMode::ClampToEdge,
-            address_mode_v: wgpu::AddressMode::ClampToEdge,
-            address_mode_w: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
-            ..Default::default()
-        });
+        let sampler = crate::context::linear_clamp_sampler(device, "volume probes");
         let mut entries = probe_bindings(&frame, &texture_view, &volume, &sampler, fetch);
         entries.extend(visibility.iter().flat_map(VisibilityBuffers::entries));
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {

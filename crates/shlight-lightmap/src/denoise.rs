@@ -86,7 +86,10 @@ pub fn denoise<const N: usize>(
     texel_size: f64,
 ) -> Vec<Option<[f64; N]>> {
     assert_eq!(values.len(), guides.len(), "one guide a texel");
-    assert!(width > 0 && values.len().is_multiple_of(width), "whole rows");
+    assert!(
+        width > 0 && values.len().is_multiple_of(width),
+        "whole rows"
+    );
     if radius == 0 {
         return values.to_vec();
     }
