@@ -968,13 +968,17 @@ def sample(
 
     The same JSON (or CSV) file as ``shlight sample FILE -o OUTPUT`` with
     the same options: a volume's irradiance ``E(p, n)`` at the points of
-    ``points`` (``Volume.irradiance``), or a PRT file's exit radiance per
-    vertex under ``light`` (``Transfer.exit_radiance``).
+    ``points`` (``Volume.irradiance``), a lightmapped scene's irradiance at
+    points on its surfaces as the engine's shader reads the lightmap
+    (``bake_lightmap``'s ``.glb``; docs/lightmaps.md), or a PRT file's exit
+    radiance per vertex under ``light`` (``Transfer.exit_radiance``).
 
     Parameters
     ----------
     file : str | os.PathLike
-        An irradiance volume (``.shvol``) or PRT transfer (``.shprt``).
+        An irradiance volume (``.shvol``), a lightmapped scene (``.glb``
+        from ``bake_lightmap`` or ``shlight lightmap``) or PRT transfer
+        (``.shprt``).
     output : str | os.PathLike
         The answer: JSON (the values, the lookup, the file's provenance),
         or CSV rows ``r,g,b`` (``.csv``); written atomically.

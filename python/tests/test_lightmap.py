@@ -130,3 +130,25 @@ def test_denoise_is_the_clis_flag(cli, tmp_path):
     cli_bytes = (tmp_path / "cli.irradiance.exr").read_bytes()
     assert (tmp_path / "raw.irradiance.exr").read_bytes() == cli_bytes
     assert (tmp_path / "filtered.irradiance.exr").read_bytes() != cli_bytes
+
+
+def test_sample_reads_the_written_scene_at_points_as_the_cli_does(cli, tmp_path):
+    """shlight.sample on the GLB bake_lightmap wrote: the lamp's I cos / d^2
+    at points of the floor (within the 1.5% a texel's half-width allows),
+    and the CLI's answer for the same file and points."""
+    scene = floor_glb(tmp_path / "floor.glb")
+    sky = black_sky(tmp_path / "black.json")
+    out = tmp_path / "lit.glb"
+    shlight.bake_lightmap(scene, sky, output=out, size=64, samples=16, surface_samples=16)
+    pts = [(x, 0.0, z) for x in (-0.7, -0.2, 0.3, 0.8) for z in (-0.6, 0.1, 0.7)]
+    points = tmp_path / "points.json"
+    points.write_text(json.dumps({"points": pts, "normals": [(0, 1, 0)] * len(pts)}))
+    shlight.sample(out, tmp_path / "py.json", points=points)
+    code, _, err = run_cli(cli, "sample", out, "--points", points, "-o", tmp_path / "cli.json")
+    assert code == 0, err
+    py = json.loads((tmp_path / "py.json").read_text())
+    assert py["irradiance"] == json.loads((tmp_path / "cli.json").read_text())["irradiance"]
+    for (x, _, z), e in zip(pts, py["irradiance"]):
+        d = np.array([LAMP[0] - x, LAMP[1], LAMP[2] - z])
+        want = 6.0 * d[1] / np.dot(d, d) ** 1.5
+        assert abs(e[0] / want - 1) < 0.015, (x, z, e, want)
