@@ -263,6 +263,18 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
         assert_eq!(root["layers"], serde_json::json!(layers));
         assert_eq!(root["size"], serde_json::json!([32, 32]));
         assert_eq!(root["denoise"].to_string(), denoise);
+        let e = shlight_err(&[
+            "lightmap",
+            s(&scene),
+            "--env",
+            s(&env),
+            "--denoise",
+            "17",
+            "-o",
+            s(&dir.join("wide.glb")),
+        ]);
+        assert!(e.contains("at most 16"), "{e}");
+        assert!(!dir.join("wide.glb").exists());
         let node = &doc["nodes"][0]["extensions"]["SHLIGHT_lightmap"];
         assert_eq!(node["rect"], serde_json::json!([2, 2, 28]));
         // The material reads the first page through MOZ_lightmap, its
@@ -526,15 +538,22 @@ fn render_lightmapped_floor(floor: &str, degrees: f64, report: &mut Vec<String>)
     let look = format!("{},{},{}", target.x, target.y, target.z);
     let (fov, size) = (fov.to_string(), format!("{w}x{h}"));
     let albedo_over_pi = 0.5 / std::f64::consts::PI;
-    for (engine, basis) in [
-        ("threejs", "irradiance"),
-        ("threejs", "sh-l1"),
-        ("godot", "sh-l1"),
-        ("unity", "monosh"),
+    // Every reconstruction of shaders/lightmap.wgsl: the non-linear ones
+    // (Geomerics') are held to `sample` only, the closed form being
+    // linear's.
+    for (engine, basis, non_linear) in [
+        ("threejs", "irradiance", false),
+        ("threejs", "sh-l1", false),
+        ("threejs", "sh-l1", true),
+        ("godot", "sh-l1", false),
+        ("unity", "sh-l1", false),
+        ("unity", "sh-l1", true),
+        ("unity", "monosh", false),
+        ("unity", "monosh", true),
     ] {
-        let name = format!("{engine}-{basis}");
+        let name = format!("{engine}-{basis}{}", if non_linear { "-nl" } else { "" });
         let baked = dir.join(format!("{name}.glb"));
-        shlight_ok(&[
+        let mut bake = vec![
             "lightmap",
             s(&scene),
             "--env",
@@ -551,7 +570,11 @@ fn render_lightmapped_floor(floor: &str, degrees: f64, report: &mut Vec<String>)
             "16",
             "-o",
             s(&baked),
-        ]);
+        ];
+        if non_linear {
+            bake.push("--non-linear");
+        }
+        shlight_ok(&bake);
         let answer = dir.join(format!("{name}.json"));
         shlight_ok(&[
             "sample",
@@ -603,7 +626,10 @@ fn render_lightmapped_floor(floor: &str, degrees: f64, report: &mut Vec<String>)
                 for c in got {
                     let c = f64::from(c);
                     worst_sample = worst_sample.max((c / (albedo_over_pi * e) - 1.0).abs());
-                    worst_closed = worst_closed.max((c / (albedo_over_pi * closed) - 1.0).abs());
+                    if !non_linear {
+                        worst_closed =
+                            worst_closed.max((c / (albedo_over_pi * closed) - 1.0).abs());
+                    }
                 }
             }
             report.push(format!(

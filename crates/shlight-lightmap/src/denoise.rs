@@ -27,7 +27,14 @@
 //! mean would be biased by the light's gradient and the fitted plane is
 //! not. The slope is held to the weighted mean's by a ridge of `1e-3 sum_j
 //! w_ij` where the neighbours do not span the plane (a strip one texel
-//! wide).
+//! wide). The result is held within the least and greatest values fitted
+//! (per channel): at a chart's edge the plane extrapolates, and a dark
+//! texel next to light must not go negative.
+//!
+//! Texels inside geometry (a wall standing on the floor: guided, with no
+//! light) are barriers: a neighbour is left out when one of them lies on
+//! the atlas's straight line between the two texels, so the lit and dark
+//! sides of a wall standing on a floor of one chart stay apart.
 //!
 //! The facing term is 0.37 at 20 degrees and under 1e-8 at 90: a crease
 //! (a wall's foot, a box's edge) keeps the two sides' light apart. The
@@ -71,8 +78,10 @@ pub const FACING_POWER: i32 = 16;
 /// texel gathered no light) guided by `guides` (the same layout), over
 /// `radius` texels on each axis, `texel_size` the size of a texel on the
 /// surface (`1 / density`). Returns the filtered values; texels that are
-/// `None` in `values` or `guides` stay `None`. `radius` 0 returns the
-/// input unchanged.
+/// `None` in `values` or `guides` stay `None`, and a texel with a guide and
+/// no value is a barrier (inside geometry). `radius` 0, or a `texel_size`
+/// that is not positive and finite, returns the input unchanged; a radius
+/// past the grid's larger side reads as that side.
 ///
 /// # Panics
 /// If `values` and `guides` are not the same length, a multiple of
@@ -90,14 +99,16 @@ pub fn denoise<const N: usize>(
         width > 0 && values.len().is_multiple_of(width),
         "whole rows"
     );
-    if radius == 0 {
+    if radius == 0 || !(texel_size.is_finite() && texel_size > 0.0) {
         return values.to_vec();
     }
     let height = values.len() / width;
-    let r = radius as i64;
+    // A window wider than the grid reads nothing more.
+    let radius = radius.min(width.max(height).min(u32::MAX as usize / 2) as u32);
+    let r = i64::from(radius);
     let s2 = (f64::from(radius) / 2.0).powi(2);
     let half_h = texel_size / 2.0;
-    let reach = 2.0 * f64::from(radius + 1) * texel_size;
+    let reach = 2.0 * (f64::from(radius) + 1.0) * texel_size;
     let reach2 = reach * reach;
     let mut out = vec![None; values.len()];
     out.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
@@ -124,6 +135,9 @@ pub fn denoise<const N: usize>(
                     let (Some(v), Some(o)) = (values[j], guides[j]) else {
                         continue;
                     };
+                    if barrier_between(values, guides, width, (x as i64, y as i64), (dx, dy)) {
+                        continue;
+                    }
                     let w = weight_between(
                         p,
                         n,
@@ -134,7 +148,7 @@ pub fn denoise<const N: usize>(
                         half_h,
                         reach2,
                     );
-                    if w <= 0.0 {
+                    if !(w > 0.0) {
                         continue;
                     }
                     let d = (o.position.as_dvec3() - p) / texel_size;
@@ -154,6 +168,8 @@ struct LocalPlane<const N: usize> {
     m: [f64; 6],
     /// `sum w v [1, u1, u2]` per channel.
     rhs: [[f64; 3]; N],
+    /// The least and greatest value per channel among the texels fitted.
+    range: [[f64; 2]; N],
 }
 
 impl<const N: usize> LocalPlane<N> {
@@ -162,6 +178,7 @@ impl<const N: usize> LocalPlane<N> {
         Self {
             m: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
             rhs: own.map(|v| [v, 0.0, 0.0]),
+            range: own.map(|v| [v, v]),
         }
     }
 
@@ -173,15 +190,19 @@ impl<const N: usize> LocalPlane<N> {
         self.m[3] += w * u1 * u1;
         self.m[4] += w * u1 * u2;
         self.m[5] += w * u2 * u2;
-        for (r, &x) in self.rhs.iter_mut().zip(v) {
+        for ((r, range), &x) in self.rhs.iter_mut().zip(&mut self.range).zip(v) {
             r[0] += w * x;
             r[1] += w * x * u1;
             r[2] += w * x * u2;
+            range[0] = range[0].min(x);
+            range[1] = range[1].max(x);
         }
     }
 
     /// The fitted `a` per channel (the first row of the 3 x 3 system's
-    /// inverse, the slopes' diagonal raised by the ridge).
+    /// inverse, the slopes' diagonal raised by the ridge), held within the
+    /// values fitted: a one-sided window extrapolates, and a shadowed
+    /// texel at a chart's edge must not go below its darkest neighbour.
     fn value_at_centre(&self) -> [f64; N] {
         let ridge = 1e-3 * self.m[0];
         let [s, a, b, c, d, e] = self.m;
@@ -193,11 +214,36 @@ impl<const N: usize> LocalPlane<N> {
         let k1 = b * d - a * e;
         let k2 = a * d - b * c;
         let det = s * k0 + a * k1 + b * k2;
-        if !(det.is_finite() && det > 0.0) {
-            return self.rhs.map(|r| r[0] / s);
+        let mut out = [0.0; N];
+        for ((o, r), range) in out.iter_mut().zip(&self.rhs).zip(&self.range) {
+            let a = if det.is_finite() && det > 0.0 {
+                (k0 * r[0] + k1 * r[1] + k2 * r[2]) / det
+            } else {
+                r[0] / s
+            };
+            *o = a.clamp(range[0], range[1]);
         }
-        self.rhs.map(|r| (k0 * r[0] + k1 * r[1] + k2 * r[2]) / det)
+        out
     }
+}
+
+/// Whether a texel inside geometry (a guide without a value: a wall
+/// standing on the floor) lies on the atlas's straight line from texel `at`
+/// to `at + d`, ends excluded.
+fn barrier_between<const N: usize>(
+    values: &[Option<[f64; N]>],
+    guides: &[Option<TexelGuide>],
+    width: usize,
+    at: (i64, i64),
+    d: (i64, i64),
+) -> bool {
+    let steps = d.0.abs().max(d.1.abs());
+    (1..steps).any(|k| {
+        let x = at.0 + (d.0 * k * 2 + steps).div_euclid(2 * steps);
+        let y = at.1 + (d.1 * k * 2 + steps).div_euclid(2 * steps);
+        let c = y as usize * width + x as usize;
+        values[c].is_none() && guides[c].is_some()
+    })
 }
 
 /// `w_ij` of the module's formula.

@@ -95,8 +95,8 @@ pub use geomerics::geomerics_l1;
 pub use lightmap_error::LightmapError;
 pub use placement::Placement;
 pub use scene_lightmap::{
-    DEFAULT_DENOISE, LightmapRegion, LightmapSettings, LightmapSize, SceneLightmap, TexelLight,
-    bake_scene_lightmap,
+    DEFAULT_DENOISE, LightmapRegion, LightmapSettings, LightmapSize, MAX_DENOISE, SceneLightmap,
+    TexelLight, bake_scene_lightmap,
 };
 pub use seams::{SMOOTH_COS, STITCH_SWEEPS, Seam, SeamCorner, find_seams, stitch_seams};
 pub use texel_format::{Engine, L1Reconstruction, TexelBasis, TexelFormat, TexelFormatError};

@@ -34,6 +34,9 @@ pub enum LightmapSize {
 /// (the noise of an evenly lit surface divided by about 3).
 pub const DEFAULT_DENOISE: u32 = 2;
 
+/// The largest [`LightmapSettings::denoise`]: a window of 33 x 33 texels.
+pub const MAX_DENOISE: u32 = 16;
+
 /// What to bake.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightmapSettings {
@@ -298,6 +301,12 @@ pub fn bake_scene_lightmap(
         nodes.push(uvs);
     }
     let padding = settings.padding;
+    if settings.denoise > MAX_DENOISE {
+        return Err(LightmapError::Settings(format!(
+            "a denoising radius of {} texels: it must be at most {MAX_DENOISE}",
+            settings.denoise
+        )));
+    }
     let sides_at = |density: f64| -> Vec<u32> {
         naturals
             .iter()
@@ -409,17 +418,19 @@ pub fn bake_scene_lightmap(
     let mut guides: Vec<Option<TexelGuide>> = vec![None; width * width];
     let mut invalid = 0;
     for (((&slot, p), l), &region) in slots.iter().zip(&points).zip(&gathered.light).zip(&owners) {
+        // A texel inside geometry keeps its guide with no light: a barrier
+        // to the filter.
+        guides[slot] = Some(TexelGuide {
+            position: p.position,
+            normal: p.normal,
+            region,
+        });
         if l.backfaces > settings.gather.invalid_backfaces {
             invalid += 1;
             continue;
         }
         blend[slot] = Some(to_array(texel_light(p, l)));
         normals[slot] = Some(p.normal);
-        guides[slot] = Some(TexelGuide {
-            position: p.position,
-            normal: p.normal,
-            region,
-        });
     }
     drop((gathered, points, slots, owners));
     // The noise filtered, guided by the texels' places on the surface.

@@ -129,6 +129,80 @@ fn light_is_not_mixed_across_a_crease() {
         .collect();
     let mixed = denoise(&light, &bent, W, 2, f64::from(H));
     assert!(at(&mixed, 23, 20) < 0.97 && at(&mixed, 24, 20) > 0.03);
+    // At 60 degrees the facing term (0.5^16) keeps them apart to 1e-3; a
+    // facing power of 1 would mix a fifth.
+    let tilt = 60f32.to_radians();
+    let steep: Vec<Option<TexelGuide>> = guides
+        .iter()
+        .map(|g| {
+            let mut g = g.unwrap();
+            if g.normal == Vec3::X {
+                let along = g.position.y;
+                g.position = Vec3::new(along * tilt.cos(), along * tilt.sin(), g.position.z);
+                g.normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
+            }
+            Some(g)
+        })
+        .collect();
+    let apart = denoise(&light, &steep, W, 2, f64::from(H));
+    for (x, y) in interior(0) {
+        assert!(
+            (at(&apart, x, y) - at(&light, x, y)).abs() < 1e-3,
+            "60 degrees: ({x}, {y}) {}",
+            at(&apart, x, y)
+        );
+    }
+}
+
+#[test]
+fn texels_inside_a_wall_keep_its_two_sides_apart() {
+    // One floor chart with a wall one texel thick standing on column 24:
+    // its texels are inside geometry (a guide, no light). Lit on the left,
+    // dark on the right.
+    let light: Vec<Option<[f64; 1]>> = (0..W * W)
+        .map(|k| match k % W {
+            24 => None,
+            x if x < 24 => Some([1.0]),
+            _ => Some([0.0]),
+        })
+        .collect();
+    let filtered = denoise(&light, &floor_guides(), W, 2, f64::from(H));
+    for (x, y) in interior(0) {
+        if x != 24 {
+            assert!(
+                (at(&filtered, x, y) - at(&light, x, y)).abs() < 1e-12,
+                "({x}, {y}): {}",
+                at(&filtered, x, y)
+            );
+        }
+    }
+    // Where nothing stands (no texel there at all), the two sides mix.
+    let mut open = floor_guides();
+    for y in 0..W {
+        open[y * W + 24] = None;
+    }
+    let mixed = denoise(&light, &open, W, 2, f64::from(H));
+    assert!(at(&mixed, 23, 10) < 0.99 && at(&mixed, 25, 10) > 0.01);
+}
+
+#[test]
+fn a_one_sided_window_does_not_overshoot_the_values_it_fits() {
+    // A chart three texels wide, dark, dark, lit: the plane through them
+    // passes below 0 at the dark edge; the filter holds it at the darkest.
+    let light: Vec<Option<[f64; 1]>> = (0..W * W)
+        .map(|k| match k % W {
+            0 | 1 => Some([0.0]),
+            2 => Some([1.0]),
+            _ => None,
+        })
+        .collect();
+    let filtered = denoise(&light, &floor_guides(), W, 2, f64::from(H));
+    for y in 0..W {
+        for x in 0..3 {
+            let v = at(&filtered, x, y);
+            assert!((0.0..=1.0).contains(&v), "({x}, {y}): {v}");
+        }
+    }
 }
 
 #[test]
@@ -142,7 +216,9 @@ fn stacked_planes_charts_apart_and_other_regions_are_not_mixed() {
         region,
     };
     let light = values(|x, _| if x < 24 { 1.0 } else { 3.0 });
-    for (lift, shift, region) in [(0.5, 0.0, 0), (0.0, 10.0, 0), (0.0, 0.0, 1)] {
+    // The lift of 3 texels is within the filter's reach (2 (2 + 1) texels):
+    // the off-plane term alone keeps the table top apart.
+    for (lift, shift, region) in [(3.0 * H, 0.0, 0), (0.0, 10.0, 0), (0.0, 0.0, 1)] {
         let guides: Vec<Option<TexelGuide>> = (0..W * W)
             .map(|k| {
                 let (x, y) = (k % W, k / W);

@@ -10,7 +10,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use shlight_core::sh::closed_form;
 use shlight_lightmap::{
     DEFAULT_DENOISE, Engine, L1Reconstruction, LightmapError, LightmapSettings, LightmapSize,
-    SceneLightmap, TexelBasis, TexelFormat, bake_scene_lightmap,
+    MAX_DENOISE, SceneLightmap, TexelBasis, TexelFormat, bake_scene_lightmap,
 };
 use shlight_mesh::{
     Instance, InstanceSource, LightKind, LightUnits, Material, Primitive, PunctualLight, Scene,
@@ -433,6 +433,15 @@ fn an_evenly_lit_floors_noise_is_under_2_percent_at_the_default_settings() {
         bake(&s, &settings, DVec3::ONE).unwrap()
     };
     assert_eq!(LightmapSettings::default().denoise, DEFAULT_DENOISE);
+    let too_wide = LightmapSettings {
+        denoise: MAX_DENOISE + 1,
+        ..LightmapSettings::default()
+    };
+    let e = bake(&s, &too_wide, DVec3::ONE).unwrap_err().to_string();
+    assert!(
+        e.contains("denoising radius of 17 texels") && e.contains("at most 16"),
+        "{e}"
+    );
     let filtered = relative_noise(
         &with(1, DEFAULT_DENOISE),
         &with(2, DEFAULT_DENOISE),
