@@ -148,7 +148,7 @@ pub fn denoise<const N: usize>(
                         half_h,
                         reach2,
                     );
-                    if !(w > 0.0) {
+                    if w.is_nan() || w <= 0.0 {
                         continue;
                     }
                     let d = (o.position.as_dvec3() - p) / texel_size;
