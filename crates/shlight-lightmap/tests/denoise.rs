@@ -81,6 +81,24 @@ fn a_linear_ramp_on_a_flat_floor_is_kept() {
     }
 }
 
+/// `guides` with the wall (the texels facing +x) laid back to `degrees`
+/// from the floor's plane, turning about the crease.
+fn leaning(guides: &[Option<TexelGuide>], degrees: f32) -> Vec<Option<TexelGuide>> {
+    let tilt = degrees.to_radians();
+    guides
+        .iter()
+        .map(|g| {
+            let mut g = g.unwrap();
+            if g.normal == Vec3::X {
+                let along = g.position.y;
+                g.position = Vec3::new(along * tilt.cos(), along * tilt.sin(), g.position.z);
+                g.normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
+            }
+            Some(g)
+        })
+        .collect()
+}
+
 #[test]
 fn light_is_not_mixed_across_a_crease() {
     // Columns x < 24: a floor facing up; x >= 24: a wall rising from the
@@ -114,36 +132,12 @@ fn light_is_not_mixed_across_a_crease() {
         );
     }
     // A wall leaning back by 20 degrees from the floor's plane does mix.
-    let tilt = 20f32.to_radians();
-    let bent: Vec<Option<TexelGuide>> = guides
-        .iter()
-        .map(|g| {
-            let mut g = g.unwrap();
-            if g.normal == Vec3::X {
-                let along = g.position.y;
-                g.position = Vec3::new(along * tilt.cos(), along * tilt.sin(), g.position.z);
-                g.normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
-            }
-            Some(g)
-        })
-        .collect();
+    let bent = leaning(&guides, 20.0);
     let mixed = denoise(&light, &bent, W, 2, f64::from(H));
     assert!(at(&mixed, 23, 20) < 0.97 && at(&mixed, 24, 20) > 0.03);
     // At 60 degrees the facing term (0.5^16) keeps them apart to 1e-3; a
     // facing power of 1 would mix a fifth.
-    let tilt = 60f32.to_radians();
-    let steep: Vec<Option<TexelGuide>> = guides
-        .iter()
-        .map(|g| {
-            let mut g = g.unwrap();
-            if g.normal == Vec3::X {
-                let along = g.position.y;
-                g.position = Vec3::new(along * tilt.cos(), along * tilt.sin(), g.position.z);
-                g.normal = Vec3::new(-tilt.sin(), tilt.cos(), 0.0);
-            }
-            Some(g)
-        })
-        .collect();
+    let steep = leaning(&guides, 60.0);
     let apart = denoise(&light, &steep, W, 2, f64::from(H));
     for (x, y) in interior(0) {
         assert!(
