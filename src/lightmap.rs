@@ -156,7 +156,6 @@ pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
         engine: args.engine.into(),
         reconstruction: reconstruction(args.non_linear),
         settings: LightmapSettings {
-            uv_set: 1,
             size,
             padding: args.padding,
             denoise: args.denoise,
@@ -169,10 +168,9 @@ pub fn run(args: &LightmapArgs, ui: &Ui) -> Result<()> {
                 invalid_backfaces: args.invalid_backfaces,
                 seed: args.seed,
                 light_units: args.light_units,
-                relocate: false,
-                visibility_size: 0,
-                ..VolumeOptions::default()
+                ..LightmapSettings::default().gather
             },
+            ..LightmapSettings::default()
         },
         albedo: args.albedo,
         unshare_instances: args.unshare_instances,

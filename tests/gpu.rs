@@ -459,6 +459,54 @@ pub(crate) fn gpu_and_xvfb(test: &str) -> Option<Xvfb> {
     x
 }
 
+/// `view ARGS` on `x`'s display (160 x 120, three frames, no panel) with
+/// its screenshot, and `render-mesh ARGS` of the same framing, both
+/// written in `dir`: the largest difference of a channel between the two
+/// pictures, the screenshot's brightest channel, and the screenshot.
+pub(crate) fn view_against_render_mesh(
+    x: Xvfb,
+    args: &[&str],
+    dir: &Path,
+) -> (f32, f32, shlight_io::Image) {
+    let (shot, png) = (dir.join("view.png"), dir.join("render.png"));
+    let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
+        .arg("view")
+        .args(args)
+        .args(["--size", "160x120", "--frames", "3", "--hide-panel"])
+        .args(["--screenshot", s(&shot)])
+        .env("DISPLAY", &x.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    drop(x);
+    assert!(
+        out.status.success(),
+        "view failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut render = vec!["render-mesh"];
+    render.extend(args);
+    render.extend(["--size", "160x120", "-o", s(&png)]);
+    shlight_ok(&render);
+    let (view, render) = (
+        read_image(&shot, &ReadOptions::default()).unwrap(),
+        read_image(&png, &ReadOptions::default()).unwrap(),
+    );
+    assert_eq!((view.width(), view.height()), (160, 120));
+    let worst = view
+        .pixels()
+        .iter()
+        .zip(render.pixels())
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    let brightest = view
+        .pixels()
+        .iter()
+        .map(|p| p[0].max(p[1]).max(p[2]))
+        .fold(0.0f32, f32::max);
+    (worst, brightest, view)
+}
+
 #[test]
 fn view_screenshot_shows_the_mesh_under_xvfb() {
     let Some(x) = gpu_and_xvfb("view_screenshot_shows_the_mesh_under_xvfb") else {

@@ -87,6 +87,38 @@ pub fn black_sky(dir: &Path) -> std::path::PathBuf {
     env
 }
 
+/// `shlight lightmap SCENE --env ENV --for ENGINE --basis BASIS --size
+/// SIZE` at the tests' quick settings (16 rays a texel, 16 directions a
+/// surface vertex), then `extra`; it must succeed.
+pub fn bake_quick(
+    scene: &Path,
+    env: &Path,
+    engine: &str,
+    basis: &str,
+    size: u32,
+    extra: &[&str],
+) -> std::process::Output {
+    let size = size.to_string();
+    let mut args = vec![
+        "lightmap",
+        s(scene),
+        "--env",
+        s(env),
+        "--for",
+        engine,
+        "--basis",
+        basis,
+        "--size",
+        &size,
+        "--samples",
+        "16",
+        "--surface-samples",
+        "16",
+    ];
+    args.extend_from_slice(extra);
+    shlight_ok(&args)
+}
+
 #[test]
 fn a_floor_under_a_lamp_bakes_to_i_cos_over_d_squared_for_each_engine() {
     let dir = temp_dir("lightmap_floor");
@@ -97,22 +129,14 @@ fn a_floor_under_a_lamp_bakes_to_i_cos_over_d_squared_for_each_engine() {
     let env = black_sky(&dir);
     for (engine, scale) in [("threejs", 1.0), ("bevy", 1.0 / std::f64::consts::PI)] {
         let prefix = dir.join(engine);
-        let run = shlight_ok(&[
-            "lightmap",
-            s(&scene),
-            "--env",
-            s(&env),
-            "--for",
+        let run = bake_quick(
+            &scene,
+            &env,
             engine,
-            "--size",
-            "64",
-            "--samples",
-            "16",
-            "--surface-samples",
-            "16",
-            "--exr",
-            s(&prefix),
-        ]);
+            "irradiance",
+            64,
+            &["--exr", s(&prefix)],
+        );
         let said = String::from_utf8_lossy(&run.stderr);
         assert!(said.contains("64 x 64 lightmap, 1 regions"), "{said}");
         let image = read_image(
@@ -213,28 +237,14 @@ fn the_lightmapped_scene_holds_its_pages_and_says_what_they_hold() {
     ] {
         let out = dir.join(format!("{engine}.glb"));
         let prefix = dir.join(engine);
-        shlight_ok(&[
-            "lightmap",
-            s(&scene),
-            "--env",
-            s(&env),
-            "--for",
+        bake_quick(
+            &scene,
+            &env,
             engine,
-            "--basis",
             basis,
-            "--size",
-            "32",
-            "--samples",
-            "16",
-            "--surface-samples",
-            "16",
-            "--denoise",
-            denoise,
-            "-o",
-            s(&out),
-            "--exr",
-            s(&prefix),
-        ]);
+            32,
+            &["--denoise", denoise, "-o", s(&out), "--exr", s(&prefix)],
+        );
         // `show` says what the file holds.
         let shown = String::from_utf8_lossy(&shlight_ok(&["show", s(&out)]).stdout).into_owned();
         assert!(shown.contains("a scene with shlight's lightmap"), "{shown}");
@@ -368,24 +378,7 @@ fn sample_reads_the_lightmapped_scene_as_the_engines_shader_does() {
     .unwrap();
     for (engine, basis) in [("threejs", "irradiance"), ("godot", "sh-l1")] {
         let out = dir.join(format!("{engine}.glb"));
-        shlight_ok(&[
-            "lightmap",
-            s(&scene),
-            "--env",
-            s(&env),
-            "--for",
-            engine,
-            "--basis",
-            basis,
-            "--size",
-            "128",
-            "--samples",
-            "16",
-            "--surface-samples",
-            "16",
-            "-o",
-            s(&out),
-        ]);
+        bake_quick(&scene, &env, engine, basis, 128, &["-o", s(&out)]);
         let answer = dir.join(format!("{engine}.json"));
         shlight_ok(&[
             "sample",
@@ -553,28 +546,11 @@ fn render_lightmapped_floor(floor: &str, degrees: f64, report: &mut Vec<String>)
     ] {
         let name = format!("{engine}-{basis}{}", if non_linear { "-nl" } else { "" });
         let baked = dir.join(format!("{name}.glb"));
-        let mut bake = vec![
-            "lightmap",
-            s(&scene),
-            "--env",
-            s(&env),
-            "--for",
-            engine,
-            "--basis",
-            basis,
-            "--size",
-            "32",
-            "--samples",
-            "16",
-            "--surface-samples",
-            "16",
-            "-o",
-            s(&baked),
-        ];
+        let mut extra = vec!["-o", s(&baked)];
         if non_linear {
-            bake.push("--non-linear");
+            extra.push("--non-linear");
         }
-        shlight_ok(&bake);
+        bake_quick(&scene, &env, engine, basis, 32, &extra);
         let answer = dir.join(format!("{name}.json"));
         shlight_ok(&[
             "sample",
@@ -699,7 +675,6 @@ fn render_mesh_refuses_a_lightmap_the_scene_does_not_hold() {
 #[cfg(feature = "gpu")]
 #[test]
 fn view_draws_a_lightmapped_floor_as_render_mesh_does() {
-    use std::process::Command;
     let Some(x) = crate::gpu::gpu_and_xvfb("view_draws_a_lightmapped_floor_as_render_mesh_does")
     else {
         return;
@@ -709,56 +684,8 @@ fn view_draws_a_lightmapped_floor_as_render_mesh_does() {
     std::fs::write(&scene, floor_glb(683.0 * 6.0, [0.3, 1.5, -0.2], true)).unwrap();
     let env = black_sky(&dir);
     let baked = dir.join("baked.glb");
-    shlight_ok(&[
-        "lightmap",
-        s(&scene),
-        "--env",
-        s(&env),
-        "--for",
-        "godot",
-        "--basis",
-        "sh-l1",
-        "--size",
-        "32",
-        "--samples",
-        "16",
-        "--surface-samples",
-        "16",
-        "-o",
-        s(&baked),
-    ]);
-    let (shot, png) = (dir.join("view.png"), dir.join("render.png"));
-    let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
-        .args(["view", s(&baked)])
-        .args(["--size", "160x120", "--frames", "3", "--hide-panel"])
-        .args(["--screenshot", s(&shot)])
-        .env("DISPLAY", &x.display)
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    drop(x);
-    assert!(
-        out.status.success(),
-        "view failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    shlight_ok(&["render-mesh", s(&baked), "--size", "160x120", "-o", s(&png)]);
-    let (view, render) = (
-        read_image(&shot, &ReadOptions::default()).unwrap(),
-        read_image(&png, &ReadOptions::default()).unwrap(),
-    );
-    assert_eq!((view.width(), view.height()), (160, 120));
-    let worst = view
-        .pixels()
-        .iter()
-        .zip(render.pixels())
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
-    let brightest = view
-        .pixels()
-        .iter()
-        .map(|p| p[0].max(p[1]).max(p[2]))
-        .fold(0.0f32, f32::max);
+    bake_quick(&scene, &env, "godot", "sh-l1", 32, &["-o", s(&baked)]);
+    let (worst, brightest, view) = crate::gpu::view_against_render_mesh(x, &[s(&baked)], &dir);
     let corner = view.get(0, 0);
     eprintln!(
         "view vs render-mesh of a lightmapped floor: worst {worst:.2e}; brightest {brightest:.3}"

@@ -13,13 +13,12 @@
 //! error on this grid).
 
 use std::path::Path;
-use std::process::Command;
 
 use glam::{DVec2, DVec3};
 use shlight_format::ShprtFile;
 use shlight_io::{Image, ReadOptions, read_image};
 
-use crate::gpu::gpu_and_xvfb;
+use crate::gpu::{gpu_and_xvfb, view_against_render_mesh};
 use crate::util::{glb, gpu_context, read_json, s, shlight_ok, temp_dir, write_radiance_rows};
 
 /// Quads along each side of the floor.
@@ -400,43 +399,8 @@ fn view_draws_a_scenes_static_term() {
     let (scene, prt) = bake(&dir);
     let black = dir.join("black.json");
     write_radiance_rows(&black, &[[0.0; 3]]);
-    let (shot, png) = (dir.join("view.png"), dir.join("render.png"));
     let files = [s(&scene), "--prt", s(&prt), "--env", s(&black)];
-    let out = Command::new(env!("CARGO_BIN_EXE_shlight"))
-        .arg("view")
-        .args(files)
-        .args(["--size", "160x120", "--frames", "3", "--hide-panel"])
-        .args(["--screenshot", s(&shot)])
-        .env("DISPLAY", &x.display)
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    drop(x);
-    assert!(
-        out.status.success(),
-        "view failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let mut args = vec!["render-mesh"];
-    args.extend(files);
-    args.extend(["--size", "160x120", "-o", s(&png)]);
-    shlight_ok(&args);
-    let (view, render) = (
-        read_image(&shot, &ReadOptions::default()).unwrap(),
-        read_image(&png, &ReadOptions::default()).unwrap(),
-    );
-    assert_eq!((view.width(), view.height()), (160, 120));
-    let worst = view
-        .pixels()
-        .iter()
-        .zip(render.pixels())
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
-    let brightest = view
-        .pixels()
-        .iter()
-        .map(|p| p[0].max(p[1]).max(p[2]))
-        .fold(0.0f32, f32::max);
+    let (worst, brightest, _) = view_against_render_mesh(x, &files, &dir);
     eprintln!(
         "view --prt vs render-mesh --prt (PNG, linear): worst {worst:.2e}; brightest {brightest:.3}"
     );

@@ -1386,24 +1386,7 @@ fn threejs_renders_the_lightmapped_scene_as_sample_reads_it() {
     let env = crate::lightmap::black_sky(&dir);
     for basis in ["irradiance", "sh-l1"] {
         let lit_glb = dir.join(format!("lit-{basis}.glb"));
-        shlight_ok(&[
-            "lightmap",
-            s(&scene),
-            "--env",
-            s(&env),
-            "--for",
-            "threejs",
-            "--basis",
-            basis,
-            "--size",
-            "64",
-            "--samples",
-            "16",
-            "--surface-samples",
-            "16",
-            "-o",
-            s(&lit_glb),
-        ]);
+        crate::lightmap::bake_quick(&scene, &env, "threejs", basis, 64, &["-o", s(&lit_glb)]);
         let page = format!(
             "/tests/web/lightmap.html?scene=/data/lit-{basis}.glb&centre=[0,0,0]&normal=[{},{},{}]&extent=0.6",
             normal.x, normal.y, normal.z

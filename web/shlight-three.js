@@ -379,7 +379,8 @@ function reconstructL1( material, l1 ) {
  * with its lightmaps: each baked material gets its page as `lightMap`
  * (through `MOZ_lightmap`, linear, `uv1`); for the `sh-l1` basis each
  * also reconstructs the L1 irradiance for its shading normal, so normal
- * maps reshade it. The pages are half-float KTX2 images, read by a
+ * maps reshade it, always linearly (a `--non-linear` file's
+ * reconstruction is not applied). The pages are half-float KTX2 images, read by a
  * KTX2Loader made ready for `renderer`. Resolves to GLTFLoader's result;
  * its `userData.shlightLightmap` is the file's `SHLIGHT_lightmap`
  * (docs/lightmaps.md).

@@ -16,11 +16,10 @@ use shlight_pipeline::{
 };
 use shlight_volume::VolumeOptions;
 
-use crate::errors::{pipeline_error, warn_all};
-use crate::guard::guard;
-use crate::hooks::PyHooks;
+use crate::errors::pipeline_error;
 use crate::options::albedo_of;
 use crate::scene::SceneArg;
+use crate::scene::bake_scene_arg;
 
 /// A baked lightmap: one square atlas, a region per placed node, its
 /// texels packed for an engine (`layers`, named by `layer_names`), and
@@ -192,7 +191,6 @@ pub fn bake_lightmap(
         engine: engine_by_name(engine, py_spelling).map_err(pipeline_error)?,
         reconstruction: reconstruction(non_linear),
         settings: LightmapSettings {
-            uv_set: 1,
             size: lightmap_size(size, texel_density, py_spelling).map_err(pipeline_error)?,
             padding,
             denoise,
@@ -205,10 +203,9 @@ pub fn bake_lightmap(
                 invalid_backfaces,
                 seed,
                 light_units,
-                relocate: false,
-                visibility_size: 0,
-                ..VolumeOptions::default()
+                ..LightmapSettings::default().gather
             },
+            ..LightmapSettings::default()
         },
         albedo: albedo.map(albedo_of).transpose()?.unwrap_or([0.8; 3]),
         unshare_instances,
@@ -217,16 +214,11 @@ pub fn bake_lightmap(
     }
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
-    let hooks = PyHooks::new(false);
-    let baked = py.detach(|| {
-        guard(|| {
-            match &loaded {
-                Some(s) => lightmap_of_scene(&plan, s, &hooks),
-                None => lightmap(&plan, &hooks),
-            }
-            .map_err(pipeline_error)
-        })
-    });
-    warn_all(py, &hooks.warnings(), 2)?;
-    Ok(Lightmap { baked: baked? })
+    let baked = bake_scene_arg(
+        py,
+        loaded.as_deref(),
+        |hooks| lightmap(&plan, hooks),
+        |scene, hooks| lightmap_of_scene(&plan, scene, hooks),
+    )?;
+    Ok(Lightmap { baked })
 }

@@ -18,9 +18,9 @@ use shlight_prt::Observer;
 
 use crate::errors::{chained, pipeline_error, shlight_error, warn_all};
 use crate::guard::guard;
-use crate::hooks::PyHooks;
 use crate::options::albedo_of;
 use crate::scene::SceneArg;
+use crate::scene::bake_scene_arg;
 
 /// Per-vertex transfer of a mesh (a `.shprt` file): diffuse transfer
 /// vectors, whose exit radiance under distant radiance SH `L` is
@@ -294,16 +294,11 @@ pub fn bake_transfer(
     }
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
-    let hooks = PyHooks::new(false);
-    let baked = py.detach(|| {
-        guard(|| {
-            match &scene {
-                Some(scene) => prt_of_scene(&plan, scene, &hooks),
-                None => prt(&plan, &hooks),
-            }
-            .map_err(pipeline_error)
-        })
-    });
-    warn_all(py, &hooks.warnings(), 2)?;
-    Ok(Transfer { file: baked?.file })
+    let baked = bake_scene_arg(
+        py,
+        scene.as_deref(),
+        |hooks| prt(&plan, hooks),
+        |scene, hooks| prt_of_scene(&plan, scene, hooks),
+    )?;
+    Ok(Transfer { file: baked.file })
 }

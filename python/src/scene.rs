@@ -176,3 +176,28 @@ impl Scene {
         )
     }
 }
+
+/// Runs a bake whose scene Python gave as a path or as a loaded `Scene`,
+/// off the GIL and guarded against panics: `of_scene` on the loaded scene,
+/// `of_path` (reading the plan's path) otherwise; the bake's warnings then
+/// become Python warnings.
+pub fn bake_scene_arg<T: Send>(
+    py: Python<'_>,
+    loaded: Option<&shlight_mesh::Scene>,
+    of_path: impl FnOnce(&crate::hooks::PyHooks) -> shlight_pipeline::Result<T> + Send,
+    of_scene: impl FnOnce(&shlight_mesh::Scene, &crate::hooks::PyHooks) -> shlight_pipeline::Result<T>
+    + Send,
+) -> PyResult<T> {
+    let hooks = crate::hooks::PyHooks::new(false);
+    let baked = py.detach(|| {
+        guard(|| {
+            match loaded {
+                Some(scene) => of_scene(scene, &hooks),
+                None => of_path(&hooks),
+            }
+            .map_err(crate::errors::pipeline_error)
+        })
+    });
+    crate::errors::warn_all(py, &hooks.warnings(), 2)?;
+    baked
+}

@@ -29,6 +29,7 @@ use crate::guard::guard;
 use crate::hooks::PyHooks;
 use crate::options::albedo_of;
 use crate::scene::SceneArg;
+use crate::scene::bake_scene_arg;
 
 /// An irradiance volume (a `.shvol` file, docs/shvol.md): SH probes on a
 /// grid through a scene, with their validity, positions, distance maps
@@ -446,16 +447,11 @@ pub fn bake_volume(
     }
     .check(Spelling::Python)
     .map_err(pipeline_error)?;
-    let hooks = PyHooks::new(false);
-    let baked = py.detach(|| {
-        guard(|| {
-            match &loaded {
-                Some(s) => volume_of_scene(&plan, s, &hooks),
-                None => volume(&plan, &hooks),
-            }
-            .map_err(pipeline_error)
-        })
-    });
-    warn_all(py, &hooks.warnings(), 2)?;
-    Ok(Volume { file: baked?.file })
+    let baked = bake_scene_arg(
+        py,
+        loaded.as_deref(),
+        |hooks| volume(&plan, hooks),
+        |scene, hooks| volume_of_scene(&plan, scene, hooks),
+    )?;
+    Ok(Volume { file: baked.file })
 }

@@ -210,8 +210,8 @@ pub fn write_ktx2(
 
 /// Reads a KTX2 file of the kind [`write_ktx2`] writes: one 2D image, one
 /// level (or a level count of 0), no supercompression, in one of
-/// [`Ktx2TexelFormat`]'s formats. Key/value data and the descriptor's
-/// details are not checked beyond their bounds.
+/// [`Ktx2TexelFormat`]'s formats. Key/value data and the data format
+/// descriptor are not read.
 ///
 /// # Errors
 /// [`IoErrorKind::NotFound`] or [`IoErrorKind::Unreadable`] when the file

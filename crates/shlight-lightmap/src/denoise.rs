@@ -135,9 +135,6 @@ pub fn denoise<const N: usize>(
                     let (Some(v), Some(o)) = (values[j], guides[j]) else {
                         continue;
                     };
-                    if barrier_between(values, guides, width, (x as i64, y as i64), (dx, dy)) {
-                        continue;
-                    }
                     let w = weight_between(
                         p,
                         n,
@@ -149,6 +146,10 @@ pub fn denoise<const N: usize>(
                         reach2,
                     );
                     if w.is_nan() || w <= 0.0 {
+                        continue;
+                    }
+                    // The costlier test last.
+                    if barrier_between(values, guides, width, (x as i64, y as i64), (dx, dy)) {
                         continue;
                     }
                     let d = (o.position.as_dvec3() - p) / texel_size;

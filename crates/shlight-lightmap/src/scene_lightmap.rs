@@ -120,8 +120,9 @@ pub struct SceneLightmap {
     /// reflect light.
     pub skipped: Vec<String>,
     /// Row by row, texel `(x, y)` at `y side + x`: the texels the surfaces
-    /// cover, the texels inside geometry filled from their neighbours, and
-    /// the padding dilated ([`LightmapSettings::padding`] passes); `None`
+    /// cover (filtered, [`LightmapSettings::denoise`]), the texels inside
+    /// geometry and the padding filled from their neighbours (dilation, in
+    /// `max(padding, 1) + 8` passes), then the UV seams stitched; `None`
     /// beyond.
     pub texels: Vec<Option<TexelLight>>,
     /// Texels found inside geometry (seeing mostly back faces) and filled.

@@ -77,6 +77,17 @@ pub enum L1Reconstruction {
     NonLinear,
 }
 
+impl L1Reconstruction {
+    /// The reconstruction's name in shlight's files (`SHLIGHT_lightmap`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Linear => "linear",
+            Self::NonLinear => "non-linear",
+        }
+    }
+}
+
 /// A texel format: basis, engine and (for SH bases) reconstruction, one
 /// of the pairs an engine can read.
 ///

@@ -407,10 +407,7 @@ pub fn lightmap_description(plan: &LightmapPlan, baked: &LightmapBaked) -> Value
     json!({
         "basis": plan.format.basis().name(),
         "engine": engine_name(plan.format.engine()),
-        "reconstruction": match plan.format.reconstruction() {
-            L1Reconstruction::Linear => "linear",
-            L1Reconstruction::NonLinear => "non-linear",
-        },
+        "reconstruction": plan.format.reconstruction().name(),
         "units": match plan.format.units() {
             TexelUnits::Irradiance => "irradiance",
             TexelUnits::IrradianceOverPi => "irradiance/pi",

@@ -8,11 +8,11 @@ use glam::{Vec2, Vec3};
 use serde_json::Value;
 use shlight_format::SamplePoints;
 use shlight_io::{Ktx2Image, decode_ktx2};
-use shlight_lightmap::{PackedTexel, TexelFormat};
+use shlight_lightmap::{L1Reconstruction, PackedTexel, TexelFormat};
 use shlight_mesh::{LightmapPages, Scene};
 use shlight_rays::{Occluder, Ray};
 
-use super::lightmap::{engine_by_name, reconstruction, texel_basis};
+use super::lightmap::{engine_by_name, texel_basis};
 use crate::spelling::Spelling;
 use crate::{PipelineError, Result};
 
@@ -31,12 +31,11 @@ fn format_of(root: &Value, name: &str) -> Result<TexelFormat> {
     let basis = texel_basis(word("basis"), Spelling::CommandLine).map_err(|_| fail("basis"))?;
     let engine =
         engine_by_name(word("engine"), Spelling::CommandLine).map_err(|_| fail("engine"))?;
-    TexelFormat::new(
-        basis,
-        engine,
-        reconstruction(word("reconstruction") == "non-linear"),
-    )
-    .map_err(|e| fail(&e.to_string()))
+    let reconstruction = [L1Reconstruction::Linear, L1Reconstruction::NonLinear]
+        .into_iter()
+        .find(|r| r.name() == word("reconstruction"))
+        .ok_or_else(|| fail("reconstruction"))?;
+    TexelFormat::new(basis, engine, reconstruction).map_err(|e| fail(&e.to_string()))
 }
 
 /// A lightmapped scene's atlas as a renderer reads it: the texel format
@@ -125,8 +124,9 @@ pub fn node_scale_offset(name: &str, node: usize, ext: &Value) -> Result<[f32; 4
 
 /// The irradiance `E` (W/m2, whatever the engine's units) a GPU shading
 /// the lightmapped scene `scene` (read from `name`, its lightmaps
-/// `pages`) reads at each of `points` for its normal: the nearest surface
-/// along the normal (within [`SURFACE_REACH`] of the scene's diagonal),
+/// `pages`) reads at each of `points` for its normal: the first surface a
+/// ray meets coming back along the normal from [`SURFACE_REACH`] of the
+/// scene's diagonal above the point,
 /// its `TEXCOORD_1` (moved into the node's region by its `scaleOffset`
 /// unless the file moved it already: [`node_scale_offset`]), each page
 /// read with bilinear filtering (texel centres at `(x + 1/2) / side`,

@@ -140,16 +140,22 @@ impl SampleRequest<'_> {
         })
     }
 
-    fn volume_kind(&self, spelling: Spelling) -> Result<Kind> {
-        let Some(points) = self.points else {
-            return Err(PipelineError::new(format!(
-                "sampling a volume needs {}: where to sample it",
+    /// The points file, which sampling `what` (a volume, a lightmapped
+    /// scene) needs: where to `verb` it.
+    fn required_points(&self, what: &str, verb: &str, spelling: Spelling) -> Result<&Path> {
+        self.points.ok_or_else(|| {
+            PipelineError::new(format!(
+                "sampling {what} needs {}: where to {verb} it",
                 spelling.pick(
                     "--points POINTS.json (or .csv)",
                     "points (a .json or .csv file)"
                 )
-            )));
-        };
+            ))
+        })
+    }
+
+    fn volume_kind(&self, spelling: Spelling) -> Result<Kind> {
+        let points = self.required_points("a volume", "sample", spelling)?;
         if self.light.is_some() {
             return Err(PipelineError::new(format!(
                 "{} is the light of a .shprt file; a volume is relit by {}",
@@ -165,15 +171,7 @@ impl SampleRequest<'_> {
     }
 
     fn lightmap_kind(&self, spelling: Spelling) -> Result<Kind> {
-        let Some(points) = self.points else {
-            return Err(PipelineError::new(format!(
-                "sampling a lightmapped scene needs {}: where to read it",
-                spelling.pick(
-                    "--points POINTS.json (or .csv)",
-                    "points (a .json or .csv file)"
-                )
-            )));
-        };
+        let points = self.required_points("a lightmapped scene", "read", spelling)?;
         for (given, what) in [(self.env.is_some(), "env"), (self.light.is_some(), "light")] {
             if given {
                 return Err(PipelineError::new(format!(
@@ -277,12 +275,7 @@ fn sample_volume(
     let mut file = ShvolFile::read(&plan.file)?;
     // The lookup and lmax are checked before the points and light are read.
     let settled = volume_lookup(&file, Some(&name), lookup, plan.lmax, plan.spelling)?;
-    let (points, at) = match (given, MeshFormat::from_path(points_path)) {
-        (Some(p), Some(_)) => (p.clone(), "vertices"),
-        (Some(p), None) => (p.clone(), "points"),
-        (None, Some(_)) => (mesh_points(points_path)?, "vertices"),
-        (None, None) => (SamplePoints::read(points_path)?, "points"),
-    };
+    let (points, at) = points_at(points_path, given)?;
     if let Some(env) = env {
         let light = light_of(env, plan.frame, shlight_baked::MAX_LMAX, hooks)?;
         relight_volume(&mut file, Some(&name), &light, plan.spelling)?;
@@ -317,19 +310,33 @@ fn sample_volume(
     })
 }
 
+/// The points to sample at, with what they are: those given (a scene or
+/// points Python loaded), else read from `path`, a mesh's vertices or a
+/// points file.
+fn points_at(path: &Path, given: Option<&SamplePoints>) -> Result<(SamplePoints, &'static str)> {
+    let mesh = MeshFormat::from_path(path).is_some();
+    let at = if mesh { "vertices" } else { "points" };
+    let points = match given {
+        Some(p) => p.clone(),
+        None if mesh => mesh_points(path)?,
+        None => SamplePoints::read(path)?,
+    };
+    Ok((points, at))
+}
+
 fn sample_lightmap(
     plan: &SamplePlan,
     (points_path, given): (&Path, Option<&SamplePoints>),
 ) -> Result<SampledValues> {
     let name = plan.file.display().to_string();
-    let pages = shlight_mesh::read_lightmap_pages(&plan.file)?;
-    let scene = shlight_mesh::load_scene(&plan.file, &LoadOptions::default())?;
-    let (points, at) = match (given, MeshFormat::from_path(points_path)) {
-        (Some(p), Some(_)) => (p.clone(), "vertices"),
-        (Some(p), None) => (p.clone(), "points"),
-        (None, Some(_)) => (mesh_points(points_path)?, "vertices"),
-        (None, None) => (SamplePoints::read(points_path)?, "points"),
-    };
+    // One read of the file for its pages and its scene.
+    let bytes = std::fs::read(&plan.file).map_err(|source| shlight_mesh::MeshError::Io {
+        path: plan.file.clone(),
+        source,
+    })?;
+    let pages = shlight_mesh::lightmap_pages_from_bytes(&plan.file, &bytes)?;
+    let scene = shlight_mesh::load_scene_bytes(&plan.file, &bytes, &LoadOptions::default())?;
+    let (points, at) = points_at(points_path, given)?;
     let values = lightmap_irradiance(&name, &scene, &pages, &points)?;
     let root = &pages.root;
     Ok(SampledValues {
