@@ -14,7 +14,7 @@ use crate::denoise::{TexelGuide, denoise};
 use crate::dilate::dilate;
 use crate::lightmap_error::LightmapError;
 use crate::placement::Placement;
-use crate::seams::{SeamCorner, find_seams, stitch_seams};
+use crate::seams::{SeamCorner, find_seams, footprint, stitch_seams};
 use crate::texel_format::{TexelBasis, TexelFormat};
 use crate::texel_raster::{MAX_SIDE, TexelRaster};
 use crate::uv_overlap::first_uv_overlap;
@@ -149,30 +149,22 @@ impl SceneLightmap {
     #[must_use]
     pub fn bilinear(&self, region: usize, uv: Vec2) -> Option<TexelLight> {
         let r = self.regions.get(region)?;
-        let at = r.placement.apply(uv.as_dvec2()) * f64::from(self.side) - 0.5;
-        let (x0, y0) = (at.x.floor(), at.y.floor());
-        let (fx, fy) = (at.x - x0, at.y - y0);
-        let max = i64::from(self.side) - 1;
+        let at = r.placement.apply(uv.as_dvec2()) * f64::from(self.side);
         let mut sum = [0.0f64; 15];
         let mut weight = 0.0;
         let mut normal = Vec3::ZERO;
-        for (dy, wy) in [(0, 1.0 - fy), (1, fy)] {
-            for (dx, wx) in [(0, 1.0 - fx), (1, fx)] {
-                let x = (x0 as i64 + dx).clamp(0, max) as usize;
-                let y = (y0 as i64 + dy).clamp(0, max) as usize;
-                let w = wx * wy;
-                if w <= 0.0 {
-                    continue;
-                }
-                let Some(t) = self.texels[y * self.side as usize + x] else {
-                    continue;
-                };
-                for (s, v) in sum.iter_mut().zip(to_array(t)) {
-                    *s += w * v;
-                }
-                normal += w as f32 * t.normal;
-                weight += w;
+        for (k, w) in footprint(at, self.side as usize) {
+            if w <= 0.0 {
+                continue;
             }
+            let Some(t) = self.texels[k] else {
+                continue;
+            };
+            for (s, v) in sum.iter_mut().zip(to_array(t)) {
+                *s += w * v;
+            }
+            normal += w as f32 * t.normal;
+            weight += w;
         }
         if weight <= 0.0 {
             return None;
@@ -261,6 +253,12 @@ pub fn bake_scene_lightmap(
     settings: &LightmapSettings,
     progress: &(dyn Fn(Stage, usize, usize) + Sync),
 ) -> Result<SceneLightmap, LightmapError> {
+    if settings.denoise > MAX_DENOISE {
+        return Err(LightmapError::Settings(format!(
+            "a denoising radius of {} texels: it must be at most {MAX_DENOISE}",
+            settings.denoise
+        )));
+    }
     let layout = scene.flat_layout().map_err(LightmapError::Scene)?;
     // Nodes none of whose primitives has the UV set are not baked (they
     // still cast shadows and reflect light).
@@ -302,12 +300,6 @@ pub fn bake_scene_lightmap(
         nodes.push(uvs);
     }
     let padding = settings.padding;
-    if settings.denoise > MAX_DENOISE {
-        return Err(LightmapError::Settings(format!(
-            "a denoising radius of {} texels: it must be at most {MAX_DENOISE}",
-            settings.denoise
-        )));
-    }
     let sides_at = |density: f64| -> Vec<u32> {
         naturals
             .iter()

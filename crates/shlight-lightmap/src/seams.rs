@@ -92,7 +92,7 @@ pub const STITCH_SWEEPS: usize = 64;
 
 /// The four texels a bilinear read at `p` (texel coordinates) weighs, and
 /// their weights: texel centres at `x + 1/2`, clamped at the grid's edge.
-fn footprint(p: DVec2, side: usize) -> [(usize, f64); 4] {
+pub(crate) fn footprint(p: DVec2, side: usize) -> [(usize, f64); 4] {
     let at = p - 0.5;
     let (x0, y0) = (at.x.floor(), at.y.floor());
     let (fx, fy) = (at.x - x0, at.y - y0);

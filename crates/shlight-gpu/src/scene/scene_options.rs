@@ -199,10 +199,7 @@ impl SceneOptions {
             ));
         }
         if self.mesh.is_none() {
-            let mesh = match spelling {
-                Spelling::CommandLine => "MESH",
-                Spelling::Python => "mesh",
-            };
+            let mesh = spelling.pick("MESH", "mesh");
             return refuse(format!(
                 "{volume} lights the scene it was baked in: give that scene as {mesh}"
             ));
@@ -235,15 +232,10 @@ impl SceneOptions {
         }
         let lightmap = spelling.option("lightmap");
         let other = if self.mesh.is_none() {
-            Some(
-                match spelling {
-                    Spelling::CommandLine => {
-                        "the built-in mesh (give the lightmapped scene as MESH)"
-                    }
-                    Spelling::Python => "the built-in mesh (give the lightmapped scene as mesh)",
-                }
-                .to_string(),
-            )
+            Some(format!(
+                "the built-in mesh (give the lightmapped scene as {})",
+                spelling.pick("MESH", "mesh")
+            ))
         } else if self.prt.is_some() {
             Some(spelling.option("prt"))
         } else if self.volume.is_some() {
